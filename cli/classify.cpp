@@ -1,0 +1,189 @@
+// raykernel classify: one ray–plane query per line (CONTRACT §3).
+#include "commands.hpp"
+#include "text_input.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace raykernel::cli {
+namespace {
+
+constexpr const char* classify_help = R"(usage: raykernel classify [options] [FILE|-]
+
+Classifies one ray-plane query per input line (standard input when FILE is - or absent):
+  ox oy oz dx dy dz px py pz nx ny nz
+numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks.
+Blank lines and lines starting with # are skipped. Each other line gives one output line:
+  hit T | behind T | parallel | in-plane | invalid REASON
+where T is t = ((p - o).n) / (d.n) rounded to the nearest double (ties to even), printed so
+that strtod reads it back exactly.
+
+options:
+  --path=certified|exact|naive   which computation answers (default certified; naive is the
+                                 lecture's formula in plain doubles, without guarantees)
+  --exact-t                      append the exact t as P/Q in lowest terms
+  --hex                          print T as a hexadecimal float
+  --stats                        print to stderr how many queries each stage decided
+  --help                         this text
+
+exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error
+)";
+
+Ray ray_of(const NumberLine& line) {
+  const auto& v = line.value;
+  return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+}
+Plane plane_of(const NumberLine& line) {
+  const auto& v = line.value;
+  return {{v[6], v[7], v[8]}, {v[9], v[10], v[11]}};
+}
+
+}  // namespace
+
+int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, const ClassifyOptions& options,
+                    ClassifyCounts& counts) {
+  std::string line;
+  std::string answer;
+  std::uint64_t line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const NumberLine parsed = parse_number_line(line, 12);
+    if (parsed.status == LineStatus::skip) continue;
+    ++counts.lines_answered;
+
+    std::string reason = parsed.reason;
+    const Ray ray = ray_of(parsed);
+    const Plane plane = plane_of(parsed);
+    if (parsed.status == LineStatus::numbers) {
+      if (std::optional<std::string> invalid = validate(ray, plane)) reason = *invalid;
+    }
+    if (!reason.empty()) {
+      ++counts.invalid;
+      out << "invalid " << reason << '\n';
+      err << "raykernel: line " << line_number << ": " << reason << '\n';
+      continue;
+    }
+
+    Intersection result{};
+    switch (options.path) {
+      case Path::certified: {
+        const TracedIntersection traced = intersect_traced(ray, plane);
+        result = traced.intersection;
+        ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
+        if (result.relation == Relation::hit || result.relation == Relation::behind)
+          ++counts.t_stage[static_cast<int>(traced.t_stage)];
+        break;
+      }
+      case Path::exact: result = intersect_exact(ray, plane); break;
+      case Path::naive: result = intersect_naive(ray, plane); break;
+    }
+    ++counts.relation[static_cast<int>(result.relation)];
+
+    answer.assign(to_string(result.relation));
+    if (result.relation == Relation::hit || result.relation == Relation::behind) {
+      answer += ' ';
+      answer += options.hex ? format_hex(result.t) : format_shortest(result.t);
+      if (options.exact_t) {
+        const ExactIntersection exact = intersect_exact_rational(ray, plane);
+        answer += ' ';
+        answer += exact.t ? exact.t->str() : "none";  // only the naive path can disagree with exact
+      }
+    }
+    out << answer << '\n';
+  }
+  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+}
+
+std::string describe(const ClassifyCounts& c, Path path) {
+  std::ostringstream s;
+  s << c.lines_answered << " queries: " << c.relation[0] << " hit, " << c.relation[1] << " behind, "
+    << c.relation[2] << " parallel, " << c.relation[3] << " in-plane, " << c.invalid << " invalid\n";
+  if (path == Path::certified) {
+    auto stages = [&](const std::uint64_t* n) {
+      std::string out;
+      for (int k = 0; k < stage_count; ++k) {
+        if (k) out += ", ";
+        out += std::string(to_string(static_cast<Stage>(k))) + " " + std::to_string(n[k]);
+      }
+      return out;
+    };
+    s << "relation decided by: " << stages(c.relation_stage) << "\n";
+    s << "t (hit, behind) decided by: " << stages(c.t_stage) << "\n";
+  } else {
+    s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
+  }
+  return s.str();
+}
+
+int run_classify(const std::vector<std::string>& args) {
+  ClassifyOptions options;
+  std::string file;
+  bool have_file = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << classify_help;
+      return exit_ok;
+    }
+    if (a == "--exact-t") {
+      options.exact_t = true;
+    } else if (a == "--hex") {
+      options.hex = true;
+    } else if (a == "--stats") {
+      options.stats = true;
+    } else if (a.rfind("--path", 0) == 0) {
+      std::string value;
+      if (a.size() > 6 && a[6] == '=') {
+        value = a.substr(7);
+      } else if (a == "--path" && i + 1 < args.size()) {
+        value = args[++i];
+      } else {
+        std::cerr << "raykernel classify: --path needs a value: certified, exact or naive\n";
+        return exit_usage;
+      }
+      if (value == "certified") options.path = Path::certified;
+      else if (value == "exact") options.path = Path::exact;
+      else if (value == "naive") options.path = Path::naive;
+      else {
+        std::cerr << "raykernel classify: unknown path '" << value << "' (certified, exact or naive)\n";
+        return exit_usage;
+      }
+    } else if (a.size() > 1 && a[0] == '-') {
+      std::cerr << "raykernel classify: unknown option '" << a << "' (see raykernel classify --help)\n";
+      return exit_usage;
+    } else if (have_file) {
+      std::cerr << "raykernel classify: more than one input file ('" << file << "', '" << a << "')\n";
+      return exit_usage;
+    } else {
+      file = a;
+      have_file = true;
+    }
+  }
+
+  std::ifstream file_stream;
+  std::istream* in = &std::cin;
+  if (have_file && file != "-") {
+    file_stream.open(file, std::ios::binary);
+    if (!file_stream) {
+      std::cerr << "raykernel classify: cannot open '" << file << "'\n";
+      return exit_usage;
+    }
+    in = &file_stream;
+  }
+  ClassifyCounts counts;
+  const int status = classify_stream(*in, std::cout, std::cerr, options, counts);
+  std::cout.flush();
+  if (in->bad() || !std::cout) {
+    std::cerr << "raykernel classify: I/O error while " << (in->bad() ? "reading input" : "writing output") << "\n";
+    return exit_usage;
+  }
+  if (options.stats) {
+    std::istringstream lines(describe(counts, options.path));
+    for (std::string l; std::getline(lines, l);) std::cerr << "raykernel: stats: " << l << '\n';
+  }
+  return status;
+}
+
+}  // namespace raykernel::cli

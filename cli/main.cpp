@@ -1,0 +1,40 @@
+// The raykernel command-line tool: dispatches to the subcommands.
+#include "commands.hpp"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr const char* overview = R"(raykernel: exact ray-plane intersection, certified fast
+
+usage: raykernel <command> [options]
+
+commands:
+  classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
+  demo                run the built-in batch of hard queries and summarize it
+  --version           print the version
+  --help              this text
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  const std::vector<std::string> args(argv + (argc > 1 ? 2 : 1), argv + argc);
+  const std::string command = argc > 1 ? argv[1] : "";
+  using namespace raykernel::cli;
+  if (command.empty() || command == "--help" || command == "-h" || command == "help") {
+    std::cout << overview;
+    return exit_ok;
+  }
+  if (command == "--version" || command == "version") {
+    std::cout << "raykernel " << raykernel::version() << '\n';
+    return exit_ok;
+  }
+  if (command == "classify") return run_classify(args);
+  if (command == "demo") return run_demo(args);
+  std::cerr << "raykernel: unknown command '" << command << "'\n" << overview;
+  return exit_usage;
+}

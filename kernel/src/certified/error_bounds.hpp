@@ -1,0 +1,107 @@
+// The error constants of the certified stages, each beside its derivation, its valid range and the
+// theorem in proofs/ that certifies it. This file is the only place they are written; the stages include
+// it, tests/error_constants_test.cpp recomputes every constant from its formula, and the proofs state their
+// theorems about these exact numbers (proofs/README.md explains how the two are compared).
+//
+// Notation. Binary64, round to nearest (ties to even; the bounds hold for any tie rule).
+//   u = 2^-53           unit roundoff
+//   μ = 2^-1074         smallest positive subnormal
+//   η = μ/2 = 2^-1075   largest absolute rounding error of a result in the subnormal range
+//   ⊕ ⊖ ⊗ ⊘            rounded operations; RN(x) the rounding of the real x
+// Rounding model with gradual underflow (Flocq `error_N_FLT`): RN(x) = x(1+ε) + e with |ε| ≤ u, |e| ≤ η,
+// ε·e = 0. Two sharper facts are used: |RN(x) − x| ≤ u·|RN(x)| when |x| ≥ 2^-1022; and a sum or difference
+// of two doubles is exact when its result is below 2^-1022 (Hauser 1996, Thm 3.4.1), so additions carry
+// relative errors only.
+//
+// Overflow. Every stage computes its error bound from magnitudes that dominate its intermediate values;
+// an overflow anywhere makes that bound or the value ±inf or NaN, and every comparison that certifies a
+// result is then false. So "the bound is finite" implies "no intermediate overflowed", which is the
+// hypothesis the theorems state (proofs/README.md, "Overflow").
+#pragma once
+
+namespace raykernel::detail::bounds {
+
+inline constexpr double unit_roundoff = 0x1p-53;          // u
+inline constexpr double min_subnormal = 0x0.0000000000001p-1022;  // μ = 2^-1074
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 1: dot3_filter (certified/dot3_filter.hpp)
+//
+//   q_i = a_i ⊗ b_i,  s = (q_1 ⊕ q_2) ⊕ q_3,  m = (|q_1| ⊕ |q_2|) ⊕ |q_3|,  B = (C ⊗ m) ⊕ U;
+//   s > B ⇒ a·b > 0,  s < −B ⇒ a·b < 0.
+//
+// Derivation (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1, with the underflow term):
+// with Q = Σ|q_i|, |q_i − a_i b_i| ≤ u|q_i| + η, |s_2 − (q_1+q_2)| ≤ u|q_1+q_2|, |s − (s_2+q_3)| ≤ u(1+u)Q:
+//   den = d·n exactly:            |s − a·b| ≤ (3u + u²)·Q + 3η
+//   num, a_i = p_i ⊖ o_i:         |a_i − (p_i−o_i)| ≤ u|a_i| adds u(1+u)Q + 3uη:
+//                                 |s − (p−o)·n| ≤ (4u + 2u²)·Q + 3(1+u)η
+// and m ≥ Q/(1+u)², (C ⊗ m) ≥ C·m/(1+u) − η, so B ≥ C·m/(1+u)² + (U − η)/(1+u). Hence it suffices that
+//   C_den ≥ (3u + u²)(1+u)^4 = 3u + 13u² + O(u³)      → C_den = (3 + 16u)·u  (Shewchuk's ccwerrboundA)
+//   C_num ≥ (4u + 2u²)(1+u)^4 = 4u + 18u² + O(u³)     → C_num = (4 + 32u)·u
+//   U ≥ η + 3(1+u)²η ≈ 4η                             → U = 3μ = 6η
+// Valid for all finite inputs, including subnormal ones; uncertain (never wrong) when m overflows.
+// Certified by: proofs/Filter.v, theorems `den_filter_sound` and `num_filter_sound`.
+inline constexpr double filter_den_relative = 0x1.8000000000004p-52;  // (3 + 16u)u
+inline constexpr double filter_num_relative = 0x1.0000000000004p-51;  // (4 + 32u)u
+inline constexpr double filter_absolute = 0x0.0000000000003p-1022;    // 3μ
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 2: compensated_dot3 (certified/dot3_compensated.hpp)
+//
+// Value V = Σ (a_i + α_i)·b_i with |α_i| ≤ u|a_i| (α = 0 for den; for num a_i + α_i = p_i − o_i exactly,
+// by TwoSum). With h_i = a_i ⊗ b_i (the q_i of stage 1), l_i = RN(a_i b_i − h_i) and g_i = RN(α_i b_i + l_i)
+// (two FMAs), (s_2, c_2) = TwoSum(h_1, h_2), (s_3, c_3) = TwoSum(s_2, h_3):
+//   hi = s_3,  lo = ((g_1 ⊕ g_2) ⊕ g_3) ⊕ (c_2 ⊕ c_3),  E = (K ⊗ m) ⊕ U  (m from stage 1),
+// and the claim is |V − (hi + lo)| ≤ E. Exactly, Σ h_i = s_3 + c_2 + c_3 (TwoSum) and
+// a_i b_i = h_i + l_i + λ_i with |λ_i| ≤ η (λ_i = 0 when |a_i b_i| ≥ 2^-969, Flocq `mult_error_FLT`;
+// otherwise a_i b_i − h_i is subnormal). With H = Σ|h_i|:
+//   |l_i| ≤ u|h_i| + η,  |α_i b_i| ≤ u(1+u)|h_i| + uη,  |g_i − (α_i b_i + l_i)| ≤ 2u²|h_i| + 1.01η,
+//   |c_2| + |c_3| ≤ 2u(1+u)²H,  Σ|terms of lo| ≤ (4u + 6u²)H + 6.03η,
+//   |V − hi − lo| ≤ γ_4·(4u + 6u²)H + 2u²H + 6.1η ≤ 18.1u²·H + 6.1η   (γ_n = nu/(1−nu)).
+// With H ≤ (1+u)²m as in stage 1:
+//   K ≥ 18.1u²(1+u)^4      → K = 32u² = 2^-101
+//   U ≥ η + 6.1(1+u)η      → U = 16μ = 2^-1070
+// Valid for all finite inputs; uncertain when a value or E is not finite.
+// Certified by: proofs/Compensated.v, theorem `compensated_dot3_enclosure`.
+inline constexpr double compensated_relative = 0x1p-101;
+inline constexpr double compensated_absolute = 0x1p-1070;
+
+// Sign from an enclosure |V − (hi + lo)| ≤ E: with (v, e) = TwoSum(hi, lo), |V − v| ≤ u|v| + E, so
+// |v| > 2E ⇒ sign(V) = sign(v).  Certified by: proofs/Compensated.v, theorem `enclosure_sign_sound`.
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 3: expansion_tail_enclosure (certified/expansion.hpp)
+//
+// An exact expansion e_1..e_k (Shewchuk) is condensed by one TwoSum pass (Q, r_j) = TwoSum(Q, e_{j+1}),
+// which keeps its exact sum S = Q + Σ r_j. Then hi = Q, lo = RN-sum of the r_j (left to right), and
+// A = RN-sum of |r_j|. Summing k−1 ≤ 31 terms: |lo − Σ r_j| ≤ γ_30·Σ|r_j| ≤ γ_30(1+u)^30·A < 2^-48·A, so
+//   E = (A ⊗ 2^-48) ⊕ 2μ    (the 2μ covers the underflow of A ⊗ 2^-48, whose error is at most η).
+// Certified by: proofs/Compensated.v, theorem `tail_sum_enclosure`.
+inline constexpr double tail_sum_relative = 0x1p-48;
+inline constexpr double tail_sum_absolute = 0x0.0000000000002p-1022;  // 2μ
+inline constexpr int tail_sum_max_terms = 32;
+
+// ---------------------------------------------------------------------------------------------------------
+// round_quotient (certified/round_quotient.hpp): the correctly rounded t = num/den from enclosures
+//   |num − (N_hi + N_lo)| ≤ E_n,  |den − (D_hi + D_lo)| ≤ E_d.
+//
+// (N, n) = TwoSum(N_hi, N_lo), (D, d) = TwoSum(D_hi, D_lo), q0 = N ⊘ D, r = RN(N − q0·D) ⊕ RN(n − q0·d)
+// (two FMAs), c = r ⊘ D, (q, w) = TwoSum(q0, c). Guards: |N|, |D|, |q0| ≥ 2^-900 (every residual is then a
+// normal number, so the η terms are below 2^-170·|q0|), q finite. Then, with ρ_d = E_d/|D|
+// (implied ≤ 2^-50 by the test below) and ϕ = 1/(1 − u − 2^-10):
+//   |num − q0·den − r| ≤ (u² + (2+u)u² + 3.01u²)|q0 D| + 2η
+//   |t − q0 − c| ≤ |q0|·(3.02u(u + ρ_d)ϕ + 3.01u² + 6.02u²ϕ + 2^-170) + ϕ(E_n + |q0|E_d)/|D|
+//               ≤ 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D|                     =: rad
+// and |t − q| ≤ |w| + rad. If |t − q| < h, half the gap from q to its nearer neighbour (2^(e−53) for
+// q ∈ [2^e, 2^(e+1)), 2^(e−54) when |q| = 2^e), then q is the rounding of t to nearest: t lies strictly
+// inside q's rounding interval, so no tie can arise. The code tests, without division,
+//   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|
+// where ϕ_c = 1 + 2^-9 and the factor 1 + 2^-45 absorbs the six roundings of the left side; h ⊗ |D| is
+// exact (a power of two times a double, no underflow as |q·D| ≈ |N| ≥ 2^-900).
+// Certified by: proofs/RoundQuotient.v, theorem `round_quotient_sound`.
+inline constexpr double quotient_min_magnitude = 0x1p-900;
+inline constexpr double quotient_relative = 0x1p-101;
+inline constexpr double quotient_enclosure_factor = 0x1.008p+0;  // 1 + 2^-9
+inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-45
+
+}  // namespace raykernel::detail::bounds

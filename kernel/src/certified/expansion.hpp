@@ -1,0 +1,155 @@
+// Stage 3 of the certified cascade: exact arithmetic on floating-point expansions (Shewchuk, "Adaptive
+// precision floating-point arithmetic and fast robust geometric predicates", DCG 18, 1997).
+//
+// An expansion is an unevaluated sum of doubles, nonoverlapping and sorted by increasing magnitude, so its
+// sign is the sign of its largest component (Shewchuk §2.2) and it is zero only as the single component 0.
+// TwoSum is exact for finite sums, TwoProduct only when the product does not underflow
+// (|a·b| ≥ 2^-969, Flocq `mult_error_FLT`): every product goes through `ExpansionBuilder::product`, which
+// records whether that held. A stage-3 result is used only when `exact()` is true; otherwise the cascade
+// goes to the exact rational stage. Overflow shows up as a non-finite component and is caught the same way.
+//
+// The routines follow predicates.c (fast_expansion_sum_zeroelim, scale_expansion_zeroelim) with FMA-based
+// TwoProduct in place of Veltkamp splitting; both require round-to-nearest-even, the default mode
+// (Shewchuk's Theorems 13 and 19 then give nonoverlapping, in fact nonadjacent, results).
+#pragma once
+
+#include "certified/eft.hpp"
+#include "certified/enclosure.hpp"
+#include "certified/error_bounds.hpp"
+#include "certified/sign.hpp"
+
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <cstddef>
+
+namespace raykernel::detail {
+
+template <std::size_t Capacity>
+struct Expansion {
+  std::array<double, Capacity> component{};
+  std::size_t size = 0;  // ≥ 1 once built; the zero expansion is {0}
+
+  // Shewchuk §2.2: the sign of a nonoverlapping expansion is that of its largest (last) component.
+  [[nodiscard]] Sign sign() const noexcept {
+    const double top = component[size - 1];
+    return top > 0 ? Sign::positive : (top < 0 ? Sign::negative : Sign::zero);
+  }
+};
+
+// Builds expansions and keeps the one condition exactness depends on besides round-to-nearest: that no
+// TwoProduct underflowed and nothing overflowed.
+class ExpansionBuilder {
+ public:
+  // a·b as a 1- or 2-component expansion (zero-eliminated).
+  DoubleDouble product(double a, double b) noexcept {
+    const DoubleDouble p = two_prod(a, b);
+    note_product(a, b, p.hi);
+    return p;
+  }
+
+  template <std::size_t N>
+  void check_finite(const Expansion<N>& e) noexcept {
+    for (std::size_t i = 0; i < e.size; ++i) exact_ &= std::isfinite(e.component[i]);
+  }
+
+  [[nodiscard]] bool exact() const noexcept { return exact_; }
+
+  // h = e·b (Shewchuk's scale_expansion_zeroelim, Theorem 19). h has at most 2·|e| components.
+  template <std::size_t M, std::size_t N>
+  void scale(const Expansion<M>& e, double b, Expansion<N>& h) noexcept {
+    static_assert(N >= 2 * M);
+    h.size = 0;
+    DoubleDouble p = product(e.component[0], b);
+    double q = p.hi;
+    push(h, p.lo);
+    for (std::size_t i = 1; i < e.size; ++i) {
+      p = product(e.component[i], b);
+      const DoubleDouble sum = two_sum(q, p.lo);
+      push(h, sum.lo);
+      const DoubleDouble next = fast_two_sum(p.hi, sum.hi);
+      push(h, next.lo);
+      q = next.hi;
+    }
+    finish(h, q);
+  }
+
+  // h = e + f (Shewchuk's fast_expansion_sum_zeroelim, Theorem 13), merging by increasing magnitude.
+  template <std::size_t M, std::size_t N, std::size_t K>
+  static void sum(const Expansion<M>& e, const Expansion<N>& f, Expansion<K>& h) noexcept {
+    static_assert(K >= M + N);
+    std::size_t ei = 0, fi = 0;
+    // The next component in magnitude order; ties take f's (as predicates.c does).
+    auto take_smaller = [&]() -> double {
+      if (fi >= f.size) return e.component[ei++];
+      if (ei >= e.size) return f.component[fi++];
+      const double en = e.component[ei], fn = f.component[fi];
+      if ((fn > en) == (fn > -en)) {
+        ++ei;
+        return en;
+      }
+      ++fi;
+      return fn;
+    };
+    h.size = 0;
+    double q = take_smaller();
+    if (ei < e.size || fi < f.size) {
+      // The second component dominates the first in magnitude, so Fast2Sum applies.
+      const DoubleDouble s = fast_two_sum(take_smaller(), q);
+      push(h, s.lo);
+      q = s.hi;
+      while (ei < e.size || fi < f.size) {
+        const DoubleDouble t = two_sum(q, take_smaller());
+        push(h, t.lo);
+        q = t.hi;
+      }
+    }
+    finish(h, q);
+  }
+
+  template <std::size_t N>
+  static void from_pair(const DoubleDouble& p, Expansion<N>& h) noexcept {
+    static_assert(N >= 2);
+    h.size = 0;
+    push(h, p.lo);
+    finish(h, p.hi);
+  }
+
+ private:
+  // TwoProduct is exact when a·b == 0 or |a·b| ≥ 2^-969; |a ⊗ b| ≥ 2^-968 implies the latter.
+  void note_product(double a, double b, double p) noexcept {
+    const bool exact = (p == 0) ? (a == 0 || b == 0) : (std::fabs(p) >= 0x1p-968);
+    exact_ &= exact && std::isfinite(p);
+  }
+
+  template <std::size_t N>
+  static void push(Expansion<N>& h, double x) noexcept {
+    if (x != 0) h.component[h.size++] = x;  // NaN is kept, so that check_finite sees it
+  }
+  template <std::size_t N>
+  static void finish(Expansion<N>& h, double q) noexcept {
+    if (q != 0 || h.size == 0) h.component[h.size++] = q;
+  }
+
+  bool exact_ = true;
+};
+
+// expansion_tail_enclosure: an enclosure (hi, lo, E) of the exact sum of an expansion: one TwoSum pass
+// condenses it into Q plus small residuals r_j, then lo = Σ r_j rounded and E bounds that rounding.
+//   Error bound: |S − (hi + lo)| ≤ (A ⊗ 2^-48) ⊕ 2μ, A = Σ|r_j| rounded (error_bounds.hpp, stage 3).
+//   Certified by: proofs/Compensated.v, `tail_sum_enclosure`.
+template <std::size_t N>
+[[nodiscard]] Enclosure expansion_tail_enclosure(const Expansion<N>& e) noexcept {
+  static_assert(N <= bounds::tail_sum_max_terms);
+  double q = e.component[0];
+  double lo = 0, magnitude = 0;
+  for (std::size_t i = 1; i < e.size; ++i) {
+    const DoubleDouble s = two_sum(q, e.component[i]);
+    q = s.hi;
+    lo += s.lo;
+    magnitude += std::fabs(s.lo);
+  }
+  return {q, lo, magnitude * bounds::tail_sum_relative + bounds::tail_sum_absolute};
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,131 @@
+// The exact stage: num and den as CGAL::Exact_rational (GMP's mpq_class), t rounded by MPFR.
+//
+// Two details decide correctness here:
+//  * Doubles are converted to rationals from their bit patterns (sign, exponent, significand), never
+//    through floating-point operations, so the conversion is exact whatever the FP environment (GMP's
+//    mpq_set_d goes through FP arithmetic, which flush-to-zero modes would corrupt).
+//  * t is rounded with MPFR in an emulated binary64 (precision 53, exponent range [-1073, 1024],
+//    mpfr_subnormalize): one correct rounding to nearest-even with gradual underflow and overflow to ±inf.
+//    mpq_get_d and CGAL::to_double truncate and are not used.
+#include "exact/exact.hpp"
+
+#include "ray_plane_formula.hpp"
+
+#include <CGAL/Exact_rational.h>
+#include <mpfr.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace raykernel::detail::exact {
+namespace {
+
+using Rational = CGAL::Exact_rational;
+static_assert(std::is_same_v<Rational, mpq_class>,
+              "raykernel expects CGAL::Exact_rational to be GMP's mpq_class (CGAL with GMP and gmpxx)");
+
+// x = (−1)^s · significand · 2^exponent, decoded from the IEEE-754 binary64 fields.
+Rational to_rational(double x) {
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  const bool negative = (bits >> 63) != 0;
+  const auto biased_exponent = static_cast<int>((bits >> 52) & 0x7ff);
+  std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
+  int exponent = -1074;  // subnormal or zero
+  if (biased_exponent != 0) {
+    significand |= std::uint64_t{1} << 52;
+    exponent = biased_exponent - 1075;
+  }
+  static_assert(sizeof(unsigned long) >= sizeof(std::uint64_t));
+  Rational q{mpz_class{static_cast<unsigned long>(significand)}};
+  if (exponent > 0)
+    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
+  else
+    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
+  if (negative) q = -q;
+  return q;
+}
+
+// Sets MPFR's exponent range to binary64's for the lifetime of the object (MPFR keeps it per thread:
+// mpfr_buildopt_tls_p() is true in Debian's build, checked in tests/exact_rounding_test.cpp).
+class Binary64ExponentRange {
+ public:
+  Binary64ExponentRange() : emin_(mpfr_get_emin()), emax_(mpfr_get_emax()) {
+    // MPFR's significands are in [1/2, 1): binary64's normal range [2^-1022, 2^1024) is exponents
+    // [-1021, 1024], and with 53-bit precision the subnormals reach down to 2^-1074 = 1/2 · 2^-1073.
+    mpfr_set_emin(-1073);
+    mpfr_set_emax(1024);
+  }
+  ~Binary64ExponentRange() {
+    mpfr_set_emin(emin_);
+    mpfr_set_emax(emax_);
+  }
+  Binary64ExponentRange(const Binary64ExponentRange&) = delete;
+  Binary64ExponentRange& operator=(const Binary64ExponentRange&) = delete;
+
+ private:
+  mpfr_exp_t emin_, emax_;
+};
+
+// RN(q) in binary64 with ties to even, gradual underflow (sign kept) and overflow to ±inf.
+double round_to_nearest_even(const Rational& q) {
+  const Binary64ExponentRange range;
+  mpfr_t x;
+  mpfr_init2(x, std::numeric_limits<double>::digits);
+  int ternary = mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
+  ternary = mpfr_subnormalize(x, ternary, MPFR_RNDN);
+  const double rounded = mpfr_get_d(x, MPFR_RNDN);  // exact: x is now a binary64 value or ±0 or ±inf
+  mpfr_clear(x);
+  return rounded;
+}
+
+RayPlaneTerms<Rational> exact_terms(const Ray& ray, const Plane& plane) {
+  return ray_plane_terms<Rational>(ray, plane, to_rational);
+}
+
+Intersection decide(const RayPlaneTerms<Rational>& terms, Rational* exact_t) {
+  const Relation relation = relation_from_signs(CGAL::sign(terms.num), CGAL::sign(terms.den));
+  if (relation == Relation::parallel || relation == Relation::in_plane)
+    return {relation, std::numeric_limits<double>::quiet_NaN()};
+  Rational t = terms.num / terms.den;  // 0/den is the canonical 0, which rounds to +0
+  const double rounded = round_to_nearest_even(t);
+  if (exact_t != nullptr) *exact_t = std::move(t);
+  return {relation, rounded};
+}
+
+::raykernel::Rational to_public(const Rational& q) {
+  return {q.get_num().get_str(), q.get_den().get_str()};  // mpq_class is kept canonical: den ≥ 1, lowest terms
+}
+
+}  // namespace
+
+Intersection intersect(const Ray& ray, const Plane& plane) { return decide(exact_terms(ray, plane), nullptr); }
+
+ExactIntersection intersect_rational(const Ray& ray, const Plane& plane) {
+  const RayPlaneTerms<Rational> terms = exact_terms(ray, plane);
+  Rational t;
+  const Intersection result = decide(terms, &t);
+  ExactIntersection exact{result, to_public(terms.num), to_public(terms.den), std::nullopt};
+  if (result.relation == Relation::hit || result.relation == Relation::behind) exact.t = to_public(t);
+  return exact;
+}
+
+}  // namespace raykernel::detail::exact
+
+namespace raykernel {
+
+double round_rational_to_double(std::string_view numerator, std::string_view denominator) {
+  mpz_class num, den;
+  if (num.set_str(std::string(numerator), 10) != 0 || den.set_str(std::string(denominator), 10) != 0)
+    throw std::invalid_argument("round_rational_to_double: not a decimal integer");
+  if (den == 0) throw std::invalid_argument("round_rational_to_double: zero denominator");
+  mpq_class q(num, den);
+  q.canonicalize();
+  return detail::exact::round_to_nearest_even(q);
+}
+
+}  // namespace raykernel
