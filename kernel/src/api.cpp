@@ -2,7 +2,9 @@
 // the naive baseline.
 #include <raykernel/raykernel.hpp>
 
+#include "certified/fp_requirements.hpp"
 #include "certified/intersect_certified.hpp"
+#include "fp_probe.hpp"
 #include "exact/exact.hpp"
 #include "ray_plane_formula.hpp"
 

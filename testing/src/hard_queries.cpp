@@ -172,10 +172,10 @@ Query build(QueryKind kind, Draw& draw) {
       return {{draw.scaled_vector(400, 1023), draw.scaled_vector(400, 1023)},
               {draw.scaled_vector(400, 1023), draw.scaled_vector(400, 1023)}};
     case QueryKind::t_overflow: {
-      const int a = draw.integer(450, 575);  // den ≈ 2^-(a+b) with a + b in [900, 1150]
-      const int b = draw.integer(450, 575);
-      return {{draw.unit_vector_box(), scale_by_power_of_two(draw.unit_vector_box(), -a)},
-              {draw.unit_vector_box(), scale_by_power_of_two(draw.unit_vector_box(), -b)}};
+      // den ≈ 2^-a·2^-b, num ≈ 2^c·2^-b: t ≈ 2^(a+c) with a + c in [900, 1120].
+      const int a = draw.integer(900, 1020), b = draw.integer(-100, 100), c = draw.integer(0, 100);
+      return {{scale_by_power_of_two(draw.unit_vector_box(), c), scale_by_power_of_two(draw.unit_vector_box(), -a)},
+              {scale_by_power_of_two(draw.unit_vector_box(), c), scale_by_power_of_two(draw.unit_vector_box(), -b)}};
     }
     case QueryKind::t_underflow: {
       const int c = draw.integer(960, 1074);  // p, o ≈ 2^-c: (p − o)·n underflows; t ≈ 2^-(c + a)

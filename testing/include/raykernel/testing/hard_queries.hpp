@@ -33,7 +33,7 @@ enum class QueryKind : std::uint8_t {
   near_tie,          // num/den within 2^-20 .. 2^-60 ulps of a halfway point
   subnormal,         // components between 2^-1074 and 2^-400: products underflow, exact values do not
   huge_products,     // components up to 2^1023: products and differences overflow binary64
-  t_overflow,        // |num/den| beyond the largest double
+  t_overflow,        // |num/den| near or beyond the largest double (2^900 .. 2^1120)
   t_underflow,       // |num/den| in or below the subnormal range
 };
 inline constexpr int query_kind_count = 13;
