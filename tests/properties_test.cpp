@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -115,22 +116,40 @@ RC_GTEST_PROP(Metamorphic, ReversingTheDirectionNegatesT, (const KindedQuery& k)
   }
 }
 
+// x with its significand cut to 26 bits (toward zero): a double whose sums with other such doubles of
+// nearby exponents are exact.
+double truncate_to_26_bits(double x) {
+  if (x == 0 || !std::isnormal(x)) return x;
+  int e;
+  (void)std::frexp(x, &e);
+  return std::ldexp(std::trunc(std::ldexp(x, 26 - e)), e - 26);
+}
+
 RC_GTEST_PROP(Metamorphic, MovingTheOriginAlongTheRayShiftsT, (const KindedQuery& k)) {
-  // o' = o + s·d with s = ±2^j, kept only when every coordinate of o + s·d is exact: then the exact t' is
-  // t − s, so the certified answer must be the rounding of t − s (and hit/behind by its sign).
-  const int j = *rc::gen::inRange(-30, 31);
+  // o' = o + s·d with s = ±2^j. For this to be an exact move, o and d are first cut to 26-bit significands
+  // and j is chosen so that s·d lands near o's magnitude; the few cases where o + s·d is still inexact are
+  // discarded. Then the exact t' is t − s, so the certified answer must be RN(t − s), hit or behind by sign.
+  Query q = k.query;
+  Vec3& o = q.ray.origin;
+  Vec3& d = q.ray.direction;
+  for (double* c : {&o.x, &o.y, &o.z, &d.x, &d.y, &d.z}) *c = truncate_to_26_bits(*c);
+  RC_PRE(d.x != 0 || d.y != 0 || d.z != 0);
+  int eo, ed;
+  (void)std::frexp(std::fmax(std::fabs(o.x), std::fmax(std::fabs(o.y), std::fabs(o.z))), &eo);
+  (void)std::frexp(std::fmax(std::fabs(d.x), std::fmax(std::fabs(d.y), std::fabs(d.z))), &ed);
+  const int j = std::clamp(eo - ed + *rc::gen::inRange(-12, 13), -1000, 1000);
   const double s = *rc::gen::element(1.0, -1.0) * std::ldexp(1.0, j);
-  const Query& q = k.query;
+  RC_PRE(s != 0 && std::isfinite(s));
   Query moved = q;
-  const double o[3] = {q.ray.origin.x, q.ray.origin.y, q.ray.origin.z};
-  const double d[3] = {q.ray.direction.x, q.ray.direction.y, q.ray.direction.z};
-  double m[3];
+  double* m[3] = {&moved.ray.origin.x, &moved.ray.origin.y, &moved.ray.origin.z};
+  const double oc[3] = {o.x, o.y, o.z}, dc[3] = {d.x, d.y, d.z};
   for (int i = 0; i < 3; ++i) {
-    const double step = s * d[i];
-    m[i] = o[i] + step;
-    RC_PRE(std::isfinite(m[i]) && mpq_class(m[i]) == mpq_class(o[i]) + mpq_class(s) * mpq_class(d[i]));
+    *m[i] = oc[i] + s * dc[i];
+    // Computed first: RapidCheck's macros decompose `a && b` and would lose its short circuit.
+    const bool exact_move =
+        std::isfinite(*m[i]) && mpq_class(*m[i]) == mpq_class(oc[i]) + mpq_class(s) * mpq_class(dc[i]);
+    RC_PRE(exact_move);
   }
-  moved.ray.origin = {m[0], m[1], m[2]};
   const test::ExactTerms before = test::exact_terms(q.ray, q.plane);
   RC_PRE(before.den != 0);
   const mpq_class t_moved = before.num / before.den - mpq_class(s);

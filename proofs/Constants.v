@@ -1,0 +1,35 @@
+(** * The error constants of kernel/src/certified/error_bounds.hpp, as exact reals.
+
+    Every theorem in this directory is stated about the constants defined here, and the ctest test
+    [proofs_constants_match] (proofs/check_constants.cpp) evaluates each right-hand side below
+    exactly and compares it with the value of the C++ literal of the same name.  Keep every
+    right-hand side in the small grammar that test understands: integers, previously defined names,
+    [bpow radix2 (k)], [+], [*] and parentheses. *)
+
+From Coq Require Import Reals.
+From Flocq Require Import Core.
+Open Scope R_scope.
+
+(** Unit roundoff u = 2^-53 and smallest positive subnormal mu = 2^-1074 of binary64. *)
+Definition unit_roundoff : R := bpow radix2 (-53).
+Definition min_subnormal : R := bpow radix2 (-1074).
+
+(** Stage 1, dot3_filter (Filter.v): B = (C ⊗ m) ⊕ filter_absolute. *)
+Definition filter_den_relative : R := (3 + 16 * unit_roundoff) * unit_roundoff.
+Definition filter_num_relative : R := (4 + 32 * unit_roundoff) * unit_roundoff.
+Definition filter_absolute : R := 3 * min_subnormal.
+
+(** Stage 2, compensated_dot3 (Compensated.v): E = (K ⊗ m) ⊕ U. *)
+Definition compensated_relative : R := bpow radix2 (-101).
+Definition compensated_absolute : R := bpow radix2 (-1070).
+
+(** Stage 3, expansion_tail_enclosure (Compensated.v): E = (A ⊗ 2^-48) ⊕ 2 mu, at most 32 terms. *)
+Definition tail_sum_relative : R := bpow radix2 (-48).
+Definition tail_sum_absolute : R := 2 * min_subnormal.
+Definition tail_sum_max_terms : nat := 32.
+
+(** round_quotient (RoundQuotient.v). *)
+Definition quotient_min_magnitude : R := bpow radix2 (-900).
+Definition quotient_relative : R := bpow radix2 (-101).
+Definition quotient_enclosure_factor : R := 1 + bpow radix2 (-9).
+Definition quotient_test_factor : R := 1 + bpow radix2 (-45).
