@@ -4,6 +4,7 @@
 
 #include "certified/fp_requirements.hpp"
 #include "certified/intersect_certified.hpp"
+#include "entry_checks.hpp"
 #include "fp_probe.hpp"
 #include "exact/exact.hpp"
 #include "ray_plane_formula.hpp"
@@ -12,28 +13,22 @@
 #include <limits>
 #include <string>
 
-#if defined(__x86_64__) || defined(_M_X64)
-#include <xmmintrin.h>
-#else
-#include <cfenv>
-#endif
 
 namespace raykernel {
 namespace {
 
-// A cheap test that passes for every valid query; the detailed reason is worked out only on failure.
-bool plausibly_valid(const Ray& r, const Plane& p) noexcept {
-  const Vec3 v[4] = {r.origin, r.direction, p.point, p.normal};
-  double finite_probe = 0;  // x − x is 0 for finite x and NaN for ±inf and NaN
-  for (const Vec3& c : v) finite_probe += (c.x - c.x) + (c.y - c.y) + (c.z - c.z);
-  const bool nonzero_direction = r.direction.x != 0 || r.direction.y != 0 || r.direction.z != 0;
-  const bool nonzero_normal = p.normal.x != 0 || p.normal.y != 0 || p.normal.z != 0;
-  return finite_probe == 0 && nonzero_direction && nonzero_normal;
+void throw_if_invalid(const Ray& ray, const Plane& plane) {
+  if (detail::plausibly_valid(ray, plane)) return;
+  if (std::optional<std::string> reason = validate(ray, plane)) throw invalid_input(*reason);
 }
 
-void throw_if_invalid(const Ray& ray, const Plane& plane) {
-  if (plausibly_valid(ray, plane)) return;
-  if (std::optional<std::string> reason = validate(ray, plane)) throw invalid_input(*reason);
+// The certified answer for any input: validation and the environment check inline, the cascade after.
+inline TracedIntersection certified(const Ray& ray, const Plane& plane) {
+  if (!detail::plausibly_valid(ray, plane) || !detail::default_floating_point_environment()) [[unlikely]] {
+    throw_if_invalid(ray, plane);
+    return {detail::exact::intersect(ray, plane), Stage::exact, Stage::exact};
+  }
+  return detail::intersect_certified_valid(ray, plane);
 }
 
 }  // namespace
@@ -62,23 +57,11 @@ std::optional<std::string> validate(const Ray& ray, const Plane& plane) {
   return std::nullopt;
 }
 
-bool floating_point_environment_is_default() noexcept {
-#if defined(__x86_64__) || defined(_M_X64)
-  // MXCSR: bits 13–14 rounding control (00 = to nearest), bit 15 flush-to-zero, bit 6 denormals-are-zero.
-  return (_mm_getcsr() & 0xE040u) == 0;
-#else
-  return std::fegetround() == FE_TONEAREST;
-#endif
-}
+bool floating_point_environment_is_default() noexcept { return detail::default_floating_point_environment(); }
 
-TracedIntersection intersect_traced(const Ray& ray, const Plane& plane) {
-  throw_if_invalid(ray, plane);
-  if (!floating_point_environment_is_default())
-    return {detail::exact::intersect(ray, plane), Stage::exact, Stage::exact};
-  return detail::intersect_certified_valid(ray, plane);
-}
+TracedIntersection intersect_traced(const Ray& ray, const Plane& plane) { return certified(ray, plane); }
 
-Intersection intersect(const Ray& ray, const Plane& plane) { return intersect_traced(ray, plane).intersection; }
+Intersection intersect(const Ray& ray, const Plane& plane) { return certified(ray, plane).intersection; }
 
 Intersection intersect_exact(const Ray& ray, const Plane& plane) {
   throw_if_invalid(ray, plane);

@@ -30,7 +30,10 @@ template <class T, class Lift>
 // The relation of CONTRACT §1 from the exact signs (−1, 0, +1) of num and den.
 [[nodiscard]] constexpr Relation relation_from_signs(int num_sign, int den_sign) noexcept {
   if (den_sign == 0) return num_sign == 0 ? Relation::in_plane : Relation::parallel;
-  return (num_sign == 0 || num_sign == den_sign) ? Relation::hit : Relation::behind;
+  // hit iff num/den ≥ 0 iff num·den ≥ 0 (written without a branch on the unpredictable signs)
+  return static_cast<Relation>(static_cast<int>(Relation::hit) +
+                               (static_cast<int>(Relation::behind) - static_cast<int>(Relation::hit)) *
+                                   static_cast<int>(num_sign * den_sign < 0));
 }
 
 }  // namespace raykernel::detail

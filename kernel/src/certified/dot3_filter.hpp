@@ -40,9 +40,9 @@ struct Dot3Rounded {
 [[nodiscard]] inline Sign dot3_filter(const Dot3Rounded& r, double relative_constant, bool exactly_zero) noexcept {
   if (exactly_zero) return Sign::zero;
   const double bound = relative_constant * r.magnitude + bounds::filter_absolute;
-  if (r.value > bound) return Sign::positive;
-  if (r.value < -bound) return Sign::negative;
-  return Sign::uncertain;  // also when bound or value is NaN (overflow)
+  // Branch-free: the sign of a random query is unpredictable, its certainty almost always predictable.
+  const int sign = static_cast<int>(r.value > bound) - static_cast<int>(r.value < -bound);
+  return sign == 0 ? Sign::uncertain : static_cast<Sign>(sign);  // 0 also when bound or value is NaN
 }
 
 }  // namespace raykernel::detail

@@ -18,7 +18,6 @@
 #include "certified/error_bounds.hpp"
 #include "certified/sign.hpp"
 
-#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -27,8 +26,8 @@ namespace raykernel::detail {
 
 template <std::size_t Capacity>
 struct Expansion {
-  std::array<double, Capacity> component{};
-  std::size_t size = 0;  // ≥ 1 once built; the zero expansion is {0}
+  double component[Capacity];  // the first `size` are meaningful (left uninitialized: this is a hot path)
+  std::size_t size = 0;        // ≥ 1 once built; the zero expansion is {0}
 
   // Shewchuk §2.2: the sign of a nonoverlapping expansion is that of its largest (last) component.
   [[nodiscard]] Sign sign() const noexcept {

@@ -35,15 +35,18 @@ struct QueryTerms {
   double diff[3];  // p_i ⊖ o_i, the a_i of num
 };
 
-// The exact expansions of num and den (stage 3). num = Σ (δ_i + ε_i)·n_i with δ_i + ε_i = p_i − o_i
-// exactly: each term is a 2-component expansion scaled by n_i (≤ 4 components), three of them ≤ 12.
-struct ExactExpansions {
-  Expansion<12> num;
-  Expansion<6> den;
+// Stage 3: the exact expansions of num and den. num = Σ (δ_i + ε_i)·n_i with δ_i + ε_i = p_i − o_i exactly:
+// each term is a 2-component expansion scaled by n_i (≤ 4 components), three of them ≤ 12. Returns the
+// exact signs and the tail enclosures round_quotient needs, or exact = false when a TwoProduct underflowed
+// or something overflowed (then only the exact stage can answer). Out of line: it is rarely needed, and
+// its buffers would otherwise weigh on every query's stack frame.
+struct ExpansionOutcome {
   bool exact;
+  Sign den_sign, num_sign;
+  Enclosure den, num;
 };
 
-[[nodiscard]] ExactExpansions build_expansions(const QueryTerms& q) noexcept {
+[[gnu::noinline]] RAYKERNEL_MULTIVERSION ExpansionOutcome expansion_stage(const QueryTerms& q) noexcept {
   ExpansionBuilder builder;
   Expansion<12> num;
   Expansion<6> den;
@@ -67,7 +70,12 @@ struct ExactExpansions {
   }
   builder.check_finite(num);
   builder.check_finite(den);
-  return {num, den, builder.exact()};
+  if (!builder.exact()) return {false, Sign::uncertain, Sign::uncertain, {}, {}};
+  return {true, den.sign(), num.sign(), expansion_tail_enclosure(den), expansion_tail_enclosure(num)};
+}
+
+[[gnu::noinline, gnu::cold]] TracedIntersection exact_stage(const Ray& ray, const Plane& plane) {
+  return {exact::intersect(ray, plane), Stage::exact, Stage::exact};
 }
 
 }  // namespace
@@ -107,13 +115,10 @@ TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane)
     num2 = compensated_dot3(q.diff, diff_low_part, q.n, num1);
   };
   // Stage 3, on demand.
-  std::optional<ExactExpansions> exp3;
-  auto expansions = [&]() -> const ExactExpansions& {
-    if (!exp3) exp3 = build_expansions(q);
+  std::optional<ExpansionOutcome> exp3;
+  auto expansions = [&]() -> const ExpansionOutcome& {
+    if (!exp3) exp3 = expansion_stage(q);
     return *exp3;
-  };
-  auto exact_answer = [&] {
-    return TracedIntersection{exact::intersect(ray, plane), Stage::exact, Stage::exact};
   };
 
   if (!is_certain(den_sign) || !is_certain(num_sign)) {
@@ -123,11 +128,11 @@ TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane)
     if (!is_certain(num_sign)) num_sign = enclosure_sign(*num2);
   }
   if (!is_certain(den_sign) || !is_certain(num_sign)) {
-    const ExactExpansions& e = expansions();
-    if (!e.exact) return exact_answer();
+    const ExpansionOutcome& e = expansions();
+    if (!e.exact) return exact_stage(ray, plane);
     relation_stage = Stage::expansion;
-    den_sign = e.den.sign();
-    num_sign = e.num.sign();
+    den_sign = e.den_sign;
+    num_sign = e.num_sign;
   }
 
   const Relation relation = relation_from_signs(to_int(num_sign), to_int(den_sign));
@@ -139,14 +144,12 @@ TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane)
   compensated();
   if (const std::optional<double> t = round_quotient(*num2, *den2))
     return {{relation, *t}, relation_stage, Stage::compensated};
-  const ExactExpansions& e = expansions();
+  const ExpansionOutcome& e = expansions();
   if (e.exact) {
-    if (const std::optional<double> t =
-            round_quotient(expansion_tail_enclosure(e.num), expansion_tail_enclosure(e.den)))
+    if (const std::optional<double> t = round_quotient(e.num, e.den))
       return {{relation, *t}, relation_stage, Stage::expansion};
   }
-  const Intersection exact_result = exact::intersect(ray, plane);
-  return {{relation, exact_result.t}, relation_stage, Stage::exact};
+  return {{relation, exact_stage(ray, plane).intersection.t}, relation_stage, Stage::exact};
 }
 
 }  // namespace raykernel::detail

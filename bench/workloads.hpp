@@ -1,0 +1,33 @@
+// The benchmark workloads: buffers of ray–plane queries generated before timing, larger than the caches
+// (the timed loops rotate through them), each checked once (certified == exact) before it is timed.
+#pragma once
+
+#include <raykernel/raykernel.hpp>
+#include <raykernel/testing/hard_queries.hpp>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace raykernel::bench {
+
+using testing::Query;
+
+// 1 Mi queries × 96 bytes = 96 MiB: well beyond the last-level cache.
+inline constexpr std::size_t workload_size = std::size_t{1} << 20;
+
+enum class Workload { random, wide, degenerate };
+
+[[nodiscard]] std::string to_string(Workload w);
+
+// The queries of a workload (deterministic: seeded by the workload).
+//   random      every component uniform in [-1, 1]
+//   wide        components ±(1 + f)·2^e, e uniform in [-300, 300]
+//   degenerate  half near-parallel, half near-coplanar (raykernel::testing), interleaved: built so that
+//               plain binary64 is unsure of the sign of d·n or (p − o)·n
+[[nodiscard]] const std::vector<Query>& workload(Workload w);
+
+// Queries whose direction makes the angle 2^-k with the plane (k = 0 .. 100), for the degeneracy sweep.
+[[nodiscard]] const std::vector<Query>& angle_sweep(int k);
+
+}  // namespace raykernel::bench
