@@ -1,0 +1,59 @@
+(** * What the main theorems depend on.
+
+    Not part of the [proofs] target: the ctest test [proofs_assumptions] (check_assumptions.cmake)
+    compiles this file after the others and fails unless every theorem below depends only on the
+    standard axioms of Coq's real numbers (ClassicalDedekindReals.sig_forall_dec,
+    ClassicalDedekindReals.sig_not_dec), functional extensionality and the excluded middle, which
+    Flocq uses.  Each block is announced by a line "@@ name" that the test matches against the
+    theorem names kernel/src/certified/*.hpp cite.  The main theorems are printed one by one; the supporting
+    results together, as one tuple (each Print Assumptions walks the whole real-number library, about a
+    second). *)
+
+From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification Cascade.
+
+Goal True. idtac "@@ den_filter_sound". Abort.
+Print Assumptions den_filter_sound.
+Goal True. idtac "@@ num_filter_sound". Abort.
+Print Assumptions num_filter_sound.
+Goal True. idtac "@@ dot3_filter_sound_gen". Abort.
+Print Assumptions dot3_filter_sound_gen.
+Goal True. idtac "@@ dot3_filter_bound_encloses". Abort.
+Print Assumptions dot3_filter_bound_encloses.
+Goal True. idtac "@@ compensated_dot3_enclosure". Abort.
+Print Assumptions compensated_dot3_enclosure.
+Goal True. idtac "@@ enclosure_sign_sound". Abort.
+Print Assumptions enclosure_sign_sound.
+Goal True. idtac "@@ tail_sum_enclosure". Abort.
+Print Assumptions tail_sum_enclosure.
+Goal True. idtac "@@ round_quotient_sound". Abort.
+Print Assumptions round_quotient_sound.
+Goal True. idtac "@@ relation_correct". Abort.
+Print Assumptions relation_correct.
+Goal True. idtac "@@ compensated_t_correct". Abort.
+Print Assumptions compensated_t_correct.
+Goal True. idtac "@@ expansion_t_correct". Abort.
+Print Assumptions expansion_t_correct.
+
+Definition supporting_results :=
+  (two_sum_exact,
+   two_prod_guard_exact,
+   constants_binary64,
+   den_filter_encloses,
+   num_filter_encloses,
+   dot3_rounded_dominated,
+   compensated_den_enclosure,
+   compensated_num_enclosure,
+   round_quotient_candidate_normal,
+   half_gap_bits,
+   relation_hit_iff,
+   relation_behind_iff,
+   relation_parallel_iff,
+   relation_in_plane_iff,
+   ray_meets_plane_iff,
+   hit_at_origin,
+   certified_sign,
+   certified_relation,
+   filter_relation_correct,
+   compensated_signs_correct).
+Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct". Abort.
+Print Assumptions supporting_results.
