@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,52 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
 // Human-readable summary of counts (what --stats prints).
 std::string describe(const ClassifyCounts& counts, Path path);
 
-// `raykernel classify [options] [FILE|-]`, `raykernel demo [options]`: argv excludes the program and
-// subcommand names.
+// ---- nearest (CONTRACT §4) ------------------------------------------------------------------------------
+
+struct NearestOptions {
+  Path path = Path::certified;
+  bool exact_t = false;  // append the winner's exact t as P/Q
+  bool hex = false;      // print T as a hexadecimal float
+  bool stats = false;    // print per-stage counts to stderr
+};
+
+// Counts of one nearest run. Per ray: the slowest stage any plane's relation needed, and the stage that
+// rounded the winner's t; comparisons of two t values are counted one by one (certified path only).
+struct NearestCounts {
+  std::uint64_t lines_answered = 0;
+  std::uint64_t invalid = 0;
+  std::uint64_t hits = 0;
+  std::uint64_t misses = 0;
+  std::uint64_t relation_stage[4] = {};    // by raykernel::Stage
+  std::uint64_t comparison_stage[4] = {};  // by raykernel::Stage
+  std::uint64_t t_stage[4] = {};           // by raykernel::Stage, for hits
+};
+
+// The planes of a planes file (`px py pz nx ny nz` per line; blank and # lines skipped; plane K is the K-th
+// plane line from 0), or the first invalid line: its number (counting every line from 1) and the reason.
+struct PlanesFile {
+  std::vector<Plane> planes;
+  std::uint64_t error_line = 0;  // 0 when every line was valid
+  std::string error;
+  [[nodiscard]] bool ok() const noexcept { return error_line == 0; }
+};
+[[nodiscard]] PlanesFile read_planes(std::istream& in);
+
+// Answers every ray line of `rays` (`ox oy oz dx dy dz`) on `out` with `hit K T` or `miss` (CONTRACT §4);
+// invalid lines get `invalid REASON` on `out` and "raykernel: line N: REASON" on `err`. Returns exit_ok or
+// exit_invalid_line. `planes` must be valid (read_planes checks them).
+int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std::span<const Plane> planes,
+                   const NearestOptions& options, NearestCounts& counts);
+
+// Human-readable summary of counts (what nearest --stats prints).
+std::string describe(const NearestCounts& counts, Path path);
+
+// `raykernel classify [options] [FILE|-]`, `raykernel demo [options]`, `raykernel nearest --planes FILE
+// [options] [RAYS|-]`, `raykernel render [SCENE.json] [options]`: argv excludes the program and subcommand
+// names.
 int run_classify(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
+int run_nearest(const std::vector<std::string>& args);
+int run_render(const std::vector<std::string>& args);
 
 }  // namespace raykernel::cli

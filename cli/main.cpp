@@ -13,6 +13,11 @@ usage: raykernel <command> [options]
 
 commands:
   classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
+  nearest --planes FILE [RAYS|-]
+                      the first plane each ray hits, decided exactly (raykernel nearest --help)
+  render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
+                      where the exact answer needed slower stages and where plain doubles pick
+                      another plane (raykernel render --help)
   demo                run the built-in batch of hard queries and summarize it
   --version           print the version
   --help              this text
@@ -35,6 +40,8 @@ int main(int argc, char** argv) {
   }
   if (command == "classify") return run_classify(args);
   if (command == "demo") return run_demo(args);
+  if (command == "nearest") return run_nearest(args);
+  if (command == "render") return run_render(args);
   std::cerr << "raykernel: unknown command '" << command << "'\n" << overview;
   return exit_usage;
 }

@@ -1,6 +1,8 @@
 # GMP (with its C++ interface gmpxx) and MPFR, as imported targets raykernel_dep::gmp, ::gmpxx, ::mpfr.
 # Debian ships no CMake config for them; the headers and libraries are found directly.
-include_guard(GLOBAL)
+# Imported targets are visible in the directory that creates them and below; the installed package's config
+# includes this file from every directory that calls find_package(raykernel), hence a per-directory guard.
+include_guard(DIRECTORY)
 
 foreach(lib gmp gmpxx mpfr)
   if(NOT TARGET raykernel_dep::${lib})

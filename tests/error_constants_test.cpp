@@ -84,5 +84,38 @@ TEST(ErrorConstants, RoundQuotient) {
   EXPECT_LE(power(1 + u, 6), exact(b::quotient_test_factor));
 }
 
+// The comparison of two quotients (error_bounds.hpp, "Comparing two quotients").
+TEST(ErrorConstants, CompareQuotientsFilter) {
+  EXPECT_EQ(exact(b::compare_filter_relative), (2 + 16 * u) * u);
+  EXPECT_EQ(exact(b::compare_propagation_factor), 1 + 16 * u);
+  EXPECT_EQ(exact(b::compare_absolute), 8 * mu);
+  const mpq_class cf = exact(b::compare_filter_relative), cp = exact(b::compare_propagation_factor);
+  const mpq_class uc = exact(b::compare_absolute);
+  // Needed: C_f ≥ 2u(1+u)^4, C_p ≥ (1+u)^7, U_c/(1+u) ≥ 2η + (2η + 4C_p·η/(1+u)^3)/(1+u)^2.
+  EXPECT_GE(cf, 2 * u * power(1 + u, 4));
+  EXPECT_GE(cp, power(1 + u, 7));
+  EXPECT_GE(uc / (1 + u), 2 * eta + (2 * eta + 4 * cp * eta / power(1 + u, 3)) / power(1 + u, 2));
+}
+
+TEST(ErrorConstants, CompareQuotientsCompensated) {
+  EXPECT_EQ(exact(b::compare_compensated_relative), 32 * u * u);
+  const mpq_class kc = exact(b::compare_compensated_relative), cp = exact(b::compare_propagation_factor);
+  const mpq_class uc = exact(b::compare_absolute);
+  // The steps of the derivation, each as the inequality it claims (H, η and ρ factored out):
+  // the five terms of lo: u + (2u + 3u² + u³)(1+u) + u(1+u) ≤ 4u + 7u²;
+  EXPECT_LE(u + (2 * u + 3 * u * u + u * u * u) * (1 + u) + u * (1 + u), 4 * u + 7 * u * u);
+  // their three roundings: (3u + 3u² + u³)(4u + 7u²) ≤ 12.01u², and on the η part (3u + ...)·8.01η ≤ 0.01η;
+  EXPECT_LE((3 * u + 3 * u * u + u * u * u) * (4 * u + 7 * u * u), mpq_class(1201, 100) * u * u);
+  EXPECT_LE((3 * u + 3 * u * u + u * u * u) * mpq_class(801, 100), mpq_class(1, 100));
+  // in all: (4u² + u³)(1+u) + 12.01u² ≤ 16.02u² (the cross terms and α_iβ_j, π_i ≤ (1+u)|P| + η);
+  EXPECT_LE((4 * u * u + u * u * u) * (1 + u) + mpq_class(1201, 100) * u * u, mpq_class(1602, 100) * u * u);
+  // and (6.01 + 2u)η + 2(4u² + u³)η ≤ 6.02η.
+  EXPECT_LE(mpq_class(601, 100) + 2 * u + 2 * (4 * u * u + u * u * u), mpq_class(602, 100));
+  // Needed: K_c ≥ 16.02u²(1+u)^4, C_p ≥ (1+u)^8, U_c/(1+u) ≥ 6.02η + (2η + 4C_p·η/(1+u)^3)/(1+u)^2.
+  EXPECT_GE(kc, mpq_class(1602, 100) * u * u * power(1 + u, 4));
+  EXPECT_GE(cp, power(1 + u, 8));
+  EXPECT_GE(uc / (1 + u), mpq_class(602, 100) * eta + (2 * eta + 4 * cp * eta / power(1 + u, 3)) / power(1 + u, 2));
+}
+
 }  // namespace
 }  // namespace raykernel

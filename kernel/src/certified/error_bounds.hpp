@@ -104,4 +104,73 @@ inline constexpr double quotient_relative = 0x1p-101;
 inline constexpr double quotient_enclosure_factor = 0x1.008p+0;  // 1 + 2^-9
 inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-45
 
+// ---------------------------------------------------------------------------------------------------------
+// Comparing two quotients (certified/compare_quotients.hpp): the order of t_1 = N_1/D_1 and t_2 = N_2/D_2
+// along a ray, for nearest_hit. With D_1, D_2 ≠ 0,
+//   sign(t_1 − t_2) = sign(Δ)·sign(D_1)·sign(D_2),    Δ = N_1·D_2 − N_2·D_1,
+// so the predicate is the sign of Δ, a degree-2 polynomial in the four values, each known through an
+// enclosure from the cascade: |N_i − x_i| ≤ e_i, |D_i − y_i| ≤ f_i. Rounded t values are never compared.
+//
+// Lower-bound facts used below, for a real z ≥ 0:  RN(z) ≥ z/(1+u) − η,  and RN(z) ≥ z/(1+u) when z is
+// a sum of two doubles (exact below 2^-1022). Each ⊕/⊗ of non-negative values below is bounded with them.
+// The propagated input error is, for i ≠ j (exactly, from N_i D_j − x_i y_j = x_i(D_j − y_j) +
+// (N_i − x_i) y_j + (N_i − x_i)(D_j − y_j)):
+//   |N_i D_j − x_i y_j| ≤ ρ_i := |x_i|·f_j + e_i·(|y_j| + f_j),    ρ = ρ_1 + ρ_2,
+// and the code computes it as
+//   R = ((|x_1| ⊗ f_2) ⊕ (e_1 ⊗ (|y_2| ⊕ f_2))) ⊕ ((|x_2| ⊗ f_1) ⊕ (e_2 ⊗ (|y_1| ⊕ f_1)))
+//     ≥ ρ/(1+u)^4 − 4η/(1+u)^2.
+//
+// Stage 1: compare_quotients_filter, inputs x_i = s (value), e_i, f_i = (C ⊗ m) ⊕ 3μ (the stage-1 values
+// and error bounds of num_i and den_i, whose enclosure |s − V| ≤ (C ⊗ m) ⊕ 3μ is what proofs/Filter.v's
+// `dot3_filter_sound_gen` establishes on the way to the sign):
+//   P = x_1 ⊗ y_2,  Q = x_2 ⊗ y_1,  δ = P ⊖ Q,  M = |P| ⊕ |Q|,
+//   B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c;    δ > B ⇒ Δ > 0,  δ < −B ⇒ Δ < 0,  otherwise uncertain.
+// Error: with H = |P| + |Q|, |x_1 y_2 − P| ≤ u|P| + η, |x_2 y_1 − Q| ≤ u|Q| + η, |δ − (P − Q)| ≤ uH:
+//   |Δ − δ| ≤ ρ + 2u·H + 2η.
+// Computed bound: M ≥ H/(1+u), so
+//   B ≥ C_f·H/(1+u)^4 + C_p·ρ/(1+u)^7 + U_c/(1+u) − (2η + 4C_p·η/(1+u)^3)/(1+u)^2.
+// Hence it suffices that
+//   C_f ≥ 2u(1+u)^4 = 2u + 8u² + O(u³)            → C_f = (2 + 16u)·u
+//   C_p ≥ (1+u)^7                                  → C_p = 1 + 16u  (shared with stage 2, which needs (1+u)^8)
+//   U_c ≥ (1+u)(2 + 2 + 4C_p)η ≈ 8η                → U_c = 8μ = 16η  (shared with stage 2, which needs ≈ 12η)
+// Valid for all finite inputs with e_i, f_i ≥ 0; uncertain (never wrong) when anything overflows: P, Q or
+// δ overflowing makes M, hence B, +inf; a non-finite x_i, e_i or f_i makes B +inf or NaN; every
+// certifying comparison is then false.
+// Certified by: proofs/CompareQuotients.v, theorem `compare_quotients_filter_sound`.
+inline constexpr double compare_filter_relative = 0x1.0000000000004p-52;    // C_f = (2 + 16u)u
+inline constexpr double compare_propagation_factor = 0x1.0000000000008p+0;  // C_p = 1 + 16u = 1 + 2^-49
+inline constexpr double compare_absolute = 0x0.0000000000008p-1022;        // U_c = 8μ = 2^-1071
+
+// Stage 2: compare_quotients_compensated, inputs the stage-2 enclosures (hi, lo, radius) of num_i, den_i.
+//   (a_i, α_i) = TwoSum(N_i.hi, N_i.lo),  (b_i, β_i) = TwoSum(D_i.hi, D_i.lo)   (|α_i| ≤ u|a_i|, |β_i| ≤ u|b_i|;
+//                                          e_i = N_i.radius, f_i = D_i.radius enclose N_i, D_i around a_i+α_i, b_i+β_i)
+//   (P, p) = TwoProduct(a_1, b_2),  (Q, q) = TwoProduct(a_2, b_1)
+//   c_1 = fma(a_1, β_2, α_1 ⊗ b_2),  c_2 = fma(a_2, β_1, α_2 ⊗ b_1)     (the cross terms; α_i β_j is dropped)
+//   (S, s) = TwoSum(P, −Q),  lo = ((p ⊖ q) ⊕ (c_1 ⊖ c_2)) ⊕ s
+//   M = |P| ⊕ |Q|,  R as above with x_i = a_i, y_i = b_i,
+//   E = ((K_c ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c,   and the claim is the enclosure |Δ − (S + lo)| ≤ E,
+// whose sign enclosure_sign decides (`enclosure_sign_sound`). Derivation, with H = |P| + |Q| and
+// π_1 = |a_1 b_2| ≤ (1+u)|P| + η (π_2 likewise with Q):
+//   input error: |N_1 D_2 − (a_1+α_1)(b_2+β_2)| ≤ (1+u)ρ_1, both sides: ≤ (1+u)ρ;
+//   P + p = a_1 b_2 up to η (TwoProduct; exact unless a_1 b_2 underflows), S + s = P − Q exactly;
+//   |α_1 β_2| ≤ u²π_1;  |c_1 − (a_1β_2 + α_1b_2)| ≤ (3u² + u³)π_1 + (2+u)η;
+//   the five terms of lo sum to at most T ≤ (4u + 7u²)H + 8.01η, and their three roundings cost
+//   ≤ (3u + 3u² + u³)·T ≤ 12.01u²·H + 0.01η;
+//   in all |Δ − (S + lo)| ≤ (1+u)ρ + 16.02u²·H + 6.02η.
+// The computed bound satisfies E ≥ K_c·H/(1+u)^4 + C_p·ρ/(1+u)^7 + U_c/(1+u) − (2η + 4C_p·η/(1+u)^3)/(1+u)^2,
+// so it suffices that
+//   K_c ≥ 16.02u²(1+u)^4                           → K_c = 32u² = 2^-101
+//   C_p ≥ (1+u)^8 = 1 + 8u + O(u²)                 → C_p = 1 + 16u (above)
+//   U_c ≥ (1+u)(6.02 + 2 + 4C_p)η ≈ 12.02η         → U_c = 8μ = 16η (above)
+// Valid for all finite inputs; when a value overflows the enclosure's radius is +inf ("no information"),
+// and so is E when M or R overflows. Decides the order unless t_1, t_2 agree to about 2^-100 relatively
+// (or the inputs' own radii are that wide); exact ties always go on to stage 3.
+// Certified by: proofs/CompareQuotients.v, theorem `compare_quotients_compensated_enclosure`.
+inline constexpr double compare_compensated_relative = 0x1p-101;  // K_c = 32u²
+
+// Stage 3: compare_quotients_expansion computes Δ exactly as an expansion from the stage-3 expansions of
+// num_i and den_i (Shewchuk's scale_expansion and fast_expansion_sum, Theorems 19 and 13): exact whenever
+// the builder reports no underflowing TwoProduct and nothing non-finite. No constant. Stage 4 (exact
+// rationals) decides the rest.
+
 }  // namespace raykernel::detail::bounds

@@ -9,14 +9,13 @@
 //    mpq_get_d and CGAL::to_double truncate and are not used.
 #include "exact/exact.hpp"
 
+#include "exact/rational_from_double.hpp"
 #include "ray_plane_formula.hpp"
 
 #include <CGAL/Exact_rational.h>
 #include <mpfr.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -29,26 +28,8 @@ using Rational = CGAL::Exact_rational;
 static_assert(std::is_same_v<Rational, mpq_class>,
               "raykernel expects CGAL::Exact_rational to be GMP's mpq_class (CGAL with GMP and gmpxx)");
 
-// x = (−1)^s · significand · 2^exponent, decoded from the IEEE-754 binary64 fields.
-Rational to_rational(double x) {
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  const bool negative = (bits >> 63) != 0;
-  const auto biased_exponent = static_cast<int>((bits >> 52) & 0x7ff);
-  std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);
-  int exponent = -1074;  // subnormal or zero
-  if (biased_exponent != 0) {
-    significand |= std::uint64_t{1} << 52;
-    exponent = biased_exponent - 1075;
-  }
-  static_assert(sizeof(unsigned long) >= sizeof(std::uint64_t));
-  Rational q{mpz_class{static_cast<unsigned long>(significand)}};
-  if (exponent > 0)
-    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(exponent));
-  else
-    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-exponent));
-  if (negative) q = -q;
-  return q;
-}
+// Doubles become rationals from their bits: rational_from_double (CGAL::Exact_rational is mpq_class).
+Rational to_rational(double x) { return rational_from_double(x); }
 
 // Sets MPFR's exponent range to binary64's for the lifetime of the object (MPFR keeps it per thread:
 // mpfr_buildopt_tls_p() is true in Debian's build, checked in tests/exact_rounding_test.cpp).

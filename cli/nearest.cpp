@@ -1,0 +1,257 @@
+// raykernel nearest: the first plane each ray hits (CONTRACT §4).
+#include "commands.hpp"
+#include "text_input.hpp"
+
+#include <raykernel/nearest_hit.hpp>
+
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+namespace raykernel::cli {
+namespace {
+
+constexpr const char* nearest_help = R"(usage: raykernel nearest --planes FILE [options] [RAYS|-]
+
+For each ray, the plane it hits first: among the planes whose relation is hit (t >= 0), the
+one with the smallest exact t = ((p - o).n) / (d.n); ties go to the smallest index.
+
+  FILE   one plane per line: px py pz nx ny nz (plane K is the K-th plane line, from 0)
+  RAYS   one ray per line: ox oy oz dx dy dz (standard input when RAYS is - or absent)
+
+Numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks;
+blank lines and lines starting with # are skipped. Each ray line gives one output line:
+  hit K T | miss | invalid REASON
+where T is the exact t of plane K rounded to the nearest double (ties to even), printed so that
+strtod reads it back exactly. Parallel, in-plane and behind planes are never hit. Two t values
+are compared exactly, never as rounded doubles: planes whose t differ by less than an ulp are
+ordered correctly, and equal t tie.
+
+options:
+  --planes FILE                  the planes (required)
+  --path=certified|exact|naive   which computation answers (default certified; naive is the
+                                 lecture's loop in plain doubles, without guarantees)
+  --exact-t                      append the winner's exact t as P/Q in lowest terms
+  --hex                          print T as a hexadecimal float
+  --stats                        print to stderr how many decisions each stage made
+  --help                         this text
+
+exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error or an invalid
+plane line (reported as raykernel: FILE:N: REASON, with nothing on standard output)
+)";
+
+Ray ray_of(const NumberLine& line) {
+  const auto& v = line.value;
+  return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+}
+
+}  // namespace
+
+PlanesFile read_planes(std::istream& in) {
+  PlanesFile file;
+  std::string line;
+  std::uint64_t line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const NumberLine parsed = parse_number_line(line, 6);
+    if (parsed.status == LineStatus::skip) continue;
+    std::string reason = parsed.reason;
+    if (parsed.status == LineStatus::numbers) {
+      const auto& v = parsed.value;
+      const Plane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+      if (std::optional<std::string> invalid = validate_plane(plane)) reason = *invalid;
+      else file.planes.push_back(plane);
+    }
+    if (!reason.empty()) {
+      file.error_line = line_number;
+      file.error = reason;
+      file.planes.clear();
+      return file;
+    }
+  }
+  return file;
+}
+
+int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std::span<const Plane> planes,
+                   const NearestOptions& options, NearestCounts& counts) {
+  std::string line;
+  std::string answer;
+  std::uint64_t line_number = 0;
+  while (std::getline(rays, line)) {
+    ++line_number;
+    const NumberLine parsed = parse_number_line(line, 6);
+    if (parsed.status == LineStatus::skip) continue;
+    ++counts.lines_answered;
+
+    std::string reason = parsed.reason;
+    const Ray ray = ray_of(parsed);
+    if (parsed.status == LineStatus::numbers) {
+      if (std::optional<std::string> invalid = validate_ray(ray)) reason = *invalid;
+    }
+    if (!reason.empty()) {
+      ++counts.invalid;
+      out << "invalid " << reason << '\n';
+      err << "raykernel: line " << line_number << ": " << reason << '\n';
+      continue;
+    }
+
+    std::optional<NearestHit> hit;
+    switch (options.path) {
+      case Path::certified: {
+        const TracedNearestHit traced = nearest_hit_traced(ray, planes);
+        hit = traced.hit;
+        ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
+        for (int k = 0; k < stage_count; ++k) counts.comparison_stage[k] += traced.comparisons[static_cast<std::size_t>(k)];
+        if (hit) ++counts.t_stage[static_cast<int>(traced.t_stage)];
+        break;
+      }
+      case Path::exact: hit = nearest_hit_exact(ray, planes); break;
+      case Path::naive: hit = nearest_hit_naive(ray, planes); break;
+    }
+    if (!hit) {
+      ++counts.misses;
+      out << "miss\n";
+      continue;
+    }
+    ++counts.hits;
+    answer = "hit ";
+    answer += std::to_string(hit->plane);
+    answer += ' ';
+    answer += options.hex ? format_hex(hit->t) : format_shortest(hit->t);
+    if (options.exact_t) {
+      const ExactIntersection exact = intersect_exact_rational(ray, planes[hit->plane]);
+      answer += ' ';
+      answer += exact.t ? exact.t->str() : "none";  // only the naive path can pick a plane with no t
+    }
+    out << answer << '\n';
+  }
+  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+}
+
+std::string describe(const NearestCounts& c, Path path) {
+  std::ostringstream s;
+  s << c.lines_answered << " rays: " << c.hits << " hit, " << c.misses << " miss, " << c.invalid << " invalid\n";
+  if (path == Path::certified) {
+    auto stages = [&](const std::uint64_t* n) {
+      std::string out;
+      for (int k = 0; k < stage_count; ++k) {
+        if (k) out += ", ";
+        out += std::string(to_string(static_cast<Stage>(k))) + " " + std::to_string(n[k]);
+      }
+      return out;
+    };
+    s << "relations (slowest stage per ray): " << stages(c.relation_stage) << "\n";
+    s << "comparisons of two t: " << stages(c.comparison_stage) << "\n";
+    s << "t of the nearest plane: " << stages(c.t_stage) << "\n";
+  } else {
+    s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
+  }
+  return s.str();
+}
+
+int run_nearest(const std::vector<std::string>& args) {
+  NearestOptions options;
+  std::string planes_path, rays_path;
+  bool have_planes = false, have_rays = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << nearest_help;
+      return exit_ok;
+    }
+    if (a == "--exact-t") {
+      options.exact_t = true;
+    } else if (a == "--hex") {
+      options.hex = true;
+    } else if (a == "--stats") {
+      options.stats = true;
+    } else if (a == "--planes" || a.rfind("--planes=", 0) == 0) {
+      if (a == "--planes") {
+        if (i + 1 >= args.size()) {
+          std::cerr << "raykernel nearest: --planes needs a file\n";
+          return exit_usage;
+        }
+        planes_path = args[++i];
+      } else {
+        planes_path = a.substr(9);
+      }
+      if (have_planes) {
+        std::cerr << "raykernel nearest: --planes given twice\n";
+        return exit_usage;
+      }
+      have_planes = true;
+    } else if (a.rfind("--path", 0) == 0) {
+      std::string value;
+      if (a.size() > 6 && a[6] == '=') {
+        value = a.substr(7);
+      } else if (a == "--path" && i + 1 < args.size()) {
+        value = args[++i];
+      } else {
+        std::cerr << "raykernel nearest: --path needs a value: certified, exact or naive\n";
+        return exit_usage;
+      }
+      if (value == "certified") options.path = Path::certified;
+      else if (value == "exact") options.path = Path::exact;
+      else if (value == "naive") options.path = Path::naive;
+      else {
+        std::cerr << "raykernel nearest: unknown path '" << value << "' (certified, exact or naive)\n";
+        return exit_usage;
+      }
+    } else if (a.size() > 1 && a[0] == '-') {
+      std::cerr << "raykernel nearest: unknown option '" << a << "' (see raykernel nearest --help)\n";
+      return exit_usage;
+    } else if (have_rays) {
+      std::cerr << "raykernel nearest: more than one rays file ('" << rays_path << "', '" << a << "')\n";
+      return exit_usage;
+    } else {
+      rays_path = a;
+      have_rays = true;
+    }
+  }
+  if (!have_planes) {
+    std::cerr << "raykernel nearest: --planes FILE is required (see raykernel nearest --help)\n";
+    return exit_usage;
+  }
+
+  std::ifstream planes_stream(planes_path, std::ios::binary);
+  if (!planes_stream) {
+    std::cerr << "raykernel nearest: cannot open planes file '" << planes_path << "'\n";
+    return exit_usage;
+  }
+  const PlanesFile planes = read_planes(planes_stream);
+  if (planes_stream.bad()) {
+    std::cerr << "raykernel nearest: I/O error while reading planes file '" << planes_path << "'\n";
+    return exit_usage;
+  }
+  if (!planes.ok()) {
+    std::cerr << "raykernel: " << planes_path << ":" << planes.error_line << ": " << planes.error << '\n';
+    return exit_usage;
+  }
+
+  std::ifstream rays_stream;
+  std::istream* in = &std::cin;
+  if (have_rays && rays_path != "-") {
+    rays_stream.open(rays_path, std::ios::binary);
+    if (!rays_stream) {
+      std::cerr << "raykernel nearest: cannot open rays file '" << rays_path << "'\n";
+      return exit_usage;
+    }
+    in = &rays_stream;
+  }
+  NearestCounts counts;
+  const int status = nearest_stream(*in, std::cout, std::cerr, planes.planes, options, counts);
+  std::cout.flush();
+  if (in->bad() || !std::cout) {
+    std::cerr << "raykernel nearest: I/O error while " << (in->bad() ? "reading rays" : "writing output") << "\n";
+    return exit_usage;
+  }
+  if (options.stats) {
+    std::istringstream lines(describe(counts, options.path));
+    for (std::string l; std::getline(lines, l);) std::cerr << "raykernel: stats: " << l << '\n';
+  }
+  return status;
+}
+
+}  // namespace raykernel::cli

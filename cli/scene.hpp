@@ -1,0 +1,100 @@
+// Scenes for `raykernel render`: a camera, an image size, and infinite planes with a colour or a checker
+// pattern, read from JSON (nlohmann-json). Parsing never exits and never throws on bad input: it returns
+// the error with the JSON Pointer (RFC 6901) of the offending value, so the CLI, tests and the scene fuzzer
+// share it.
+//
+// Format (every field is described in `raykernel render --help`, examples in scenes/):
+//
+//   {
+//     "image":  {"width": 960, "height": 540, "samples_per_pixel": 4, "seed": 1},
+//     "camera": {"eye": [0, 1.6, 6], "target": [0, 0.8, 0], "up": [0, 1, 0],
+//                "perspective": {"fov_degrees": 50, "near": 0.1}},
+//     "background": [0.75, 0.85, 1.0],
+//     "fog": {"distance": 60},
+//     "planes": [
+//       {"name": "floor", "point": [0, 0, 0], "normal": [0, 1, 0],
+//        "checker": {"colors": [[0.9, 0.9, 0.85], [0.35, 0.35, 0.4]], "size": 1}},
+//       {"name": "wall", "point": [-4, 0, 0], "normal": [1, 0, 0], "color": [0.8, 0.3, 0.25]}
+//     ]
+//   }
+#pragma once
+
+#include <raykernel/camera.hpp>
+#include <raykernel/raykernel.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace raykernel::cli {
+
+// A colour as written in scene files: display (sRGB) values in [0, 1].
+struct Rgb {
+  double r, g, b;
+};
+
+// Two colours alternating in squares of side `size`, aligned with the axes u and v of the plane
+// (u = the projection of `u_axis` on the plane, v = n × u), with a corner at the plane's point.
+struct Checker {
+  Rgb colors[2];
+  double size;
+  Vec3 u_axis;
+};
+
+struct ScenePlane {
+  std::string name;  // for messages and --stats; "plane K" when the file gives none
+  Plane plane;
+  Rgb color;                      // the plane's colour (a checker's first colour)
+  std::optional<Checker> checker;
+};
+
+// The sky: `zenith` straight up (+y), `horizon` at and below the horizon, blended by the ray's elevation.
+struct Background {
+  Rgb horizon;
+  Rgb zenith;
+};
+
+struct Scene {
+  ImageSize image;
+  std::uint32_t samples_per_pixel = 1;
+  std::uint64_t seed = 1;
+  Camera camera;
+  Background background;
+  double fog_distance = 0;  // distance at which the fog hides half of a colour; 0: no fog
+  std::vector<ScenePlane> planes;
+
+  [[nodiscard]] std::vector<Plane> geometry() const;  // the planes, in order, for nearest_hit
+};
+
+// Where and why a scene is invalid: `pointer` is the JSON Pointer of the offending value ("/planes/2/normal";
+// empty for the document itself or for a syntax error), `message` says what is wrong ("zero vector").
+struct SceneError {
+  std::string pointer;
+  std::string message;
+  [[nodiscard]] std::string str() const;  // "/planes/2/normal: zero vector", or the message alone
+};
+
+struct SceneParse {
+  std::optional<Scene> scene;  // set when the text is a valid scene
+  SceneError error;            // set otherwise
+};
+
+// Values that replace the scene file's image settings (the CLI's --width, --height, --samples), applied
+// before the camera is built, so that a field-of-view camera keeps the new aspect ratio.
+struct SceneOverrides {
+  std::optional<std::uint32_t> width, height, samples_per_pixel;
+};
+
+// Parses and validates a scene: JSON syntax (errors give line and column), every required field, types,
+// finite numbers in range, nonzero normals and vectors, a positive image size, a camera that can be built
+// (eye ≠ target, up not parallel to the view direction). Unknown fields are errors, so typos are caught.
+[[nodiscard]] SceneParse parse_scene(std::string_view json_text, const SceneOverrides& overrides = {});
+
+// The built-in demo scene (what `raykernel render` draws without a scene file), as JSON text: planes meeting
+// at shallow angles, a far checkered floor seen at grazing angles, and coincident planes, so that both the
+// stage image and the naive-difference image have something to show.
+[[nodiscard]] std::string_view demo_scene_json() noexcept;
+
+}  // namespace raykernel::cli

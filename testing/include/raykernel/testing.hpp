@@ -1,0 +1,19 @@
+// raykernel::testing: tools for testing your own ray code against raykernel (link raykernel::testing).
+//
+//   hard_queries.hpp     make_query(kind, bits): near-parallel, near-coplanar, exact degeneracies, rounding
+//                        ties, subnormals, huge exponents ...; SplitMix64 for seeded streams
+//   reference_check.hpp  check_against_reference(query, your_answer, max_ulps): relation and t against the
+//                        exact answer, ulp_distance, and a printable report
+//   plane_pairs.hpp      make_plane_pair_near_tie(bits): two planes tying along a ray, or less than an ulp
+//                        of t apart, with the exact order, for nearest-hit code
+//   fuzz_decoder.hpp     decode_fuzz_query(bytes): fuzzer bytes to queries, for libFuzzer harnesses
+//
+// The RapidCheck generators are in <raykernel/testing/rapidcheck.hpp>, not included here because they need
+// RapidCheck (find_package(raykernel CONFIG REQUIRED COMPONENTS testing), link `rapidcheck`).
+#pragma once
+
+#include <raykernel/raykernel.hpp>
+#include <raykernel/testing/fuzz_decoder.hpp>
+#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testing/plane_pairs.hpp>
+#include <raykernel/testing/reference_check.hpp>

@@ -1,0 +1,530 @@
+// nearest_hit (CONTRACT §4) and its certified comparison of two t values.
+//
+//  * Hand-derived cases: the seed's loop, ties, coincident planes, planes through one point of the ray,
+//    two t closer than an ulp (where comparing rounded t picks the wrong plane), t = 0, planes never hit,
+//    products that underflow (the exact stage), invalid input, a non-default floating-point environment.
+//  * Each stage of the comparison on its own against exact rationals (like stages_test.cpp): what a
+//    stage certifies must be right, every enclosure must contain the exact Δ = num_a·den_b − num_b·den_a.
+//  * RapidCheck: certified == brute-force exact nearest on generated scenes full of exact and near ties.
+#include "support/oracle.hpp"
+#include "support/plane_scenes.hpp"
+
+#include "certified/compare_quotients.hpp"
+#include "certified/enclosure.hpp"
+#include "certified/ray_plane_stages.hpp"
+#include "exact/rational_from_double.hpp"
+#include "raycast/nearest_hit_internal.hpp"
+
+#include <raykernel/nearest_hit.hpp>
+#include <raykernel/raykernel.hpp>
+#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testing/plane_pairs.hpp>
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <cfenv>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace raykernel {
+namespace {
+
+using detail::Sign;
+using test::same_bits;
+
+std::optional<NearestHit> hit(std::size_t plane, double t) { return NearestHit{plane, t}; }
+
+// ---- Hand-derived cases ----------------------------------------------------------------------------------
+
+TEST(NearestHit, TheSeedsLoopPicksTheSmallestT) {
+  // Ray along +z from the origin. Planes z = 5 (t = 5), z = 3 (t = 3), z = −2 (behind, t = −2),
+  // x = 1 (parallel: d·n = 0, num = 1), y = 0 (in-plane: d·n = 0, num = 0).
+  const Ray ray{{0, 0, 0}, {0, 0, 1}};
+  const std::vector<Plane> planes = {{{0, 0, 5}, {0, 0, 1}},
+                                     {{0, 0, 3}, {0, 0, -1}},
+                                     {{0, 0, -2}, {0, 0, 1}},
+                                     {{1, 0, 0}, {1, 0, 0}},
+                                     {{0, 0, 0}, {0, 1, 0}}};
+  EXPECT_EQ(nearest_hit(ray, planes), hit(1, 3.0));
+  EXPECT_EQ(nearest_hit_exact(ray, planes), hit(1, 3.0));
+  EXPECT_EQ(nearest_hit_naive(ray, planes), hit(1, 3.0));
+}
+
+TEST(NearestHit, PlanesThatAreNeverHitGiveAMiss) {
+  const Ray ray{{0, 0, 0}, {0, 0, 1}};
+  const std::vector<Plane> planes = {{{0, 0, -2}, {0, 0, 1}}, {{1, 0, 0}, {1, 0, 0}}, {{0, 0, 0}, {0, 1, 0}}};
+  EXPECT_EQ(nearest_hit(ray, planes), std::nullopt);
+  EXPECT_EQ(nearest_hit_exact(ray, planes), std::nullopt);
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{}), std::nullopt);
+}
+
+TEST(NearestHit, DuplicatedPlanesTieToTheSmallestIndex) {
+  // Planes 1 and 2 are the same doubles, t = 4; plane 0 is farther (t = 6).
+  const Ray ray{{0, 0, 0}, {0, 1, 0}};
+  const Plane far{{0, 6, 0}, {0, 1, 0}}, near{{0, 4, 0}, {0, 1, 0}};
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{far, near, near}), hit(1, 4.0));
+}
+
+TEST(NearestHit, CoincidentPlanesWithAnotherRepresentationTie) {
+  // The same plane z = 5 given twice: point (7, −3, 5) with normal (0, 0, 3), then point (0, 0, 5) with
+  // normal (0, 0, 1). Along d = (1, 1, 10) from the origin: num = 15 and den = 30, resp. 5 and 10: both
+  // t = 1/2 exactly, so the first (index 0) wins. The naive loop also computes 0.5 twice here.
+  const Ray ray{{0, 0, 0}, {1, 1, 10}};
+  const std::vector<Plane> planes = {{{7, -3, 5}, {0, 0, 3}}, {{0, 0, 5}, {0, 0, 1}}};
+  EXPECT_EQ(nearest_hit(ray, planes), hit(0, 0.5));
+  const std::vector<Plane> reversed = {planes[1], planes[0]};
+  EXPECT_EQ(nearest_hit(ray, reversed), hit(0, 0.5));
+}
+
+TEST(NearestHit, PlanesThroughTheSamePointOfTheRayTie) {
+  // Both planes pass through (1, 1, 1) = o + 1·d with o = 0, d = (1, 1, 1): t = 1 for any normal.
+  // Plane 0: normal (1, 0, 0): num = 1, den = 1. Plane 1: normal (0.1, 0.7, −0.3) (doubles near those):
+  // num = den exactly, whatever their rounding. Index 0 wins; reversed, index 0 (the other plane) wins.
+  const Ray ray{{0, 0, 0}, {1, 1, 1}};
+  const Plane a{{1, 1, 1}, {1, 0, 0}}, b{{1, 1, 1}, {0.1, 0.7, -0.3}};
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{a, b}), hit(0, 1.0));
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{b, a}), hit(0, 1.0));
+}
+
+TEST(NearestHit, OrdersTwoTCloserThanAnUlp) {
+  // Ray o = 0, d = (1, 0, 0). Plane 0: x = 1, t = 1. Plane 1: point (1, 1, 0), normal (1, −2^-60, 0):
+  // num = 1 − 2^-60, den = 1, so t = 1 − 2^-60 < 1; RN(t) = 1 (the ulp below 1 is 2^-53). Plane 1 is nearer,
+  // although both t round to 1.0. With normal (1, +2^-60, 0), t = 1 + 2^-60 and plane 0 wins.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const Plane x1{{1, 0, 0}, {1, 0, 0}};
+  const Plane nearer{{1, 1, 0}, {1, -0x1p-60, 0}}, farther{{1, 1, 0}, {1, 0x1p-60, 0}};
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{x1, nearer}), hit(1, 1.0));
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{nearer, x1}), hit(0, 1.0));
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{x1, farther}), hit(0, 1.0));
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{farther, x1}), hit(1, 1.0));
+  // The naive loop computes num = RN(1 − 2^-60) = 1 and sees a tie: it keeps index 0, the wrong plane.
+  EXPECT_EQ(nearest_hit_naive(ray, std::vector<Plane>{x1, nearer}), hit(0, 1.0));
+}
+
+TEST(NearestHit, OriginOnAPlaneIsTZeroAndComesFirst) {
+  // The origin (0, 0, 2) lies on plane 1 (z = 2): t = +0, nearer than plane 0 at t = 3 (z = 5).
+  const Ray ray{{0, 0, 2}, {0, 0, 1}};
+  const std::vector<Plane> planes = {{{0, 0, 5}, {0, 0, 1}}, {{4, 4, 2}, {0, 0, -1}}};
+  const std::optional<NearestHit> h = nearest_hit(ray, planes);
+  ASSERT_TRUE(h.has_value());
+  EXPECT_EQ(h->plane, 1u);
+  EXPECT_TRUE(same_bits(h->t, 0.0));
+  // Two planes through the origin tie at t = 0: the smaller index.
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{planes[0], planes[1], {{0, 0, 2}, {1, 1, 1}}}), hit(1, 0.0));
+}
+
+TEST(NearestHit, TiesAtTZeroWithATinyPositiveT) {
+  // Plane 1's exact t is 2^-1100 > 0, which rounds to +0; plane 0's t is exactly 0. Plane 0 is nearer,
+  // though both report t = 0: the comparison uses the exact values, not the rounded ones.
+  // Plane 1: point (2^-1074, 0, 0) normal (1, 0, 0), ray o = 0, d = (2^26, 0, 0): num = 2^-1074,
+  // den = 2^26, t = 2^-1100.
+  const Ray ray{{0, 0, 0}, {0x1p26, 0, 0}};
+  const Plane at_origin{{0, 0, 0}, {1, 1, 0}}, tiny{{0x1p-1074, 0, 0}, {1, 0, 0}};
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{tiny, at_origin}), hit(1, 0.0));
+  EXPECT_EQ(nearest_hit(ray, std::vector<Plane>{at_origin, tiny}), hit(0, 0.0));
+}
+
+TEST(NearestHit, UnderflowingProductsReachTheExactStage) {
+  // The README's tiny query: d = (2^-600, 0, 0), planes with normal (2^-600, 0, 0): every product is about
+  // 2^-1200, below the double range. Plane 0 at x = 2^-600 (t = 1), plane 1 at x = 2^-601 (t = 1/2),
+  // plane 2 at x = 2^-601 with normal (2^-599, 0, 0) (t = 1/2 again: a tie with plane 1).
+  const Ray ray{{0, 0, 0}, {0x1p-600, 0, 0}};
+  const std::vector<Plane> planes = {{{0x1p-600, 0, 0}, {0x1p-600, 0, 0}},
+                                     {{0x1p-601, 0, 0}, {0x1p-600, 0, 0}},
+                                     {{0x1p-601, 0, 0}, {0x1p-599, 0, 0}}};
+  const TracedNearestHit traced = nearest_hit_traced(ray, planes);
+  EXPECT_EQ(traced.hit, hit(1, 0.5));
+  EXPECT_EQ(traced.comparison_stage, Stage::exact);
+  EXPECT_EQ(traced.relation_stage, Stage::exact);
+  EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::exact)], 2u);
+  // Plain doubles see every plane as in-plane (0 = 0): a miss.
+  EXPECT_EQ(nearest_hit_naive(ray, planes), std::nullopt);
+}
+
+TEST(NearestHit, StagesAreReportedForACleanCase) {
+  // Three planes at t = 1, 2, 3 along +x: the filter decides every relation and comparison; t = 1 needs
+  // the compensated rounding, the fast path for t.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const std::vector<Plane> planes = {{{3, 0, 0}, {1, 0, 0}}, {{1, 0, 0}, {1, 0, 0}}, {{2, 0, 0}, {1, 0, 0}}};
+  const TracedNearestHit traced = nearest_hit_traced(ray, planes);
+  EXPECT_EQ(traced.hit, hit(1, 1.0));
+  EXPECT_EQ(traced.relation_stage, Stage::filter);
+  EXPECT_EQ(traced.comparison_stage, Stage::filter);
+  EXPECT_EQ(traced.t_stage, Stage::compensated);
+  EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::filter)], 2u);
+  EXPECT_EQ(traced.slowest_stage(), Stage::filter);
+}
+
+TEST(NearestHit, InvalidInputIsNamed) {
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const Plane good{{1, 0, 0}, {1, 0, 0}};
+  auto reason = [](const Ray& r, const std::vector<Plane>& planes) -> std::string {
+    try {
+      (void)nearest_hit(r, planes);
+    } catch (const invalid_input& e) {
+      try {
+        (void)nearest_hit_exact(r, planes);
+      } catch (const invalid_input& e2) {
+        EXPECT_STREQ(e.what(), e2.what());
+      }
+      return e.what();
+    }
+    return "no exception";
+  };
+  EXPECT_EQ(reason(ray, {good, good, {{0, 0, 0}, {0, -0.0, 0}}}), "plane 2: plane normal is the zero vector");
+  EXPECT_EQ(reason(ray, {{{0, std::numeric_limits<double>::quiet_NaN(), 0}, {1, 0, 0}}}), "plane 0: plane point y is NaN");
+  EXPECT_EQ(reason({{0, 0, 0}, {0, 0, 0}}, {good}), "ray direction is the zero vector");
+  EXPECT_EQ(reason({{HUGE_VAL, 0, 0}, {1, 0, 0}}, {good}), "ray origin x is +inf");
+  // A zero direction is invalid even with no planes.
+  EXPECT_EQ(reason({{0, 0, 0}, {0, 0, 0}}, {}), "ray direction is the zero vector");
+  EXPECT_EQ(validate_plane({{0, 0, 0}, {0, 0, 0}}), std::optional<std::string>("plane normal is the zero vector"));
+  EXPECT_EQ(validate_ray({{0, 0, 0}, {0, 0, 1}}), std::nullopt);
+}
+
+TEST(NearestHit, DirectedRoundingFallsBackToTheExactPath) {
+  // Under FE_UPWARD the certified error bounds do not hold; nearest_hit must still be exact.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const std::vector<Plane> planes = {{{1, 0, 0}, {1, 0, 0}}, {{1, 1, 0}, {1, -0x1p-60, 0}}, {{3, 0, 0}, {1, 0, 3}}};
+  ASSERT_EQ(std::fesetround(FE_UPWARD), 0);
+  const TracedNearestHit traced = nearest_hit_traced(ray, planes);
+  std::fesetround(FE_TONEAREST);
+  EXPECT_EQ(traced.hit, hit(1, 1.0));
+  EXPECT_EQ(traced.comparison_stage, Stage::exact);
+}
+
+TEST(RationalFromDouble, IsTheExactValue) {
+  for (double x : {0.0, -0.0, 1.0, -0.1, 0x1p-1074, -0x1.fffffffffffffp-1023, 0x1p-1022, 1e308, -0x1.8p+1023, 3.0})
+    EXPECT_EQ(detail::exact::rational_from_double(x), mpq_class(x)) << std::hexfloat << x;
+}
+
+// ---- Each comparison stage against exact rationals -------------------------------------------------------
+
+// The exact Δ = num_a·den_b − num_b·den_a.
+mpq_class exact_delta(const Ray& ray, const Plane& a, const Plane& b) {
+  const test::ExactTerms ta = test::exact_terms(ray, a), tb = test::exact_terms(ray, b);
+  return ta.num * tb.den - tb.num * ta.den;
+}
+
+bool encloses(const detail::Enclosure& e, const mpq_class& exact) {
+  if (!(e.radius < HUGE_VAL)) return true;  // +inf or NaN: no information, always true
+  if (!std::isfinite(e.hi) || !std::isfinite(e.lo)) return false;
+  return abs(exact - (mpq_class(e.hi) + mpq_class(e.lo))) <= mpq_class(e.radius);
+}
+
+struct StageTally {
+  int pairs = 0, filter = 0, compensated = 0, expansion = 0, ties = 0, filter_sign_of_delta_wrong = 0;
+};
+
+// Runs every stage on the pair (a, b) along `ray` and checks whatever they certify.
+void check_pair(const Ray& ray, const Plane& a, const Plane& b, StageTally& tally, const std::string& context) {
+  SCOPED_TRACE(context);
+  const mpq_class delta = exact_delta(ray, a, b);
+  const int sign = sgn(delta);
+  detail::RayPlaneStages qa(ray, a), qb(ray, b);
+  ++tally.pairs;
+  if (sign == 0) ++tally.ties;
+
+  // Stage 1, from the stage-1 values and bounds.
+  const detail::RoundedEnclosure na = detail::filter_enclosure(qa.num_rounded(), detail::bounds::filter_num_relative);
+  const detail::RoundedEnclosure da = detail::filter_enclosure(qa.den_rounded(), detail::bounds::filter_den_relative);
+  const detail::RoundedEnclosure nb = detail::filter_enclosure(qb.num_rounded(), detail::bounds::filter_num_relative);
+  const detail::RoundedEnclosure db = detail::filter_enclosure(qb.den_rounded(), detail::bounds::filter_den_relative);
+  const Sign s1 = detail::compare_quotients_filter(na, da, nb, db);
+  if (s1 != Sign::uncertain) {
+    ++tally.filter;
+    ASSERT_EQ(static_cast<int>(s1), sign) << "the filter certified a wrong sign of Δ";
+  } else {
+    // The bound mattered: the unguarded rounded δ = P ⊖ Q would have the wrong sign here.
+    const double p = na.value * db.value, q = nb.value * da.value;
+    const double d = p - q;
+    if ((d > 0 ? 1 : (d < 0 ? -1 : 0)) != sign) ++tally.filter_sign_of_delta_wrong;
+  }
+
+  // Stage 2: the enclosure contains Δ, and its sign is right when certain.
+  const detail::Enclosure e2 = detail::compare_quotients_compensated(qa.num_compensated(), qa.den_compensated(),
+                                                                     qb.num_compensated(), qb.den_compensated());
+  ASSERT_TRUE(encloses(e2, delta)) << "compensated enclosure of Δ: " << std::hexfloat << e2.hi << " + " << e2.lo
+                                   << " ± " << e2.radius;
+  const Sign s2 = detail::enclosure_sign(e2);
+  if (s2 != Sign::uncertain) {
+    ++tally.compensated;
+    ASSERT_EQ(static_cast<int>(s2), sign) << "the compensated stage certified a wrong sign of Δ";
+  }
+
+  // Stage 3: exact whenever both inputs are exact expansions and no product underflows.
+  const Sign s3 = detail::compare_quotients_expansion(qa.expansions(), qb.expansions());
+  if (s3 != Sign::uncertain) {
+    ++tally.expansion;
+    ASSERT_EQ(static_cast<int>(s3), sign) << "the expansion stage certified a wrong sign of Δ";
+  }
+}
+
+class CompareStagesOnHardQueries : public ::testing::TestWithParam<testing::QueryKind> {};
+
+TEST_P(CompareStagesOnHardQueries, EachStageIsRightWhenItDecides) {
+  // Pairs of planes along one ray: the first from a hard query of this kind, the second from another
+  // hard query of the same kind (a different plane), a copy of the first moved by an ulp, a coincident
+  // copy (normal scaled by −3 when exact), or the first plane again.
+  const testing::QueryKind kind = GetParam();
+  const std::uint64_t seed = 0xc0de0000 + static_cast<std::uint64_t>(kind);
+  testing::SplitMix64 rng(seed);
+  const testing::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE(std::string(testing::to_string(kind)) + ", seed " + std::to_string(seed));
+  StageTally tally;
+  for (int i = 0; i < 1500 && !::testing::Test::HasFatalFailure(); ++i) {
+    const testing::Query q = testing::make_query(kind, bits);
+    Plane other = testing::make_query(kind, bits).plane;
+    switch (i % 4) {
+      case 0: break;
+      case 1: other = q.plane; other.point.x = std::nextafter(other.point.x, HUGE_VAL); break;
+      case 2: {
+        const Vec3 n{-3 * q.plane.normal.x, -3 * q.plane.normal.y, -3 * q.plane.normal.z};
+        const bool exact = mpq_class(n.x) == -3 * mpq_class(q.plane.normal.x) &&
+                           mpq_class(n.y) == -3 * mpq_class(q.plane.normal.y) &&
+                           mpq_class(n.z) == -3 * mpq_class(q.plane.normal.z);
+        other = exact ? Plane{q.plane.point, n} : q.plane;
+        break;
+      }
+      case 3: other = q.plane; break;
+    }
+    check_pair(q.ray, q.plane, other, tally, "pair " + std::to_string(i));
+  }
+  EXPECT_EQ(tally.pairs, 1500);
+  EXPECT_GE(tally.ties, 375);  // every fourth pair is the same plane twice
+  RecordProperty("filter_decisions", tally.filter);
+  RecordProperty("expansion_decisions", tally.expansion);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, CompareStagesOnHardQueries, ::testing::ValuesIn(testing::all_query_kinds),
+                         [](const auto& info) {
+                           std::string name(testing::to_string(info.param));
+                           for (char& c : name) c = (c == '-') ? '_' : c;
+                           return name;
+                         });
+
+TEST(CompareStages, EachStageIsRightOnGeneratedScenes) {
+  // Every pair of planes of 3000 generated scenes (pivots, near pivots, duplicates, coincident twins,
+  // offsets by one ulp, hard-query planes). Also shows that each stage is exercised, and that the filter's
+  // bound is needed: on many pairs the unguarded sign of δ is wrong.
+  const std::uint64_t seed = 0x5ce9e5;
+  testing::SplitMix64 rng(seed);
+  const testing::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  StageTally tally;
+  for (int i = 0; i < 3000 && !::testing::Test::HasFatalFailure(); ++i) {
+    const test::PlaneScene scene = test::make_plane_scene(bits);
+    for (std::size_t a = 0; a < scene.planes.size(); ++a)
+      for (std::size_t b = a + 1; b < scene.planes.size(); ++b)
+        check_pair(scene.ray, scene.planes[a], scene.planes[b], tally,
+                   "scene " + std::to_string(i) + ", planes " + std::to_string(a) + " and " + std::to_string(b) + "\n" +
+                       test::describe_scene(scene));
+  }
+  EXPECT_GT(tally.filter, tally.pairs / 4);
+  EXPECT_GT(tally.compensated, 100);
+  EXPECT_GT(tally.expansion, 100);
+  EXPECT_GT(tally.ties, 100);
+  EXPECT_GT(tally.filter_sign_of_delta_wrong, 10);
+  RecordProperty("pairs", tally.pairs);
+}
+
+TEST(CompareStages, FilterOnHandPickedValues) {
+  using detail::RoundedEnclosure;
+  // t_1 = 1/3 vs t_2 = 1/2 with exact inputs (radius 0): Δ = 1·2 − 1·3 = −1 < 0.
+  EXPECT_EQ(detail::compare_quotients_filter({1, 0}, {3, 0}, {1, 0}, {2, 0}), Sign::negative);
+  // Exact equality 2/4 vs 1/2 cannot be certified by a filter (its bound is positive).
+  EXPECT_EQ(detail::compare_quotients_filter({2, 0}, {4, 0}, {1, 0}, {2, 0}), Sign::uncertain);
+  // Radii wide enough to swallow the difference: 1/3 ± 1/2 vs 1/2.
+  EXPECT_EQ(detail::compare_quotients_filter({1, 0.5}, {3, 0}, {1, 0}, {2, 0}), Sign::uncertain);
+  // Overflow: P = 2^1000·2^1000 is +inf, the bound is +inf: uncertain, never a sign.
+  EXPECT_EQ(detail::compare_quotients_filter({0x1p1000, 0}, {1, 0}, {1, 0}, {0x1p1000, 0}), Sign::uncertain);
+  // A NaN radius (an overflowed stage-1 bound) gives no decision either.
+  EXPECT_EQ(detail::compare_quotients_filter({1, std::numeric_limits<double>::quiet_NaN()}, {3, 0}, {1, 0}, {2, 0}),
+            Sign::uncertain);
+}
+
+TEST(CompareStages, CompensatedSeparatesWhatTheFilterCannot) {
+  // N_1/D_1 = (1 + 2^-60)/1 vs N_2/D_2 = 1/1, N_1 given as the double-double 1 + 2^-60 (exact, radius
+  // 2^-1074): Δ = 2^-60 > 0. The one-double value of N_1 is 1, so stage 1 sees a tie.
+  const detail::Enclosure n1{1, 0x1p-60, 0x1p-1074}, d1{1, 0, 0x1p-1074}, n2{1, 0, 0x1p-1074}, d2{1, 0, 0x1p-1074};
+  EXPECT_EQ(detail::compare_quotients_filter({1, 0x1p-52}, {1, 0x1p-1074}, {1, 0x1p-1074}, {1, 0x1p-1074}), Sign::uncertain);
+  const detail::Enclosure delta = detail::compare_quotients_compensated(n1, d1, n2, d2);
+  EXPECT_TRUE(encloses(delta, mpq_class(mpz_class(1), mpz_class(1) << 60)));
+  EXPECT_EQ(detail::enclosure_sign(delta), Sign::positive);
+  // Overflowing inputs: radius +inf, no decision.
+  const detail::Enclosure huge{0x1p1000, 0, 0};
+  EXPECT_EQ(detail::enclosure_sign(detail::compare_quotients_compensated(huge, d1, n2, huge)), Sign::uncertain);
+}
+
+TEST(CompareStages, CompensatedBoundCoversTheDroppedProductOfLowParts) {
+  // N_1 = 1 + 2^-53 (as 1 + lo, which TwoSum keeps: 1 + 2^-53 is a tie that rounds to 1), D_2 the same,
+  // N_2 = 1 + 2^-52, D_1 = 1, all exact (radius 0). Δ = (1 + u)² − (1 + 2u) = u² = 2^-106. The stage
+  // drops α_1·β_2 = u²: hi = S = −2^-52, lo = c_1 = 2^-52, so hi + lo = 0 and only the radius
+  // (≥ 2^-101·|P| + |Q|) covers Δ.
+  const detail::Enclosure n1{1, 0x1p-53, 0}, d1{1, 0, 0}, n2{1 + 0x1p-52, 0, 0}, d2{1, 0x1p-53, 0};
+  const detail::Enclosure e = detail::compare_quotients_compensated(n1, d1, n2, d2);
+  EXPECT_EQ(e.hi, -0x1p-52);
+  EXPECT_EQ(e.lo, 0x1p-52);
+  EXPECT_GE(e.radius, 0x1p-106);
+  EXPECT_TRUE(encloses(e, mpq_class(mpz_class(1), mpz_class(1) << 106)));
+  EXPECT_EQ(detail::enclosure_sign(e), Sign::uncertain);  // Δ > 0 but far below the radius: stage 3 decides
+}
+
+// The two enclosure stages are functions of enclosures, so they must be right for every value the
+// enclosures allow, not only for the values a ray–plane query produces (whose errors are typically far
+// below the bounds). Δ is bilinear, so its extremes over the box of allowed values are at the 16 corners
+// (N_i = x_i ± e_i, D_i = y_i ± f_i): each corner is checked in exact rationals. Near ties with radii of
+// the order of the difference put corners on both sides of zero, so a bound that is too small fails here.
+TEST(CompareStages, EnclosureStagesHoldAtEveryCornerOfTheirInputs) {
+  const std::uint64_t seed = 0xb0c5;
+  testing::SplitMix64 rng(seed);
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  auto uniform = [&rng](int lo, int hi) { return lo + static_cast<int>(rng() % static_cast<std::uint64_t>(hi - lo + 1)); };
+  auto significand = [&rng] { return 1 + static_cast<double>(rng() >> 12) * 0x1p-52; };
+  int filter_decided = 0, compensated_decided = 0, corners_on_both_sides = 0;
+  for (int i = 0; i < 20000 && !HasFailure(); ++i) {
+    // Near-tie values: x_2/y_2 within a few ulps of x_1/y_1, signs and scales random.
+    const int scale = uniform(-30, 30);
+    const double y1 = std::ldexp(significand(), scale + uniform(-3, 3)) * (rng() & 1 ? 1 : -1);
+    const double x1 = std::ldexp(significand(), scale + uniform(-3, 3)) * (rng() & 1 ? 1 : -1);
+    const double y2 = std::ldexp(significand(), scale + uniform(-3, 3)) * (rng() & 1 ? 1 : -1);
+    double x2 = x1 / y1 * y2;
+    for (int k = uniform(-6, 6); k != 0; k += (k > 0 ? -1 : 1)) x2 = std::nextafter(x2, k > 0 ? HUGE_VAL : -HUGE_VAL);
+    // Radii: zero, or a random fraction 2^-r of the value, r spread so that some radii matter and some not.
+    auto radius = [&](double v) { return rng() % 4 == 0 ? 0.0 : std::ldexp(std::fabs(v), -uniform(44, 64)); };
+    const double e1 = radius(x1), f1 = radius(y1), e2 = radius(x2), f2 = radius(y2);
+    // Low parts for the double-double inputs: up to an ulp, so that hi + lo is a finer value.
+    auto low = [&](double v) { return rng() % 2 ? 0.0 : std::ldexp(std::fabs(v), -uniform(54, 70)) * (rng() & 1 ? 1 : -1); };
+    const detail::Enclosure n1{x1, low(x1), e1}, d1{y1, low(y1), f1}, n2{x2, low(x2), e2}, d2{y2, low(y2), f2};
+
+    const Sign s1 = detail::compare_quotients_filter({x1, e1}, {y1, f1}, {x2, e2}, {y2, f2});
+    const detail::Enclosure delta = detail::compare_quotients_compensated(n1, d1, n2, d2);
+    const Sign s2 = detail::enclosure_sign(delta);
+    filter_decided += s1 != Sign::uncertain;
+    compensated_decided += s2 != Sign::uncertain;
+    int signs_seen = 0;
+    for (int corner = 0; corner < 16; ++corner) {
+      auto pick = [corner](const mpq_class& v, double r, int bit) -> mpq_class {
+        if ((corner >> bit) & 1) return v + mpq_class(r);
+        return v - mpq_class(r);
+      };
+      // Stage 1's inputs are single doubles.
+      const mpq_class N1 = pick(mpq_class(x1), e1, 0), D1 = pick(mpq_class(y1), f1, 1);
+      const mpq_class N2 = pick(mpq_class(x2), e2, 2), D2 = pick(mpq_class(y2), f2, 3);
+      const int exact1 = sgn(mpq_class(N1 * D2 - N2 * D1));
+      signs_seen |= exact1 > 0 ? 1 : (exact1 < 0 ? 2 : 4);
+      if (s1 != Sign::uncertain) {
+        ASSERT_EQ(static_cast<int>(s1), exact1) << "filter, instance " << i << ", corner " << corner;
+      }
+      // Stage 2's inputs are double-doubles.
+      const mpq_class M1 = pick(mpq_class(n1.hi) + mpq_class(n1.lo), e1, 0), E1 = pick(mpq_class(d1.hi) + mpq_class(d1.lo), f1, 1);
+      const mpq_class M2 = pick(mpq_class(n2.hi) + mpq_class(n2.lo), e2, 2), E2 = pick(mpq_class(d2.hi) + mpq_class(d2.lo), f2, 3);
+      const mpq_class exact2 = M1 * E2 - M2 * E1;
+      ASSERT_TRUE(encloses(delta, exact2)) << "compensated enclosure, instance " << i << ", corner " << corner;
+      if (s2 != Sign::uncertain) {
+        ASSERT_EQ(static_cast<int>(s2), sgn(exact2)) << "compensated sign, instance " << i;
+      }
+    }
+    corners_on_both_sides += signs_seen == 3 || signs_seen == 7;
+  }
+  EXPECT_GT(filter_decided, 1000);
+  EXPECT_GT(compensated_decided, 2000);
+  EXPECT_GT(corners_on_both_sides, 1000);
+}
+
+// ---- Properties: certified nearest == brute-force exact nearest ------------------------------------------
+
+rc::Gen<test::PlaneScene> gen_plane_scene() {
+  return rc::gen::exec([] {
+    const testing::BitSource bits = [] {
+      return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
+    };
+    return test::make_plane_scene(bits);
+  });
+}
+
+RC_GTEST_PROP(NearestHitProperty, CertifiedEqualsBruteForceExact, ()) {
+  const test::PlaneScene scene = *gen_plane_scene();
+  const test::OracleNearest expected = test::brute_force_nearest(scene.ray, scene.planes);
+  const TracedNearestHit got = nearest_hit_traced(scene.ray, scene.planes);
+  RC_CLASSIFY(!expected.plane, "miss");
+  RC_CLASSIFY(got.comparison_stage != Stage::filter, std::string("comparison needed ") + std::string(to_string(got.comparison_stage)));
+  if (!expected.plane) {
+    RC_ASSERT(!got.hit.has_value());
+    return;
+  }
+  RC_ASSERT(got.hit.has_value());
+  RC_ASSERT(got.hit->plane == *expected.plane);
+  RC_ASSERT(same_bits(got.hit->t, expected.rounded_t()));
+  std::uint32_t comparisons = 0;
+  for (std::uint32_t c : got.comparisons) comparisons += c;
+  RC_ASSERT(comparisons < scene.planes.size());  // at most one per hit plane after the first
+}
+
+RC_GTEST_PROP(NearestHitProperty, ExactPathEqualsBruteForceExact, ()) {
+  const test::PlaneScene scene = *gen_plane_scene();
+  const test::OracleNearest expected = test::brute_force_nearest(scene.ray, scene.planes);
+  const std::optional<NearestHit> got = nearest_hit_exact(scene.ray, scene.planes);
+  RC_ASSERT(got.has_value() == expected.plane.has_value());
+  if (got) {
+    RC_ASSERT(got->plane == *expected.plane);
+    RC_ASSERT(same_bits(got->t, expected.rounded_t()));
+  }
+}
+
+RC_GTEST_PROP(NearestHitProperty, ReversingThePlaneOrderKeepsTheNearestPlane, ()) {
+  // The nearest plane is the same geometric choice in either order; only ties move (to the other end).
+  const test::PlaneScene scene = *gen_plane_scene();
+  std::vector<Plane> reversed(scene.planes.rbegin(), scene.planes.rend());
+  const std::optional<NearestHit> forward = nearest_hit(scene.ray, scene.planes);
+  const std::optional<NearestHit> backward = nearest_hit(scene.ray, reversed);
+  RC_ASSERT(forward.has_value() == backward.has_value());
+  if (!forward) return;
+  RC_ASSERT(same_bits(forward->t, backward->t));
+  const std::size_t mirrored = scene.planes.size() - 1 - backward->plane;
+  // Same exact t: either the same plane, or a tie.
+  const test::ExactTerms a = test::exact_terms(scene.ray, scene.planes[forward->plane]);
+  const test::ExactTerms b = test::exact_terms(scene.ray, scene.planes[mirrored]);
+  RC_ASSERT(a.num * b.den == b.num * a.den);
+  RC_ASSERT(mirrored >= forward->plane);  // the forward winner is the first of the tied planes
+}
+
+RC_GTEST_PROP(NearestHitProperty, OrdersTheTestingLibrarysNearTiePairs, ()) {
+  // raykernel::testing's plane pairs (exact ties, and t less than an ulp apart, with the order known by
+  // construction), in both orders: the answer is the pair's own nearest(), and the two t round alike.
+  const testing::PlanePair pp = *rc::gen::exec([] {
+    return testing::make_plane_pair_near_tie(
+        [] { return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()); });
+  });
+  RC_TAG(std::string(testing::to_string(pp.kind)));
+  const std::vector<Plane> forward = {pp.planes[0], pp.planes[1]}, backward = {pp.planes[1], pp.planes[0]};
+  const std::optional<NearestHit> a = nearest_hit(pp.ray, forward), b = nearest_hit(pp.ray, backward);
+  RC_ASSERT(a.has_value() && b.has_value());
+  RC_ASSERT(a->plane == static_cast<std::size_t>(pp.nearest()));
+  // Reversed: plane 1 is index 0; on a tie the new index 0 wins.
+  RC_ASSERT(b->plane == (pp.order == 0 ? 0u : static_cast<std::size_t>(1 - pp.nearest())));
+  RC_ASSERT(same_bits(a->t, intersect_exact(pp.ray, pp.planes[static_cast<std::size_t>(pp.nearest())]).t));
+}
+
+RC_GTEST_PROP(NearestHitProperty, AgreesWithIntersectOnTheWinner, ()) {
+  // The winner's t is intersect()'s t for that plane, and no plane hit by intersect() is nearer.
+  const test::PlaneScene scene = *gen_plane_scene();
+  const std::optional<NearestHit> h = nearest_hit(scene.ray, scene.planes);
+  for (std::size_t k = 0; k < scene.planes.size(); ++k) {
+    const Intersection i = intersect(scene.ray, scene.planes[k]);
+    if (i.relation == Relation::hit) {
+      RC_ASSERT(h.has_value());
+      RC_ASSERT(h->t <= i.t);
+    }
+  }
+  if (h) {
+    const Intersection i = intersect(scene.ray, scene.planes[h->plane]);
+    RC_ASSERT(i.relation == Relation::hit);
+    RC_ASSERT(same_bits(i.t, h->t));
+  }
+}
+
+}  // namespace
+}  // namespace raykernel

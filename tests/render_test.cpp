@@ -1,0 +1,516 @@
+// The `nearest` and `render` commands: nearest on streams and through the binary (CONTRACT §4 and the
+// sample cases), scene files (every kind of error, with its JSON Pointer), rendering (hand-derived
+// pixels, supersampling, determinism across thread counts, the demo's stage and naive-difference counts),
+// PNG output, and the binary's usage errors.
+#include "commands.hpp"
+#include "png_image.hpp"
+#include "render.hpp"
+#include "scene.hpp"
+#include "support/answer_lines.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace raykernel::cli {
+namespace {
+
+const std::string cli = RAYKERNEL_CLI_PATH;
+const std::string cases = RAYKERNEL_CASES_DIR;
+const std::string scenes = RAYKERNEL_SCENES_DIR;
+
+struct CliRun {
+  int status;
+  std::string out, err;
+};
+
+std::string temp_path(const std::string& name) { return ::testing::TempDir() + "/raykernel_render_test_" + name; }
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+}
+std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Runs the binary (in directory `dir` when given) with stdin from `stdin_text`.
+CliRun run(const std::string& args, const std::string& stdin_text = "", const std::string& dir = "") {
+  const std::string in = temp_path("stdin.txt"), err = temp_path("stderr.txt");
+  write_file(in, stdin_text);
+  const std::string command = (dir.empty() ? "" : "cd '" + dir + "' && ") + cli + " " + args + " < " + in + " 2> " + err;
+  CliRun r{};
+  FILE* p = popen(command.c_str(), "r");
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = read_file(err);
+  return r;
+}
+
+// ---- nearest ---------------------------------------------------------------------------------------------
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::istringstream s(text);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(s, l);) lines.push_back(l);
+  return lines;
+}
+
+TEST(Nearest, ContractSampleOnStreams) {
+  std::ifstream planes_file(cases + "/nearest-sample/planes.txt");
+  const PlanesFile planes = read_planes(planes_file);
+  ASSERT_TRUE(planes.ok()) << planes.error;
+  ASSERT_EQ(planes.planes.size(), 51u);
+  const auto expected = test::read_lines(cases + "/nearest-sample/expected.txt");
+  for (Path path : {Path::certified, Path::exact}) {
+    std::ifstream rays(cases + "/nearest-sample/rays.txt");
+    std::ostringstream out, err;
+    NearestOptions options;
+    options.path = path;
+    NearestCounts counts;
+    EXPECT_EQ(nearest_stream(rays, out, err, planes.planes, options, counts), exit_ok);
+    const auto got = lines_of(out.str());
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t i = 0; i < got.size(); ++i)
+      EXPECT_TRUE(test::same_nearest_answer(got[i], expected[i])) << "ray " << i + 1 << "\n  got:  " << got[i]
+                                                                  << "\n  want: " << expected[i];
+    EXPECT_EQ(err.str(), "");
+  }
+}
+
+TEST(Nearest, ContractSampleThroughTheBinary) {
+  const CliRun r = run("nearest --planes " + cases + "/nearest-sample/planes.txt " + cases + "/nearest-sample/rays.txt");
+  EXPECT_EQ(r.status, 0);
+  const auto got = lines_of(r.out);
+  const auto expected = test::read_lines(cases + "/nearest-sample/expected.txt");
+  ASSERT_EQ(got.size(), expected.size());
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) wrong += !test::same_nearest_answer(got[i], expected[i]);
+  EXPECT_EQ(wrong, 0u);
+}
+
+TEST(Nearest, HandDerivedAnswersAndInvalidRays) {
+  // Planes: 0: z = 5; 1: z = 3 (normal −z); 2: x = 1. Ray 1 (+z from 0): hit 1 at t = 3. Ray 2 (−z from 0):
+  // every plane behind or parallel: miss. Ray 3 (+x from 0): plane 2 at t = 1 (z planes parallel).
+  // Ray 4 (+z scaled by 10): t = 0.3, exact 3/10. Line 6 is invalid (zero direction), line 7 too (5 numbers).
+  const std::vector<Plane> planes = {{{0, 0, 5}, {0, 0, 1}}, {{0, 0, 3}, {0, 0, -1}}, {{1, 0, 0}, {1, 0, 0}}};
+  std::istringstream rays("0 0 0 0 0 1\n0 0 0 0 0 -1\n# a comment\n0 0 0 1 0 0\n0 0 0 0 0 10\n\n0 0 0 0 0 0\n1 2 3 4 5\n");
+  std::ostringstream out, err;
+  NearestOptions options;
+  options.exact_t = true;
+  NearestCounts counts;
+  EXPECT_EQ(nearest_stream(rays, out, err, planes, options, counts), exit_invalid_line);
+  EXPECT_EQ(out.str(),
+            "hit 1 3 3/1\nmiss\nhit 2 1 1/1\nhit 1 0.3 3/10\ninvalid ray direction is the zero vector\n"
+            "invalid expected 6 numbers, found 5\n");
+  EXPECT_EQ(err.str(), "raykernel: line 7: ray direction is the zero vector\nraykernel: line 8: expected 6 numbers, found 5\n");
+  EXPECT_EQ(counts.hits, 3u);
+  EXPECT_EQ(counts.misses, 1u);
+  EXPECT_EQ(counts.invalid, 2u);
+}
+
+TEST(Nearest, SubUlpOrderAndTiesOnEveryPath) {
+  // Plane 0: x = 1 (t = 1); plane 1: point (1, 1, 0), normal (1, −2^-60, 0): t = 1 − 2^-60, nearer, and
+  // both round to 1. Certified and exact answer plane 1; the naive loop sees two t = 1 and keeps plane 0.
+  const std::vector<Plane> planes = {{{1, 0, 0}, {1, 0, 0}}, {{1, 1, 0}, {1, -0x1p-60, 0}}};
+  auto answer = [&](Path path) {
+    std::istringstream rays("0 0 0 1 0 0\n");
+    std::ostringstream out, err;
+    NearestOptions options;
+    options.path = path;
+    options.hex = true;
+    NearestCounts counts;
+    (void)nearest_stream(rays, out, err, planes, options, counts);
+    return out.str();
+  };
+  EXPECT_EQ(answer(Path::certified), "hit 1 0x1p+0\n");
+  EXPECT_EQ(answer(Path::exact), "hit 1 0x1p+0\n");
+  EXPECT_EQ(answer(Path::naive), "hit 0 0x1p+0\n");
+}
+
+TEST(Nearest, InvalidPlaneLinesAreReportedWithFileAndLine) {
+  std::istringstream zero_normal("# planes\n0 0 5 0 0 1\n\n1 2 3 0 -0 0\n");
+  const PlanesFile f = read_planes(zero_normal);
+  EXPECT_FALSE(f.ok());
+  EXPECT_EQ(f.error_line, 4u);
+  EXPECT_EQ(f.error, "plane normal is the zero vector");
+  std::istringstream bad_token("0 0 5 0 0 1 7\n");
+  EXPECT_EQ(read_planes(bad_token).error, "expected 6 numbers, found 7");
+
+  const std::string path = temp_path("planes.txt");
+  write_file(path, "0 0 5 0 0 1\n0 0 nan 0 0 1\n");
+  const CliRun r = run("nearest --planes " + path, "0 0 0 0 0 1\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "") << "nothing on stdout when a plane line is invalid";
+  EXPECT_EQ(r.err, "raykernel: " + path + ":2: field 3: 'nan' is not finite (non-finite)\n");
+}
+
+TEST(Nearest, UsageErrors) {
+  EXPECT_EQ(run("nearest", "0 0 0 0 0 1\n").status, 2);  // no --planes
+  EXPECT_EQ(run("nearest --planes /nonexistent/planes.txt", "").status, 2);
+  const std::string path = temp_path("one-plane.txt");
+  write_file(path, "0 0 5 0 0 1\n");
+  EXPECT_EQ(run("nearest --planes " + path + " /nonexistent/rays.txt").status, 2);
+  EXPECT_EQ(run("nearest --planes " + path + " --bogus").status, 2);
+  EXPECT_EQ(run("nearest --planes " + path + " --path=fast").status, 2);
+  EXPECT_EQ(run("nearest --planes " + path + " a b").status, 2);
+  const CliRun ok = run("nearest --planes=" + path + " -", "0 0 0 0 0 1\n0 0 0 0 0 0\n");
+  EXPECT_EQ(ok.status, 1);
+  EXPECT_EQ(ok.out, "hit 0 5\ninvalid ray direction is the zero vector\n");
+  const CliRun stats = run("nearest --stats --planes " + path, "0 0 0 0 0 1\n");
+  EXPECT_NE(stats.err.find("comparisons of two t"), std::string::npos) << stats.err;
+}
+
+TEST(Commands, EveryCommandAnswersHelpAndIsListed) {
+  for (const char* sub : {"nearest --help", "render --help"}) {
+    const CliRun help = run(sub);
+    EXPECT_EQ(help.status, 0) << sub;
+    EXPECT_NE(help.out.find("usage: raykernel"), std::string::npos) << sub;
+  }
+  const CliRun overview = run("");
+  EXPECT_NE(overview.out.find("nearest --planes FILE"), std::string::npos);
+  EXPECT_NE(overview.out.find("render [SCENE.json]"), std::string::npos);
+}
+
+// ---- Scenes ----------------------------------------------------------------------------------------------
+
+TEST(Scene, TheDemoIsValidAndIsScenesDemoJson) {
+  const SceneParse demo = parse_scene(demo_scene_json());
+  ASSERT_TRUE(demo.scene) << demo.error.str();
+  EXPECT_EQ(demo.scene->image.width, 960u);
+  EXPECT_EQ(demo.scene->image.height, 540u);
+  EXPECT_EQ(demo.scene->samples_per_pixel, 4u);
+  EXPECT_EQ(demo.scene->planes.size(), 6u);
+  EXPECT_EQ(read_file(scenes + "/demo.json"), std::string(demo_scene_json()));
+}
+
+TEST(Scene, EveryExampleSceneIsValid) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(scenes)) {
+    if (entry.path().extension() != ".json") continue;
+    const SceneParse s = parse_scene(read_file(entry.path().string()));
+    EXPECT_TRUE(s.scene) << entry.path() << ": " << s.error.str();
+    ++count;
+  }
+  EXPECT_GE(count, 3);
+}
+
+// A minimal valid scene with `planes` substituted, for the error tests.
+std::string scene_with(const std::string& image, const std::string& camera, const std::string& planes) {
+  return "{\"image\": " + image + ",\n \"camera\": " + camera + ",\n \"planes\": " + planes + "}";
+}
+const std::string good_image = R"({"width": 4, "height": 2})";
+const std::string good_camera = R"({"eye": [0, 1, 5], "target": [0, 0, 0], "up": [0, 1, 0], "perspective": {"fov_degrees": 60}})";
+const std::string good_planes = R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [0.5, 0.5, 0.5]}])";
+
+std::string error_of(const std::string& text) {
+  const SceneParse s = parse_scene(text);
+  if (s.scene) return "(valid)";
+  return s.error.str();
+}
+
+TEST(Scene, ErrorsNameTheJsonPointerAndTheReason) {
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, good_planes)), "(valid)");
+  // Missing and unknown fields.
+  EXPECT_EQ(error_of(R"({"image": {"width": 4, "height": 2}, "planes": []})"), "/camera: missing field");
+  EXPECT_EQ(error_of(scene_with(R"({"width": 4})", good_camera, good_planes)), "/image/height: missing field");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "colour": [1, 0, 0]}])")),
+            "/planes/0/colour: unknown field (expected one of: name, point, normal, color, checker)");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"([{"point": [0, 0, 0], "normal": [0, 1, 0]}])")),
+            "/planes/0/color: missing field (or checker)");
+  // Mistyped fields.
+  EXPECT_EQ(error_of(scene_with(R"({"width": "640", "height": 2})", good_camera, good_planes)),
+            "/image/width: expected an integer, found a string");
+  EXPECT_EQ(error_of(scene_with(R"({"width": 640.5, "height": 2})", good_camera, good_planes)),
+            "/image/width: expected an integer, found a number with a fraction");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"({"point": [0, 0, 0]})")),
+            "/planes: expected an array of planes, found an object");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"([{"point": [0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]}])")),
+            "/planes/0/point: expected an array of 3 numbers, found an array of 2");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"([{"point": [0, null, 0], "normal": [0, 1, 0], "color": [1, 0, 0]}])")),
+            "/planes/0/point/1: expected a number, found a null");
+  EXPECT_EQ(error_of("[1, 2]"), "expected an object, found an array");
+  // Values out of range.
+  EXPECT_EQ(error_of(scene_with(R"({"width": 0, "height": 2})", good_camera, good_planes)), "/image/width: must be positive");
+  EXPECT_EQ(error_of(scene_with(R"({"width": 4, "height": -3})", good_camera, good_planes)), "/image/height: must be positive");
+  EXPECT_EQ(error_of(scene_with(R"({"width": 4, "height": 2, "samples_per_pixel": 0})", good_camera, good_planes)),
+            "/image/samples_per_pixel: must be positive");
+  EXPECT_EQ(error_of(scene_with(R"({"width": 100000, "height": 2})", good_camera, good_planes)),
+            "/image/width: too large (at most 16384)");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera, R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 1.5, 0]}])")),
+            "/planes/0/color/1: colour component outside [0, 1]");
+  EXPECT_EQ(error_of(scene_with(good_image, R"({"eye": [0, 1, 5], "target": [0, 0, 0], "up": [0, 1, 0], "perspective": {"fov_degrees": 180}})",
+                                good_planes)),
+            "/camera/perspective/fov_degrees: must be in (0, 180)");
+  // Zero vectors and degenerate cameras.
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera,
+                                R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]},
+                                    {"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]},
+                                    {"point": [0, 0, 0], "normal": [0, -0.0, 0], "color": [1, 0, 0]}])")),
+            "/planes/2/normal: zero vector");
+  EXPECT_EQ(error_of(scene_with(good_image, R"({"eye": [1, 2, 3], "target": [1, 2, 3], "up": [0, 1, 0], "perspective": {"fov_degrees": 60}})",
+                                good_planes)),
+            "/camera/target: same point as eye");
+  EXPECT_EQ(error_of(scene_with(good_image, R"({"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 1, 0], "perspective": {"fov_degrees": 60}})",
+                                good_planes)),
+            "/camera/up: parallel to the view direction (eye to target)");
+  EXPECT_EQ(error_of(scene_with(good_image, R"({"eye": [0, 1, 5], "target": [0, 0, 0], "up": [0, 1, 0]})", good_planes)),
+            "/camera/perspective: missing field (or orthographic)");
+  // Exclusive choices.
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera,
+                                R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0], "checker": {"colors": [[0, 0, 0], [1, 1, 1]], "size": 1}}])")),
+            "/planes/0: give either color or checker, not both");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera,
+                                R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "checker": {"colors": [[0, 0, 0], [1, 1, 1], [1, 0, 0]], "size": 1}}])")),
+            "/planes/0/checker/colors: expected an array of 2 colours, found an array of 3");
+  EXPECT_EQ(error_of(scene_with(good_image, good_camera,
+                                R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "checker": {"colors": [[0, 0, 0], [1, 1, 1]], "size": 1, "u_axis": [0, 2, 0]}}])")),
+            "/planes/0/checker/u_axis: parallel to the plane's normal");
+}
+
+TEST(Scene, NonFiniteNumbersAreLocated) {
+  // JSON has no NaN or infinity; 1e999 overflows the double range, which nlohmann reports without a
+  // location: the scene parser adds the pointer and the line and column.
+  const std::string text = scene_with(good_image, good_camera,
+                                      "[{\"point\": [0, 0, 0], \"normal\": [0, 1e999, 0], \"color\": [1, 0, 0]}]");
+  EXPECT_EQ(error_of(text), "/planes/0/normal/1: number outside the double range (not finite), at line 3, column 48");
+  EXPECT_EQ(error_of("{\"fog\": {\"distance\": -1e400}}"), "/fog/distance: number outside the double range (not finite), at line 1, column 22");
+}
+
+TEST(Scene, BadJsonGivesLineAndColumn) {
+  EXPECT_EQ(error_of("{\"image\": {\"width\": 4,\n \"height\": 2,}}"),
+            "invalid JSON: parse error at line 2, column 14: syntax error while parsing object key - unexpected '}'; "
+            "expected string literal");
+  EXPECT_EQ(error_of(""), "invalid JSON: parse error at line 1, column 1: syntax error while parsing value - unexpected end "
+                          "of input; expected '[', '{', or a literal");
+  EXPECT_EQ(error_of("{\"a\": NaN}").substr(0, 40), "invalid JSON: parse error at line 1, col");
+}
+
+TEST(Scene, OverridesKeepTheAspectOfAFieldOfViewCamera) {
+  SceneOverrides o;
+  o.width = 200;
+  o.height = 100;
+  o.samples_per_pixel = 9;
+  const SceneParse s = parse_scene(scene_with(good_image, good_camera, good_planes), o);
+  ASSERT_TRUE(s.scene);
+  EXPECT_EQ(s.scene->image.width, 200u);
+  EXPECT_EQ(s.scene->samples_per_pixel, 9u);
+  const NearPlaneWindow& w = s.scene->camera.window;
+  EXPECT_EQ(w.right - w.left, 2 * (w.top - w.bottom));  // aspect 2, from the overridden size
+}
+
+// ---- Rendering -------------------------------------------------------------------------------------------
+
+// Looking straight down from (0, 5, 0) through an orthographic 2 × 2 window: camera x is world x.
+std::string top_down(const std::string& image, const std::string& planes) {
+  return scene_with(image, R"({"eye": [0, 5, 0], "target": [0, 0, 0], "up": [0, 0, -1], "orthographic": {"window": {"left": -1, "right": 1, "bottom": -1, "top": 1}}})",
+                    planes);
+}
+
+Scene parsed(const std::string& text) {
+  SceneParse s = parse_scene(text);
+  EXPECT_TRUE(s.scene) << s.error.str();
+  return *s.scene;
+}
+
+TEST(Render, CoincidentPlanesShowTheFirstOne) {
+  // A red floor and a blue floor that is the same plane (point moved within it, normal ×3): every ray is an
+  // exact tie, so every pixel is the first plane's colour. Facing the rays head-on, the shading factor is
+  // 0.22 + 0.78·1 = 1, so pure red stays (255, 0, 0).
+  const std::string red = R"({"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]})";
+  const std::string blue = R"({"point": [3, 0, -7], "normal": [0, 3, 0], "color": [0, 0, 1]})";
+  RenderOptions options;
+  options.stage_image = true;
+  options.compare_naive = true;
+  const RenderResult r = render_scene(parsed(top_down(R"({"width": 4, "height": 3})", "[" + red + ", " + blue + "]")), options);
+  for (std::uint32_t row = 0; row < 3; ++row)
+    for (std::uint32_t x = 0; x < 4; ++x) {
+      const std::uint8_t* px = r.image.pixel(x, row);
+      EXPECT_EQ(px[0], 255);
+      EXPECT_EQ(px[1], 0);
+      EXPECT_EQ(px[2], 0);
+      // Exact ties need the expansion stage: the stage image marks every pixel orange.
+      const std::uint8_t* st = r.stages.pixel(x, row);
+      EXPECT_EQ(st[0], stage_marker_colors[2][0]);
+      EXPECT_EQ(st[1], stage_marker_colors[2][1]);
+    }
+  EXPECT_EQ(r.stats.pixels_by_stage[static_cast<std::size_t>(Stage::expansion)], 12u);
+  EXPECT_EQ(r.stats.rays, 12u);
+  const RenderResult swapped = render_scene(parsed(top_down(R"({"width": 4, "height": 3})", "[" + blue + ", " + red + "]")), {});
+  EXPECT_EQ(swapped.image.pixel(2, 1)[2], 255);  // blue first: blue wins
+  EXPECT_EQ(swapped.image.pixel(2, 1)[0], 0);
+}
+
+TEST(Render, SupersamplesAverageInLinearLight) {
+  // One pixel over x ∈ [−1, 1]: a red floor y = 0, and a blue plane through the origin tilted by 2^-20
+  // (normal (2^-20, 1, 0)), above the floor exactly where x < 0. With 16 n-rooks samples, exactly 8 have
+  // x < 0 (one per column stratum): the average is (0.5, 0, 0.5) in linear light (the tilt changes the
+  // shading by about 1e-12), and sRGB(0.5) = 1.055·0.5^(1/2.4) − 0.055 = 0.73536, i.e. byte 188.
+  const std::string planes = R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]},
+                                 {"point": [0, 0, 0], "normal": [9.5367431640625e-07, 1, 0], "color": [0, 0, 1]}])";
+  const RenderResult r = render_scene(parsed(top_down(R"({"width": 1, "height": 1, "samples_per_pixel": 16})", planes)), {});
+  EXPECT_EQ(r.image.pixel(0, 0)[0], 188);
+  EXPECT_EQ(r.image.pixel(0, 0)[1], 0);
+  EXPECT_EQ(r.image.pixel(0, 0)[2], 188);
+  // With one sample (the centre, x = 0 on the seam: both planes pass through the origin, t ties) the first
+  // plane, red, wins.
+  const RenderResult centre = render_scene(parsed(top_down(R"({"width": 1, "height": 1})", planes)), {});
+  EXPECT_EQ(centre.image.pixel(0, 0)[0], 255);
+  EXPECT_EQ(centre.image.pixel(0, 0)[2], 0);
+}
+
+TEST(Render, MissesShowTheBackgroundAndRowsGoTopDown) {
+  // Perspective camera looking at the horizon over a floor: the top row sees sky, the bottom row floor.
+  const std::string text = R"({"image": {"width": 3, "height": 8},
+     "camera": {"eye": [0, 1, 0], "target": [0, 1, -10], "up": [0, 1, 0], "perspective": {"fov_degrees": 90}},
+     "background": [0, 1, 0],
+     "planes": [{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]}]})";
+  const RenderResult r = render_scene(parsed(text), {});
+  EXPECT_EQ(r.image.pixel(1, 0)[1], 255);  // sky: pure green background
+  EXPECT_EQ(r.image.pixel(1, 0)[0], 0);
+  EXPECT_GT(r.image.pixel(1, 7)[0], 100);  // floor: red, darkened at the grazing angle
+  EXPECT_EQ(r.image.pixel(1, 7)[1], 0);
+  EXPECT_EQ(r.stats.hit_rays, 12u);  // the lower half of 3 × 8
+}
+
+TEST(Render, ThreadCountDoesNotChangeTheImage) {
+  SceneOverrides o;
+  o.width = 64;
+  o.height = 36;
+  o.samples_per_pixel = 2;
+  const SceneParse demo = parse_scene(demo_scene_json(), o);
+  ASSERT_TRUE(demo.scene);
+  RenderOptions one, three;
+  one.threads = 1;
+  three.threads = 3;
+  one.stage_image = three.stage_image = true;
+  const RenderResult a = render_scene(*demo.scene, one), b = render_scene(*demo.scene, three);
+  EXPECT_EQ(a.image.rgb, b.image.rgb);
+  EXPECT_EQ(a.stages.rgb, b.stages.rgb);
+  EXPECT_EQ(a.stats.pixels_by_stage, b.stats.pixels_by_stage);
+}
+
+TEST(Render, TheDemoNeedsSlowerStagesAndFoolsThePlainDoubles) {
+  // At a quarter of the demo's size, one sample per pixel: the exact ties (coincident walls) need the
+  // expansion stage, the shallow angles the compensated one, and the naive loop picks another plane on
+  // the coincident wall, along the pool's edge and along the seam of the two right walls.
+  SceneOverrides o;
+  o.width = 240;
+  o.height = 135;
+  o.samples_per_pixel = 1;
+  const SceneParse demo = parse_scene(demo_scene_json(), o);
+  ASSERT_TRUE(demo.scene);
+  RenderOptions options;
+  options.stage_image = options.compare_naive = options.naive_image = true;
+  const RenderResult r = render_scene(*demo.scene, options);
+  const RenderStats& s = r.stats;
+  EXPECT_GT(s.pixels_by_stage[static_cast<std::size_t>(Stage::filter)], s.pixels / 3);
+  EXPECT_GT(s.pixels_by_stage[static_cast<std::size_t>(Stage::compensated)], 500u);
+  EXPECT_GT(s.pixels_by_stage[static_cast<std::size_t>(Stage::expansion)], 500u);
+  EXPECT_GT(s.naive_pixels_differ, 500u);
+  EXPECT_EQ(s.naive_rays_differ, s.naive_pixels_differ);  // one ray per pixel
+  std::uint64_t magenta = 0;
+  for (std::size_t k = 0; k < r.naive_difference.rgb.size(); k += 3)
+    magenta += r.naive_difference.rgb[k] == 255 && r.naive_difference.rgb[k + 1] == 0 && r.naive_difference.rgb[k + 2] == 255;
+  EXPECT_EQ(magenta, s.naive_pixels_differ);
+  EXPECT_NE(r.naive.rgb, r.image.rgb);
+}
+
+TEST(Png, WritesAndReadsBack) {
+  Image image(3, 2);
+  for (std::size_t k = 0; k < image.rgb.size(); ++k) image.rgb[k] = static_cast<std::uint8_t>(k * 13);
+  const std::string path = temp_path("roundtrip.png");
+  ASSERT_EQ(write_png(path, image), std::nullopt);
+  const std::optional<Image> back = read_png(path);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->width, 3u);
+  EXPECT_EQ(back->height, 2u);
+  EXPECT_EQ(back->rgb, image.rgb);
+  const std::optional<std::string> error = write_png("/nonexistent/dir/x.png", image);
+  ASSERT_TRUE(error);
+  EXPECT_NE(error->find("cannot create '/nonexistent/dir/x.png'"), std::string::npos) << *error;
+}
+
+// ---- The render command ----------------------------------------------------------------------------------
+
+TEST(RenderCommand, BrokenScenesExitWithTwoAndNameFileAndPointer) {
+  const std::string path = temp_path("broken.json");
+  const std::string out = temp_path("never-written.png");
+  std::filesystem::remove(out);
+  write_file(path, scene_with(good_image, good_camera,
+                              R"([{"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]},
+                                  {"point": [0, 0, 0], "normal": [0, 1, 0], "color": [1, 0, 0]},
+                                  {"point": [0, 0, 0], "normal": [0, 0, 0], "color": [1, 0, 0]}])"));
+  CliRun r = run("render " + path + " -o " + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel: " + path + ": /planes/2/normal: zero vector\n");
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  write_file(path, "{\"image\": ");
+  r = run("render " + path + " -o " + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("raykernel: " + path + ": invalid JSON: parse error at line 1, column 11", 0), 0u) << r.err;
+  r = run("render /nonexistent/scene.json -o " + out);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel render: cannot read scene file '/nonexistent/scene.json'\n");
+}
+
+TEST(RenderCommand, UsageErrors) {
+  EXPECT_EQ(run("render --bogus").status, 2);
+  EXPECT_EQ(run("render --width 0").status, 2);
+  EXPECT_EQ(run("render --samples x").status, 2);
+  EXPECT_EQ(run("render a.json b.json").status, 2);
+  EXPECT_EQ(run("render -o").status, 2);
+  const CliRun unwritable = run("render --width 8 --height 8 -o /nonexistent/dir/out.png");
+  EXPECT_EQ(unwritable.status, 2);
+  EXPECT_NE(unwritable.err.find("cannot create"), std::string::npos) << unwritable.err;
+}
+
+TEST(RenderCommand, WritesTheImagesAndPrintsTheCounts) {
+  const std::string out = temp_path("small.png");
+  const CliRun r = run("render --width 96 --height 54 --samples 1 --no-progress -o " + out + " --show-stages --compare-naive");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  for (const char* suffix : {".png", "-stages.png", "-naive-diff.png"}) {
+    const std::optional<Image> image = read_png(temp_path("small") + suffix);
+    ASSERT_TRUE(image) << suffix;
+    EXPECT_EQ(image->width, 96u);
+    EXPECT_EQ(image->height, 54u);
+  }
+  for (const char* text : {"96x54, 1 sample per pixel, 6 planes", "rays/s", "pixels by the slowest stage they needed: filter",
+                           "naive loop", "picks another plane than the exact answer at", "-stages.png", "-naive-diff.png"})
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << " in:\n" << r.out;
+}
+
+TEST(RenderCommand, WithoutArgumentsRendersTheDemoToRenderPng) {
+  // The README's first command: `raykernel render` alone writes the demo, 960 × 540, to render.png.
+  const std::string dir = temp_path("cwd");
+  std::filesystem::create_directories(dir);
+  std::filesystem::remove(dir + "/render.png");
+  const CliRun r = run("render", "", dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::optional<Image> image = read_png(dir + "/render.png");
+  ASSERT_TRUE(image);
+  EXPECT_EQ(image->width, 960u);
+  EXPECT_EQ(image->height, 540u);
+  EXPECT_NE(r.out.find("demo scene"), std::string::npos) << r.out;
+}
+
+TEST(RenderCommand, PrintsTheDemoScene) {
+  const CliRun r = run("render --print-demo-scene");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, std::string(demo_scene_json()));
+}
+
+}  // namespace
+}  // namespace raykernel::cli
