@@ -1,8 +1,10 @@
 // raykernel_bench: the cost of one ray–plane query on each path, measured in one run so that the ratios
 // compare like with like.
 //
-//   intersect/<path>/<workload>   path: naive, certified, exact, cgal_epick, cgal_epeck
-//                                 workload: random, wide, degenerate
+//   intersect/<path>/<workload>   path: naive, certified, exact, cgal_epick, cgal_epeck, batch_certified
+//                                 workload: random, wide, degenerate, render
+//   nearest/<path>/<planes>       the demo camera's rays against 4 or 64 planes: naive, certified, exact
+//                                 (items: rays; one nearest hit each)
 //   sweep/<path>/<k>              queries at angle 2^-k between ray and plane (k = 0, 4, ..., 100)
 //
 // Items per second count ray–plane queries. Each benchmark rotates through a pre-generated buffer (96 MiB
@@ -12,11 +14,15 @@
 #include "cgal_baselines.hpp"
 #include "workloads.hpp"
 
+#include <raykernel/batch.hpp>
+#include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cstring>
+#include <span>
 #include <string>
 
 namespace raykernel::bench {
@@ -74,6 +80,39 @@ void register_path_benchmarks(const std::string& workload_name, const std::vecto
   benchmark::RegisterBenchmark(name("exact").c_str(), [queries](benchmark::State& s) {
     rotate_through(s, *queries(), exact);
   });
+  benchmark::RegisterBenchmark(name("batch_certified").c_str(), [queries, workload_name](benchmark::State& s) {
+    // The batch API over the whole buffer per iteration (threads: all cores), counted per query.
+    const Workload w = workload_name == "random" ? Workload::random
+                       : workload_name == "wide" ? Workload::wide
+                       : workload_name == "degenerate" ? Workload::degenerate
+                                                       : Workload::render;
+    const SoA& soa = workload_soa(w);
+    const std::size_t n = soa.ox.size();
+    std::vector<Relation> relation(n);
+    std::vector<double> t(n);
+    BatchStats stats;
+    for (auto _ : s) {
+      intersect_batch({soa.ox, soa.oy, soa.oz, soa.dx, soa.dy, soa.dz}, {soa.px, soa.py, soa.pz, soa.nx, soa.ny, soa.nz},
+                      {relation, t}, {.stats = &stats});
+      benchmark::DoNotOptimize(t.data());
+      benchmark::ClobberMemory();
+    }
+    s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(n));
+    // Checked once: the batch answers are intersect's.
+    const std::vector<testing::Query>& q = *queries();
+    for (std::size_t i = 0; i < n; i += 97) {
+      const Intersection a = intersect(q[i].ray, q[i].plane);
+      if (a.relation != relation[i] || (a.relation <= Relation::behind && std::memcmp(&a.t, &t[i], sizeof a.t) != 0)) {
+        s.SkipWithError("batch != intersect");
+        return;
+      }
+    }
+    const double total = static_cast<double>(s.iterations()) * static_cast<double>(n);
+    s.counters["rel_filter"] = static_cast<double>(stats.relation_stage[0]) / total;
+    s.counters["rel_compensated"] = static_cast<double>(stats.relation_stage[1]) / total;
+    s.counters["rel_expansion"] = static_cast<double>(stats.relation_stage[2]) / total;
+    s.counters["rel_exact"] = static_cast<double>(stats.relation_stage[3]) / total;
+  });
   if (!with_cgal) return;
   benchmark::RegisterBenchmark(name("cgal_epick").c_str(), [queries](benchmark::State& s) {
     static const EpickQueries cgal(*queries());
@@ -97,6 +136,38 @@ const std::vector<testing::Query>* workload_queries() {
 template <int K>
 const std::vector<testing::Query>* sweep_queries() {
   return &angle_sweep(K);
+}
+
+void register_nearest(std::size_t planes) {
+  const std::string suffix = "/" + std::to_string(planes);
+  auto run = [planes](benchmark::State& s, auto nearest) {
+    const NearestWorkload& w = nearest_workload(planes);
+    std::size_t i = 0;
+    for (auto _ : s) {
+      for (int k = 0; k < chunk; ++k) {
+        auto r = nearest(w.rays[i], std::span<const Plane>(w.planes));
+        benchmark::DoNotOptimize(r);
+        if (++i == w.rays.size()) i = 0;
+      }
+    }
+    s.SetItemsProcessed(s.iterations() * chunk);
+  };
+  benchmark::RegisterBenchmark(("nearest/naive" + suffix).c_str(), [run](benchmark::State& s) {
+    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit_naive(r, p); });
+  });
+  benchmark::RegisterBenchmark(("nearest/certified" + suffix).c_str(), [run, planes](benchmark::State& s) {
+    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit(r, p); });
+    // Counters: the slowest stage each ray needed, over the whole image.
+    const NearestWorkload& w = nearest_workload(planes);
+    std::array<double, 4> slowest{};
+    for (const Ray& r : w.rays) slowest[static_cast<std::size_t>(nearest_hit_traced(r, w.planes).slowest_stage())] += 1;
+    const char* names[4] = {"filter", "compensated", "expansion", "exact"};
+    for (int k = 0; k < 4; ++k)
+      s.counters[std::string("ray_") + names[k]] = slowest[static_cast<std::size_t>(k)] / static_cast<double>(w.rays.size());
+  });
+  benchmark::RegisterBenchmark(("nearest/exact" + suffix).c_str(), [run](benchmark::State& s) {
+    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit_exact(r, p); });
+  });
 }
 
 template <int K>
@@ -126,6 +197,9 @@ int main(int argc, char** argv) {
   register_path_benchmarks("random", &workload_queries<Workload::random>, true);
   register_path_benchmarks("wide", &workload_queries<Workload::wide>, true);
   register_path_benchmarks("degenerate", &workload_queries<Workload::degenerate>, true);
+  register_path_benchmarks("render", &workload_queries<Workload::render>, true);
+  register_nearest(4);
+  register_nearest(64);
   register_sweep<0>();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -1,5 +1,7 @@
 #include "workloads.hpp"
 
+#include "scene.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -68,6 +70,34 @@ void check(const std::vector<Query>& queries, const std::string& name) {
   }
 }
 
+// The demo scene's camera rays through pixel centres (every pixel of the 960×540 image).
+std::vector<Ray> demo_camera_rays() {
+  const cli::SceneParse parsed = cli::parse_scene(cli::demo_scene_json());
+  if (!parsed.scene) {
+    std::fprintf(stderr, "raykernel_bench: the demo scene does not parse: %s\n", parsed.error.str().c_str());
+    std::abort();
+  }
+  const cli::Scene& scene = *parsed.scene;
+  std::vector<Ray> rays;
+  for (std::uint32_t j = 0; j < scene.image.height; ++j)
+    for (std::uint32_t i = 0; i < scene.image.width; ++i) rays.push_back(scene.camera.ray(i, j));
+  return rays;
+}
+
+std::vector<Plane> demo_planes() { return cli::parse_scene(cli::demo_scene_json()).scene->geometry(); }
+
+// Every (ray, plane) pair of the demo render, ray-major, cut to workload_size queries.
+std::vector<Query> render_pairs() {
+  const std::vector<Ray> rays = demo_camera_rays();
+  const std::vector<Plane> planes = demo_planes();
+  std::vector<Query> out;
+  out.reserve(workload_size);
+  for (const Ray& r : rays)
+    for (const Plane& p : planes)
+      if (out.size() < workload_size) out.push_back({r, p});
+  return out;
+}
+
 }  // namespace
 
 std::string to_string(Workload w) {
@@ -75,6 +105,7 @@ std::string to_string(Workload w) {
     case Workload::random: return "random";
     case Workload::wide: return "wide";
     case Workload::degenerate: return "degenerate";
+    case Workload::render: return "render";
   }
   return "?";
 }
@@ -90,9 +121,51 @@ const std::vector<Query>& workload(Workload w) {
       case Workload::random: q = generate(QueryKind::random, 1, workload_size); break;
       case Workload::wide: q = generate(QueryKind::wide_exponents, 2, workload_size); break;
       case Workload::degenerate: q = degenerate_mix(workload_size); break;
+      case Workload::render: q = render_pairs(); break;
     }
     check(q, to_string(w));
     it = cache.emplace(w, std::move(q)).first;
+  }
+  return it->second;
+}
+
+const SoA& workload_soa(Workload w) {
+  static std::mutex mutex;
+  static std::map<Workload, SoA> cache;
+  const std::vector<Query>& q = workload(w);
+  const std::lock_guard lock(mutex);
+  auto it = cache.find(w);
+  if (it == cache.end()) {
+    SoA s;
+    for (const Query& x : q) {
+      s.ox.push_back(x.ray.origin.x), s.oy.push_back(x.ray.origin.y), s.oz.push_back(x.ray.origin.z);
+      s.dx.push_back(x.ray.direction.x), s.dy.push_back(x.ray.direction.y), s.dz.push_back(x.ray.direction.z);
+      s.px.push_back(x.plane.point.x), s.py.push_back(x.plane.point.y), s.pz.push_back(x.plane.point.z);
+      s.nx.push_back(x.plane.normal.x), s.ny.push_back(x.plane.normal.y), s.nz.push_back(x.plane.normal.z);
+    }
+    it = cache.emplace(w, std::move(s)).first;
+  }
+  return it->second;
+}
+
+const NearestWorkload& nearest_workload(std::size_t plane_count) {
+  static std::mutex mutex;
+  static std::map<std::size_t, NearestWorkload> cache;
+  const std::lock_guard lock(mutex);
+  auto it = cache.find(plane_count);
+  if (it == cache.end()) {
+    NearestWorkload w;
+    w.rays = demo_camera_rays();
+    const std::vector<Plane> base = demo_planes();
+    // More planes than the demo has: copies moved along their normals by small dyadic steps (parallel
+    // layers, as in a scene with thin slabs), so that the nearest hit keeps changing with the count.
+    for (std::size_t k = 0; k < plane_count; ++k) {
+      Plane p = base[k % base.size()];
+      const double step = std::ldexp(static_cast<double>(k / base.size()), -4);
+      p.point = {p.point.x + step * p.normal.x, p.point.y + step * p.normal.y, p.point.z + step * p.normal.z};
+      w.planes.push_back(p);
+    }
+    it = cache.emplace(plane_count, std::move(w)).first;
   }
   return it->second;
 }

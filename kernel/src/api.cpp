@@ -22,13 +22,14 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
   if (std::optional<std::string> reason = validate(ray, plane)) throw invalid_input(*reason);
 }
 
-// The certified answer for any input: validation and the environment check inline, the cascade after.
+// The certified answer for any input. The fast path needs no validation (a certified answer implies valid
+// input, certified/fast_path.hpp); the full cascade validates before it computes.
 inline TracedIntersection certified(const Ray& ray, const Plane& plane) {
-  if (!detail::plausibly_valid(ray, plane) || !detail::default_floating_point_environment()) [[unlikely]] {
+  if (!detail::default_floating_point_environment()) [[unlikely]] {
     throw_if_invalid(ray, plane);
     return {detail::exact::intersect(ray, plane), Stage::exact, Stage::exact};
   }
-  return detail::intersect_certified_valid(ray, plane);
+  return detail::intersect_certified(ray, plane);
 }
 
 }  // namespace

@@ -36,8 +36,8 @@ struct RoundedEnclosure {
 };
 
 // The stage-1 enclosure of a dot product: value s and the bound (C ⊗ m) ⊕ 3μ that dot3_filter compares s
-// against (the same operations, in the same order). |s − V| ≤ that bound is the content of
-// proofs/Filter.v's `dot3_filter_sound_gen`.
+// against (the same operations, in the same order). |s − V| ≤ that bound is, for den and for num,
+// proofs/Filter.v's `den_filter_encloses` and `num_filter_encloses` (both by `dot3_filter_bound_encloses`).
 [[nodiscard]] inline RoundedEnclosure filter_enclosure(const Dot3Rounded& r, double relative_constant) noexcept {
   return {r.value, relative_constant * r.magnitude + bounds::filter_absolute};
 }

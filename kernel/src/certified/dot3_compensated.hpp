@@ -13,28 +13,66 @@
 
 namespace raykernel::detail {
 
+inline constexpr double largest_finite = 0x1.fffffffffffffp+1023;
+
 // compensated_dot3: an enclosure of V = Σ (a_i + α_i)·b_i, where a_i are the values stage 1 multiplied
 // (stage1.product[i] == a_i ⊗ b_i) and α_i their exact low parts, |α_i| ≤ u|a_i| (zero for den; the TwoSum
 // error of p_i ⊖ o_i for num).
 //   Error bound: |V − (hi + lo)| ≤ (2^-101 ⊗ m) ⊕ 2^-1070, m the stage-1 magnitude (error_bounds.hpp).
 //   Valid range: all finite inputs; the radius is not finite if anything overflowed.
 //   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`.
-[[nodiscard]] inline Enclosure compensated_dot3(const double a[3], const double alpha[3], const double b[3],
-                                                const Dot3Rounded& stage1) noexcept {
-  double g[3];
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3(const V a[3], const V alpha[3], const V b[3],
+                                                                           const Dot3RoundedT<V>& stage1) noexcept {
+  V g[3];
   for (int i = 0; i < 3; ++i) {
-    const double h = stage1.product[i];
-    const double l = std::fma(a[i], b[i], -h);  // l_i = RN(a_i b_i − h_i): exact unless a_i b_i underflows
-    g[i] = std::fma(alpha[i], b[i], l);         // g_i = RN(α_i b_i + l_i)
+    const V h = stage1.product[i];
+    const V l = fma(a[i], b[i], -h);  // l_i = RN(a_i b_i − h_i): exact unless a_i b_i underflows
+    g[i] = fma(alpha[i], b[i], l);    // g_i = RN(α_i b_i + l_i)
   }
+  const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
+  const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
+  const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
+  const V radius = bounds::compensated_relative * stage1.magnitude + bounds::compensated_absolute;
+  // A NaN or infinite hi/lo (an overflow inside TwoSum or the FMAs) must reach the decisions as "no
+  // information": fold it into the radius, which every decision compares against. (|x| ≤ max is isfinite
+  // written for both lane types.)
+  const MaskOf<V> finite = both(abs(s3.hi) <= largest_finite, abs(lo) <= largest_finite);
+  return {s3.hi, lo, select(finite, radius, V{} + HUGE_VAL)};
+}
+
+// compensated_dot3_refined: the same V as compensated_dot3, enclosed more tightly (error of order
+// u³·Σ|a_i b_i| + u·|result|): the first-order low parts are summed with TwoSum and their errors kept.
+// Used when compensated_dot3's enclosure is too wide for a sign or for the rounding of t.
+//   Error bound: |V − (hi + lo)| ≤ ((2^-150 ⊗ m) ⊕ (2^-52 ⊗ |lo|)) ⊕ 8μ (error_bounds.hpp).
+//   Valid range: all finite inputs; the radius is not finite if anything overflowed.
+//   Certified by: proofs/Compensated.v, `compensated_dot3_refined_enclosure`.
+[[nodiscard]] inline Enclosure compensated_dot3_refined(const double a[3], const double alpha[3], const double b[3],
+                                                        const Dot3Rounded& stage1) noexcept {
   const DoubleDouble s2 = two_sum(stage1.product[0], stage1.product[1]);
   const DoubleDouble s3 = two_sum(s2.hi, stage1.product[2]);
-  const double lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
-  const double radius = bounds::compensated_relative * stage1.magnitude + bounds::compensated_absolute;
-  // A NaN or infinite hi/lo (an overflow inside TwoSum or the FMAs) must reach the decisions as "no
-  // information": fold it into the radius, which every decision compares against.
-  const bool finite = std::isfinite(s3.hi) && std::isfinite(lo);
-  return {s3.hi, lo, finite ? radius : HUGE_VAL};
+  double first_order[8] = {s2.lo, s3.lo};
+  double second_order[3];
+  for (int i = 0; i < 3; ++i) {
+    first_order[2 + i] = std::fma(a[i], b[i], -stage1.product[i]);  // l_i
+    const DoubleDouble w = two_prod(alpha[i], b[i]);
+    first_order[5 + i] = w.hi;
+    second_order[i] = w.lo;
+  }
+  double sigma = first_order[0];
+  double tail = 0;
+  for (int j = 1; j < 8; ++j) {
+    const DoubleDouble step = two_sum(sigma, first_order[j]);
+    sigma = step.hi;
+    tail += step.lo;
+  }
+  for (int i = 0; i < 3; ++i) tail += second_order[i];
+  const DoubleDouble x = two_sum(s3.hi, sigma);
+  const double lo = x.lo + tail;
+  const double radius = (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
+                        bounds::refined_absolute;
+  const bool finite = (std::fabs(x.hi) <= largest_finite) & (std::fabs(lo) <= largest_finite);
+  return {x.hi, lo, finite ? radius : HUGE_VAL};
 }
 
 }  // namespace raykernel::detail

@@ -15,18 +15,21 @@
 namespace raykernel::detail {
 
 // The rounded dot product of stage 1, and the magnitude its error bound is computed from. The products are
-// kept: stage 2 extends them instead of recomputing them.
-struct Dot3Rounded {
-  double product[3];  // q_i = a_i ⊗ b_i
-  double value;       // s = (q_1 ⊕ q_2) ⊕ q_3
-  double magnitude;   // m = (|q_1| ⊕ |q_2|) ⊕ |q_3|
+// kept: stage 2 extends them instead of recomputing them. V is double, or Lanes8 for eight queries at once.
+template <class V>
+struct Dot3RoundedT {
+  V product[3];  // q_i = a_i ⊗ b_i
+  V value;       // s = (q_1 ⊕ q_2) ⊕ q_3
+  V magnitude;   // m = (|q_1| ⊕ |q_2|) ⊕ |q_3|
 };
+using Dot3Rounded = Dot3RoundedT<double>;
 
-[[nodiscard]] inline Dot3Rounded dot3_rounded(const double a[3], const double b[3]) noexcept {
-  Dot3Rounded r;
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline Dot3RoundedT<V> dot3_rounded(const V a[3], const V b[3]) noexcept {
+  Dot3RoundedT<V> r;
   for (int i = 0; i < 3; ++i) r.product[i] = a[i] * b[i];
   r.value = (r.product[0] + r.product[1]) + r.product[2];
-  r.magnitude = (std::fabs(r.product[0]) + std::fabs(r.product[1])) + std::fabs(r.product[2]);
+  r.magnitude = (abs(r.product[0]) + abs(r.product[1])) + abs(r.product[2]);
   return r;
 }
 
@@ -35,14 +38,21 @@ struct Dot3Rounded {
 //   Error bound: |s − a·b| ≤ (C ⊗ m) ⊕ 3μ, C as derived in error_bounds.hpp.
 //   Valid range: all finite inputs (subnormal included); uncertain if m overflows.
 //   Certified by: proofs/Filter.v, `den_filter_sound` and `num_filter_sound`.
-// `exactly_zero` is the caller's proof that every term has a zero factor, so the exact sum is 0 whatever
-// the rounding: the only way this stage certifies zero.
+// dot3_filter_lanes gives the sign as an integer (Sign's values) per lane; branch-free: the sign of a random
+// query is unpredictable, its certainty almost always predictable. Neither comparison holds when the bound
+// or the value is NaN: uncertain.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> dot3_filter_lanes(const Dot3RoundedT<V>& r,
+                                                                           double relative_constant) noexcept {
+  const V bound = relative_constant * r.magnitude + bounds::filter_absolute;
+  return sign_lanes(r.value > bound, r.value < -bound);
+}
+
+// The same for one query. `exactly_zero` is the caller's proof that every term has a zero factor, so the
+// exact sum is 0 whatever the rounding: the only way this stage certifies zero.
 [[nodiscard]] inline Sign dot3_filter(const Dot3Rounded& r, double relative_constant, bool exactly_zero) noexcept {
   if (exactly_zero) return Sign::zero;
-  const double bound = relative_constant * r.magnitude + bounds::filter_absolute;
-  // Branch-free: the sign of a random query is unpredictable, its certainty almost always predictable.
-  const int sign = static_cast<int>(r.value > bound) - static_cast<int>(r.value < -bound);
-  return sign == 0 ? Sign::uncertain : static_cast<Sign>(sign);  // 0 also when bound or value is NaN
+  return static_cast<Sign>(dot3_filter_lanes(r, relative_constant));
 }
 
 }  // namespace raykernel::detail

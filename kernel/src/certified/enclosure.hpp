@@ -4,27 +4,34 @@
 #pragma once
 
 #include "certified/eft.hpp"
+#include "certified/lanes.hpp"
 #include "certified/sign.hpp"
 
 #include <cmath>
 
 namespace raykernel::detail {
 
-struct Enclosure {
-  double hi;
-  double lo;
-  double radius;  // ≥ 0; +inf or NaN means "no information" (an overflow happened)
+template <class V>
+struct EnclosureT {
+  V hi;
+  V lo;
+  V radius;  // ≥ 0; +inf or NaN means "no information" (an overflow happened)
 };
+using Enclosure = EnclosureT<double>;
 
 // enclosure_sign: with (v, e) = TwoSum(hi, lo), |V − v| ≤ |e| + radius ≤ u|v| + radius, so
 // |v| > 2·radius ⇒ sign(V) = sign(v). Never certifies zero (an enclosure of positive radius cannot).
 //   Certified by: proofs/Compensated.v, `enclosure_sign_sound`.
+// Per lane and branch-free, as dot3_filter: uncertain also when the radius is +inf or NaN.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> enclosure_sign_lanes(const EnclosureT<V>& e) noexcept {
+  const V v = e.hi + e.lo;                 // the hi part of TwoSum(hi, lo): one rounding
+  const V twice_radius = e.radius + e.radius;  // exact, or +inf
+  return sign_lanes(v > twice_radius, v < -twice_radius);
+}
+
 [[nodiscard]] inline Sign enclosure_sign(const Enclosure& e) noexcept {
-  const double v = e.hi + e.lo;  // the hi part of TwoSum(hi, lo): one rounding
-  const double twice_radius = e.radius + e.radius;  // exact, or +inf
-  if (v > twice_radius) return Sign::positive;
-  if (v < -twice_radius) return Sign::negative;
-  return Sign::uncertain;
+  return static_cast<Sign>(enclosure_sign_lanes(e));
 }
 
 }  // namespace raykernel::detail

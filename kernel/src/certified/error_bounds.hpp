@@ -66,6 +66,31 @@ inline constexpr double filter_absolute = 0x0.0000000000003p-1022;    // 3μ
 inline constexpr double compensated_relative = 0x1p-101;
 inline constexpr double compensated_absolute = 0x1p-1070;
 
+// Stage 2, second level: compensated_dot3_refined (certified/dot3_compensated.hpp), for values that
+// cancel to within ~2^-50 of the terms' magnitude (near-parallel rays, origins ulps from the plane), where
+// the first level's 2^-101·m is too wide to round t. Same inputs; the low parts are no longer rounded into
+// one double but summed with error-free transformations:
+//   (s_2, c_2) = TwoSum(h_1, h_2), (s_3, c_3) = TwoSum(s_2, h_3), l_i = RN(a_i b_i − h_i),
+//   (w_i, w'_i) = TwoProduct(α_i, b_i);  F = (c_2, c_3, l_1, l_2, l_3, w_1, w_2, w_3) summed by a TwoSum
+//   chain σ_1 = F_1, (σ_j, ε_j) = TwoSum(σ_{j−1}, F_j); the errors summed plainly:
+//   τ = ((((0 ⊕ ε_2) ⊕ ... ⊕ ε_8) ⊕ w'_1) ⊕ w'_2) ⊕ w'_3;  (X, Y) = TwoSum(s_3, σ_8);
+//   hi = X,  lo = Y ⊕ τ,  E = ((K_2 ⊗ m) ⊕ (2^-52 ⊗ |lo|)) ⊕ U_2.
+// Exactly, V = X + Y + Σε_j + Σw'_i + Σλ_i + Σλ'_i (λ, λ' the TwoProduct residuals, each ≤ η, zero
+// without underflow). With H = Σ|h_i|: Σ|F| ≤ 4.01u·H + 9η; Σ|ε_j| ≤ 7(1+u)^7·u·Σ|F| ≤ 28.11u²H + 63.1uη;
+// Σ|w'_i| ≤ 1.001u²H + 3.01η; the 9 roundings of τ cost ≤ γ_9·(29.11u²H + 66.2η) ≤ 262.1u³H + 596uη;
+// RN(Y + τ) costs ≤ u|lo|. In all |V − (hi + lo)| ≤ 262.1u³·H + u·|lo| + 6.01η. With H ≤ (1+u)²m and the
+// three roundings of E (RN(K_2 ⊗ m) ≥ K_2·m/(1+u) − η, the other two relative):
+//   K_2 ≥ 262.1u³(1+u)^4      → K_2 = 512u³ = 2^-150
+//   2^-52 = 2u covers u|lo|(1+u)²
+//   U_2 ≥ 2η + 6.1(1+u)η      → U_2 = 8μ = 2^-1071
+// Valid for all finite inputs; the radius is +inf when anything overflowed. Decides signs unless V is
+// within ~2^-148 of the terms' magnitude (exact zeros go on to stage 3), and lets round_quotient decide t
+// for condition numbers up to ~2^90.
+// Certified by: proofs/Compensated.v, theorem `compensated_dot3_refined_enclosure`.
+inline constexpr double refined_relative = 0x1p-150;
+inline constexpr double refined_low_relative = 0x1p-52;
+inline constexpr double refined_absolute = 0x0.0000000000008p-1022;  // 8μ
+
 // Sign from an enclosure |V − (hi + lo)| ≤ E: with (v, e) = TwoSum(hi, lo), |V − v| ≤ u|v| + E, so
 // |v| > 2E ⇒ sign(V) = sign(v).  Certified by: proofs/Compensated.v, theorem `enclosure_sign_sound`.
 

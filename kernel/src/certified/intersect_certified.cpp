@@ -15,6 +15,7 @@
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
+#include "certified/fast_path.hpp"
 #include "certified/intersect_certified.hpp"
 #include "certified/ray_plane_stages.hpp"
 #include "certified/round_quotient.hpp"
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 
 namespace raykernel::detail {
 namespace {
@@ -49,6 +51,9 @@ std::optional<CertifiedSigns> certified_signs(RayPlaneStages& query) noexcept {
     stage = Stage::compensated;
     if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_compensated());
     if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_compensated());
+    // The second level of stage 2, for values that cancel to within ~2^-100 of the terms.
+    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_refined());
+    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_refined());
   }
   // Stage 3: exact signs, if the expansions are exact.
   if (!is_certain(den_sign) || !is_certain(num_sign)) {
@@ -65,6 +70,8 @@ RAYKERNEL_MULTIVERSION
 std::pair<double, Stage> certified_quotient(RayPlaneStages& query) {
   if (const std::optional<double> t = round_quotient(query.num_compensated(), query.den_compensated()))
     return {*t, Stage::compensated};
+  if (const std::optional<double> t = round_quotient(query.num_refined(), query.den_refined()))
+    return {*t, Stage::compensated};
   const ExactExpansions& e = query.expansions();
   if (e.exact) {
     if (const std::optional<double> t =
@@ -74,8 +81,10 @@ std::pair<double, Stage> certified_quotient(RayPlaneStages& query) {
   return {exact::intersect(query.ray(), query.plane()).t, Stage::exact};
 }
 
-RAYKERNEL_MULTIVERSION
-TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane) {
+// The full cascade, for what the fast path did not certify: validation first (the fast path needs none),
+// then stages 1–4 for the relation and for t.
+[[gnu::noinline]] TracedIntersection full_cascade(const Ray& ray, const Plane& plane) {
+  if (std::optional<std::string> reason = validate(ray, plane)) throw invalid_input(*reason);
   RayPlaneStages query(ray, plane);
   const std::optional<CertifiedSigns> signs = certified_signs(query);
   if (!signs) return {exact::intersect(ray, plane), Stage::exact, Stage::exact};
@@ -88,6 +97,26 @@ TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane)
   // t = RN(num/den), num ≠ 0 ≠ den.
   const auto [t, t_stage] = certified_quotient(query);
   return {{relation, t}, signs->stage, t_stage};
+}
+
+RAYKERNEL_MULTIVERSION
+TracedIntersection intersect_certified(const Ray& ray, const Plane& plane) {
+  const Vec3 &ro = ray.origin, &rd = ray.direction, &pp = plane.point, &pn = plane.normal;
+  const double o[3] = {ro.x, ro.y, ro.z}, d[3] = {rd.x, rd.y, rd.z};
+  const double p[3] = {pp.x, pp.y, pp.z}, n[3] = {pn.x, pn.y, pn.z};
+  const FastQuery query(o, d, p, n);
+  const FastQuery::FilterSigns signs = query.filter_signs();
+  if (signs.decided()) [[likely]] {
+    if (const QuotientRounding t = query.compensated_t(); t.certain) [[likely]]
+      return {{signs.relation(), t.t}, Stage::filter, Stage::compensated};
+  }
+  // Near-degenerate (a value within ~2^-50 of its terms' magnitude), or t near a rounding boundary: the
+  // second level of stage 2 settles both for condition numbers up to ~2^90.
+  const FastAnswer refined = query.refined_answer();
+  if (refined.relation_certain & refined.t_certain)
+    return {{refined.behind ? Relation::behind : Relation::hit, refined.t},
+            signs.decided() ? Stage::filter : Stage::compensated, Stage::compensated};
+  return full_cascade(ray, plane);
 }
 
 }  // namespace raykernel::detail

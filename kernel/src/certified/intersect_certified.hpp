@@ -16,7 +16,8 @@
 
 namespace raykernel::detail {
 
-// intersect_traced for valid input in the default floating-point environment.
-[[nodiscard]] TracedIntersection intersect_certified_valid(const Ray& ray, const Plane& plane);
+// intersect_traced in the default floating-point environment: the fast path (certified/fast_path.hpp),
+// then, for what it does not certify, validation (throws invalid_input) and the full cascade.
+[[nodiscard]] TracedIntersection intersect_certified(const Ray& ray, const Plane& plane);
 
 }  // namespace raykernel::detail

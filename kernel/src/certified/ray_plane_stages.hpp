@@ -106,6 +106,16 @@ class RayPlaneStages {
   }
   [[nodiscard]] bool has_compensated() const noexcept { return den2_.has_value(); }
 
+  // Stage 2, second level: the tighter enclosures of compensated_dot3_refined, on first use.
+  [[nodiscard]] const Enclosure& den_refined() noexcept {
+    compute_refined();
+    return *den2r_;
+  }
+  [[nodiscard]] const Enclosure& num_refined() noexcept {
+    compute_refined();
+    return *num2r_;
+  }
+
   // Stage 3: the exact expansions of num and den (use them only when `.exact`).
   [[nodiscard]] const ExactExpansions& expansions() noexcept {
     if (!exp3_) exp3_ = build_expansions(q_);
@@ -121,12 +131,21 @@ class RayPlaneStages {
     den2_ = compensated_dot3(q_.d, exact_low_part, q_.n, den1_);
     num2_ = compensated_dot3(q_.diff, diff_low_part, q_.n, num1_);
   }
+  void compute_refined() noexcept {
+    if (den2r_) return;
+    constexpr double exact_low_part[3] = {0, 0, 0};
+    double diff_low_part[3];
+    for (int i = 0; i < 3; ++i) diff_low_part[i] = two_diff(q_.p[i], q_.o[i]).lo;
+    den2r_ = compensated_dot3_refined(q_.d, exact_low_part, q_.n, den1_);
+    num2r_ = compensated_dot3_refined(q_.diff, diff_low_part, q_.n, num1_);
+  }
 
   Ray ray_;
   Plane plane_;
   QueryTerms q_;
   Dot3Rounded den1_, num1_;
   std::optional<Enclosure> den2_, num2_;
+  std::optional<Enclosure> den2r_, num2r_;
   std::optional<ExactExpansions> exp3_;
 };
 

@@ -11,6 +11,7 @@
 #include "certified/eft.hpp"
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
+#include "certified/lanes.hpp"
 
 #include <bit>
 #include <cmath>
@@ -21,43 +22,66 @@ namespace raykernel::detail {
 
 // Half the distance from a normal double q to its nearer neighbour: 2^(e−53) for |q| ∈ [2^e, 2^(e+1)),
 // 2^(e−54) when |q| = 2^e exactly (the gap below a power of two is half the gap above). Requires
-// |q| ≥ 2^-968 so that the result is normal.
-[[nodiscard]] inline double half_gap_to_nearer_neighbour(double q) noexcept {
+// |q| ≥ 2^-968 so that the result is normal. Per lane for Lanes8.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V half_gap_to_nearer_neighbour(V q) noexcept {
+  using Bits = BitsOf<V>;
   constexpr std::uint64_t fraction_mask = (std::uint64_t{1} << 52) - 1;
-  const std::uint64_t bits = std::bit_cast<std::uint64_t>(std::fabs(q));
-  const std::uint64_t biased_exponent = bits >> 52;
-  const std::uint64_t shift = (bits & fraction_mask) == 0 ? 54 : 53;
-  return std::bit_cast<double>((biased_exponent - shift) << 52);
+  const Bits bits = to_bits(abs(q));
+  const Bits biased_exponent = bits >> 52;
+  // 53, or 54 where the fraction is zero (to_integer turns the comparison into 1/0).
+  const Bits shift = (Bits{} + 53) + (Bits)(to_integer((bits & fraction_mask) == 0));  // NOLINT: vector cast
+  return from_bits((biased_exponent - shift) << 52);
 }
 
-// round_quotient: RN(num/den), ties to even, given |num − (n.hi + n.lo)| ≤ n.radius and
+// The decision of round_quotient for one query (or one per lane): `certain` says whether t = RN(num/den)
+// was certified.
+template <class V>
+struct QuotientRoundingT {
+  V t;
+  MaskOf<V> certain;
+};
+using QuotientRounding = QuotientRoundingT<double>;
+
+// round_quotient_decision: RN(num/den), ties to even, given |num − (n.hi + n.lo)| ≤ n.radius and
 // |den − (d.hi + d.lo)| ≤ d.radius with num ≠ 0 and den ≠ 0.
-//   Valid range: |N|, |D|, |q0| ≥ 2^-900 and q finite (checked; otherwise nullopt).
+//   Valid range: |N|, |D|, |q0| ≥ 2^-900 and q finite (checked; otherwise not certain).
+//   Certified by: proofs/RoundQuotient.v, `round_quotient_sound` (which models round_quotient below; the
+//   two compute the same operations, this one without branches and per lane).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline QuotientRoundingT<V> round_quotient_decision(const EnclosureT<V>& n,
+                                                                                         const EnclosureT<V>& d) noexcept {
+  using namespace bounds;
+  const DD<V> N = two_sum(n.hi, n.lo);
+  const DD<V> D = two_sum(d.hi, d.lo);
+  const V q0 = N.hi / D.hi;
+  const V abs_q0 = abs(q0);
+  const V abs_D = abs(D.hi);
+  const V abs_N = abs(N.hi);
+  // The guards also reject NaN and ±inf (comparisons are false), and radii that are not finite.
+  const MaskOf<V> in_range =
+      both(both(both(abs_N >= quotient_min_magnitude, abs_D >= quotient_min_magnitude),
+                both(abs_q0 >= quotient_min_magnitude, abs_N < HUGE_VAL)),
+           both(both(abs_D < HUGE_VAL, abs_q0 < HUGE_VAL), both(n.radius < HUGE_VAL, d.radius < HUGE_VAL)));
+
+  const V r1 = fma(-q0, D.hi, N.hi);  // RN(N − q0·D), exact in practice (division remainder)
+  const V r2 = fma(-q0, D.lo, N.lo);  // RN(n − q0·d)
+  const V c = (r1 + r2) / D.hi;
+  const DD<V> q = two_sum(q0, c);
+
+  const V x = ((abs_q0 * d.radius) + n.radius) * quotient_enclosure_factor;
+  const V y = ((abs_q0 * quotient_relative) + abs(q.lo)) * abs_D;
+  const V h = half_gap_to_nearer_neighbour(q.hi);
+  const MaskOf<V> inside = (x + y) * quotient_test_factor < h * abs_D;
+  return {q.hi, both(both(in_range, abs(q.hi) < HUGE_VAL), inside)};
+}
+
+// round_quotient: the same decision as an optional: t, or nullopt when not certain.
 //   Certified by: proofs/RoundQuotient.v, `round_quotient_sound`.
 [[nodiscard]] inline std::optional<double> round_quotient(const Enclosure& n, const Enclosure& d) noexcept {
-  using namespace bounds;
-  const DoubleDouble N = two_sum(n.hi, n.lo);
-  const DoubleDouble D = two_sum(d.hi, d.lo);
-  const double q0 = N.hi / D.hi;
-  // The guards also reject NaN and ±inf (comparisons are false), and radii that are not finite.
-  if (!(std::fabs(N.hi) >= quotient_min_magnitude && std::fabs(D.hi) >= quotient_min_magnitude &&
-        std::fabs(q0) >= quotient_min_magnitude && std::isfinite(N.hi) && std::isfinite(D.hi) &&
-        std::isfinite(q0) && n.radius < HUGE_VAL && d.radius < HUGE_VAL))
-    return std::nullopt;
-
-  const double r1 = std::fma(-q0, D.hi, N.hi);  // RN(N − q0·D), exact in practice (division remainder)
-  const double r2 = std::fma(-q0, D.lo, N.lo);  // RN(n − q0·d)
-  const double c = (r1 + r2) / D.hi;
-  const DoubleDouble q = two_sum(q0, c);
-  if (!std::isfinite(q.hi)) return std::nullopt;
-
-  const double abs_q0 = std::fabs(q0);
-  const double abs_D = std::fabs(D.hi);
-  const double x = ((abs_q0 * d.radius) + n.radius) * quotient_enclosure_factor;
-  const double y = ((abs_q0 * quotient_relative) + std::fabs(q.lo)) * abs_D;
-  const double h = half_gap_to_nearer_neighbour(q.hi);
-  if ((x + y) * quotient_test_factor < h * abs_D) return q.hi;
-  return std::nullopt;
+  const QuotientRounding r = round_quotient_decision(n, d);
+  if (!r.certain) return std::nullopt;
+  return r.t;
 }
 
 }  // namespace raykernel::detail

@@ -2,6 +2,8 @@
 // cannot decide (a stage never guesses).
 #pragma once
 
+#include "certified/lanes.hpp"
+
 #include <cstdint>
 
 namespace raykernel::detail {
@@ -9,6 +11,30 @@ namespace raykernel::detail {
 enum class Sign : std::int8_t { negative = -1, zero = 0, positive = 1, uncertain = 2 };
 
 [[nodiscard]] constexpr bool is_certain(Sign s) noexcept { return s != Sign::uncertain; }
+
+// Signs as integer lanes, for the routines written for both double and Lanes8: the values of Sign
+// (+1, −1, 0, and 2 for uncertain) in a std::int64_t, or in each lane of a Mask8.
+inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::uncertain);
+
+// +1 where `above`, −1 where `below`, uncertain where neither; no branch.
+[[nodiscard]] [[gnu::always_inline]] inline std::int64_t sign_lanes(bool above, bool below) noexcept {
+  const std::int64_t s = static_cast<std::int64_t>(above) - static_cast<std::int64_t>(below);
+  return s + 2 * static_cast<std::int64_t>(s == 0);
+}
+[[nodiscard]] [[gnu::always_inline]] inline Mask8 sign_lanes(Mask8 above, Mask8 below) noexcept {
+  const Mask8 s = below - above;  // masks are −1 where true
+  return s - 2 * (s == 0);
+}
+
+// `first` where it is certain, else `second`.
+template <class I>
+[[nodiscard]] [[gnu::always_inline]] inline I first_certain_lanes(I first, I second) noexcept {
+  return select(first == uncertain_lane, second, first);
+}
+
+[[nodiscard]] constexpr Sign first_certain(Sign first, Sign second) noexcept {
+  return first == Sign::uncertain ? second : first;
+}
 
 [[nodiscard]] constexpr Sign negate(Sign s) noexcept {
   switch (s) {

@@ -1,0 +1,4 @@
+// The batch fast loop compiled for avx2 (batch/fast_loop.hpp; the flags are set in kernel/CMakeLists.txt).
+#include "batch/fast_loop.hpp"
+
+RAYKERNEL_DEFINE_FAST_LOOPS(avx2)
