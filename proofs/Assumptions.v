@@ -9,7 +9,8 @@
     results together, as one tuple (each Print Assumptions walks the whole real-number library, about a
     second). *)
 
-From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification Cascade.
+From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification CompareQuotients
+  Cascade.
 
 Goal True. idtac "@@ den_filter_sound". Abort.
 Print Assumptions den_filter_sound.
@@ -33,6 +34,14 @@ Goal True. idtac "@@ compensated_t_correct". Abort.
 Print Assumptions compensated_t_correct.
 Goal True. idtac "@@ expansion_t_correct". Abort.
 Print Assumptions expansion_t_correct.
+Goal True. idtac "@@ compare_quotients_filter_sound". Abort.
+Print Assumptions compare_quotients_filter_sound.
+Goal True. idtac "@@ compare_quotients_compensated_enclosure". Abort.
+Print Assumptions compare_quotients_compensated_enclosure.
+Goal True. idtac "@@ compare_hit_distances_filter_correct". Abort.
+Print Assumptions compare_hit_distances_filter_correct.
+Goal True. idtac "@@ compare_hit_distances_compensated_correct". Abort.
+Print Assumptions compare_hit_distances_compensated_correct.
 
 Definition supporting_results :=
   (two_sum_exact,
@@ -54,6 +63,11 @@ Definition supporting_results :=
    certified_sign,
    certified_relation,
    filter_relation_correct,
-   compensated_signs_correct).
-Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct". Abort.
+   compensated_signs_correct,
+   filter_enclosure_encloses,
+   two_prod_error,
+   quotient_order_sign,
+   hit_distance_order_correct,
+   origin_order_correct).
+Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct". Abort.
 Print Assumptions supporting_results.

@@ -6,11 +6,15 @@
       enclosures);
     - [compensated_t_correct]: the t that round_quotient returns from the compensated enclosures;
     - [expansion_t_correct]: the t that round_quotient returns from the expansion enclosures, given
-      that the expansions sum exactly to num and den (Shewchuk's theorems, cited, not proved here). *)
+      that the expansions sum exactly to num and den (Shewchuk's theorems, cited, not proved here);
+    - [compare_hit_distances_filter_correct], [compare_hit_distances_compensated_correct]: the order of
+      two hits' t that nearest_hit.cpp's [compare_hit_distances] returns from stage 1 or stage 2 of the
+      comparison (compare_quotients.hpp) is the order of the exact t = num/den. *)
 
 From Coq Require Import Reals Lra Lia List.
 From Flocq Require Import Core.
-From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification.
+From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification
+  CompareQuotients.
 Open Scope R_scope.
 
 Theorem certified_relation : forall (num_sign den_sign : sign) (o d p n : vec3),
@@ -114,3 +118,121 @@ Proof.
   - rewrite <- Sn. now apply tail_sum_enclosure.
   - rewrite <- Sd. now apply tail_sum_enclosure.
 Qed.
+
+(** ** nearest_hit: the order of two hits along one ray (kernel/src/raycast/nearest_hit.cpp,
+    [compare_hit_distances]), from the per-query stage results of certified/ray_plane_stages.hpp. *)
+
+(** [RayPlaneStages]: stage 1 ([num_rounded], [den_rounded]) and stage 2 ([num_compensated],
+    [den_compensated]) of one query, with the same arguments as [RayPlaneStages] passes. *)
+Definition stage1_num (o p n : vec3) : Dot3Rounded :=
+  dot3_rounded (RN (vx p - vx o)) (RN (vy p - vy o)) (RN (vz p - vz o)) (vx n) (vy n) (vz n).
+Definition stage1_den (d n : vec3) : Dot3Rounded :=
+  dot3_rounded (vx d) (vy d) (vz d) (vx n) (vy n) (vz n).
+Definition stage2_num (o p n : vec3) : Enclosure :=
+  compensated_dot3 (RN (vx p - vx o)) (RN (vy p - vy o)) (RN (vz p - vz o))
+    (snd (two_diff (vx p) (vx o))) (snd (two_diff (vy p) (vy o))) (snd (two_diff (vz p) (vz o)))
+    (vx n) (vy n) (vz n).
+Definition stage2_den (d n : vec3) : Enclosure :=
+  compensated_dot3 (vx d) (vy d) (vz d) 0 0 0 (vx n) (vy n) (vz n).
+
+Definition binary64_vec3 (v : vec3) : Prop := binary64 (vx v) /\ binary64 (vy v) /\ binary64 (vz v).
+
+(** The sign of Δ that [compare_hit_distances] computes by stage 1 and by stage 2, for the ray (o, d) and
+    the planes (p_a, n_a) and (p_b, n_b). *)
+Definition hit_delta_filter (o d pa na pb nb : vec3) : sign :=
+  compare_quotients_filter (filter_enclosure (stage1_num o pa na) filter_num_relative)
+    (filter_enclosure (stage1_den d na) filter_den_relative)
+    (filter_enclosure (stage1_num o pb nb) filter_num_relative)
+    (filter_enclosure (stage1_den d nb) filter_den_relative).
+Definition hit_delta_compensated (o d pa na pb nb : vec3) : sign :=
+  enclosure_sign (compare_quotients_compensated (stage2_num o pa na) (stage2_den d na)
+                    (stage2_num o pb nb) (stage2_den d nb)).
+
+Section NearestHit.
+Variables o d pa na pb nb : vec3.
+Hypotheses (Bo : binary64_vec3 o) (Bd : binary64_vec3 d) (Bpa : binary64_vec3 pa) (Bna : binary64_vec3 na)
+           (Bpb : binary64_vec3 pb) (Bnb : binary64_vec3 nb).
+
+Lemma stage1_num_encloses : forall p n, binary64_vec3 p ->
+  rounded_encloses (filter_enclosure (stage1_num o p n) filter_num_relative) (ray_num o p n).
+Proof.
+  intros p n [B0 [B1 B2]]. destruct Bo as [O0 [O1 O2]].
+  apply filter_enclosure_encloses. unfold stage1_num. unfold ray_num, dot, sub; cbn [vx vy vz].
+  now apply num_filter_encloses.
+Qed.
+
+Lemma stage1_den_encloses : forall n,
+  rounded_encloses (filter_enclosure (stage1_den d n) filter_den_relative) (ray_den d n).
+Proof.
+  intros n. apply filter_enclosure_encloses. unfold stage1_den. unfold ray_den, dot.
+  apply den_filter_encloses.
+Qed.
+
+Lemma stage2_num_encloses : forall p n, binary64_vec3 p -> binary64_vec3 n ->
+  encloses (stage2_num o p n) (ray_num o p n).
+Proof.
+  intros p n [B0 [B1 B2]] [N0 [N1 N2]]. destruct Bo as [O0 [O1 O2]].
+  unfold stage2_num. unfold ray_num, dot, sub; cbn [vx vy vz]. now apply compensated_num_enclosure.
+Qed.
+
+Lemma stage2_den_encloses : forall n, binary64_vec3 n -> encloses (stage2_den d n) (ray_den d n).
+Proof.
+  intros n [N0 [N1 N2]]. destruct Bd as [D0 [D1 D2]].
+  unfold stage2_den. unfold ray_den, dot. now apply compensated_den_enclosure.
+Qed.
+
+(** The parts of a stage-2 enclosure are doubles. *)
+Lemma compensated_dot3_binary64 : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
+  let e := compensated_dot3 a0 a1 a2 al0 al1 al2 b0 b1 b2 in
+  binary64 (hi e) /\ binary64 (lo e) /\ binary64 (radius e).
+Proof. intros. repeat split; apply binary64_RN. Qed.
+
+(** Stage 1 of the comparison: whenever it is certain, [compare_hit_distances] returns the sign of
+    t_a − t_b, t = num/den exact, for two planes the ray hits (den ≠ 0) with certain den signs. *)
+Theorem compare_hit_distances_filter_correct : forall den_sign_a den_sign_b,
+  certifies den_sign_a (ray_den d na) -> den_sign_a <> Uncertain -> ray_den d na <> 0 ->
+  certifies den_sign_b (ray_den d nb) -> den_sign_b <> Uncertain -> ray_den d nb <> 0 ->
+  hit_delta_filter o d pa na pb nb <> Uncertain ->
+  hit_distance_order (hit_delta_filter o d pa na pb nb) den_sign_a den_sign_b =
+    sign_of (ray_num o pa na / ray_den d na - ray_num o pb nb / ray_den d nb).
+Proof.
+  intros sa sb Ca Ua Za Cb Ub Zb Ud.
+  apply (hit_distance_order_correct _ sa sb _ _ _ _ Ca Ua Za Cb Ub Zb); [|exact Ud].
+  destruct (filter_enclosure_binary64 (vx d) (vy d) (vz d) (vx na) (vy na) (vz na) filter_den_relative)
+    as [Bya Bfa].
+  destruct (filter_enclosure_binary64 (vx d) (vy d) (vz d) (vx nb) (vy nb) (vz nb) filter_den_relative)
+    as [Byb Bfb].
+  exact (compare_quotients_filter_sound _ _ _ _ _ _ _ _ Bya Bfa Byb Bfb
+           (stage1_num_encloses pa na Bpa) (stage1_den_encloses na)
+           (stage1_num_encloses pb nb Bpb) (stage1_den_encloses nb)).
+Qed.
+
+(** Stage 2 of the comparison, the same from the stage-2 enclosures and [enclosure_sign]. *)
+Theorem compare_hit_distances_compensated_correct : forall den_sign_a den_sign_b,
+  certifies den_sign_a (ray_den d na) -> den_sign_a <> Uncertain -> ray_den d na <> 0 ->
+  certifies den_sign_b (ray_den d nb) -> den_sign_b <> Uncertain -> ray_den d nb <> 0 ->
+  hit_delta_compensated o d pa na pb nb <> Uncertain ->
+  hit_distance_order (hit_delta_compensated o d pa na pb nb) den_sign_a den_sign_b =
+    sign_of (ray_num o pa na / ray_den d na - ray_num o pb nb / ray_den d nb).
+Proof.
+  intros sa sb Ca Ua Za Cb Ub Zb Ud.
+  apply (hit_distance_order_correct _ sa sb _ _ _ _ Ca Ua Za Cb Ub Zb); [|exact Ud].
+  unfold hit_delta_compensated.
+  apply enclosure_sign_sound; [apply binary64_RN .. |].
+  destruct (compensated_dot3_binary64 (RN (vx pa - vx o)) (RN (vy pa - vy o)) (RN (vz pa - vz o))
+    (snd (two_diff (vx pa) (vx o))) (snd (two_diff (vy pa) (vy o))) (snd (two_diff (vz pa) (vz o)))
+    (vx na) (vy na) (vz na)) as [Bh1 [Bl1 _]].
+  destruct (compensated_dot3_binary64 (RN (vx pb - vx o)) (RN (vy pb - vy o)) (RN (vz pb - vz o))
+    (snd (two_diff (vx pb) (vx o))) (snd (two_diff (vy pb) (vy o))) (snd (two_diff (vz pb) (vz o)))
+    (vx nb) (vy nb) (vz nb)) as [Bh2 [Bl2 _]].
+  destruct (compensated_dot3_binary64 (vx d) (vy d) (vz d) 0 0 0 (vx na) (vy na) (vz na))
+    as [Bhd1 [Bld1 Brd1]].
+  destruct (compensated_dot3_binary64 (vx d) (vy d) (vz d) 0 0 0 (vx nb) (vy nb) (vz nb))
+    as [Bhd2 [Bld2 Brd2]].
+  exact (compare_quotients_compensated_enclosure _ _ _ _ _ _ _ _
+           Bh1 Bl1 Bhd1 Bld1 Brd1 Bh2 Bl2 Bhd2 Bld2 Brd2
+           (stage2_num_encloses pa na Bpa Bna) (stage2_den_encloses na Bna)
+           (stage2_num_encloses pb nb Bpb Bnb) (stage2_den_encloses nb Bnb)).
+Qed.
+
+End NearestHit.

@@ -33,3 +33,10 @@ Definition quotient_min_magnitude : R := bpow radix2 (-900).
 Definition quotient_relative : R := bpow radix2 (-101).
 Definition quotient_enclosure_factor : R := 1 + bpow radix2 (-9).
 Definition quotient_test_factor : R := 1 + bpow radix2 (-45).
+
+(** Comparing two quotients, compare_quotients_filter and compare_quotients_compensated
+    (CompareQuotients.v): B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c and E = ((K_c ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c. *)
+Definition compare_filter_relative : R := (2 + 16 * unit_roundoff) * unit_roundoff.
+Definition compare_propagation_factor : R := 1 + 16 * unit_roundoff.
+Definition compare_absolute : R := 8 * min_subnormal.
+Definition compare_compensated_relative : R := bpow radix2 (-101).

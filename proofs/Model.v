@@ -299,7 +299,9 @@ Theorem constants_binary64 :
   binary64 compensated_relative /\ binary64 compensated_absolute /\
   binary64 tail_sum_relative /\ binary64 tail_sum_absolute /\
   binary64 quotient_min_magnitude /\ binary64 quotient_relative /\
-  binary64 quotient_enclosure_factor /\ binary64 quotient_test_factor.
+  binary64 quotient_enclosure_factor /\ binary64 quotient_test_factor /\
+  binary64 compare_filter_relative /\ binary64 compare_propagation_factor /\
+  binary64 compare_absolute /\ binary64 compare_compensated_relative.
 Proof.
   repeat split; try (apply binary64_bpow; lia).
   - (* (3 + 16u)u = (3·2^49 + 1)·2^-102 *)
@@ -322,4 +324,15 @@ Proof.
   - replace quotient_test_factor with (IZR 35184372088833 * bpow radix2 (-45)).
     + apply binary64_dyadic; [reflexivity | lia].
     + unfold quotient_test_factor. simpl bpow. lra.
+  - (* (2 + 16u)u = (2^50 + 1)·2^-102 *)
+    replace compare_filter_relative with (IZR 1125899906842625 * bpow radix2 (-102)).
+    + apply binary64_dyadic; [reflexivity | lia].
+    + unfold compare_filter_relative. rewrite u_val. simpl bpow. lra.
+  - (* 1 + 16u = (2^49 + 1)·2^-49 *)
+    replace compare_propagation_factor with (IZR 562949953421313 * bpow radix2 (-49)).
+    + apply binary64_dyadic; [reflexivity | lia].
+    + unfold compare_propagation_factor. rewrite u_val. simpl bpow. lra.
+  - replace compare_absolute with (IZR 8 * bpow radix2 (-1074)).
+    + apply binary64_dyadic; [reflexivity | lia].
+    + reflexivity.
 Qed.

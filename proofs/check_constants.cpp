@@ -220,6 +220,15 @@ std::vector<Row> table() {
       {"quotient_enclosure_factor", "1 + bpow radix2 (-9)", 1 + Dyadic::pow2(-9), b::quotient_enclosure_factor,
        {}},
       {"quotient_test_factor", "1 + bpow radix2 (-45)", 1 + Dyadic::pow2(-45), b::quotient_test_factor, {}},
+      // (2 + 16u)u = 2^-52 + 2^-102
+      {"compare_filter_relative", "(2 + 16 * u) * u", Dyadic::pow2(-52) + Dyadic::pow2(-102),
+       b::compare_filter_relative, {}},
+      // 1 + 16u = 1 + 2^-49
+      {"compare_propagation_factor", "1 + 16 * u", 1 + Dyadic::pow2(-49), b::compare_propagation_factor, {}},
+      // 8μ = 2^-1071
+      {"compare_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::compare_absolute, {}},
+      {"compare_compensated_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::compare_compensated_relative,
+       {}},
   };
 }
 

@@ -146,8 +146,8 @@ inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-
 //     ≥ ρ/(1+u)^4 − 4η/(1+u)^2.
 //
 // Stage 1: compare_quotients_filter, inputs x_i = s (value), e_i, f_i = (C ⊗ m) ⊕ 3μ (the stage-1 values
-// and error bounds of num_i and den_i, whose enclosure |s − V| ≤ (C ⊗ m) ⊕ 3μ is what proofs/Filter.v's
-// `dot3_filter_sound_gen` establishes on the way to the sign):
+// and error bounds of num_i and den_i, whose enclosure |s − V| ≤ (C ⊗ m) ⊕ 3μ is proofs/Filter.v's
+// `den_filter_encloses` and `num_filter_encloses`):
 //   P = x_1 ⊗ y_2,  Q = x_2 ⊗ y_1,  δ = P ⊖ Q,  M = |P| ⊕ |Q|,
 //   B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c;    δ > B ⇒ Δ > 0,  δ < −B ⇒ Δ < 0,  otherwise uncertain.
 // Error: with H = |P| + |Q|, |x_1 y_2 − P| ≤ u|P| + η, |x_2 y_1 − Q| ≤ u|Q| + η, |δ − (P − Q)| ≤ uH:
