@@ -22,16 +22,34 @@ Goal True. idtac "@@ dot3_filter_bound_encloses". Abort.
 Print Assumptions dot3_filter_bound_encloses.
 Goal True. idtac "@@ compensated_dot3_enclosure". Abort.
 Print Assumptions compensated_dot3_enclosure.
+Goal True. idtac "@@ compensated_dot3_refined_enclosure". Abort.
+Print Assumptions compensated_dot3_refined_enclosure.
 Goal True. idtac "@@ enclosure_sign_sound". Abort.
 Print Assumptions enclosure_sign_sound.
 Goal True. idtac "@@ tail_sum_enclosure". Abort.
 Print Assumptions tail_sum_enclosure.
 Goal True. idtac "@@ round_quotient_sound". Abort.
 Print Assumptions round_quotient_sound.
+Goal True. idtac "@@ round_quotient_decision_sound". Abort.
+Print Assumptions round_quotient_decision_sound.
 Goal True. idtac "@@ relation_correct". Abort.
 Print Assumptions relation_correct.
 Goal True. idtac "@@ compensated_t_correct". Abort.
 Print Assumptions compensated_t_correct.
+Goal True. idtac "@@ refined_t_correct". Abort.
+Print Assumptions refined_t_correct.
+Goal True. idtac "@@ cascade_signs_correct". Abort.
+Print Assumptions cascade_signs_correct.
+Goal True. idtac "@@ cascade_quotient_correct". Abort.
+Print Assumptions cascade_quotient_correct.
+Goal True. idtac "@@ fast_answer_correct". Abort.
+Print Assumptions fast_answer_correct.
+Goal True. idtac "@@ refined_answer_correct". Abort.
+Print Assumptions refined_answer_correct.
+Goal True. idtac "@@ intersect_fast_correct". Abort.
+Print Assumptions intersect_fast_correct.
+Goal True. idtac "@@ fast_path_den_valid". Abort.
+Print Assumptions fast_path_den_valid.
 Goal True. idtac "@@ expansion_t_correct". Abort.
 Print Assumptions expansion_t_correct.
 Goal True. idtac "@@ compare_quotients_filter_sound". Abort.
@@ -68,6 +86,14 @@ Definition supporting_results :=
    two_prod_error,
    quotient_order_sign,
    hit_distance_order_correct,
-   origin_order_correct).
-Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct". Abort.
+   origin_order_correct,
+   compensated_den_refined_enclosure,
+   compensated_num_refined_enclosure,
+   refined_signs_correct,
+   den_filter_lanes_sound,
+   num_filter_lanes_sound,
+   lane_sign_certain,
+   lanes_relation,
+   den_nonzero_valid).
+Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid". Abort.
 Print Assumptions supporting_results.

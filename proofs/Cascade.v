@@ -1,21 +1,84 @@
-(** * The pieces as intersect_certified.cpp combines them.
+(** * The pieces as intersect_certified.cpp, fast_path.hpp and nearest_hit.cpp combine them.
 
     - [certified_relation]: signs certified by any stage give the relation of CONTRACT §1;
     - [filter_relation_correct]: the stage-1 relation, end to end from the binary64 inputs;
     - [compensated_signs_correct]: stage 2's sign decisions ([enclosure_sign] of the compensated
-      enclosures);
-    - [compensated_t_correct]: the t that round_quotient returns from the compensated enclosures;
+      enclosures); [refined_signs_correct]: the same for the second level ([compensated_dot3_refined]);
+    - [compensated_t_correct], [refined_t_correct]: the t that round_quotient returns from the
+      enclosures of either level;
+    - [cascade_signs_correct], [cascade_quotient_correct]: [certified_signs] through stage 2 (both
+      levels) and [certified_quotient] through stage 2, as intersect_certified.cpp chains them;
+    - the fast path (fast_path.hpp): [fast_answer_correct] ([FastQuery::answer], the batch API per lane),
+      [refined_answer_correct] ([FastQuery::refined_answer]) and [intersect_fast_correct]
+      ([intersect_certified] before it falls back to the full cascade): a certified answer is the §1
+      relation and t = RN(num/den), and the input has d ≠ 0 and n ≠ 0 ([fast_path_den_valid]: a nonzero
+      den sign from stage 1 or either level of stage 2 implies both), which is why the fast path needs no
+      validation (the finiteness half is IEEE propagation: proofs/README.md, "The fast path");
     - [expansion_t_correct]: the t that round_quotient returns from the expansion enclosures, given
       that the expansions sum exactly to num and den (Shewchuk's theorems, cited, not proved here);
     - [compare_hit_distances_filter_correct], [compare_hit_distances_compensated_correct]: the order of
       two hits' t that nearest_hit.cpp's [compare_hit_distances] returns from stage 1 or stage 2 of the
       comparison (compare_quotients.hpp) is the order of the exact t = num/den. *)
 
-From Coq Require Import Reals Lra Lia List.
+From Coq Require Import Reals Lra Lia List ZArith.
 From Flocq Require Import Core.
 From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification
   CompareQuotients.
 Open Scope R_scope.
+
+(** [first_certain(first, second)] (sign.hpp): [first] where it is certain, else [second]; and its lane
+    form [first_certain_lanes] on the integers of [sign_lanes]. *)
+Definition first_certain (first second : sign) : sign :=
+  match first with Uncertain => second | _ => first end.
+
+Definition first_certain_lanes (first second : Z) : Z :=
+  if Z.eqb first uncertain_lane then second else first.
+
+Definition is_certain (s : sign) : bool := match s with Uncertain => false | _ => true end.
+
+Lemma first_certain_sound : forall s1 s2 x, certifies s1 x -> certifies s2 x -> certifies (first_certain s1 s2) x.
+Proof. intros [| | |] s2 x H1 H2; simpl; assumption. Qed.
+
+Lemma first_certain_lanes_sound : forall z1 z2 x,
+  lane_sign z1 -> lane_sign z2 -> certifies (sign_from_Z z1) x -> certifies (sign_from_Z z2) x ->
+  lane_sign (first_certain_lanes z1 z2) /\ certifies (sign_from_Z (first_certain_lanes z1 z2)) x.
+Proof.
+  intros z1 z2 x L1 L2 C1 C2. unfold first_certain_lanes.
+  destruct (Z.eqb_spec z1 uncertain_lane); split; assumption.
+Qed.
+
+(** A certain lane sign of a real x is its exact sign, ±1, so x ≠ 0. *)
+Lemma lane_sign_exact : forall z x, lane_sign z -> z <> uncertain_lane -> certifies (sign_from_Z z) x ->
+  z = sign_of x /\ z <> 0%Z /\ x <> 0.
+Proof.
+  intros z x L U C. unfold sign_of.
+  destruct (lane_sign_certain z L U) as [[-> E]|[-> E]]; rewrite E in C; simpl in C.
+  - rewrite Rcompare_Lt by exact C. repeat split; [discriminate | lra].
+  - rewrite Rcompare_Gt by exact C. repeat split; [discriminate | lra].
+Qed.
+
+(** [num_sign * den_sign < 0 ? behind : hit] (fast_path.hpp, [FastQuery::FilterSigns::relation]), for two
+    certain lane signs, is the §1 relation, and num, den ≠ 0. *)
+Lemma lanes_relation : forall zn zd o d p n,
+  lane_sign zn -> lane_sign zd -> zn <> uncertain_lane -> zd <> uncertain_lane ->
+  certifies (sign_from_Z zn) (ray_num o p n) -> certifies (sign_from_Z zd) (ray_den d n) ->
+  (if Z.ltb (zn * zd) 0 then Behind else Hit) = classify o d p n /\ ray_num o p n <> 0 /\ ray_den d n <> 0.
+Proof.
+  intros zn zd o d p n Ln Ld Un Ud Cn Cd.
+  destruct (lane_sign_exact zn _ Ln Un Cn) as [En [Nn Xn]].
+  destruct (lane_sign_exact zd _ Ld Ud Cd) as [Ed [Nd Xd]].
+  split; [|split; assumption].
+  unfold classify, relation_from_signs. rewrite <- En, <- Ed.
+  destruct (Z.eqb_spec zd 0); [contradiction | reflexivity].
+Qed.
+
+(** The zero vector, which validation rejects as a direction or a normal. *)
+Definition zero3 : vec3 := Vec3 0 0 0.
+
+Lemma den_nonzero_valid : forall d n, ray_den d n <> 0 -> d <> zero3 /\ n <> zero3.
+Proof.
+  intros d n H. split; intros E; apply H; unfold ray_den, dot; rewrite E; simpl; ring.
+Qed.
 
 Theorem certified_relation : forall (num_sign den_sign : sign) (o d p n : vec3),
   certifies num_sign (ray_num o p n) -> num_sign <> Uncertain ->
@@ -79,6 +142,283 @@ Proof.
          first [apply binary64_two_sum_hi | apply binary64_RN]).
   - rewrite ray_num_components. now apply compensated_num_enclosure.
   - rewrite ray_den_components. now apply compensated_den_enclosure.
+Qed.
+
+(** ** The second level of stage 2, as compute_refined (ray_plane_stages.hpp) and
+    FastQuery::refined_answer (fast_path.hpp) call it. *)
+Definition refined_num_enclosure : Enclosure :=
+  compensated_dot3_refined (RN (px - ox)) (RN (py - oy)) (RN (pz - oz))
+    (snd (two_diff px ox)) (snd (two_diff py oy)) (snd (two_diff pz oz)) nx ny nz.
+Definition refined_den_enclosure : Enclosure := compensated_dot3_refined dx dy dz 0 0 0 nx ny nz.
+
+Lemma enclosures_correct :
+  encloses num_enclosure (ray_num o p n) /\ encloses den_enclosure (ray_den d n) /\
+  encloses refined_num_enclosure (ray_num o p n) /\ encloses refined_den_enclosure (ray_den d n).
+Proof.
+  rewrite ray_num_components, ray_den_components. repeat split.
+  - now apply compensated_num_enclosure.
+  - now apply compensated_den_enclosure.
+  - now apply compensated_num_refined_enclosure.
+  - now apply compensated_den_refined_enclosure.
+Qed.
+
+Lemma enclosures_binary64 : forall e, e = num_enclosure \/ e = den_enclosure \/
+  e = refined_num_enclosure \/ e = refined_den_enclosure ->
+  binary64 (hi e) /\ binary64 (lo e) /\ binary64 (radius e).
+Proof.
+  intros e [ -> | [ -> | [ -> | -> ] ] ]; repeat split;
+    unfold num_enclosure, den_enclosure, refined_num_enclosure, refined_den_enclosure,
+      compensated_dot3, compensated_dot3_refined; cbn [hi lo radius];
+    first [apply binary64_two_sum_hi | apply binary64_RN].
+Qed.
+
+Lemma enclosure_sign_correct : forall e V, e = num_enclosure \/ e = den_enclosure \/
+  e = refined_num_enclosure \/ e = refined_den_enclosure -> encloses e V ->
+  lane_sign (enclosure_sign_lanes e) /\ certifies (sign_from_Z (enclosure_sign_lanes e)) V.
+Proof.
+  intros e V He Enc. destruct (enclosures_binary64 e He) as [B1 [B2 B3]].
+  split; [apply enclosure_sign_lanes_range | now apply enclosure_sign_sound].
+Qed.
+
+Theorem refined_signs_correct :
+  certifies (enclosure_sign refined_num_enclosure) (ray_num o p n) /\
+  certifies (enclosure_sign refined_den_enclosure) (ray_den d n).
+Proof.
+  destruct enclosures_correct as [_ [_ [Hn Hd]]].
+  split; apply enclosure_sign_correct; auto.
+Qed.
+
+Lemma round_quotient_decision_correct : forall nE dE,
+  (nE = num_enclosure /\ dE = den_enclosure) \/ (nE = refined_num_enclosure /\ dE = refined_den_enclosure) ->
+  snd (round_quotient_decision nE dE) = true ->
+  ray_den d n <> 0 /\ fst (round_quotient_decision nE dE) = RN (ray_num o p n / ray_den d n).
+Proof.
+  intros nE dE Hs T. destruct enclosures_correct as [En [Ed [Ern Erd]]].
+  destruct Hs as [ [ -> -> ] | [ -> -> ] ].
+  - destruct (enclosures_binary64 num_enclosure ltac:(auto)) as [B1 [B2 B3]].
+    destruct (enclosures_binary64 den_enclosure ltac:(auto)) as [B4 [B5 B6]].
+    now apply round_quotient_decision_sound.
+  - destruct (enclosures_binary64 refined_num_enclosure ltac:(auto)) as [B1 [B2 B3]].
+    destruct (enclosures_binary64 refined_den_enclosure ltac:(auto)) as [B4 [B5 B6]].
+    now apply round_quotient_decision_sound.
+Qed.
+
+Theorem refined_t_correct : forall t,
+  round_quotient refined_num_enclosure refined_den_enclosure = Some t ->
+  ray_den d n <> 0 /\ t = RN (ray_num o p n / ray_den d n).
+Proof.
+  intros t H. unfold round_quotient in H.
+  pose proof (round_quotient_decision_correct refined_num_enclosure refined_den_enclosure
+                ltac:(auto)) as R.
+  destruct (round_quotient_decision refined_num_enclosure refined_den_enclosure) as [q [|]];
+    [|discriminate]. injection H as <-. now apply R.
+Qed.
+
+(** ** The full cascade through stage 2 (intersect_certified.cpp, [certified_signs] and
+    [certified_quotient]): each sign is stage 1's where certain, else the first level's, else the second
+    level's; t is round_quotient on the first level's enclosures, else on the second level's.  Stage 3
+    (expansions, cited) and stage 4 (exact) come after. *)
+Definition cascade_num_sign : sign :=
+  first_certain (num_filter px py pz ox oy oz nx ny nz)
+    (first_certain (enclosure_sign num_enclosure) (enclosure_sign refined_num_enclosure)).
+Definition cascade_den_sign : sign :=
+  first_certain (den_filter dx dy dz nx ny nz)
+    (first_certain (enclosure_sign den_enclosure) (enclosure_sign refined_den_enclosure)).
+
+Theorem cascade_signs_correct :
+  certifies cascade_num_sign (ray_num o p n) /\ certifies cascade_den_sign (ray_den d n) /\
+  (cascade_num_sign <> Uncertain -> cascade_den_sign <> Uncertain ->
+   relation_from_signs (sign_to_Z cascade_num_sign) (sign_to_Z cascade_den_sign) = classify o d p n).
+Proof.
+  destruct compensated_signs_correct as [Cn Cd]. destruct refined_signs_correct as [Rn Rd].
+  assert (Sn : certifies cascade_num_sign (ray_num o p n)).
+  { apply first_certain_sound; [|now apply first_certain_sound].
+    rewrite ray_num_components. now apply num_filter_sound. }
+  assert (Sd : certifies cascade_den_sign (ray_den d n)).
+  { apply first_certain_sound; [|now apply first_certain_sound].
+    rewrite ray_den_components. apply den_filter_sound. }
+  split; [exact Sn | split; [exact Sd|]].
+  intros Un Ud. now apply certified_relation.
+Qed.
+
+Definition cascade_quotient : option R :=
+  match round_quotient num_enclosure den_enclosure with
+  | Some t => Some t
+  | None => round_quotient refined_num_enclosure refined_den_enclosure
+  end.
+
+Theorem cascade_quotient_correct : forall t, cascade_quotient = Some t ->
+  ray_den d n <> 0 /\ t = RN (ray_num o p n / ray_den d n).
+Proof.
+  intros t. unfold cascade_quotient.
+  destruct (round_quotient num_enclosure den_enclosure) as [t1|] eqn:E.
+  - intros H. injection H as <-. now apply compensated_t_correct.
+  - apply refined_t_correct.
+Qed.
+
+(** ** The fast path (fast_path.hpp), one query; the batch API runs the same operations per lane. *)
+
+(** [FastAnswerT]. *)
+Record FastAnswer := {
+  fast_t : R;
+  fast_behind : bool;
+  fast_relation_by_compensated : bool;
+  fast_relation_certain : bool;
+  fast_t_certain : bool }.
+
+Definition answer_relation (a : FastAnswer) : relation := if fast_behind a then Behind else Hit.
+
+(** The stage-1 values the constructor of [FastQueryT] computes: den1 = dot3_rounded(d, n) and
+    num1 = dot3_rounded(diff, n), diff_i = [two_diff(p_i, o_i).hi] = p_i ⊖ o_i. *)
+Definition fast_den1 : Dot3Rounded := dot3_rounded dx dy dz nx ny nz.
+Definition fast_num1 : Dot3Rounded := dot3_rounded (RN (px - ox)) (RN (py - oy)) (RN (pz - oz)) nx ny nz.
+
+(** [FastQueryT::answer]: stage 1 and the first level of stage 2 for the signs, round_quotient_decision on
+    the first level for t. *)
+Definition fast_answer : FastAnswer :=
+  let den_filter := dot3_filter_lanes fast_den1 filter_den_relative in
+  let num_filter := dot3_filter_lanes fast_num1 filter_num_relative in
+  let den2 := den_enclosure in
+  let num2 := num_enclosure in
+  let den_sign := first_certain_lanes den_filter (enclosure_sign_lanes den2) in
+  let num_sign := first_certain_lanes num_filter (enclosure_sign_lanes num2) in
+  let t := round_quotient_decision num2 den2 in
+  {| fast_t := fst t;
+     fast_behind := Z.ltb (num_sign * den_sign) 0;
+     fast_relation_by_compensated :=
+       negb (negb (Z.eqb den_filter uncertain_lane) && negb (Z.eqb num_filter uncertain_lane));
+     fast_relation_certain := negb (Z.eqb den_sign uncertain_lane) && negb (Z.eqb num_sign uncertain_lane);
+     fast_t_certain := snd t |}.
+
+(** [FastQuery::refined_answer]: the second level of stage 2 for both signs and t. *)
+Definition refined_answer : FastAnswer :=
+  let den_sign := enclosure_sign_lanes refined_den_enclosure in
+  let num_sign := enclosure_sign_lanes refined_num_enclosure in
+  let t := round_quotient_decision refined_num_enclosure refined_den_enclosure in
+  {| fast_t := fst t;
+     fast_behind := Z.ltb (num_sign * den_sign) 0;
+     fast_relation_by_compensated := true;
+     fast_relation_certain := negb (Z.eqb den_sign uncertain_lane) && negb (Z.eqb num_sign uncertain_lane);
+     fast_t_certain := snd t |}.
+
+(** [FastQuery::filter_signs] (dot3_filter without the [exactly_zero] flag) and
+    [FilterSigns::relation]. *)
+Definition fast_filter_den : sign := dot3_filter fast_den1 filter_den_relative false.
+Definition fast_filter_num : sign := dot3_filter fast_num1 filter_num_relative false.
+Definition filter_signs_relation (num den : sign) : relation :=
+  if Z.ltb (sign_to_Z num * sign_to_Z den) 0 then Behind else Hit.
+
+(** [intersect_certified] up to its call of [full_cascade]: Some (relation, t) when the fast path
+    answers. *)
+Definition intersect_fast : option (relation * R) :=
+  let decided := (is_certain fast_filter_den && is_certain fast_filter_num)%bool in
+  let t := round_quotient_decision num_enclosure den_enclosure in
+  if (decided && snd t)%bool then Some (filter_signs_relation fast_filter_num fast_filter_den, fst t)
+  else if (fast_relation_certain refined_answer && fast_t_certain refined_answer)%bool
+  then Some (answer_relation refined_answer, fast_t refined_answer)
+  else None.
+
+Lemma fast_filters_correct :
+  lane_sign (dot3_filter_lanes fast_den1 filter_den_relative) /\
+  certifies (sign_from_Z (dot3_filter_lanes fast_den1 filter_den_relative)) (ray_den d n) /\
+  lane_sign (dot3_filter_lanes fast_num1 filter_num_relative) /\
+  certifies (sign_from_Z (dot3_filter_lanes fast_num1 filter_num_relative)) (ray_num o p n).
+Proof.
+  repeat split; try apply dot3_filter_lanes_range.
+  - rewrite ray_den_components. apply den_filter_lanes_sound.
+  - rewrite ray_num_components. now apply num_filter_lanes_sound.
+Qed.
+
+(** The input check the fast path does without: a den sign certified nonzero by stage 1 (as the fast
+    path calls it) or by either level of stage 2 implies d ≠ 0 and n ≠ 0. *)
+Theorem fast_path_den_valid :
+  dot3_filter_lanes fast_den1 filter_den_relative <> uncertain_lane \/
+  enclosure_sign_lanes den_enclosure <> uncertain_lane \/
+  enclosure_sign_lanes refined_den_enclosure <> uncertain_lane ->
+  d <> zero3 /\ n <> zero3.
+Proof.
+  intros H. apply den_nonzero_valid.
+  destruct fast_filters_correct as [L1 [C1 _]]. destruct enclosures_correct as [_ [Ed [_ Erd]]].
+  destruct (enclosure_sign_correct den_enclosure _ ltac:(auto) Ed) as [L2 C2].
+  destruct (enclosure_sign_correct refined_den_enclosure _ ltac:(auto) Erd) as [L3 C3].
+  destruct H as [U|[U|U]]; [apply (lane_sign_exact _ _ L1 U C1) | apply (lane_sign_exact _ _ L2 U C2) |
+                            apply (lane_sign_exact _ _ L3 U C3)].
+Qed.
+
+(** [FastQuery::answer]: a certain relation is the §1 relation (num, den ≠ 0, so hit or behind), on an
+    input with d ≠ 0 and n ≠ 0; a certain t is RN(num/den). *)
+Theorem fast_answer_correct :
+  (fast_relation_certain fast_answer = true ->
+   answer_relation fast_answer = classify o d p n /\ ray_num o p n <> 0 /\ ray_den d n <> 0 /\
+   d <> zero3 /\ n <> zero3) /\
+  (fast_t_certain fast_answer = true ->
+   ray_den d n <> 0 /\ fast_t fast_answer = RN (ray_num o p n / ray_den d n)).
+Proof.
+  destruct fast_filters_correct as [L1 [C1 [L2 C2]]]. destruct enclosures_correct as [En [Ed _]].
+  destruct (enclosure_sign_correct den_enclosure _ ltac:(auto) Ed) as [L3 C3].
+  destruct (enclosure_sign_correct num_enclosure _ ltac:(auto) En) as [L4 C4].
+  destruct (first_certain_lanes_sound _ _ _ L1 L3 C1 C3) as [Ld Cd].
+  destruct (first_certain_lanes_sound _ _ _ L2 L4 C2 C4) as [Ln Cn].
+  split.
+  - unfold fast_answer, answer_relation. cbn [fast_relation_certain fast_behind].
+    intros R. apply andb_prop in R. destruct R as [Rd Rn].
+    apply Bool.negb_true_iff, Z.eqb_neq in Rd. apply Bool.negb_true_iff, Z.eqb_neq in Rn.
+    destruct (lanes_relation _ _ o d p n Ln Ld Rn Rd Cn Cd) as [Rel [Nn Nd]].
+    destruct (den_nonzero_valid d n Nd) as [Vd Vn]. repeat split; assumption.
+  - unfold fast_answer. cbn [fast_t_certain fast_t]. apply round_quotient_decision_correct. auto.
+Qed.
+
+(** [FastQuery::refined_answer]: the same from the second level of stage 2. *)
+Theorem refined_answer_correct :
+  (fast_relation_certain refined_answer = true ->
+   answer_relation refined_answer = classify o d p n /\ ray_num o p n <> 0 /\ ray_den d n <> 0 /\
+   d <> zero3 /\ n <> zero3) /\
+  (fast_t_certain refined_answer = true ->
+   ray_den d n <> 0 /\ fast_t refined_answer = RN (ray_num o p n / ray_den d n)).
+Proof.
+  destruct enclosures_correct as [_ [_ [Ern Erd]]].
+  destruct (enclosure_sign_correct refined_den_enclosure _ ltac:(auto) Erd) as [Ld Cd].
+  destruct (enclosure_sign_correct refined_num_enclosure _ ltac:(auto) Ern) as [Ln Cn].
+  split.
+  - unfold refined_answer, answer_relation. cbn [fast_relation_certain fast_behind].
+    intros R. apply andb_prop in R. destruct R as [Rd Rn].
+    apply Bool.negb_true_iff, Z.eqb_neq in Rd. apply Bool.negb_true_iff, Z.eqb_neq in Rn.
+    destruct (lanes_relation _ _ o d p n Ln Ld Rn Rd Cn Cd) as [Rel [Nn Nd]].
+    destruct (den_nonzero_valid d n Nd) as [Vd Vn]. repeat split; assumption.
+  - unfold refined_answer. cbn [fast_t_certain fast_t]. apply round_quotient_decision_correct. auto.
+Qed.
+
+(** [intersect_certified] before the full cascade: whatever it returns is the §1 relation (hit or
+    behind) with t = RN(num/den), and the input it answered has d ≠ 0 and n ≠ 0. *)
+Theorem intersect_fast_correct : forall rel t, intersect_fast = Some (rel, t) ->
+  rel = classify o d p n /\ ray_den d n <> 0 /\ t = RN (ray_num o p n / ray_den d n) /\
+  d <> zero3 /\ n <> zero3.
+Proof.
+  intros rel t. unfold intersect_fast, fast_filter_den, fast_filter_num, dot3_filter. cbv zeta.
+  destruct fast_filters_correct as [L1 [C1 [L2 C2]]].
+  pose proof (round_quotient_decision_correct num_enclosure den_enclosure ltac:(auto)) as Rq.
+  destruct refined_answer_correct as [RA RB].
+  (* make the computed values opaque: only their properties are used *)
+  set (zd := dot3_filter_lanes fast_den1 filter_den_relative) in *. clearbody zd.
+  set (zn := dot3_filter_lanes fast_num1 filter_num_relative) in *. clearbody zn.
+  set (q := round_quotient_decision num_enclosure den_enclosure) in *. clearbody q.
+  set (ra := refined_answer) in *. clearbody ra.
+  destruct q as [q certain]. cbn [fst snd] in Rq |- *.
+  destruct (is_certain (sign_from_Z zd) && is_certain (sign_from_Z zn) && certain)%bool eqn:Dc.
+  - apply andb_prop in Dc. destruct Dc as [Dc Tc]. apply andb_prop in Dc. destruct Dc as [Dd Dn].
+    intros H. injection H as <- <-.
+    assert (Ud : zd <> uncertain_lane) by (intros E; rewrite E in Dd; discriminate Dd).
+    assert (Un : zn <> uncertain_lane) by (intros E; rewrite E in Dn; discriminate Dn).
+    destruct (lanes_relation zn zd o d p n L2 L1 Un Ud C2 C1) as [Rel [Nn Nd]].
+    destruct (Rq Tc) as [_ T]. destruct (den_nonzero_valid d n Nd) as [Vd Vn].
+    split; [|repeat split; assumption].
+    destruct (lane_sign_certain zd L1 Ud) as [[E1 S1]|[E1 S1]];
+      destruct (lane_sign_certain zn L2 Un) as [[E2 S2]|[E2 S2]];
+      unfold filter_signs_relation; rewrite S1, S2; rewrite E1, E2 in Rel; exact Rel.
+  - destruct (fast_relation_certain ra && fast_t_certain ra)%bool eqn:Rc; [|discriminate].
+    intros H. injection H as <- <-. apply andb_prop in Rc. destruct Rc as [Rr Rt].
+    destruct (RA Rr) as [Rel [_ [Nd [Vd Vn]]]]. destruct (RB Rt) as [_ T].
+    repeat split; assumption.
 Qed.
 
 End Query.

@@ -310,34 +310,7 @@ Proof.
   destruct (Rlt_bool_spec delta (- B)) as [L'|L']; simpl; [lra | exact I].
 Qed.
 
-(** ** Stage 2. *)
-
-(** TwoProduct is exact up to η: exact when |a·b| ≥ 2^-969 ([two_prod_exact]); below, a·b − (a ⊗ b) is
-    below 2^-1022 and its rounding (the FMA) errs by at most η. *)
-Lemma two_prod_error : forall a b, binary64 a -> binary64 b ->
-  Rabs (a * b - (fst (two_prod a b) + snd (two_prod a b))) <= eta.
-Proof.
-  intros a b Ba Bb. pose proof eta_pos as He.
-  destruct (Rle_or_lt (bpow radix2 (-969)) (Rabs (a * b))) as [L|L].
-  - rewrite two_prod_exact; [| exact Ba | exact Bb | intros; exact L].
-    unfold Rminus. rewrite Rplus_opp_r, Rabs_R0. lra.
-  - unfold two_prod, fma. cbn [fst snd].
-    set (P := RN (a * b)).
-    assert (Z : Rabs (a * b + - P) < bpow radix2 (-1022)).
-    { rewrite <- Rabs_Ropp. replace (- (a * b + - P)) with (P - a * b) by ring.
-      destruct (Rle_or_lt (bpow radix2 (-1022)) (Rabs (a * b))) as [N|S].
-      - pose proof (relative_error_N_FLT radix2 (-1074) 53 eq_refl (fun t => negb (Z.even t)) (a * b) N) as E.
-        rewrite half_bpow_52 in E. fold P in E.
-        eapply Rle_lt_trans; [exact E|].
-        replace (bpow radix2 (-1022)) with (u * bpow radix2 (-969)).
-        + apply Rmult_lt_compat_l; [apply u_pos | exact L].
-        + unfold unit_roundoff. rewrite <- bpow_plus. reflexivity.
-      - eapply Rle_lt_trans; [apply small_error; exact S|].
-        unfold eta. apply bpow_lt. lia. }
-    pose proof (small_error _ Z) as E.
-    replace (a * b - (P + RN (a * b + - P))) with (- (RN (a * b + - P) - (a * b + - P))) by ring.
-    rewrite Rabs_Ropp. exact E.
-Qed.
+(** ** Stage 2.  ([two_prod_error], TwoProduct exact up to η, is in Model.v.) *)
 
 (** The cross terms: c = fma(a, β, α ⊗ b) approximates a·β + α·b, and α·β is dropped:
     |(a + α)(b + β) − a·b − c| ≤ (4u² + u³)|a·b| + (2 + u)η and |c| ≤ (2u + 3u² + u³)|a·b| + (2 + u)η. *)

@@ -23,6 +23,12 @@ Definition filter_absolute : R := 3 * min_subnormal.
 Definition compensated_relative : R := bpow radix2 (-101).
 Definition compensated_absolute : R := bpow radix2 (-1070).
 
+(** Stage 2, second level, compensated_dot3_refined (Compensated.v):
+    E = ((refined_relative ⊗ m) ⊕ (refined_low_relative ⊗ |lo|)) ⊕ refined_absolute. *)
+Definition refined_relative : R := bpow radix2 (-150).
+Definition refined_low_relative : R := bpow radix2 (-52).
+Definition refined_absolute : R := 8 * min_subnormal.
+
 (** Stage 3, expansion_tail_enclosure (Compensated.v): E = (A ⊗ 2^-48) ⊕ 2 mu, at most 32 terms. *)
 Definition tail_sum_relative : R := bpow radix2 (-48).
 Definition tail_sum_absolute : R := 2 * min_subnormal.

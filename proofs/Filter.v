@@ -1,7 +1,9 @@
 (** * Stage 1: the binary64 sign filter (kernel/src/certified/dot3_filter.hpp).
 
     Main theorems: [den_filter_sound] (the sign of den = d·n) and [num_filter_sound] (the sign of
-    num = (p − o)·n, with the rounded differences p_i ⊖ o_i), both for every binary64 input. *)
+    num = (p − o)·n, with the rounded differences p_i ⊖ o_i), both for every binary64 input;
+    [den_filter_lanes_sound] and [num_filter_lanes_sound]: the same for [dot3_filter_lanes] alone (no
+    [exactly_zero] flag), as the fast path calls it. *)
 
 From Coq Require Import Reals Lra Lia.
 From Flocq Require Import Core.
@@ -25,16 +27,20 @@ Definition dot3_rounded (a0 a1 a2 b0 b1 b2 : R) : Dot3Rounded :=
      value := RN (RN (q0 + q1) + q2);
      magnitude := RN (RN (Rabs q0 + Rabs q1) + Rabs q2) |}.
 
-(** [dot3_filter(r, relative_constant, exactly_zero)], branch-free as in the C++:
-    sign = [value > bound] − [value < −bound], and 0 means uncertain. *)
+(** [dot3_filter_lanes(r, relative_constant)], branch-free as in the C++ (one lane of it for Lanes8):
+    bound = (C ⊗ m) ⊕ 3μ, then [sign_lanes(value > bound, value < −bound)] (Model.v): +1, −1, or 2 for
+    uncertain. *)
 Definition filter_bound (r : Dot3Rounded) (relative_constant : R) : R :=
   RN (RN (relative_constant * magnitude r) + filter_absolute).
 
-Definition dot3_filter (r : Dot3Rounded) (relative_constant : R) (exactly_zero : bool) : sign :=
-  if exactly_zero then Zero else
+Definition dot3_filter_lanes (r : Dot3Rounded) (relative_constant : R) : Z :=
   let bound := filter_bound r relative_constant in
-  let s := ((if Rlt_bool bound (value r) then 1 else 0) - (if Rlt_bool (value r) (- bound) then 1 else 0))%Z in
-  if Z.eqb s 0 then Uncertain else if Z.ltb 0 s then Positive else Negative.
+  sign_lanes (Rlt_bool bound (value r)) (Rlt_bool (value r) (- bound)).
+
+(** [dot3_filter(r, relative_constant, exactly_zero)]: zero when [exactly_zero], else
+    [static_cast<Sign>(dot3_filter_lanes(r, relative_constant))]. *)
+Definition dot3_filter (r : Dot3Rounded) (relative_constant : R) (exactly_zero : bool) : sign :=
+  if exactly_zero then Zero else sign_from_Z (dot3_filter_lanes r relative_constant).
 
 (** The two calls in intersect_certified.cpp, with the [*_trivially_zero] flags computed there. *)
 Definition den_trivially_zero (d0 d1 d2 n0 n1 n2 : R) : bool :=
@@ -164,9 +170,9 @@ Proof.
   intros a0 a1 a2 b0 b1 b2 V C K HK HC r Herr.
   pose proof (dot3_filter_bound_encloses a0 a1 a2 b0 b1 b2 V C K HK HC Herr) as Enc. fold r in Enc.
   apply Rabs_bounds in Enc.
-  unfold dot3_filter. set (B := filter_bound r C) in *.
+  unfold dot3_filter, dot3_filter_lanes, sign_lanes. set (B := filter_bound r C) in *.
   destruct (Rlt_bool_spec B (value r)) as [L|L];
-    destruct (Rlt_bool_spec (value r) (- B)) as [L'|L']; simpl; lra.
+    destruct (Rlt_bool_spec (value r) (- B)) as [L'|L']; simpl; try exact I; lra.
 Qed.
 
 (** A 5-term triangle inequality. *)
@@ -330,3 +336,33 @@ Proof.
     + apply filter_num_relative_covers.
     + now apply num_value_error.
 Qed.
+
+(** The fast path (fast_path.hpp) calls the filter without the [exactly_zero] flag, per lane:
+    [static_cast<Sign>(dot3_filter_lanes(r, C))], which is [dot3_filter r C false]. *)
+Corollary den_filter_lanes_sound : forall d0 d1 d2 n0 n1 n2,
+  certifies (sign_from_Z (dot3_filter_lanes (dot3_rounded d0 d1 d2 n0 n1 n2) filter_den_relative))
+    (d0 * n0 + d1 * n1 + d2 * n2).
+Proof.
+  intros. pose proof u_pos.
+  apply (dot3_filter_sound_gen d0 d1 d2 n0 n1 n2 _ filter_den_relative (3 * u + u * u)).
+  - nra.
+  - apply filter_den_relative_covers.
+  - apply den_value_error.
+Qed.
+
+Corollary num_filter_lanes_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2,
+  binary64 p0 -> binary64 p1 -> binary64 p2 -> binary64 o0 -> binary64 o1 -> binary64 o2 ->
+  certifies (sign_from_Z (dot3_filter_lanes
+               (dot3_rounded (RN (p0 - o0)) (RN (p1 - o1)) (RN (p2 - o2)) n0 n1 n2) filter_num_relative))
+    ((p0 - o0) * n0 + (p1 - o1) * n1 + (p2 - o2) * n2).
+Proof.
+  intros. pose proof u_pos.
+  apply (dot3_filter_sound_gen _ _ _ n0 n1 n2 _ filter_num_relative (4 * u + 2 * (u * u))).
+  - nra.
+  - apply filter_num_relative_covers.
+  - now apply num_value_error.
+Qed.
+
+(** A lane sign of the filter is −1, +1 or 2 (uncertain): the fast path never certifies zero. *)
+Lemma dot3_filter_lanes_range : forall r C, lane_sign (dot3_filter_lanes r C).
+Proof. intros. apply sign_lanes_range. Qed.

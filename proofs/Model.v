@@ -11,10 +11,15 @@
     -ffast-math, with SSE2 (FLT_EVAL_METHOD == 0), and runs only when MXCSR says round-to-nearest and no
     flush-to-zero (kernel/src/api.cpp); see proofs/README.md ("Assumptions").
 
-    This file: the model, the error-free transformations of kernel/src/certified/eft.hpp with their
-    exactness theorems, and the rounding-error lemmas the stage proofs are built from. *)
+    This file: the model, the branch-free sign encoding of sign.hpp ([sign_lanes]), the error-free
+    transformations of kernel/src/certified/eft.hpp with their exactness theorems, and the
+    rounding-error lemmas the stage proofs are built from.
 
-From Coq Require Import Reals Lra Lia.
+    The certified routines are templates over a lane type (double, or Lanes8, eight doubles;
+    kernel/src/certified/lanes.hpp).  The model is the scalar instantiation; each lane of Lanes8 performs
+    the same IEEE operations on its own query (proofs/README.md, "Lanes"). *)
+
+From Coq Require Import Reals Lra Lia ZArith.
 From Flocq Require Import Core Plus_error Mult_error Relative Pff2Flocq.
 From Raykernel Require Import Constants.
 Open Scope R_scope.
@@ -61,6 +66,38 @@ Definition certifies (s : sign) (x : R) : Prop :=
   | Positive => 0 < x
   | Uncertain => True
   end.
+
+(** [sign_lanes(above, below)] (sign.hpp): the branch-free sign of the lane-templated routines
+    (dot3_filter_lanes, enclosure_sign_lanes): s = [above] − [below], then s + 2·[s = 0], i.e. the
+    values of [enum class Sign] (−1, +1, and 2 for uncertain) as integers.  (For Lanes8 the code
+    computes below − above on masks that are −1 where true, which gives the same integers per lane.) *)
+Definition uncertain_lane : Z := 2.
+
+Definition sign_lanes (above below : bool) : Z :=
+  let s := (Z.b2z above - Z.b2z below)%Z in (s + uncertain_lane * Z.b2z (Z.eqb s 0))%Z.
+
+(** [static_cast<Sign>(i)] for the integers the lane routines produce (−1, 0, +1, 2). *)
+Definition sign_from_Z (i : Z) : sign :=
+  match i with
+  | Zneg xH => Negative
+  | Z0 => Zero
+  | Zpos xH => Positive
+  | _ => Uncertain
+  end.
+
+(** The integers sign_lanes can produce: −1, +1 or 2 (never 0: a lane sign never certifies zero). *)
+Definition lane_sign (i : Z) : Prop := i = (-1)%Z \/ i = 1%Z \/ i = uncertain_lane.
+
+Lemma sign_lanes_range : forall above below, lane_sign (sign_lanes above below).
+Proof. intros [|] [|]; unfold lane_sign; cbv; auto. Qed.
+
+(** A certain lane sign is ±1, the integer of the [sign] it encodes, which is neither zero nor
+    uncertain. *)
+Lemma lane_sign_certain : forall i, lane_sign i -> i <> uncertain_lane ->
+  (i = (-1)%Z /\ sign_from_Z i = Negative) \/ (i = 1%Z /\ sign_from_Z i = Positive).
+Proof.
+  intros i [ -> | [ -> | -> ] ] N; [left | right | elim N]; split; reflexivity.
+Qed.
 
 (** ** Constants as rationals (for [lra]). *)
 
@@ -231,6 +268,12 @@ Proof.
   rewrite Rabs_Ropp. split; [now apply RN_plus_err | now apply RN_plus_err_round].
 Qed.
 
+Lemma binary64_two_prod_hi : forall a b, binary64 (fst (two_prod a b)).
+Proof. intros. apply binary64_RN. Qed.
+
+Lemma binary64_two_prod_lo : forall a b, binary64 (snd (two_prod a b)).
+Proof. intros. apply binary64_RN. Qed.
+
 (** TwoProduct with an FMA is exact when the product does not underflow (Flocq [mult_error_FLT]); the
     guard of expansion.hpp's [note_product] ([p == 0] with a zero factor, or |p| ≥ 2^-968) implies it. *)
 Theorem two_prod_exact : forall a b, binary64 a -> binary64 b ->
@@ -256,6 +299,33 @@ Proof.
   { rewrite <- RN_abs, <- (RN_binary64 _ F). apply RN_le. lra. }
   assert (bpow radix2 (-969) < bpow radix2 (-968)) by (apply bpow_lt; lia).
   lra.
+Qed.
+
+(** TwoProduct is exact up to η (used by CompareQuotients.v and by the second level of stage 2): exact when |a·b| ≥ 2^-969 ([two_prod_exact]); below, a·b − (a ⊗ b) is
+    below 2^-1022 and its rounding (the FMA) errs by at most η. *)
+Lemma two_prod_error : forall a b, binary64 a -> binary64 b ->
+  Rabs (a * b - (fst (two_prod a b) + snd (two_prod a b))) <= eta.
+Proof.
+  intros a b Ba Bb. pose proof eta_pos as He.
+  destruct (Rle_or_lt (bpow radix2 (-969)) (Rabs (a * b))) as [L|L].
+  - rewrite two_prod_exact; [| exact Ba | exact Bb | intros; exact L].
+    unfold Rminus. rewrite Rplus_opp_r, Rabs_R0. lra.
+  - unfold two_prod, fma. cbn [fst snd].
+    set (P := RN (a * b)).
+    assert (Z : Rabs (a * b + - P) < bpow radix2 (-1022)).
+    { rewrite <- Rabs_Ropp. replace (- (a * b + - P)) with (P - a * b) by ring.
+      destruct (Rle_or_lt (bpow radix2 (-1022)) (Rabs (a * b))) as [N|S].
+      - pose proof (relative_error_N_FLT radix2 (-1074) 53 eq_refl (fun t => negb (Z.even t)) (a * b) N) as E.
+        rewrite half_bpow_52 in E. fold P in E.
+        eapply Rle_lt_trans; [exact E|].
+        replace (bpow radix2 (-1022)) with (u * bpow radix2 (-969)).
+        + apply Rmult_lt_compat_l; [apply u_pos | exact L].
+        + unfold unit_roundoff. rewrite <- bpow_plus. reflexivity.
+      - eapply Rle_lt_trans; [apply small_error; exact S|].
+        unfold eta. apply bpow_lt. lia. }
+    pose proof (small_error _ Z) as E.
+    replace (a * b - (P + RN (a * b + - P))) with (- (RN (a * b + - P) - (a * b + - P))) by ring.
+    rewrite Rabs_Ropp. exact E.
 Qed.
 
 (** ** Small real-arithmetic helpers for the error analyses. *)
@@ -301,7 +371,8 @@ Theorem constants_binary64 :
   binary64 quotient_min_magnitude /\ binary64 quotient_relative /\
   binary64 quotient_enclosure_factor /\ binary64 quotient_test_factor /\
   binary64 compare_filter_relative /\ binary64 compare_propagation_factor /\
-  binary64 compare_absolute /\ binary64 compare_compensated_relative.
+  binary64 compare_absolute /\ binary64 compare_compensated_relative /\
+  binary64 refined_relative /\ binary64 refined_low_relative /\ binary64 refined_absolute.
 Proof.
   repeat split; try (apply binary64_bpow; lia).
   - (* (3 + 16u)u = (3·2^49 + 1)·2^-102 *)
@@ -333,6 +404,9 @@ Proof.
     + apply binary64_dyadic; [reflexivity | lia].
     + unfold compare_propagation_factor. rewrite u_val. simpl bpow. lra.
   - replace compare_absolute with (IZR 8 * bpow radix2 (-1074)).
+    + apply binary64_dyadic; [reflexivity | lia].
+    + reflexivity.
+  - replace refined_absolute with (IZR 8 * bpow radix2 (-1074)).
     + apply binary64_dyadic; [reflexivity | lia].
     + reflexivity.
 Qed.

@@ -1,9 +1,10 @@
 (** * round_quotient: the correctly rounded t = num/den from two enclosures
     (kernel/src/certified/round_quotient.hpp).
 
-    Main theorem: [round_quotient_sound]: whenever [round_quotient] returns a value t, den ≠ 0 and
-    t = RN(num / den), round to nearest with ties to even, for every num and den enclosed by the two
-    arguments.  [round_quotient_candidate_normal] shows that, once the guards pass, the candidate q has
+    Main theorem: [round_quotient_decision_sound]: whenever [round_quotient_decision] says certain, its
+    t satisfies den ≠ 0 and t = RN(num / den), round to nearest with ties to even, for every num and den
+    enclosed by the two arguments; [round_quotient_sound] is the same for the optional form
+    [round_quotient].  [round_quotient_candidate_normal] shows that, once the guards pass, the candidate q has
     |q| ≥ 2^-901, the range where the C++ bit manipulation [half_gap_to_nearer_neighbour] computes the
     model's [half_gap] ([half_gap_bits]). *)
 
@@ -102,27 +103,36 @@ Proof.
     now apply Pos; [apply binary64_opp|].
 Qed.
 
-(** ** round_quotient, operation by operation.  The C++ guards also reject non-finite N, D, q0, q and
-    radii; in the model every value is finite, so they always pass (proofs/README.md, "Overflow"). *)
-Definition round_quotient (n d : Enclosure) : option R :=
+(** ** round_quotient_decision, operation by operation, branch-free as in the C++: every guard and the
+    test are computed, and [certain] is their conjunction ([both(both(in_range, |q| < HUGE_VAL), inside)]).
+    The C++ guards also require N, D, q0, q and both radii to be finite ([< HUGE_VAL]); in the model
+    every value is finite, so those conjuncts are true and are left out (proofs/README.md, "Overflow").
+    Returns (t, certain). *)
+Definition round_quotient_decision (n d : Enclosure) : R * bool :=
   let N := fst (two_sum (hi n) (lo n)) in
   let Nlo := snd (two_sum (hi n) (lo n)) in
   let D := fst (two_sum (hi d) (lo d)) in
   let Dlo := snd (two_sum (hi d) (lo d)) in
   let q0 := RN (N / D) in
-  if (Rle_bool quotient_min_magnitude (Rabs N) && Rle_bool quotient_min_magnitude (Rabs D) &&
-      Rle_bool quotient_min_magnitude (Rabs q0))%bool then
-    let r1 := fma (- q0) D N in
-    let r2 := fma (- q0) Dlo Nlo in
-    let c := RN (RN (r1 + r2) / D) in
-    let q := two_sum q0 c in
-    let abs_q0 := Rabs q0 in
-    let abs_D := Rabs D in
-    let x := RN (RN (RN (abs_q0 * radius d) + radius n) * quotient_enclosure_factor) in
-    let y := RN (RN (RN (abs_q0 * quotient_relative) + Rabs (snd q)) * abs_D) in
-    let h := half_gap (fst q) in
-    if Rlt_bool (RN (RN (x + y) * quotient_test_factor)) (RN (h * abs_D)) then Some (fst q) else None
-  else None.
+  let abs_q0 := Rabs q0 in
+  let abs_D := Rabs D in
+  let abs_N := Rabs N in
+  let in_range := (Rle_bool quotient_min_magnitude abs_N && Rle_bool quotient_min_magnitude abs_D &&
+                   Rle_bool quotient_min_magnitude abs_q0)%bool in
+  let r1 := fma (- q0) D N in
+  let r2 := fma (- q0) Dlo Nlo in
+  let c := RN (RN (r1 + r2) / D) in
+  let q := two_sum q0 c in
+  let x := RN (RN (RN (abs_q0 * radius d) + radius n) * quotient_enclosure_factor) in
+  let y := RN (RN (RN (abs_q0 * quotient_relative) + Rabs (snd q)) * abs_D) in
+  let h := half_gap (fst q) in
+  let inside := Rlt_bool (RN (RN (x + y) * quotient_test_factor)) (RN (h * abs_D)) in
+  (fst q, (in_range && inside)%bool).
+
+(** [round_quotient(n, d)]: the same decision as an optional. *)
+Definition round_quotient (n d : Enclosure) : option R :=
+  let r := round_quotient_decision n d in
+  if snd r then Some (fst r) else None.
 
 (** ** Constants. *)
 
@@ -285,17 +295,17 @@ Proof.
     rewrite bpow_plus. simpl (bpow radix2 (-1)). lra.
 Qed.
 
-(** ** Main theorem. *)
-Theorem round_quotient_sound : forall (n d : Enclosure) (num den t : R),
+(** ** Main theorem: whenever the decision is certain, den ≠ 0 and t = RN(num/den). *)
+Theorem round_quotient_decision_sound : forall (n d : Enclosure) (num den : R),
   binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
   binary64 (hi d) -> binary64 (lo d) -> binary64 (radius d) ->
   encloses n num -> encloses d den ->
-  round_quotient n d = Some t ->
-  den <> 0 /\ t = RN (num / den).
+  snd (round_quotient_decision n d) = true ->
+  den <> 0 /\ fst (round_quotient_decision n d) = RN (num / den).
 Proof.
-  intros [nh nl En] [dh dl Ed] num den t Bnh Bnl BEn Bdh Bdl BEd Hn Hd H.
+  intros [nh nl En] [dh dl Ed] num den Bnh Bnl BEn Bdh Bdl BEd Hn Hd H.
   unfold encloses in Hn, Hd. cbn [hi lo radius] in *.
-  unfold round_quotient in H. cbn [hi lo radius] in H.
+  unfold round_quotient_decision in H |- *. cbn [hi lo radius fst snd] in H |- *.
   (* the two TwoSums *)
   pose proof (two_sum_exact nh nl Bnh Bnl) as XN.
   destruct (two_sum_lo_bound nh nl Bnh Bnl) as [_ LN].
@@ -330,7 +340,7 @@ Proof.
   set (xy := RN (x + y)).
   destruct (Rlt_bool_spec (RN (xy * (1 + / 35184372088832))) (RN (h * Rabs D))) as [Test|Test];
     [|discriminate].
-  intros H. injection H as Ht. subst t.
+  intros _.
   (* constants and signs *)
   pose proof u_pos as Hu. pose proof eta_pos as He. pose proof Q900_pos as HQ. pose proof eta_Q900 as EQ.
   pose proof Q900_normal as QN.
@@ -444,4 +454,19 @@ Proof.
   symmetry. apply RN_of_close; [exact Bq|].
   replace (num / den - q) with (tq + w) by (unfold tq; lra).
   eapply Rle_lt_trans; [apply Rabs_triang | exact Close].
+Qed.
+
+(** [round_quotient] (the optional form that the cascade in intersect_certified.cpp uses). *)
+Theorem round_quotient_sound : forall (n d : Enclosure) (num den t : R),
+  binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
+  binary64 (hi d) -> binary64 (lo d) -> binary64 (radius d) ->
+  encloses n num -> encloses d den ->
+  round_quotient n d = Some t ->
+  den <> 0 /\ t = RN (num / den).
+Proof.
+  intros n d num den t Bnh Bnl BEn Bdh Bdl BEd Hn Hd H.
+  pose proof (round_quotient_decision_sound n d num den Bnh Bnl BEn Bdh Bdl BEd Hn Hd) as S.
+  unfold round_quotient in H.
+  destruct (round_quotient_decision n d) as [q certain]. cbn [fst snd] in H, S.
+  destruct certain; [|discriminate]. injection H as <-. now apply S.
 Qed.

@@ -212,6 +212,10 @@ std::vector<Row> table() {
       {"filter_absolute", "3 * mu", 3 * Dyadic::pow2(-1074), b::filter_absolute, {}},
       {"compensated_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::compensated_relative, {}},
       {"compensated_absolute", "bpow radix2 (-1070)", Dyadic::pow2(-1070), b::compensated_absolute, {}},
+      {"refined_relative", "bpow radix2 (-150)", Dyadic::pow2(-150), b::refined_relative, {}},
+      {"refined_low_relative", "bpow radix2 (-52)", Dyadic::pow2(-52), b::refined_low_relative, {}},
+      // 8μ = 2^-1071
+      {"refined_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::refined_absolute, {}},
       {"tail_sum_relative", "bpow radix2 (-48)", Dyadic::pow2(-48), b::tail_sum_relative, {}},
       {"tail_sum_absolute", "2 * mu", 2 * Dyadic::pow2(-1074), b::tail_sum_absolute, {}},
       {"tail_sum_max_terms", "32", Dyadic::integer(32), {}, b::tail_sum_max_terms},

@@ -60,6 +60,18 @@ TEST(ErrorConstants, Compensated) {
   EXPECT_GE((exact(b::compensated_absolute) - eta) / (1 + u), mpq_class(61, 10) * eta);
 }
 
+TEST(ErrorConstants, CompensatedRefined) {
+  EXPECT_EQ(exact(b::refined_relative), 512 * u * u * u);
+  EXPECT_EQ(exact(b::refined_low_relative), 2 * u);
+  EXPECT_EQ(exact(b::refined_absolute), 8 * mu);
+  // Needed: K_2 ≥ 262.1u³(1+u)^4 (γ_9 times the first-order and second-order terms), 2^-52 ≥ u(1+u)², and
+  // (U_2 − 2η)/(1+u) ≥ 6.1η.
+  EXPECT_GE(exact(b::refined_relative), mpq_class(2621, 10) * u * u * u * power(1 + u, 4));
+  EXPECT_LE(gamma(9) * (mpq_class(2911, 100) * u * u), mpq_class(2621, 10) * u * u * u);  // the 262.1 itself
+  EXPECT_GE(exact(b::refined_low_relative), u * power(1 + u, 2));
+  EXPECT_GE((exact(b::refined_absolute) - 2 * eta) / (1 + u), mpq_class(61, 10) * eta);
+}
+
 TEST(ErrorConstants, TailSum) {
   EXPECT_EQ(exact(b::tail_sum_relative), pow2(-48));
   EXPECT_EQ(exact(b::tail_sum_absolute), 2 * mu);

@@ -75,6 +75,21 @@ TEST(FpEnvironment, FlushToZeroFallsBackToTheExactStage) {
   EXPECT_EQ(got.intersection.relation, Relation::hit);
   EXPECT_EQ(got.intersection.t, 1.0);
 }
+
+TEST(FpEnvironment, UnmaskedExceptionsFallBackToTheExactStage) {
+  // A parallel ray: the branch-free fast path would divide by d·n = 0 on the way to discarding the
+  // quotient; with division-by-zero and invalid-operation traps enabled that must not happen.
+  const Ray r{{0, 0, 0}, {1, 0, 0}};
+  const Plane p{{0, 0, 5}, {0, 0, 1}};
+  const unsigned saved = _mm_getcsr();
+  _mm_setcsr(saved & ~0x0280u);  // unmask ZM (bit 9) and IM (bit 7)
+  const bool recognized = !floating_point_environment_is_default();
+  const TracedIntersection got = intersect_traced(r, p);
+  _mm_setcsr(saved);
+  EXPECT_TRUE(recognized);
+  EXPECT_EQ(got.relation_stage, Stage::exact);
+  EXPECT_EQ(got.intersection.relation, Relation::parallel);
+}
 #endif
 
 }  // namespace

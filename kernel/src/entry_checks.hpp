@@ -23,11 +23,14 @@ namespace raykernel::detail {
   return (finite_probe == 0) & nonzero_direction & nonzero_normal;
 }
 
-// Round to nearest, and (on x86) neither flush-to-zero nor denormals-are-zero.
+// Round to nearest, no flush-to-zero or denormals-are-zero, and every floating-point exception masked (the
+// fast path computes branch-free, so a query it will not certify may divide by zero or form inf − inf on the
+// way; with traps enabled that would raise SIGFPE instead of falling back).
 [[nodiscard]] inline bool default_floating_point_environment() noexcept {
 #if defined(__x86_64__) || defined(_M_X64)
-  // MXCSR: bits 13–14 rounding control (00 = to nearest), bit 15 flush-to-zero, bit 6 denormals-are-zero.
-  return (_mm_getcsr() & 0xE040u) == 0;
+  // MXCSR bits 6–15: DAZ (6), the six exception masks (7–12, all set = masked), rounding control (13–14,
+  // 00 = to nearest), FTZ (15). The default is 0x1F80; bits 0–5 are sticky status flags, ignored.
+  return (_mm_getcsr() & 0xFFC0u) == 0x1F80u;
 #else
   return std::fegetround() == FE_TONEAREST;
 #endif

@@ -121,9 +121,10 @@ struct ExactIntersection {
 [[nodiscard]] std::string_view to_string(Relation relation) noexcept;  // "hit", "behind", "parallel", "in-plane"
 [[nodiscard]] std::string_view to_string(Stage stage) noexcept;        // "filter", "compensated", ...
 
-// Whether this thread's floating-point environment is the one the certified stages' error bounds assume:
-// round to nearest, and (on x86) neither flush-to-zero nor denormals-are-zero. `intersect` checks it on
-// every call and answers through the exact stage when it is not.
+// Whether this thread's floating-point environment is the one the certified stages assume: round to
+// nearest, and (on x86) neither flush-to-zero nor denormals-are-zero, and no floating-point exception
+// unmasked (trapping). `intersect` checks it on every call and answers through the exact stage when it is
+// not.
 [[nodiscard]] bool floating_point_environment_is_default() noexcept;
 
 // The library's version, "MAJOR.MINOR.PATCH".

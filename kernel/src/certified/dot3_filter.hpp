@@ -37,7 +37,8 @@ template <class V>
 // (bounds::filter_den_relative when a holds exact values, bounds::filter_num_relative when a_i = p_i ⊖ o_i).
 //   Error bound: |s − a·b| ≤ (C ⊗ m) ⊕ 3μ, C as derived in error_bounds.hpp.
 //   Valid range: all finite inputs (subnormal included); uncertain if m overflows.
-//   Certified by: proofs/Filter.v, `den_filter_sound` and `num_filter_sound`.
+//   Certified by: proofs/Filter.v, `den_filter_sound` and `num_filter_sound`; dot3_filter_lanes alone (no
+//   zero flag, the fast path): proofs/Filter.v, `den_filter_lanes_sound` and `num_filter_lanes_sound`.
 // dot3_filter_lanes gives the sign as an integer (Sign's values) per lane; branch-free: the sign of a random
 // query is unpredictable, its certainty almost always predictable. Neither comparison holds when the bound
 // or the value is NaN: uncertain.

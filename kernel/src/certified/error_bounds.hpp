@@ -86,7 +86,9 @@ inline constexpr double compensated_absolute = 0x1p-1070;
 // Valid for all finite inputs; the radius is +inf when anything overflowed. Decides signs unless V is
 // within ~2^-148 of the terms' magnitude (exact zeros go on to stage 3), and lets round_quotient decide t
 // for condition numbers up to ~2^90.
-// Certified by: proofs/Compensated.v, theorem `compensated_dot3_refined_enclosure`.
+// Certified by: proofs/Compensated.v, theorem `compensated_dot3_refined_enclosure` (its bookkeeping is
+// coarser, the TwoSum chain bounded step by step with (1+u)^7: about 283u³·H + u·|lo| + 7η, which these
+// constants also cover).
 inline constexpr double refined_relative = 0x1p-150;
 inline constexpr double refined_low_relative = 0x1p-52;
 inline constexpr double refined_absolute = 0x0.0000000000008p-1022;  // 8μ

@@ -5,14 +5,19 @@
 // (FastQuery::refined_answer, then the full cascade in intersect_certified.cpp).
 //
 // Every operation is the one the full cascade performs for the same query, in the same order: the same
-// stage-1 values, the same stage-2 enclosures, the same round_quotient decisions. The proofs cover it
-// through those routines (proofs/Cascade.v).
+// stage-1 values, the same stage-2 enclosures, the same round_quotient decisions. The proofs model it for
+// one query (the lanes of Lanes8 perform the same IEEE operations, lanes.hpp):
+//   answer:          proofs/Cascade.v, `fast_answer_correct`
+//   refined_answer:  proofs/Cascade.v, `refined_answer_correct`
+//   intersect's use: proofs/Cascade.v, `intersect_fast_correct`
 //
 // No validation is needed before it: a certified sign implies valid input. A NaN or infinite component
 // makes some stage-1 product non-finite (x·0 is NaN for infinite x), hence the magnitude m non-finite, and
 // with it the filter's bound and the stage-2 radius (K·m + U): every certifying comparison is then false.
 // A zero direction or normal makes every product of d·n exactly 0, so neither stage certifies a nonzero
 // sign of den; and neither certifies zero (`exactly_zero` is false here): zeros are the full cascade's.
+// In the model (no inf or NaN): proofs/Cascade.v, `fast_path_den_valid` (a den sign certified by stage 1
+// or either level of stage 2 implies d ≠ 0 and n ≠ 0); the finiteness half: proofs/README.md.
 #pragma once
 
 #include "certified/dot3_compensated.hpp"

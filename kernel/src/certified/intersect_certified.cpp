@@ -9,6 +9,12 @@
 // (certified/ray_plane_stages.hpp) so that nearest_hit can reuse it; the arithmetic and the order of the
 // decisions are the ones the proofs follow.
 //
+// Certified by:
+//   certified_signs, stages 1 and 2 (both levels):  proofs/Cascade.v, `cascade_signs_correct`
+//   certified_quotient, stage 2 (both levels):      proofs/Cascade.v, `cascade_quotient_correct`
+//   certified_quotient, stage 3 enclosures:         proofs/Cascade.v, `expansion_t_correct` (+ Shewchuk, cited)
+//   intersect_certified before full_cascade:        proofs/Cascade.v, `intersect_fast_correct`
+//
 // The file is compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt): the proofs
 // model each + − × / as one correctly rounded operation and each std::fma as one rounding.
 #include "certified/fp_requirements.hpp"

@@ -46,8 +46,8 @@ using QuotientRounding = QuotientRoundingT<double>;
 // round_quotient_decision: RN(num/den), ties to even, given |num − (n.hi + n.lo)| ≤ n.radius and
 // |den − (d.hi + d.lo)| ≤ d.radius with num ≠ 0 and den ≠ 0.
 //   Valid range: |N|, |D|, |q0| ≥ 2^-900 and q finite (checked; otherwise not certain).
-//   Certified by: proofs/RoundQuotient.v, `round_quotient_sound` (which models round_quotient below; the
-//   two compute the same operations, this one without branches and per lane).
+//   Certified by: proofs/RoundQuotient.v, `round_quotient_decision_sound` (the Coq definition computes every
+//   guard and the test, as here, and returns (t, certain); per lane for Lanes8).
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline QuotientRoundingT<V> round_quotient_decision(const EnclosureT<V>& n,
                                                                                          const EnclosureT<V>& d) noexcept {
@@ -77,7 +77,7 @@ template <class V>
 }
 
 // round_quotient: the same decision as an optional: t, or nullopt when not certain.
-//   Certified by: proofs/RoundQuotient.v, `round_quotient_sound`.
+//   Certified by: proofs/RoundQuotient.v, `round_quotient_sound` (a corollary of the above).
 [[nodiscard]] inline std::optional<double> round_quotient(const Enclosure& n, const Enclosure& d) noexcept {
   const QuotientRounding r = round_quotient_decision(n, d);
   if (!r.certain) return std::nullopt;
