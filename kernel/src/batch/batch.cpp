@@ -79,6 +79,19 @@ void run_range(const Job& job, std::size_t begin, std::size_t end, BatchStats& s
                                                                 out_flags - c);
     }
     for (std::size_t i = c; i < c_end; ++i) {
+      // Eight queries certified by the filter and the first compensated level (the common case) at once.
+      constexpr std::uint64_t eight_certified = 0x0101010101010101ULL * certified_by_fast_path;
+      if (i + 8 <= c_end && (i - c) % 8 == 0) {
+        std::uint64_t word;
+        std::memcpy(&word, out_flags + (i - c), sizeof word);
+        if (word == eight_certified) {
+          stats.relation_stage[static_cast<int>(Stage::filter)] += 8;
+          stats.t_stage[static_cast<int>(Stage::compensated)] += 8;
+          if (!job.out.valid.empty()) std::fill_n(job.out.valid.begin() + static_cast<std::ptrdiff_t>(i), 8, true);
+          i += 7;
+          continue;
+        }
+      }
       const std::uint8_t flags = out_flags[i - c];
       if (!job.out.valid.empty()) job.out.valid[i] = true;
       if (flags & certified_by_fast_path) {

@@ -1,4 +1,4 @@
-// The batch fast loop compiled for avx2 (batch/fast_loop.hpp; the flags are set in kernel/CMakeLists.txt).
+// The batch fast loop compiled for AVX2 with FMA (batch/fast_loop.hpp; -march=x86-64-v3 in kernel/CMakeLists.txt).
 #include "batch/fast_loop.hpp"
 
-RAYKERNEL_DEFINE_FAST_LOOPS(avx2)
+RAYKERNEL_DEFINE_FAST_LOOPS(avx2, detail::Lanes4)

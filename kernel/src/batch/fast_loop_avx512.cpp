@@ -1,4 +1,4 @@
-// The batch fast loop compiled for avx512 (batch/fast_loop.hpp; the flags are set in kernel/CMakeLists.txt).
+// The batch fast loop compiled for AVX-512 (batch/fast_loop.hpp; -march=x86-64-v4 in kernel/CMakeLists.txt).
 #include "batch/fast_loop.hpp"
 
-RAYKERNEL_DEFINE_FAST_LOOPS(avx512)
+RAYKERNEL_DEFINE_FAST_LOOPS(avx512, detail::Lanes8)

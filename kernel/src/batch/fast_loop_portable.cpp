@@ -1,4 +1,4 @@
-// The batch fast loop compiled for portable (batch/fast_loop.hpp; the flags are set in kernel/CMakeLists.txt).
+// The batch fast loop for any target, one query at a time (batch/fast_loop.hpp).
 #include "batch/fast_loop.hpp"
 
-RAYKERNEL_DEFINE_FAST_LOOPS(portable)
+RAYKERNEL_DEFINE_FAST_LOOPS(portable, double)

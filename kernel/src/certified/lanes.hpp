@@ -1,6 +1,6 @@
 // Lanes: the number types the certified routines are written for, so that each routine is written once and
-// runs both on one query (`double`) and on eight at a time (`Lanes8`, a GCC/clang vector of 8 doubles) in
-// the batch API. Every operation on Lanes8 is the same IEEE-754 operation applied to each lane separately:
+// runs both on one query (`double`) and on four or eight at a time (`Lanes4`, `Lanes8`: GCC/clang vectors
+// of doubles) in the batch API. Every operation on Lanes8 is the same IEEE-754 operation applied to each lane separately:
 // + − × / are the vector extensions' lane-wise operations, `fma` is one correctly rounded fused
 // multiply-add per lane, `abs` clears the sign bit. So each lane computes exactly the bits the scalar
 // routine computes for that query, and the proofs (which model the scalar operations) cover every lane.
@@ -15,12 +15,16 @@
 
 namespace raykernel::detail {
 
-inline constexpr int lane_count = 8;
+// Vectors of 4 doubles (AVX2: one ymm) and 8 doubles (AVX-512: one zmm), their comparison masks and their
+// bit patterns. (Spelled out: GCC ignores a vector_size that depends on a template parameter.)
+using Lanes4 = double __attribute__((vector_size(4 * sizeof(double))));
+using Mask4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+using Bits4 = std::uint64_t __attribute__((vector_size(4 * sizeof(std::uint64_t))));
 using Lanes8 = double __attribute__((vector_size(8 * sizeof(double))));
 using Mask8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
 using Bits8 = std::uint64_t __attribute__((vector_size(8 * sizeof(std::uint64_t))));
 
-// The mask and integer types of a lane type: bool / std::int64_t for double, Mask8 for Lanes8.
+// The mask and integer types of a lane type: bool / std::int64_t for double, the mask vector for vectors.
 template <class V>
 struct LaneTypes;
 template <>
@@ -28,12 +32,21 @@ struct LaneTypes<double> {
   using mask = bool;
   using integer = std::int64_t;
   using bits = std::uint64_t;
+  static constexpr int width = 1;
+};
+template <>
+struct LaneTypes<Lanes4> {
+  using mask = Mask4;
+  using integer = Mask4;
+  using bits = Bits4;
+  static constexpr int width = 4;
 };
 template <>
 struct LaneTypes<Lanes8> {
   using mask = Mask8;
   using integer = Mask8;
   using bits = Bits8;
+  static constexpr int width = 8;
 };
 template <class V>
 using MaskOf = typename LaneTypes<V>::mask;
@@ -41,6 +54,8 @@ template <class V>
 using IntegerOf = typename LaneTypes<V>::integer;
 template <class V>
 using BitsOf = typename LaneTypes<V>::bits;
+template <class V>
+inline constexpr int width_of = LaneTypes<V>::width;
 
 // ---- double --------------------------------------------------------------------------------------------
 
@@ -66,28 +81,40 @@ using BitsOf = typename LaneTypes<V>::bits;
 [[gnu::always_inline]] inline bool both(bool a, bool b) noexcept { return static_cast<bool>(a & b); }
 [[gnu::always_inline]] inline bool mask_not(bool a) noexcept { return !a; }
 
-// ---- Lanes8 --------------------------------------------------------------------------------------------
+// ---- Lanes4, Lanes8 ---------------------------------------------------------------------------------------
 
-[[gnu::always_inline]] inline Lanes8 broadcast(double x) noexcept { return Lanes8{} + x; }
-[[gnu::always_inline]] inline Lanes8 fma(Lanes8 a, Lanes8 b, Lanes8 c) noexcept {
-  Lanes8 r;
-  for (int i = 0; i < lane_count; ++i) r[i] = __builtin_fma(a[i], b[i], c[i]);  // one vfmadd with FMA units
-  return r;
+#define RAYKERNEL_VECTOR_LANE_OPERATIONS(W)                                                                   \
+  [[gnu::always_inline]] inline Lanes##W fma(Lanes##W a, Lanes##W b, Lanes##W c) noexcept {                   \
+    Lanes##W r;                                                                                                \
+    for (int i = 0; i < W; ++i) r[i] = __builtin_fma(a[i], b[i], c[i]); /* one vfmadd with FMA units */       \
+    return r;                                                                                                  \
+  }                                                                                                            \
+  [[gnu::always_inline]] inline Lanes##W abs(Lanes##W x) noexcept {                                          \
+    return reinterpret_cast<Lanes##W>(reinterpret_cast<Bits##W>(x) & (Bits##W{} + 0x7fffffffffffffffULL));    \
+  }                                                                                                            \
+  /* Each lane takes a's bits where m is true (−1) and b's where it is false (0); bitwise rather than       */ \
+  /* `m ? a : b`, which GCC 12 fails on inside target_clones (an internal error).                            */ \
+  [[gnu::always_inline]] inline Mask##W select(Mask##W m, Mask##W a, Mask##W b) noexcept {                   \
+    return (a & m) | (b & ~m);                                                                                 \
+  }                                                                                                            \
+  [[gnu::always_inline]] inline Lanes##W select(Mask##W m, Lanes##W a, Lanes##W b) noexcept {                \
+    return reinterpret_cast<Lanes##W>(select(m, reinterpret_cast<Mask##W>(a), reinterpret_cast<Mask##W>(b))); \
+  }                                                                                                            \
+  /* A mask (−1/0 per lane) as integers 1/0. */                                                                \
+  [[gnu::always_inline]] inline Mask##W to_integer(Mask##W m) noexcept { return -m; }                        \
+  [[gnu::always_inline]] inline Mask##W both(Mask##W a, Mask##W b) noexcept { return a & b; }                \
+  [[gnu::always_inline]] inline Mask##W mask_not(Mask##W a) noexcept { return ~a; }                          \
+  [[gnu::always_inline]] inline Bits##W to_bits(Lanes##W x) noexcept { return reinterpret_cast<Bits##W>(x); } \
+  [[gnu::always_inline]] inline Lanes##W from_bits(Bits##W b) noexcept { return reinterpret_cast<Lanes##W>(b); }
+
+RAYKERNEL_VECTOR_LANE_OPERATIONS(4)
+RAYKERNEL_VECTOR_LANE_OPERATIONS(8)
+#undef RAYKERNEL_VECTOR_LANE_OPERATIONS
+
+// A lane type filled with one value.
+template <class V>
+[[gnu::always_inline]] inline V broadcast(double x) noexcept {
+  return V{} + x;
 }
-[[gnu::always_inline]] inline Lanes8 abs(Lanes8 x) noexcept {
-  return reinterpret_cast<Lanes8>(reinterpret_cast<Bits8>(x) & (Bits8{} + 0x7fffffffffffffffULL));
-}
-// Each lane takes a's bits where m is true (−1) and b's where it is false (0). Written with bitwise
-// operations rather than `m ? a : b`: GCC 12 fails on the latter inside target_clones (an internal error).
-[[gnu::always_inline]] inline Mask8 select(Mask8 m, Mask8 a, Mask8 b) noexcept { return (a & m) | (b & ~m); }
-[[gnu::always_inline]] inline Lanes8 select(Mask8 m, Lanes8 a, Lanes8 b) noexcept {
-  return reinterpret_cast<Lanes8>(select(m, reinterpret_cast<Mask8>(a), reinterpret_cast<Mask8>(b)));
-}
-// A mask (−1/0 per lane) as integers 1/0.
-[[gnu::always_inline]] inline Mask8 to_integer(Mask8 m) noexcept { return -m; }
-[[gnu::always_inline]] inline Mask8 both(Mask8 a, Mask8 b) noexcept { return a & b; }
-[[gnu::always_inline]] inline Mask8 mask_not(Mask8 a) noexcept { return ~a; }
-[[gnu::always_inline]] inline Bits8 to_bits(Lanes8 x) noexcept { return reinterpret_cast<Bits8>(x); }
-[[gnu::always_inline]] inline Lanes8 from_bits(Bits8 b) noexcept { return reinterpret_cast<Lanes8>(b); }
 
 }  // namespace raykernel::detail

@@ -5,6 +5,7 @@
 #include "certified/lanes.hpp"
 
 #include <cstdint>
+#include <type_traits>
 
 namespace raykernel::detail {
 
@@ -21,8 +22,11 @@ inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::u
   const std::int64_t s = static_cast<std::int64_t>(above) - static_cast<std::int64_t>(below);
   return s + 2 * static_cast<std::int64_t>(s == 0);
 }
-[[nodiscard]] [[gnu::always_inline]] inline Mask8 sign_lanes(Mask8 above, Mask8 below) noexcept {
-  const Mask8 s = below - above;  // masks are −1 where true
+// The same per lane of a vector (masks are −1 where true).
+template <class Mask>
+  requires std::is_same_v<Mask, Mask4> || std::is_same_v<Mask, Mask8>
+[[nodiscard]] [[gnu::always_inline]] inline Mask sign_lanes(Mask above, Mask below) noexcept {
+  const Mask s = below - above;
   return s - 2 * (s == 0);
 }
 
