@@ -1,24 +1,27 @@
 #!/usr/bin/env bash
 # Plots the cost of one ray–plane query against how degenerate it is: queries whose ray makes the angle
 # 2^-k with the plane, k = 0 .. 100, for the naive, certified and exact paths (bench/degeneracy.png).
-#   bench/plot-degeneracy.sh [BUILD_DIR]        (needs gnuplot: apt-get install gnuplot-nox)
+#   bench/plot-degeneracy.sh [BUILD_DIR]        (needs gnuplot-nox and python3)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
 out=$here/degeneracy.png
 data=$(mktemp)
-trap 'rm -f "$data" "$data.csv"' EXIT
+trap 'rm -f "$data" "$data.json"' EXIT
 
 "$build/bin/raykernel_bench" --benchmark_filter='^sweep/' --benchmark_min_time=0.2 \
-  --benchmark_format=csv > "$data.csv" 2> >(grep -v '^\*\*\*WARNING' >&2)
-# CSV: name,iterations,real_time,cpu_time,time_unit,bytes_per_second,items_per_second,...
-# One row per k: k, then ns per query for naive, certified, exact.
-awk -F, '/^"sweep\// {
-    gsub(/"/, "", $1); split($1, part, "/"); path = part[2]; k = part[3];
-    ns[k, path] = 1e9 / $7; ks[k] = 1
-  }
-  END { for (k in ks) printf "%d %g %g %g\n", k, ns[k, "naive"], ns[k, "certified"], ns[k, "exact"] }' \
-  "$data.csv" | sort -n > "$data"
+  --benchmark_format=json > "$data.json" 2> >(grep -v '^\*\*\*WARNING' >&2)
+# One row per k: k, then ns per query for naive, certified, exact (JSON: the CSV reporter cannot mix
+# benchmarks with and without counters).
+python3 - "$data.json" > "$data" <<'PY'
+import json, sys
+ns = {}
+for b in json.load(open(sys.argv[1]))["benchmarks"]:
+    _, path, k = b["name"].split("/")
+    ns.setdefault(int(k), {})[path] = 1e9 / b["items_per_second"]
+for k in sorted(ns):
+    print(k, ns[k]["naive"], ns[k]["certified"], ns[k]["exact"])
+PY
 
 gnuplot <<GNUPLOT
 set terminal pngcairo size 1000,600 font "DejaVu Sans,11"

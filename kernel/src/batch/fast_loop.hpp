@@ -85,7 +85,8 @@ template <class V, bool broadcast_plane>
     const detail::FastAnswer a = detail::FastQuery(o, d, p, n).answer();
     t[i] = a.t;
     relation[i] = a.behind ? Relation::behind : Relation::hit;
-    outcome[i] = static_cast<std::uint8_t>((a.relation_certain & a.t_certain ? unsigned{certified_by_fast_path} : 0u) |
+    const bool certified = a.relation_certain & a.t_certain;
+    outcome[i] = static_cast<std::uint8_t>((certified ? unsigned{certified_by_fast_path} : 0u) |
                                            (a.relation_by_compensated ? unsigned{relation_by_compensated} : 0u));
   }
 }
