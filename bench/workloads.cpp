@@ -98,6 +98,17 @@ std::vector<Query> render_pairs() {
   return out;
 }
 
+// A value built once per key, on first use, under a lock (benchmarks register before they run).
+template <class Key, class Value, class Make>
+const Value& cached(Key key, Make make) {
+  static std::mutex mutex;
+  static std::map<Key, Value> cache;
+  const std::lock_guard lock(mutex);
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, make()).first;
+  return it->second;
+}
+
 }  // namespace
 
 std::string to_string(Workload w) {
@@ -111,11 +122,7 @@ std::string to_string(Workload w) {
 }
 
 const std::vector<Query>& workload(Workload w) {
-  static std::mutex mutex;
-  static std::map<Workload, std::vector<Query>> cache;
-  const std::lock_guard lock(mutex);
-  auto it = cache.find(w);
-  if (it == cache.end()) {
+  return cached<Workload, std::vector<Query>>(w, [w] {
     std::vector<Query> q;
     switch (w) {
       case Workload::random: q = generate(QueryKind::random, 1, workload_size); break;
@@ -124,18 +131,13 @@ const std::vector<Query>& workload(Workload w) {
       case Workload::render: q = render_pairs(); break;
     }
     check(q, to_string(w));
-    it = cache.emplace(w, std::move(q)).first;
-  }
-  return it->second;
+    return q;
+  });
 }
 
 const SoA& workload_soa(Workload w) {
-  static std::mutex mutex;
-  static std::map<Workload, SoA> cache;
   const std::vector<Query>& q = workload(w);
-  const std::lock_guard lock(mutex);
-  auto it = cache.find(w);
-  if (it == cache.end()) {
+  return cached<Workload, SoA>(w, [&q] {
     SoA s;
     for (const Query& x : q) {
       s.ox.push_back(x.ray.origin.x), s.oy.push_back(x.ray.origin.y), s.oz.push_back(x.ray.origin.z);
@@ -143,17 +145,12 @@ const SoA& workload_soa(Workload w) {
       s.px.push_back(x.plane.point.x), s.py.push_back(x.plane.point.y), s.pz.push_back(x.plane.point.z);
       s.nx.push_back(x.plane.normal.x), s.ny.push_back(x.plane.normal.y), s.nz.push_back(x.plane.normal.z);
     }
-    it = cache.emplace(w, std::move(s)).first;
-  }
-  return it->second;
+    return s;
+  });
 }
 
 const NearestWorkload& nearest_workload(std::size_t plane_count) {
-  static std::mutex mutex;
-  static std::map<std::size_t, NearestWorkload> cache;
-  const std::lock_guard lock(mutex);
-  auto it = cache.find(plane_count);
-  if (it == cache.end()) {
+  return cached<std::size_t, NearestWorkload>(plane_count, [plane_count] {
     NearestWorkload w;
     w.rays = demo_camera_rays();
     const std::vector<Plane> base = demo_planes();
@@ -165,22 +162,16 @@ const NearestWorkload& nearest_workload(std::size_t plane_count) {
       p.point = {p.point.x + step * p.normal.x, p.point.y + step * p.normal.y, p.point.z + step * p.normal.z};
       w.planes.push_back(p);
     }
-    it = cache.emplace(plane_count, std::move(w)).first;
-  }
-  return it->second;
+    return w;
+  });
 }
 
 const std::vector<Query>& angle_sweep(int k) {
-  static std::mutex mutex;
-  static std::map<int, std::vector<Query>> cache;
-  const std::lock_guard lock(mutex);
-  auto it = cache.find(k);
-  if (it == cache.end()) {
+  return cached<int, std::vector<Query>>(k, [k] {
     std::vector<Query> q = sweep(k, std::size_t{1} << 16);
     check(q, "angle 2^-" + std::to_string(k));
-    it = cache.emplace(k, std::move(q)).first;
-  }
-  return it->second;
+    return q;
+  });
 }
 
 }  // namespace raykernel::bench

@@ -1,5 +1,6 @@
 // raykernel classify: one ray–plane query per line (CONTRACT §3).
 #include "commands.hpp"
+#include "options.hpp"
 #include "text_input.hpp"
 
 #include <fstream>
@@ -134,22 +135,7 @@ int run_classify(const std::vector<std::string>& args) {
     } else if (a == "--stats") {
       options.stats = true;
     } else if (a.rfind("--path", 0) == 0) {
-      std::string value;
-      if (a.size() > 6 && a[6] == '=') {
-        value = a.substr(7);
-      } else if (a == "--path" && i + 1 < args.size()) {
-        value = args[++i];
-      } else {
-        std::cerr << "raykernel classify: --path needs a value: certified, exact or naive\n";
-        return exit_usage;
-      }
-      if (value == "certified") options.path = Path::certified;
-      else if (value == "exact") options.path = Path::exact;
-      else if (value == "naive") options.path = Path::naive;
-      else {
-        std::cerr << "raykernel classify: unknown path '" << value << "' (certified, exact or naive)\n";
-        return exit_usage;
-      }
+      if (!parse_path_option("classify", args, i, options.path)) return exit_usage;
     } else if (a.size() > 1 && a[0] == '-') {
       std::cerr << "raykernel classify: unknown option '" << a << "' (see raykernel classify --help)\n";
       return exit_usage;
@@ -163,27 +149,11 @@ int run_classify(const std::vector<std::string>& args) {
   }
 
   std::ifstream file_stream;
-  std::istream* in = &std::cin;
-  if (have_file && file != "-") {
-    file_stream.open(file, std::ios::binary);
-    if (!file_stream) {
-      std::cerr << "raykernel classify: cannot open '" << file << "'\n";
-      return exit_usage;
-    }
-    in = &file_stream;
-  }
+  std::istream* in = open_input("classify", "file", have_file ? file : "-", file_stream);
+  if (in == nullptr) return exit_usage;
   ClassifyCounts counts;
   const int status = classify_stream(*in, std::cout, std::cerr, options, counts);
-  std::cout.flush();
-  if (in->bad() || !std::cout) {
-    std::cerr << "raykernel classify: I/O error while " << (in->bad() ? "reading input" : "writing output") << "\n";
-    return exit_usage;
-  }
-  if (options.stats) {
-    std::istringstream lines(describe(counts, options.path));
-    for (std::string l; std::getline(lines, l);) std::cerr << "raykernel: stats: " << l << '\n';
-  }
-  return status;
+  return finish_stream_command("classify", *in, "input", status, options.stats, describe(counts, options.path));
 }
 
 }  // namespace raykernel::cli

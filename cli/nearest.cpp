@@ -1,5 +1,6 @@
 // raykernel nearest: the first plane each ray hits (CONTRACT §4).
 #include "commands.hpp"
+#include "options.hpp"
 #include "text_input.hpp"
 
 #include <raykernel/nearest_hit.hpp>
@@ -183,22 +184,7 @@ int run_nearest(const std::vector<std::string>& args) {
       }
       have_planes = true;
     } else if (a.rfind("--path", 0) == 0) {
-      std::string value;
-      if (a.size() > 6 && a[6] == '=') {
-        value = a.substr(7);
-      } else if (a == "--path" && i + 1 < args.size()) {
-        value = args[++i];
-      } else {
-        std::cerr << "raykernel nearest: --path needs a value: certified, exact or naive\n";
-        return exit_usage;
-      }
-      if (value == "certified") options.path = Path::certified;
-      else if (value == "exact") options.path = Path::exact;
-      else if (value == "naive") options.path = Path::naive;
-      else {
-        std::cerr << "raykernel nearest: unknown path '" << value << "' (certified, exact or naive)\n";
-        return exit_usage;
-      }
+      if (!parse_path_option("nearest", args, i, options.path)) return exit_usage;
     } else if (a.size() > 1 && a[0] == '-') {
       std::cerr << "raykernel nearest: unknown option '" << a << "' (see raykernel nearest --help)\n";
       return exit_usage;
@@ -231,27 +217,11 @@ int run_nearest(const std::vector<std::string>& args) {
   }
 
   std::ifstream rays_stream;
-  std::istream* in = &std::cin;
-  if (have_rays && rays_path != "-") {
-    rays_stream.open(rays_path, std::ios::binary);
-    if (!rays_stream) {
-      std::cerr << "raykernel nearest: cannot open rays file '" << rays_path << "'\n";
-      return exit_usage;
-    }
-    in = &rays_stream;
-  }
+  std::istream* in = open_input("nearest", "rays file", have_rays ? rays_path : "-", rays_stream);
+  if (in == nullptr) return exit_usage;
   NearestCounts counts;
   const int status = nearest_stream(*in, std::cout, std::cerr, planes.planes, options, counts);
-  std::cout.flush();
-  if (in->bad() || !std::cout) {
-    std::cerr << "raykernel nearest: I/O error while " << (in->bad() ? "reading rays" : "writing output") << "\n";
-    return exit_usage;
-  }
-  if (options.stats) {
-    std::istringstream lines(describe(counts, options.path));
-    for (std::string l; std::getline(lines, l);) std::cerr << "raykernel: stats: " << l << '\n';
-  }
-  return status;
+  return finish_stream_command("nearest", *in, "rays", status, options.stats, describe(counts, options.path));
 }
 
 }  // namespace raykernel::cli

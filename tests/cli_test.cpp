@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace raykernel::cli {
 namespace {
@@ -31,7 +32,9 @@ struct CliRun {
 // Runs the binary with a shell command line; stdout and stderr captured separately.
 CliRun run(const std::string& args, const std::string& stdin_text = "") {
   const std::string dir = ::testing::TempDir();
-  const std::string in = dir + "/cli_in.txt", err = dir + "/cli_err.txt";
+  // Per process: ctest runs each test case as its own process, in parallel.
+  const std::string tag = std::to_string(getpid());
+  const std::string in = dir + "/cli_in_" + tag + ".txt", err = dir + "/cli_err_" + tag + ".txt";
   {
     std::ofstream f(in, std::ios::binary);
     f << stdin_text;

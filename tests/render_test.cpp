@@ -9,6 +9,7 @@
 #include "support/answer_lines.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -29,7 +30,10 @@ struct CliRun {
   std::string out, err;
 };
 
-std::string temp_path(const std::string& name) { return ::testing::TempDir() + "/raykernel_render_test_" + name; }
+// Per process: ctest runs each test case as its own process, in parallel.
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "/raykernel_render_test_" + std::to_string(getpid()) + "_" + name;
+}
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);

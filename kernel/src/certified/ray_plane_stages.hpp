@@ -123,21 +123,26 @@ class RayPlaneStages {
   }
 
  private:
-  void compute_compensated() noexcept {
-    if (den2_) return;
+  // Both levels of stage 2 take the same arguments: den's exact inputs (no low parts), and num's rounded
+  // differences with their exact TwoDiff errors.
+  template <class Level>
+  void compute_stage2(std::optional<Enclosure>& den, std::optional<Enclosure>& num, Level level) noexcept {
+    if (den) return;
     constexpr double exact_low_part[3] = {0, 0, 0};
     double diff_low_part[3];
     for (int i = 0; i < 3; ++i) diff_low_part[i] = two_diff(q_.p[i], q_.o[i]).lo;
-    den2_ = compensated_dot3(q_.d, exact_low_part, q_.n, den1_);
-    num2_ = compensated_dot3(q_.diff, diff_low_part, q_.n, num1_);
+    den = level(q_.d, exact_low_part, q_.n, den1_);
+    num = level(q_.diff, diff_low_part, q_.n, num1_);
+  }
+  void compute_compensated() noexcept {
+    compute_stage2(den2_, num2_, [](const double* a, const double* alpha, const double* b, const Dot3Rounded& s1) {
+      return compensated_dot3(a, alpha, b, s1);
+    });
   }
   void compute_refined() noexcept {
-    if (den2r_) return;
-    constexpr double exact_low_part[3] = {0, 0, 0};
-    double diff_low_part[3];
-    for (int i = 0; i < 3; ++i) diff_low_part[i] = two_diff(q_.p[i], q_.o[i]).lo;
-    den2r_ = compensated_dot3_refined(q_.d, exact_low_part, q_.n, den1_);
-    num2r_ = compensated_dot3_refined(q_.diff, diff_low_part, q_.n, num1_);
+    compute_stage2(den2r_, num2r_, [](const double* a, const double* alpha, const double* b, const Dot3Rounded& s1) {
+      return compensated_dot3_refined(a, alpha, b, s1);
+    });
   }
 
   Ray ray_;

@@ -1,0 +1,31 @@
+// Command-line pieces shared by the stream commands (classify, nearest): the --path option, opening an
+// input file or standard input, and the end of a run (I/O errors, --stats).
+#pragma once
+
+#include "commands.hpp"
+
+#include <fstream>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace raykernel::cli {
+
+// Reads `--path=X` or `--path X` at args[i] (advancing i past X in the second form) into `path`. On a
+// missing or unknown value, prints "raykernel COMMAND: ..." on stderr and returns false.
+[[nodiscard]] bool parse_path_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
+                                     Path& path);
+
+// The stream to read: standard input for "" or "-", else the file (opened into `storage`). Prints
+// "raykernel COMMAND: cannot open WHAT 'PATH'" and returns nullptr when the file cannot be opened.
+[[nodiscard]] std::istream* open_input(std::string_view command, std::string_view what, const std::string& path,
+                                       std::ifstream& storage);
+
+// Ends a stream command: flushes stdout; an input or output error (a directory given as a file, a closed
+// pipe) is a usage/I-O error (exit 2); otherwise prints the --stats text line by line as
+// "raykernel: stats: ..." when asked, and returns `status`.
+[[nodiscard]] int finish_stream_command(std::string_view command, std::istream& in, std::string_view input_name,
+                                        int status, bool stats, const std::string& stats_text);
+
+}  // namespace raykernel::cli
