@@ -62,8 +62,7 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
     }
     if (!reason.empty()) {
       ++counts.invalid;
-      out << "invalid " << reason << '\n';
-      err << "raykernel: line " << line_number << ": " << reason << '\n';
+      report_invalid_line(out, err, line_number, reason);
       continue;
     }
 
@@ -102,16 +101,8 @@ std::string describe(const ClassifyCounts& c, Path path) {
   s << c.lines_answered << " queries: " << c.relation[0] << " hit, " << c.relation[1] << " behind, "
     << c.relation[2] << " parallel, " << c.relation[3] << " in-plane, " << c.invalid << " invalid\n";
   if (path == Path::certified) {
-    auto stages = [&](const std::uint64_t* n) {
-      std::string out;
-      for (int k = 0; k < stage_count; ++k) {
-        if (k) out += ", ";
-        out += std::string(to_string(static_cast<Stage>(k))) + " " + std::to_string(n[k]);
-      }
-      return out;
-    };
-    s << "relation decided by: " << stages(c.relation_stage) << "\n";
-    s << "t (hit, behind) decided by: " << stages(c.t_stage) << "\n";
+    s << "relation decided by: " << stage_counts_text(c.relation_stage) << "\n";
+    s << "t (hit, behind) decided by: " << stage_counts_text(c.t_stage) << "\n";
   } else {
     s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
   }

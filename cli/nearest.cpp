@@ -93,8 +93,7 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
     }
     if (!reason.empty()) {
       ++counts.invalid;
-      out << "invalid " << reason << '\n';
-      err << "raykernel: line " << line_number << ": " << reason << '\n';
+      report_invalid_line(out, err, line_number, reason);
       continue;
     }
 
@@ -135,17 +134,9 @@ std::string describe(const NearestCounts& c, Path path) {
   std::ostringstream s;
   s << c.lines_answered << " rays: " << c.hits << " hit, " << c.misses << " miss, " << c.invalid << " invalid\n";
   if (path == Path::certified) {
-    auto stages = [&](const std::uint64_t* n) {
-      std::string out;
-      for (int k = 0; k < stage_count; ++k) {
-        if (k) out += ", ";
-        out += std::string(to_string(static_cast<Stage>(k))) + " " + std::to_string(n[k]);
-      }
-      return out;
-    };
-    s << "relations (slowest stage per ray): " << stages(c.relation_stage) << "\n";
-    s << "comparisons of two t: " << stages(c.comparison_stage) << "\n";
-    s << "t of the nearest plane: " << stages(c.t_stage) << "\n";
+    s << "relations (slowest stage per ray): " << stage_counts_text(c.relation_stage) << "\n";
+    s << "comparisons of two t: " << stage_counts_text(c.comparison_stage) << "\n";
+    s << "t of the nearest plane: " << stage_counts_text(c.t_stage) << "\n";
   } else {
     s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
   }

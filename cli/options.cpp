@@ -52,4 +52,18 @@ int finish_stream_command(std::string_view command, std::istream& in, std::strin
   return status;
 }
 
+std::string stage_counts_text(const std::uint64_t* counts) {
+  std::string out;
+  for (int k = 0; k < stage_count; ++k) {
+    if (k) out += ", ";
+    out += std::string(to_string(static_cast<Stage>(k))) + " " + std::to_string(counts[k]);
+  }
+  return out;
+}
+
+void report_invalid_line(std::ostream& out, std::ostream& err, std::uint64_t line_number, const std::string& reason) {
+  out << "invalid " << reason << '\n';
+  err << "raykernel: line " << line_number << ": " << reason << '\n';
+}
+
 }  // namespace raykernel::cli

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 
+#include <cstdint>
 #include <fstream>
 #include <iosfwd>
 #include <string>
@@ -27,5 +28,11 @@ namespace raykernel::cli {
 // "raykernel: stats: ..." when asked, and returns `status`.
 [[nodiscard]] int finish_stream_command(std::string_view command, std::istream& in, std::string_view input_name,
                                         int status, bool stats, const std::string& stats_text);
+
+// "filter N, compensated N, expansion N, exact N" for counts indexed by raykernel::Stage.
+[[nodiscard]] std::string stage_counts_text(const std::uint64_t* counts);
+
+// An invalid query line (CONTRACT §3): "invalid REASON" on `out`, "raykernel: line N: REASON" on `err`.
+void report_invalid_line(std::ostream& out, std::ostream& err, std::uint64_t line_number, const std::string& reason);
 
 }  // namespace raykernel::cli
