@@ -253,13 +253,44 @@ NearPlaneWindow read_window(const json& v, const std::string& p, double near) {
   return w;
 }
 
+// Every ray of the image must be valid input (finite). Each coordinate of a ray's origin — the window point
+// l + (i + s)/m·(r − l), then its world image — and of the window point a perspective direction normalizes is
+// a monotone function of the sample position (sums, and products by constants, each rounded monotonically),
+// so it is finite everywhere when it is finite at the image's four corners.
+void check_corner_rays(const Camera& camera, const std::string& p) {
+  const double last = std::nextafter(1.0, 0.0);
+  const std::uint32_t m = camera.image.width - 1, n = camera.image.height - 1;
+  const struct { std::uint32_t i, j; double x, y; } corners[] = {{0, 0, 0, 0}, {m, 0, last, 0}, {0, n, 0, last}, {m, n, last, last}};
+  for (const auto& c : corners) {
+    try {
+      (void)camera.ray(c.i, c.j, {c.x, c.y});
+    } catch (const invalid_input& e) {
+      fail(p, std::string("the image's rays are not finite (") + e.what() + ")");
+    }
+  }
+}
+
+Camera read_camera_unchecked(const json& v, const std::string& p, ImageSize image);
+
+// The camera of a scene, with every ray of its image checked to be valid input (error under `p`).
 Camera read_camera(const json& v, const std::string& p, ImageSize image) {
+  const Camera camera = read_camera_unchecked(v, p, image);
+  check_corner_rays(camera, p);
+  return camera;
+}
+
+Camera read_camera_unchecked(const json& v, const std::string& p, ImageSize image) {
   expect_object(v, p);
   only_fields(v, p, {"eye", "target", "up", "perspective", "orthographic"});
   const Vec3 eye = vec3(required_field(v, p, "eye"), child(p, "eye"));
   const Vec3 target = vec3(required_field(v, p, "target"), child(p, "target"));
   const Vec3 up = nonzero_vec3(required_field(v, p, "up"), child(p, "up"));
   if (eye.x == target.x && eye.y == target.y && eye.z == target.z) fail(child(p, "target"), "same point as eye");
+  // The view direction target − eye must be a finite vector (camera_to_world normalizes it); a target so far
+  // from the eye that the difference overflows is the target's fault, not the up vector's.
+  const double view[3] = {target.x - eye.x, target.y - eye.y, target.z - eye.z};
+  for (double c : view)
+    if (!std::isfinite(c)) fail(child(p, "target"), "too far from eye: target − eye overflows");
   Transform to_world;
   try {
     to_world = camera_to_world(eye, target, up);

@@ -4,21 +4,25 @@
 # sanitizer report, leak, timeout or disagreement; prints execs/s and the fraction of executions each
 # certified stage decided. .ci/run calls it after the tests.
 #
-#   fuzz/ci-run-fuzzers.sh                        # CI: 90 s per harness
+#   fuzz/ci-run-fuzzers.sh                        # CI: 60 s per harness (6 harnesses: about 7 min in all)
 #   FUZZ_SECONDS=3600 fuzz/ci-run-fuzzers.sh      # longer, locally
-#   FUZZ_HARNESSES="classify" fuzz/ci-run-fuzzers.sh
+#   FUZZ_HARNESSES="classify nearest" fuzz/ci-run-fuzzers.sh
 #
-# Environment: FUZZ_SECONDS (per harness, default 90), FUZZ_HARNESSES (default: all in the manifest),
-# FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default 2), FUZZ_EXTRA_ARGS (more libFuzzer flags),
-# FUZZ_GCC_BUILD_DIR (default build, the README's build): when it has the replay programs, every input the
-# fuzzers saved is replayed with them too, i.e. through the GCC-compiled kernel (its AVX2/AVX-512 batch loops).
+# The harnesses are those fuzz/CMakeLists.txt registers (the manifest $FUZZ_BUILD_DIR/fuzz/harnesses.txt):
+# classify, batch, cli, nearest, nearest_cli, scene.
+#
+# Environment: FUZZ_SECONDS (per harness, default 60: CI's budget is the whole .ci/run in 30 min on 2 cores),
+# FUZZ_HARNESSES (default: all in the manifest), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default
+# 2), FUZZ_EXTRA_ARGS (more libFuzzer flags), FUZZ_GCC_BUILD_DIR (default build, the README's build): when it
+# has the replay programs, every input the fuzzers saved is replayed with them too, i.e. through the
+# GCC-compiled kernel (its AVX2/AVX-512 batch loops).
 # New inputs go to $FUZZ_BUILD_DIR/fuzz/work/<harness>/ (never into the source tree); failing inputs to
 # $FUZZ_BUILD_DIR/fuzz/artifacts/<harness>/; full logs to $FUZZ_BUILD_DIR/fuzz/logs/. fuzz/README.md says
 # how to reproduce a failure and turn it into a regression input.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-seconds=${FUZZ_SECONDS:-90}
+seconds=${FUZZ_SECONDS:-60}
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 jobs=${FUZZ_BUILD_JOBS:-2}
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
@@ -78,13 +82,14 @@ for i in "${!names[@]}"; do
   "$out/fuzz_$name" "$work" "${corpora[i]}" ${options[i]} ${FUZZ_EXTRA_ARGS:-} \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2560 -print_final_stats=1 \
     -artifact_prefix="$artifacts/" >"$log" 2>&1 || status=$?
-  # The log without libFuzzer's per-input progress lines and its recommended dictionary.
-  grep -v -E '^#[0-9]+.*(NEW|REDUCE|pulse|RELOAD) ' "$log" | sed '/Recommended dictionary/,/End of recommended dictionary/d'
+  # The log without libFuzzer's per-input progress lines (and the new functions they reached) and its
+  # recommended dictionary.
+  grep -v -E '^#[0-9]+.*(NEW|REDUCE|pulse|RELOAD) |^[[:space:]]+NEW_FUNC' "$log" | sed '/Recommended dictionary/,/End of recommended dictionary/d'
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   if [ "$status" -ne 0 ]; then
     failed+=("$name")
-    summary+=("$(printf '%-10s FAILED (exit %s) after %s executions; log %s' "$name" "$status" "${execs:-?}" "$log")")
+    summary+=("$(printf '%-12s FAILED (exit %s) after %s executions; log %s' "$name" "$status" "${execs:-?}" "$log")")
     echo
     echo "fuzz_$name FAILED. Inputs it saved:"
     ls -l "$artifacts" || true
@@ -94,7 +99,7 @@ for i in "${!names[@]}"; do
     done
     echo "  then keep it: cp <input> fuzz/corpus/$name/regression-<what-it-broke>   (fuzz/README.md)"
   else
-    summary+=("$(printf '%-10s ok: %s executions in %s s, %s execs/s' "$name" "${execs:-?}" "$seconds" "${rate:-?}")")
+    summary+=("$(printf '%-12s ok: %s executions in %s s, %s execs/s' "$name" "${execs:-?}" "$seconds" "${rate:-?}")")
   fi
   # The same inputs through the GCC build, when there is one.
   gcc_replay="$gcc_build/fuzz/fuzz_${name}_replay"
@@ -104,7 +109,7 @@ for i in "${!names[@]}"; do
     if ! "$gcc_replay" "$work" "${corpora[i]}" >"$out/logs/$name.gcc-replay.log" 2>&1; then
       cat "$out/logs/$name.gcc-replay.log"
       failed+=("$name(gcc-replay)")
-      summary+=("$(printf '%-10s FAILED in the GCC replay; log %s' "$name" "$out/logs/$name.gcc-replay.log")")
+      summary+=("$(printf '%-12s FAILED in the GCC replay; log %s' "$name" "$out/logs/$name.gcc-replay.log")")
     fi
   fi
 done

@@ -16,6 +16,7 @@
 //     exact path and the CGAL oracle; t is the oracle's exact t rounded by round_rational_to_double, and
 //     that rounding is verified independently (exact comparisons with the neighbouring doubles); CGAL's
 //     do_intersect agrees; the stages reported are consistent.
+#include "fuzz_exact.hpp"
 #include "fuzz_support.hpp"
 
 #include <raykernel/raykernel.hpp>
@@ -46,7 +47,10 @@ using raykernel::Plane;
 using raykernel::Ray;
 using raykernel::Relation;
 using raykernel::Vec3;
+using raykernel::fuzz::bits;
 using raykernel::fuzz::check;
+using raykernel::fuzz::exact_of;
+using raykernel::fuzz::is_round_to_nearest_even;
 using K = CGAL::Exact_predicates_exact_constructions_kernel;
 
 // ---- The oracle ------------------------------------------------------------------------------------------
@@ -69,8 +73,6 @@ mpq_class to_mpq(const T& x) {
     return q;
   }
 }
-
-mpq_class exact_of(double x) { return mpq_class(x); }  // exact: mpq_set_d in round-to-nearest
 
 struct OracleAnswer {
   Relation relation;
@@ -131,50 +133,10 @@ OracleAnswer cgal_oracle(const Ray& r, const Plane& pl) {
   return {Relation::behind, std::move(t)};
 }
 
-// ---- Checks independent of the kernel's rounding ---------------------------------------------------------
+// ---- Checks independent of the kernel: validity from the bits, rounding verified in rationals ------------
 
-std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
-bool finite_by_bits(double x) { return ((bits(x) >> 52) & 0x7ff) != 0x7ff; }
-bool zero_by_bits(double x) { return (bits(x) << 1) == 0; }
-bool zero_vector_by_bits(const Vec3& v) { return zero_by_bits(v.x) && zero_by_bits(v.y) && zero_by_bits(v.z); }
-
-// CONTRACT §1's invalid input, decided from the bit patterns alone.
 bool invalid_by_bits(const Ray& r, const Plane& p) {
-  for (const Vec3& v : {r.origin, r.direction, p.point, p.normal}) {
-    if (!finite_by_bits(v.x) || !finite_by_bits(v.y) || !finite_by_bits(v.z)) return true;
-  }
-  return zero_vector_by_bits(r.direction) || zero_vector_by_bits(p.normal);
-}
-
-mpq_class power_of_two(int e) {
-  mpq_class q(1);
-  if (e >= 0)
-    q.get_num() <<= static_cast<mp_bitcnt_t>(e);
-  else
-    q.get_den() <<= static_cast<mp_bitcnt_t>(-e);
-  return q;
-}
-
-// Whether r is q rounded to nearest binary64, ties to even, with gradual underflow, overflow to ±inf and the
-// sign kept when a nonzero q rounds to zero (CONTRACT §1). Verified, not recomputed: q must lie in r's
-// rounding interval, whose ends (the midpoints to r's neighbours) belong to it only when r's significand is
-// even. Above DBL_MAX the neighbour is 2^1024 (IEEE 754 §4.3.1: overflow at 2^1024 − 2^970 and beyond).
-bool is_round_to_nearest_even(const mpq_class& q, double r) {
-  if (std::isnan(r)) return false;
-  const int s = sgn(q);
-  if (s == 0) return bits(r) == 0;  // +0
-  if (std::signbit(r) != (s < 0)) return false;
-  const mpq_class a = abs(q);
-  const double m = std::fabs(r);
-  if (std::isinf(m)) return a >= power_of_two(1024) - power_of_two(970);
-  const mpq_class mq = exact_of(m);
-  const mpq_class up = m == DBL_MAX ? power_of_two(1024) : exact_of(std::nextafter(m, HUGE_VAL));
-  const mpq_class hi_edge = (mq + up) / 2;
-  const mpq_class lo_edge = m == 0 ? mpq_class(0) : (mq + exact_of(std::nextafter(m, 0.0))) / 2;
-  const bool even = (bits(m) & 1) == 0;
-  if (a > hi_edge || a < lo_edge) return false;
-  if ((a == hi_edge || a == lo_edge) && !even) return false;
-  return true;
+  return raykernel::fuzz::ray_invalid_by_bits(r) || raykernel::fuzz::plane_invalid_by_bits(p);
 }
 
 std::string relation_name(Relation r) { return std::string(raykernel::to_string(r)); }

@@ -17,14 +17,15 @@
 //     only has to answer every line;
 //   - the exit status is 0 when every line was valid, 1 otherwise; the counts add up.
 #include "fuzz_support.hpp"
+#include "fuzz_text.hpp"
 
 #include "commands.hpp"
 #include "text_input.hpp"
 
 #include <raykernel/raykernel.hpp>
 
+#include <array>
 #include <bit>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -43,78 +44,24 @@ namespace cli = raykernel::cli;
 std::string_view current_text;
 
 std::string describe_current() {
-  std::string s = "input text (" + std::to_string(current_text.size()) + " bytes, C-escaped):\n\"";
-  for (unsigned char c : current_text) {
-    if (c == '\n') {
-      s += "\\n\"\n\"";
-    } else if (c == '\\' || c == '"') {
-      s += '\\';
-      s += static_cast<char>(c);
-    } else if (c < 0x20 || c >= 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x\"\"", c);
-      s += buf;
-    } else {
-      s += static_cast<char>(c);
-    }
-  }
-  return s + "\"";
+  return "input text (" + std::to_string(current_text.size()) + " bytes, C-escaped):\n" +
+         raykernel::fuzz::c_escaped(current_text);
 }
 
-// The lines std::getline yields: split at '\n', the last piece only when it is not empty.
-std::vector<std::string_view> getline_lines(std::string_view text) {
-  std::vector<std::string_view> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    const std::size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) {
-      lines.push_back(text.substr(start));
-      break;
-    }
-    lines.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return lines;
-}
-
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-std::vector<std::string_view> tokens_of(std::string_view line) {
-  std::vector<std::string_view> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && is_blank(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_blank(line[i])) ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
-  }
-  return tokens;
-}
+using raykernel::fuzz::getline_lines;
+using raykernel::fuzz::tokens_of;
 
 // What CONTRACT §3 says a line is, by the harness's own reading.
 struct ExpectedLine {
   bool skipped = false;
   bool valid = false;
-  double value[12] = {};
+  std::array<double, 12> value{};
 };
 
 ExpectedLine expected_line(std::string_view line) {
-  ExpectedLine e;
-  const std::vector<std::string_view> tokens = tokens_of(line);
-  if (tokens.empty() || tokens[0][0] == '#') {
-    e.skipped = true;
-    return e;
-  }
-  if (tokens.size() != 12) return e;
-  for (std::size_t k = 0; k < 12; ++k) {
-    const std::string token(tokens[k]);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(token.c_str(), &end);
-    const bool overflowed = errno == ERANGE && std::isinf(v);
-    if (end != token.c_str() + token.size() || !std::isfinite(v) || overflowed) return e;
-    e.value[k] = v;
-  }
+  const raykernel::fuzz::ExpectedNumbers numbers = raykernel::fuzz::expected_numbers(line, 12);
+  ExpectedLine e{numbers.skipped, false, numbers.value};
+  if (!numbers.numbers) return e;
   auto zero = [](double a, double b, double c) { return a == 0 && b == 0 && c == 0; };
   e.valid = !zero(e.value[3], e.value[4], e.value[5]) && !zero(e.value[9], e.value[10], e.value[11]);
   return e;
@@ -183,7 +130,7 @@ void check_run(std::string_view text, const std::vector<std::string_view>& lines
     }
     ++valid;
     check(parsed.status == cli::LineStatus::numbers, [&] { return at("a valid line parses as numbers"); });
-    const double* v = expected.value;
+    const double* v = expected.value.data();
     const raykernel::Ray ray{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
     const raykernel::Plane plane{{v[6], v[7], v[8]}, {v[9], v[10], v[11]}};
     const std::vector<std::string_view> words = tokens_of(answer);

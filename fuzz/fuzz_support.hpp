@@ -10,6 +10,7 @@
 #include <raykernel/raykernel.hpp>
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -43,6 +44,28 @@ inline void check(bool condition, What&& what) {
 [[nodiscard]] std::string hex(double x);
 // The 64-bit pattern of a double, as 16 hex digits.
 [[nodiscard]] std::string bits_of(double x);
+
+// ---------------------------------------------------------------------------------------------------------
+// CONTRACT §1's invalid input, decided from the bit patterns alone (no floating-point comparison), so that a
+// harness's idea of validity shares nothing with the kernel's.
+
+[[nodiscard]] inline std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+[[nodiscard]] inline bool finite_by_bits(double x) { return ((bits(x) >> 52) & 0x7ff) != 0x7ff; }
+[[nodiscard]] inline bool zero_by_bits(double x) { return (bits(x) << 1) == 0; }  // +0 or -0
+[[nodiscard]] inline bool finite_vector_by_bits(const Vec3& v) {
+  return finite_by_bits(v.x) && finite_by_bits(v.y) && finite_by_bits(v.z);
+}
+[[nodiscard]] inline bool zero_vector_by_bits(const Vec3& v) {
+  return zero_by_bits(v.x) && zero_by_bits(v.y) && zero_by_bits(v.z);
+}
+// A non-finite component, or a zero direction.
+[[nodiscard]] inline bool ray_invalid_by_bits(const Ray& r) {
+  return !finite_vector_by_bits(r.origin) || !finite_vector_by_bits(r.direction) || zero_vector_by_bits(r.direction);
+}
+// A non-finite component, or a zero normal.
+[[nodiscard]] inline bool plane_invalid_by_bits(const Plane& p) {
+  return !finite_vector_by_bits(p.point) || !finite_vector_by_bits(p.normal) || zero_vector_by_bits(p.normal);
+}
 
 // ---------------------------------------------------------------------------------------------------------
 // Statistics.

@@ -282,6 +282,41 @@ TEST(Scene, ErrorsNameTheJsonPointerAndTheReason) {
             "/planes/0/checker/u_axis: parallel to the plane's normal");
 }
 
+// Regressions found by the scene fuzzer (fuzz/corpus/scene/regression-*): cameras whose image rays overflow
+// or whose window underflows to nothing were accepted, and the render then failed without a pointer. Each
+// is now rejected under /camera. Hand-derived: right − left = 2e308 overflows; tan(89.5°)·1e307 ≈ 1.1e309
+// overflows; tan(0.5°)·5e-324 rounds to 0 (an empty window); eye x + window x = 1.7e308 + 1e308 overflows.
+TEST(SceneRegression, CameraWhoseImageRaysAreNotFiniteIsRejectedUnderCamera) {
+  const char* cameras[] = {
+      R"("orthographic": {"window": {"left": -1e308, "right": 1e308, "bottom": -1, "top": 1}})",
+      R"("perspective": {"fov_degrees": 179, "near": 1e307})",
+      R"("perspective": {"fov_degrees": 1, "near": 5e-324})",
+  };
+  for (const char* camera : cameras) {
+    const std::string text = std::string(R"({"image": {"width": 1, "height": 1}, "camera": {"eye": [0, 0, 0], )") +
+                             R"("target": [0, 0, -1], "up": [0, 1, 0], )" + camera + R"(}, "planes": []})";
+    const SceneParse s = parse_scene(text);
+    ASSERT_FALSE(s.scene.has_value()) << camera;
+    EXPECT_EQ(s.error.pointer.rfind("/camera", 0), 0u) << camera << ": " << s.error.str();
+  }
+  const SceneParse far = parse_scene(
+      R"({"image": {"width": 1, "height": 1}, "camera": {"eye": [1.7e308, 0, 0], "target": [1.7e308, 0, -1], )"
+      R"("up": [0, 1, 0], "orthographic": {"window": {"left": 1e308, "right": 1.1e308, "bottom": -1, "top": 1}}},)"
+      R"( "planes": []})");
+  ASSERT_FALSE(far.scene.has_value());
+  EXPECT_EQ(far.error.pointer, "/camera") << far.error.str();
+}
+
+TEST(SceneRegression, TargetTooFarFromTheEyeIsTheTargetsFault) {
+  // target − eye = −1e308 − 1e308 overflows: reported at /camera/target, not as an up vector problem.
+  const SceneParse s = parse_scene(
+      R"({"image": {"width": 1, "height": 1}, "camera": {"eye": [1e308, 0, 0], "target": [-1e308, 0, 0], )"
+      R"("up": [0, 1, 0], "perspective": {"fov_degrees": 60, "near": 0.1}}, "planes": []})");
+  ASSERT_FALSE(s.scene.has_value());
+  EXPECT_EQ(s.error.pointer, "/camera/target");
+  EXPECT_NE(s.error.message.find("overflows"), std::string::npos) << s.error.str();
+}
+
 TEST(Scene, NonFiniteNumbersAreLocated) {
   // JSON has no NaN or infinity; 1e999 overflows the double range, which nlohmann reports without a
   // location: the scene parser adds the pointer and the line and column.
