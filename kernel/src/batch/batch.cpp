@@ -85,8 +85,8 @@ void run_range(const Job& job, std::size_t begin, std::size_t end, BatchStats& s
         std::uint64_t word;
         std::memcpy(&word, out_flags + (i - c), sizeof word);
         if (word == eight_certified) {
-          stats.relation_stage[static_cast<int>(Stage::filter)] += 8;
-          stats.t_stage[static_cast<int>(Stage::compensated)] += 8;
+          stats.relation_stage[static_cast<std::size_t>(Stage::filter)] += 8;
+          stats.t_stage[static_cast<std::size_t>(Stage::compensated)] += 8;
           if (!job.out.valid.empty()) std::fill_n(job.out.valid.begin() + static_cast<std::ptrdiff_t>(i), 8, true);
           i += 7;
           continue;
@@ -95,8 +95,8 @@ void run_range(const Job& job, std::size_t begin, std::size_t end, BatchStats& s
       const std::uint8_t flags = out_flags[i - c];
       if (!job.out.valid.empty()) job.out.valid[i] = true;
       if (flags & certified_by_fast_path) {
-        ++stats.relation_stage[static_cast<int>((flags & relation_by_compensated) ? Stage::compensated : Stage::filter)];
-        ++stats.t_stage[static_cast<int>(Stage::compensated)];
+        ++stats.relation_stage[static_cast<std::size_t>((flags & relation_by_compensated) ? Stage::compensated : Stage::filter)];
+        ++stats.t_stage[static_cast<std::size_t>(Stage::compensated)];
         continue;
       }
       const std::size_t k = job.broadcast_plane ? 0 : i;
@@ -108,9 +108,9 @@ void run_range(const Job& job, std::size_t begin, std::size_t end, BatchStats& s
         const TracedIntersection a = intersect_traced(ray, plane);
         relation[i] = a.intersection.relation;
         t[i] = a.intersection.t;
-        ++stats.relation_stage[static_cast<int>(a.relation_stage)];
+        ++stats.relation_stage[static_cast<std::size_t>(a.relation_stage)];
         if (a.intersection.relation == Relation::hit || a.intersection.relation == Relation::behind)
-          ++stats.t_stage[static_cast<int>(a.t_stage)];
+          ++stats.t_stage[static_cast<std::size_t>(a.t_stage)];
       } catch (const invalid_input& e) {
         relation[i] = Relation::in_plane;
         t[i] = std::numeric_limits<double>::quiet_NaN();
@@ -224,8 +224,8 @@ void nearest_hit_batch(const RayBatch& rays, std::span<const Plane> planes, std:
       }
       const TracedNearestHit traced = nearest_hit_traced(ray, planes);
       out[i] = traced.hit;
-      ++stats.relation_stage[static_cast<int>(traced.relation_stage)];
-      if (traced.hit) ++stats.t_stage[static_cast<int>(traced.t_stage)];
+      ++stats.relation_stage[static_cast<std::size_t>(traced.relation_stage)];
+      if (traced.hit) ++stats.t_stage[static_cast<std::size_t>(traced.t_stage)];
     }
   });
 }
