@@ -104,7 +104,7 @@ std::string describe(const ClassifyCounts& c, Path path) {
     s << "relation decided by: " << stage_counts_text(c.relation_stage) << "\n";
     s << "t (hit, behind) decided by: " << stage_counts_text(c.t_stage) << "\n";
   } else {
-    s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
+    s << no_stages_text(path);
   }
   return s.str();
 }
@@ -119,14 +119,9 @@ int run_classify(const std::vector<std::string>& args) {
       std::cout << classify_help;
       return exit_ok;
     }
-    if (a == "--exact-t") {
-      options.exact_t = true;
-    } else if (a == "--hex") {
-      options.hex = true;
-    } else if (a == "--stats") {
-      options.stats = true;
-    } else if (a.rfind("--path", 0) == 0) {
-      if (!parse_path_option("classify", args, i, options.path)) return exit_usage;
+    if (const SharedOption shared = parse_shared_option("classify", args, i, options);
+        shared != SharedOption::not_shared) {
+      if (shared == SharedOption::usage_error) return exit_usage;
     } else if (a.size() > 1 && a[0] == '-') {
       std::cerr << "raykernel classify: unknown option '" << a << "' (see raykernel classify --help)\n";
       return exit_usage;

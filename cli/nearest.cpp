@@ -138,7 +138,7 @@ std::string describe(const NearestCounts& c, Path path) {
     s << "comparisons of two t: " << stage_counts_text(c.comparison_stage) << "\n";
     s << "t of the nearest plane: " << stage_counts_text(c.t_stage) << "\n";
   } else {
-    s << "path " << (path == Path::exact ? "exact" : "naive") << ": no stages\n";
+    s << no_stages_text(path);
   }
   return s.str();
 }
@@ -153,12 +153,9 @@ int run_nearest(const std::vector<std::string>& args) {
       std::cout << nearest_help;
       return exit_ok;
     }
-    if (a == "--exact-t") {
-      options.exact_t = true;
-    } else if (a == "--hex") {
-      options.hex = true;
-    } else if (a == "--stats") {
-      options.stats = true;
+    if (const SharedOption shared = parse_shared_option("nearest", args, i, options);
+        shared != SharedOption::not_shared) {
+      if (shared == SharedOption::usage_error) return exit_usage;
     } else if (a == "--planes" || a.rfind("--planes=", 0) == 0) {
       if (a == "--planes") {
         if (i + 1 >= args.size()) {
@@ -174,8 +171,6 @@ int run_nearest(const std::vector<std::string>& args) {
         return exit_usage;
       }
       have_planes = true;
-    } else if (a.rfind("--path", 0) == 0) {
-      if (!parse_path_option("nearest", args, i, options.path)) return exit_usage;
     } else if (a.size() > 1 && a[0] == '-') {
       std::cerr << "raykernel nearest: unknown option '" << a << "' (see raykernel nearest --help)\n";
       return exit_usage;

@@ -52,6 +52,10 @@ int finish_stream_command(std::string_view command, std::istream& in, std::strin
   return status;
 }
 
+std::string no_stages_text(Path path) {
+  return std::string("path ") + (path == Path::exact ? "exact" : "naive") + ": no stages\n";
+}
+
 std::string stage_counts_text(const std::uint64_t* counts) {
   std::string out;
   for (int k = 0; k < stage_count; ++k) {

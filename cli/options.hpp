@@ -18,6 +18,31 @@ namespace raykernel::cli {
 [[nodiscard]] bool parse_path_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
                                      Path& path);
 
+// The answer options classify and nearest share: --exact-t, --hex, --stats and --path X, read from args[i]
+// (advancing i past a separate --path value) into `options`, whose members of those names both option
+// structs have.
+enum class SharedOption { read, not_shared, usage_error };
+template <class Options>
+[[nodiscard]] SharedOption parse_shared_option(std::string_view command, const std::vector<std::string>& args,
+                                               std::size_t& i, Options& options) {
+  const std::string& a = args[i];
+  if (a == "--exact-t") {
+    options.exact_t = true;
+  } else if (a == "--hex") {
+    options.hex = true;
+  } else if (a == "--stats") {
+    options.stats = true;
+  } else if (a.rfind("--path", 0) == 0) {
+    return parse_path_option(command, args, i, options.path) ? SharedOption::read : SharedOption::usage_error;
+  } else {
+    return SharedOption::not_shared;
+  }
+  return SharedOption::read;
+}
+
+// The --stats line of a path without stages: "path exact: no stages" or "path naive: no stages".
+[[nodiscard]] std::string no_stages_text(Path path);
+
 // The stream to read: standard input for "" or "-", else the file (opened into `storage`). Prints
 // "raykernel COMMAND: cannot open WHAT 'PATH'" and returns nullptr when the file cannot be opened.
 [[nodiscard]] std::istream* open_input(std::string_view command, std::string_view what, const std::string& path,

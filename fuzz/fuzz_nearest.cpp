@@ -370,22 +370,8 @@ std::array<std::uint64_t, derived_plane_count> derived_planes{};
 std::uint64_t comparisons_reversed_deepest[4] = {};
 
 void print_stats() {
-  auto percent = [](std::uint64_t part, std::uint64_t whole) {
-    char buf[16];
-    if (whole == 0) return std::string("     -");
-    std::snprintf(buf, sizeof buf, "%6.2f", 100.0 * static_cast<double>(part) / static_cast<double>(whole));
-    return std::string(buf);
-  };
-  auto shares = [&](const std::array<std::uint64_t, 4>& n) {
-    std::uint64_t whole = 0;
-    for (std::uint64_t x : n) whole += x;
-    std::string s;
-    for (std::uint64_t x : n) {
-      s += ' ';
-      s += percent(x, whole);
-    }
-    return s;
-  };
+  using raykernel::fuzz::percent_text;
+  using raykernel::fuzz::shares_text;
   std::string out =
       "==== raykernel fuzz stats: nearest (percentages)\n"
       "  invalid: of executions; miss, >=2 hit: of valid executions (>=2 hit: two t values were compared)\n"
@@ -409,11 +395,11 @@ void print_stats() {
     char per[16];
     std::snprintf(per, sizeof per, "%5.1f", valid ? static_cast<double>(s.planes) / static_cast<double>(valid) : 0.0);
     std::snprintf(line, sizeof line, "%-24s %9llu %s %s %s %s %s %s |%s |%s |%s |%s |\n", name.c_str(),
-                  static_cast<unsigned long long>(s.executions), percent(s.invalid, s.executions).c_str(),
-                  percent(s.misses, valid).c_str(), percent(s.compared, valid).c_str(),
-                  percent(s.exact_tie, s.compared).c_str(), percent(s.sub_ulp, s.compared).c_str(), per,
-                  shares(s.comparison_deepest).c_str(), shares(s.comparisons).c_str(), shares(s.relation_deepest).c_str(),
-                  shares(s.t_stage).c_str());
+                  static_cast<unsigned long long>(s.executions), percent_text(s.invalid, s.executions).c_str(),
+                  percent_text(s.misses, valid).c_str(), percent_text(s.compared, valid).c_str(),
+                  percent_text(s.exact_tie, s.compared).c_str(), percent_text(s.sub_ulp, s.compared).c_str(), per,
+                  shares_text(s.comparison_deepest).c_str(), shares_text(s.comparisons).c_str(), shares_text(s.relation_deepest).c_str(),
+                  shares_text(s.t_stage).c_str());
     out += line;
   };
   for (std::size_t m = 0; m < mode_count; ++m) {
@@ -436,7 +422,7 @@ void print_stats() {
   out += "\n  reversed ray (o, -d), executions with a comparison, by the slowest comparison stage:";
   std::array<std::uint64_t, 4> reversed{};
   for (std::size_t k = 0; k < 4; ++k) reversed[k] = comparisons_reversed_deepest[k];
-  out += shares(reversed) + "\n";
+  out += shares_text(reversed) + "\n";
   std::fputs(out.c_str(), stderr);
 }
 

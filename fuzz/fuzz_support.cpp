@@ -89,24 +89,25 @@ StageCounts& StageCounts::operator+=(const StageCounts& o) {
   return *this;
 }
 
+std::string percent_text(std::uint64_t part, std::uint64_t whole) {
+  if (whole == 0) return "     -";
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%6.2f", 100.0 * static_cast<double>(part) / static_cast<double>(whole));
+  return buf;
+}
+
+std::string shares_text(const std::array<std::uint64_t, 4>& counts) {
+  std::uint64_t whole = 0;
+  for (std::uint64_t x : counts) whole += x;
+  std::string s;
+  for (std::uint64_t x : counts) {
+    s += ' ';
+    s += percent_text(x, whole);
+  }
+  return s;
+}
+
 std::string format_stage_table(std::string_view title, const std::vector<std::pair<std::string, StageCounts>>& rows) {
-  auto percent = [](std::uint64_t part, std::uint64_t whole) {
-    char buf[16];
-    if (whole == 0) return std::string("     -");
-    std::snprintf(buf, sizeof buf, "%6.2f", 100.0 * static_cast<double>(part) / static_cast<double>(whole));
-    return std::string(buf);
-  };
-  // Four percentages of the sum of `n`.
-  auto shares = [&](const std::array<std::uint64_t, 4>& n) {
-    std::uint64_t whole = 0;
-    for (std::uint64_t x : n) whole += x;
-    std::string s;
-    for (std::uint64_t x : n) {
-      s += ' ';
-      s += percent(x, whole);
-    }
-    return s;
-  };
   std::string out = "==== raykernel fuzz stats: " + std::string(title) + " (percentages)\n";
   out +=
       "  relation: the answers of valid executions (hit, behind, parallel, in-plane)\n"
@@ -132,9 +133,9 @@ std::string format_stage_table(std::string_view title, const std::vector<std::pa
   auto row = [&](const std::string& name, const StageCounts& c) {
     char line[512];
     std::snprintf(line, sizeof line, "%-16s %10llu %7s |%s |%s |%s |%s |\n", name.c_str(),
-                  static_cast<unsigned long long>(c.executions), percent(c.invalid, c.executions).c_str(),
-                  shares(c.relation).c_str(), shares(c.relation_stage).c_str(), shares(c.t_stage).c_str(),
-                  shares(c.deepest).c_str());
+                  static_cast<unsigned long long>(c.executions), percent_text(c.invalid, c.executions).c_str(),
+                  shares_text(c.relation).c_str(), shares_text(c.relation_stage).c_str(), shares_text(c.t_stage).c_str(),
+                  shares_text(c.deepest).c_str());
     out += line;
   };
   for (const auto& [name, counts] : rows) {

@@ -89,6 +89,11 @@ struct StageCounts {
   StageCounts& operator+=(const StageCounts& other);
 };
 
+// "%6.2f" of 100·part/whole, or "     -" when whole is 0; and the four percentages of a count array's sum,
+// each preceded by a space: the cells of the stats tables.
+[[nodiscard]] std::string percent_text(std::uint64_t part, std::uint64_t whole);
+[[nodiscard]] std::string shares_text(const std::array<std::uint64_t, 4>& counts);
+
 // A table: one row per named group, and a total row.
 [[nodiscard]] std::string format_stage_table(std::string_view title,
                                              const std::vector<std::pair<std::string, StageCounts>>& rows);
