@@ -9,12 +9,12 @@
 namespace raykernel::bench {
 
 template <class K>
-static typename K::Ray_3 to_ray(const testing::Query& q) {
+static typename K::Ray_3 to_ray(const testkit::Query& q) {
   const Vec3 &o = q.ray.origin, &d = q.ray.direction;
   return typename K::Ray_3(typename K::Point_3(o.x, o.y, o.z), typename K::Vector_3(d.x, d.y, d.z));
 }
 template <class K>
-static typename K::Plane_3 to_plane(const testing::Query& q) {
+static typename K::Plane_3 to_plane(const testkit::Query& q) {
   const Vec3 &p = q.plane.point, &n = q.plane.normal;
   return typename K::Plane_3(typename K::Point_3(p.x, p.y, p.z), typename K::Vector_3(n.x, n.y, n.z));
 }
@@ -24,7 +24,7 @@ struct EpickQueries::Impl {
   std::vector<K::Ray_3> rays;
   std::vector<K::Plane_3> planes;
 };
-EpickQueries::EpickQueries(const std::vector<testing::Query>& queries) : impl_(std::make_unique<Impl>()) {
+EpickQueries::EpickQueries(const std::vector<testkit::Query>& queries) : impl_(std::make_unique<Impl>()) {
   impl_->rays.reserve(queries.size());
   impl_->planes.reserve(queries.size());
   for (const auto& q : queries) {
@@ -41,7 +41,7 @@ struct EpeckQueries::Impl {
   std::vector<K::Ray_3> rays;
   std::vector<K::Plane_3> planes;
 };
-EpeckQueries::EpeckQueries(const std::vector<testing::Query>& queries) : impl_(std::make_unique<Impl>()) {
+EpeckQueries::EpeckQueries(const std::vector<testkit::Query>& queries) : impl_(std::make_unique<Impl>()) {
   for (const auto& q : queries) {
     impl_->rays.push_back(to_ray<Impl::K>(q));
     impl_->planes.push_back(to_plane<Impl::K>(q));

@@ -6,7 +6,7 @@
 // query's doubles. Epeck computes both exactly.
 #pragma once
 
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <cstddef>
 #include <memory>
@@ -16,7 +16,7 @@ namespace raykernel::bench {
 
 class EpickQueries {
  public:
-  explicit EpickQueries(const std::vector<testing::Query>& queries);
+  explicit EpickQueries(const std::vector<testkit::Query>& queries);
   ~EpickQueries();
   [[nodiscard]] std::size_t size() const;
   [[nodiscard]] bool do_intersect(std::size_t i) const;  // CGAL::do_intersect(Ray_3, Plane_3)
@@ -28,7 +28,7 @@ class EpickQueries {
 
 class EpeckQueries {
  public:
-  explicit EpeckQueries(const std::vector<testing::Query>& queries);
+  explicit EpeckQueries(const std::vector<testkit::Query>& queries);
   ~EpeckQueries();
   [[nodiscard]] std::size_t size() const;
   // CGAL::intersection(Ray_3, Plane_3); t = (x − o)·d / (d·d) from the point x, converted with to_double.

@@ -44,7 +44,7 @@ void rotate_through(benchmark::State& state, const std::vector<Query>& queries, 
   state.SetItemsProcessed(state.iterations() * chunk);
 }
 
-void add_stage_counters(benchmark::State& state, const std::vector<testing::Query>& queries) {
+void add_stage_counters(benchmark::State& state, const std::vector<testkit::Query>& queries) {
   std::array<double, 4> relation{}, t{};
   double with_t = 0;
   for (const auto& q : queries) {
@@ -63,11 +63,11 @@ void add_stage_counters(benchmark::State& state, const std::vector<testing::Quer
   }
 }
 
-auto naive = [](const testing::Query& q) { return intersect_naive(q.ray, q.plane); };
-auto certified = [](const testing::Query& q) { return intersect(q.ray, q.plane); };
-auto exact = [](const testing::Query& q) { return intersect_exact(q.ray, q.plane); };
+auto naive = [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane); };
+auto certified = [](const testkit::Query& q) { return intersect(q.ray, q.plane); };
+auto exact = [](const testkit::Query& q) { return intersect_exact(q.ray, q.plane); };
 
-void register_path_benchmarks(const std::string& workload_name, const std::vector<testing::Query>* (*queries)(),
+void register_path_benchmarks(const std::string& workload_name, const std::vector<testkit::Query>* (*queries)(),
                               bool with_cgal) {
   auto name = [&](const char* path) { return "intersect/" + std::string(path) + "/" + workload_name; };
   benchmark::RegisterBenchmark(name("naive").c_str(), [queries](benchmark::State& s) {
@@ -99,7 +99,7 @@ void register_path_benchmarks(const std::string& workload_name, const std::vecto
     }
     s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(n));
     // Checked once: the batch answers are intersect's.
-    const std::vector<testing::Query>& q = *queries();
+    const std::vector<testkit::Query>& q = *queries();
     for (std::size_t i = 0; i < n; i += 97) {
       const Intersection a = intersect(q[i].ray, q[i].plane);
       if (a.relation != relation[i] || (a.relation <= Relation::behind && std::memcmp(&a.t, &t[i], sizeof a.t) != 0)) {
@@ -122,7 +122,7 @@ void register_path_benchmarks(const std::string& workload_name, const std::vecto
   });
   benchmark::RegisterBenchmark(name("cgal_epeck").c_str(), [queries](benchmark::State& s) {
     // Lazy exact objects are large: 2^16 queries of the workload (the cost is not memory-bound anyway).
-    static const EpeckQueries cgal(std::vector<testing::Query>(queries()->begin(), queries()->begin() + (1 << 16)));
+    static const EpeckQueries cgal(std::vector<testkit::Query>(queries()->begin(), queries()->begin() + (1 << 16)));
     std::vector<std::size_t> index(cgal.size());
     for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
     rotate_through(s, index, [](std::size_t i) { return cgal.intersection_t(i); });
@@ -130,11 +130,11 @@ void register_path_benchmarks(const std::string& workload_name, const std::vecto
 }
 
 template <Workload W>
-const std::vector<testing::Query>* workload_queries() {
+const std::vector<testkit::Query>* workload_queries() {
   return &workload(W);
 }
 template <int K>
-const std::vector<testing::Query>* sweep_queries() {
+const std::vector<testkit::Query>* sweep_queries() {
   return &angle_sweep(K);
 }
 

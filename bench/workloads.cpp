@@ -13,23 +13,23 @@
 namespace raykernel::bench {
 namespace {
 
-using testing::QueryKind;
-using testing::SplitMix64;
+using testkit::QueryKind;
+using testkit::SplitMix64;
 
 std::vector<Query> generate(QueryKind kind, std::uint64_t seed, std::size_t count) {
   SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
+  const testkit::BitSource bits = [&rng] { return rng(); };
   std::vector<Query> out(count);
-  for (auto& q : out) q = testing::make_query(kind, bits);
+  for (auto& q : out) q = testkit::make_query(kind, bits);
   return out;
 }
 
 std::vector<Query> degenerate_mix(std::size_t count) {
   SplitMix64 rng(3);
-  const testing::BitSource bits = [&rng] { return rng(); };
+  const testkit::BitSource bits = [&rng] { return rng(); };
   std::vector<Query> out(count);
   for (std::size_t i = 0; i < count; ++i)
-    out[i] = testing::make_query(i % 2 == 0 ? QueryKind::near_parallel : QueryKind::near_coplanar, bits);
+    out[i] = testkit::make_query(i % 2 == 0 ? QueryKind::near_parallel : QueryKind::near_coplanar, bits);
   return out;
 }
 

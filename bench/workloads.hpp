@@ -3,7 +3,7 @@
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <cstddef>
 #include <string>
@@ -11,7 +11,7 @@
 
 namespace raykernel::bench {
 
-using testing::Query;
+using testkit::Query;
 
 // 1 Mi queries × 96 bytes = 96 MiB: well beyond the last-level cache.
 inline constexpr std::size_t workload_size = std::size_t{1} << 20;
@@ -23,7 +23,7 @@ enum class Workload { random, wide, degenerate, render };
 // The queries of a workload (deterministic: seeded by the workload).
 //   random      every component uniform in [-1, 1]
 //   wide        components ±(1 + f)·2^e, e uniform in [-300, 300]
-//   degenerate  half near-parallel, half near-coplanar (raykernel::testing), interleaved: built so that
+//   degenerate  half near-parallel, half near-coplanar (raykernel::testkit), interleaved: built so that
 //               plain binary64 is unsure of the sign of d·n or (p − o)·n
 //   render      the demo scene's camera rays (pixel centres, `raykernel render`) against each of its planes
 [[nodiscard]] const std::vector<Query>& workload(Workload w);

@@ -1,4 +1,4 @@
-// raykernel classify: one ray–plane query per line (CONTRACT §3).
+// raykernel classify: one ray–plane query per line (docs/contract.md §3).
 #include "commands.hpp"
 #include "options.hpp"
 #include "text_input.hpp"

@@ -12,7 +12,7 @@
 
 namespace raykernel::cli {
 
-// Exit statuses (CONTRACT §3).
+// Exit statuses (docs/contract.md §3).
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_invalid_line = 1;
 inline constexpr int exit_usage = 2;
@@ -35,7 +35,7 @@ struct ClassifyCounts {
   std::uint64_t t_stage[4] = {};         // by raykernel::Stage, for hit and behind (certified path)
 };
 
-// Answers every query line of `in` on `out` (CONTRACT §3); invalid lines are also reported on `err` as
+// Answers every query line of `in` on `out` (docs/contract.md §3); invalid lines are also reported on `err` as
 // "raykernel: line N: REASON". Returns exit_ok or exit_invalid_line.
 int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, const ClassifyOptions& options,
                     ClassifyCounts& counts);
@@ -43,7 +43,7 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
 // Human-readable summary of counts (what --stats prints).
 std::string describe(const ClassifyCounts& counts, Path path);
 
-// ---- nearest (CONTRACT §4) ------------------------------------------------------------------------------
+// ---- nearest (docs/contract.md §4) ------------------------------------------------------------------------------
 
 struct NearestOptions {
   Path path = Path::certified;
@@ -74,7 +74,7 @@ struct PlanesFile {
 };
 [[nodiscard]] PlanesFile read_planes(std::istream& in);
 
-// Answers every ray line of `rays` (`ox oy oz dx dy dz`) on `out` with `hit K T` or `miss` (CONTRACT §4);
+// Answers every ray line of `rays` (`ox oy oz dx dy dz`) on `out` with `hit K T` or `miss` (docs/contract.md §4);
 // invalid lines get `invalid REASON` on `out` and "raykernel: line N: REASON" on `err`. Returns exit_ok or
 // exit_invalid_line. `planes` must be valid (read_planes checks them).
 int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std::span<const Plane> planes,

@@ -2,7 +2,7 @@
 // paths, with a per-kind summary of relations, deciding stages and naive mistakes.
 #include "commands.hpp"
 
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -62,9 +62,9 @@ int run_demo(const std::vector<std::string>& args) {
     }
   }
 
-  using testing::QueryKind;
+  using testkit::QueryKind;
   std::printf("raykernel %s demo: %ld queries of each of %d kinds (seed %llu)\n\n", std::string(version()).c_str(),
-              per_kind, testing::query_kind_count, static_cast<unsigned long long>(seed));
+              per_kind, testkit::query_kind_count, static_cast<unsigned long long>(seed));
   std::printf("%-16s %7s %7s %8s %8s | %-31s | %s\n", "", "hit", "behind", "parallel", "in-plane",
               "relation decided by stage", "naive formula wrong");
   std::printf("%-16s %7s %7s %8s %8s | %7s %7s %7s %7s | %9s %9s\n", "kind", "", "", "", "", "filter", "compens",
@@ -72,13 +72,13 @@ int run_demo(const std::vector<std::string>& args) {
 
   KindTally total;
   double seconds[3] = {0, 0, 0};  // certified, exact, naive
-  testing::SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  std::vector<testing::Query> batch(static_cast<std::size_t>(per_kind));
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  std::vector<testkit::Query> batch(static_cast<std::size_t>(per_kind));
   std::vector<Intersection> certified(batch.size()), exact(batch.size()), naive(batch.size());
   std::vector<TracedIntersection> traced(batch.size());
-  for (QueryKind kind : testing::all_query_kinds) {
-    for (auto& q : batch) q = testing::make_query(kind, bits);
+  for (QueryKind kind : testkit::all_query_kinds) {
+    for (auto& q : batch) q = testkit::make_query(kind, bits);
     using clock = std::chrono::steady_clock;
     auto t0 = clock::now();
     for (std::size_t i = 0; i < batch.size(); ++i) traced[i] = intersect_traced(batch[i].ray, batch[i].plane);

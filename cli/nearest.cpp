@@ -1,4 +1,4 @@
-// raykernel nearest: the first plane each ray hits (CONTRACT §4).
+// raykernel nearest: the first plane each ray hits (docs/contract.md §4).
 #include "commands.hpp"
 #include "options.hpp"
 #include "text_input.hpp"

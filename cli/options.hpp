@@ -57,7 +57,7 @@ template <class Options>
 // "filter N, compensated N, expansion N, exact N" for counts indexed by raykernel::Stage.
 [[nodiscard]] std::string stage_counts_text(const std::uint64_t* counts);
 
-// An invalid query line (CONTRACT §3): "invalid REASON" on `out`, "raykernel: line N: REASON" on `err`.
+// An invalid query line (docs/contract.md §3): "invalid REASON" on `out`, "raykernel: line N: REASON" on `err`.
 void report_invalid_line(std::ostream& out, std::ostream& err, std::uint64_t line_number, const std::string& reason);
 
 }  // namespace raykernel::cli

@@ -1,4 +1,4 @@
-// Rendering a scene of planes (scene.hpp) by ray casting (seed §1.1): for every pixel, for every sample,
+// Rendering a scene of planes (scene.hpp) by ray casting (docs/ray-casting.md §1.1): for every pixel, for every sample,
 // the exact nearest hit (nearest_hit.hpp) and simple legible shading. Rows are rendered in parallel.
 //
 // Robustness made visible: the stage image marks the pixels where the certified path needed a slower

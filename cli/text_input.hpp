@@ -1,4 +1,4 @@
-// The text formats of the CLI (CONTRACT §3–§4): lines of numbers in strtod syntax, and doubles printed so
+// The text formats of the CLI (docs/contract.md §3–§4): lines of numbers in strtod syntax, and doubles printed so
 // that strtod reads them back exactly.
 #pragma once
 

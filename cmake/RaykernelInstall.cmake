@@ -2,13 +2,13 @@
 #
 #   cmake --install build --prefix P
 #
-#   P/include/raykernel/...                     public headers (kernel and raykernel::testing)
-#   P/lib/libraykernel.a, libraykernel_testing.a
+#   P/include/raykernel/...                     public headers (kernel and raykernel::testkit)
+#   P/lib/libraykernel.a, libraykernel_testkit.a
 #   P/bin/raykernel                             the CLI (when built)
 #   P/lib/cmake/raykernel/                      raykernel-config.cmake, raykernel-config-version.cmake, the
-#                                               exported targets raykernel::raykernel and raykernel::testing,
+#                                               exported targets raykernel::raykernel and raykernel::testkit,
 #                                               and RaykernelDependencies.cmake (GMP, gmpxx, MPFR for linking)
-#   P/lib/pkgconfig/raykernel.pc, raykernel-testing.pc
+#   P/lib/pkgconfig/raykernel.pc, raykernel-testkit.pc
 #
 # Everything installed locates itself relative to its own directory (CMake's _IMPORT_PREFIX and
 # PACKAGE_PREFIX_DIR, pkg-config's ${pcfiledir}), so an installed tree can be moved: no build or source path
@@ -22,11 +22,11 @@ set(RAYKERNEL_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/raykernel" CACHE S
 set(RAYKERNEL_INSTALL_PKGCONFIGDIR "${CMAKE_INSTALL_LIBDIR}/pkgconfig" CACHE STRING
     "Where raykernel's pkg-config files are installed (relative to the prefix)")
 
-# The exported names: raykernel::raykernel and raykernel::testing (NAMESPACE raykernel::). With
+# The exported names: raykernel::raykernel and raykernel::testkit (NAMESPACE raykernel::). With
 # BUILD_SHARED_LIBS the libraries carry the version, and 0.x releases are ABI-incompatible with each other
 # (SONAME libraykernel.so.0.1).
-set_target_properties(raykernel_testing PROPERTIES EXPORT_NAME testing)
-set_target_properties(raykernel raykernel_testing PROPERTIES
+set_target_properties(raykernel_testkit PROPERTIES EXPORT_NAME testkit)
+set_target_properties(raykernel raykernel_testkit PROPERTIES
   VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 
 # The targets' $<INSTALL_INTERFACE:include> covers the default include directory; any other is added.
@@ -34,16 +34,16 @@ set(_raykernel_includes "")
 if(NOT CMAKE_INSTALL_INCLUDEDIR STREQUAL "include")
   set(_raykernel_includes INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
-install(TARGETS raykernel raykernel_testing
+install(TARGETS raykernel raykernel_testkit
   EXPORT raykernel-targets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   ${_raykernel_includes})
 
-# Every public header, including ones added later (raykernel/testing/fuzz_decoder.hpp, ray casting): the
+# Every public header, including ones added later (raykernel/testkit/fuzz_decoder.hpp, ray casting): the
 # directories are the targets' include directories, nothing private lives there.
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/kernel/include/ ${PROJECT_SOURCE_DIR}/testing/include/
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/kernel/include/ ${PROJECT_SOURCE_DIR}/testkit/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 
@@ -100,6 +100,6 @@ else()
   set(RAYKERNEL_PC_LIBS_PRIVATE "${RAYKERNEL_PC_DEPENDENCY_LIBS}")
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel.pc.in ${PROJECT_BINARY_DIR}/raykernel.pc @ONLY)
-configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel-testing.pc.in ${PROJECT_BINARY_DIR}/raykernel-testing.pc @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/raykernel.pc ${PROJECT_BINARY_DIR}/raykernel-testing.pc
+configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel-testkit.pc.in ${PROJECT_BINARY_DIR}/raykernel-testkit.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/raykernel.pc ${PROJECT_BINARY_DIR}/raykernel-testkit.pc
   DESTINATION ${RAYKERNEL_INSTALL_PKGCONFIGDIR})

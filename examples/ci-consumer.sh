@@ -45,7 +45,7 @@ else
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYKERNEL_BUILD_TESTS=OFF \
     -DRAYKERNEL_BUILD_BENCH=OFF > "$work/configure.log"
 fi
-targets=(raykernel raykernel_testing)
+targets=(raykernel raykernel_testkit)
 if grep -q '^RAYKERNEL_BUILD_CLI:BOOL=ON' "$build/CMakeCache.txt"; then targets+=(raykernel_tool); fi
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
@@ -57,8 +57,8 @@ config=$(find "$prefix" -name raykernel-config.cmake)
 pc=$(find "$prefix" -name raykernel.pc)
 [ -n "$config" ] && [ -f "$(dirname "$config")/raykernel-config-version.cmake" ] || fail "CMake package files not installed"
 [ -n "$pc" ] || fail "raykernel.pc not installed"
-for h in raykernel/raykernel.hpp raykernel/testing/hard_queries.hpp raykernel/testing/rapidcheck.hpp \
-         raykernel/testing/reference_check.hpp raykernel/testing/plane_pairs.hpp raykernel/testing/fuzz_decoder.hpp; do
+for h in raykernel/raykernel.hpp raykernel/testkit/hard_queries.hpp raykernel/testkit/rapidcheck.hpp \
+         raykernel/testkit/reference_check.hpp raykernel/testkit/plane_pairs.hpp raykernel/testkit/fuzz_decoder.hpp; do
   [ -f "$prefix/include/$h" ] || fail "header $h not installed"
 done
 if grep -rlF -e "$root" -e "$work/staging" "$(dirname "$config")" "$(dirname "$pc")"; then
@@ -84,7 +84,7 @@ echo "pkg-config --cflags --libs raykernel: $flags"
 incdir=$(pkg-config --variable=includedir raykernel)
 [ "$(realpath "$incdir")" = "$(realpath "$prefix/include")" ] || fail "pkg-config includedir $incdir is not under the moved prefix"
 case " $flags " in *" -lraykernel "*) ;; *) fail "no -lraykernel in '$flags'" ;; esac
-echo "pkg-config --libs raykernel-testing: $(pkg-config --libs raykernel-testing)"
+echo "pkg-config --libs raykernel-testkit: $(pkg-config --libs raykernel-testkit)"
 # shellcheck disable=SC2086  # the flags are words
 c++ -std=c++20 -O1 examples/intersect_basics.cpp $flags -o "$work/intersect_basics_pkgconfig"
 "$work/intersect_basics_pkgconfig" > "$work/basics-pkgconfig.out"
@@ -138,7 +138,7 @@ expect_in "$work/properties.out" \
   "RC_PARAMS=\"reproduce="
 [ "$(grep -c '^Falsifiable after [0-9]* tests' "$work/properties.out")" = 2 ] \
   || fail "expected two shrunk counterexamples"
-grep -q 'std::tuple<raykernel::testing::KindedQuery>:' "$work/properties.out" || fail "no counterexample query printed"
+grep -q 'std::tuple<raykernel::testkit::KindedQuery>:' "$work/properties.out" || fail "no counterexample query printed"
 if [ -x "$prefix/bin/raykernel" ]; then
   # The report's replay line through the installed CLI: its answer is the report's "expected".
   replay=$(sed -n "s/^  replay    echo '\(.*\)' | raykernel classify --exact-t --hex$/\1/p" "$work/properties.out" | head -1)

@@ -12,8 +12,8 @@
 #include "my_ray_code.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/fuzz_decoder.hpp>
-#include <raykernel/testing/reference_check.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/reference_check.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -24,7 +24,7 @@
 
 // Whether my::ray_plane answers the query encoded by `bytes` correctly; if not, `report` says how.
 bool my_intersect_matches_raykernel(std::span<const std::uint8_t> bytes, std::string& report) {
-  const raykernel::testing::FuzzQuery f = raykernel::testing::decode_fuzz_query(bytes);
+  const raykernel::testkit::FuzzQuery f = raykernel::testkit::decode_fuzz_query(bytes);
   const raykernel::Ray& ray = f.query.ray;
   const raykernel::Plane& plane = f.query.plane;
   // Invalid input (NaN, ±inf, a zero vector): raykernel has no answer; my::ray_plane promises nothing
@@ -33,11 +33,11 @@ bool my_intersect_matches_raykernel(std::span<const std::uint8_t> bytes, std::st
     (void)my::ray_plane(ray, plane);
     return true;
   }
-  const raykernel::testing::ReferenceCheck check =
-      raykernel::testing::check_against_reference(f.query, my::ray_plane(ray, plane), 4);
+  const raykernel::testkit::ReferenceCheck check =
+      raykernel::testkit::check_against_reference(f.query, my::ray_plane(ray, plane), 4);
   if (check.passed()) return true;
   report =
-      "input: " + (f.kind ? "hard query, kind " + std::string(raykernel::testing::to_string(*f.kind)) : "raw doubles") +
+      "input: " + (f.kind ? "hard query, kind " + std::string(raykernel::testkit::to_string(*f.kind)) : "raw doubles") +
       "\n" + check.report();
   return false;
 }

@@ -8,7 +8,7 @@
 #include "my_ray_code.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/rapidcheck.hpp>  // gen_hard_query, gen_plane_pair_near_tie, the reference check
+#include <raykernel/testkit/rapidcheck.hpp>  // gen_hard_query, gen_plane_pair_near_tie, the reference check
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -16,14 +16,14 @@
 #include <cstddef>
 #include <string>
 
-using raykernel::testing::KindedQuery;
-using raykernel::testing::PlanePair;
+using raykernel::testkit::KindedQuery;
+using raykernel::testkit::PlanePair;
 
 // Your code's answer must be the exact relation, with t within 4 ulps of the correctly rounded t. The
 // report (on failure) shows the query, a replay command for the raykernel CLI, expected and got, the exact
 // t as P/Q and the ulp distance.
 RC_GTEST_PROP(MyRayCode, IntersectMatchesRaykernel, (const KindedQuery& k)) {
-  RC_TAG(raykernel::testing::to_string(k.kind));  // the histogram of kinds tested, printed on success
+  RC_TAG(raykernel::testkit::to_string(k.kind));  // the histogram of kinds tested, printed on success
   RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE(k.query, my::ray_plane(k.query.ray, k.query.plane), 4);
 }
 
@@ -33,14 +33,14 @@ RC_GTEST_PROP(MyRayCode, NearestOrdersNearTies, (const PlanePair& pp)) {
   const int mine = my::nearest_hit(pp.ray, pp.planes);
   if (mine != pp.nearest()) {
     std::string message = "my::nearest_hit chose plane " + std::to_string(mine) + ", the exact nearest is plane " +
-                          std::to_string(pp.nearest()) + " (" + std::string(raykernel::testing::to_string(pp.kind)) +
+                          std::to_string(pp.nearest()) + " (" + std::string(raykernel::testkit::to_string(pp.kind)) +
                           ")\n";
     for (std::size_t i = 0; i < pp.planes.size(); ++i) {
       const raykernel::ExactIntersection exact = raykernel::intersect_exact_rational(pp.ray, pp.planes[i]);
       const raykernel::Intersection got = my::ray_plane(pp.ray, pp.planes[i]);
       message += "  plane " + std::to_string(i) + ": exact t = " + (exact.t ? exact.t->str() : "-") + ", rounded " +
-                 raykernel::testing::hex_string(exact.intersection.t) +
-                 "; my t = " + raykernel::testing::hex_string(got.t) + "\n";
+                 raykernel::testkit::hex_string(exact.intersection.t) +
+                 "; my t = " + raykernel::testkit::hex_string(got.t) + "\n";
     }
     RC_FAIL(message);
   }

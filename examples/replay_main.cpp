@@ -6,7 +6,7 @@
 //
 // Prints the report of the first failing input and a summary; exit status 1 when an input failed, 2 on a
 // usage or I/O error.
-#include <raykernel/testing/hard_queries.hpp>  // SplitMix64
+#include <raykernel/testkit/hard_queries.hpp>  // SplitMix64
 
 #include <cstdint>
 #include <cstdio>
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     }
     const long count = std::stol(args[1]);
     const std::uint64_t seed = args.size() == 4 ? std::stoull(args[3]) : 1;
-    raykernel::testing::SplitMix64 rng(seed);
+    raykernel::testkit::SplitMix64 rng(seed);
     for (long i = 0; i < count; ++i) {
       // Half raw doubles, half hard queries (first byte ≥ 0x80); 0 to 128 further bytes.
       std::vector<std::uint8_t> bytes(1 + rng() % 129);

@@ -1,5 +1,5 @@
 # Initial cache for the libFuzzer build (cmake -C): clang 14 with libFuzzer's coverage instrumentation, ASan
-# and UBSan on every target — the kernel, raykernel::testing and the CLI library included — and every
+# and UBSan on every target — the kernel, raykernel::testkit and the CLI library included — and every
 # sanitizer report fatal. The kernel keeps its own floating-point flags (-ffp-contract=off -fno-fast-math,
 # kernel/CMakeLists.txt); the sanitizers do not change floating-point semantics.
 #

@@ -3,7 +3,7 @@
 // can certify and hands the rest to the full cascade; every lane must give `intersect_traced`'s answer, which
 // fuzz_classify checks against CGAL.
 //
-// Input: a sequence of 97-byte records, each one query in the layout of raykernel/testing/fuzz_decoder.hpp
+// Input: a sequence of 97-byte records, each one query in the layout of raykernel/testkit/fuzz_decoder.hpp
 // (raw doubles or a hard query of one of the 13 kinds), up to 40 queries: enough to fill every SIMD lane and
 // leave a scalar remainder. Checked:
 //   - intersect_batch (pairwise, with `valid`): valid[i] is whether query i is valid input, and each valid
@@ -16,7 +16,7 @@
 
 #include <raykernel/batch.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/fuzz_decoder.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
 
 #include <algorithm>
 #include <array>
@@ -33,7 +33,7 @@
 namespace {
 
 using raykernel::fuzz::check;
-namespace rt = raykernel::testing;
+namespace rt = raykernel::testkit;
 
 constexpr std::size_t record_size = rt::raw_fuzz_input_size;  // 97
 constexpr std::size_t max_queries = 40;

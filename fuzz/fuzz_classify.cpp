@@ -3,9 +3,9 @@
 // that shares no code with either: CGAL's Epeck kernel constructing the intersection point of a Ray_3 and a
 // Plane_3 (CGAL::intersection), t recovered from that point exactly.
 //
-// Input: the layout of raykernel/testing/fuzz_decoder.hpp. Byte 0 < 0x80: 12 raw doubles (every bit
+// Input: the layout of raykernel/testkit/fuzz_decoder.hpp. Byte 0 < 0x80: 12 raw doubles (every bit
 // pattern: subnormals, signed zeros, NaN, ±inf, every exponent); byte 0 ≥ 0x80: a hard query of one of the
-// 13 kinds of raykernel::testing::make_query, built from the remaining bytes. A custom mutator (below)
+// 13 kinds of raykernel::testkit::make_query, built from the remaining bytes. A custom mutator (below)
 // also applies geometric mutations to raw inputs (nudging by ulps, projecting onto the plane, ...).
 //
 // Checked for every input:
@@ -20,7 +20,7 @@
 #include "fuzz_support.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/fuzz_decoder.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/intersections.h>
@@ -144,7 +144,7 @@ std::string relation_name(Relation r) { return std::string(raykernel::to_string(
 // ---- The current input, for failure reports and statistics ---------------------------------------------
 
 struct Current {
-  raykernel::testing::FuzzQuery decoded;
+  raykernel::testkit::FuzzQuery decoded;
   std::size_t size = 0;
 };
 Current current;
@@ -152,7 +152,7 @@ Current current;
 std::string describe_current() {
   const auto& q = current.decoded.query;
   const std::string mode = current.decoded.kind
-                               ? std::string("hard query ").append(raykernel::testing::to_string(*current.decoded.kind))
+                               ? std::string("hard query ").append(raykernel::testkit::to_string(*current.decoded.kind))
                                : std::string("raw doubles");
   std::string s = "input: " + std::to_string(current.size) + " bytes, mode " + mode +
                   "\nquery (ox oy oz dx dy dz px py pz nx ny nz, hex floats; a raykernel classify line):\n";
@@ -167,11 +167,11 @@ std::string describe_current() {
 }
 
 // Per decoder mode: raw, then the 13 kinds.
-raykernel::fuzz::StageCounts stats_by_mode[1 + raykernel::testing::query_kind_count];
-std::size_t mode_index(const raykernel::testing::FuzzQuery& f) {
+raykernel::fuzz::StageCounts stats_by_mode[1 + raykernel::testkit::query_kind_count];
+std::size_t mode_index(const raykernel::testkit::FuzzQuery& f) {
   if (!f.kind) return 0;
-  for (std::size_t k = 0; k < raykernel::testing::all_query_kinds.size(); ++k) {
-    if (raykernel::testing::all_query_kinds[k] == *f.kind) return 1 + k;
+  for (std::size_t k = 0; k < raykernel::testkit::all_query_kinds.size(); ++k) {
+    if (raykernel::testkit::all_query_kinds[k] == *f.kind) return 1 + k;
   }
   return 0;
 }
@@ -179,9 +179,9 @@ std::size_t mode_index(const raykernel::testing::FuzzQuery& f) {
 void print_stats() {
   std::vector<std::pair<std::string, raykernel::fuzz::StageCounts>> rows;
   rows.emplace_back("raw", stats_by_mode[0]);
-  for (std::size_t k = 0; k < raykernel::testing::all_query_kinds.size(); ++k) {
-    const raykernel::testing::QueryKind kind = raykernel::testing::all_query_kinds[k];
-    rows.emplace_back(std::string(raykernel::testing::to_string(kind)), stats_by_mode[1 + k]);
+  for (std::size_t k = 0; k < raykernel::testkit::all_query_kinds.size(); ++k) {
+    const raykernel::testkit::QueryKind kind = raykernel::testkit::all_query_kinds[k];
+    rows.emplace_back(std::string(raykernel::testkit::to_string(kind)), stats_by_mode[1 + k]);
   }
   std::fputs(raykernel::fuzz::format_stage_table("classify", rows).c_str(), stderr);
 }
@@ -300,7 +300,7 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
-void mutate_query(raykernel::testing::Query& q, raykernel::testing::SplitMix64& rng) {
+void mutate_query(raykernel::testkit::Query& q, raykernel::testkit::SplitMix64& rng) {
   Vec3* vectors[4] = {&q.ray.origin, &q.ray.direction, &q.plane.point, &q.plane.normal};
   Vec3& o = q.ray.origin;
   Vec3& d = q.ray.direction;
@@ -383,7 +383,7 @@ extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, st
 // made concrete as a raw input and mutated geometrically (a near tie nudged by an ulp, ...).
 extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size, std::size_t max_size,
                                                unsigned int seed) {
-  namespace rt = raykernel::testing;
+  namespace rt = raykernel::testkit;
   auto byte_mutation = [&](std::size_t skip) {
     if (LLVMFuzzerMutate == nullptr || size < skip || max_size <= skip) return size;
     return skip + LLVMFuzzerMutate(data + skip, size - skip, max_size - skip);
@@ -422,13 +422,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> bytes(data, size);
   current.decoded =
       raw_only_requested()
-          ? raykernel::testing::FuzzQuery{raykernel::testing::decode_raw_doubles(bytes.subspan(size ? 1 : 0)), {}}
-          : raykernel::testing::decode_fuzz_query(bytes);
+          ? raykernel::testkit::FuzzQuery{raykernel::testkit::decode_raw_doubles(bytes.subspan(size ? 1 : 0)), {}}
+          : raykernel::testkit::decode_fuzz_query(bytes);
   current.size = size;
   if (!current.decoded.kind && !raw_only_requested()) {
     // The decoder's promise: the encoder inverts it (the input, zero-padded to 97 bytes, extra bytes cut).
     const std::vector<std::uint8_t> encoded =
-        raykernel::testing::encode_raw_fuzz_input(current.decoded.query.ray, current.decoded.query.plane);
+        raykernel::testkit::encode_raw_fuzz_input(current.decoded.query.ray, current.decoded.query.plane);
     for (std::size_t k = 1; k < encoded.size(); ++k) {
       check(encoded[k] == (k < size ? data[k] : 0), "encode_raw_fuzz_input inverts decode_fuzz_query");
     }

@@ -1,5 +1,5 @@
 // fuzz_cli: arbitrary text through `raykernel classify` (cli::classify_stream, the code the binary runs) and
-// its line parser cli::parse_number_line (CONTRACT §3).
+// its line parser cli::parse_number_line (docs/contract.md §3).
 //
 // The input is the whole text of an input file. It is classified three times — default options; --path=exact
 // --exact-t --hex --stats; --path=naive --exact-t — and for each run the harness checks, against its own
@@ -51,7 +51,7 @@ std::string describe_current() {
 using raykernel::fuzz::getline_lines;
 using raykernel::fuzz::tokens_of;
 
-// What CONTRACT §3 says a line is, by the harness's own reading.
+// What docs/contract.md §3 says a line is, by the harness's own reading.
 struct ExpectedLine {
   bool skipped = false;
   bool valid = false;

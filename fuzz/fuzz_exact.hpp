@@ -1,5 +1,5 @@
 // Exact arithmetic for the harnesses' own oracles: doubles as GMP rationals, and an independent check that a
-// double is a rational rounded to nearest as CONTRACT §1 says. Header-only; a harness that includes it links
+// double is a rational rounded to nearest as docs/contract.md §1 says. Header-only; a harness that includes it links
 // raykernel_dep::gmpxx. Nothing here calls the kernel, so the oracles share no code with it.
 #pragma once
 
@@ -26,7 +26,7 @@ namespace raykernel::fuzz {
 }
 
 // Whether r is q rounded to nearest binary64, ties to even, with gradual underflow, overflow to ±inf and the
-// sign kept when a nonzero q rounds to zero (CONTRACT §1). Verified, not recomputed: q must lie in r's
+// sign kept when a nonzero q rounds to zero (docs/contract.md §1). Verified, not recomputed: q must lie in r's
 // rounding interval, whose ends (the midpoints to r's neighbours) belong to it only when r's significand is
 // even. Above DBL_MAX the neighbour is 2^1024 (IEEE 754 §4.3.1: overflow at 2^1024 − 2^970 and beyond).
 [[nodiscard]] inline bool is_round_to_nearest_even(const mpq_class& q, double r) {

@@ -1,10 +1,10 @@
 // fuzz_nearest: a ray and a handful of planes, answered by raykernel's certified nearest hit (`nearest_hit`,
 // `nearest_hit_traced`, `nearest_hit_batch`) and its exact reference (`nearest_hit_exact`), against a
-// brute-force search written here in GMP rationals (CONTRACT §4).
+// brute-force search written here in GMP rationals (docs/contract.md §4).
 //
 // Input (structure-aware, so that near ties between planes are the common case; layout below, and in
 // fuzz/README.md): record 0 (97 bytes) gives the ray and its first planes — a raw query or a hard query of
-// raykernel::testing::decode_fuzz_query, or a near-tie pair of make_plane_pair_near_tie; every further
+// raykernel::testkit::decode_fuzz_query, or a near-tie pair of make_plane_pair_near_tie; every further
 // record (49 bytes) adds planes — raw bit patterns, the plane of a hard query, or a plane derived from the
 // ray and the planes so far: a coincident copy (normal scaled by ±2^k, or negated), a copy nudged by ulps,
 // a parallel offset, planes through a common point of the ray or through a plane's point, planes through the
@@ -32,8 +32,8 @@
 #include <raykernel/batch.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/fuzz_decoder.hpp>
-#include <raykernel/testing/plane_pairs.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
 
 #include <algorithm>
 #include <array>
@@ -59,7 +59,7 @@ using raykernel::Vec3;
 using raykernel::fuzz::bits;
 using raykernel::fuzz::check;
 using raykernel::fuzz::exact_of;
-namespace rt = raykernel::testing;
+namespace rt = raykernel::testkit;
 
 // ---- The input ---------------------------------------------------------------------------------------------
 
@@ -316,7 +316,7 @@ std::vector<ExactPlane> exact_planes(const Ray& ray, const std::vector<Plane>& p
   return out;
 }
 
-// CONTRACT §1's relation from the exact signs; for the reversed ray (o, −d) den changes sign.
+// docs/contract.md §1's relation from the exact signs; for the reversed ray (o, −d) den changes sign.
 Relation oracle_relation(const ExactPlane& e, bool reversed) {
   const int num = sgn(e.num), den = reversed ? -sgn(e.den) : sgn(e.den);
   if (den == 0) return num == 0 ? Relation::in_plane : Relation::parallel;
@@ -331,7 +331,7 @@ struct OracleAnswer {
   std::optional<mpq_class> runner_up;  // the smallest exact t > t among the planes hit
 };
 
-// The brute-force search of CONTRACT §4: every plane hit, the smallest exact t, ties to the smallest index.
+// The brute-force search of docs/contract.md §4: every plane hit, the smallest exact t, ties to the smallest index.
 OracleAnswer brute_force(const std::vector<ExactPlane>& planes, bool reversed) {
   OracleAnswer a;
   std::vector<std::pair<std::size_t, mpq_class>> hit;

@@ -1,4 +1,4 @@
-// fuzz_nearest_cli: arbitrary text as the planes file and the rays file of `raykernel nearest` (CONTRACT §4),
+// fuzz_nearest_cli: arbitrary text as the planes file and the rays file of `raykernel nearest` (docs/contract.md §4),
 // through the functions the command runs — cli::read_planes, cli::nearest_stream — and through the command
 // itself, cli::run_nearest, with the planes in a file and the rays on standard input.
 //

@@ -25,7 +25,7 @@
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -268,7 +268,7 @@ void collect(json& v, std::vector<json*>& out) {
     for (json& child : v) collect(child, out);
 }
 
-json random_value(raykernel::testing::SplitMix64& rng) {
+json random_value(raykernel::testkit::SplitMix64& rng) {
   static const double special[] = {0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 1e308, -1e308, 1.7976931348623157e308, 5e-324,
                                    -5e-324, 2.2250738585072014e-308, 1e-300, 1e300, 0x1p-1000, 0x1p1000, 179.99999999999997,
                                    1e-16, 3.0, 8.881784197001252e-16};
@@ -284,7 +284,7 @@ json random_value(raykernel::testing::SplitMix64& rng) {
   }
 }
 
-void mutate_value(json& doc, raykernel::testing::SplitMix64& rng) {
+void mutate_value(json& doc, raykernel::testkit::SplitMix64& rng) {
   std::vector<json*> values;
   collect(doc, values);
   json& v = *values[rng() % values.size()];
@@ -348,7 +348,7 @@ extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, st
 extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size, std::size_t max_size,
                                                unsigned int seed) {
   auto byte_mutation = [&] { return LLVMFuzzerMutate != nullptr ? LLVMFuzzerMutate(data, size, max_size) : size; };
-  raykernel::testing::SplitMix64 rng(seed);
+  raykernel::testkit::SplitMix64 rng(seed);
   if (plain_mutator_requested() || rng() % 4 == 0) return byte_mutation();
   json doc = json::parse(data, data + size, nullptr, false);
   if (doc.is_discarded()) return byte_mutation();

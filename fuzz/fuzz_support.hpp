@@ -46,7 +46,7 @@ inline void check(bool condition, What&& what) {
 [[nodiscard]] std::string bits_of(double x);
 
 // ---------------------------------------------------------------------------------------------------------
-// CONTRACT §1's invalid input, decided from the bit patterns alone (no floating-point comparison), so that a
+// docs/contract.md §1's invalid input, decided from the bit patterns alone (no floating-point comparison), so that a
 // harness's idea of validity shares nothing with the kernel's.
 
 [[nodiscard]] inline std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }

@@ -1,4 +1,4 @@
-// The harnesses' own reading of the CLI's text formats (CONTRACT §3–§4), written apart from cli/text_input.cpp
+// The harnesses' own reading of the CLI's text formats (docs/contract.md §3–§4), written apart from cli/text_input.cpp
 // so that the CLI harnesses check the CLI against an independent reading: lines as std::getline splits them,
 // blank-separated tokens, numbers as C's strtod reads them.
 #pragma once

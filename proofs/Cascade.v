@@ -1,6 +1,6 @@
 (** * The pieces as intersect_certified.cpp, fast_path.hpp and nearest_hit.cpp combine them.
 
-    - [certified_relation]: signs certified by any stage give the relation of CONTRACT §1;
+    - [certified_relation]: signs certified by any stage give the relation of docs/contract.md §1;
     - [filter_relation_correct]: the stage-1 relation, end to end from the binary64 inputs;
     - [compensated_signs_correct]: stage 2's sign decisions ([enclosure_sign] of the compensated
       enclosures); [refined_signs_correct]: the same for the second level ([compensated_dot3_refined]);

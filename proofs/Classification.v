@@ -1,4 +1,4 @@
-(** * The classification of CONTRACT §1 (kernel/src/ray_plane_formula.hpp, [relation_from_signs]).
+(** * The classification of docs/contract.md §1 (kernel/src/ray_plane_formula.hpp, [relation_from_signs]).
 
     Over the reals, the seed's definition — a point o + t·d with t ≥ 0 on the plane (x − p)·n = 0 — is
     equivalent to the relation the code returns from the exact signs of num = (p − o)·n and den = d·n.
@@ -181,7 +181,7 @@ Proof.
   - destruct H as [_ A]. exists 0. split; [lra | apply A].
 Qed.
 
-(** CONTRACT §1: t = 0 when the origin lies on the plane. *)
+(** docs/contract.md §1: t = 0 when the origin lies on the plane. *)
 Corollary hit_at_origin : forall o d p n,
   ray_num o p n = 0 -> ray_den d n <> 0 -> classify o d p n = Hit /\ ray_num o p n / ray_den d n = 0.
 Proof.

@@ -6,7 +6,7 @@
 
 #include <raykernel/batch.hpp>
 #include <raykernel/nearest_hit.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <gtest/gtest.h>
 
@@ -18,8 +18,8 @@
 namespace raykernel {
 namespace {
 
-using testing::Query;
-using testing::QueryKind;
+using testkit::Query;
+using testkit::QueryKind;
 
 // A structure-of-arrays copy of a list of queries.
 struct SoA {
@@ -37,14 +37,14 @@ struct SoA {
 };
 
 std::vector<Query> queries_of_every_kind(std::size_t per_kind, std::uint64_t seed) {
-  testing::SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
   std::vector<Query> out;
-  for (QueryKind kind : testing::all_query_kinds)
-    for (std::size_t i = 0; i < per_kind; ++i) out.push_back(testing::make_query(kind, bits));
+  for (QueryKind kind : testkit::all_query_kinds)
+    for (std::size_t i = 0; i < per_kind; ++i) out.push_back(testkit::make_query(kind, bits));
   // Interleave kinds so that every group of eight lanes mixes easy and hard queries.
   std::vector<Query> mixed(out.size());
-  const std::size_t kinds = testing::all_query_kinds.size();
+  const std::size_t kinds = testkit::all_query_kinds.size();
   for (std::size_t i = 0; i < out.size(); ++i) mixed[(i % kinds) * per_kind + i / kinds] = out[i];
   return mixed;
 }
@@ -53,8 +53,8 @@ void expect_matches_scalar(const std::vector<Query>& q, const std::vector<Relati
                            const std::vector<double>& t) {
   for (std::size_t i = 0; i < q.size(); ++i) {
     const Intersection want = intersect(q[i].ray, q[i].plane);
-    ASSERT_TRUE(test::same_answer({relation[i], t[i]}, want))
-        << "query " << i << ": batch " << test::describe({relation[i], t[i]}) << ", intersect " << test::describe(want);
+    ASSERT_TRUE(test_support::same_answer({relation[i], t[i]}, want))
+        << "query " << i << ": batch " << test_support::describe({relation[i], t[i]}) << ", intersect " << test_support::describe(want);
   }
 }
 
@@ -81,7 +81,7 @@ TEST(Batch, ThreadsGiveTheSameAnswers) {
   intersect_batch(soa.rays(), soa.planes(), {r1, t1}, {.threads = 1});
   intersect_batch(soa.rays(), soa.planes(), {r4, t4}, {.threads = 4});
   for (std::size_t i = 0; i < q.size(); ++i)
-    ASSERT_TRUE(test::same_answer({r1[i], t1[i]}, {r4[i], t4[i]})) << i;
+    ASSERT_TRUE(test_support::same_answer({r1[i], t1[i]}, {r4[i], t4[i]})) << i;
   expect_matches_scalar(q, r4, t4);
 }
 
@@ -132,9 +132,9 @@ TEST(Batch, EveryInstructionSetVariantAgreesWithTheScalarFastPath) {
       ASSERT_EQ((outcome[i] & batch_kernel::certified_by_fast_path) != 0, scalar_certified) << i;
       if (!scalar_certified) continue;
       ++certified;
-      ASSERT_TRUE(test::same_bits(t[i], a.t)) << i;
+      ASSERT_TRUE(test_support::same_bits(t[i], a.t)) << i;
       ASSERT_EQ(relation[i], a.behind ? Relation::behind : Relation::hit) << i;
-      ASSERT_TRUE(test::same_answer({relation[i], t[i]}, intersect(q[i].ray, q[i].plane))) << i;
+      ASSERT_TRUE(test_support::same_answer({relation[i], t[i]}, intersect(q[i].ray, q[i].plane))) << i;
     }
     EXPECT_GT(certified, q.size() / 8);  // the easy kinds; the hard ones go on to the cascade
   }
@@ -152,7 +152,7 @@ TEST(Batch, InvalidQueriesAreReportedOrThrownWithTheirIndex) {
   for (std::size_t i = 0; i < q.size(); ++i) {
     EXPECT_EQ(valid[i], i != 7 && i != 40) << i;
     if (valid[i]) {
-      ASSERT_TRUE(test::same_answer({relation[i], t[i]}, intersect(q[i].ray, q[i].plane))) << i;
+      ASSERT_TRUE(test_support::same_answer({relation[i], t[i]}, intersect(q[i].ray, q[i].plane))) << i;
     }
   }
   try {

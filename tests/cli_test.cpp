@@ -1,4 +1,4 @@
-// The CLI (CONTRACT §3): the number syntax, the output format, invalid lines, exit statuses, and the
+// The CLI (docs/contract.md §3): the number syntax, the output format, invalid lines, exit statuses, and the
 // contract's sample cases run through the real binary.
 #include "commands.hpp"
 #include "support/answer_lines.hpp"
@@ -171,8 +171,8 @@ TEST(Classify, NaivePathShowsTheLecturesMistakes) {
 }
 
 TEST(Classify, ContractSampleOnEveryPathThatGuarantees) {
-  const auto input_lines = test::read_lines(cases + "/classify-sample.txt");
-  const auto expected = test::read_lines(cases + "/classify-sample.expected");
+  const auto input_lines = test_support::read_lines(cases + "/classify-sample.txt");
+  const auto expected = test_support::read_lines(cases + "/classify-sample.expected");
   std::string input;
   for (const auto& l : input_lines) input += l + "\n";
   for (Path path : {Path::certified, Path::exact}) {
@@ -185,7 +185,7 @@ TEST(Classify, ContractSampleOnEveryPathThatGuarantees) {
     for (std::string l; std::getline(out, l);) got.push_back(l);
     ASSERT_EQ(got.size(), expected.size());
     for (std::size_t i = 0; i < got.size(); ++i)
-      EXPECT_TRUE(test::same_classify_answer(got[i], expected[i])) << "answer " << i + 1 << "\n  got:  " << got[i]
+      EXPECT_TRUE(test_support::same_classify_answer(got[i], expected[i])) << "answer " << i + 1 << "\n  got:  " << got[i]
                                                                    << "\n  want: " << expected[i];
     EXPECT_EQ(status, exit_invalid_line);
   }
@@ -196,11 +196,11 @@ TEST(Classify, ContractSampleOnEveryPathThatGuarantees) {
 TEST(Binary, ContractSampleEndToEnd) {
   const CliRun r = run("classify --exact-t " + cases + "/classify-sample.txt");
   EXPECT_EQ(r.status, 1) << "the sample has invalid lines";
-  const auto expected = test::read_lines(cases + "/classify-sample.expected");
+  const auto expected = test_support::read_lines(cases + "/classify-sample.expected");
   std::istringstream out(r.out);
   std::size_t i = 0, wrong = 0;
   for (std::string l; std::getline(out, l); ++i)
-    if (i >= expected.size() || !test::same_classify_answer(l, expected[i])) ++wrong;
+    if (i >= expected.size() || !test_support::same_classify_answer(l, expected[i])) ++wrong;
   EXPECT_EQ(i, expected.size());
   EXPECT_EQ(wrong, 0u);
 }

@@ -1,4 +1,4 @@
-// CONTRACT §1–§2 on hand-derived cases: every expected value is worked out in the comment beside it, from
+// docs/contract.md §1–§2 on hand-derived cases: every expected value is worked out in the comment beside it, from
 // den = d·n, num = (p − o)·n and the rounding rules, not taken from any code. Each case runs through
 // `intersect` (certified) and `intersect_exact` (reference); where the lecture's formula in plain doubles
 // gets it wrong, the case says so and checks that `intersect_naive` indeed differs.
@@ -14,7 +14,7 @@
 namespace raykernel {
 namespace {
 
-using test::same_bits;
+using test_support::same_bits;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double max_double = std::numeric_limits<double>::max();  // 2^1024 − 2^971
@@ -34,7 +34,7 @@ void expect_answer(const Ray& r, const Plane& p, Relation relation, double t) {
   }
 }
 
-// ---- The seed's formula and definitions (seed §2) ------------------------------------------------------
+// ---- The seed's formula and definitions (docs/ray-casting.md §2) ------------------------------------------------------
 
 TEST(Seed, RayTowardsPlaneHitsAtTheDistanceAlongAUnitDirection) {
   // Plane z = 5 (p = (0,0,5), n = (0,0,1)); ray from the origin along +z. den = 1, num = 5: t = 5, and

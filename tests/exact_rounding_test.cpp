@@ -4,7 +4,7 @@
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <gtest/gtest.h>
 #include <mpfr.h>
@@ -16,8 +16,8 @@
 namespace raykernel {
 namespace {
 
-using test::round_by_integer_division;
-using test::same_bits;
+using test_support::round_by_integer_division;
+using test_support::same_bits;
 
 double round_with_kernel(const mpq_class& q) {
   return round_rational_to_double(q.get_num().get_str(), q.get_den().get_str());
@@ -75,7 +75,7 @@ TEST(ExactRounding, RejectsMalformedText) {
 // Random rationals around the hard spots, from a seeded stream (the seed is printed on failure).
 TEST(ExactRounding, AgreesWithIntegerDivisionOnHardRationals) {
   const std::uint64_t seed = 20261121;
-  testing::SplitMix64 rng(seed);
+  testkit::SplitMix64 rng(seed);
   auto random_mpz = [&](int bits) {
     mpz_class z = 0;
     for (int b = 0; b < bits; b += 64) z = (z << 64) + mpz_class(static_cast<unsigned long>(rng()));

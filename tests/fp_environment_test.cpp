@@ -14,7 +14,7 @@
 #include <xmmintrin.h>
 #endif
 
-namespace raykernel::test {
+namespace raykernel::test_support {
 double contracting_probe(double a, double c) noexcept;
 }
 
@@ -35,7 +35,7 @@ TEST(FpEnvironment, ProbeDetectsAContractingBuild) {
 #if defined(__x86_64__) && defined(__GNUC__)
   if (!__builtin_cpu_supports("fma")) GTEST_SKIP() << "no FMA unit: the positive control cannot run";
 #endif
-  EXPECT_EQ(test::contracting_probe(probe_a, probe_c), 0x1p-60);
+  EXPECT_EQ(test_support::contracting_probe(probe_a, probe_c), 0x1p-60);
 }
 
 // A near tie: num = 2^53 + 1 + 2^-27, den = 2^53, t = 1 + 2^-53 + 2^-80 → RN is 1 + 2^-52 (hand-derived in

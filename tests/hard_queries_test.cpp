@@ -2,7 +2,7 @@
 // (support/oracle.hpp), because every property test and benchmark relies on them.
 #include "support/oracle.hpp"
 
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 namespace raykernel {
 namespace {
 
-using testing::QueryKind;
+using testkit::QueryKind;
 
 bool all_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool nonzero(const Vec3& v) { return v.x != 0 || v.y != 0 || v.z != 0; }
@@ -26,12 +26,12 @@ bool is_midpoint(mpq_class q) {
   return q.get_den() == 1 && mpz_odd_p(q.get_num_mpz_t());
 }
 
-void check_promise(QueryKind kind, const testing::Query& q, int i) {
-  SCOPED_TRACE(std::string(testing::to_string(kind)) + " #" + std::to_string(i));
+void check_promise(QueryKind kind, const testkit::Query& q, int i) {
+  SCOPED_TRACE(std::string(testkit::to_string(kind)) + " #" + std::to_string(i));
   for (const Vec3& v : {q.ray.origin, q.ray.direction, q.plane.point, q.plane.normal}) ASSERT_TRUE(all_finite(v));
   ASSERT_TRUE(nonzero(q.ray.direction));
   ASSERT_TRUE(nonzero(q.plane.normal));
-  const test::ExactTerms e = test::exact_terms(q.ray, q.plane);
+  const test_support::ExactTerms e = test_support::exact_terms(q.ray, q.plane);
   switch (kind) {
     case QueryKind::exact_parallel: EXPECT_TRUE(e.den == 0 && e.num != 0); break;
     case QueryKind::exact_in_plane: EXPECT_TRUE(e.den == 0 && e.num == 0); break;
@@ -42,7 +42,7 @@ void check_promise(QueryKind kind, const testing::Query& q, int i) {
       const mpq_class t = e.num / e.den;
       EXPECT_FALSE(is_midpoint(t));
       // Within 2^-20 ulp of a midpoint: t's distance to the nearest midpoint, in units of its ulp.
-      const double rounded = test::round_by_integer_division(t);
+      const double rounded = test_support::round_by_integer_division(t);
       const double next = std::nextafter(rounded, t > mpq_class(rounded) ? HUGE_VAL : -HUGE_VAL);
       const mpq_class mid = (mpq_class(rounded) + mpq_class(next)) / 2;
       const mpq_class ulp = abs(mpq_class(next) - mpq_class(rounded));
@@ -86,27 +86,27 @@ void check_promise(QueryKind kind, const testing::Query& q, int i) {
 }
 
 TEST(HardQueries, EveryKindKeepsItsPromise) {
-  testing::SplitMix64 rng(42);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  for (QueryKind kind : testing::all_query_kinds)
-    for (int i = 0; i < 500; ++i) check_promise(kind, testing::make_query(kind, bits), i);
+  testkit::SplitMix64 rng(42);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  for (QueryKind kind : testkit::all_query_kinds)
+    for (int i = 0; i < 500; ++i) check_promise(kind, testkit::make_query(kind, bits), i);
 }
 
 TEST(HardQueries, AllZeroWordsStillGiveValidQueries) {
   // What a shrinker tries first.
-  const testing::BitSource zeros = [] { return std::uint64_t{0}; };
-  for (QueryKind kind : testing::all_query_kinds) {
-    const testing::Query q = testing::make_query(kind, zeros);
-    EXPECT_FALSE(validate(q.ray, q.plane).has_value()) << testing::to_string(kind);
+  const testkit::BitSource zeros = [] { return std::uint64_t{0}; };
+  for (QueryKind kind : testkit::all_query_kinds) {
+    const testkit::Query q = testkit::make_query(kind, zeros);
+    EXPECT_FALSE(validate(q.ray, q.plane).has_value()) << testkit::to_string(kind);
   }
 }
 
 TEST(HardQueries, DeterministicInTheWordsDrawn) {
-  for (QueryKind kind : testing::all_query_kinds) {
-    testing::SplitMix64 a(7), b(7);
-    const testing::Query qa = testing::make_query(kind, [&a] { return a(); });
-    const testing::Query qb = testing::make_query(kind, [&b] { return b(); });
-    EXPECT_EQ(std::memcmp(&qa, &qb, sizeof qa), 0) << testing::to_string(kind);
+  for (QueryKind kind : testkit::all_query_kinds) {
+    testkit::SplitMix64 a(7), b(7);
+    const testkit::Query qa = testkit::make_query(kind, [&a] { return a(); });
+    const testkit::Query qb = testkit::make_query(kind, [&b] { return b(); });
+    EXPECT_EQ(std::memcmp(&qa, &qb, sizeof qa), 0) << testkit::to_string(kind);
   }
 }
 

@@ -1,4 +1,4 @@
-// nearest_hit (CONTRACT §4) and its certified comparison of two t values.
+// nearest_hit (docs/contract.md §4) and its certified comparison of two t values.
 //
 //  * Hand-derived cases: the seed's loop, ties, coincident planes, planes through one point of the ray,
 //    two t closer than an ulp (where comparing rounded t picks the wrong plane), t = 0, planes never hit,
@@ -17,8 +17,8 @@
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
-#include <raykernel/testing/plane_pairs.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -33,7 +33,7 @@ namespace raykernel {
 namespace {
 
 using detail::Sign;
-using test::same_bits;
+using test_support::same_bits;
 
 std::optional<NearestHit> hit(std::size_t plane, double t) { return NearestHit{plane, t}; }
 
@@ -204,7 +204,7 @@ TEST(RationalFromDouble, IsTheExactValue) {
 
 // The exact Δ = num_a·den_b − num_b·den_a.
 mpq_class exact_delta(const Ray& ray, const Plane& a, const Plane& b) {
-  const test::ExactTerms ta = test::exact_terms(ray, a), tb = test::exact_terms(ray, b);
+  const test_support::ExactTerms ta = test_support::exact_terms(ray, a), tb = test_support::exact_terms(ray, b);
   return ta.num * tb.den - tb.num * ta.den;
 }
 
@@ -262,21 +262,21 @@ void check_pair(const Ray& ray, const Plane& a, const Plane& b, StageTally& tall
   }
 }
 
-class CompareStagesOnHardQueries : public ::testing::TestWithParam<testing::QueryKind> {};
+class CompareStagesOnHardQueries : public ::testing::TestWithParam<testkit::QueryKind> {};
 
 TEST_P(CompareStagesOnHardQueries, EachStageIsRightWhenItDecides) {
   // Pairs of planes along one ray: the first from a hard query of this kind, the second from another
   // hard query of the same kind (a different plane), a copy of the first moved by an ulp, a coincident
   // copy (normal scaled by −3 when exact), or the first plane again.
-  const testing::QueryKind kind = GetParam();
+  const testkit::QueryKind kind = GetParam();
   const std::uint64_t seed = 0xc0de0000 + static_cast<std::uint64_t>(kind);
-  testing::SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  SCOPED_TRACE(std::string(testing::to_string(kind)) + ", seed " + std::to_string(seed));
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE(std::string(testkit::to_string(kind)) + ", seed " + std::to_string(seed));
   StageTally tally;
   for (int i = 0; i < 1500 && !::testing::Test::HasFatalFailure(); ++i) {
-    const testing::Query q = testing::make_query(kind, bits);
-    Plane other = testing::make_query(kind, bits).plane;
+    const testkit::Query q = testkit::make_query(kind, bits);
+    Plane other = testkit::make_query(kind, bits).plane;
     switch (i % 4) {
       case 0: break;
       case 1: other = q.plane; other.point.x = std::nextafter(other.point.x, HUGE_VAL); break;
@@ -298,9 +298,9 @@ TEST_P(CompareStagesOnHardQueries, EachStageIsRightWhenItDecides) {
   RecordProperty("expansion_decisions", tally.expansion);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKinds, CompareStagesOnHardQueries, ::testing::ValuesIn(testing::all_query_kinds),
+INSTANTIATE_TEST_SUITE_P(AllKinds, CompareStagesOnHardQueries, ::testing::ValuesIn(testkit::all_query_kinds),
                          [](const auto& info) {
-                           std::string name(testing::to_string(info.param));
+                           std::string name(testkit::to_string(info.param));
                            for (char& c : name) c = (c == '-') ? '_' : c;
                            return name;
                          });
@@ -310,17 +310,17 @@ TEST(CompareStages, EachStageIsRightOnGeneratedScenes) {
   // offsets by one ulp, hard-query planes). Also shows that each stage is exercised, and that the filter's
   // bound is needed: on many pairs the unguarded sign of δ is wrong.
   const std::uint64_t seed = 0x5ce9e5;
-  testing::SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
   SCOPED_TRACE("seed " + std::to_string(seed));
   StageTally tally;
   for (int i = 0; i < 3000 && !::testing::Test::HasFatalFailure(); ++i) {
-    const test::PlaneScene scene = test::make_plane_scene(bits);
+    const test_support::PlaneScene scene = test_support::make_plane_scene(bits);
     for (std::size_t a = 0; a < scene.planes.size(); ++a)
       for (std::size_t b = a + 1; b < scene.planes.size(); ++b)
         check_pair(scene.ray, scene.planes[a], scene.planes[b], tally,
                    "scene " + std::to_string(i) + ", planes " + std::to_string(a) + " and " + std::to_string(b) + "\n" +
-                       test::describe_scene(scene));
+                       test_support::describe_scene(scene));
   }
   EXPECT_GT(tally.filter, tally.pairs / 4);
   EXPECT_GT(tally.compensated, 100);
@@ -379,7 +379,7 @@ TEST(CompareStages, CompensatedBoundCoversTheDroppedProductOfLowParts) {
 // the order of the difference put corners on both sides of zero, so a bound that is too small fails here.
 TEST(CompareStages, EnclosureStagesHoldAtEveryCornerOfTheirInputs) {
   const std::uint64_t seed = 0xb0c5;
-  testing::SplitMix64 rng(seed);
+  testkit::SplitMix64 rng(seed);
   SCOPED_TRACE("seed " + std::to_string(seed));
   auto uniform = [&rng](int lo, int hi) { return lo + static_cast<int>(rng() % static_cast<std::uint64_t>(hi - lo + 1)); };
   auto significand = [&rng] { return 1 + static_cast<double>(rng() >> 12) * 0x1p-52; };
@@ -436,18 +436,18 @@ TEST(CompareStages, EnclosureStagesHoldAtEveryCornerOfTheirInputs) {
 
 // ---- Properties: certified nearest == brute-force exact nearest ------------------------------------------
 
-rc::Gen<test::PlaneScene> gen_plane_scene() {
+rc::Gen<test_support::PlaneScene> gen_plane_scene() {
   return rc::gen::exec([] {
-    const testing::BitSource bits = [] {
+    const testkit::BitSource bits = [] {
       return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
     };
-    return test::make_plane_scene(bits);
+    return test_support::make_plane_scene(bits);
   });
 }
 
 RC_GTEST_PROP(NearestHitProperty, CertifiedEqualsBruteForceExact, ()) {
-  const test::PlaneScene scene = *gen_plane_scene();
-  const test::OracleNearest expected = test::brute_force_nearest(scene.ray, scene.planes);
+  const test_support::PlaneScene scene = *gen_plane_scene();
+  const test_support::OracleNearest expected = test_support::brute_force_nearest(scene.ray, scene.planes);
   const TracedNearestHit got = nearest_hit_traced(scene.ray, scene.planes);
   RC_CLASSIFY(!expected.plane, "miss");
   RC_CLASSIFY(got.comparison_stage != Stage::filter, std::string("comparison needed ") + std::string(to_string(got.comparison_stage)));
@@ -464,8 +464,8 @@ RC_GTEST_PROP(NearestHitProperty, CertifiedEqualsBruteForceExact, ()) {
 }
 
 RC_GTEST_PROP(NearestHitProperty, ExactPathEqualsBruteForceExact, ()) {
-  const test::PlaneScene scene = *gen_plane_scene();
-  const test::OracleNearest expected = test::brute_force_nearest(scene.ray, scene.planes);
+  const test_support::PlaneScene scene = *gen_plane_scene();
+  const test_support::OracleNearest expected = test_support::brute_force_nearest(scene.ray, scene.planes);
   const std::optional<NearestHit> got = nearest_hit_exact(scene.ray, scene.planes);
   RC_ASSERT(got.has_value() == expected.plane.has_value());
   if (got) {
@@ -476,7 +476,7 @@ RC_GTEST_PROP(NearestHitProperty, ExactPathEqualsBruteForceExact, ()) {
 
 RC_GTEST_PROP(NearestHitProperty, ReversingThePlaneOrderKeepsTheNearestPlane, ()) {
   // The nearest plane is the same geometric choice in either order; only ties move (to the other end).
-  const test::PlaneScene scene = *gen_plane_scene();
+  const test_support::PlaneScene scene = *gen_plane_scene();
   std::vector<Plane> reversed(scene.planes.rbegin(), scene.planes.rend());
   const std::optional<NearestHit> forward = nearest_hit(scene.ray, scene.planes);
   const std::optional<NearestHit> backward = nearest_hit(scene.ray, reversed);
@@ -485,20 +485,20 @@ RC_GTEST_PROP(NearestHitProperty, ReversingThePlaneOrderKeepsTheNearestPlane, ()
   RC_ASSERT(same_bits(forward->t, backward->t));
   const std::size_t mirrored = scene.planes.size() - 1 - backward->plane;
   // Same exact t: either the same plane, or a tie.
-  const test::ExactTerms a = test::exact_terms(scene.ray, scene.planes[forward->plane]);
-  const test::ExactTerms b = test::exact_terms(scene.ray, scene.planes[mirrored]);
+  const test_support::ExactTerms a = test_support::exact_terms(scene.ray, scene.planes[forward->plane]);
+  const test_support::ExactTerms b = test_support::exact_terms(scene.ray, scene.planes[mirrored]);
   RC_ASSERT(a.num * b.den == b.num * a.den);
   RC_ASSERT(mirrored >= forward->plane);  // the forward winner is the first of the tied planes
 }
 
 RC_GTEST_PROP(NearestHitProperty, OrdersTheTestingLibrarysNearTiePairs, ()) {
-  // raykernel::testing's plane pairs (exact ties, and t less than an ulp apart, with the order known by
+  // raykernel::testkit's plane pairs (exact ties, and t less than an ulp apart, with the order known by
   // construction), in both orders: the answer is the pair's own nearest(), and the two t round alike.
-  const testing::PlanePair pp = *rc::gen::exec([] {
-    return testing::make_plane_pair_near_tie(
+  const testkit::PlanePair pp = *rc::gen::exec([] {
+    return testkit::make_plane_pair_near_tie(
         [] { return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max()); });
   });
-  RC_TAG(std::string(testing::to_string(pp.kind)));
+  RC_TAG(std::string(testkit::to_string(pp.kind)));
   const std::vector<Plane> forward = {pp.planes[0], pp.planes[1]}, backward = {pp.planes[1], pp.planes[0]};
   const std::optional<NearestHit> a = nearest_hit(pp.ray, forward), b = nearest_hit(pp.ray, backward);
   RC_ASSERT(a.has_value() && b.has_value());
@@ -510,7 +510,7 @@ RC_GTEST_PROP(NearestHitProperty, OrdersTheTestingLibrarysNearTiePairs, ()) {
 
 RC_GTEST_PROP(NearestHitProperty, AgreesWithIntersectOnTheWinner, ()) {
   // The winner's t is intersect()'s t for that plane, and no plane hit by intersect() is nearer.
-  const test::PlaneScene scene = *gen_plane_scene();
+  const test_support::PlaneScene scene = *gen_plane_scene();
   const std::optional<NearestHit> h = nearest_hit(scene.ray, scene.planes);
   for (std::size_t k = 0; k < scene.planes.size(); ++k) {
     const Intersection i = intersect(scene.ray, scene.planes[k]);

@@ -1,9 +1,9 @@
 // RapidCheck properties of the certified path.
 //
 //  * Agreement: `intersect` == `intersect_exact` (relation and the bits of t) on generated hard queries.
-//    The exact path is the oracle; the generators (raykernel/testing/rapidcheck.hpp) aim at near-parallel
+//    The exact path is the oracle; the generators (raykernel/testkit/rapidcheck.hpp) aim at near-parallel
 //    rays, origins within ulps of the plane, exact degeneracies, ties, subnormals and huge exponents.
-//  * Metamorphic relations, each an exact consequence of CONTRACT §1: scaling n or d by a power of two,
+//  * Metamorphic relations, each an exact consequence of docs/contract.md §1: scaling n or d by a power of two,
 //    negating n or d, moving the origin along d by an exactly representable step.
 //
 // The case count comes from RC_PARAMS (tests/CMakeLists.txt sets max_success; the `long` ctest runs the
@@ -12,7 +12,7 @@
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/rapidcheck.hpp>
+#include <raykernel/testkit/rapidcheck.hpp>
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -25,9 +25,9 @@
 namespace raykernel {
 namespace {
 
-using test::same_answer;
-using testing::KindedQuery;
-using testing::Query;
+using test_support::same_answer;
+using testkit::KindedQuery;
+using testkit::Query;
 
 std::string tag_of(const TracedIntersection& r) {
   return std::string(to_string(r.intersection.relation)) + "/" + std::string(to_string(r.relation_stage));
@@ -46,14 +46,14 @@ RC_GTEST_PROP(Certified, AgreesWithExactOnHardQueries, (const KindedQuery& k)) {
   const Query& q = k.query;
   const TracedIntersection certified = intersect_traced(q.ray, q.plane);
   const Intersection exact = intersect_exact(q.ray, q.plane);
-  RC_TAG(testing::to_string(k.kind));
+  RC_TAG(testkit::to_string(k.kind));
   RC_CLASSIFY(true, tag_of(certified));
   RC_ASSERT(same_answer(certified.intersection, exact));
 }
 
 RC_GTEST_PROP(Certified, ExactPathAgreesWithIndependentOracle, (const KindedQuery& k)) {
   // The reference itself against the test's own rationals and integer-division rounding.
-  RC_ASSERT(same_answer(intersect_exact(k.query.ray, k.query.plane), test::contract_answer(k.query.ray, k.query.plane)));
+  RC_ASSERT(same_answer(intersect_exact(k.query.ray, k.query.plane), test_support::contract_answer(k.query.ray, k.query.plane)));
 }
 
 RC_GTEST_PROP(Metamorphic, ScalingTheNormalByAPowerOfTwoChangesNothing, (const KindedQuery& k)) {
@@ -81,7 +81,7 @@ RC_GTEST_PROP(Metamorphic, ScalingTheDirectionByAPowerOfTwoScalesT, (const Kinde
     // the normal range; |RN(t)| strictly between 2^-1022 and the largest double guarantees that.
     const double expected = std::ldexp(before.t, -power);
     auto interior = [](double x) { return std::fabs(x) > 0x1p-1022 && std::fabs(x) < std::numeric_limits<double>::max(); };
-    if (interior(before.t) && interior(expected)) RC_ASSERT(test::same_bits(after.t, expected));
+    if (interior(before.t) && interior(expected)) RC_ASSERT(test_support::same_bits(after.t, expected));
     else RC_ASSERT(same_answer(after, intersect_exact(q.ray, q.plane)));
   }
 }
@@ -105,12 +105,12 @@ RC_GTEST_PROP(Metamorphic, ReversingTheDirectionNegatesT, (const KindedQuery& k)
       if (before.t == 0 && !std::signbit(before.t) && before.relation == Relation::hit) {
         // t = +0 is either the origin on the plane (stays a hit at +0) or a tiny positive t (becomes
         // behind at −0); the exact num tells which.
-        const bool on_plane = test::exact_terms(q.ray, q.plane).num == 0;
+        const bool on_plane = test_support::exact_terms(q.ray, q.plane).num == 0;
         RC_ASSERT(after.relation == (on_plane ? Relation::hit : Relation::behind));
-        RC_ASSERT(test::same_bits(after.t, on_plane ? 0.0 : -0.0));
+        RC_ASSERT(test_support::same_bits(after.t, on_plane ? 0.0 : -0.0));
       } else {
         RC_ASSERT(after.relation == (before.relation == Relation::hit ? Relation::behind : Relation::hit));
-        RC_ASSERT(test::same_bits(after.t, -before.t));
+        RC_ASSERT(test_support::same_bits(after.t, -before.t));
       }
       break;
   }
@@ -150,12 +150,12 @@ RC_GTEST_PROP(Metamorphic, MovingTheOriginAlongTheRayShiftsT, (const KindedQuery
         std::isfinite(*m[i]) && mpq_class(*m[i]) == mpq_class(oc[i]) + mpq_class(s) * mpq_class(dc[i]);
     RC_PRE(exact_move);
   }
-  const test::ExactTerms before = test::exact_terms(q.ray, q.plane);
+  const test_support::ExactTerms before = test_support::exact_terms(q.ray, q.plane);
   RC_PRE(before.den != 0);
   const mpq_class t_moved = before.num / before.den - mpq_class(s);
   const Intersection after = intersect(moved.ray, moved.plane);
   RC_ASSERT(after.relation == (t_moved >= 0 ? Relation::hit : Relation::behind));
-  RC_ASSERT(test::same_bits(after.t, test::round_by_integer_division(t_moved)));
+  RC_ASSERT(test_support::same_bits(after.t, test_support::round_by_integer_division(t_moved)));
   RC_TAG(t_moved >= 0 ? "moved: hit" : "moved: behind");
 }
 

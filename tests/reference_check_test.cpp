@@ -1,11 +1,11 @@
-// raykernel::testing's user-facing tools: the ulp distance, the reference check and its report, the near-tie
+// raykernel::testkit's user-facing tools: the ulp distance, the reference check and its report, the near-tie
 // plane pairs and their RapidCheck generators. Exact claims are checked with the test's own rationals
 // (support/oracle.hpp), not with the kernel.
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing.hpp>
-#include <raykernel/testing/rapidcheck.hpp>
+#include <raykernel/testkit.hpp>
+#include <raykernel/testkit/rapidcheck.hpp>
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -24,13 +24,13 @@
 namespace raykernel {
 namespace {
 
-using testing::check_against_reference;
-using testing::PlanePair;
-using testing::PlaneTieKind;
-using testing::Query;
-using testing::ReferenceCheck;
-using testing::ulp_difference;
-using testing::ulp_distance;
+using testkit::check_against_reference;
+using testkit::PlanePair;
+using testkit::PlaneTieKind;
+using testkit::Query;
+using testkit::ReferenceCheck;
+using testkit::ulp_difference;
+using testkit::ulp_distance;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -76,7 +76,7 @@ TEST(UlpDifference, SignFollowsTheOrder) {
 }
 
 // A double with random bits that is not NaN (pbrt-v4's float tests use the same kind of pattern).
-double random_double(testing::SplitMix64& rng) {
+double random_double(testkit::SplitMix64& rng) {
   for (;;) {
     const double x = std::bit_cast<double>(rng());
     if (!std::isnan(x)) return x;
@@ -84,7 +84,7 @@ double random_double(testing::SplitMix64& rng) {
 }
 
 TEST(UlpDistance, CountsNextafterStepsOnRandomPatterns) {
-  testing::SplitMix64 rng(20240607);
+  testkit::SplitMix64 rng(20240607);
   std::vector<double> starts{-DBL_TRUE_MIN * 3, -DBL_MIN, -1.0, -0.0, 0.0, DBL_MAX, -inf};
   for (int i = 0; i < 2000; ++i) starts.push_back(random_double(rng));
   for (const double start : starts) {
@@ -99,20 +99,20 @@ TEST(UlpDistance, CountsNextafterStepsOnRandomPatterns) {
 }
 
 TEST(UlpDistance, IsAdditiveAndZeroOnlyForTheSameBits) {
-  testing::SplitMix64 rng(7);
+  testkit::SplitMix64 rng(7);
   for (int i = 0; i < 20000; ++i) {
     double v[3] = {random_double(rng), random_double(rng), random_double(rng)};
     std::sort(v, v + 3, [](double a, double b) { return a < b || (a == b && std::signbit(a) && !std::signbit(b)); });
     const std::uint64_t ab = *ulp_distance(v[0], v[1]), bc = *ulp_distance(v[1], v[2]), ac = *ulp_distance(v[0], v[2]);
     ASSERT_EQ(ab + bc, ac) << std::hexfloat << v[0] << ' ' << v[1] << ' ' << v[2];
-    ASSERT_EQ(ab == 0, test::same_bits(v[0], v[1]));
+    ASSERT_EQ(ab == 0, test_support::same_bits(v[0], v[1]));
   }
 }
 
 TEST(UlpDistance, EqualsTheExactDifferenceOverTheQuantumWithinABinade) {
   // For a and b in one binade [2^e, 2^(e+1)) (or among the subnormals, quantum 2^-1074), the distance is
   // (b − a)/2^(e−52) exactly: checked in rationals.
-  testing::SplitMix64 rng(99);
+  testkit::SplitMix64 rng(99);
   for (int i = 0; i < 5000; ++i) {
     const double a = std::fabs(random_double(rng));
     if (!std::isfinite(a) || a == 0) continue;
@@ -219,12 +219,12 @@ TEST(ReferenceCheck, InvalidInputThrows) {
 TEST(ReferenceCheck, AgreesWithTheIndependentOracleOnEveryKind) {
   // The check's verdict on the oracle's answer is "passed, 0 ulps"; on the oracle's t moved by k ulps it is
   // "k ulps" in the right direction.
-  testing::SplitMix64 rng(11);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  for (const testing::QueryKind kind : testing::all_query_kinds) {
+  testkit::SplitMix64 rng(11);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
     for (int i = 0; i < 200; ++i) {
-      const Query q = testing::make_query(kind, bits);
-      const Intersection truth = test::contract_answer(q.ray, q.plane);
+      const Query q = testkit::make_query(kind, bits);
+      const Intersection truth = test_support::contract_answer(q.ray, q.plane);
       const ReferenceCheck c = check_against_reference(q, truth);
       ASSERT_TRUE(c.passed()) << c.report();
       if (!c.t_compared || std::isinf(truth.t)) continue;
@@ -243,18 +243,18 @@ TEST(ReferenceCheck, AgreesWithTheIndependentOracleOnEveryKind) {
 
 // The replay line is 12 hexadecimal floats that strtod reads back to the query, bit for bit.
 TEST(ReferenceCheck, ReportReplaysTheQueryExactly) {
-  testing::SplitMix64 rng(5);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  for (const testing::QueryKind kind : testing::all_query_kinds) {
-    const Query q = testing::make_query(kind, bits);
-    std::istringstream in(testing::classify_line(q));
+  testkit::SplitMix64 rng(5);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
+    const Query q = testkit::make_query(kind, bits);
+    std::istringstream in(testkit::classify_line(q));
     std::vector<double> read;
     for (std::string token; in >> token;) read.push_back(std::strtod(token.c_str(), nullptr));
     ASSERT_EQ(read.size(), 12u);
     const double given[12] = {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z,   q.ray.direction.x,
                               q.ray.direction.y, q.ray.direction.z, q.plane.point.x,  q.plane.point.y,
                               q.plane.point.z,   q.plane.normal.x,  q.plane.normal.y, q.plane.normal.z};
-    for (int i = 0; i < 12; ++i) ASSERT_TRUE(test::same_bits(read[static_cast<std::size_t>(i)], given[i])) << i;
+    for (int i = 0; i < 12; ++i) ASSERT_TRUE(test_support::same_bits(read[static_cast<std::size_t>(i)], given[i])) << i;
   }
 }
 
@@ -282,11 +282,11 @@ struct PairTerms {
 };
 
 void check_pair_promise(const PlanePair& pp, int i) {
-  SCOPED_TRACE(std::string(testing::to_string(pp.kind)) + " #" + std::to_string(i));
+  SCOPED_TRACE(std::string(testkit::to_string(pp.kind)) + " #" + std::to_string(i));
   PairTerms terms;
   for (int k = 0; k < 2; ++k) {
     ASSERT_FALSE(validate(pp.ray, pp.planes[static_cast<std::size_t>(k)]).has_value());
-    const test::ExactTerms e = test::exact_terms(pp.ray, pp.planes[static_cast<std::size_t>(k)]);
+    const test_support::ExactTerms e = test_support::exact_terms(pp.ray, pp.planes[static_cast<std::size_t>(k)]);
     ASSERT_NE(e.den, 0);
     terms.t[k] = e.num / e.den;
     ASSERT_GT(terms.t[k], 0);  // both hit
@@ -300,7 +300,7 @@ void check_pair_promise(const PlanePair& pp, int i) {
     ASSERT_NE(terms.t[0], terms.t[1]);
     ASSERT_LT(abs(terms.t[1] - terms.t[0]), terms.t[0] / mpq_class(mpz_class(1) << 53));
     // Less than an ulp apart: the rounded values are equal or adjacent.
-    const double r0 = test::round_by_integer_division(terms.t[0]), r1 = test::round_by_integer_division(terms.t[1]);
+    const double r0 = test_support::round_by_integer_division(terms.t[0]), r1 = test_support::round_by_integer_division(terms.t[1]);
     ASSERT_LE(*ulp_distance(r0, r1), 1u);
   }
   // The geometry the kind promises.
@@ -318,21 +318,21 @@ void check_pair_promise(const PlanePair& pp, int i) {
     case PlaneTieKind::pivot:
     case PlaneTieKind::pivot_offset: EXPECT_FALSE(parallel_normals); break;
   }
-  // The kernel agrees (CONTRACT §4 compares exact t): the certified t round the same way as the oracle's.
+  // The kernel agrees (docs/contract.md §4 compares exact t): the certified t round the same way as the oracle's.
   for (int k = 0; k < 2; ++k) {
     const Intersection x = intersect(pp.ray, pp.planes[static_cast<std::size_t>(k)]);
     EXPECT_EQ(x.relation, Relation::hit);
-    EXPECT_TRUE(test::same_bits(x.t, test::round_by_integer_division(terms.t[k])));
+    EXPECT_TRUE(test_support::same_bits(x.t, test_support::round_by_integer_division(terms.t[k])));
   }
 }
 
 TEST(PlanePairs, EveryKindKeepsItsPromise) {
-  testing::SplitMix64 rng(314159);
-  const testing::BitSource bits = [&rng] { return rng(); };
+  testkit::SplitMix64 rng(314159);
+  const testkit::BitSource bits = [&rng] { return rng(); };
   int nearest_is_second = 0, rounded_equal = 0, near_ties = 0;
-  for (const PlaneTieKind kind : testing::all_plane_tie_kinds) {
+  for (const PlaneTieKind kind : testkit::all_plane_tie_kinds) {
     for (int i = 0; i < 1000; ++i) {
-      const PlanePair pp = testing::make_plane_pair_near_tie(kind, bits);
+      const PlanePair pp = testkit::make_plane_pair_near_tie(kind, bits);
       ASSERT_EQ(pp.kind, kind);
       check_pair_promise(pp, i);
       nearest_is_second += pp.nearest();
@@ -350,15 +350,15 @@ TEST(PlanePairs, EveryKindKeepsItsPromise) {
 }
 
 TEST(PlanePairs, MixedKindsAllZeroWordsAndDeterminism) {
-  testing::SplitMix64 rng(2718);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  for (int i = 0; i < 500; ++i) check_pair_promise(testing::make_plane_pair_near_tie(bits), i);
-  const testing::BitSource zeros = [] { return std::uint64_t{0}; };  // what a shrinker tries first
-  for (const PlaneTieKind kind : testing::all_plane_tie_kinds)
-    check_pair_promise(testing::make_plane_pair_near_tie(kind, zeros), -1);
-  testing::SplitMix64 a(9), b(9);
-  const PlanePair pa = testing::make_plane_pair_near_tie([&a] { return a(); });
-  const PlanePair pb = testing::make_plane_pair_near_tie([&b] { return b(); });
+  testkit::SplitMix64 rng(2718);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  for (int i = 0; i < 500; ++i) check_pair_promise(testkit::make_plane_pair_near_tie(bits), i);
+  const testkit::BitSource zeros = [] { return std::uint64_t{0}; };  // what a shrinker tries first
+  for (const PlaneTieKind kind : testkit::all_plane_tie_kinds)
+    check_pair_promise(testkit::make_plane_pair_near_tie(kind, zeros), -1);
+  testkit::SplitMix64 a(9), b(9);
+  const PlanePair pa = testkit::make_plane_pair_near_tie([&a] { return a(); });
+  const PlanePair pb = testkit::make_plane_pair_near_tie([&b] { return b(); });
   EXPECT_EQ(std::memcmp(&pa.planes, &pb.planes, sizeof pa.planes), 0);
   EXPECT_EQ(pa.order, pb.order);
 }
@@ -367,10 +367,10 @@ TEST(PlanePairs, MixedKindsAllZeroWordsAndDeterminism) {
 // The RapidCheck side (rapidcheck.hpp)
 
 RC_GTEST_PROP(TestingGenerators, PlanePairsKeepTheirPromise, (const PlanePair& pp)) {
-  RC_TAG(testing::to_string(pp.kind));
+  RC_TAG(testkit::to_string(pp.kind));
   PairTerms terms;
   for (int k = 0; k < 2; ++k) {
-    const test::ExactTerms e = test::exact_terms(pp.ray, pp.planes[static_cast<std::size_t>(k)]);
+    const test_support::ExactTerms e = test_support::exact_terms(pp.ray, pp.planes[static_cast<std::size_t>(k)]);
     RC_ASSERT(e.den != 0);
     terms.t[k] = e.num / e.den;
   }
@@ -379,16 +379,16 @@ RC_GTEST_PROP(TestingGenerators, PlanePairsKeepTheirPromise, (const PlanePair& p
 }
 
 RC_GTEST_PROP(TestingGenerators, HardQueriesOfChosenKinds, ()) {
-  const testing::KindedQuery k =
-      *testing::gen_hard_query({testing::QueryKind::near_parallel, testing::QueryKind::subnormal});
-  RC_ASSERT(k.kind == testing::QueryKind::near_parallel || k.kind == testing::QueryKind::subnormal);
+  const testkit::KindedQuery k =
+      *testkit::gen_hard_query({testkit::QueryKind::near_parallel, testkit::QueryKind::subnormal});
+  RC_ASSERT(k.kind == testkit::QueryKind::near_parallel || k.kind == testkit::QueryKind::subnormal);
   RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE(k.query, intersect(k.query.ray, k.query.plane), 0);
 }
 
 TEST(TestingGenerators, AFailingReferenceAssertionPrintsTheReport) {
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();
-  const bool ok = rc::check("naive against the reference", [](const testing::KindedQuery& k) {
+  const bool ok = rc::check("naive against the reference", [](const testkit::KindedQuery& k) {
     RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE(k.query, intersect_naive(k.query.ray, k.query.plane), 0);
   });
   const std::string out = ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();

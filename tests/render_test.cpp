@@ -1,4 +1,4 @@
-// The `nearest` and `render` commands: nearest on streams and through the binary (CONTRACT §4 and the
+// The `nearest` and `render` commands: nearest on streams and through the binary (docs/contract.md §4 and the
 // sample cases), scene files (every kind of error, with its JSON Pointer), rendering (hand-derived
 // pixels, supersampling, determinism across thread counts, the demo's stage and naive-difference counts),
 // PNG output, and the binary's usage errors.
@@ -75,7 +75,7 @@ TEST(Nearest, ContractSampleOnStreams) {
   const PlanesFile planes = read_planes(planes_file);
   ASSERT_TRUE(planes.ok()) << planes.error;
   ASSERT_EQ(planes.planes.size(), 51u);
-  const auto expected = test::read_lines(cases + "/nearest-sample/expected.txt");
+  const auto expected = test_support::read_lines(cases + "/nearest-sample/expected.txt");
   for (Path path : {Path::certified, Path::exact}) {
     std::ifstream rays(cases + "/nearest-sample/rays.txt");
     std::ostringstream out, err;
@@ -86,7 +86,7 @@ TEST(Nearest, ContractSampleOnStreams) {
     const auto got = lines_of(out.str());
     ASSERT_EQ(got.size(), expected.size());
     for (std::size_t i = 0; i < got.size(); ++i)
-      EXPECT_TRUE(test::same_nearest_answer(got[i], expected[i])) << "ray " << i + 1 << "\n  got:  " << got[i]
+      EXPECT_TRUE(test_support::same_nearest_answer(got[i], expected[i])) << "ray " << i + 1 << "\n  got:  " << got[i]
                                                                   << "\n  want: " << expected[i];
     EXPECT_EQ(err.str(), "");
   }
@@ -96,10 +96,10 @@ TEST(Nearest, ContractSampleThroughTheBinary) {
   const CliRun r = run("nearest --planes " + cases + "/nearest-sample/planes.txt " + cases + "/nearest-sample/rays.txt");
   EXPECT_EQ(r.status, 0);
   const auto got = lines_of(r.out);
-  const auto expected = test::read_lines(cases + "/nearest-sample/expected.txt");
+  const auto expected = test_support::read_lines(cases + "/nearest-sample/expected.txt");
   ASSERT_EQ(got.size(), expected.size());
   std::size_t wrong = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) wrong += !test::same_nearest_answer(got[i], expected[i]);
+  for (std::size_t i = 0; i < got.size(); ++i) wrong += !test_support::same_nearest_answer(got[i], expected[i]);
   EXPECT_EQ(wrong, 0u);
 }
 

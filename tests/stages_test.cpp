@@ -11,7 +11,7 @@
 #include "certified/expansion.hpp"
 #include "certified/round_quotient.hpp"
 
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ namespace {
 using detail::Dot3Rounded;
 using detail::Enclosure;
 using detail::Sign;
-using testing::Query;
+using testkit::Query;
 
 int sign_of(const mpq_class& q) { return sgn(q); }
 
@@ -53,19 +53,19 @@ Inputs inputs_of(const Query& q) {
   return in;
 }
 
-class StagesOnHardQueries : public ::testing::TestWithParam<testing::QueryKind> {};
+class StagesOnHardQueries : public ::testing::TestWithParam<testkit::QueryKind> {};
 
 TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
-  const testing::QueryKind kind = GetParam();
+  const testkit::QueryKind kind = GetParam();
   const std::uint64_t seed = 0x5eed0000 + static_cast<std::uint64_t>(kind);
-  testing::SplitMix64 rng(seed);
-  const testing::BitSource bits = [&rng] { return rng(); };
-  SCOPED_TRACE(std::string(testing::to_string(kind)) + ", seed " + std::to_string(seed));
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE(std::string(testkit::to_string(kind)) + ", seed " + std::to_string(seed));
   int decided[4] = {0, 0, 0, 0};  // filter, compensated, round_quotient (compensated), round_quotient (expansion)
   for (int i = 0; i < 3000; ++i) {
-    const Query q = testing::make_query(kind, bits);
+    const Query q = testkit::make_query(kind, bits);
     const Inputs in = inputs_of(q);
-    const test::ExactTerms exact = test::exact_terms(q.ray, q.plane);
+    const test_support::ExactTerms exact = test_support::exact_terms(q.ray, q.plane);
     constexpr double zero[3] = {0, 0, 0};
 
     // Stage 1.
@@ -112,10 +112,10 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
 
     // round_quotient: whatever it returns is RN(num/den).
     if (exact.num != 0 && exact.den != 0) {
-      const double expected = test::round_by_integer_division(exact.num / exact.den);
+      const double expected = test_support::round_by_integer_division(exact.num / exact.den);
       if (const std::optional<double> t = detail::round_quotient(num2, den2)) {
         ++decided[2];
-        ASSERT_TRUE(test::same_bits(*t, expected)) << "round_quotient, query " << i << ": " << std::hexfloat << *t
+        ASSERT_TRUE(test_support::same_bits(*t, expected)) << "round_quotient, query " << i << ": " << std::hexfloat << *t
                                                    << " vs " << expected;
       }
       // With exact enclosures (radius 0 after exact expansion), only ties and range guards can fail.
@@ -131,7 +131,7 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
       if (exact_num && exact_den) {
         if (const std::optional<double> t = detail::round_quotient(*exact_num, *exact_den)) {
           ++decided[3];
-          ASSERT_TRUE(test::same_bits(*t, expected)) << "round_quotient on tight enclosures, query " << i;
+          ASSERT_TRUE(test_support::same_bits(*t, expected)) << "round_quotient on tight enclosures, query " << i;
         }
       }
     }
@@ -140,9 +140,9 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
   RecordProperty("round_quotient_decisions", decided[2]);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllKinds, StagesOnHardQueries, ::testing::ValuesIn(testing::all_query_kinds),
+INSTANTIATE_TEST_SUITE_P(AllKinds, StagesOnHardQueries, ::testing::ValuesIn(testkit::all_query_kinds),
                          [](const auto& info) {
-                           std::string name(testing::to_string(info.param));
+                           std::string name(testkit::to_string(info.param));
                            for (char& c : name) c = (c == '-') ? '_' : c;
                            return name;
                          });

@@ -1,4 +1,4 @@
-// Rays and transforms (seed §1.3–1.4): the seed's own examples, hand-derived rays, the refusals, and
+// Rays and transforms (docs/ray-casting.md §1.3–1.4): the seed's own examples, hand-derived rays, the refusals, and
 // RapidCheck properties comparing the double API with exact rational evaluation of the same templated
 // formulas (raykernel/transform.hpp, namespace formulas): exact where binary64 is exact, and within the
 // standard rounding-error bound (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1:
@@ -64,7 +64,7 @@ TEST(SeedExamples, TranslationMovesPointsButNotDirections) {
 }
 
 TEST(SeedExamples, ADirectionIsTheDifferenceOfTwoTransformedPoints) {
-  // M(o + d) − M(o) = M·(d, 0) for an affine M (seed §1.4), here a rotation-free shear and scale with
+  // M(o + d) − M(o) = M·(d, 0) for an affine M (docs/ray-casting.md §1.4), here a rotation-free shear and scale with
   // dyadic entries, so that every operation is exact.
   Transform m = Transform::identity();
   m.m = {{{2, 0.5, 0, 1}, {0, 1, -0.25, 2}, {0.125, 0, 4, -3}, {0, 0, 0, 1}}};
@@ -331,7 +331,7 @@ RC_GTEST_PROP(Formulas, AffinePointsAndDirectionsAreWithinTheDotProductBound, ()
 
 RC_GTEST_PROP(Formulas, AffineRaysAreExactForDyadicTransforms, ()) {
   // Entries and coordinates with few bits: every product and sum is exact, so the double ray is the exact
-  // image, and the direction equals the difference of the two transformed points (seed §1.4).
+  // image, and the direction equals the difference of the two transformed points (docs/ray-casting.md §1.4).
   auto dyadic = [] { return std::ldexp(*rc::gen::inRange(-64, 65), -3); };
   Transform t = Transform::identity();
   for (std::size_t i = 0; i < 3; ++i)
@@ -385,7 +385,7 @@ RC_GTEST_PROP(Formulas, InverseOfSmallIntegerMatricesIsCorrectlyRounded, ()) {
   const Transform inv = inverse(t);
   const Matrix4<mpq_class> exact_inverse = formulas::inverse_from_adjugate(exact);
   for (std::size_t i = 0; i < 4; ++i)
-    for (std::size_t j = 0; j < 4; ++j) RC_ASSERT(inv.m[i][j] == test::round_by_integer_division(exact_inverse[i][j]));  // ±0 alike
+    for (std::size_t j = 0; j < 4; ++j) RC_ASSERT(inv.m[i][j] == test_support::round_by_integer_division(exact_inverse[i][j]));  // ±0 alike
   // And M·M⁻¹ = I exactly in rationals.
   const Matrix4<mpq_class> product = formulas::multiply(exact_matrix(t), exact_inverse);
   for (std::size_t i = 0; i < 4; ++i)

@@ -23,7 +23,7 @@
 
 Files named regression-* (inputs that made a harness fail) and mutant-* (inputs that killed a deliberately
 broken kernel) are added by hand and never touched here.
-The layout of a classify input is raykernel/testing/fuzz_decoder.hpp's.
+The layout of a classify input is raykernel/testkit/fuzz_decoder.hpp's.
 """
 import pathlib
 import random

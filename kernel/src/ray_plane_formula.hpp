@@ -2,7 +2,7 @@
 //
 //     den = d·n,    num = (p − o)·n,    t = num / den
 //
-// (seed §2: (d·n) t = −(o − p)·n). The naive path instantiates it with double, the exact path with
+// (docs/ray-casting.md §2: (d·n) t = −(o − p)·n). The naive path instantiates it with double, the exact path with
 // CGAL::Exact_rational; the certified stages evaluate the same two dot products, term by term in the same
 // order, with error-free transformations (certified/).
 #pragma once
@@ -27,7 +27,7 @@ template <class T, class Lift>
   return {std::move(num), std::move(den)};
 }
 
-// The relation of CONTRACT §1 from the exact signs (−1, 0, +1) of num and den.
+// The relation of docs/contract.md §1 from the exact signs (−1, 0, +1) of num and den.
 [[nodiscard]] constexpr Relation relation_from_signs(int num_sign, int den_sign) noexcept {
   if (den_sign == 0) return num_sign == 0 ? Relation::in_plane : Relation::parallel;
   // hit iff num/den ≥ 0 iff num·den ≥ 0 (written without a branch on the unpredictable signs)

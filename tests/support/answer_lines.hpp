@@ -1,4 +1,4 @@
-// Comparing CLI answer lines with the contract's expected answers the way CONTRACT/cases/README.md states:
+// Comparing CLI answer lines with the contract's expected answers the way tests/data/contract-cases/README.md states:
 // the word after `invalid` is free; T is compared as the double it reads back to (the sign of a zero
 // matters when the exact t is not zero); the exact t is compared as a rational.
 #pragma once
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace raykernel::test {
+namespace raykernel::test_support {
 
 inline std::vector<std::string> words(const std::string& line) {
   std::istringstream s(line);
@@ -64,4 +64,4 @@ inline bool same_nearest_answer(const std::string& got_line, const std::string& 
   return same_t(g[2], w[2], exact);
 }
 
-}  // namespace raykernel::test
+}  // namespace raykernel::test_support

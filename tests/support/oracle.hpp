@@ -13,7 +13,7 @@
 #include <limits>
 #include <string>
 
-namespace raykernel::test {
+namespace raykernel::test_support {
 
 inline mpq_class to_mpq(const Rational& r) {
   mpq_class q(mpz_class(r.numerator), mpz_class(r.denominator));
@@ -70,7 +70,7 @@ inline bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-// The answer CONTRACT §1 requires, from the exact oracle above.
+// The answer docs/contract.md §1 requires, from the exact oracle above.
 inline Intersection contract_answer(const Ray& r, const Plane& p) {
   const ExactTerms e = exact_terms(r, p);
   const int sn = sgn(e.num), sd = sgn(e.den);
@@ -92,4 +92,4 @@ inline std::string describe(const Intersection& x) {
   return std::string(to_string(x.relation)) + buf;
 }
 
-}  // namespace raykernel::test
+}  // namespace raykernel::test_support

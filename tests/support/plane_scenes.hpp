@@ -10,7 +10,7 @@
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <gmpxx.h>
 
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace raykernel::test {
+namespace raykernel::test_support {
 
 struct PlaneScene {
   Ray ray;
@@ -31,7 +31,7 @@ struct PlaneScene {
 
 class SceneDraw {
  public:
-  explicit SceneDraw(const testing::BitSource& bits) : bits_(bits) {}
+  explicit SceneDraw(const testkit::BitSource& bits) : bits_(bits) {}
 
   std::uint64_t word() { return bits_(); }
   int integer(int lo, int hi) {
@@ -49,7 +49,7 @@ class SceneDraw {
   }
 
  private:
-  const testing::BitSource& bits_;
+  const testkit::BitSource& bits_;
 };
 
 inline bool is_zero(const Vec3& v) { return v.x == 0 && v.y == 0 && v.z == 0; }
@@ -69,7 +69,7 @@ inline std::optional<Vec3> exact_point_along(const Vec3& a, double s, const Vec3
 }
 
 // A scene of 1 to `max_planes` planes along one ray (see the file comment).
-inline PlaneScene make_plane_scene(const testing::BitSource& bits, int max_planes = 8) {
+inline PlaneScene make_plane_scene(const testkit::BitSource& bits, int max_planes = 8) {
   SceneDraw draw(bits);
   PlaneScene scene;
   scene.ray = {draw.short_vector(), nonzero(draw.short_vector())};
@@ -149,10 +149,10 @@ inline PlaneScene make_plane_scene(const testing::BitSource& bits, int max_plane
         break;
       }
       default: {  // the plane of a hard query (near-parallel, subnormal, huge, ...), with this ray
-        const testing::QueryKind qk =
-            testing::all_query_kinds[static_cast<std::size_t>(draw.integer(0, testing::query_kind_count - 1))];
-        scene.planes.push_back(testing::make_query(qk, bits).plane);
-        scene.kinds.push_back(std::string("hard: ") + std::string(testing::to_string(qk)));
+        const testkit::QueryKind qk =
+            testkit::all_query_kinds[static_cast<std::size_t>(draw.integer(0, testkit::query_kind_count - 1))];
+        scene.planes.push_back(testkit::make_query(qk, bits).plane);
+        scene.kinds.push_back(std::string("hard: ") + std::string(testkit::to_string(qk)));
         break;
       }
     }
@@ -198,4 +198,4 @@ inline std::string describe_scene(const PlaneScene& s) {
   return out;
 }
 
-}  // namespace raykernel::test
+}  // namespace raykernel::test_support

@@ -1,4 +1,4 @@
-// raykernel/camera.hpp: the rays to cast for an image (seed §1.3).
+// raykernel/camera.hpp: the rays to cast for an image (docs/ray-casting.md §1.3).
 //
 // Pixel (i, j) of an m × n image is column i (0 at the left) and row j (0 at the BOTTOM, as in the seed,
 // where y grows with j); an image file's first row is j = n − 1. A sample is a position (s_x, s_y) inside
@@ -45,7 +45,7 @@ struct NearPlaneWindow {
   double left, right, bottom, top, near;
 };
 
-// The NDC ray of seed §1.3 for sample s of pixel (i, j). Throws invalid_input when the pixel is outside
+// The NDC ray of docs/ray-casting.md §1.3 for sample s of pixel (i, j). Throws invalid_input when the pixel is outside
 // the image or the image is empty.
 [[nodiscard]] Ray ndc_ray(std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s = {});
 
@@ -54,7 +54,7 @@ enum class RayStart : bool {
   eye,         // the origin is the eye, (0, 0, 0); the direction is the same
 };
 
-// The camera-space perspective ray of seed §1.3: direction o/‖o‖ where o is the near-plane point. Throws
+// The camera-space perspective ray of docs/ray-casting.md §1.3: direction o/‖o‖ where o is the near-plane point. Throws
 // invalid_input for a pixel outside the image, near ≤ 0, or an empty window.
 [[nodiscard]] Ray perspective_ray(const NearPlaneWindow& window, std::uint32_t i, std::uint32_t j, ImageSize image,
                                   PixelSample s = {}, RayStart start = RayStart::near_plane);

@@ -1,10 +1,10 @@
-// raykernel/nearest_hit.hpp: the first plane a ray meets, decided exactly (CONTRACT §4).
+// raykernel/nearest_hit.hpp: the first plane a ray meets, decided exactly (docs/contract.md §4).
 //
-// Ray casting's inner loop (seed §1.1, "for every object: update the pixel if the object is nearest so far")
+// Ray casting's inner loop (docs/ray-casting.md §1.1, "for every object: update the pixel if the object is nearest so far")
 // chooses, among the planes a ray hits, the one with the smallest t. `nearest_hit` makes that choice
 // exactly for the doubles given: the winner is the plane with the smallest exact t = num/den among those
 // whose relation is hit (t ≥ 0; parallel, in-plane and behind planes never win), ties go to the smallest
-// index, and the t returned is the winner's exact t rounded to nearest as in CONTRACT §1.
+// index, and the t returned is the winner's exact t rounded to nearest as in docs/contract.md §1.
 //
 // Comparing two t values is a certified predicate of its own, the sign of num_a·den_b − num_b·den_a:
 // a binary64 filter, a double-double stage, exact expansions and exact rationals, each asked only when
@@ -23,7 +23,7 @@
 
 namespace raykernel {
 
-// The nearest plane hit: its index in the span, and its t (RN of the exact num/den, CONTRACT §1).
+// The nearest plane hit: its index in the span, and its t (RN of the exact num/den, docs/contract.md §1).
 struct NearestHit {
   std::size_t plane;
   double t;
@@ -31,7 +31,7 @@ struct NearestHit {
   friend bool operator==(const NearestHit&, const NearestHit&) = default;
 };
 
-// The certified nearest hit (CONTRACT §4), or nothing when no plane is hit (no planes, or every plane
+// The certified nearest hit (docs/contract.md §4), or nothing when no plane is hit (no planes, or every plane
 // parallel, in-plane or behind). Throws invalid_input when the ray or a plane is invalid (a non-finite
 // component, a zero direction or normal); what() names it, e.g. "plane 3: plane normal is the zero
 // vector". Thread-safe; no global state. In a non-default floating-point environment (directed rounding,

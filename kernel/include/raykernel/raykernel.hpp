@@ -6,7 +6,7 @@
 //     den = d·n        and        num = (p − o)·n,
 //
 // evaluated over the reals, and t is the exact rational num/den rounded to the nearest double, ties to
-// even (CONTRACT.md §1). `intersect` gets there through a cascade of certified stages (a binary64 filter,
+// even (docs/contract.md §1). `intersect` gets there through a cascade of certified stages (a binary64 filter,
 // a double-double stage, exact floating-point expansions, and CGAL's exact rationals with MPFR rounding as
 // the last resort); `intersect_exact` uses exact rationals only and is the reference the cascade is tested
 // against. `intersect_naive` is the lecture's formula in plain doubles: the baseline, without guarantees.
@@ -61,7 +61,7 @@ class invalid_input : public std::invalid_argument {
 // when they are valid.
 [[nodiscard]] std::optional<std::string> validate(const Ray& ray, const Plane& plane);
 
-// The certified intersection: the exact answer of CONTRACT §1, computed by the cheapest stage whose
+// The certified intersection: the exact answer of docs/contract.md §1, computed by the cheapest stage whose
 // certified error bound decides it. Thread-safe; no global state. If the floating-point environment is not
 // the one the error bounds assume (round-to-nearest, no flush-to-zero/denormals-are-zero), it answers
 // through the exact stage instead. Throws invalid_input.

@@ -1,4 +1,4 @@
-// raykernel/transform.hpp: 4×4 homogeneous transforms of points, directions and rays (seed §1.4).
+// raykernel/transform.hpp: 4×4 homogeneous transforms of points, directions and rays (docs/ray-casting.md §1.4).
 //
 // A point is the homogeneous column (x, y, z, 1): it is multiplied by the matrix and divided by the
 // resulting w (the perspective divide). A direction is (x, y, z, 0): translation leaves it alone, which is
@@ -68,7 +68,7 @@ template <class T>
   return {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
 }
 
-// The image of the direction d: the first three rows of M·(d, 0) (seed §1.4: M(o + d) − M(o) = M·(d, 0)).
+// The image of the direction d: the first three rows of M·(d, 0) (docs/ray-casting.md §1.4: M(o + d) − M(o) = M·(d, 0)).
 template <class T>
 [[nodiscard]] Vector3<T> transform_direction(const Matrix4<T>& m, const Vector3<T>& d) {
   const Vector4<T> h = multiply(m, Vector4<T>{d[0], d[1], d[2], T(0)});

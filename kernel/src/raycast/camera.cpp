@@ -1,4 +1,4 @@
-// Ray generation (seed §1.3) from the templated formulas of raykernel/transform.hpp, and reproducible
+// Ray generation (docs/ray-casting.md §1.3) from the templated formulas of raykernel/transform.hpp, and reproducible
 // stratified samples.
 #include <raykernel/camera.hpp>
 

@@ -1,4 +1,4 @@
-// nearest_hit: the plane with the smallest exact t among those a ray hits (CONTRACT §4), by the certified
+// nearest_hit: the plane with the smallest exact t among those a ray hits (docs/contract.md §4), by the certified
 // cascade for each plane's relation and the certified comparison of t values (compare_quotients.hpp).
 //
 // Only the relation of each plane is decided in the loop (signs of num and den, stage 1 for almost every

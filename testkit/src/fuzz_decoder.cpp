@@ -1,13 +1,13 @@
 // The fuzz input layout of fuzz_decoder.hpp. Byte order is assembled explicitly (little-endian), so corpora
 // written on one machine decode the same everywhere.
-#include <raykernel/testing/fuzz_decoder.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
 
 #include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 namespace {
 
 // The 8 bytes at `offset`, little-endian; bytes past the end read as zero.
@@ -65,4 +65,4 @@ std::vector<std::uint8_t> encode_hard_query_fuzz_input(QueryKind kind, std::span
   return out;
 }
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

@@ -19,13 +19,13 @@
 //
 // Magnitudes: |d×u| < 2^41, |nB| < 2^43, |w| < 2^48, so every coordinate is an integer below 2^53 (exact in
 // a double) and the integer arithmetic here (|N|, |D| < 2^66) fits in 128 bits.
-#include <raykernel/testing/plane_pairs.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <utility>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 namespace {
 
 __extension__ typedef __int128 int128;
@@ -188,4 +188,4 @@ PlanePair make_plane_pair_near_tie(PlaneTieKind kind, const BitSource& bits) {
   return pair;
 }
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

@@ -1,5 +1,5 @@
 // Near ties between planes: one ray and two planes whose exact t along it are equal, or differ by less
-// than one ulp of t, for testing nearest-hit code (CONTRACT §4: the plane with the smallest exact t wins,
+// than one ulp of t, for testing nearest-hit code (docs/contract.md §4: the plane with the smallest exact t wins,
 // ties go to the smaller index).
 //
 // A nearest-hit loop that compares t values rounded to doubles cannot order such planes: both t round to
@@ -17,13 +17,13 @@
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <array>
 #include <cstdint>
 #include <string_view>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 
 enum class PlaneTieKind : std::uint8_t {
   coincident,       // exact tie: the same geometric plane, given by another point and a normal scaled by ±2^k
@@ -39,7 +39,7 @@ inline constexpr std::array<PlaneTieKind, plane_tie_kind_count> all_plane_tie_ki
 
 // A ray and two planes it hits, with the exact order of their t.
 //
-// With t0, t1 the exact t of planes[0] and planes[1] (num/den as in CONTRACT §1, both > 0):
+// With t0, t1 the exact t of planes[0] and planes[1] (num/den as in docs/contract.md §1, both > 0):
 //   * exact-tie kinds: t0 == t1 and order == 0;
 //   * near-tie kinds: t0 != t1, |t1 − t0| < 2^-53·t0 (so less than one ulp of t0 and of t1: both
 //     round to the same double or to adjacent ones), and order is the sign of t1 − t0.
@@ -49,7 +49,7 @@ struct PlanePair {
   std::array<Plane, 2> planes;
   int order;  // sign of t1 − t0: −1, 0 or +1
 
-  // The index CONTRACT §4 answers for these two planes: the smaller exact t; on a tie, the smaller index.
+  // The index docs/contract.md §4 answers for these two planes: the smaller exact t; on a tie, the smaller index.
   [[nodiscard]] int nearest() const noexcept { return order < 0 ? 1 : 0; }
   // The two one-plane queries, e.g. for the reference check.
   [[nodiscard]] Query query(int i) const noexcept { return {ray, planes[static_cast<std::size_t>(i)]}; }
@@ -59,4 +59,4 @@ struct PlanePair {
 [[nodiscard]] PlanePair make_plane_pair_near_tie(PlaneTieKind kind, const BitSource& bits);
 [[nodiscard]] PlanePair make_plane_pair_near_tie(const BitSource& bits);
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

@@ -1,14 +1,14 @@
 // RapidCheck generators of hard ray–plane queries, for RC_GTEST_PROP properties of raykernel and of ray code
 // tested against it. Header-only: it needs <rapidcheck.h> on the include path and the `rapidcheck` library
 // (with the installed package: find_package(raykernel CONFIG REQUIRED COMPONENTS testing) finds it, then
-// target_link_libraries(my_test PRIVATE raykernel::testing rapidcheck)).
+// target_link_libraries(my_test PRIVATE raykernel::testkit rapidcheck)).
 //
-//   RC_GTEST_PROP(MyRayCode, MatchesRaykernel, (const raykernel::testing::KindedQuery& k)) {
-//     RC_TAG(raykernel::testing::to_string(k.kind));
+//   RC_GTEST_PROP(MyRayCode, MatchesRaykernel, (const raykernel::testkit::KindedQuery& k)) {
+//     RC_TAG(raykernel::testkit::to_string(k.kind));
 //     RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE(k.query, my_intersect(k.query.ray, k.query.plane), 4);
 //   }
 //
-//   RC_GTEST_PROP(MyNearestHit, OrdersNearTies, (const raykernel::testing::PlanePair& pp)) {
+//   RC_GTEST_PROP(MyNearestHit, OrdersNearTies, (const raykernel::testkit::PlanePair& pp)) {
 //     RC_ASSERT(my_nearest(pp.ray, pp.planes) == pp.nearest());
 //   }
 //
@@ -21,9 +21,9 @@
 // `raykernel classify`).
 #pragma once
 
-#include <raykernel/testing/hard_queries.hpp>
-#include <raykernel/testing/plane_pairs.hpp>
-#include <raykernel/testing/reference_check.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
+#include <raykernel/testkit/reference_check.hpp>
 
 #include <rapidcheck.h>
 
@@ -34,7 +34,7 @@
 #include <ostream>
 #include <vector>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 
 // A BitSource for use inside rc::gen::exec: each word is a separate RapidCheck value, uniform and shrinking
 // toward 0.
@@ -77,35 +77,35 @@ inline rc::Gen<PlanePair> gen_plane_pair_near_tie(PlaneTieKind kind) {
   return rc::gen::exec([kind] { return make_plane_pair_near_tie(kind, rc_bit_source()); });
 }
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit
 
 // Fails the current RapidCheck case unless `got` (an Intersection) is the exact answer to `query` with t
 // within `max_t_ulps` ulps (reference_check.hpp); the failure message is the check's report (the query in
 // hexadecimal floats, a replay command, expected and got, the exact t as P/Q, the ulp distance).
 #define RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE(query, got, max_t_ulps)                                       \
   do {                                                                                                     \
-    const ::raykernel::testing::ReferenceCheck raykernel_rc_check_ =                                       \
-        ::raykernel::testing::check_against_reference((query), (got), (max_t_ulps));                       \
+    const ::raykernel::testkit::ReferenceCheck raykernel_rc_check_ =                                       \
+        ::raykernel::testkit::check_against_reference((query), (got), (max_t_ulps));                       \
     if (!raykernel_rc_check_.passed()) RC_FAIL(raykernel_rc_check_.report());                              \
   } while (false)
 
 namespace rc {
 template <>
-struct Arbitrary<raykernel::testing::QueryKind> {
-  static Gen<raykernel::testing::QueryKind> arbitrary() { return raykernel::testing::gen_query_kind(); }
+struct Arbitrary<raykernel::testkit::QueryKind> {
+  static Gen<raykernel::testkit::QueryKind> arbitrary() { return raykernel::testkit::gen_query_kind(); }
 };
 template <>
-struct Arbitrary<raykernel::testing::KindedQuery> {
-  static Gen<raykernel::testing::KindedQuery> arbitrary() { return raykernel::testing::gen_hard_query(); }
+struct Arbitrary<raykernel::testkit::KindedQuery> {
+  static Gen<raykernel::testkit::KindedQuery> arbitrary() { return raykernel::testkit::gen_hard_query(); }
 };
 template <>
-struct Arbitrary<raykernel::testing::PlanePair> {
-  static Gen<raykernel::testing::PlanePair> arbitrary() { return raykernel::testing::gen_plane_pair_near_tie(); }
+struct Arbitrary<raykernel::testkit::PlanePair> {
+  static Gen<raykernel::testkit::PlanePair> arbitrary() { return raykernel::testkit::gen_plane_pair_near_tie(); }
 };
 }  // namespace rc
 
 // So that RapidCheck prints a counterexample exactly: every component as a hexadecimal float.
-namespace raykernel::testing {
+namespace raykernel::testkit {
 inline void showValue(const Query& q, std::ostream& os) {
   auto v = [&os](const char* name, const Vec3& a) {
     char buf[160];
@@ -136,4 +136,4 @@ inline void showValue(const PlanePair& pp, std::ostream& os) {
   v("p1", pp.planes[1].point);
   v("n1", pp.planes[1].normal);
 }
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

@@ -1,13 +1,13 @@
 // Constructions of hard queries. Where a construction promises an exact property (d·n = 0, a rounding tie),
 // every coordinate is an integer below 2^53 times a power of two, so the doubles hold it exactly; the
 // exact stage of raykernel checks each promise in tests/hard_queries_test.cpp.
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <utility>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 namespace {
 
 class Draw {
@@ -220,4 +220,4 @@ Query make_query(QueryKind kind, const BitSource& bits) {
   return q;
 }
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

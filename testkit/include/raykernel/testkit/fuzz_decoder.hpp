@@ -13,7 +13,7 @@
 //       so every input decodes). Always valid input.
 //
 //   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-//     const raykernel::testing::FuzzQuery f = raykernel::testing::decode_fuzz_query({data, size});
+//     const raykernel::testkit::FuzzQuery f = raykernel::testkit::decode_fuzz_query({data, size});
 //     if (raykernel::validate(f.query.ray, f.query.plane)) return 0;  // or check your code rejects it too
 //     check_my_ray_code_against(raykernel::intersect(f.query.ray, f.query.plane), f.query);
 //     return 0;
@@ -23,7 +23,7 @@
 // bit for bit, and decode_fuzz_query(encode_hard_query_fuzz_input(kind, w)) is make_query(kind, w...).
 #pragma once
 
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -31,7 +31,7 @@
 #include <span>
 #include <vector>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 
 // The selector byte values: below hard_query_selector raw, from it on hard queries.
 inline constexpr std::uint8_t raw_selector = 0x00;
@@ -62,4 +62,4 @@ struct FuzzQuery {
 [[nodiscard]] std::vector<std::uint8_t> encode_hard_query_fuzz_input(QueryKind kind,
                                                                      std::span<const std::uint64_t> words);
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

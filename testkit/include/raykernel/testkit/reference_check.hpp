@@ -2,11 +2,11 @@
 //
 // raykernel is meant to be the reference other ray code is tested against. This header turns that into one
 // call: give it the query and what your code answered (a relation and a t), and it computes the exact
-// answer with `intersect_exact_rational` (exact rationals, correctly rounded t; CONTRACT §1), compares
+// answer with `intersect_exact_rational` (exact rationals, correctly rounded t; docs/contract.md §1), compares
 // the relation, measures t's error in ulps, and writes a report that reproduces the query exactly:
 //
-//   const raykernel::testing::ReferenceCheck c =
-//       raykernel::testing::check_against_reference(query, my_intersect(query.ray, query.plane));
+//   const raykernel::testkit::ReferenceCheck c =
+//       raykernel::testkit::check_against_reference(query, my_intersect(query.ray, query.plane));
 //   if (!c.passed()) std::cerr << c.report();
 //
 //   raykernel reference check FAILED: t is 2 ulps above the correctly rounded t (tolerance 1 ulp)
@@ -17,19 +17,19 @@
 //     exact     t = num/den = 1/10, num = 1, den = 10
 //     t error   2 ulps above (tolerance 1)
 //
-// Inside a RapidCheck property, `RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE` (raykernel/testing/rapidcheck.hpp) fails
+// Inside a RapidCheck property, `RAYKERNEL_RC_ASSERT_MATCHES_REFERENCE` (raykernel/testkit/rapidcheck.hpp) fails
 // the case with this report, so the shrunk counterexample is printed with it.
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/hard_queries.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
 
 #include <cstdint>
 #include <iosfwd>
 #include <optional>
 #include <string>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 
 // The distance between two doubles in units in the last place: the number of steps from a to b through
 // the representable doubles in increasing order,
@@ -51,7 +51,7 @@ namespace raykernel::testing {
 // The outcome of comparing one answer with the exact one.
 struct ReferenceCheck {
   Query query;                      // the query, as given
-  Intersection expected;            // the exact answer (CONTRACT §1), as intersect_exact computes it
+  Intersection expected;            // the exact answer (docs/contract.md §1), as intersect_exact computes it
   Intersection got;                 // the answer under test
   Rational exact_num;               // num = (p − o)·n, exactly, in lowest terms
   Rational exact_den;               // den = d·n, exactly
@@ -102,4 +102,4 @@ struct ReferenceCheck {
 
 std::ostream& operator<<(std::ostream& os, const ReferenceCheck& check);
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

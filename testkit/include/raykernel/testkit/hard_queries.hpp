@@ -14,7 +14,7 @@
 #include <functional>
 #include <string_view>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 
 struct Query {
   Ray ray;
@@ -66,4 +66,4 @@ class SplitMix64 {
   std::uint64_t state_;
 };
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit

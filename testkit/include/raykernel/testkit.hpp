@@ -1,4 +1,4 @@
-// raykernel::testing: tools for testing your own ray code against raykernel (link raykernel::testing).
+// raykernel::testkit: tools for testing your own ray code against raykernel (link raykernel::testkit).
 //
 //   hard_queries.hpp     make_query(kind, bits): near-parallel, near-coplanar, exact degeneracies, rounding
 //                        ties, subnormals, huge exponents ...; SplitMix64 for seeded streams
@@ -8,12 +8,12 @@
 //                        of t apart, with the exact order, for nearest-hit code
 //   fuzz_decoder.hpp     decode_fuzz_query(bytes): fuzzer bytes to queries, for libFuzzer harnesses
 //
-// The RapidCheck generators are in <raykernel/testing/rapidcheck.hpp>, not included here because they need
+// The RapidCheck generators are in <raykernel/testkit/rapidcheck.hpp>, not included here because they need
 // RapidCheck (find_package(raykernel CONFIG REQUIRED COMPONENTS testing), link `rapidcheck`).
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testing/fuzz_decoder.hpp>
-#include <raykernel/testing/hard_queries.hpp>
-#include <raykernel/testing/plane_pairs.hpp>
-#include <raykernel/testing/reference_check.hpp>
+#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
+#include <raykernel/testkit/reference_check.hpp>

@@ -1,6 +1,6 @@
 // The reference check (reference_check.hpp): the exact answer from intersect_exact_rational, the ulp
 // distance from the bits of the doubles.
-#include <raykernel/testing/reference_check.hpp>
+#include <raykernel/testkit/reference_check.hpp>
 
 #include <algorithm>
 #include <bit>
@@ -12,7 +12,7 @@
 #include <ostream>
 #include <sstream>
 
-namespace raykernel::testing {
+namespace raykernel::testkit {
 namespace {
 
 // The position of x in the increasing order of all non-NaN doubles, -inf → 0x000fffffffffffff ... -0 →
@@ -170,4 +170,4 @@ std::string ReferenceCheck::report() const {
 
 std::ostream& operator<<(std::ostream& os, const ReferenceCheck& check) { return os << check.report(); }
 
-}  // namespace raykernel::testing
+}  // namespace raykernel::testkit
