@@ -36,6 +36,12 @@ struct Plane {
   Vec3 point, normal;
 };
 
+// The triangle with vertices a, b, c (docs/contract.md §6). Its orientation is the order of the vertices:
+// the normal N = (b − a) × (c − a). Degenerate triangles (collinear or repeated vertices) are valid input.
+struct Triangle {
+  Vec3 a, b, c;
+};
+
 enum class Relation : std::uint8_t {
   hit,       // den ≠ 0 and num/den ≥ 0: the ray meets the plane at t = num/den (t = 0: origin on the plane)
   behind,    // den ≠ 0 and num/den < 0: the line meets the plane behind the origin

@@ -7,6 +7,8 @@
 //   plane_pairs.hpp      make_plane_pair_near_tie(bits): two planes tying along a ray, or less than an ulp
 //                        of t apart, with the exact order, for nearest-hit code
 //   fuzz_decoder.hpp     decode_fuzz_query(bytes): fuzzer bytes to queries, for libFuzzer harnesses
+//   meshes.hpp           closed meshes with exact shared vertices: octahedron, subdivided cube, icosphere,
+//                        terrain solid
 //
 // The RapidCheck generators are in <raykernel/testkit/rapidcheck.hpp>, not included here because they need
 // RapidCheck (find_package(raykernel CONFIG REQUIRED COMPONENTS testing), link `rapidcheck`).
@@ -15,5 +17,6 @@
 #include <raykernel/raykernel.hpp>
 #include <raykernel/testkit/fuzz_decoder.hpp>
 #include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 #include <raykernel/testkit/reference_check.hpp>
