@@ -160,7 +160,7 @@ void register_nearest(std::size_t planes) {
     // Counters: the slowest stage each ray needed, over the whole image.
     const NearestWorkload& w = nearest_workload(planes);
     std::array<double, 4> slowest{};
-    for (const Ray& r : w.rays) slowest[static_cast<std::size_t>(nearest_hit_traced(r, w.planes).slowest_stage())] += 1;
+    for (const Ray& r : w.rays) slowest[static_cast<std::size_t>(std::max(nearest_hit_traced(r, w.planes).relation_stage, nearest_hit_traced(r, w.planes).comparison_stage))] += 1;
     const char* names[4] = {"filter", "compensated", "expansion", "exact"};
     for (int k = 0; k < 4; ++k)
       s.counters[std::string("ray_") + names[k]] = slowest[static_cast<std::size_t>(k)] / static_cast<double>(w.rays.size());

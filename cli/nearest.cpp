@@ -62,7 +62,7 @@ PlanesFile read_planes(std::istream& in) {
     if (parsed.status == LineStatus::numbers) {
       const auto& v = parsed.value;
       const Plane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-      if (std::optional<std::string> invalid = validate_plane(plane)) reason = *invalid;
+      if (std::optional<std::string> invalid = validate(plane)) reason = *invalid;
       else file.planes.push_back(plane);
     }
     if (!reason.empty()) {
@@ -89,7 +89,7 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
     std::string reason = parsed.reason;
     const Ray ray = ray_of(parsed);
     if (parsed.status == LineStatus::numbers) {
-      if (std::optional<std::string> invalid = validate_ray(ray)) reason = *invalid;
+      if (std::optional<std::string> invalid = validate(ray)) reason = *invalid;
     }
     if (!reason.empty()) {
       ++counts.invalid;

@@ -184,6 +184,7 @@ std::string with_thousands(std::uint64_t n) {
 RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   const std::uint32_t width = scene.image.width, height = scene.image.height, spp = scene.samples_per_pixel;
   const std::vector<Plane> geometry = scene.geometry();
+  const PlaneSet prepared(geometry);  // validated once, coincident planes set aside once
   const Shader shader(scene);
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
 
@@ -215,9 +216,9 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
       const std::vector<PixelSample> samples = stratified_samples(spp, scene.seed, i, j);
       for (std::uint32_t s = 0; s < spp; ++s) {
         const Ray ray = scene.camera.ray(i, j, samples[s]);
-        const TracedNearestHit traced = nearest_hit_traced(ray, geometry);
+        const TracedNearestHit traced = nearest_hit_traced(ray, prepared);
         sum += shader.shade(ray, traced.hit);
-        const Stage stage = traced.slowest_stage();
+        const Stage stage = slowest_stage(traced);
         slowest = std::max(slowest, stage);
         ++t.rays[static_cast<std::size_t>(stage)];
         for (std::size_t k = 0; k < stage_count; ++k) t.comparisons[k] += traced.comparisons[k];

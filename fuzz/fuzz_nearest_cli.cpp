@@ -102,7 +102,7 @@ ExpectedPlanes expected_planes(std::string_view text) {
       continue;
     }
     e.error_line = i + 1;
-    e.error = numbers.numbers ? raykernel::validate_plane(plane).value_or("")
+    e.error = numbers.numbers ? raykernel::validate(plane).value_or("")
                               : cli::parse_number_line(lines[i], 6).reason;
     check(!e.error.empty(), [&] {
       return "line " + std::to_string(i + 1) + " of the planes: an invalid line has a reason (parse_number_line, "

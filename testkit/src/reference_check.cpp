@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <charconv>
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -14,6 +15,24 @@
 
 namespace raykernel::testkit {
 namespace {
+
+// The default floating-point environment for the duration of a check or a report, and the caller's
+// restored exactly afterwards (control modes and raised flags): the check then reads the same in any
+// environment its caller left (printf and the stream formatting follow the rounding mode, and raise
+// flags of their own).
+class DefaultEnvironmentScope {
+ public:
+  DefaultEnvironmentScope() noexcept {
+    std::fegetenv(&caller_);
+    std::fesetenv(FE_DFL_ENV);
+  }
+  ~DefaultEnvironmentScope() { std::fesetenv(&caller_); }
+  DefaultEnvironmentScope(const DefaultEnvironmentScope&) = delete;
+  DefaultEnvironmentScope& operator=(const DefaultEnvironmentScope&) = delete;
+
+ private:
+  std::fenv_t caller_;
+};
 
 // The position of x in the increasing order of all non-NaN doubles, -inf → 0x000fffffffffffff ... -0 →
 // 2^63 − 1, +0 → 2^63, ... +inf → 2^63 + 0x7ff0000000000000: consecutive doubles get consecutive keys
@@ -102,6 +121,7 @@ std::string classify_line(const Query& q) {
 }
 
 ReferenceCheck check_against_reference(const Query& query, const Intersection& got, std::uint64_t max_t_ulps) {
+  const DefaultEnvironmentScope environment;
   const ExactIntersection exact = intersect_exact_rational(query.ray, query.plane);  // throws invalid_input
   ReferenceCheck c;
   c.query = query;
@@ -127,6 +147,7 @@ ReferenceCheck check_against_reference(const Query& query, Relation relation, do
 }
 
 std::string ReferenceCheck::report() const {
+  const DefaultEnvironmentScope environment;
   std::ostringstream os;
   os << "raykernel reference check " << (passed() ? "passed" : "FAILED");
   if (!passed()) {

@@ -42,10 +42,17 @@ template <class V>
 // dot3_filter_lanes gives the sign as an integer (Sign's values) per lane; branch-free: the sign of a random
 // query is unpredictable, its certainty almost always predictable. Neither comparison holds when the bound
 // or the value is NaN: uncertain.
+// The bound itself, B = (C ⊗ m) ⊕ 3μ: |s − a·b| ≤ B (proofs/Filter.v, `den_filter_encloses`,
+// `num_filter_encloses`). Every stage-1 decision compares against it.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, double relative_constant) noexcept {
+  return relative_constant * r.magnitude + bounds::filter_absolute;
+}
+
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> dot3_filter_lanes(const Dot3RoundedT<V>& r,
                                                                            double relative_constant) noexcept {
-  const V bound = relative_constant * r.magnitude + bounds::filter_absolute;
+  const V bound = dot3_filter_bound(r, relative_constant);
   return sign_lanes(r.value > bound, r.value < -bound);
 }
 

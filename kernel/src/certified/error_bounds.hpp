@@ -23,6 +23,13 @@ namespace raykernel::detail::bounds {
 
 inline constexpr double unit_roundoff = 0x1p-53;          // u
 inline constexpr double min_subnormal = 0x0.0000000000001p-1022;  // μ = 2^-1074
+inline constexpr double largest_finite = 0x1.fffffffffffffp+1023;  // |x| ≤ largest_finite ⇔ x is finite
+
+// TwoProduct (certified/eft.hpp) is exact when a·b = 0 or |a·b| ≥ 2^-969 = 2^(emin + 2p − 1) (Flocq
+// `mult_error_FLT`); |a ⊗ b| ≥ 2^-968 implies |a·b| ≥ 2^-969 (a rounding moves a value by at most half an
+// ulp), so the expansion stage checks the rounded product against this threshold.
+// Certified by: proofs/Model.v, `two_prod_guard_exact`.
+inline constexpr double exact_product_threshold = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
 // Stage 1: dot3_filter (certified/dot3_filter.hpp)
@@ -109,27 +116,43 @@ inline constexpr double tail_sum_absolute = 0x0.0000000000002p-1022;  // 2μ
 inline constexpr int tail_sum_max_terms = 32;
 
 // ---------------------------------------------------------------------------------------------------------
-// round_quotient (certified/round_quotient.hpp): the correctly rounded t = num/den from enclosures
-//   |num − (N_hi + N_lo)| ≤ E_n,  |den − (D_hi + D_lo)| ≤ E_d.
+// round_quotient (certified/quotient_rounding.hpp): the correctly rounded t = num/den from enclosures
+//   |num − (N + n)| ≤ E_n,  |den − (D + d)| ≤ E_d,
+// where (N, n) and (D, d) are normalized pairs (the outputs of TwoSum: |n| ≤ u|N|, |d| ≤ u|D|). One
+// reciprocal serves every quotient with the same denominator (prepare_divisor), so a triangle's t and its
+// three barycentric coordinates share it.
 //
-// (N, n) = TwoSum(N_hi, N_lo), (D, d) = TwoSum(D_hi, D_lo), q0 = N ⊘ D, r = RN(N − q0·D) ⊕ RN(n − q0·d)
-// (two FMAs), c = r ⊘ D, (q, w) = TwoSum(q0, c). Guards: |N|, |D|, |q0| ≥ 2^-900 (every residual is then a
-// normal number, so the η terms are below 2^-170·|q0|), q finite. Then, with ρ_d = E_d/|D|
-// (implied ≤ 2^-50 by the test below) and ϕ = 1/(1 − u − 2^-10):
-//   |num − q0·den − r| ≤ (u² + (2+u)u² + 3.01u²)|q0 D| + 2η
-//   |t − q0 − c| ≤ |q0|·(3.02u(u + ρ_d)ϕ + 3.01u² + 6.02u²ϕ + 2^-170) + ϕ(E_n + |q0|E_d)/|D|
-//               ≤ 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D|                     =: rad
-// and |t − q| ≤ |w| + rad. If |t − q| < h, half the gap from q to its nearer neighbour (2^(e−53) for
-// q ∈ [2^e, 2^(e+1)), 2^(e−54) when |q| = 2^e), then q is the rounding of t to nearest: t lies strictly
+//   R = 1 ⊘ D,  q0 = N ⊗ R,  r = RN(N − q0·D) ⊕ RN(n − q0·d)  (two FMAs),  c = r ⊗ R,
+//   q = q0 ⊕ c,  w = c ⊖ (q ⊖ q0)                                (Fast2Sum: q + w = q0 + c exactly).
+// Guards: |N| ≥ 2^-900, 2^-1000 ≤ |D| ≤ 2^1000, 2^-900 ≤ |q| ≤ largest_finite. Derivation, with
+// X = N + n, Y = D + d, T = X/Y and the exact correction c* = T − q0 = (ρ_1 + ρ_2)/Y, ρ_1 = N − q0·D,
+// ρ_2 = n − q0·d:
+//   R = (1/D)(1 + δ_R) (R normal by the guard on D), q0 = (N/D)(1 + δ_R)(1 + δ_q), so
+//   |ρ_1| ≤ (2u + u²)|N|, |ρ_2| ≤ u|N| + u|q0 D| ≤ (2u + 3u²)|N|, |c*| ≤ (4u + 7u²)|N/D|;
+//   c = (ρ_1(1+ε_1) + ρ_2(1+ε_2) + η_1 + η_2)(1+ε_3)(1+δ_R)(1+ε_4)/D + η_4, and 1/Y = (1/D)/(1 + d/D), so
+//   |c − c*| ≤ |N/D|·((4u + 3u²)(4u + 7u²) + (4u + 3u²)·u(1 + 3u)) + 2.01η/|D| + η ≤ 20.1u²·|q0|,
+// the η terms being below 2^-172·|q0| by the guards (|N| ≥ 2^-900 makes η/|D| ≤ 2^-175·|N/D|). With the
+// Fast2Sum (exact since |c| ≤ 5u|q0|), |T − q| ≤ |w| + 20.1u²·|q0|. The enclosures add
+//   |t − T| ≤ (E_n + |T|·E_d)/(|Y| − E_d) ≤ (1 + 2^-50)·(E_n + |q0|·E_d)/|D|
+// once the test below holds (it implies E_d ≤ 2^-52·|D|). So
+//   |t − q| ≤ |w| + 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D|                       (32u² ≥ 20.1u²)
+// and q = RN(t) when this is below h, half the gap from q to its nearer neighbour: t then lies strictly
 // inside q's rounding interval, so no tie can arise. The code tests, without division,
-//   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|
-// where ϕ_c = 1 + 2^-9 and the factor 1 + 2^-45 absorbs the six roundings of the left side; h ⊗ |D| is
-// exact (a power of two times a double, no underflow as |q·D| ≈ |N| ≥ 2^-900).
-// Certified by: proofs/RoundQuotient.v, theorem `round_quotient_sound`.
-inline constexpr double quotient_min_magnitude = 0x1p-900;
+//   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|,
+// ϕ_c = 1 + 2^-9; the factor 1 + 2^-45 absorbs the six roundings of the left side (each a relative error
+// of at most u: every term is normal, above 2^-960, by the guards), and h ⊗ |D| is exact (a power of two
+// times a double, normal since |q·D| ≈ |N| ≥ 2^-900).
+// Certified by: proofs/QuotientRounding.v, theorem `round_quotient_sound`.
+inline constexpr double quotient_min_magnitude = 0x1p-900;   // |N| and |q|
+inline constexpr double divisor_min_magnitude = 0x1p-1000;   // |D|: 1/D finite
+inline constexpr double divisor_max_magnitude = 0x1p+1000;   // |D|: 1/D normal
 inline constexpr double quotient_relative = 0x1p-101;
-inline constexpr double quotient_enclosure_factor = 0x1.008p+0;  // 1 + 2^-9
+inline constexpr double quotient_enclosure_factor = 0x1.008p+0;      // 1 + 2^-9
 inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-45
+// half_gap_to_nearer_neighbour builds 2^(e−53) (or 2^(e−54) at a power of two) from q's exponent bits; the
+// result is normal, as the proofs require, for |q| ≥ 2^-968 (the guard above keeps |q| ≥ 2^-900).
+// Certified by: proofs/QuotientRounding.v, `half_gap_bits`, and the test `proofs_half_gap`.
+inline constexpr double half_gap_min_magnitude = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
 // Comparing two quotients (certified/compare_quotients.hpp): the order of t_1 = N_1/D_1 and t_2 = N_2/D_2

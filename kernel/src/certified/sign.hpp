@@ -13,6 +13,11 @@ enum class Sign : std::int8_t { negative = -1, zero = 0, positive = 1, uncertain
 
 [[nodiscard]] constexpr bool is_certain(Sign s) noexcept { return s != Sign::uncertain; }
 
+// The Sign of an exact integer sign (−1, 0, +1, or any int by its sign).
+[[nodiscard]] constexpr Sign sign_from_int(int s) noexcept {
+  return s < 0 ? Sign::negative : (s > 0 ? Sign::positive : Sign::zero);
+}
+
 // Signs as integer lanes, for the routines written for both double and Lanes8: the values of Sign
 // (+1, −1, 0, and 2 for uncertain) in a std::int64_t, or in each lane of a Mask8.
 inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::uncertain);

@@ -10,6 +10,7 @@
 #include "exact/exact.hpp"
 
 #include "exact/rational_from_double.hpp"
+#include "fp_environment.hpp"
 #include "ray_plane_formula.hpp"
 
 #include <CGAL/Exact_rational.h>
@@ -64,11 +65,11 @@ double round_to_nearest_even(const Rational& q) {
   return rounded;
 }
 
-RayPlaneTerms<Rational> exact_terms(const Ray& ray, const Plane& plane) {
-  return ray_plane_terms<Rational>(ray, plane, to_rational);
+RayPlaneValues<Rational> exact_terms(const Ray& ray, const Plane& plane) {
+  return ray_plane_values<Rational>(ray, plane, to_rational);
 }
 
-Intersection decide(const RayPlaneTerms<Rational>& terms, Rational* exact_t) {
+Intersection decide(const RayPlaneValues<Rational>& terms, Rational* exact_t) {
   const Relation relation = relation_from_signs(CGAL::sign(terms.num), CGAL::sign(terms.den));
   if (relation == Relation::parallel || relation == Relation::in_plane)
     return {relation, std::numeric_limits<double>::quiet_NaN()};
@@ -87,7 +88,7 @@ Intersection decide(const RayPlaneTerms<Rational>& terms, Rational* exact_t) {
 Intersection intersect(const Ray& ray, const Plane& plane) { return decide(exact_terms(ray, plane), nullptr); }
 
 ExactIntersection intersect_rational(const Ray& ray, const Plane& plane) {
-  const RayPlaneTerms<Rational> terms = exact_terms(ray, plane);
+  const RayPlaneValues<Rational> terms = exact_terms(ray, plane);
   Rational t;
   const Intersection result = decide(terms, &t);
   ExactIntersection exact{result, to_public(terms.num), to_public(terms.den), std::nullopt};
@@ -100,6 +101,7 @@ ExactIntersection intersect_rational(const Ray& ray, const Plane& plane) {
 namespace raykernel {
 
 double round_rational_to_double(std::string_view numerator, std::string_view denominator) {
+  return detail::in_default_fp_environment([&] {
   mpz_class num, den;
   if (num.set_str(std::string(numerator), 10) != 0 || den.set_str(std::string(denominator), 10) != 0)
     throw std::invalid_argument("round_rational_to_double: not a decimal integer");
@@ -107,6 +109,7 @@ double round_rational_to_double(std::string_view numerator, std::string_view den
   mpq_class q(num, den);
   q.canonicalize();
   return detail::exact::round_to_nearest_even(q);
+  });
 }
 
 }  // namespace raykernel
