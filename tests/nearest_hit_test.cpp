@@ -11,7 +11,7 @@
 
 #include "certified/compare_quotients.hpp"
 #include "certified/enclosure.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/rational_from_double.hpp"
 #include "raycast/nearest_hit_internal.hpp"
 

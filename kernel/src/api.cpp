@@ -6,7 +6,7 @@
 
 #include "certified/fp_requirements.hpp"
 #include "certified/multiversion.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/exact.hpp"
 #include "fp_environment.hpp"
 #include "fp_probe.hpp"

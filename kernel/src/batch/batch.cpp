@@ -9,7 +9,7 @@
 
 #include "batch/fast_loop.hpp"
 #include "certified/fp_requirements.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "fp_environment.hpp"
 #include "validation.hpp"
 

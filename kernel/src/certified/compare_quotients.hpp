@@ -21,7 +21,7 @@
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/sign.hpp"
 
 #include <cmath>

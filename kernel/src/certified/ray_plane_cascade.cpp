@@ -7,7 +7,7 @@
 // for CPUs with and without an FMA unit (certified/multiversion.hpp); both clones compute the same bits.
 #include "certified/fp_requirements.hpp"
 #include "certified/multiversion.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/exact.hpp"
 #include "exact/exact_compare.hpp"
 

@@ -10,7 +10,7 @@
 #include "certified/compare_quotients.hpp"
 #include "certified/fp_requirements.hpp"
 #include "certified/multiversion.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/exact.hpp"
 #include "exact/exact_compare.hpp"
 #include "fp_environment.hpp"

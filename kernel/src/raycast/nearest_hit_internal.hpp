@@ -3,7 +3,7 @@
 #pragma once
 
 #include "certified/dot3_filter.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/sign.hpp"
 
 #include <raykernel/raykernel.hpp>
