@@ -19,9 +19,10 @@
 namespace raykernel::cli {
 namespace {
 
+// A printf format: the limit is filled in from limits.hpp.
 constexpr const char* demo_help = R"(usage: raykernel demo [--per-kind N] [--seed S]
 
-Generates N queries (default 20000, at most 100000000) of each kind of hard ray-plane query (near-parallel rays,
+Generates N queries (default 20000, at most %llu) of each kind of hard ray-plane query (near-parallel rays,
 origins a few ulps from the plane, exact degeneracies, rounding ties, extreme exponents, ...),
 answers each with the certified, exact and naive paths, and prints per kind the relations found,
 which certified stage decided them, and how often the naive formula in doubles was wrong.
@@ -69,7 +70,7 @@ int run_demo(const std::vector<std::string>& args) {
       return exit_usage;
     }
     if (a == "--help" || a == "-h") {
-      std::cout << demo_help;
+      std::cout << formatted(demo_help, static_cast<unsigned long long>(limits::max_demo_queries_per_kind));
       return finish_standard_output(exit_ok);
     }
     const bool per_kind_option = a == "--per-kind" || a.starts_with("--per-kind=");
@@ -102,10 +103,12 @@ int run_demo(const std::vector<std::string>& args) {
   std::cout << formatted("raykernel %s demo: %llu queries of each of %d kinds (seed %llu)\n\n",
                          std::string(version()).c_str(), static_cast<unsigned long long>(per_kind),
                          testkit::query_kind_count, static_cast<unsigned long long>(seed));
-  std::cout << formatted("%-16s %7s %7s %8s %8s | %-31s | %s\n", "", "hit", "behind", "parallel", "in-plane",
+  // The stage columns are as wide as the longest stage name.
+  std::cout << formatted("%-16s %7s %7s %8s %8s | %-47s | %s\n", "", "hit", "behind", "parallel", "in-plane",
                          "relation decided by stage", "naive formula wrong");
-  std::cout << formatted("%-16s %7s %7s %8s %8s | %7s %7s %7s %7s | %9s %9s\n", "kind", "", "", "", "", "filter",
-                         "compens", "expans", "exact", "relation", "t bits");
+  std::cout << formatted("%-16s %7s %7s %8s %8s |", "kind", "", "", "", "");
+  for (int s = 0; s < stage_count; ++s) std::cout << formatted(" %11s", std::string(to_string(static_cast<Stage>(s))).c_str());
+  std::cout << formatted(" | %9s %9s\n", "relation", "t bits");
   if (!flush_standard_output()) return exit_usage;
 
   KindTally total;
@@ -140,7 +143,7 @@ int run_demo(const std::vector<std::string>& args) {
       else if (!same_answer(naive[i], exact[i])) ++k.naive_wrong_t;
     }
     auto pct = [&](std::uint64_t n) { return percent(n, k.queries, 1); };
-    std::cout << formatted("%-16s %7llu %7llu %8llu %8llu | %7s %7s %7s %7s | %9s %9s\n",
+    std::cout << formatted("%-16s %7llu %7llu %8llu %8llu | %11s %11s %11s %11s | %9s %9s\n",
                            std::string(to_string(kind)).c_str(), static_cast<unsigned long long>(k.relation[0]),
                            static_cast<unsigned long long>(k.relation[1]), static_cast<unsigned long long>(k.relation[2]),
                            static_cast<unsigned long long>(k.relation[3]), pct(k.relation_stage[0]).c_str(),

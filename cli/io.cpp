@@ -91,10 +91,12 @@ FdInputBuffer::int_type FdInputBuffer::underflow() {
 }
 
 void use_checked_standard_streams() {
-  static FdOutputBuffer out(STDOUT_FILENO);
-  static FdInputBuffer in(STDIN_FILENO);
-  std::cout.rdbuf(&out);
-  std::cin.rdbuf(&in);
+  // Never destroyed: the standard streams are flushed after static objects are destroyed, and must still
+  // find their buffers then.
+  static FdOutputBuffer* const out = new FdOutputBuffer(STDOUT_FILENO);
+  static FdInputBuffer* const in = new FdInputBuffer(STDIN_FILENO);
+  std::cout.rdbuf(out);
+  std::cin.rdbuf(in);
   if (::isatty(STDIN_FILENO) == 0) std::cin.tie(nullptr);
 }
 

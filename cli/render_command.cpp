@@ -22,12 +22,14 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* render_help = R"(usage: raykernel render [SCENE.json] [options] [--] [SCENE.json]
+// A printf format: the limits are filled in from limits.hpp.
+constexpr const char* render_help = R"(usage: raykernel render [options] [--] [SCENE.json|-]
 
 Renders a scene of infinite planes by ray casting: for every pixel and sample, the plane the ray
 hits first, decided exactly (the same nearest_hit as `raykernel nearest`), coloured by plane or
 checker, darkened at grazing angles and faded with distance. Without SCENE.json it renders the
-built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes).
+built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes);
+with - it reads the scene from standard input.
 Rows are rendered in parallel on every core. Prints what it renders before it starts, then the
 render time, rays per second and how many pixels needed which stage.
 
@@ -44,9 +46,9 @@ options:
                              -naive-diff.png)
   --naive-image[=FILE]       also write the scene as the plain-double loop renders it
                              (default FILE: OUTPUT with -naive.png)
-  --width N, --height N      override the scene's image size (1 to 16384)
-  --samples N                override the samples per pixel (1 to 4096; stratified, reproducible)
-  --threads N                worker threads (1 to 1024; default: every core)
+  --width N, --height N      override the scene's image size (1 to %u)
+  --samples N                override the samples per pixel (1 to %u; stratified, reproducible)
+  --threads N                worker threads (1 to %u; default: every core)
   --progress, --no-progress  force or suppress the progress bar (default: on a terminal)
   --print-demo-scene         print the demo scene's JSON (a starting point for your own) and exit
   --help                     this text
@@ -181,7 +183,7 @@ int run_render(const std::vector<std::string>& args) {
       scene_path = a;
       have_scene = true;
     } else if (a == "--help" || a == "-h") {
-      std::cout << render_help;
+      std::cout << formatted(render_help, limits::max_image_side, limits::max_samples_per_pixel, limits::max_threads);
       return finish_standard_output(exit_ok);
     } else if (a == "--print-demo-scene") {
       std::cout << demo_scene_json();
