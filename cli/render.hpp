@@ -3,8 +3,8 @@
 //
 // Robustness made visible: the stage image marks the pixels where the certified path needed a slower
 // stage than the binary64 filter (for a plane's relation, for ordering two t values, or for rounding the
-// winner's t); the naive-difference image marks the pixels where the seed's loop in plain doubles
-// (nearest_hit_naive) picks another plane than the exact answer.
+// winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
+// (nearest_hit_naive, docs/ray-casting.md §1.1) picks another plane than the exact answer.
 #pragma once
 
 #include "png_image.hpp"

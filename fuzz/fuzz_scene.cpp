@@ -259,7 +259,7 @@ const char* const field_names[] = {"description", "image", "width", "height", "s
                                    "eye", "target", "up", "perspective", "orthographic", "fov_degrees", "near",
                                    "window", "left", "right", "bottom", "top", "background", "horizon", "zenith", "fog",
                                    "distance", "planes", "name", "point", "normal", "color", "checker", "colors",
-                                   "size", "u_axis"};
+                                   "size", "u_axis", "ray_start"};
 
 // Every value of the document, parents before children.
 void collect(json& v, std::vector<json*>& out) {

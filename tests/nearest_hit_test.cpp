@@ -1,6 +1,6 @@
 // nearest_hit (docs/contract.md §4) and its certified comparison of two t values.
 //
-//  * Hand-derived cases: the seed's loop, ties, coincident planes, planes through one point of the ray,
+//  * Hand-derived cases: the loop of docs/ray-casting.md §1.1, ties, coincident planes, planes through one point of the ray,
 //    two t closer than an ulp (where comparing rounded t picks the wrong plane), t = 0, planes never hit,
 //    products that underflow (the exact stage), invalid input, a non-default floating-point environment.
 //  * Each stage of the comparison on its own against exact rationals (like stages_test.cpp): what a
