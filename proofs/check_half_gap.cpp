@@ -5,7 +5,7 @@
 // signs, every exponent from −968 (the function's precondition; round_quotient_candidate_normal proves
 // |q| ≥ 2^-901 wherever it is called) to 1023, and several significands per exponent: the power of two,
 // its successor, the largest significand and seeded pseudo-random ones.
-#include "certified/round_quotient.hpp"
+#include "certified/quotient_rounding.hpp"
 
 #include <cmath>
 #include <cstdint>
