@@ -88,9 +88,11 @@ void check_obj_vertices(const Mesh& m, std::string_view text) {
 void round_trip(const Mesh& m, std::string_view format_name) {
   using io::MeshEncoding;
   using io::MeshFormat;
-  for (auto [format, encoding] : {std::pair{MeshFormat::obj, MeshEncoding::ascii}, {MeshFormat::off, MeshEncoding::ascii},
-                                  {MeshFormat::ply, MeshEncoding::ascii}, {MeshFormat::ply, MeshEncoding::binary_little_endian},
-                                  {MeshFormat::ply, MeshEncoding::binary_big_endian}}) {
+  for (const auto& target : {std::pair{MeshFormat::obj, MeshEncoding::ascii}, {MeshFormat::off, MeshEncoding::ascii},
+                             {MeshFormat::ply, MeshEncoding::ascii}, {MeshFormat::ply, MeshEncoding::binary_little_endian},
+                             {MeshFormat::ply, MeshEncoding::binary_big_endian}}) {
+    const MeshFormat format = target.first;
+    const MeshEncoding encoding = target.second;
     Mesh back;
     try {
       back = io::read_mesh(io::write_mesh(m, format, encoding), "round-trip", format);
