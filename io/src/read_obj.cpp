@@ -107,10 +107,9 @@ Mesh read_obj(std::string_view bytes, const ErrorSink& errors) {
       errors.at_line(n, "unknown statement " + quote_token(keyword));
     }
   }
-  if (statements == 0) {
-    if (only_whitespace(bytes)) errors.whole_file("empty file");
-    errors.whole_file("no OBJ statements (only comments)");
-  }
+  // A file of comments only is an OBJ file describing nothing (an empty mesh, as write_mesh writes one);
+  // a file with nothing at all is an error.
+  if (statements == 0 && only_whitespace(bytes)) errors.whole_file("empty file");
   if (largest_index > static_cast<std::int64_t>(mesh.vertices.size()))
     errors.at_line(largest_index_line, "vertex index " + std::to_string(largest_index) + " is out of range (the file has " +
                                            count_of(mesh.vertices.size(), "vertex", "vertices") + ")");
