@@ -74,7 +74,10 @@
 
 #include <raykernel/bvh.hpp>
 
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 namespace raykernel::bounds {
@@ -118,15 +121,16 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
 }
 
 // ray_box_entry: true when the ray may meet the box at some t in [t0, t1]; `entry` is then ≤ the exact entry.
+// The box is read as the six doubles lo.x, lo.y, lo.z, hi.x, hi.y, hi.z (Box3's layout); the near face of
+// axis i is element i, or i + 3 when the ray enters at the upper face.
+static_assert(sizeof(Box3) == 6 * sizeof(double) && offsetof(Box3, hi) == 3 * sizeof(double));
 inline bool ray_box_entry(const BvhRayTraversal::Slabs& s, const Box3& box, double t0, double t1, double& entry) noexcept {
-  const double lo[3] = {box.lo.x, box.lo.y, box.lo.z};
-  const double hi[3] = {box.hi.x, box.hi.y, box.hi.z};
-  for (int i = 0; i < 3; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const double near_plane = s.enters_at_hi[k] ? hi[i] : lo[i];
-    const double far_plane = s.enters_at_hi[k] ? lo[i] : hi[i];
-    const double p_near = (near_plane - s.origin[k]) * s.inverse_direction[k];
-    const double p_far = (far_plane - s.origin[k]) * s.inverse_direction[k];
+  const auto b = std::bit_cast<std::array<double, 6>>(box);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t near_face = s.enters_at_hi[k] ? k + 3 : k;
+    const std::size_t far_face = s.enters_at_hi[k] ? k : k + 3;
+    const double p_near = (b[near_face] - s.origin[k]) * s.inverse_direction[k];
+    const double p_far = (b[far_face] - s.origin[k]) * s.inverse_direction[k];
     const double near_lo = p_near * bounds::ray_box_near_factor - bounds::ray_box_absolute;
     const double far_hi = p_far * bounds::ray_box_far_factor + bounds::ray_box_absolute;
     t0 = near_lo > t0 ? near_lo : t0;
