@@ -13,7 +13,7 @@
     - [slab_sound]: for every real t* ≥ 0 in the exact slab [T_near, T_far], near_lo ≤ t* ≤ far_hi;
     - [ray_box_sound]: the test's t0 = max(t_min, near_lo of each axis) and t1 = min(t_max, far_hi of each
       axis), with an axis left out (NaN, case A's equalities and case C) modelled as [None], satisfy
-      t0 ≤ t* ≤ t1 for every t* in [t_min, t_max] that the slab bounds admit: the box is not rejected, and
+      t0 ≤ t* ≤ t1 for every t* in [t_min, t_max] that the slab bounds allow: the box is not rejected, and
       t0 is a lower bound of the exact entry.
     Overflow is outside the model (Model.v); the C++ guard G = RN(RN(M + |o|)·|inv|) ≤ 2^1022 keeps every
     value of case B below 2^1023 (ray_box.hpp, B2), and case A's infinities are argued there. *)
@@ -239,14 +239,14 @@ Qed.
 (** ** The three axes together: t0 = max(t_min, the near bounds), t1 = min(t_max, the far bounds), an axis
     left out (its NaN bounds) modelled as [None], which the C++ comparisons ignore. *)
 
-Definition admits_below (t : R) (b : option R) : Prop := match b with Some v => v <= t | None => True end.
-Definition admits_above (t : R) (b : option R) : Prop := match b with Some v => t <= v | None => True end.
+Definition bounded_below_by (t : R) (b : option R) : Prop := match b with Some v => v <= t | None => True end.
+Definition bounded_above_by (t : R) (b : option R) : Prop := match b with Some v => t <= v | None => True end.
 
 Definition max_step (t0 : R) (b : option R) : R := match b with Some v => if Rlt_bool t0 v then v else t0 | None => t0 end.
 Definition min_step (t1 : R) (b : option R) : R := match b with Some v => if Rlt_bool v t1 then v else t1 | None => t1 end.
 
 Theorem ray_box_sound : forall (near far : list (option R)) t_min t_max t,
-  t_min <= t <= t_max -> Forall (admits_below t) near -> Forall (admits_above t) far ->
+  t_min <= t <= t_max -> Forall (bounded_below_by t) near -> Forall (bounded_above_by t) far ->
   fold_left max_step near t_min <= t /\ t <= fold_left min_step far t_max.
 Proof.
   intros near far t_min t_max t [Hlo Hhi] Hn Hf. split.
