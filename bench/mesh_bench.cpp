@@ -258,7 +258,8 @@ void register_all() {
               return hit ? std::uint64_t{hit->triangle} : 0;
             });
         std::lock_guard lock(fixture_mutex);
-        state.counters["coords_changed_by_float"] = static_cast<double>(current->embree[robust]->conversion().inexact);
+        state.counters["coords_changed_by_float"] =
+            benchmark::Counter(static_cast<double>(current->embree[robust]->conversion().inexact), benchmark::Counter::kAvgThreads);
       })->Apply(threads);
     }
     benchmark::RegisterBenchmark(("mesh/embree_robust_packet8/" + m).c_str(), [m](benchmark::State& state) {
