@@ -227,6 +227,9 @@ std::optional<BvhLeaf> BvhRayTraversal::next(double t_upper) {
       } else {
         break;
       }
+      // The next node's children are tested next: fetch the far one (the near one is adjacent).
+      const BvhNode& next_node = nodes[current.node];
+      if (next_node.count == 0) __builtin_prefetch(&nodes[next_node.first]);
     }
   }
   return std::nullopt;
