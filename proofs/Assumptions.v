@@ -10,8 +10,16 @@
     second). *)
 
 From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification CompareQuotients
-  Cascade.
+  Cascade RayBox.
 
+Goal True. idtac "@@ near_bound_sound". Abort.
+Print Assumptions near_bound_sound.
+Goal True. idtac "@@ far_bound_sound". Abort.
+Print Assumptions far_bound_sound.
+Goal True. idtac "@@ slab_sound". Abort.
+Print Assumptions slab_sound.
+Goal True. idtac "@@ ray_box_sound". Abort.
+Print Assumptions ray_box_sound.
 Goal True. idtac "@@ den_filter_sound". Abort.
 Print Assumptions den_filter_sound.
 Goal True. idtac "@@ num_filter_sound". Abort.
