@@ -51,7 +51,7 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // The whole certified path for one query, in the default environment: the fast path, then the rest.
 RAYKERNEL_MULTIVERSION
 std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& plane) noexcept {
-  const detail::FastAnswer a = detail::fast_answer(detail::ray_plane_terms(ray, plane));
+  const detail::FastAnswer a = detail::fast_answer(ray, plane);
   if (a.certain) [[likely]]
     return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
   return intersection_rest(ray, plane);
@@ -59,10 +59,7 @@ std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& 
 
 RAYKERNEL_MULTIVERSION
 std::optional<Relation> certified_relation(const Ray& ray, const Plane& plane) noexcept {
-  const detail::FastRelationT<double> r = detail::with_query_arrays(
-      ray, plane, [](const double* o, const double* d, const double* p, const double* n) {
-        return detail::fast_relation(o, d, p, n);
-      });
+  const detail::FastRelationT<double> r = detail::fast_relation(ray, plane);
   if (r.certain) [[likely]]
     return r.behind ? Relation::behind : Relation::hit;
   return relation_rest(ray, plane);

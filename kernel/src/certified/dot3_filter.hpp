@@ -44,14 +44,15 @@ template <class V>
 // or the value is NaN: uncertain.
 // The bound itself, B = (C ⊗ m) ⊕ 3μ: |s − a·b| ≤ B (proofs/Filter.v, `den_filter_encloses`,
 // `num_filter_encloses`). Every stage-1 decision compares against it.
-template <class V>
-[[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, double relative_constant) noexcept {
+// (The constant is a double, or one per lane: den's and num's when a vector holds both of one query.)
+template <class V, class C>
+[[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, C relative_constant) noexcept {
   return relative_constant * r.magnitude + bounds::filter_absolute;
 }
 
-template <class V>
+template <class V, class C>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> dot3_filter_lanes(const Dot3RoundedT<V>& r,
-                                                                           double relative_constant) noexcept {
+                                                                           C relative_constant) noexcept {
   const V bound = dot3_filter_bound(r, relative_constant);
   return sign_lanes(r.value > bound, r.value < -bound);
 }

@@ -66,19 +66,16 @@ template <class V>
   for (int i = 0; i < 3; ++i) low[i] = two_diff(q.p[i], q.o[i]).lo;
 }
 
-// Calls f(o, d, p, n) with the query's vectors as the arrays the stages take.
-template <class F>
-[[gnu::always_inline]] inline decltype(auto) with_query_arrays(const Ray& ray, const Plane& plane, F f) noexcept {
-  const Vec3 &ro = ray.origin, &rd = ray.direction, &pp = plane.point, &pn = plane.normal;
-  const double o[3] = {ro.x, ro.y, ro.z}, d[3] = {rd.x, rd.y, rd.z};
-  const double p[3] = {pp.x, pp.y, pp.z}, n[3] = {pn.x, pn.y, pn.z};
-  return f(o, d, p, n);
-}
+// The query's vectors as the arrays the stages take.
+#define RAYKERNEL_QUERY_ARRAYS(ray, plane)                                                                  \
+  const double o[3] = {(ray).origin.x, (ray).origin.y, (ray).origin.z};                                    \
+  const double d[3] = {(ray).direction.x, (ray).direction.y, (ray).direction.z};                           \
+  const double p[3] = {(plane).point.x, (plane).point.y, (plane).point.z};                                 \
+  const double n[3] = {(plane).normal.x, (plane).normal.y, (plane).normal.z}
 
 [[nodiscard]] [[gnu::always_inline]] inline RayPlaneTerms ray_plane_terms(const Ray& ray, const Plane& plane) noexcept {
-  return with_query_arrays(ray, plane, [](const double* o, const double* d, const double* p, const double* n) {
-    return ray_plane_terms(o, d, p, n);
-  });
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  return ray_plane_terms(o, d, p, n);
 }
 
 // Stage 1 (never certifies zero: see RayPlaneCascade for the exactly-zero cases).
@@ -163,21 +160,51 @@ struct FastAnswerT {
 };
 using FastAnswer = FastAnswerT<double>;
 
-// Stage 1, then the first level of stage 2 for the signs stage 1 left open, and round_quotient on the
-// stage-2 enclosures for t.
-//   Certified by: proofs/Cascade.v, `fast_answer_correct` (and `fast_path_den_valid` for validity).
+// The fast path's decision from stage 1's signs and stage 2's enclosures: the signs stage 1 left open taken
+// from the enclosures, t from round_quotient on them.
 template <class V>
-[[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer(const RayPlaneTermsT<V>& q) noexcept {
-  const IntegerOf<V> den_filter = den_filter_sign(q);
-  const IntegerOf<V> num_filter = num_filter_sign(q);
-  const EnclosureT<V> den = den_compensated(q);
-  const EnclosureT<V> num = num_compensated(q);
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer_from(IntegerOf<V> den_filter, IntegerOf<V> num_filter,
+                                                                          const EnclosureT<V>& den,
+                                                                          const EnclosureT<V>& num) noexcept {
   const IntegerOf<V> den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den));
   const IntegerOf<V> num_sign = first_certain_lanes(num_filter, enclosure_sign_lanes(num));
   const QuotientRoundingT<V> t = round_quotient(num, prepare_divisor(den));
   return {t.t, signs_say_behind(num_sign, den_sign),
           both(both(den_sign != uncertain_lane, num_sign != uncertain_lane), t.certain),
           both(den_filter != uncertain_lane, num_filter != uncertain_lane)};
+}
+
+// Stage 1, then the first level of stage 2 for the signs stage 1 left open, and round_quotient on the
+// stage-2 enclosures for t; per query, or per lane of a batch.
+//   Certified by: proofs/Cascade.v, `fast_answer_correct` (and `fast_path_den_valid` for validity).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer(const RayPlaneTermsT<V>& q) noexcept {
+  return fast_answer_from(den_filter_sign(q), num_filter_sign(q), den_compensated(q), num_compensated(q));
+}
+
+// The same for one query, with den and num computed side by side as the two lanes of a Lanes2: lane 0
+// evaluates den = Σ d_i n_i from a_i = d_i ⊖ 0 = d_i (whose TwoDiff error is 0: the α = 0 form), lane 1
+// num = Σ (p_i − o_i) n_i from a_i = p_i ⊖ o_i with its TwoDiff error — each lane the very operations of
+// the scalar stage for its value, with its own filter constant, so every theorem about the stages holds
+// lane by lane (proofs/README.md, "Lanes"). Half the instructions of two scalar evaluations.
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
+                                                                const double n[3]) noexcept {
+  Lanes2 a[3], alpha[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    const DD<Lanes2> s = two_diff(Lanes2{d[i], p[i]}, Lanes2{0.0, o[i]});
+    a[i] = s.hi;
+    alpha[i] = s.lo;
+    b[i] = Lanes2{n[i], n[i]};
+  }
+  const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
+  const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  const EnclosureT<Lanes2> e = compensated_dot3(a, alpha, b, stage1);
+  return fast_answer_from<double>(filter[0], filter[1], Enclosure{e.hi[0], e.lo[0], e.radius[0]},
+                                  Enclosure{e.hi[1], e.lo[1], e.radius[1]});
+}
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  return fast_answer(o, d, p, n);
 }
 
 // Stage 1 alone, for the relation without t.
@@ -203,6 +230,20 @@ template <class V>
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline FastRelationT<V> fast_relation(const RayPlaneTermsT<V>& q) noexcept {
   return fast_relation(q.o, q.d, q.p, q.n);
+}
+// For one query, den and num side by side as the two lanes of a Lanes2 (as fast_answer does; the den lane's
+// a_i = d_i ⊖ 0 = d_i exactly).
+[[nodiscard]] [[gnu::always_inline]] inline FastRelationT<double> fast_relation(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  Lanes2 a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = Lanes2{d[i], p[i]} - Lanes2{0.0, o[i]};
+    b[i] = Lanes2{n[i], n[i]};
+  }
+  const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
+  const Lanes2 bound = dot3_filter_bound(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  const Mask2 certain = abs(stage1.value) > bound;
+  return {(stage1.value[1] < 0) != (stage1.value[0] < 0), static_cast<bool>(certain[0] & certain[1])};
 }
 
 }  // namespace raykernel::detail

@@ -29,7 +29,7 @@ inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::u
 }
 // The same per lane of a vector (masks are −1 where true).
 template <class Mask>
-  requires std::is_same_v<Mask, Mask4> || std::is_same_v<Mask, Mask8>
+  requires std::is_same_v<Mask, Mask2> || std::is_same_v<Mask, Mask4> || std::is_same_v<Mask, Mask8>
 [[nodiscard]] [[gnu::always_inline]] inline Mask sign_lanes(Mask above, Mask below) noexcept {
   const Mask s = below - above;
   return s - 2 * (s == 0);
