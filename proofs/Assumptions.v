@@ -9,8 +9,8 @@
     results together, as one tuple (each Print Assumptions walks the whole real-number library, about a
     second). *)
 
-From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification CompareQuotients
-  Cascade RayBox.
+From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
+  CompareQuotients Cascade RayBox.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -38,8 +38,10 @@ Goal True. idtac "@@ tail_sum_enclosure". Abort.
 Print Assumptions tail_sum_enclosure.
 Goal True. idtac "@@ round_quotient_sound". Abort.
 Print Assumptions round_quotient_sound.
-Goal True. idtac "@@ round_quotient_decision_sound". Abort.
-Print Assumptions round_quotient_decision_sound.
+Goal True. idtac "@@ round_quotient_if_certain_sound". Abort.
+Print Assumptions round_quotient_if_certain_sound.
+Goal True. idtac "@@ round_quotient_candidate_normal". Abort.
+Print Assumptions round_quotient_candidate_normal.
 Goal True. idtac "@@ relation_correct". Abort.
 Print Assumptions relation_correct.
 Goal True. idtac "@@ compensated_t_correct". Abort.
@@ -52,8 +54,10 @@ Goal True. idtac "@@ cascade_quotient_correct". Abort.
 Print Assumptions cascade_quotient_correct.
 Goal True. idtac "@@ fast_answer_correct". Abort.
 Print Assumptions fast_answer_correct.
-Goal True. idtac "@@ refined_answer_correct". Abort.
-Print Assumptions refined_answer_correct.
+Goal True. idtac "@@ fast_relation_correct". Abort.
+Print Assumptions fast_relation_correct.
+Goal True. idtac "@@ compensated_dot3_exact_inputs". Abort.
+Print Assumptions compensated_dot3_exact_inputs.
 Goal True. idtac "@@ intersect_fast_correct". Abort.
 Print Assumptions intersect_fast_correct.
 Goal True. idtac "@@ fast_path_den_valid". Abort.
@@ -78,8 +82,12 @@ Definition supporting_results :=
    dot3_rounded_dominated,
    compensated_den_enclosure,
    compensated_num_enclosure,
-   round_quotient_candidate_normal,
    half_gap_bits,
+   prepare_divisor_spec,
+   quotient_residuals,
+   quotient_candidate,
+   quotient_constants_binary64,
+   two_prod_threshold_exact,
    relation_hit_iff,
    relation_behind_iff,
    relation_parallel_iff,
@@ -102,6 +110,7 @@ Definition supporting_results :=
    num_filter_lanes_sound,
    lane_sign_certain,
    lanes_relation,
-   den_nonzero_valid).
-Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid". Abort.
+   den_nonzero_valid,
+   relation_of_nonzero).
+Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure half_gap_bits prepare_divisor_spec quotient_residuals quotient_candidate quotient_constants_binary64 two_prod_threshold_exact relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid relation_of_nonzero". Abort.
 Print Assumptions supporting_results.

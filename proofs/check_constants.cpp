@@ -203,6 +203,10 @@ std::vector<Row> table() {
   return {
       {"unit_roundoff", "bpow radix2 (-53)", Dyadic::pow2(-53), b::unit_roundoff, {}},
       {"min_subnormal", "bpow radix2 (-1074)", Dyadic::pow2(-1074), b::min_subnormal, {}},
+      // (2^53 − 1)·2^971 = 2^1024 − 2^971, std::numeric_limits<double>::max()
+      {"largest_finite", "9007199254740991 * bpow radix2 (971)",
+       Dyadic::integer((std::uint64_t{1} << 53) - 1) * Dyadic::pow2(971), b::largest_finite, {}},
+      {"exact_product_threshold", "bpow radix2 (-968)", Dyadic::pow2(-968), b::exact_product_threshold, {}},
       // (3 + 16u)u = 3·2^-53 + 2^-102
       {"filter_den_relative", "(3 + 16 * u) * u", 3 * Dyadic::pow2(-53) + Dyadic::pow2(-102),
        b::filter_den_relative, {}},
@@ -220,6 +224,9 @@ std::vector<Row> table() {
       {"tail_sum_absolute", "2 * mu", 2 * Dyadic::pow2(-1074), b::tail_sum_absolute, {}},
       {"tail_sum_max_terms", "32", Dyadic::integer(32), {}, b::tail_sum_max_terms},
       {"quotient_min_magnitude", "bpow radix2 (-900)", Dyadic::pow2(-900), b::quotient_min_magnitude, {}},
+      {"divisor_min_magnitude", "bpow radix2 (-1000)", Dyadic::pow2(-1000), b::divisor_min_magnitude, {}},
+      {"divisor_max_magnitude", "bpow radix2 (1000)", Dyadic::pow2(1000), b::divisor_max_magnitude, {}},
+      {"half_gap_min_magnitude", "bpow radix2 (-968)", Dyadic::pow2(-968), b::half_gap_min_magnitude, {}},
       {"quotient_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::quotient_relative, {}},
       {"quotient_enclosure_factor", "1 + bpow radix2 (-9)", 1 + Dyadic::pow2(-9), b::quotient_enclosure_factor,
        {}},

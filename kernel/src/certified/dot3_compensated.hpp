@@ -21,8 +21,8 @@ namespace raykernel::detail {
 //   Valid range: all finite inputs. Overflow needs no test of its own: |hi| ≤ m and |lo| ≤ 5u·m by
 //   monotonicity of rounding, so hi and lo are finite whenever m is, and otherwise the radius is +inf or
 //   NaN ("no information": every decision compares against it and fails).
-//   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure` (and `compensated_dot3_exact_inputs`
-//   for the α = 0 form).
+//   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`; the α = 0 form computes the same
+//   enclosure bit for bit: proofs/Cascade.v, `compensated_dot3_exact_inputs`.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3_from_low_parts(const V g[3],
                                                                                           const Dot3RoundedT<V>& stage1) noexcept {

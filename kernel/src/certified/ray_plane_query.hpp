@@ -208,7 +208,7 @@ template <class V>
 }
 
 // Stage 1 alone, for the relation without t.
-//   Certified by: proofs/Cascade.v, `filter_relation_correct` (and `fast_path_den_valid`).
+//   Certified by: proofs/Cascade.v, `fast_relation_correct` (which includes d ≠ 0 and n ≠ 0).
 template <class V>
 struct FastRelationT {
   MaskOf<V> behind;   // the relation is behind, else hit
