@@ -10,8 +10,10 @@
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
 #include "certified/quotient_rounding.hpp"
+#include "certified/ray_plane_query.hpp"
 
 #include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/reference_check.hpp>
 
 #include <gtest/gtest.h>
 
@@ -212,6 +214,39 @@ TEST(Expansion, UnderflowingProductIsFlaggedInexact) {
   detail::ExpansionBuilder ok;
   (void)ok.product(0x1p-484, 0x1p-484);  // 2^-968: exact
   EXPECT_TRUE(ok.exact());
+}
+
+}  // namespace
+}  // namespace raykernel
+
+namespace raykernel {
+namespace {
+
+// intersect's and relation's fast paths evaluate den and num side by side as the two lanes of a Lanes2;
+// the proofs model each value's own evaluation (fast_answer on RayPlaneTermsT<double>). Every lane must be
+// that evaluation, bit for bit: the certification, the relation and t.
+TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
+  std::size_t certified = 0, queries = 0;
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
+    testkit::SplitMix64 rng(0x1a2e5 + static_cast<std::uint64_t>(kind));
+    const testkit::BitSource bits = [&rng] { return rng(); };
+    for (int i = 0; i < 2000; ++i, ++queries) {
+      const testkit::Query q = testkit::make_query(kind, bits);
+      const detail::RayPlaneTerms terms = detail::ray_plane_terms(q.ray, q.plane);
+      const detail::FastAnswer scalar = detail::fast_answer(terms);
+      const detail::FastAnswer paired = detail::fast_answer(q.ray, q.plane);
+      ASSERT_EQ(scalar.certain, paired.certain) << testkit::to_string(q);
+      ASSERT_EQ(scalar.relation_by_filter, paired.relation_by_filter) << testkit::to_string(q);
+      const detail::FastRelationT<double> rs = detail::fast_relation(terms), rp = detail::fast_relation(q.ray, q.plane);
+      ASSERT_EQ(rs.certain, rp.certain) << testkit::to_string(q);
+      if (rs.certain) ASSERT_EQ(rs.behind, rp.behind) << testkit::to_string(q);
+      if (!scalar.certain) continue;
+      ++certified;
+      ASSERT_EQ(scalar.behind, paired.behind) << testkit::to_string(q);
+      ASSERT_TRUE(test_support::same_bits(scalar.t, paired.t)) << testkit::to_string(q);
+    }
+  }
+  EXPECT_GT(certified, queries / 5);  // the easy kinds (about a quarter of these): the comparison is not vacuous
 }
 
 }  // namespace

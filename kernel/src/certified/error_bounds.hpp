@@ -127,10 +127,14 @@ inline constexpr int tail_sum_max_terms = 32;
 // Guards: |N| ≥ 2^-900, 2^-1000 ≤ |D| ≤ 2^1000, 2^-900 ≤ |q| ≤ largest_finite. Derivation, with
 // X = N + n, Y = D + d, T = X/Y and the exact correction c* = T − q0 = (ρ_1 + ρ_2)/Y, ρ_1 = N − q0·D,
 // ρ_2 = n − q0·d:
-//   R = (1/D)(1 + δ_R) (R normal by the guard on D), q0 = (N/D)(1 + δ_R)(1 + δ_q), so
+//   R = (1/D)(1 + δ_R) (R normal by the guard on D), q0 = (N/D)(1 + δ_R)(1 + δ_q) + η_q (N·R alone could
+//   underflow under the guards on N and D; the guard |q| ≥ 2^-900 keeps η_q, like every η below, under
+//   2^-170·|q0|), so
 //   |ρ_1| ≤ (2u + u²)|N|, |ρ_2| ≤ u|N| + u|q0 D| ≤ (2u + 3u²)|N|, |c*| ≤ (4u + 7u²)|N/D|;
 //   c = (ρ_1(1+ε_1) + ρ_2(1+ε_2) + η_1 + η_2)(1+ε_3)(1+δ_R)(1+ε_4)/D + η_4, and 1/Y = (1/D)/(1 + d/D), so
-//   |c − c*| ≤ |N/D|·((4u + 3u²)(4u + 7u²) + (4u + 3u²)·u(1 + 3u)) + 2.01η/|D| + η ≤ 20.1u²·|q0|,
+//   |c − c*| ≤ |N/D|·((4u + 3u²)(4u + 7u²) + (4u + 3u²)·u(1 + 3u)) + 2.01η/|D| + η ≤ 20.1u²·|q0|
+// (the proof, bounding the residual against Y rather than D, gets 23u²·|q0|, still below 32u² = 2^-101; with
+// 2^-102 = 16u² it fails),
 // the η terms being below 2^-172·|q0| by the guards (|N| ≥ 2^-900 makes η/|D| ≤ 2^-175·|N/D|). With the
 // Fast2Sum (exact since |c| ≤ 5u|q0|), |T − q| ≤ |w| + 20.1u²·|q0|. The enclosures add
 //   |t − T| ≤ (E_n + |T|·E_d)/(|Y| − E_d) ≤ (1 + 2^-50)·(E_n + |q0|·E_d)/|D|
@@ -139,9 +143,9 @@ inline constexpr int tail_sum_max_terms = 32;
 // and q = RN(t) when this is below h, half the gap from q to its nearer neighbour: t then lies strictly
 // inside q's rounding interval, so no tie can arise. The code tests, without division,
 //   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|,
-// ϕ_c = 1 + 2^-9; the factor 1 + 2^-45 absorbs the six roundings of the left side (each a relative error
-// of at most u: every term is normal, above 2^-960, by the guards), and h ⊗ |D| is exact (a power of two
-// times a double, normal since |q·D| ≈ |N| ≥ 2^-900).
+// ϕ_c = 1 + 2^-9; the factor 1 + 2^-45 absorbs the relative errors of the six roundings of the left side,
+// and their absolute (underflow) errors, which can occur when E_n or E_d is tiny, fit in the slack between
+// 2^-101 and the 23u² the proof needs; h ⊗ |D| is a power of two times a double.
 // Certified by: proofs/QuotientRounding.v, theorem `round_quotient_sound`.
 inline constexpr double quotient_min_magnitude = 0x1p-900;   // |N| and |q|
 inline constexpr double divisor_min_magnitude = 0x1p-1000;   // |D|: 1/D finite
