@@ -33,9 +33,19 @@ PlaneTieKind plane_tie_kind_from(const std::string& name) {
   throw py::value_error("unknown plane tie kind '" + name + "'");
 }
 
-// The words a construction draws, from a Python callable returning ints (taken modulo 2^64). Exceptions the
-// callable raises (e.g. Hypothesis stopping a test case) propagate through the construction unchanged.
-testkit::BitSource python_bits(py::function draw) {
+// The words a construction draws: from bytes (8 at a time, little-endian, then zero words: the fuzz decoder's
+// source, testkit::bit_source_from_bytes), or from a Python callable returning ints (taken modulo 2^64;
+// exceptions it raises, e.g. Hypothesis stopping a test case, propagate through the construction unchanged).
+// `storage` keeps the bytes alive while the source reads them.
+testkit::BitSource python_bits(py::handle words, std::string& storage) {
+  if (PyBytes_Check(words.ptr())) {
+    storage = words.cast<std::string>();
+    return testkit::bit_source_from_bytes({reinterpret_cast<const std::uint8_t*>(storage.data()), storage.size()});
+  }
+  if (!PyCallable_Check(words.ptr()))
+    throw py::type_error("words: expected bytes or a callable returning ints, got " +
+                         std::string(Py_TYPE(words.ptr())->tp_name));
+  const py::function draw = py::reinterpret_borrow<py::function>(words);
   return [draw]() -> std::uint64_t {
     const py::object word = draw();
     const unsigned long long w = PyLong_AsUnsignedLongLongMask(word.ptr());
@@ -70,11 +80,15 @@ void bind_testkit(py::module_& parent) {
 
   m.def(
       "make_query",
-      [](const std::string& kind, py::function draw) { return query_to_python(make_query(query_kind_from(kind), python_bits(draw))); },
-      py::arg("kind"), py::arg("draw_word"),
+      [](const std::string& kind, py::handle words) {
+        std::string storage;
+        return query_to_python(make_query(query_kind_from(kind), python_bits(words, storage)));
+      },
+      py::arg("kind"), py::arg("words"),
       R"doc(A hard ray–plane query of ``kind`` (one of QUERY_KINDS), as ``(Ray, Plane)``: testkit::make_query with
-each random 64-bit word taken from ``draw_word()``. Deterministic in the words: the same words give the
-same query, and smaller words give simpler queries (all zero words: the simplest of the kind).)doc");
+its random 64-bit words read from ``words``: bytes (8 per word, little-endian, zero words after the end) or a
+callable returning one word per call. Deterministic in the words: the same words give the same query, and
+smaller words give simpler queries (all zero words: the simplest of the kind).)doc");
 
   m.def(
       "make_query_arrays",
@@ -110,17 +124,18 @@ kind. For benchmarks and for vectorized code.)doc");
 
   m.def(
       "make_plane_pair",
-      [](const std::optional<std::string>& kind, py::function draw) {
-        const testkit::BitSource bits = python_bits(draw);
+      [](const std::optional<std::string>& kind, py::handle words) {
+        std::string storage;
+        const testkit::BitSource bits = python_bits(words, storage);
         const testkit::PlanePair pp = kind ? testkit::make_plane_pair_near_tie(plane_tie_kind_from(*kind), bits)
                                            : testkit::make_plane_pair_near_tie(bits);
         return py::make_tuple(std::string(testkit::to_string(pp.kind)), to_python(pp.ray),
                               py::make_tuple(to_python(pp.planes[0]), to_python(pp.planes[1])), pp.order);
       },
-      py::arg("kind"), py::arg("draw_word"),
+      py::arg("kind"), py::arg("words"),
       R"doc(One ray and two planes it hits whose exact t tie or differ by less than an ulp
 (testkit::make_plane_pair_near_tie): ``(kind, ray, (plane0, plane1), order)``, ``order`` the sign of t1 − t0.
-``kind`` one of PLANE_TIE_KINDS, or None to draw it.)doc");
+``kind`` one of PLANE_TIE_KINDS, or None to draw it; ``words`` as in make_query.)doc");
 
   m.def(
       "check_against_reference",

@@ -15,7 +15,10 @@ PYBIND11_MODULE(_raykernel, m) {
 
   // invalid_input derives from std::invalid_argument: Python sees a ValueError subclass whose message names
   // the field ("ray direction is the zero vector").
-  py::register_exception<raykernel::invalid_input>(m, "InvalidInput", PyExc_ValueError);
+  py::register_exception<raykernel::invalid_input>(m, "InvalidInput", PyExc_ValueError)
+      .attr("__doc__") = "Input that has no answer: a NaN or infinite component, a zero direction or normal.\n\n"
+                         "A ValueError whose message names the field, and for arrays the row: \"query 17: ray "
+                         "direction is the zero vector\".";
 
   bind_ray_plane(m);
   bind_nearest(m);
