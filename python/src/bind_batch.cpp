@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
@@ -80,8 +81,23 @@ py::dict stats_to_python(const BatchStats& stats) {
   return d;
 }
 
-RayBatch ray_batch(const ColumnsView& o, const ColumnsView& d) {
-  return {o.column(0), o.column(1), o.column(2), d.column(0), d.column(1), d.column(2)};
+// Rows per call into the batch API when an input must be gathered into columns (a row-major array): the
+// gathered chunk stays in cache for the batch, and a large array is never copied whole. 2^16 queries are
+// still enough for the batch API to split over threads.
+constexpr std::size_t gather_chunk = std::size_t{1} << 16;
+
+// Calls work(begin, end) over [0, n) in chunks: one chunk when every view is contiguous, else gather_chunk rows.
+template <class Work>
+void in_chunks(std::size_t n, std::initializer_list<const ColumnsView*> views, Work&& work) {
+  bool contiguous = true;
+  for (const ColumnsView* v : views) contiguous = contiguous && v->contiguous();
+  const std::size_t step = contiguous ? std::max<std::size_t>(n, 1) : gather_chunk;
+  for (std::size_t begin = 0; begin < n; begin += step) work(begin, std::min(n, begin + step));
+}
+
+RayBatch ray_batch(ColumnsView& o, ColumnsView& d, std::size_t begin, std::size_t end) {
+  const auto oc = o.columns(begin, end), dc = d.columns(begin, end);
+  return {oc[0], oc[1], oc[2], dc[0], dc[1], dc[2]};
 }
 
 py::object intersect_batch_py(py::handle origins, py::handle directions, py::handle points, py::handle normals,
@@ -110,17 +126,21 @@ py::object intersect_batch_py(py::handle origins, py::handle directions, py::han
   std::optional<std::pair<std::size_t, std::string>> first_invalid;
   {
     py::gil_scoped_release release;
-    o.gather(), d.gather(), p.gather(), nv.gather();
     auto query = [&](std::size_t i) { return std::pair{Ray{o.row(i), d.row(i)}, Plane{p.row(i), nv.row(i)}}; };
     if (path == Path::certified) {
-      const IntersectionBatch out{{reinterpret_cast<Relation*>(relation_out.data()), n}, t_out, valid_out};
       const BatchOptions options{threads_from(threads), want_stats ? &stats : nullptr};
-      if (one_plane)
-        intersect_batch(ray_batch(o, d), Plane{p.row(0), nv.row(0)}, out, options);
-      else
-        intersect_batch(ray_batch(o, d),
-                        PlaneBatch{p.column(0), p.column(1), p.column(2), nv.column(0), nv.column(1), nv.column(2)},
-                        out, options);
+      in_chunks(n, {&o, &d, &p, &nv}, [&](std::size_t begin, std::size_t end) {
+        const std::size_t m = end - begin;
+        const IntersectionBatch out{{reinterpret_cast<Relation*>(relation_out.data()) + begin, m},
+                                    t_out.subspan(begin, m), valid_out.subspan(begin, m)};
+        const RayBatch rays = ray_batch(o, d, begin, end);
+        if (one_plane) {
+          intersect_batch(rays, Plane{p.row(0), nv.row(0)}, out, options);
+        } else {
+          const auto pc = p.columns(begin, end), nc = nv.columns(begin, end);
+          intersect_batch(rays, PlaneBatch{pc[0], pc[1], pc[2], nc[0], nc[1], nc[2]}, out, options);
+        }
+      });
     } else {
       parallel_for(n, threads_from(threads), path == Path::exact ? exact_grain : naive_grain,
                    [&](std::size_t begin, std::size_t end) {
@@ -176,7 +196,6 @@ py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::h
     for (std::size_t k = 0; k < planes.size(); ++k)  // PlaneSets are valid already; this is for sequences
       if (const std::optional<std::string> reason = validate_plane(planes[k]))
         throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
-    o.gather(), d.gather();
     std::size_t valid_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const std::optional<std::string> reason = validate_ray({o.row(i), d.row(i)});
@@ -189,7 +208,10 @@ py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::h
       if (path == Path::certified) {
         const BatchOptions options{threads_from(threads), want_stats ? &stats : nullptr};
         if (valid_count == n) {
-          nearest_hit_batch(ray_batch(o, d), planes, hits, options);
+          in_chunks(n, {&o, &d}, [&](std::size_t begin, std::size_t end) {
+            nearest_hit_batch(ray_batch(o, d, begin, end), planes, std::span(hits).subspan(begin, end - begin),
+                              options);
+          });
         } else {  // the batch stops at an invalid ray: answer the valid ones as a batch of their own
           std::array<std::vector<double>, 6> c;
           std::vector<std::size_t> index;

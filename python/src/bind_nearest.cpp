@@ -48,8 +48,6 @@ PlaneSet::PlaneSet(py::handle planes_or_points, py::handle normals) {
   } else {
     ColumnsView points(planes_or_points, "points"), ns(normals, "normals");
     require_rows(ns, "normals", points.rows(), "points");
-    points.gather();
-    ns.gather();
     planes_.reserve(points.rows());
     for (std::size_t k = 0; k < points.rows(); ++k) planes_.push_back({points.row(k), ns.row(k)});
   }

@@ -164,8 +164,7 @@ ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_sin
   if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
     single_ = true;
     rows_ = 1;
-    for (int k = 0; k < 3; ++k)
-      columns_[static_cast<std::size_t>(k)] = std::span<const double>(reinterpret_cast<const double*>(base + k * array_.strides(0)), 1);
+    for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(0);
     return;
   }
   if (array_.ndim() != 2 || array_.shape(1) != 3) {
@@ -176,22 +175,31 @@ ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_sin
   }
   rows_ = static_cast<std::size_t>(array_.shape(0));
   row_stride_ = array_.strides(0);
-  for (int k = 0; k < 3; ++k) {
-    const char* first = base + k * array_.strides(1);
-    firsts_[static_cast<std::size_t>(k)] = first;
-    if (row_stride_ == static_cast<py::ssize_t>(sizeof(double)) || rows_ <= 1)
-      columns_[static_cast<std::size_t>(k)] = std::span<const double>(reinterpret_cast<const double*>(first), rows_);
-  }
+  for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(1);
 }
 
-void ColumnsView::gather() {
-  if (single_ || row_stride_ == static_cast<py::ssize_t>(sizeof(double)) || rows_ <= 1) return;
-  for (std::size_t k = 0; k < 3; ++k) {  // memcpy: the data of a strided view need not be aligned
-    copies_[k].resize(rows_);
-    for (std::size_t i = 0; i < rows_; ++i)
-      std::memcpy(&copies_[k][i], firsts_[k] + static_cast<py::ssize_t>(i) * row_stride_, sizeof(double));
-    columns_[k] = copies_[k];
+Vec3 ColumnsView::row(std::size_t i) const noexcept {
+  const py::ssize_t offset = static_cast<py::ssize_t>(i) * row_stride_;
+  double c[3];
+  for (std::size_t k = 0; k < 3; ++k) std::memcpy(&c[k], firsts_[k] + offset, sizeof(double));  // may be unaligned
+  return {c[0], c[1], c[2]};
+}
+
+std::array<std::span<const double>, 3> ColumnsView::columns(std::size_t begin, std::size_t end) {
+  const std::size_t n = end - begin;
+  std::array<std::span<const double>, 3> out;
+  if (contiguous()) {
+    for (std::size_t k = 0; k < 3; ++k)
+      out[k] = {reinterpret_cast<const double*>(firsts_[k]) + (single_ ? 0 : begin), single_ ? 1 : n};
+    return out;
   }
+  scratch_.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {  // row by row: each row is read once, in order
+    const Vec3 v = row(begin + i);
+    scratch_[i] = v.x, scratch_[n + i] = v.y, scratch_[2 * n + i] = v.z;
+  }
+  for (std::size_t k = 0; k < 3; ++k) out[k] = {scratch_.data() + k * n, n};
+  return out;
 }
 
 void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name) {

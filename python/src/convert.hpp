@@ -81,35 +81,32 @@ void load_types();
 // ---------------------------------------------------------------------------------------------------------
 // Arrays.
 
-// The three columns of an (n, 3) float64 array (or of a single 3-vector, as a broadcast row, when allowed)
-// as contiguous spans. Construct with the GIL held (it converts the Python value); then call gather(),
-// which needs no GIL, before reading the columns: it copies the columns that are not contiguous (a row-major
-// array), so that the copy of a large array does not hold the GIL. The spans stay valid while the view lives.
+// The rows of an (n, 3) float64 array (or a single 3-vector, a broadcast row, when allowed), any memory
+// layout. Construct with the GIL held (it converts the Python value); reading needs no GIL. The batch API
+// takes contiguous columns: `columns(begin, end)` gives them as views into the array when its columns are
+// contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the rows
+// [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
+// row-major array in chunks that stay in cache instead of copying it whole.
 class ColumnsView {
  public:
-  // `allow_single`: a shape (3,) value is accepted and reported as single(). `name` is used in errors
-  // ("origins: expected an array of shape (n, 3), got shape (4, 2)").
   ColumnsView(py::handle value, std::string_view name, bool allow_single = false);
-
-  void gather();
 
   [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
   [[nodiscard]] bool single() const noexcept { return single_; }
-  [[nodiscard]] std::span<const double> column(int k) const noexcept { return columns_[static_cast<std::size_t>(k)]; }
+  // The columns can be handed to the batch API as they are.
+  [[nodiscard]] bool contiguous() const noexcept { return single_ || rows_ <= 1 || row_stride_ == sizeof(double); }
   // Row i as a Vec3 (row 0 when single()).
-  [[nodiscard]] Vec3 row(std::size_t i) const noexcept {
-    const std::size_t r = single_ ? 0 : i;
-    return {columns_[0][r], columns_[1][r], columns_[2][r]};
-  }
+  [[nodiscard]] Vec3 row(std::size_t i) const noexcept;
+  // The x, y, z columns of rows [begin, end), contiguous.
+  [[nodiscard]] std::array<std::span<const double>, 3> columns(std::size_t begin, std::size_t end);
 
  private:
   py::array_t<double, py::array::forcecast> array_;  // keeps the data alive
-  std::array<std::vector<double>, 3> copies_;        // columns that were not contiguous
-  std::array<std::span<const double>, 3> columns_;
-  std::array<const char*, 3> firsts_{};  // first element of each column
-  py::ssize_t row_stride_ = 0;           // bytes between rows
+  std::array<const char*, 3> firsts_{};              // the first element of each column
+  py::ssize_t row_stride_ = 0;                       // bytes from one row to the next (0 for a single row)
   std::size_t rows_ = 0;
   bool single_ = false;
+  std::vector<double> scratch_;                      // gathered columns of a non-contiguous array
 };
 
 // Checks that `view` has `rows` rows (or is a single row when that is allowed), naming both arrays.

@@ -60,6 +60,21 @@ def test_every_layout_gives_the_same_answers(hard):
         assert (got.relation == reference.relation).all() and same_bits(got.t, reference.t), name
 
 
+def test_large_row_major_arrays_are_answered_in_chunks(hard):
+    # More rows than one gathered chunk (2^16): row-major input goes through the batch API chunk by chunk.
+    o, d, p, n = (np.tile(a, (45, 1)) for a in hard)  # 175,500 queries, C order
+    assert not o.flags.f_contiguous
+    row_major = rk.intersect_batch(o, d, p, n, stats=True)
+    column_major = rk.intersect_batch(*(np.asfortranarray(a) for a in (o, d, p, n)), stats=True)
+    assert (row_major.relation == column_major.relation).all() and same_bits(row_major.t, column_major.t)
+    assert row_major.stats == column_major.stats
+    tiled = rk.intersect_batch(*hard)
+    assert same_bits(row_major.t, np.tile(tiled.t, 45))
+    planes = rk.PlaneSet(hard[2][:3], hard[3][:3])
+    a, b = rk.nearest_hit_batch(o, d, planes), rk.nearest_hit_batch(np.asfortranarray(o), np.asfortranarray(d), planes)
+    assert (a.plane == b.plane).all() and same_bits(a.t, b.t)
+
+
 def test_one_plane_against_many_rays(hard):
     o, d = hard[0][:500], hard[1][:500]
     plane = ((0.25, -1.5, 3.0), (1.0, 2.0**-40, -3.0))
