@@ -8,8 +8,9 @@ import numpy as np
 EPSILON = 1e-9
 
 
-def moller_trumbore(origins, directions, a, b, c):
-    """(hit, t) for each row: hit is a bool array, t the distance along the ray where hit (NaN elsewhere)."""
+def moller_trumbore(origins, directions, a, b, c, epsilon=EPSILON):
+    """(hit, t) for each row: hit is a bool array, t the distance along the ray where hit (NaN elsewhere).
+    |det| ≤ epsilon counts as parallel."""
     e1, e2 = b - a, c - a
     p = np.cross(directions, e2)
     det = np.einsum("ij,ij->i", e1, p)
@@ -20,5 +21,5 @@ def moller_trumbore(origins, directions, a, b, c):
         q = np.cross(s, e1)
         v = np.einsum("ij,ij->i", directions, q) * inv_det
         t = np.einsum("ij,ij->i", e2, q) * inv_det
-    hit = (np.abs(det) > EPSILON) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t >= 0)
+    hit = (np.abs(det) > epsilon) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t >= 0)
     return hit, np.where(hit, t, np.nan)

@@ -30,9 +30,11 @@ def run(tmp_path_factory):
 def test_the_numpy_code_fails_and_the_control_passes(run):
     out = run.stdout
     assert run.returncode == 1, out + run.stderr  # test failures, not an error
-    assert re.search(r"^2 failed, 1 passed", out.splitlines()[-1]), out[-2000:]
+    assert re.search(r"^3 failed, 1 passed", out.splitlines()[-1]), out[-2000:]
     assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_ray_plane_matches_raykernel", out, re.M)
     assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_moller_trumbore_hits_edges_and_vertices", out, re.M)
+    assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices",
+                     out, re.M)
     assert "test_control_raykernel_passes_the_same_check" not in out.split("short test summary")[-1]
 
 
@@ -40,7 +42,12 @@ def test_each_failure_shows_a_shrunk_counterexample_and_the_report(run):
     out = run.stdout
     assert "Falsifying example: test_numpy_ray_plane_matches_raykernel(" in out
     assert "Falsifying example: test_numpy_moller_trumbore_hits_edges_and_vertices(" in out
-    assert out.count("raykernel reference check FAILED") >= 2
+    assert "Falsifying example: test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices(" in out
+    assert out.count("raykernel reference check FAILED") >= 3
+    # Without an epsilon, what Möller–Trumbore misses is a ray exactly through an edge or a vertex.
+    section = out.index("_ test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices _")
+    no_epsilon = out[section:out.index("Falsifying example: test_numpy_moller_trumbore_without_epsilon", section)]
+    assert re.search(r"expected  hit   \((edge-(ab|bc|ca)|vertex-[abc]), hit under the closed rule\)", no_epsilon)
     assert "| raykernel classify --exact-t --hex" in out and "| raykernel triangle --rule=closed --exact" in out
     # Shrunk: a single query each, not the list Hypothesis first failed on.
     for name in ("QueryArrays", "TriangleQueryArrays"):
