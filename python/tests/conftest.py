@@ -5,8 +5,6 @@
 # and the seed printed on failure (print_blob) so a CI failure can be reproduced with @reproduce_failure.
 # RAYKERNEL_HYPOTHESIS_EXAMPLES raises the number of examples per property for longer local runs.
 import os
-import pathlib
-import sys
 
 from hypothesis import HealthCheck, settings
 
@@ -19,7 +17,3 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile("raykernel")
-
-# The example suite (python/examples/) is imported by test_examples.py's subprocess, not here.
-PYTHON_DIR = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(PYTHON_DIR / "tests"))
