@@ -202,10 +202,12 @@ StreamOutput check_stream(std::string_view text, const std::vector<std::string_v
     return run_label() + "rays line " + std::to_string(i + 1) + ": " + std::string(what);
   };
 
-  const std::vector<std::string_view> out_lines = getline_lines(out.view());
-  const std::vector<std::string_view> err_lines = getline_lines(err.view());
-  check(out.view().empty() || out.view().back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
-  check(err.view().empty() || err.view().back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
+  // str(), not view(): ostringstream::view() needs libc++ 17 (ClusterFuzzLite's is newer; clang-14's is not).
+  const std::string out_text = out.str(), err_text = err.str();
+  const std::vector<std::string_view> out_lines = getline_lines(out_text);
+  const std::vector<std::string_view> err_lines = getline_lines(err_text);
+  check(out_text.empty() || out_text.back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
+  check(err_text.empty() || err_text.back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
 
   std::size_t next_out = 0, next_err = 0;
   std::uint64_t answered = 0, invalid = 0, hits = 0, misses = 0;
