@@ -194,11 +194,11 @@ py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::h
   {
     py::gil_scoped_release release;
     for (std::size_t k = 0; k < planes.size(); ++k)  // PlaneSets are valid already; this is for sequences
-      if (const std::optional<std::string> reason = validate_plane(planes[k]))
+      if (const std::optional<std::string> reason = validate(planes[k]))
         throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
     std::size_t valid_count = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      const std::optional<std::string> reason = validate_ray({o.row(i), d.row(i)});
+      const std::optional<std::string> reason = validate(Ray{o.row(i), d.row(i)});
       valid_out[i] = !reason;
       valid_count += valid_out[i];
       if (reason && !first_invalid) first_invalid.emplace(i, *reason);

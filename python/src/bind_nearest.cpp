@@ -16,7 +16,7 @@ constexpr std::size_t release_gil_above_planes = 64;
 
 void validate_planes(std::span<const Plane> planes) {
   for (std::size_t k = 0; k < planes.size(); ++k)
-    if (const std::optional<std::string> reason = validate_plane(planes[k]))
+    if (const std::optional<std::string> reason = validate(planes[k]))
       throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
 }
 
