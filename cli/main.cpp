@@ -1,5 +1,6 @@
 // The raykernel command-line tool: dispatches to the subcommands.
 #include "commands.hpp"
+#include "triangle_command.hpp"
 
 #include <iostream>
 #include <string>
@@ -15,6 +16,8 @@ commands:
   classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
+  triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
+                      rule (raykernel triangle --help)
   render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
   if (command == "demo") return run_demo(args);
   if (command == "nearest") return run_nearest(args);
   if (command == "render") return run_render(args);
+  if (command == "triangle") return run_triangle(args);
   std::cerr << "raykernel: unknown command '" << command << "'\n" << overview;
   return exit_usage;
 }

@@ -8,7 +8,7 @@
 
 namespace raykernel::cli {
 
-inline constexpr int max_numbers_per_line = 12;
+inline constexpr int max_numbers_per_line = 15;  // triangle lines (docs/contract.md §6)
 
 enum class LineStatus { skip, numbers, invalid };
 
@@ -18,7 +18,7 @@ struct NumberLine {
   std::string reason;                                // when status == invalid
 };
 
-// Reads a line of exactly `expected` (≤ 12) finite numbers separated by blanks (space, tab, CR, VT, FF).
+// Reads a line of exactly `expected` (≤ max_numbers_per_line) finite numbers separated by blanks (space, tab, CR, VT, FF).
 // Blank lines and lines whose first non-blank character is '#' are `skip`. A number is anything C's strtod
 // accepts in the "C" locale (decimal, scientific, hexadecimal with 0x) that is finite and does not overflow
 // when read; underflow to a subnormal or zero is accepted, as strtod rounds it. Anything else is `invalid`

@@ -1,0 +1,287 @@
+// The certified ray–triangle cascade: filter → compensated → expansion → exact, for the signs of πa, πb, πc,
+// den and num (and, when a π or den is exactly 0, the tie-break and degeneracy signs), and the correctly
+// rounded quotients t = num/den and πk/den.
+//
+// The fast path evaluates stage 2 (whose high parts are stage 1's values) when something is to be rounded, or
+// stage 1 alone for the relation, takes every sign from the filter or else from the enclosure, and when the
+// signs of den and the three π are certain (then nonzero: the branch-free decisions never certify zero, and
+// the input is valid, see below) decides the location directly: inside when all three have den's sign, else
+// outside, and the owned rule agrees with the closed one (no π is 0). The quotients are rounded by
+// round_quotient_decision on the stage-2 enclosures. Everything else goes to the full cascade, which validates
+// the input first and escalates each sign on its own.
+//
+// No validation is needed before the fast path: a certified sign of den implies finite inputs and d ≠ 0. Its
+// magnitude m sums the permanents of all three π, so a NaN or infinite component anywhere (o and d reach every
+// π; a vertex reaches two of the cross products) makes m, hence the bound and the radius, non-finite; and
+// d = 0 makes every product of den exactly 0, which neither stage certifies as nonzero.
+//
+// Certified by:
+//   signs, stage 1:      proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
+//   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`,
+//                        `num_compensated_encloses` with proofs/Compensated.v, `enclosure_sign_sound`
+//   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_decision_sound)
+//   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`,
+//                        `owned_sign_antisymmetric`
+//   stage 3:             Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
+//
+// Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
+#include "certified/fp_requirements.hpp"
+#include "certified/intersect_certified.hpp"  // RAYKERNEL_MULTIVERSION
+#include "certified/round_quotient.hpp"
+#include "exact/exact_triangle.hpp"
+#include "triangle/ray_triangle_stages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace raykernel::detail {
+namespace {
+
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+Stage later(Stage a, Stage b) noexcept { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+
+// The values to round: t = num/den (index 0) and πa/den, πb/den, πc/den (indices 1–3), as determinant indices.
+constexpr int numerator_value[4] = {value_num, value_pi_a, value_pi_b, value_pi_c};
+
+// The one place where quotients are rounded from stage-2 enclosures: each asked-for numerator over den.
+// (A lean rounding sharing one reciprocal of den would replace the body of this function.)
+struct QuotientsFromEnclosures {
+  double value[4];
+  bool certain[4];
+};
+[[gnu::always_inline]] inline QuotientsFromEnclosures round_quotients(const TriangleCompensatedValues& s2,
+                                                                      const bool wanted[4]) noexcept {
+  QuotientsFromEnclosures q{};
+  const Enclosure den = s2.enclosure(value_den);
+  for (int k = 0; k < 4; ++k) {
+    if (!wanted[k]) {
+      q.value[k] = not_a_number;
+      q.certain[k] = true;
+      continue;
+    }
+    const QuotientRounding r = round_quotient_decision(s2.enclosure(numerator_value[k]), den);
+    q.value[k] = r.t;
+    q.certain[k] = r.certain;
+  }
+  return q;
+}
+
+TriangleIntersection answer(const TriangleClassification& c) noexcept {
+  return {c.relation, c.location, c.owned, not_a_number, {not_a_number, not_a_number, not_a_number}};
+}
+
+void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
+  if (std::optional<std::string> reason = triangle_invalid_reason(ray, triangle)) throw invalid_input(*reason);
+}
+
+// ---- The full cascade --------------------------------------------------------------------------------------
+
+// One query in the full cascade: each sign escalated on its own, stage by stage, the stages computed once.
+class TriangleCascade {
+ public:
+  TriangleCascade(const Ray& ray, const Triangle& triangle) : ray_(ray), triangle_(triangle) {}
+
+  // The classification through stage 3, or nothing when a sign needed the exact stage.
+  std::optional<TriangleClassification> classify(TriangleRule rule) {
+    const TriangleClassification c = classify_triangle(
+        rule, [&] { return sign(value_den); }, [&](int k) { return sign(k); },
+        [&](int k) { return tie_break(k); }, [&] { return sign(value_num); }, [&] { return normal_is_zero(); });
+    if (needs_exact_) return std::nullopt;
+    return c;
+  }
+
+  // The exact sign of determinant v (stages 1–3); sets needs_exact_ (and returns 0) when stage 3 is not exact.
+  int sign(int v) {
+    Sign s = det3_filter_sign(v);
+    if (s == Sign::uncertain) {
+      stage_ = later(stage_, Stage::compensated);
+      s = enclosure_sign(compensated().enclosure(v));
+    }
+    if (s == Sign::uncertain) {
+      stage_ = later(stage_, Stage::expansion);
+      s = expansions().sign(v);
+    }
+    if (s == Sign::uncertain) {
+      needs_exact_ = true;
+      return 0;
+    }
+    return static_cast<int>(s);
+  }
+
+  [[nodiscard]] Stage stage() const noexcept { return stage_; }
+  [[nodiscard]] bool needs_exact() const noexcept { return needs_exact_; }
+  const TriangleCompensatedValues& compensated() {
+    if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
+    return *compensated_;
+  }
+
+ private:
+  Sign det3_filter_sign(int v) {
+    if (!filter_) filter_ = compensated_ ? compensated_->filter() : triangle_filter_values(ray_, triangle_);
+    return static_cast<Sign>(
+        det3_filter_lanes(filter_->value[static_cast<std::size_t>(v)], filter_relative(v), filter_->absolute(v)));
+  }
+  const TriangleExpansions& expansions() {
+    if (!expansions_) expansions_ = triangle_expansions(ray_, triangle_);
+    return *expansions_;
+  }
+  std::array<int, 3> tie_break(int k) {
+    stage_ = later(stage_, Stage::expansion);
+    if (const auto s = tie_break_signs_by_expansion(ray_, triangle_, k)) return *s;
+    needs_exact_ = true;
+    return {1, 0, 0};
+  }
+  bool normal_is_zero() {
+    stage_ = later(stage_, Stage::expansion);
+    if (const auto z = normal_is_zero_by_expansion(triangle_)) return *z;
+    needs_exact_ = true;
+    return false;
+  }
+
+  const Ray& ray_;
+  const Triangle& triangle_;
+  Stage stage_ = Stage::filter;
+  bool needs_exact_ = false;
+  std::optional<TriangleFilterValues> filter_;
+  std::optional<TriangleCompensatedValues> compensated_;
+  std::optional<TriangleExpansions> expansions_;
+};
+
+[[gnu::noinline]] TracedTriangleIntersection full_cascade(const Ray& ray, const Triangle& triangle,
+                                                          const TriangleOptions& options) {
+  throw_if_invalid(ray, triangle);
+  TriangleCascade query(ray, triangle);
+  const std::optional<TriangleClassification> classified = query.classify(options.rule);
+  if (!classified) return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
+  const Stage relation_stage = query.stage();
+  TracedTriangleIntersection r{answer(*classified), relation_stage, relation_stage};
+  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return r;
+
+  // The quotients: an exactly zero numerator gives +0; the others are rounded from the stage-2 enclosures,
+  // or else exactly.
+  const bool asked[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
+  int numerator_sign[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k)
+    if (asked[k]) numerator_sign[k] = query.sign(numerator_value[k]);
+  if (query.needs_exact()) {
+    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+    r.intersection.t = e.t;
+    r.intersection.barycentric = e.barycentric;
+    r.rounding_stage = Stage::exact;
+    return r;
+  }
+  bool wanted[4];
+  bool any = false;
+  double value[4];
+  for (int k = 0; k < 4; ++k) {
+    wanted[k] = asked[k] && numerator_sign[k] != 0;
+    any = any || wanted[k];
+    value[k] = asked[k] ? 0.0 : not_a_number;  // an exact 0/den is +0
+  }
+  r.rounding_stage = query.stage();
+  if (any) {
+    r.rounding_stage = later(r.rounding_stage, Stage::compensated);
+    const QuotientsFromEnclosures q = round_quotients(query.compensated(), wanted);
+    bool all_certain = true;
+    for (int k = 0; k < 4; ++k) {
+      if (wanted[k]) value[k] = q.value[k];
+      all_certain = all_certain && q.certain[k];
+    }
+    if (!all_certain) {
+      r.rounding_stage = Stage::exact;
+      const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+      const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
+      for (int k = 0; k < 4; ++k)
+        if (wanted[k] && !q.certain[k]) value[k] = exact_value[k];
+    }
+  }
+  r.intersection.t = value[0];
+  r.intersection.barycentric = {value[1], value[2], value[3]};
+  return r;
+}
+
+[[gnu::noinline]] TracedTriangleClassification full_relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  throw_if_invalid(ray, triangle);
+  TriangleCascade query(ray, triangle);
+  if (const std::optional<TriangleClassification> c = query.classify(rule)) return {*c, query.stage()};
+  return {exact::classify_triangle(ray, triangle, rule), Stage::exact};
+}
+
+// ---- The fast path -----------------------------------------------------------------------------------------
+
+// The decision when den and the three π have certain (hence nonzero) signs: inside or outside, the same under
+// both rules. `num_sign` is consulted only inside. Returns nothing when num's sign is needed and uncertain.
+[[gnu::always_inline]] inline std::optional<TriangleClassification> decide_nonzero(std::int64_t sa, std::int64_t sb,
+                                                                                   std::int64_t sc, std::int64_t sden,
+                                                                                   std::int64_t snum) noexcept {
+  const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
+  if (!inside) return TriangleClassification{TriangleRelation::miss, TriangleLocation::outside, false};
+  if (snum == uncertain_lane) return std::nullopt;
+  return TriangleClassification{snum == sden ? TriangleRelation::hit : TriangleRelation::behind,
+                                TriangleLocation::inside, true};
+}
+
+}  // namespace
+
+// The relation alone: stage 1, then the full cascade.
+RAYKERNEL_MULTIVERSION
+TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  const TriangleFilterValues s1 = triangle_filter_values(ray, triangle);
+  std::int64_t sign[triangle_value_count];
+  for (int v = 0; v < triangle_value_count; ++v)
+    sign[v] = det3_filter_lanes(s1.value[static_cast<std::size_t>(v)], filter_relative(v), s1.absolute(v));
+  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
+                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
+  if (certain) [[likely]] {
+    if (const std::optional<TriangleClassification> c =
+            decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]))
+      return {*c, Stage::filter};
+  }
+  return full_relation(ray, triangle, rule);
+}
+
+RAYKERNEL_MULTIVERSION
+TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
+                                                        const TriangleOptions& options) {
+  if (!options.t && !options.barycentric) {
+    const TracedTriangleClassification c = triangle_relation_traced(ray, triangle, options.rule);
+    return {answer(c.classification), c.stage, c.stage};
+  }
+  const TriangleCompensatedValues s2 = triangle_compensated_values(ray, triangle);
+  std::int64_t filter[triangle_value_count], sign[triangle_value_count];
+  for (int v = 0; v < triangle_value_count; ++v) {
+    filter[v] = det3_filter_lanes(filter_view(s2.value[static_cast<std::size_t>(v)]), filter_relative(v),
+                                  s2.absolute(v));
+    sign[v] = first_certain_lanes(filter[v], enclosure_sign_lanes(s2.enclosure(v)));
+  }
+  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
+                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
+  if (certain) [[likely]] {
+    const std::optional<TriangleClassification> c =
+        decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]);
+    // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
+    if (c && (!options.t || sign[value_num] != uncertain_lane)) {
+      const bool wanted[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
+      const QuotientsFromEnclosures q = round_quotients(s2, wanted);
+      if (q.certain[0] & q.certain[1] & q.certain[2] & q.certain[3]) [[likely]] {
+        const bool by_filter = (filter[value_pi_a] != uncertain_lane) & (filter[value_pi_b] != uncertain_lane) &
+                               (filter[value_pi_c] != uncertain_lane) & (filter[value_den] != uncertain_lane) &
+                               (c->location == TriangleLocation::outside || filter[value_num] != uncertain_lane);
+        return {{c->relation, c->location, c->owned, q.value[0], {q.value[1], q.value[2], q.value[3]}},
+                by_filter ? Stage::filter : Stage::compensated,
+                Stage::compensated};
+      }
+    }
+  }
+  return full_cascade(ray, triangle, options);
+}
+
+TriangleClassification triangle_relation_certified(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  return triangle_relation_traced(ray, triangle, rule).classification;
+}
+
+}  // namespace raykernel::detail
