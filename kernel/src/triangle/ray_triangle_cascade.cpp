@@ -20,6 +20,7 @@
 //   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`,
 //                        `num_compensated_encloses` with proofs/Compensated.v, `enclosure_sign_sound`
 //   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_decision_sound)
+//   quotients, stage 3:  proofs/Cascade.v, `expansion_t_correct` (tail_sum_enclosure; Shewchuk, cited)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`,
 //                        `owned_sign_antisymmetric`
 //   stage 3:             Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
@@ -114,9 +115,27 @@ class TriangleCascade {
 
   [[nodiscard]] Stage stage() const noexcept { return stage_; }
   [[nodiscard]] bool needs_exact() const noexcept { return needs_exact_; }
+
+  // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
+  // and has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
+  std::optional<Enclosure> expansion_enclosure(int v) {
+    const TriangleExpansions& x = expansions();
+    auto enclose = [](const auto& value) -> std::optional<Enclosure> {
+      if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
+      Expansion<bounds::tail_sum_max_terms> short_form;
+      for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
+      short_form.size = value.e.size;
+      return expansion_tail_enclosure(short_form);
+    };
+    return v == value_den ? enclose(x.den) : v == value_num ? enclose(x.num) : enclose(x.pi[static_cast<std::size_t>(v)]);
+  }
   const TriangleCompensatedValues& compensated() {
     if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
     return *compensated_;
+  }
+  const TriangleExpansions& expansions() {
+    if (!expansions_) expansions_ = triangle_expansions(ray_, triangle_);
+    return *expansions_;
   }
 
  private:
@@ -124,10 +143,6 @@ class TriangleCascade {
     if (!filter_) filter_ = compensated_ ? compensated_->filter() : triangle_filter_values(ray_, triangle_);
     return static_cast<Sign>(
         det3_filter_lanes(filter_->value[static_cast<std::size_t>(v)], filter_relative(v), filter_->absolute(v)));
-  }
-  const TriangleExpansions& expansions() {
-    if (!expansions_) expansions_ = triangle_expansions(ray_, triangle_);
-    return *expansions_;
   }
   std::array<int, 3> tie_break(int k) {
     stage_ = later(stage_, Stage::expansion);
@@ -192,11 +207,27 @@ class TriangleCascade {
       all_certain = all_certain && q.certain[k];
     }
     if (!all_certain) {
-      r.rounding_stage = Stage::exact;
-      const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
-      const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
-      for (int k = 0; k < 4; ++k)
-        if (wanted[k] && !q.certain[k]) value[k] = exact_value[k];
+      // Stage 3: round_quotient_decision on the expansions' tail enclosures (den's, or stage 2's when den's
+      // expansion is too long), then the exact stage for what is left (exact ties among it).
+      r.rounding_stage = later(r.rounding_stage, Stage::expansion);
+      bool certain[4];
+      for (int k = 0; k < 4; ++k) certain[k] = q.certain[k];
+      const std::optional<Enclosure> den = query.expansion_enclosure(value_den);
+      for (int k = 0; k < 4; ++k) {
+        if (certain[k]) continue;
+        if (const std::optional<Enclosure> n = query.expansion_enclosure(numerator_value[k])) {
+          const QuotientRounding e = round_quotient_decision(*n, den ? *den : query.compensated().enclosure(value_den));
+          value[k] = e.t;
+          certain[k] = e.certain;
+        }
+      }
+      if (!(certain[0] & certain[1] & certain[2] & certain[3])) {
+        r.rounding_stage = Stage::exact;
+        const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+        const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
+        for (int k = 0; k < 4; ++k)
+          if (!certain[k]) value[k] = exact_value[k];
+      }
     }
   }
   r.intersection.t = value[0];
