@@ -35,29 +35,33 @@ namespace raykernel::detail::bounds {
 // ---------------------------------------------------------------------------------------------------------
 // The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A (both stages).
 //
-// Derivation. Each P, Q errs by at most u|P| + η; the η's reach the value multiplied by |x_i|(1+u)² (stage 1:
-// 2 per component, so 2.01η·Σ|x_i|; stage 2: the TwoProduct residual and the three FMAs of each cross
-// component, about 6.1η·Σ|x_i|); the outer products add 3η (stage 1) or 9.1η (stage 2). den adds three π's:
-// at most 18.3η·Σ|d_i| + 27.3η. With S ≥ Σ|x_i|/(1+u)² and RN(K_A·S) ≥ K_A·S/(1+u) − η:
-//   K_A = 32η = 2^-1070 ≥ 18.3(1+u)^3·η,   U_A = 64η = 2^-1069 ≥ 27.3η + η + the η lost by C ⊗ m below.
+// Derivation. Each P, Q errs by up to u|P| + η; the η's reach the value multiplied by |x_i| in the outer
+// products: stage 1 carries at most 3η·Σ|x_i| + 6η (a determinant) or 9η·Σ|d_i| + 18η (den); stage 2 (the
+// TwoProduct residuals and the FMAs of each cross component, then the outer FMAs) at most 8.3η·Σ|x_h| + 16η,
+// or 25η·Σ|d_i| + 49η for den. With S ≥ (1−u)²·Σ|x_i| and the two roundings of A,
+//   A ≥ (1−u)(K_A(1−u)³·Σ|x_i| − η + U_A)                                     (absolute_term_lower)
+// and the bounds below need (1−u)(A − η) ≥ that absolute part: K_A = 32η and U_A = 64η give
+// (1−u)(A − η) ≥ 31.9η·Σ|x_i| + 61.9η, which covers all of them.
 // Valid for all finite inputs; A = +inf when S overflows (then nothing is certified).
-// Certified by: proofs/TriangleFilter.v, `det3_filter_encloses`; proofs/TriangleCompensated.v,
-// `det3_compensated_encloses` (both use A as computed here).
+// Certified by: proofs/TriangleFilter.v, `absolute_term_lower`, `det3_filter_encloses`
+// Certified by: proofs/TriangleCompensated.v, `det3_compensated_encloses`
 inline constexpr double triangle_absolute_scale = 0x1p-1070;  // K_A = 32η = 16μ
 inline constexpr double triangle_absolute = 0x1p-1069;        // U_A = 64η = 32μ
 
 // ---------------------------------------------------------------------------------------------------------
-// Stage 1: det3_filter (triangle/det3_stages.hpp), B = (C ⊗ m) ⊕ A;  s > B ⇒ V > 0,  s < −B ⇒ V < 0.
+// Stage 1: det3_filter (triangle/det3_stages.hpp), B = (C ⊗ m) ⊕ A;  v > B ⇒ V > 0,  v < −B ⇒ V < 0.
 //
-// Derivation (per term i, Higham §3.1 with the underflow terms kept apart): with M_i = |P_i| + |Q_i|,
-//   |Y_j Z_k − ŷ_j ẑ_k| ≤ (2u + u²)|ŷ_j ẑ_k|          (rounded differences; 0 when y, z are inputs)
-//   |ŷ_j ẑ_k − P| ≤ u|P| + η,  |P − Q − c| ≤ u·M_i,  |X_i − x̂_i| ≤ u|x̂_i| (num only),
-//   |x̂_i c_i − t_i| ≤ u|x̂_i c_i| + η,  the two additions ≤ (2u + u²)Σ|t_i|,
-// so |s − V| ≤ k·Σ|x̂_i|M_i + 2.01η·Σ|x̂_i| + 3.01η with k = 7u + O(u²) for a π (x = d exact), 8u + O(u²)
-// for num; den = (π̂a ⊕ π̂b) ⊕ π̂c adds (2u + u²)Σ|π̂| ≤ (2u + u²)(1 + u)Σm_k: 9u + O(u²). With
-// m ≥ Σ|x̂_i|M_i/(1+u)^4 − 3η, the constants below leave a margin of u·m for the O(u²) terms and roundings.
+// Derivation (proofs/TriangleFilter.v carries |v − V| ≤ α·m + β through each operation, m the computed
+// permanent, the leaves within relative error u of the exact differences and x within ex ∈ {0, u}):
+//   product of two leaves   α = 3u + 6u²,          β = (1 + 3u)η             (leaf_mul_approx)
+//   cross component         α = 4u + 11u²,         β = (2 + 6u)η             (cross_approx)
+//   outer term x_i·c_i      α = 5u + ex + 40u²,    β = 3η·|x_i| + 2η         (outer_approx)
+//   the determinant         α = 7u + ex + 60u²,    β = 3η·Σ|x_i| + 6η        (det3_approx)
+//   den = (π̂a ⊕ π̂b) ⊕ π̂c    α ≤ 9u + 80u²,        β = 9η·Σ|d_i| + 18η       (den_approx)
+// with ex = 0 for the π's (x = d, exact) and ex = u for num (x = ê_a). The bound covers α·m + β when
+// α ≤ C(1−u)² (bound_covers: (C ⊗ m) ⊕ A ≥ C(1−u)²·m + (1−u)(A − η)), so C = 8u, 9u, 10u.
 // Valid for all finite inputs (subnormal included); uncertain (never wrong) when m or A is not finite.
-// Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`.
+// Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
 inline constexpr double triangle_filter_pi_relative = 0x1p-50;     // 8u
 inline constexpr double triangle_filter_num_relative = 0x1.2p-50;  // 9u
 inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
@@ -66,18 +70,21 @@ inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
 // Stage 2: det3_compensated (triangle/det3_stages.hpp): an enclosure |V − (h + l)| ≤ E, E = (K ⊗ m) ⊕ A.
 //
 // Double-double leaves (h, l), |l| ≤ u|h|, exact. A product of two leaves (or of a leaf x and a cross
-// component (h, l)): P = a_h ⊗ b_h, l = RN(a_h·b_l + RN(a_l·b_h + RN(a_h·b_h − P))) (three FMAs; the
-// term a_l·b_l ≤ u²|a_h b_h| is dropped). A sum or difference: (s, σ) = TwoSum(a_h, ±b_h),
-// l = (a_l ⊕ ±b_l) ⊕ σ. Per cross component the error is ≤ 19u²·M_i + 6η and its low part ≤ 4u·M_i + 6η;
-// per outer term ≤ 31u²·|x_i|M_i + 6.01η|x_i| + 3.01η, low part ≤ 6u·|x_i|M_i + ...; the two sums of the dot
-// product add ≤ 4u·(8u)·Σ|x_i|M_i. In all about 63u²·Σ|x_i|M_i (+ the η terms of A); den sums three such
-// enclosures with two more double-double additions: about 95u²·Σm_k.
-//   K_π = K_num = 128u² = 2^-99,   K_den = 256u² = 2^-98   (m ≥ Σ|x_i|M_i/(1+u)^4 − 3η)
+// component (h, l)): P = a_h ⊗ b_h, l = RN(a_h·b_l + RN(a_l·b_h + RN(a_h·b_h − P))) (three FMAs; the term a_l·b_l
+// is dropped). A sum or difference: (s, σ) = TwoSum(a_h, ±b_h), l = (a_l ⊕ ±b_l) ⊕ σ. proofs/TriangleCompensated.v
+// carries |h + l − V| ≤ α·m + β and |l| ≤ λ·m + κ through each operation:
+//   product of two leaves   α = 7u²,    β = 4η,                 λ = 4u,    κ = 7η       (cleaf_mul_capprox)
+//   cross component         α = 17u²,   β = 8.1η,               λ = 6u,    κ = 15η      (ccross_capprox)
+//   outer term              α = 35u²,   β = 8.2η·|x_h| + 5η,    λ = 10u,   κ = 16η·|x_h| + 6η (couter_capprox)
+//   the determinant         α = 80u²,   β = 8.3η·Σ|x_h| + 16η,  λ = 13u                  (cdet3_capprox)
+//   den (two more sums)     α ≤ 136u²,  β ≤ 25η·Σ|d_i| + 49η
+// The radius covers α·m + β when α ≤ K(1−u)² (radius_covers), so
+//   K_π = K_num = 128u² = 2^-99,   K_den = 256u² = 2^-98.
 // Valid for all finite inputs; the radius is +inf when a value is not finite. Decides signs unless the value
 // is within ~2^-98 of m (exact zeros go on to stage 3), and lets round_quotient_decision round t and the
 // barycentric coordinates for condition numbers up to ~2^40.
-// Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`,
-// `den_compensated_encloses`.
+// Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+// Certified by: proofs/TriangleCompensated.v, `den_compensated_encloses`, `stage2_filter_view`
 inline constexpr double triangle_compensated_relative = 0x1p-99;      // K_π = K_num = 128u²
 inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den = 256u²
 

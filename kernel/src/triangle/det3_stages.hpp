@@ -130,8 +130,8 @@ template <class V>
 // det3_compensated: the enclosure |V − (h + l)| ≤ (K ⊗ m) ⊕ A of the exact determinant, K =
 // bounds::triangle_compensated_relative (π, num) or triangle_compensated_den_relative (den).
 //   Valid range: all finite inputs; the radius is +inf when h or l is not finite.
-//   Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`,
-//   `den_compensated_encloses`.
+//   Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+//   Certified by: proofs/TriangleCompensated.v, `den_compensated_encloses`
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> det3_enclosure(const CompensatedTerm<V>& t, double relative,
                                                                          V absolute) noexcept {

@@ -17,13 +17,17 @@
 //
 // Certified by:
 //   signs, stage 1:      proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
-//   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`,
-//                        `num_compensated_encloses` with proofs/Compensated.v, `enclosure_sign_sound`
+//   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`
+//                        proofs/TriangleCompensated.v, `num_compensated_encloses`
+//                        proofs/Compensated.v, `enclosure_sign_sound`
+//   the fast path:       proofs/TriangleCascade.v, `triangle_fast_sign_correct`, `fast_location_correct`
+//                        proofs/TriangleCascade.v, `den_nonzero_direction`
+//                        proofs/TriangleCompensated.v, `stage2_filter_view`
 //   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_decision_sound)
-//   quotients, stage 3:  proofs/Cascade.v, `expansion_t_correct` (tail_sum_enclosure; Shewchuk, cited)
-//   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`,
-//                        `owned_sign_antisymmetric`
-//   stage 3:             Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
+//   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
+//   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
+//                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
+//   stage 3 values:      Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "certified/fp_requirements.hpp"
