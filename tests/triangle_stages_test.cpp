@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 
 namespace raykernel {
@@ -93,6 +94,26 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
         ASSERT_EQ(static_cast<int>(xs), want) << "expansion sign, value " << v;
       }
     }
+    // The fast paths' lane layouts compute the same bits as the scalar evaluation the proofs model: lanes
+    // πa, πb, πc, num (stage 2, and its stage-1 view), and πa, πb, πc, den = π(b, c) seen from a (the
+    // relation-only path's stage 1); num on its own.
+    const auto c4 = detail::triangle_compensated_lanes(q.ray, q.triangle);
+    const auto f4 = detail::triangle_relation_lanes(q.ray, q.triangle);
+    const detail::TriangleFilterValues from_a = detail::triangle_filter_values({q.triangle.a, q.ray.direction}, q.triangle);
+    const int scalar_of_lane[4] = {0, 1, 2, 4};
+    for (int k = 0; k < 4; ++k) {
+      const auto c = detail::lane(c4.lanes, k);
+      const auto& want = s2.value[static_cast<std::size_t>(scalar_of_lane[k])];
+      ASSERT_TRUE(std::memcmp(&c, &want, sizeof c) == 0) << "compensated lane " << k << ": " << testkit::triangle_line(q);
+      ASSERT_EQ(c4.absolute[k], s2.absolute(scalar_of_lane[k]));
+      const auto f = detail::lane(f4.lanes, k);
+      const auto& fwant = k < 3 ? s1.value[static_cast<std::size_t>(k)] : from_a.value[0];
+      ASSERT_TRUE(std::memcmp(&f, &fwant, sizeof f) == 0) << "relation lane " << k << ": " << testkit::triangle_line(q);
+      ASSERT_EQ(f4.absolute[k], s1.absolute_d);
+    }
+    const detail::TriangleNumFilter num1 = detail::triangle_num_filter(q.ray, q.triangle);
+    ASSERT_TRUE(std::memcmp(&num1.value, &s1.value[4], sizeof num1.value) == 0);
+    ASSERT_EQ(num1.absolute, s1.absolute_e);
     // The exact expansions sum to the exact values.
     auto sum = [](const auto& x) {
       mpq_class s = 0;

@@ -35,15 +35,17 @@ struct RayTriangleTerms {
 };
 
 // The cross product y × z, component by component: (y_1 z_2 − y_2 z_1, y_2 z_0 − y_0 z_2, y_0 z_1 − y_1 z_0).
+// (Always inlined: the certified stages instantiate these inside multiversioned functions, whose FMA clone
+// must see every operation.)
 template <class Leaf>
-[[nodiscard]] auto cross_terms(const std::array<Leaf, 3>& y, const std::array<Leaf, 3>& z) {
+[[nodiscard]] [[gnu::always_inline]] inline auto cross_terms(const std::array<Leaf, 3>& y, const std::array<Leaf, 3>& z) {
   using P = decltype(y[1] * z[2] - y[2] * z[1]);
   return std::array<P, 3>{y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]};
 }
 
 // x·c = (x_0 c_0 + x_1 c_1) + x_2 c_2.
 template <class Leaf, class P>
-[[nodiscard]] auto dot_terms(const std::array<Leaf, 3>& x, const std::array<P, 3>& c) {
+[[nodiscard]] [[gnu::always_inline]] inline auto dot_terms(const std::array<Leaf, 3>& x, const std::array<P, 3>& c) {
   return (x[0] * c[0] + x[1] * c[1]) + x[2] * c[2];
 }
 
@@ -57,7 +59,7 @@ struct RayTriangleLeaves {
 };
 
 template <class Leaf, class Lift, class Difference>
-[[nodiscard]] RayTriangleLeaves<Leaf> ray_triangle_leaves(const Ray& ray, const Triangle& triangle, Lift lift,
+[[nodiscard]] [[gnu::always_inline]] inline RayTriangleLeaves<Leaf> ray_triangle_leaves(const Ray& ray, const Triangle& triangle, Lift lift,
                                                           Difference difference) {
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
@@ -69,7 +71,7 @@ template <class Leaf, class Lift, class Difference>
 
 // The five values from the leaves: the cross products are shared (c_a by πa and num).
 template <class Leaf>
-[[nodiscard]] auto ray_triangle_terms(const RayTriangleLeaves<Leaf>& in) {
+[[nodiscard]] [[gnu::always_inline]] inline auto ray_triangle_terms(const RayTriangleLeaves<Leaf>& in) {
   const auto& [ea, eb, ec] = in.e;
   const auto ca = cross_terms(eb, ec);
   const auto cb = cross_terms(ec, ea);

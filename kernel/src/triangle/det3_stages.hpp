@@ -70,8 +70,9 @@ template <class V>
 //   Valid range: all finite inputs; uncertain when m or A is not finite.
 //   Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`.
 // Branch-free, per lane: +1, −1, or uncertain (sign.hpp); never zero.
-template <class V>
-[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> det3_filter_lanes(const FilterTerm<V>& r, double relative,
+// (`relative` is a double, or per lane a V: the π's and num share one vector.)
+template <class V, class Relative>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> det3_filter_lanes(const FilterTerm<V>& r, Relative relative,
                                                                             V absolute) noexcept {
   const V bound = relative * r.m + absolute;
   return sign_lanes(r.v > bound, r.v < -bound);

@@ -36,6 +36,16 @@
 #include "exact/exact_triangle.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
+// The fast paths evaluate four determinants per Lanes4 (one ymm register): besides RAYKERNEL_MULTIVERSION's
+// FMA clone (AVX without AVX2: 256-bit integer masks and lane permutations are emulated) they get an AVX2 clone.
+// Every clone performs the same IEEE operations per lane (lanes.hpp), so all return the same bits.
+#if !defined(RAYKERNEL_NO_MULTIVERSION) && defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__) && \
+    !defined(__clang__)
+#define RAYKERNEL_TRIANGLE_MULTIVERSION __attribute__((target_clones("arch=x86-64-v3", "fma", "default")))
+#else
+#define RAYKERNEL_TRIANGLE_MULTIVERSION RAYKERNEL_MULTIVERSION
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,28 +62,22 @@ Stage later(Stage a, Stage b) noexcept { return static_cast<int>(a) >= static_ca
 // The values to round: t = num/den (index 0) and πa/den, πb/den, πc/den (indices 1–3), as determinant indices.
 constexpr int numerator_value[4] = {value_num, value_pi_a, value_pi_b, value_pi_c};
 
-// The one place where quotients are rounded from stage-2 enclosures: each asked-for numerator over den.
-// (A lean rounding sharing one reciprocal of den would replace the body of this function.)
-struct QuotientsFromEnclosures {
-  double value[4];
-  bool certain[4];
-};
-[[gnu::always_inline]] inline QuotientsFromEnclosures round_quotients(const TriangleCompensatedValues& s2,
-                                                                      const bool wanted[4]) noexcept {
-  QuotientsFromEnclosures q{};
-  const Enclosure den = s2.enclosure(value_den);
-  for (int k = 0; k < 4; ++k) {
-    if (!wanted[k]) {
-      q.value[k] = not_a_number;
-      q.certain[k] = true;
-      continue;
-    }
-    const QuotientRounding r = round_quotient_decision(s2.enclosure(numerator_value[k]), den);
-    q.value[k] = r.t;
-    q.certain[k] = r.certain;
-  }
-  return q;
+// The one place where the quotients are rounded: the numerators πa, πb, πc, num in the lanes of one
+// enclosure (the fast path's layout), over den's enclosure, by round_quotient_decision once per lane — four
+// roundings in one vector pass. (A lean rounding sharing one reciprocal of den would replace this body.)
+// Lane k of the result is RN(πa/den), RN(πb/den), RN(πc/den), RN(num/den) for k = 0..3.
+[[gnu::always_inline]] inline QuotientRoundingT<Lanes4> round_quotients(const EnclosureT<Lanes4>& numerators,
+                                                                        const Enclosure& den) noexcept {
+  const EnclosureT<Lanes4> d{broadcast<Lanes4>(den.hi), broadcast<Lanes4>(den.lo), broadcast<Lanes4>(den.radius)};
+  return round_quotient_decision(numerators, d);
 }
+
+// The relative constants of the four lanes (π, π, π, num).
+const Lanes4 filter_relative_lanes{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
+                                   bounds::triangle_filter_pi_relative, bounds::triangle_filter_num_relative};
+
+// Numerator k of the quotients (t, ua, ub, uc) and its lane in the fast path's layout.
+constexpr int numerator_lane[4] = {lane_num, value_pi_a, value_pi_b, value_pi_c};
 
 TriangleIntersection answer(const TriangleClassification& c) noexcept {
   return {c.relation, c.location, c.owned, not_a_number, {not_a_number, not_a_number, not_a_number}};
@@ -204,10 +208,22 @@ class TriangleCascade {
   r.rounding_stage = query.stage();
   if (any) {
     r.rounding_stage = later(r.rounding_stage, Stage::compensated);
-    const QuotientsFromEnclosures q = round_quotients(query.compensated(), wanted);
+    const TriangleCompensatedValues& s2 = query.compensated();
+    EnclosureT<Lanes4> numerators;
+    for (int k = 0; k < 4; ++k) {
+      const Enclosure e = s2.enclosure(numerator_value[k]);
+      numerators.hi[numerator_lane[k]] = e.hi;
+      numerators.lo[numerator_lane[k]] = e.lo;
+      numerators.radius[numerator_lane[k]] = e.radius;
+    }
+    const QuotientRoundingT<Lanes4> rounded = round_quotients(numerators, s2.enclosure(value_den));
+    struct {
+      bool certain[4];
+    } q{};
     bool all_certain = true;
     for (int k = 0; k < 4; ++k) {
-      if (wanted[k]) value[k] = q.value[k];
+      q.certain[k] = !wanted[k] || rounded.certain[numerator_lane[k]] != 0;
+      if (wanted[k]) value[k] = rounded.t[numerator_lane[k]];
       all_certain = all_certain && q.certain[k];
     }
     if (!all_certain) {
@@ -262,52 +278,66 @@ class TriangleCascade {
 
 }  // namespace
 
-// The relation alone: stage 1, then the full cascade.
-RAYKERNEL_MULTIVERSION
+// The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
+// directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle; then
+// the full cascade.
+RAYKERNEL_TRIANGLE_MULTIVERSION
 TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  const TriangleFilterValues s1 = triangle_filter_values(ray, triangle);
-  std::int64_t sign[triangle_value_count];
-  for (int v = 0; v < triangle_value_count; ++v)
-    sign[v] = det3_filter_lanes(s1.value[static_cast<std::size_t>(v)], filter_relative(v), s1.absolute(v));
-  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
-                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
+  const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
+  // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain): one lane extraction
+  // each instead of integer lane arithmetic.
+  const Lanes4 bound = bounds::triangle_filter_pi_relative * s1.lanes.m + s1.absolute;
+  const Lanes4 one = broadcast<Lanes4>(1.0);
+  const Lanes4 sign = select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});
+  const double sa = sign[0], sb = sign[1], sc = sign[2], sden = sign[3];
+  const bool certain = (sa * sb) * (sc * sden) != 0;
   if (certain) [[likely]] {
-    if (const std::optional<TriangleClassification> c =
-            decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]))
-      return {*c, Stage::filter};
+    const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
+    if (!inside) return {{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
+    const TriangleNumFilter num = triangle_num_filter(ray, triangle);
+    const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
+    if (num_sign != uncertain_lane)
+      return {{static_cast<double>(num_sign) == sden ? TriangleRelation::hit : TriangleRelation::behind,
+               TriangleLocation::inside, true},
+              Stage::filter};
   }
   return full_relation(ray, triangle, rule);
 }
 
-RAYKERNEL_MULTIVERSION
+RAYKERNEL_TRIANGLE_MULTIVERSION
 TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
                                                         const TriangleOptions& options) {
   if (!options.t && !options.barycentric) {
     const TracedTriangleClassification c = triangle_relation_traced(ray, triangle, options.rule);
     return {answer(c.classification), c.stage, c.stage};
   }
-  const TriangleCompensatedValues s2 = triangle_compensated_values(ray, triangle);
-  std::int64_t filter[triangle_value_count], sign[triangle_value_count];
-  for (int v = 0; v < triangle_value_count; ++v) {
-    filter[v] = det3_filter_lanes(filter_view(s2.value[static_cast<std::size_t>(v)]), filter_relative(v),
-                                  s2.absolute(v));
-    sign[v] = first_certain_lanes(filter[v], enclosure_sign_lanes(s2.enclosure(v)));
-  }
-  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
-                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
+  // Stages 1 and 2 of the π's and num in one Lanes4 evaluation; den summed from the lanes.
+  const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, triangle);
+  const CompensatedTerm<double> den = (lane(s2.lanes, 0) + lane(s2.lanes, 1)) + lane(s2.lanes, 2);
+  const double absolute_d = s2.absolute[0];
+  const Mask4 filter = det3_filter_lanes(filter_view(s2.lanes), filter_relative_lanes, s2.absolute);
+  const EnclosureT<Lanes4> enclosure = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
+  const Mask4 sign = first_certain_lanes(filter, enclosure_sign_lanes(enclosure));
+  const std::int64_t den_filter = det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, absolute_d);
+  const Enclosure den_enclosure = det3_enclosure(den, bounds::triangle_compensated_den_relative, absolute_d);
+  const std::int64_t den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den_enclosure));
+  const bool certain = (sign[0] != uncertain_lane) & (sign[1] != uncertain_lane) & (sign[2] != uncertain_lane) &
+                       (den_sign != uncertain_lane);
   if (certain) [[likely]] {
-    const std::optional<TriangleClassification> c =
-        decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]);
+    const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
     // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
-    if (c && (!options.t || sign[value_num] != uncertain_lane)) {
-      const bool wanted[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
-      const QuotientsFromEnclosures q = round_quotients(s2, wanted);
-      if (q.certain[0] & q.certain[1] & q.certain[2] & q.certain[3]) [[likely]] {
-        const bool by_filter = (filter[value_pi_a] != uncertain_lane) & (filter[value_pi_b] != uncertain_lane) &
-                               (filter[value_pi_c] != uncertain_lane) & (filter[value_den] != uncertain_lane) &
-                               (c->location == TriangleLocation::outside || filter[value_num] != uncertain_lane);
-        return {{c->relation, c->location, c->owned, q.value[0], {q.value[1], q.value[2], q.value[3]}},
-                by_filter ? Stage::filter : Stage::compensated,
+    if (c && (!options.t || sign[lane_num] != uncertain_lane)) {
+      const QuotientRoundingT<Lanes4> q = round_quotients(enclosure, den_enclosure);
+      const bool rounded = (!options.t || q.certain[lane_num] != 0) &
+                           (!options.barycentric || (q.certain[0] != 0 && q.certain[1] != 0 && q.certain[2] != 0));
+      if (rounded) [[likely]] {
+        const bool by_filter = (filter[0] != uncertain_lane) & (filter[1] != uncertain_lane) &
+                               (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
+                               (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
+        const double t = options.t ? q.t[lane_num] : not_a_number;
+        const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
+                                                            : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
+        return {{c->relation, c->location, c->owned, t, u}, by_filter ? Stage::filter : Stage::compensated,
                 Stage::compensated};
       }
     }

@@ -74,7 +74,7 @@ TriangleClassification relation(const Ray& ray, const Triangle& triangle, Triang
     throw_if_invalid(ray, triangle);
     return detail::exact::classify_triangle(ray, triangle, rule);
   }
-  return detail::triangle_relation_certified(ray, triangle, rule);
+  return detail::triangle_relation_traced(ray, triangle, rule).classification;
 }
 
 TriangleIntersection intersect_exact(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
