@@ -24,6 +24,19 @@ struct ExpansionValue {
   Expansion<N> e;
   bool exact = true;
 
+  ExpansionValue() noexcept = default;
+  // Copies only the components in use (the capacity is a compile-time bound, mostly unused).
+  ExpansionValue(const ExpansionValue& other) noexcept : exact(other.exact) { copy_components(other); }
+  ExpansionValue& operator=(const ExpansionValue& other) noexcept {
+    exact = other.exact;
+    copy_components(other);
+    return *this;
+  }
+  void copy_components(const ExpansionValue& other) noexcept {
+    e.size = other.e.size;
+    for (std::size_t i = 0; i < other.e.size; ++i) e.component[i] = other.e.component[i];
+  }
+
   [[nodiscard]] Sign sign() const noexcept { return exact ? e.sign() : Sign::uncertain; }
 };
 

@@ -62,19 +62,45 @@ Stage later(Stage a, Stage b) noexcept { return static_cast<int>(a) >= static_ca
 // The values to round: t = num/den (index 0) and πa/den, πb/den, πc/den (indices 1–3), as determinant indices.
 constexpr int numerator_value[4] = {value_num, value_pi_a, value_pi_b, value_pi_c};
 
-// The one place where the quotients are rounded: the numerators πa, πb, πc, num in the lanes of one
-// enclosure (the fast path's layout), over den's enclosure, by round_quotient_decision once per lane — four
-// roundings in one vector pass. (A lean rounding sharing one reciprocal of den would replace this body.)
-// Lane k of the result is RN(πa/den), RN(πb/den), RN(πc/den), RN(num/den) for k = 0..3.
-[[gnu::always_inline]] inline QuotientRoundingT<Lanes4> round_quotients(const EnclosureT<Lanes4>& numerators,
-                                                                        const Enclosure& den) noexcept {
+// The four quotients in the fast path's lane order: RN(πa/den), RN(πb/den), RN(πc/den), RN(num/den).
+struct FourQuotients {
+  double t[4];
+  bool certain[4];
+};
+
+// The one place where the quotients are rounded: round_quotient_decision of each numerator's enclosure (lanes
+// πa, πb, πc, num) over den's — with GCC in one Lanes4 pass, four roundings per vector operation. (A lean
+// rounding sharing one reciprocal of den would replace this body.)
+[[gnu::always_inline]] inline FourQuotients round_quotients(const Enclosure numerators[4], const Enclosure& den) noexcept {
+  FourQuotients q;
+#if RAYKERNEL_TRIANGLE_LANES
+  EnclosureT<Lanes4> n;
+  for (int k = 0; k < 4; ++k) {
+    n.hi[k] = numerators[k].hi;
+    n.lo[k] = numerators[k].lo;
+    n.radius[k] = numerators[k].radius;
+  }
   const EnclosureT<Lanes4> d{broadcast<Lanes4>(den.hi), broadcast<Lanes4>(den.lo), broadcast<Lanes4>(den.radius)};
-  return round_quotient_decision(numerators, d);
+  const QuotientRoundingT<Lanes4> r = round_quotient_decision(n, d);
+  for (int k = 0; k < 4; ++k) {
+    q.t[k] = r.t[k];
+    q.certain[k] = r.certain[k] != 0;
+  }
+#else
+  for (int k = 0; k < 4; ++k) {
+    const QuotientRounding r = round_quotient_decision(numerators[k], den);
+    q.t[k] = r.t;
+    q.certain[k] = r.certain;
+  }
+#endif
+  return q;
 }
 
+#if RAYKERNEL_TRIANGLE_LANES
 // The relative constants of the four lanes (π, π, π, num).
 const Lanes4 filter_relative_lanes{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
                                    bounds::triangle_filter_pi_relative, bounds::triangle_filter_num_relative};
+#endif
 
 // Numerator k of the quotients (t, ua, ub, uc) and its lane in the fast path's layout.
 constexpr int numerator_lane[4] = {lane_num, value_pi_a, value_pi_b, value_pi_c};
@@ -112,7 +138,7 @@ class TriangleCascade {
     }
     if (s == Sign::uncertain) {
       stage_ = later(stage_, Stage::expansion);
-      s = expansions().sign(v);
+      s = expansion(v).sign();
     }
     if (s == Sign::uncertain) {
       needs_exact_ = true;
@@ -127,23 +153,22 @@ class TriangleCascade {
   // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
   // and has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
   std::optional<Enclosure> expansion_enclosure(int v) {
-    const TriangleExpansions& x = expansions();
-    auto enclose = [](const auto& value) -> std::optional<Enclosure> {
-      if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
-      Expansion<bounds::tail_sum_max_terms> short_form;
-      for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
-      short_form.size = value.e.size;
-      return expansion_tail_enclosure(short_form);
-    };
-    return v == value_den ? enclose(x.den) : v == value_num ? enclose(x.num) : enclose(x.pi[static_cast<std::size_t>(v)]);
+    const ExpansionValue<192>& value = expansion(v);
+    if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
+    Expansion<bounds::tail_sum_max_terms> short_form;
+    for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
+    short_form.size = value.e.size;
+    return expansion_tail_enclosure(short_form);
   }
   const TriangleCompensatedValues& compensated() {
     if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
     return *compensated_;
   }
-  const TriangleExpansions& expansions() {
-    if (!expansions_) expansions_ = triangle_expansions(ray_, triangle_);
-    return *expansions_;
+  // Stage 3 of determinant v, computed on first use.
+  const ExpansionValue<192>& expansion(int v) {
+    std::optional<ExpansionValue<192>>& x = expansion_[static_cast<std::size_t>(v)];
+    if (!x) x = value_expansion(ray_, triangle_, v);
+    return *x;
   }
 
  private:
@@ -171,7 +196,7 @@ class TriangleCascade {
   bool needs_exact_ = false;
   std::optional<TriangleFilterValues> filter_;
   std::optional<TriangleCompensatedValues> compensated_;
-  std::optional<TriangleExpansions> expansions_;
+  std::array<std::optional<ExpansionValue<192>>, triangle_value_count> expansion_;
 };
 
 [[gnu::noinline]] TracedTriangleIntersection full_cascade(const Ray& ray, const Triangle& triangle,
@@ -209,20 +234,15 @@ class TriangleCascade {
   if (any) {
     r.rounding_stage = later(r.rounding_stage, Stage::compensated);
     const TriangleCompensatedValues& s2 = query.compensated();
-    EnclosureT<Lanes4> numerators;
-    for (int k = 0; k < 4; ++k) {
-      const Enclosure e = s2.enclosure(numerator_value[k]);
-      numerators.hi[numerator_lane[k]] = e.hi;
-      numerators.lo[numerator_lane[k]] = e.lo;
-      numerators.radius[numerator_lane[k]] = e.radius;
-    }
-    const QuotientRoundingT<Lanes4> rounded = round_quotients(numerators, s2.enclosure(value_den));
+    Enclosure numerators[4];
+    for (int k = 0; k < 4; ++k) numerators[numerator_lane[k]] = s2.enclosure(numerator_value[k]);
+    const FourQuotients rounded = round_quotients(numerators, s2.enclosure(value_den));
     struct {
       bool certain[4];
     } q{};
     bool all_certain = true;
     for (int k = 0; k < 4; ++k) {
-      q.certain[k] = !wanted[k] || rounded.certain[numerator_lane[k]] != 0;
+      q.certain[k] = !wanted[k] || rounded.certain[numerator_lane[k]];
       if (wanted[k]) value[k] = rounded.t[numerator_lane[k]];
       all_certain = all_certain && q.certain[k];
     }
@@ -278,14 +298,14 @@ class TriangleCascade {
 
 }  // namespace
 
+#if RAYKERNEL_TRIANGLE_LANES
 // The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
 // directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle; then
 // the full cascade.
 RAYKERNEL_TRIANGLE_MULTIVERSION
 TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
   const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
-  // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain): one lane extraction
-  // each instead of integer lane arithmetic.
+  // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain).
   const Lanes4 bound = bounds::triangle_filter_pi_relative * s1.lanes.m + s1.absolute;
   const Lanes4 one = broadcast<Lanes4>(1.0);
   const Lanes4 sign = select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});
@@ -317,7 +337,53 @@ TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Tr
   const double absolute_d = s2.absolute[0];
   const Mask4 filter = det3_filter_lanes(filter_view(s2.lanes), filter_relative_lanes, s2.absolute);
   const EnclosureT<Lanes4> enclosure = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
-  const Mask4 sign = first_certain_lanes(filter, enclosure_sign_lanes(enclosure));
+  const Mask4 sign4 = first_certain_lanes(filter, enclosure_sign_lanes(enclosure));
+  std::int64_t filter_sign[4], sign[4];
+  Enclosure numerators[4];
+  for (int k = 0; k < 4; ++k) {
+    filter_sign[k] = filter[k];
+    sign[k] = sign4[k];
+    numerators[k] = {enclosure.hi[k], enclosure.lo[k], enclosure.radius[k]};
+  }
+#else
+// Without GCC's vector idioms: the same values one at a time (the scalar evaluation the proofs model; the lane
+// layout computes the same bits).
+RAYKERNEL_TRIANGLE_MULTIVERSION
+TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  const TriangleFilterValues s1 = triangle_filter_values(ray, triangle);
+  std::int64_t sign[triangle_value_count];
+  for (int v = 0; v < triangle_value_count; ++v)
+    sign[v] = det3_filter_lanes(s1.value[static_cast<std::size_t>(v)], filter_relative(v), s1.absolute(v));
+  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
+                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
+  if (certain) [[likely]] {
+    if (const std::optional<TriangleClassification> c =
+            decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]))
+      return {*c, Stage::filter};
+  }
+  return full_relation(ray, triangle, rule);
+}
+
+RAYKERNEL_TRIANGLE_MULTIVERSION
+TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
+                                                        const TriangleOptions& options) {
+  if (!options.t && !options.barycentric) {
+    const TracedTriangleClassification c = triangle_relation_traced(ray, triangle, options.rule);
+    return {answer(c.classification), c.stage, c.stage};
+  }
+  const TriangleCompensatedValues s2 = triangle_compensated_values(ray, triangle);
+  const CompensatedTerm<double> den = s2.value[value_den];
+  const double absolute_d = s2.absolute_d;
+  std::int64_t filter_sign[4], sign[4];
+  Enclosure numerators[4];
+  for (int k = 0; k < 4; ++k) {
+    const int v = k == lane_num ? value_num : k;
+    filter_sign[k] = det3_filter_lanes(filter_view(s2.value[static_cast<std::size_t>(v)]), filter_relative(v), s2.absolute(v));
+    numerators[k] = s2.enclosure(v);
+    sign[k] = first_certain_lanes(filter_sign[k], enclosure_sign_lanes(numerators[k]));
+  }
+#endif
+  // From here on, both layouts: the signs and enclosures of πa, πb, πc, num (in that order) and den.
   const std::int64_t den_filter = det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, absolute_d);
   const Enclosure den_enclosure = det3_enclosure(den, bounds::triangle_compensated_den_relative, absolute_d);
   const std::int64_t den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den_enclosure));
@@ -327,13 +393,13 @@ TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Tr
     const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
     // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
     if (c && (!options.t || sign[lane_num] != uncertain_lane)) {
-      const QuotientRoundingT<Lanes4> q = round_quotients(enclosure, den_enclosure);
-      const bool rounded = (!options.t || q.certain[lane_num] != 0) &
-                           (!options.barycentric || (q.certain[0] != 0 && q.certain[1] != 0 && q.certain[2] != 0));
+      const FourQuotients q = round_quotients(numerators, den_enclosure);
+      const bool rounded = (!options.t || q.certain[lane_num]) &
+                           (!options.barycentric || (q.certain[0] && q.certain[1] && q.certain[2]));
       if (rounded) [[likely]] {
-        const bool by_filter = (filter[0] != uncertain_lane) & (filter[1] != uncertain_lane) &
-                               (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
-                               (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
+        const bool by_filter = (filter_sign[0] != uncertain_lane) & (filter_sign[1] != uncertain_lane) &
+                               (filter_sign[2] != uncertain_lane) & (den_filter != uncertain_lane) &
+                               (c->location == TriangleLocation::outside || filter_sign[lane_num] != uncertain_lane);
         const double t = options.t ? q.t[lane_num] : not_a_number;
         const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
                                                             : std::array<double, 3>{not_a_number, not_a_number, not_a_number};

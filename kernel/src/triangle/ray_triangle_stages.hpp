@@ -60,7 +60,7 @@ struct TriangleCompensatedValues {
 // Stage 3: the five values as exact expansions (πa, πb, πc, den, num), each usable when `.exact`.
 struct TriangleExpansions {
   std::array<ExpansionValue<192>, 3> pi;
-  ExpansionValue<576> den;
+  ExpansionValue<192> den;
   ExpansionValue<192> num;
   [[nodiscard]] Sign sign(int v) const noexcept {
     return v == value_den ? den.sign() : v == value_num ? num.sign() : pi[static_cast<std::size_t>(v)].sign();
@@ -95,86 +95,85 @@ struct TriangleExpansions {
           det3_absolute_term(ea[0].h, ea[1].h, ea[2].h)};
 }
 
+// Stage 3, one value at a time (the cascade asks only for the values the cheaper stages left open): the
+// formula's determinants in expansions. π(p, q) = d·((p − o) × (q − o)); den = π(b, c) seen from a, i.e.
+// d·((b − a) × (c − a)) (the same exact value as (πa + πb) + πc, with a shorter expansion); num =
+// (a − o)·((b − o) × (c − o)).
+[[nodiscard]] inline ExpansionValue<192> edge_expansion(const Vec3& o, const Vec3& d, const Vec3& p,
+                                                        const Vec3& q) noexcept {
+  auto diff = [&o](const Vec3& v) {
+    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
+                                            expansion_difference(v.z, o.z)};
+  };
+  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
+  return dot_terms(dl, cross_terms(diff(p), diff(q)));
+}
+[[nodiscard]] inline ExpansionValue<192> num_expansion(const Ray& ray, const Triangle& t) noexcept {
+  const Vec3& o = ray.origin;
+  auto diff = [&o](const Vec3& v) {
+    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
+                                            expansion_difference(v.z, o.z)};
+  };
+  return dot_terms(diff(t.a), cross_terms(diff(t.b), diff(t.c)));
+}
+[[nodiscard]] inline ExpansionValue<192> value_expansion(const Ray& ray, const Triangle& t, int v) noexcept {
+  const Vec3 &o = ray.origin, &d = ray.direction;
+  switch (v) {
+    case value_pi_a: return edge_expansion(o, d, t.b, t.c);
+    case value_pi_b: return edge_expansion(o, d, t.c, t.a);
+    case value_pi_c: return edge_expansion(o, d, t.a, t.b);
+    case value_den: return edge_expansion(t.a, d, t.b, t.c);
+    default: return num_expansion(ray, t);
+  }
+}
+
 [[nodiscard]] inline TriangleExpansions triangle_expansions(const Ray& ray, const Triangle& triangle) noexcept {
-  const auto t = ray_triangle_terms<ExpansionValue<2>>(ray, triangle, expansion_of, expansion_difference);
-  return {{t.pi[0], t.pi[1], t.pi[2]}, t.den, t.num};
+  return {{value_expansion(ray, triangle, value_pi_a), value_expansion(ray, triangle, value_pi_b),
+           value_expansion(ray, triangle, value_pi_c)},
+          value_expansion(ray, triangle, value_den),
+          value_expansion(ray, triangle, value_num)};
 }
 
 // ---- The fast path's layout: four determinants in the four lanes of a Lanes4 -------------------------------
 //
-// The three π and num share their structure: lane k of the leaves holds e_a, e_b, e_c, e_a (k = 0..3); the
-// cross products' y and z are those leaves rotated by one and two lanes, so lane k computes c_a, c_b, c_c, c_a;
-// the outer vector x is d in lanes 0–2 and e_a in lane 3. One evaluation of the formula's cross_terms and
-// dot_terms on Lanes4 then gives πa, πb, πc and num in lanes 0..3, each lane performing exactly the scalar
-// operations (so the same bits as triangle_filter_values / triangle_compensated_values, and the proofs' model
-// for each value). den = (πa + πb) + πc is summed from the lanes in scalar.
+// With GCC's vector extensions (RAYKERNEL_TRIANGLE_LANES; other compilers evaluate the values one at a time,
+// which gives the same bits): the three π and num share their structure, so one evaluation of the formula's
+// cross_terms and dot_terms on Lanes4 gives πa, πb, πc and num in lanes 0..3, lane k using the leaves
+// y = e_b, e_c, e_a, e_b and z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing
+// exactly the scalar operations, so the same bits as triangle_compensated_values (tested), the proofs' model of
+// each value. den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
+// d·((b − a) × (c − a)), in lane 3 instead.
+#if defined(__GNUC__) && !defined(__clang__)
+#define RAYKERNEL_TRIANGLE_LANES 1
+#else
+#define RAYKERNEL_TRIANGLE_LANES 0
+#endif
 inline constexpr int lane_num = 3;
 
-[[nodiscard]] [[gnu::always_inline]] inline Lanes4 rotate_lanes_by_one(Lanes4 v) noexcept {
-  return __builtin_shuffle(v, Mask4{1, 2, 0, 1});
-}
-[[nodiscard]] [[gnu::always_inline]] inline Lanes4 rotate_lanes_by_two(Lanes4 v) noexcept {
-  return __builtin_shuffle(v, Mask4{2, 0, 1, 2});
-}
-// d in lanes 0–2, lane 3 of `e` (which holds e_a) in lane 3.
-[[nodiscard]] [[gnu::always_inline]] inline Lanes4 d_and_lane_three(double d, Lanes4 e) noexcept {
-  return Lanes4{d, d, d, e[3]};
-}
-
+#if RAYKERNEL_TRIANGLE_LANES
 template <class Term>
 struct TriangleLanes {
-  Term lanes;  // πa, πb, πc, num
-  Lanes4 absolute;  // A_d, A_d, A_d, A_e
+  Term lanes;       // πa, πb, πc, num (or den)
+  Lanes4 absolute;  // the absolute term of each lane's outer vector
 };
-
-// The differences v − o of the vertices a, b, c, a in lanes, as `difference` makes them (rounded, or exact
-// double-doubles).
-struct LaneInputs {
-  Lanes4 v[3];  // x, y, z components of a, b, c, a
-  Lanes4 o[3];  // the origin, broadcast
-  double d[3];
-};
-[[nodiscard]] [[gnu::always_inline]] inline LaneInputs lane_inputs(const Ray& ray, const Triangle& t) noexcept {
-  const Vec3 &a = t.a, &b = t.b, &c = t.c, &o = ray.origin, &d = ray.direction;
-  LaneInputs in;
-  in.v[0] = Lanes4{a.x, b.x, c.x, a.x};
-  in.v[1] = Lanes4{a.y, b.y, c.y, a.y};
-  in.v[2] = Lanes4{a.z, b.z, c.z, a.z};
-  in.o[0] = broadcast<Lanes4>(o.x);
-  in.o[1] = broadcast<Lanes4>(o.y);
-  in.o[2] = broadcast<Lanes4>(o.z);
-  in.d[0] = d.x;
-  in.d[1] = d.y;
-  in.d[2] = d.z;
-  return in;
-}
-
-[[nodiscard]] [[gnu::always_inline]] inline TriangleLanes<FilterTerm<Lanes4>> triangle_filter_lanes(
-    const Ray& ray, const Triangle& triangle) noexcept {
-  const LaneInputs in = lane_inputs(ray, triangle);
-  std::array<FilterLeaf<Lanes4>, 3> y, z, x;
-  for (std::size_t i = 0; i < 3; ++i) {
-    const Lanes4 h = in.v[i] - in.o[i];
-    y[i] = {rotate_lanes_by_one(h)};
-    z[i] = {rotate_lanes_by_two(h)};
-    x[i] = {d_and_lane_three(in.d[i], h)};
-  }
-  const auto c = cross_terms(y, z);
-  return {dot_terms(x, c), det3_absolute_term(x[0].v, x[1].v, x[2].v)};
-}
 
 [[nodiscard]] [[gnu::always_inline]] inline TriangleLanes<CompensatedTerm<Lanes4>> triangle_compensated_lanes(
     const Ray& ray, const Triangle& triangle) noexcept {
-  const LaneInputs in = lane_inputs(ray, triangle);
+  const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c, &o = ray.origin, &d = ray.direction;
+  const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z}, ov[3] = {o.x, o.y, o.z};
+  const double dv[3] = {d.x, d.y, d.z};
   std::array<CompensatedLeaf<Lanes4>, 3> y, z, x;
   for (std::size_t i = 0; i < 3; ++i) {
-    const DD<Lanes4> e = two_diff(in.v[i], in.o[i]);
-    y[i] = {rotate_lanes_by_one(e.hi), rotate_lanes_by_one(e.lo)};
-    z[i] = {rotate_lanes_by_two(e.hi), rotate_lanes_by_two(e.lo)};
-    x[i] = {d_and_lane_three(in.d[i], e.hi), d_and_lane_three(0.0, e.lo)};
+    const Lanes4 from = broadcast<Lanes4>(ov[i]);
+    const DD<Lanes4> ey = two_diff(Lanes4{bv[i], cv[i], av[i], bv[i]}, from);
+    const DD<Lanes4> ez = two_diff(Lanes4{cv[i], av[i], bv[i], cv[i]}, from);
+    const DoubleDouble ea = two_diff(av[i], ov[i]);
+    y[i] = {ey.hi, ey.lo};
+    z[i] = {ez.hi, ez.lo};
+    x[i] = {Lanes4{dv[i], dv[i], dv[i], ea.hi}, Lanes4{0.0, 0.0, 0.0, ea.lo}};
   }
-  const auto c = cross_terms(y, z);
-  return {dot_terms(x, c), det3_absolute_term(x[0].h, x[1].h, x[2].h)};
+  const auto cr = cross_terms(y, z);
+  return {dot_terms(x, cr), det3_absolute_term(x[0].h, x[1].h, x[2].h)};
 }
 
 // The relation-only fast path's layout: πa, πb, πc and den = d·((b − a) × (c − a)) in lanes 0..3, each a
@@ -220,13 +219,21 @@ struct TriangleNumFilter {
   return {t.h[k], t.l[k], t.m[k]};
 }
 
+#endif  // RAYKERNEL_TRIANGLE_LANES
+
 // The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
 // components, or nothing when an expansion was not exact.
 [[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,
                                                                                      const Triangle& triangle,
                                                                                      int k) noexcept {
-  const auto v = triangle_tie_breaks<ExpansionValue<2>>(ray, triangle, expansion_of,
-                                                        expansion_difference)[static_cast<std::size_t>(k)];
+  // Only edge k's vector: d × (q − p) for b → c, c → a, a → b.
+  const Vec3& p = k == 0 ? triangle.b : k == 1 ? triangle.c : triangle.a;
+  const Vec3& q = k == 0 ? triangle.c : k == 1 ? triangle.a : triangle.b;
+  const Vec3& d = ray.direction;
+  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
+  const std::array<ExpansionValue<2>, 3> edge{expansion_difference(q.x, p.x), expansion_difference(q.y, p.y),
+                                              expansion_difference(q.z, p.z)};
+  const auto v = cross_terms(dl, edge);
   std::array<int, 3> s{};
   for (std::size_t i = 0; i < 3; ++i) {
     if (!v[i].exact) return std::nullopt;
