@@ -16,7 +16,7 @@ inline constexpr std::uint32_t max_threads = 1024;
 inline constexpr std::uint64_t max_demo_queries_per_kind = 100'000'000;
 
 // The most numbers a query line holds (classify's 12), and the bytes of a bad token a message quotes.
-inline constexpr int max_numbers_per_line = 12;
+inline constexpr int max_numbers_per_line = 15;  // a triangle line (docs/contract.md §6)
 inline constexpr std::size_t quoted_token_bytes = 40;
 
 }  // namespace raykernel::cli::limits

@@ -2,6 +2,7 @@
 #include "commands.hpp"
 #include "io.hpp"
 #include "text_format.hpp"
+#include "triangle_command.hpp"
 
 #include <iostream>
 #include <string>
@@ -17,6 +18,8 @@ commands:
   classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
+  triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
+                      rule (raykernel triangle --help)
   render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
   else if (command == "demo") status = run_demo(args);
   else if (command == "nearest") status = run_nearest(args);
   else if (command == "render") status = run_render(args);
+  else if (command == "triangle") status = run_triangle(args);
   else {
     std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
     return exit_usage;

@@ -37,7 +37,7 @@ struct NumberLine {
   std::string reason;                                // when status == invalid
 };
 
-// Reads a line of exactly `expected` (≤ 12) finite numbers separated by blanks (space, tab, CR, VT, FF).
+// Reads a line of exactly `expected` (≤ max_numbers_per_line) finite numbers separated by blanks (space, tab, CR, VT, FF).
 // Blank lines and lines whose first non-blank character is '#' are `skip`. A number is anything C's strtod
 // accepts in the "C" locale (decimal, scientific, hexadecimal with 0x) whose value, rounded to a double, is
 // finite and is zero only when the number is zero: a value that overflows (1e400) or a nonzero value that

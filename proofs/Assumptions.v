@@ -11,6 +11,7 @@
 
 From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
   CompareQuotients Cascade RayBox.
+From Raykernel Require Import TriangleConstants TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -114,3 +115,43 @@ Definition supporting_results :=
    relation_of_nonzero).
 Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure half_gap_bits prepare_divisor_spec quotient_residuals quotient_candidate quotient_constants_binary64 two_prod_threshold_exact relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid relation_of_nonzero". Abort.
 Print Assumptions supporting_results.
+
+(** Ray–triangle (issue 14). *)
+Goal True. idtac "@@ absolute_term_lower". Abort.
+Print Assumptions absolute_term_lower.
+Goal True. idtac "@@ det3_filter_encloses". Abort.
+Print Assumptions det3_filter_encloses.
+Goal True. idtac "@@ pi_filter_sound". Abort.
+Print Assumptions pi_filter_sound.
+Goal True. idtac "@@ num_filter_sound". Abort.
+Print Assumptions num_filter_sound.
+Goal True. idtac "@@ den_filter_sound". Abort.
+Print Assumptions den_filter_sound.
+Goal True. idtac "@@ det3_compensated_encloses". Abort.
+Print Assumptions det3_compensated_encloses.
+Goal True. idtac "@@ pi_compensated_encloses". Abort.
+Print Assumptions pi_compensated_encloses.
+Goal True. idtac "@@ num_compensated_encloses". Abort.
+Print Assumptions num_compensated_encloses.
+Goal True. idtac "@@ den_compensated_encloses". Abort.
+Print Assumptions den_compensated_encloses.
+Goal True. idtac "@@ stage2_filter_view". Abort.
+Print Assumptions stage2_filter_view.
+Goal True. idtac "@@ owned_sign_antisymmetric". Abort.
+Print Assumptions owned_sign_antisymmetric.
+Goal True. idtac "@@ owned_sign_nonzero". Abort.
+Print Assumptions owned_sign_nonzero.
+Goal True. idtac "@@ edge_value_shift". Abort.
+Print Assumptions edge_value_shift.
+Goal True. idtac "@@ triangle_location_correct". Abort.
+Print Assumptions triangle_location_correct.
+Goal True. idtac "@@ triangle_fast_sign_correct". Abort.
+Print Assumptions triangle_fast_sign_correct.
+Goal True. idtac "@@ fast_location_correct". Abort.
+Print Assumptions fast_location_correct.
+Goal True. idtac "@@ triangle_quotient_correct". Abort.
+Print Assumptions triangle_quotient_correct.
+Goal True. idtac "@@ triangle_quotient_expansion_correct". Abort.
+Print Assumptions triangle_quotient_expansion_correct.
+Goal True. idtac "@@ den_nonzero_direction". Abort.
+Print Assumptions den_nonzero_direction.

@@ -93,8 +93,13 @@ foreach(line IN LISTS pending_theorem_lines)
 endforeach()
 set(pending_report "")
 
-# The theorems the C++ cites: "proofs/File.v" followed on the same line by `name`s.
+# The theorems the C++ cites: "proofs/File.v" followed on the same line by `name`s. EXTRA_CITING_DIRS (optional,
+# a ;-list) adds directories of certified code outside kernel/src/certified (kernel/src/triangle).
 file(GLOB headers ${CERTIFIED_DIR}/*.hpp ${CERTIFIED_DIR}/*.cpp)
+foreach(extra IN LISTS EXTRA_CITING_DIRS)
+  file(GLOB extra_headers ${extra}/*.hpp ${extra}/*.cpp)
+  list(APPEND headers ${extra_headers})
+endforeach()
 set(cited 0)
 foreach(header IN LISTS headers)
   file(STRINGS ${header} citing REGEX "proofs/[A-Za-z]+\\.v")

@@ -13,8 +13,12 @@
 // proofs_constants_one_ulp) checks that the comparison is exact: each compiled constant moved by one ulp
 // either way must compare unequal.
 //
-// Usage: raykernel_check_constants [--one-ulp] ERROR_BOUNDS_HPP CONSTANTS_V PENDING_TXT
+// Usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT
+// (files told apart by their extension: the headers' constants are merged, and so are the Coq files', read in
+// order with one environment, so that a later file may use an earlier file's names; the ray–triangle
+// constants live in certified/triangle_bounds.hpp and proofs/TriangleConstants.v until they are folded in.)
 #include "certified/error_bounds.hpp"
+#include "certified/triangle_bounds.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -240,6 +244,16 @@ std::vector<Row> table() {
       {"compare_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::compare_absolute, {}},
       {"compare_compensated_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::compare_compensated_relative,
        {}},
+      // Ray–triangle (certified/triangle_bounds.hpp, proofs/TriangleConstants.v).
+      {"triangle_absolute_scale", "bpow radix2 (-1070)", Dyadic::pow2(-1070), b::triangle_absolute_scale, {}},
+      {"triangle_absolute", "bpow radix2 (-1069)", Dyadic::pow2(-1069), b::triangle_absolute, {}},
+      {"triangle_filter_pi_relative", "8 * u", 8 * Dyadic::pow2(-53), b::triangle_filter_pi_relative, {}},
+      {"triangle_filter_num_relative", "9 * u", 9 * Dyadic::pow2(-53), b::triangle_filter_num_relative, {}},
+      {"triangle_filter_den_relative", "10 * u", 10 * Dyadic::pow2(-53), b::triangle_filter_den_relative, {}},
+      {"triangle_compensated_relative", "128 * (u * u)", 128 * Dyadic::pow2(-106), b::triangle_compensated_relative,
+       {}},
+      {"triangle_compensated_den_relative", "256 * (u * u)", 256 * Dyadic::pow2(-106),
+       b::triangle_compensated_den_relative, {}},
   };
 }
 
@@ -348,9 +362,8 @@ class CoqExpression {
   std::size_t pos_ = 0;
 };
 
-std::map<std::string, Dyadic> parse_coq_constants(const std::string& path) {
+std::map<std::string, Dyadic> parse_coq_constants(const std::string& path, std::map<std::string, Dyadic> env = {}) {
   const std::string text = strip_coq_comments(read_file(path));
-  std::map<std::string, Dyadic> env;
   std::regex definition(R"(Definition\s+([A-Za-z_][A-Za-z0-9_']*)\s*:\s*(R|nat)\s*:=\s*([^.]*)\.)");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), definition); it != std::sregex_iterator(); ++it) {
     const std::string name = (*it)[1];
@@ -415,8 +428,15 @@ int main(int argc, char** argv) {
     else
       paths.push_back(arg);
   }
-  if (paths.size() != 3) {
-    std::cerr << "usage: raykernel_check_constants [--one-ulp] ERROR_BOUNDS_HPP CONSTANTS_V PENDING_TXT\n";
+  std::vector<std::string> headers, coq_files, pending_files;
+  for (const std::string& path : paths) {
+    auto ends_with = [&](const std::string& suffix) {
+      return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    (ends_with(".hpp") ? headers : ends_with(".v") ? coq_files : pending_files).push_back(path);
+  }
+  if (headers.empty() || coq_files.empty() || pending_files.size() != 1) {
+    std::cerr << "usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT\n";
     return 2;
   }
 
@@ -443,9 +463,11 @@ int main(int argc, char** argv) {
       return failures == 0 ? 0 : 1;
     }
 
-    const std::map<std::string, Dyadic> cpp = parse_cpp_constants(paths[0]);
-    const std::map<std::string, Dyadic> coq = parse_coq_constants(paths[1]);
-    const std::vector<std::string> pending = parse_pending_constants(paths[2]);
+    std::map<std::string, Dyadic> cpp;
+    for (const std::string& h : headers) cpp.merge(parse_cpp_constants(h));
+    std::map<std::string, Dyadic> coq;
+    for (const std::string& v : coq_files) coq = parse_coq_constants(v, coq);
+    const std::vector<std::string> pending = parse_pending_constants(pending_files[0]);
     auto is_pending = [&](const std::string& name) {
       for (const std::string& p : pending)
         if (p == name) return true;
@@ -465,13 +487,13 @@ int main(int argc, char** argv) {
 
       const auto c = coq.find(name);
       if (c == coq.end())
-        fail(name + ": no `Definition " + name + "` in " + paths[1]);
+        fail(name + ": no `Definition " + name + "` in the Coq constants files");
       else if (!(c->second == row.expected))
         fail(name + ": Constants.v gives " + c->second.str() + ", expected " + want + " (" + row.coq_formula + ")");
 
       const auto h = cpp.find(name);
       if (h == cpp.end())
-        fail(name + ": no `inline constexpr` " + name + " in " + paths[0]);
+        fail(name + ": no `inline constexpr` " + name + " in the bounds headers");
       else if (!(h->second == row.expected))
         fail(name + ": the literal in error_bounds.hpp is " + h->second.str() + ", the proofs use " + want + " (" +
              row.coq_formula + ")");
@@ -494,8 +516,8 @@ int main(int argc, char** argv) {
         fail(name + " is defined in error_bounds.hpp but not checked (add it to Constants.v and check_constants.cpp)");
     }
     if (failures == 0)
-      std::cout << "ok: " << rows.size() << " constants agree exactly between error_bounds.hpp, its compiled values "
-                << "and proofs/Constants.v\n";
+      std::cout << "ok: " << rows.size() << " constants agree exactly between the bounds headers, their compiled values "
+                << "and the Coq constants files\n";
   } catch (const std::exception& e) {
     fail(e.what());
   }
