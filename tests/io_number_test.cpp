@@ -12,6 +12,7 @@
 #include <bit>
 #include <cctype>
 #include <cerrno>
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -20,6 +21,9 @@
 #include <random>
 #include <string>
 #include <vector>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
 
 namespace raykernel::io {
 namespace {
@@ -227,6 +231,50 @@ TEST(NumberReader, AgreesWithStrtodOnGeneratedStrings) {
     check(special);
   std::printf("number reader: %zu strings agree with strtod\n", checked);
   EXPECT_GT(checked, 150000u);
+}
+
+// The contract reads to nearest whatever floating-point environment the caller left: strtod rounds in the
+// current mode and from_chars' fast path multiplies in it. Hand-picked tokens whose reading depends on the
+// mode (0.1 and 1e23 are inexact; 0x1.00000000000008p0 is a tie; 4e-324 and 2.5e-324 are subnormal, under
+// FTZ/DAZ too), each read under every rounding mode and with FTZ and DAZ set, against the default reading;
+// the caller's environment must come back unchanged.
+TEST(NumberReader, ReadsToNearestInAnyEnvironment) {
+  const char* tokens[] = {"0.1", "1e23", "-0.3", "0x1.00000000000008p0", "0x1.00000000000018p0", "4e-324", "2.5e-324",
+                          "2.2250738585072011e-308", "1.7976931348623158e308", "123456789012345678901234567890"};
+  std::vector<NumberParse> expected;
+  for (const char* t : tokens) expected.push_back(parse_double(t));
+  struct Mode {
+    const char* name;
+    int rounding;
+    unsigned ftz_daz;  // MXCSR bits 15 (FTZ) and 6 (DAZ)
+  };
+  const Mode modes[] = {{"upward", FE_UPWARD, 0},          {"downward", FE_DOWNWARD, 0}, {"toward zero", FE_TOWARDZERO, 0},
+                        {"FTZ+DAZ", FE_TONEAREST, 0x8040u}, {"upward, FTZ+DAZ", FE_UPWARD, 0x8040u}};
+  for (const Mode& mode : modes) {
+    std::fenv_t saved;
+    std::fegetenv(&saved);
+    std::fesetround(mode.rounding);
+#if defined(__SSE2__)
+    _mm_setcsr(_mm_getcsr() | mode.ftz_daz);
+    const unsigned csr_before = _mm_getcsr();
+#endif
+    std::vector<NumberParse> got;
+    for (const char* t : tokens) got.push_back(parse_double(t));
+    const int rounding_after = std::fegetround();
+#if defined(__SSE2__)
+    const unsigned csr_after = _mm_getcsr();
+#endif
+    std::fesetenv(&saved);
+    EXPECT_EQ(rounding_after, mode.rounding) << mode.name << ": the caller's rounding mode was not restored";
+#if defined(__SSE2__)
+    EXPECT_EQ(csr_after & ~0x3Fu, csr_before & ~0x3Fu) << mode.name << ": the caller's MXCSR modes were not restored";
+#endif
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].error, expected[i].error) << mode.name << ": " << tokens[i];
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(got[i].value), std::bit_cast<std::uint64_t>(expected[i].value))
+          << mode.name << ": " << tokens[i];
+    }
+  }
 }
 
 TEST(NumberReader, IntegersInRange) {

@@ -1,9 +1,24 @@
 // The number reader of <raykernel/io/number.hpp>.
 #include <raykernel/io/number.hpp>
 
+#include <cerrno>
+#include <cfenv>
 #include <charconv>
+#include <clocale>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <system_error>
+#if defined(__SSE2__)
+#include <xmmintrin.h>  // _mm_getcsr
+#endif
+
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+#define RAYKERNEL_IO_FLOAT_FROM_CHARS 1
+#else
+#include <locale.h>  // newlocale, strtod_l (glibc)
+#define RAYKERNEL_IO_FLOAT_FROM_CHARS 0
+#endif
 
 namespace raykernel::io {
 namespace {
@@ -54,6 +69,76 @@ bool magnitude_is_large(std::string_view text, char exponent_mark, long digit_we
   return position * digit_weight + exponent > 0;
 }
 
+// One number's digits (`text`: without sign, and without the 0x prefix when `hex`), read whole.
+struct DigitsRead {
+  bool whole = false;         // the entire text is a number of the form
+  bool out_of_range = false;  // overflow, or a nonzero value that rounded to zero
+  double value = 0;
+};
+
+#if RAYKERNEL_IO_FLOAT_FROM_CHARS
+DigitsRead read_digits(std::string_view text, bool hex) noexcept {
+  DigitsRead d;
+  const auto format = hex ? std::chars_format::hex : std::chars_format::general;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), d.value, format);
+  d.whole = r.ptr == text.data() + text.size() && (r.ec == std::errc{} || r.ec == std::errc::result_out_of_range);
+  d.out_of_range = r.ec == std::errc::result_out_of_range;
+  return d;
+}
+#else
+// A standard library without floating-point from_chars (libc++ 14, which the ClusterFuzzLite build uses):
+// glibc's strtod_l in the "C" locale, also correctly rounded to nearest (under DefaultRounding below).
+DigitsRead read_digits(std::string_view text, bool hex) noexcept {
+  static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t{});
+  DigitsRead d;
+  std::string s;
+  try {
+    s.reserve(text.size() + 2);
+    if (hex) s += "0x";
+    s.append(text);
+  } catch (...) {
+    return d;
+  }
+  char* end = nullptr;
+  const int saved = errno;
+  errno = 0;
+  d.value = strtod_l(s.c_str(), &end, c_locale);
+  const bool range = errno == ERANGE;
+  errno = saved;
+  d.whole = end == s.c_str() + s.size();
+  d.out_of_range = std::isinf(d.value) || (range && d.value == 0);
+  return d;
+}
+#endif
+
+// strtod rounds in the caller's rounding mode, and from_chars' fast path multiplies in it; the contract
+// reads to nearest. When the caller's environment is not the default one (rounding, FTZ/DAZ, unmasked
+// traps), install the default for the read and restore the caller's afterwards; otherwise cost nothing but
+// the check.
+class DefaultRounding {
+ public:
+  DefaultRounding() noexcept {
+    bool default_environment = std::fegetround() == FE_TONEAREST;
+#if defined(__SSE2__)
+    default_environment = default_environment && (_mm_getcsr() & ~0x3Fu) == 0x1F80u;
+#endif
+    if (!default_environment) {
+      std::fegetenv(&caller_);
+      std::fesetenv(FE_DFL_ENV);
+      installed_ = true;
+    }
+  }
+  ~DefaultRounding() {
+    if (installed_) std::fesetenv(&caller_);
+  }
+  DefaultRounding(const DefaultRounding&) = delete;
+  DefaultRounding& operator=(const DefaultRounding&) = delete;
+
+ private:
+  std::fenv_t caller_{};
+  bool installed_ = false;
+};
+
 }  // namespace
 
 NumberParse parse_double(std::string_view token) noexcept {
@@ -74,24 +159,22 @@ NumberParse parse_double(std::string_view token) noexcept {
   if (!starts_number) {
     if (!hex && !rest.empty()) {
       // inf, infinity, nan, nan(chars): strtod reads them; they are not finite.
-      double special = 0;
-      const auto r = std::from_chars(rest.data(), rest.data() + rest.size(), special);
-      if (r.ec == std::errc{} && r.ptr == rest.data() + rest.size() && !std::isfinite(special)) {
+      const DigitsRead special = read_digits(rest, false);
+      if (special.whole && !special.out_of_range && !std::isfinite(special.value)) {
         result.error = NumberError::non_finite;
       }
     }
     return result;
   }
-  double value = 0;
-  const auto format = hex ? std::chars_format::hex : std::chars_format::general;
-  const auto r = std::from_chars(rest.data(), rest.data() + rest.size(), value, format);
-  if (r.ptr != rest.data() + rest.size()) return result;  // trailing characters (or nothing read)
-  if (r.ec == std::errc::result_out_of_range) {
+  const DefaultRounding rounding;
+  const DigitsRead read = read_digits(rest, hex);
+  if (!read.whole) return result;  // trailing characters (or nothing read)
+  if (read.out_of_range) {
     result.error = magnitude_is_large(rest, hex ? 'p' : 'e', hex ? 4 : 1) ? NumberError::overflow
                                                                            : NumberError::underflow;
     return result;
   }
-  if (r.ec != std::errc{}) return result;
+  const double value = read.value;
   if (!std::isfinite(value)) {  // from_chars' own overflow report, should a version report it this way
     result.error = NumberError::overflow;
     return result;

@@ -7,7 +7,9 @@
 // smallest subnormal). The whole token must be the number: `1.5x` and `0x` are not numbers.
 //
 // Decimal text goes through std::from_chars (correctly rounded and locale-free in GCC 12: the fast_float
-// algorithm with an exact big-decimal fallback); hexadecimal text through std::from_chars' hex format.
+// algorithm with an exact big-decimal fallback); hexadecimal text through std::from_chars' hex format. With a
+// standard library that lacks floating-point from_chars (libc++ 14), glibc's strtod_l in the "C" locale.
+// Either way the read is to nearest in the default floating-point environment, whatever the caller's.
 // tests/io_number_test.cpp checks both against glibc's strtod on every number form.
 #pragma once
 
