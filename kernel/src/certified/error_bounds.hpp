@@ -2,7 +2,7 @@
 // beside its derivation, its valid range and the theorem in proofs/ that certifies it. This file is the only
 // place they are written; the stages include it, tests/error_constants_test.cpp and
 // tests/triangle_constants_test.cpp recompute every constant from its formula, and the proofs state their
-// theorems about these exact numbers (proofs/Constants.v, proofs/TriangleConstants.v; proofs/README.md
+// theorems about these exact numbers (proofs/Constants.v; proofs/README.md
 // explains how the two are compared).
 //
 // Notation. Binary64, round to nearest (ties to even; the bounds hold for any tie rule).
