@@ -2,9 +2,9 @@
 #include "triangle_command.hpp"
 
 #include "options.hpp"
+#include "text_format.hpp"
 #include "text_input.hpp"
 
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -12,12 +12,14 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* triangle_help = R"(usage: raykernel triangle [options] [FILE|-]
+constexpr const char* triangle_help = R"(usage: raykernel triangle [options] [--] [FILE|-]
 
 Intersects one ray with one triangle per input line (standard input when FILE is - or absent):
   ox oy oz dx dy dz ax ay az bx by bz cx cy cz
-numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks.
-Blank lines and lines starting with # are skipped. Each other line gives one output line:
+numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks;
+a number must be finite when read, and a nonzero number must not round to zero (1e-400 is
+invalid, 4e-324 reads as a subnormal and is fine). Blank lines and lines starting with # are
+skipped; a UTF-8 byte-order mark at the start is ignored. Each other line gives one output line:
   degenerate | parallel | coplanar | REL LOC T UA UB UC | invalid REASON
 REL is hit, behind or miss under the rule; LOC is where the ray's line crosses the triangle's
 plane: inside, edge-ab, edge-bc, edge-ca, vertex-a, vertex-b, vertex-c or outside. T is
@@ -37,8 +39,10 @@ options:
   --hex                          print T, UA, UB, UC as hexadecimal floats
   --stats                        print to stderr how many queries each stage decided
   --help                         this text
+  --                             end of options (a FILE may then start with -)
 
-exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error
+exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
+input, or standard output that cannot be written: triangle then stops reading)
 )";
 
 Ray ray_of(const NumberLine& line) {
@@ -54,11 +58,11 @@ bool crosses(TriangleRelation r) {
   return r == TriangleRelation::hit || r == TriangleRelation::behind || r == TriangleRelation::miss;
 }
 
-// `--rule=X` or `--rule X` at args[i].
+// `--rule=X` or `--rule X` at args[i] (advancing i past X in the second form).
 bool parse_rule_option(const std::vector<std::string>& args, std::size_t& i, TriangleRule& rule) {
   const std::string& a = args[i];
   std::string value;
-  if (a.size() > 6 && a[6] == '=') {
+  if (a.starts_with("--rule=")) {
     value = a.substr(7);
   } else if (a == "--rule" && i + 1 < args.size()) {
     value = args[++i];
@@ -69,7 +73,7 @@ bool parse_rule_option(const std::vector<std::string>& args, std::size_t& i, Tri
   if (value == "owned") rule = TriangleRule::owned;
   else if (value == "closed") rule = TriangleRule::closed;
   else {
-    std::cerr << "raykernel triangle: unknown rule '" << value << "' (owned or closed)\n";
+    std::cerr << "raykernel triangle: unknown rule " << quote(value) << " (owned or closed)\n";
     return false;
   }
   return true;
@@ -79,12 +83,11 @@ bool parse_rule_option(const std::vector<std::string>& args, std::size_t& i, Tri
 
 int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, const TriangleCommandOptions& options,
                     TriangleCounts& counts) {
+  LineReader lines(in);
   std::string line;
   std::string answer;
-  std::uint64_t line_number = 0;
   const TriangleOptions query_options{options.rule, true, true};
-  while (std::getline(in, line)) {
-    ++line_number;
+  while (out && lines.next(line)) {
     const NumberLine parsed = parse_number_line(line, 15);
     if (parsed.status == LineStatus::skip) continue;
     ++counts.lines_answered;
@@ -97,21 +100,21 @@ int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
     }
     if (!reason.empty()) {
       ++counts.invalid;
-      report_invalid_line(out, err, line_number, reason);
+      report_invalid_line(out, err, lines.line_number(), reason);
       continue;
     }
 
     TriangleIntersection result{};
-    switch (options.path) {
-      case Path::certified: {
+    switch (options.method) {
+      case Method::certified: {
         const TracedTriangleIntersection traced = intersect_traced(ray, triangle, query_options);
         result = traced.intersection;
         ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
         if (crosses(result.relation)) ++counts.rounding_stage[static_cast<int>(traced.rounding_stage)];
         break;
       }
-      case Path::exact: result = intersect_exact(ray, triangle, query_options); break;
-      case Path::naive: result = intersect_naive(ray, triangle); break;
+      case Method::exact: result = intersect_exact(ray, triangle, query_options); break;
+      case Method::naive: result = intersect_naive(ray, triangle); break;
     }
     ++counts.relation[static_cast<int>(result.relation)];
     ++counts.location[static_cast<int>(result.location)];
@@ -142,7 +145,7 @@ int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
   return counts.invalid == 0 ? exit_ok : exit_invalid_line;
 }
 
-std::string describe(const TriangleCounts& c, Path path) {
+std::string describe(const TriangleCounts& c, Method method) {
   std::ostringstream s;
   s << c.lines_answered << " queries:";
   for (int r = 0; r < 6; ++r)
@@ -151,11 +154,11 @@ std::string describe(const TriangleCounts& c, Path path) {
   s << "locations:";
   for (int l = 0; l < 8; ++l) s << (l ? ", " : " ") << c.location[l] << ' ' << to_string(static_cast<TriangleLocation>(l));
   s << '\n';
-  if (path == Path::certified) {
+  if (method == Method::certified) {
     s << "relation decided by: " << stage_counts_text(c.relation_stage) << "\n";
     s << "t and barycentric coordinates (den != 0) decided by: " << stage_counts_text(c.rounding_stage) << "\n";
   } else {
-    s << no_stages_text(path);
+    s << no_stages_text(method);
   }
   return s.str();
 }
@@ -164,37 +167,45 @@ int run_triangle(const std::vector<std::string>& args) {
   TriangleCommandOptions options;
   std::string file;
   bool have_file = false;
+  bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (have_file) {
+        std::cerr << "raykernel triangle: more than one input file (" << quote(file, file.size()) << ", "
+                  << quote(a, a.size()) << ")\n";
+        return exit_usage;
+      }
+      file = a;
+      have_file = true;
+    } else if (a == "--help" || a == "-h") {
       std::cout << triangle_help;
-      return exit_ok;
-    }
-    if (a == "--exact") {
+      return finish_standard_output(exit_ok);
+    } else if (a == "--exact") {
       options.exact_t = true;
-    } else if (a.rfind("--rule", 0) == 0) {
+    } else if (a == "--rule" || a.starts_with("--rule=")) {
       if (!parse_rule_option(args, i, options.rule)) return exit_usage;
+    } else if (a == "--exact-t") {  // classify's spelling; docs/contract.md §6 says --exact
+      std::cerr << "raykernel triangle: unknown option '--exact-t' (triangle's option is --exact)\n";
+      return exit_usage;
     } else if (const SharedOption shared = parse_shared_option("triangle", args, i, options);
                shared != SharedOption::not_shared) {
       if (shared == SharedOption::usage_error) return exit_usage;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::cerr << "raykernel triangle: unknown option '" << a << "' (see raykernel triangle --help)\n";
-      return exit_usage;
-    } else if (have_file) {
-      std::cerr << "raykernel triangle: more than one input file ('" << file << "', '" << a << "')\n";
-      return exit_usage;
     } else {
-      file = a;
-      have_file = true;
+      std::cerr << "raykernel triangle: unknown option " << quote(a) << " (see raykernel triangle --help)\n";
+      return exit_usage;
     }
   }
 
-  std::ifstream file_stream;
-  std::istream* in = open_input("triangle", "file", have_file ? file : "-", file_stream);
-  if (in == nullptr) return exit_usage;
+  const std::string path = have_file ? file : "-";
+  Input input(path);
+  if (!check_opened("triangle", "file", path, input)) return exit_usage;
   TriangleCounts counts;
-  const int status = triangle_stream(*in, std::cout, std::cerr, options, counts);
-  return finish_stream_command("triangle", *in, "input", status, options.stats, describe(counts, options.path));
+  const int status = triangle_stream(input.stream(), std::cout, std::cerr, options, counts);
+  return finish_stream_command("triangle", input, input_name(path), status, options.stats,
+                               describe(counts, options.method));
 }
 
 }  // namespace raykernel::cli

@@ -11,7 +11,7 @@
 
 From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
   CompareQuotients Cascade RayBox.
-From Raykernel Require Import TriangleConstants TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
+From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.

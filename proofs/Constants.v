@@ -56,3 +56,19 @@ Definition compare_filter_relative : R := (2 + 16 * unit_roundoff) * unit_roundo
 Definition compare_propagation_factor : R := 1 + 16 * unit_roundoff.
 Definition compare_absolute : R := 8 * min_subnormal.
 Definition compare_compensated_relative : R := bpow radix2 (-101).
+
+(** ** Ray–triangle (kernel/src/triangle/): the determinants' filter and enclosures (TriangleFilter.v,
+    TriangleCompensated.v). *)
+
+(** The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A of both stages. *)
+Definition triangle_absolute_scale : R := bpow radix2 (-1070).
+Definition triangle_absolute : R := bpow radix2 (-1069).
+
+(** Stage 1, det3_filter: B = (C ⊗ m) ⊕ A. *)
+Definition triangle_filter_pi_relative : R := 8 * unit_roundoff.
+Definition triangle_filter_num_relative : R := 9 * unit_roundoff.
+Definition triangle_filter_den_relative : R := 10 * unit_roundoff.
+
+(** Stage 2, det3_compensated: E = (K ⊗ m) ⊕ A. *)
+Definition triangle_compensated_relative : R := 128 * (unit_roundoff * unit_roundoff).
+Definition triangle_compensated_den_relative : R := 256 * (unit_roundoff * unit_roundoff).

@@ -5,18 +5,22 @@
     - [fast_location_correct]: with the signs of den and the three π certain (so nonzero), the location is
       inside when all three have den's sign and outside otherwise, and the owned rule agrees with the closed
       one (no π is 0, so no tie-break is consulted);
-    - [triangle_quotient_correct]: [round_quotient_decision] on the stage-2 enclosures of num (or a π) and den,
-      when certain, returns RN(num/den) (RN(π/den)), and den ≠ 0 — the roundings of t and of the barycentric
-      coordinates ([round_quotient_decision_sound], RoundQuotient.v, applied to
-      [num_compensated_encloses], [pi_compensated_encloses], [den_compensated_encloses]);
+    - [triangle_quotient_correct]: [round_quotient] of the stage-2 enclosure of num (or of a π) over ONE divisor,
+      [prepare_divisor] of den's stage-2 enclosure, shared by the four quotients, when certain, returns
+      RN(num/den) (RN(π/den)), and den ≠ 0 — the roundings of t and of the barycentric coordinates
+      ([round_quotient_sound], QuotientRounding.v, applied to [num_compensated_encloses],
+      [pi_compensated_encloses], [den_compensated_encloses]). The fast path computes the four in the lanes of
+      a Lanes4 with the scalar divisor broadcast: each lane is this scalar computation (proofs/README.md,
+      "Lanes");
     - [triangle_quotient_expansion_correct]: the same from stage 3, the numerator's expansion tail enclosure
-      (at most 32 components, [tail_sum_enclosure]) with any enclosure of den; that the expansions sum to the
-      exact values is Shewchuk's theorem (cited, as in Cascade.v's [expansion_t_correct]);
+      (at most 32 components, [tail_sum_enclosure]) over the divisor prepared from any enclosure of den; that
+      the expansions sum to the exact values is Shewchuk's theorem (cited, as in Cascade.v's
+      [expansion_t_correct]);
     - [den_nonzero_direction]: a certified den ≠ 0 implies d ≠ 0 (the fast path needs no validation for it). *)
 
 From Coq Require Import Reals Lra Lia ZArith List.
 From Flocq Require Import Core.
-From Raykernel Require Import Constants Model Classification Compensated RoundQuotient Cascade TriangleConstants
+From Raykernel Require Import Constants Model Classification Compensated QuotientRounding Cascade
   TriangleFilter TriangleCompensated TriangleRule.
 Open Scope R_scope.
 
@@ -110,19 +114,22 @@ Proof.
   - split; [intros; apply Own; assumption|]. split; intros; apply Own; assumption.
 Qed.
 
-(** The roundings of t and of the barycentric coordinates from the stage-2 enclosures. *)
+(** The roundings of t and of the barycentric coordinates from the stage-2 enclosures, all four over the one
+    divisor prepared from den's enclosure (one reciprocal). *)
 Theorem triangle_quotient_correct : forall o d a b c, doubles3 o -> doubles3 d -> doubles3 a -> doubles3 b ->
   doubles3 c ->
-  let den := det3_enclosure (den_stage2 o d a b c) triangle_compensated_den_relative (absolute_v d) in
-  (forall r, r = round_quotient_decision (det3_enclosure (num_stage2 o a b c) triangle_compensated_relative
-                                                         (absolute_v (rsub a o))) den ->
-             snd r = true -> den_value o d a b c <> 0 /\ fst r = RN (num_value o a b c / den_value o d a b c)) /\
+  let divisor := prepare_divisor (det3_enclosure (den_stage2 o d a b c) triangle_compensated_den_relative
+                                                 (absolute_v d)) in
+  (forall r, r = round_quotient (det3_enclosure (num_stage2 o a b c) triangle_compensated_relative
+                                                (absolute_v (rsub a o))) divisor ->
+             qr_certain r = true -> den_value o d a b c <> 0 /\ qr_t r = RN (num_value o a b c / den_value o d a b c)) /\
   (forall p q r, doubles3 p -> doubles3 q ->
-             r = round_quotient_decision (det3_enclosure (pi_stage2 o d p q) triangle_compensated_relative
-                                                         (absolute_v d)) den ->
-             snd r = true -> den_value o d a b c <> 0 /\ fst r = RN (edge_value o d p q / den_value o d a b c)).
+             r = round_quotient (det3_enclosure (pi_stage2 o d p q) triangle_compensated_relative (absolute_v d))
+                                divisor ->
+             qr_certain r = true -> den_value o d a b c <> 0 /\ qr_t r = RN (edge_value o d p q / den_value o d a b c)).
 Proof.
-  intros o d a b c Bo Bd Ba Bb Bc den.
+  intros o d a b c Bo Bd Ba Bb Bc divisor.
+  set (den := det3_enclosure (den_stage2 o d a b c) triangle_compensated_den_relative (absolute_v d)) in divisor.
   (* den's enclosure and its doubles *)
   assert (Hden : encloses den (den_value o d a b c)) by (apply den_compensated_encloses; assumption).
   assert (Bden : binary64 (hi den) /\ binary64 (lo den) /\ binary64 (radius den)).
@@ -133,25 +140,26 @@ Proof.
   - intros r -> H.
     destruct (det3_enclosure_binary64 _ _ _ _ _ _ triangle_compensated_relative (absolute_v (rsub a o))
                 (num_capprox o a b c Bo Ba Bb Bc)) as [Nh [Nl Nr]].
-    apply (round_quotient_decision_sound _ _ _ _ Nh Nl Nr Dh Dl Dr); [apply num_compensated_encloses; assumption | exact Hden | exact H].
+    apply (round_quotient_sound _ _ _ _ Nh Nl Nr Dh Dl Dr); [apply num_compensated_encloses; assumption | exact Hden | exact H].
   - intros p q r Bp Bq -> H.
     destruct (det3_enclosure_binary64 _ _ _ _ _ _ triangle_compensated_relative (absolute_v d)
                 (pi_capprox o d p q Bo Bd Bp Bq)) as [Ph [Pl Pr]].
-    apply (round_quotient_decision_sound _ _ _ _ Ph Pl Pr Dh Dl Dr); [apply pi_compensated_encloses; assumption | exact Hden | exact H].
+    apply (round_quotient_sound _ _ _ _ Ph Pl Pr Dh Dl Dr); [apply pi_compensated_encloses; assumption | exact Hden | exact H].
 Qed.
 
 (** Stage 3: the numerator's expansion (at most 32 components, summing exactly to the value: Shewchuk,
-    cited) through expansion_tail_enclosure, over any enclosure of den made of doubles. *)
+    cited) through expansion_tail_enclosure, over the divisor prepared from any enclosure of den made of
+    doubles (den's tail enclosure, or its stage-2 enclosure when den's expansion is too long). *)
 Theorem triangle_quotient_expansion_correct : forall (e0 : R) (rest : list R) (dd : Enclosure) (value den : R),
   binary64 e0 -> Forall (fun x => binary64 x) rest -> (S (length rest) <= tail_sum_max_terms)%nat ->
   e0 + sum_list rest = value ->
   binary64 (hi dd) -> binary64 (lo dd) -> binary64 (radius dd) -> encloses dd den ->
-  snd (round_quotient_decision (expansion_tail_enclosure e0 rest) dd) = true ->
-  den <> 0 /\ fst (round_quotient_decision (expansion_tail_enclosure e0 rest) dd) = RN (value / den).
+  qr_certain (round_quotient (expansion_tail_enclosure e0 rest) (prepare_divisor dd)) = true ->
+  den <> 0 /\ qr_t (round_quotient (expansion_tail_enclosure e0 rest) (prepare_divisor dd)) = RN (value / den).
 Proof.
   intros e0 rest dd value den B0 Brest Len Sum Dh Dl Dr Hd H.
   destruct (tail_enclosure_binary64 e0 rest B0) as [Th [Tl Tr]].
-  apply (round_quotient_decision_sound _ _ _ _ Th Tl Tr Dh Dl Dr); [|exact Hd|exact H].
+  apply (round_quotient_sound _ _ _ _ Th Tl Tr Dh Dl Dr); [|exact Hd|exact H].
   rewrite <- Sum. now apply tail_sum_enclosure.
 Qed.
 

@@ -7,7 +7,7 @@
     theorems: [det3_compensated_encloses] (any determinant of such leaves: |V − (h + l)| ≤ (K ⊗ m) ⊕ A), and
     for the query's values [pi_compensated_encloses], [num_compensated_encloses], [den_compensated_encloses],
     stated as [encloses] (Compensated.v) of the [Enclosure] the C++ builds, so that [enclosure_sign_sound]
-    and [round_quotient_decision_sound] apply to them; [compensated_filter_view]: the high parts and
+    and [round_quotient_sound] apply to them; [compensated_filter_view]: the high parts and
     magnitudes are stage 1's values, so the C++ takes the filter's signs from them.
 
     The invariant [capprox] carried through each operation: h, l, m are doubles, |h| ≤ m,
@@ -15,7 +15,7 @@
 
 From Coq Require Import Reals Lra Lia.
 From Flocq Require Import Core.
-From Raykernel Require Import Constants Model Classification Compensated TriangleConstants TriangleFilter.
+From Raykernel Require Import Constants Model Classification Compensated TriangleFilter.
 Open Scope R_scope.
 
 (** ** The C++ code. *)

@@ -16,7 +16,7 @@
 
 From Coq Require Import Reals Lra Lia.
 From Flocq Require Import Core.
-From Raykernel Require Import Constants Model Classification TriangleConstants.
+From Raykernel Require Import Constants Model Classification.
 Open Scope R_scope.
 
 (** ** The C++ code, operation by operation. *)

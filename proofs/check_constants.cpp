@@ -15,10 +15,8 @@
 //
 // Usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT
 // (files told apart by their extension: the headers' constants are merged, and so are the Coq files', read in
-// order with one environment, so that a later file may use an earlier file's names; the ray–triangle
-// constants live in certified/triangle_bounds.hpp and proofs/TriangleConstants.v until they are folded in.)
+// order with one environment, so that a later file may use an earlier file's names).
 #include "certified/error_bounds.hpp"
-#include "certified/triangle_bounds.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -244,7 +242,7 @@ std::vector<Row> table() {
       {"compare_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::compare_absolute, {}},
       {"compare_compensated_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::compare_compensated_relative,
        {}},
-      // Ray–triangle (certified/triangle_bounds.hpp, proofs/TriangleConstants.v).
+      // Ray–triangle (error_bounds.hpp's and Constants.v's last sections).
       {"triangle_absolute_scale", "bpow radix2 (-1070)", Dyadic::pow2(-1070), b::triangle_absolute_scale, {}},
       {"triangle_absolute", "bpow radix2 (-1069)", Dyadic::pow2(-1069), b::triangle_absolute, {}},
       {"triangle_filter_pi_relative", "8 * u", 8 * Dyadic::pow2(-53), b::triangle_filter_pi_relative, {}},

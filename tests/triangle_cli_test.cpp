@@ -146,11 +146,11 @@ TEST(TriangleCli, InvalidLinesAreReportedAndSkipped) {
   EXPECT_EQ(r.status, exit_invalid_line);
   EXPECT_EQ(r.out,
             "hit inside 1 0.5 0.25 0.25\ninvalid expected 15 numbers, found 14\n"
-            "invalid field 11: 'nan' is not finite (non-finite)\ninvalid ray direction is the zero vector\n"
+            "invalid field 11: 'nan' is not finite\ninvalid ray direction is the zero vector\n"
             "behind inside -1 0.5 0.25 0.25\n");
   EXPECT_EQ(r.err,
             "raykernel: line 2: expected 15 numbers, found 14\n"
-            "raykernel: line 3: field 11: 'nan' is not finite (non-finite)\n"
+            "raykernel: line 3: field 11: 'nan' is not finite\n"
             "raykernel: line 4: ray direction is the zero vector\n");
 }
 

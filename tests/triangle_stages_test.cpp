@@ -4,7 +4,7 @@
 // constant fails here even where a later stage would have masked it. Then the filter alone on subnormal and
 // huge inputs, where the dynamic absolute term matters, with a demonstration that a constant absolute term
 // (as for the plane's dot products) would certify wrong signs.
-#include "certified/triangle_bounds.hpp"
+#include "certified/error_bounds.hpp"
 #include "ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
@@ -97,7 +97,6 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
     // The fast paths' lane layouts compute the same bits as the scalar evaluation the proofs model: lanes
     // πa, πb, πc, num (stage 2, and its stage-1 view), and πa, πb, πc, den = π(b, c) seen from a (the
     // relation-only path's stage 1); num on its own.
-#if RAYKERNEL_TRIANGLE_LANES
     const auto c4 = detail::triangle_compensated_lanes(q.ray, q.triangle);
     const auto f4 = detail::triangle_relation_lanes(q.ray, q.triangle);
     const detail::TriangleFilterValues from_a = detail::triangle_filter_values({q.triangle.a, q.ray.direction}, q.triangle);
@@ -112,7 +111,6 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
       ASSERT_TRUE(std::memcmp(&f, &fwant, sizeof f) == 0) << "relation lane " << k << ": " << testkit::triangle_line(q);
       ASSERT_EQ(f4.absolute[k], s1.absolute_d);
     }
-#endif
     const detail::TriangleNumFilter num1 = detail::triangle_num_filter(q.ray, q.triangle);
     ASSERT_TRUE(std::memcmp(&num1.value, &s1.value[4], sizeof num1.value) == 0);
     ASSERT_EQ(num1.absolute, s1.absolute_e);

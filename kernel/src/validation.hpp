@@ -1,8 +1,8 @@
 // Validation of the inputs, in one place: what makes a ray, a plane or a triangle query invalid (docs/
 // contract.md §1, §6: a NaN or infinite component, a zero direction, a zero normal), decided from the
 // bits of the doubles so that the answer does not depend on the floating-point environment (DAZ would
-// make a subnormal compare equal to zero). The public functions (raykernel.hpp: validate) give the
-// reason in words; the inline predicates here say only yes or no, for the entry points' fast checks.
+// make a subnormal compare equal to zero). The public functions (validate in raykernel.hpp and triangle.hpp)
+// give the reason in words; the inline predicates here say only yes or no, for the entry points' fast checks.
 #pragma once
 
 #include <raykernel/raykernel.hpp>
@@ -27,6 +27,11 @@ namespace raykernel::detail {
 }
 [[nodiscard]] inline bool is_valid(const Plane& p) noexcept {
   return is_finite(p.point) & is_finite(p.normal) & !is_zero(p.normal);
+}
+// A triangle is valid when its vertices are finite; a degenerate one (N = 0) is valid input (docs/contract.md
+// §6).
+[[nodiscard]] inline bool is_valid(const Triangle& t) noexcept {
+  return is_finite(t.a) & is_finite(t.b) & is_finite(t.c);
 }
 
 // The reason a vector named `name` is not finite ("ray origin y is NaN", "plane normal x is -inf"), or

@@ -16,16 +16,21 @@
 
 namespace raykernel::detail {
 
-// Vectors of 4 doubles (AVX2: one ymm) and 8 doubles (AVX-512: one zmm), their comparison masks and their
-// bit patterns. (Spelled out: GCC ignores a vector_size that depends on a template parameter.)
+// Vectors of 2 doubles (one xmm), 4 doubles (AVX2: one ymm) and 8 doubles (AVX-512: one zmm), their
+// comparison masks and their bit patterns. (Spelled out: GCC ignores a vector_size that depends on a template
+// parameter.) A mask is the type a comparison of two vectors yields, whose element type differs between the
+// compilers: `long` (std::int64_t) with GCC, `long long` with clang. Declared as that type, it is the one
+// the overloads below and sign.hpp's are found for with either compiler.
 using Lanes2 = double __attribute__((vector_size(2 * sizeof(double))));
-using Mask2 = std::int64_t __attribute__((vector_size(2 * sizeof(std::int64_t))));
-using Bits2 = std::uint64_t __attribute__((vector_size(2 * sizeof(std::uint64_t))));
 using Lanes4 = double __attribute__((vector_size(4 * sizeof(double))));
-using Mask4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
-using Bits4 = std::uint64_t __attribute__((vector_size(4 * sizeof(std::uint64_t))));
 using Lanes8 = double __attribute__((vector_size(8 * sizeof(double))));
-using Mask8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+using Mask2 = decltype(Lanes2{} < Lanes2{});
+using Mask4 = decltype(Lanes4{} < Lanes4{});
+using Mask8 = decltype(Lanes8{} < Lanes8{});
+static_assert(sizeof(Mask2) == sizeof(Lanes2) && sizeof(Mask4) == sizeof(Lanes4) && sizeof(Mask8) == sizeof(Lanes8));
+static_assert(sizeof(Mask4{}[0]) == sizeof(std::int64_t), "a mask has one 64-bit integer per lane");
+using Bits2 = std::uint64_t __attribute__((vector_size(2 * sizeof(std::uint64_t))));
+using Bits4 = std::uint64_t __attribute__((vector_size(4 * sizeof(std::uint64_t))));
 using Bits8 = std::uint64_t __attribute__((vector_size(8 * sizeof(std::uint64_t))));
 
 // The mask and integer types of a lane type: bool / std::int64_t for double, the mask vector for vectors.

@@ -1,7 +1,7 @@
 // Stages 1 and 2 of the certified ray–triangle cascade: the number types in which ray_triangle_formula.hpp is
 // evaluated, and the decisions taken from them. Every value is a 3×3 determinant x·(y × z) of "leaves" (d, and
 // the differences e_v = v − o); the types below make the formula's + − × compute, besides the value, what the
-// error bound needs. Constants, derivations and valid ranges: certified/triangle_bounds.hpp.
+// error bound needs. Constants, derivations and valid ranges: certified/error_bounds.hpp.
 //
 //   stage 1, filter:       FilterLeaf {v}: d, or ê = v ⊖ o (rounded once).
 //                          FilterTerm {v, m}: a sum of products and its permanent m (Σ of |products|).
@@ -18,7 +18,7 @@
 #include "certified/enclosure.hpp"
 #include "certified/lanes.hpp"
 #include "certified/sign.hpp"
-#include "certified/triangle_bounds.hpp"
+#include "certified/error_bounds.hpp"
 
 #include <array>
 #include <cmath>
@@ -58,7 +58,7 @@ template <class V>
 
 // The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A, S = (|x_0| ⊕ |x_1|) ⊕ |x_2|, of the determinants whose outer
 // vector is x (d for the π's and den, ê_a for num): it covers products that underflow, whose error the outer
-// product scales by |x_i| (triangle_bounds.hpp).
+// product scales by |x_i| (error_bounds.hpp).
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline V det3_absolute_term(V x0, V x1, V x2) noexcept {
   const V s = (abs(x0) + abs(x1)) + abs(x2);
@@ -87,7 +87,7 @@ struct CompensatedLeaf {
 
 template <class V>
 struct CompensatedTerm {
-  V h, l;  // the value approximated by h + l (error: triangle_bounds.hpp, stage 2)
+  V h, l;  // the value approximated by h + l (error: error_bounds.hpp, "Ray–triangle", stage 2)
   V m;     // the permanent, as stage 1 computes it
 };
 
@@ -136,9 +136,8 @@ template <class V>
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> det3_enclosure(const CompensatedTerm<V>& t, double relative,
                                                                          V absolute) noexcept {
-  constexpr double largest_finite = 0x1.fffffffffffffp+1023;
   const V radius = relative * t.m + absolute;
-  const MaskOf<V> finite = both(abs(t.h) <= largest_finite, abs(t.l) <= largest_finite);
+  const MaskOf<V> finite = both(abs(t.h) <= bounds::largest_finite, abs(t.l) <= bounds::largest_finite);
   return {t.h, t.l, select(finite, radius, V{} + HUGE_VAL)};
 }
 

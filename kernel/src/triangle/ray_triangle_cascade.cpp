@@ -7,8 +7,9 @@
 // signs of den and the three π are certain (then nonzero: the branch-free decisions never certify zero, and
 // the input is valid, see below) decides the location directly: inside when all three have den's sign, else
 // outside, and the owned rule agrees with the closed one (no π is 0). The quotients are rounded by
-// round_quotient_decision on the stage-2 enclosures. Everything else goes to the full cascade, which validates
-// the input first and escalates each sign on its own.
+// round_quotient on the stage-2 enclosures, t and the three coordinates over one divisor prepared once from
+// den's enclosure (one reciprocal). What the fast path does not certify, the caller validates and hands to the
+// full cascade (ray_triangle_cascade.hpp), which escalates each sign and each quotient on its own.
 //
 // No validation is needed before the fast path: a certified sign of den implies finite inputs and d ≠ 0. Its
 // magnitude m sums the permanents of all three π, so a NaN or infinite component anywhere (o and d reach every
@@ -23,28 +24,20 @@
 //   the fast path:       proofs/TriangleCascade.v, `triangle_fast_sign_correct`, `fast_location_correct`
 //                        proofs/TriangleCascade.v, `den_nonzero_direction`
 //                        proofs/TriangleCompensated.v, `stage2_filter_view`
-//   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_decision_sound)
+//   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
 //                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
 //   stage 3 values:      Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
+#include "triangle/ray_triangle_cascade.hpp"
+
 #include "certified/fp_requirements.hpp"
-#include "certified/intersect_certified.hpp"  // RAYKERNEL_MULTIVERSION
-#include "certified/round_quotient.hpp"
+#include "certified/multiversion.hpp"
+#include "certified/quotient_rounding.hpp"
 #include "exact/exact_triangle.hpp"
 #include "triangle/ray_triangle_stages.hpp"
-
-// The fast paths evaluate four determinants per Lanes4 (one ymm register): besides RAYKERNEL_MULTIVERSION's
-// FMA clone (AVX without AVX2: 256-bit integer masks and lane permutations are emulated) they get an AVX2 clone.
-// Every clone performs the same IEEE operations per lane (lanes.hpp), so all return the same bits.
-#if !defined(RAYKERNEL_NO_MULTIVERSION) && defined(__x86_64__) && defined(__ELF__) && defined(__GNUC__) && \
-    !defined(__clang__)
-#define RAYKERNEL_TRIANGLE_MULTIVERSION __attribute__((target_clones("arch=x86-64-v3", "fma", "default")))
-#else
-#define RAYKERNEL_TRIANGLE_MULTIVERSION RAYKERNEL_MULTIVERSION
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -68,49 +61,33 @@ struct FourQuotients {
   bool certain[4];
 };
 
-// The one place where the quotients are rounded: round_quotient_decision of each numerator's enclosure (lanes
-// πa, πb, πc, num) over den's — with GCC in one Lanes4 pass, four roundings per vector operation. (A lean
-// rounding sharing one reciprocal of den would replace this body.)
-[[gnu::always_inline]] inline FourQuotients round_quotients(const Enclosure numerators[4], const Enclosure& den) noexcept {
+// The one place where the fast path rounds: round_quotient of each numerator's enclosure (lanes πa, πb, πc,
+// num) over one divisor prepared from den's enclosure — one reciprocal for all four — in one Lanes4 pass,
+// four roundings per vector operation (each lane the scalar operations: proofs/TriangleCascade.v,
+// `triangle_quotient_correct`, with the divisor shared).
+[[gnu::always_inline]] inline FourQuotients round_quotients(const EnclosureT<Lanes4>& numerators,
+                                                             const Enclosure& den) noexcept {
+  const Divisor d = prepare_divisor(den);
+  const DivisorT<Lanes4> shared{broadcast<Lanes4>(d.hi), broadcast<Lanes4>(d.lo), broadcast<Lanes4>(d.radius),
+                                broadcast<Lanes4>(d.reciprocal), Mask4{} - static_cast<std::int64_t>(d.in_range)};
+  const QuotientRoundingT<Lanes4> r = round_quotient(numerators, shared);
   FourQuotients q;
-#if RAYKERNEL_TRIANGLE_LANES
-  EnclosureT<Lanes4> n;
-  for (int k = 0; k < 4; ++k) {
-    n.hi[k] = numerators[k].hi;
-    n.lo[k] = numerators[k].lo;
-    n.radius[k] = numerators[k].radius;
-  }
-  const EnclosureT<Lanes4> d{broadcast<Lanes4>(den.hi), broadcast<Lanes4>(den.lo), broadcast<Lanes4>(den.radius)};
-  const QuotientRoundingT<Lanes4> r = round_quotient_decision(n, d);
   for (int k = 0; k < 4; ++k) {
     q.t[k] = r.t[k];
     q.certain[k] = r.certain[k] != 0;
   }
-#else
-  for (int k = 0; k < 4; ++k) {
-    const QuotientRounding r = round_quotient_decision(numerators[k], den);
-    q.t[k] = r.t;
-    q.certain[k] = r.certain;
-  }
-#endif
   return q;
 }
 
-#if RAYKERNEL_TRIANGLE_LANES
 // The relative constants of the four lanes (π, π, π, num).
 const Lanes4 filter_relative_lanes{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
                                    bounds::triangle_filter_pi_relative, bounds::triangle_filter_num_relative};
-#endif
 
 // Numerator k of the quotients (t, ua, ub, uc) and its lane in the fast path's layout.
 constexpr int numerator_lane[4] = {lane_num, value_pi_a, value_pi_b, value_pi_c};
 
 TriangleIntersection answer(const TriangleClassification& c) noexcept {
   return {c.relation, c.location, c.owned, not_a_number, {not_a_number, not_a_number, not_a_number}};
-}
-
-void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
-  if (std::optional<std::string> reason = triangle_invalid_reason(ray, triangle)) throw invalid_input(*reason);
 }
 
 // ---- The full cascade --------------------------------------------------------------------------------------
@@ -155,7 +132,7 @@ class TriangleCascade {
   std::optional<Enclosure> expansion_enclosure(int v) {
     const ExpansionValue<192>& value = expansion(v);
     if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
-    Expansion<bounds::tail_sum_max_terms> short_form;
+    Expansion<bounds::tail_sum_max_terms> short_form{};
     for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
     short_form.size = value.e.size;
     return expansion_tail_enclosure(short_form);
@@ -199,87 +176,15 @@ class TriangleCascade {
   std::array<std::optional<ExpansionValue<192>>, triangle_value_count> expansion_;
 };
 
-[[gnu::noinline]] TracedTriangleIntersection full_cascade(const Ray& ray, const Triangle& triangle,
-                                                          const TriangleOptions& options) {
-  throw_if_invalid(ray, triangle);
-  TriangleCascade query(ray, triangle);
-  const std::optional<TriangleClassification> classified = query.classify(options.rule);
-  if (!classified) return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
-  const Stage relation_stage = query.stage();
-  TracedTriangleIntersection r{answer(*classified), relation_stage, relation_stage};
-  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return r;
-
-  // The quotients: an exactly zero numerator gives +0; the others are rounded from the stage-2 enclosures,
-  // or else exactly.
-  const bool asked[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
-  int numerator_sign[4] = {0, 0, 0, 0};
-  for (int k = 0; k < 4; ++k)
-    if (asked[k]) numerator_sign[k] = query.sign(numerator_value[k]);
-  if (query.needs_exact()) {
-    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
-    r.intersection.t = e.t;
-    r.intersection.barycentric = e.barycentric;
-    r.rounding_stage = Stage::exact;
-    return r;
-  }
-  bool wanted[4];
-  bool any = false;
-  double value[4];
+// Four scalar enclosures (in lane order) as the lanes of one.
+[[gnu::always_inline]] inline EnclosureT<Lanes4> enclosure_lanes(const Enclosure e[4]) noexcept {
+  EnclosureT<Lanes4> n;
   for (int k = 0; k < 4; ++k) {
-    wanted[k] = asked[k] && numerator_sign[k] != 0;
-    any = any || wanted[k];
-    value[k] = asked[k] ? 0.0 : not_a_number;  // an exact 0/den is +0
+    n.hi[k] = e[k].hi;
+    n.lo[k] = e[k].lo;
+    n.radius[k] = e[k].radius;
   }
-  r.rounding_stage = query.stage();
-  if (any) {
-    r.rounding_stage = later(r.rounding_stage, Stage::compensated);
-    const TriangleCompensatedValues& s2 = query.compensated();
-    Enclosure numerators[4];
-    for (int k = 0; k < 4; ++k) numerators[numerator_lane[k]] = s2.enclosure(numerator_value[k]);
-    const FourQuotients rounded = round_quotients(numerators, s2.enclosure(value_den));
-    struct {
-      bool certain[4];
-    } q{};
-    bool all_certain = true;
-    for (int k = 0; k < 4; ++k) {
-      q.certain[k] = !wanted[k] || rounded.certain[numerator_lane[k]];
-      if (wanted[k]) value[k] = rounded.t[numerator_lane[k]];
-      all_certain = all_certain && q.certain[k];
-    }
-    if (!all_certain) {
-      // Stage 3: round_quotient_decision on the expansions' tail enclosures (den's, or stage 2's when den's
-      // expansion is too long), then the exact stage for what is left (exact ties among it).
-      r.rounding_stage = later(r.rounding_stage, Stage::expansion);
-      bool certain[4];
-      for (int k = 0; k < 4; ++k) certain[k] = q.certain[k];
-      const std::optional<Enclosure> den = query.expansion_enclosure(value_den);
-      for (int k = 0; k < 4; ++k) {
-        if (certain[k]) continue;
-        if (const std::optional<Enclosure> n = query.expansion_enclosure(numerator_value[k])) {
-          const QuotientRounding e = round_quotient_decision(*n, den ? *den : query.compensated().enclosure(value_den));
-          value[k] = e.t;
-          certain[k] = e.certain;
-        }
-      }
-      if (!(certain[0] & certain[1] & certain[2] & certain[3])) {
-        r.rounding_stage = Stage::exact;
-        const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
-        const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
-        for (int k = 0; k < 4; ++k)
-          if (!certain[k]) value[k] = exact_value[k];
-      }
-    }
-  }
-  r.intersection.t = value[0];
-  r.intersection.barycentric = {value[1], value[2], value[3]};
-  return r;
-}
-
-[[gnu::noinline]] TracedTriangleClassification full_relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  throw_if_invalid(ray, triangle);
-  TriangleCascade query(ray, triangle);
-  if (const std::optional<TriangleClassification> c = query.classify(rule)) return {*c, query.stage()};
-  return {exact::classify_triangle(ray, triangle, rule), Stage::exact};
+  return n;
 }
 
 // ---- The fast path -----------------------------------------------------------------------------------------
@@ -296,14 +201,10 @@ class TriangleCascade {
                                 TriangleLocation::inside, true};
 }
 
-}  // namespace
-
-#if RAYKERNEL_TRIANGLE_LANES
 // The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
-// directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle; then
-// the full cascade.
-RAYKERNEL_TRIANGLE_MULTIVERSION
-TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+// directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle.
+[[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(const Ray& ray,
+                                                                                      const Triangle& triangle) noexcept {
   const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
   // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain).
   const Lanes4 bound = bounds::triangle_filter_pi_relative * s1.lanes.m + s1.absolute;
@@ -313,106 +214,153 @@ TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Tria
   const bool certain = (sa * sb) * (sc * sden) != 0;
   if (certain) [[likely]] {
     const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
-    if (!inside) return {{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
+    if (!inside) return TracedTriangleClassification{{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
     const TriangleNumFilter num = triangle_num_filter(ray, triangle);
     const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
     if (num_sign != uncertain_lane)
-      return {{static_cast<double>(num_sign) == sden ? TriangleRelation::hit : TriangleRelation::behind,
-               TriangleLocation::inside, true},
-              Stage::filter};
+      return TracedTriangleClassification{
+          {static_cast<double>(num_sign) == sden ? TriangleRelation::hit : TriangleRelation::behind,
+           TriangleLocation::inside, true},
+          Stage::filter};
   }
-  return full_relation(ray, triangle, rule);
+  return std::nullopt;
 }
 
-RAYKERNEL_TRIANGLE_MULTIVERSION
-TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
-                                                        const TriangleOptions& options) {
+}  // namespace
+
+// ---- The full cascade --------------------------------------------------------------------------------------
+
+TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                         const TriangleOptions& options) {
+  TriangleCascade query(ray, triangle);
+  const std::optional<TriangleClassification> classified = query.classify(options.rule);
+  if (!classified) return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
+  const Stage relation_stage = query.stage();
+  TracedTriangleIntersection r{answer(*classified), relation_stage, relation_stage};
+  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return r;
+
+  // The quotients: an exactly zero numerator gives +0; the others are rounded from the stage-2 enclosures,
+  // then from stage 3's, or else exactly.
+  const bool asked[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
+  int numerator_sign[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k)
+    if (asked[k]) numerator_sign[k] = query.sign(numerator_value[k]);
+  if (query.needs_exact()) {
+    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+    r.intersection.t = e.t;
+    r.intersection.barycentric = e.barycentric;
+    r.rounding_stage = Stage::exact;
+    return r;
+  }
+  bool certain[4];
+  bool all_certain = true;
+  double value[4];
+  for (int k = 0; k < 4; ++k) {
+    certain[k] = !asked[k] || numerator_sign[k] == 0;
+    all_certain = all_certain && certain[k];
+    value[k] = asked[k] ? 0.0 : not_a_number;  // an exact 0/den is +0
+  }
+  r.rounding_stage = query.stage();
+  auto with_values = [&] {
+    r.intersection.t = value[0];
+    r.intersection.barycentric = {value[1], value[2], value[3]};
+    return r;
+  };
+  if (all_certain) return with_values();
+
+  // Stage 2: round_quotient on the enclosures, over one divisor.
+  r.rounding_stage = later(r.rounding_stage, Stage::compensated);
+  const TriangleCompensatedValues& s2 = query.compensated();
+  Enclosure numerators[4];
+  for (int k = 0; k < 4; ++k) numerators[numerator_lane[k]] = s2.enclosure(numerator_value[k]);
+  const FourQuotients rounded = round_quotients(enclosure_lanes(numerators), s2.enclosure(value_den));
+  all_certain = true;
+  for (int k = 0; k < 4; ++k) {
+    if (certain[k]) continue;
+    value[k] = rounded.t[numerator_lane[k]];
+    certain[k] = rounded.certain[numerator_lane[k]];
+    all_certain = all_certain && certain[k];
+  }
+  if (all_certain) return with_values();
+
+  // Stage 3: round_quotient on the expansions' tail enclosures over one divisor (den's tail enclosure, or
+  // stage 2's when den's expansion is too long), then the exact stage for what is left (exact ties among it).
+  r.rounding_stage = later(r.rounding_stage, Stage::expansion);
+  const std::optional<Enclosure> den = query.expansion_enclosure(value_den);
+  const Divisor divisor = prepare_divisor(den ? *den : s2.enclosure(value_den));
+  all_certain = true;
+  for (int k = 0; k < 4; ++k) {
+    if (certain[k]) continue;
+    if (const std::optional<Enclosure> n = query.expansion_enclosure(numerator_value[k])) {
+      const QuotientRounding e = round_quotient(*n, divisor);
+      value[k] = e.t;
+      certain[k] = e.certain;
+    }
+    all_certain = all_certain && certain[k];
+  }
+  if (!all_certain) {
+    r.rounding_stage = Stage::exact;
+    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+    const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
+    for (int k = 0; k < 4; ++k)
+      if (!certain[k]) value[k] = exact_value[k];
+  }
+  return with_values();
+}
+
+TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  TriangleCascade query(ray, triangle);
+  if (const std::optional<TriangleClassification> c = query.classify(rule)) return {*c, query.stage()};
+  return {exact::classify_triangle(ray, triangle, rule), Stage::exact};
+}
+
+// ---- The fast paths (multiversioned: noexcept, nothing here throws) ----------------------------------------
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray, const Triangle& triangle,
+                                                                   TriangleRule) noexcept {
+  return fast_relation(ray, triangle);  // what it certifies has no π = 0: the rules agree
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
+                                                                     const TriangleOptions& options) noexcept {
   if (!options.t && !options.barycentric) {
-    const TracedTriangleClassification c = triangle_relation_traced(ray, triangle, options.rule);
-    return {answer(c.classification), c.stage, c.stage};
+    const std::optional<TracedTriangleClassification> c = fast_relation(ray, triangle);
+    if (!c) return std::nullopt;
+    return TracedTriangleIntersection{answer(c->classification), c->stage, c->stage};
   }
   // Stages 1 and 2 of the π's and num in one Lanes4 evaluation; den summed from the lanes.
   const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, triangle);
   const CompensatedTerm<double> den = (lane(s2.lanes, 0) + lane(s2.lanes, 1)) + lane(s2.lanes, 2);
   const double absolute_d = s2.absolute[0];
   const Mask4 filter = det3_filter_lanes(filter_view(s2.lanes), filter_relative_lanes, s2.absolute);
-  const EnclosureT<Lanes4> enclosure = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
-  const Mask4 sign4 = first_certain_lanes(filter, enclosure_sign_lanes(enclosure));
-  std::int64_t filter_sign[4], sign[4];
-  Enclosure numerators[4];
-  for (int k = 0; k < 4; ++k) {
-    filter_sign[k] = filter[k];
-    sign[k] = sign4[k];
-    numerators[k] = {enclosure.hi[k], enclosure.lo[k], enclosure.radius[k]};
-  }
-#else
-// Without GCC's vector idioms: the same values one at a time (the scalar evaluation the proofs model; the lane
-// layout computes the same bits).
-RAYKERNEL_TRIANGLE_MULTIVERSION
-TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  const TriangleFilterValues s1 = triangle_filter_values(ray, triangle);
-  std::int64_t sign[triangle_value_count];
-  for (int v = 0; v < triangle_value_count; ++v)
-    sign[v] = det3_filter_lanes(s1.value[static_cast<std::size_t>(v)], filter_relative(v), s1.absolute(v));
-  const bool certain = (sign[value_pi_a] != uncertain_lane) & (sign[value_pi_b] != uncertain_lane) &
-                       (sign[value_pi_c] != uncertain_lane) & (sign[value_den] != uncertain_lane);
-  if (certain) [[likely]] {
-    if (const std::optional<TriangleClassification> c =
-            decide_nonzero(sign[value_pi_a], sign[value_pi_b], sign[value_pi_c], sign[value_den], sign[value_num]))
-      return {*c, Stage::filter};
-  }
-  return full_relation(ray, triangle, rule);
-}
-
-RAYKERNEL_TRIANGLE_MULTIVERSION
-TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
-                                                        const TriangleOptions& options) {
-  if (!options.t && !options.barycentric) {
-    const TracedTriangleClassification c = triangle_relation_traced(ray, triangle, options.rule);
-    return {answer(c.classification), c.stage, c.stage};
-  }
-  const TriangleCompensatedValues s2 = triangle_compensated_values(ray, triangle);
-  const CompensatedTerm<double> den = s2.value[value_den];
-  const double absolute_d = s2.absolute_d;
-  std::int64_t filter_sign[4], sign[4];
-  Enclosure numerators[4];
-  for (int k = 0; k < 4; ++k) {
-    const int v = k == lane_num ? value_num : k;
-    filter_sign[k] = det3_filter_lanes(filter_view(s2.value[static_cast<std::size_t>(v)]), filter_relative(v), s2.absolute(v));
-    numerators[k] = s2.enclosure(v);
-    sign[k] = first_certain_lanes(filter_sign[k], enclosure_sign_lanes(numerators[k]));
-  }
-#endif
-  // From here on, both layouts: the signs and enclosures of πa, πb, πc, num (in that order) and den.
+  const EnclosureT<Lanes4> numerators = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
+  const Mask4 sign = first_certain_lanes(filter, enclosure_sign_lanes(numerators));
   const std::int64_t den_filter = det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, absolute_d);
   const Enclosure den_enclosure = det3_enclosure(den, bounds::triangle_compensated_den_relative, absolute_d);
   const std::int64_t den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den_enclosure));
   const bool certain = (sign[0] != uncertain_lane) & (sign[1] != uncertain_lane) & (sign[2] != uncertain_lane) &
                        (den_sign != uncertain_lane);
-  if (certain) [[likely]] {
-    const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
-    // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
-    if (c && (!options.t || sign[lane_num] != uncertain_lane)) {
-      const FourQuotients q = round_quotients(numerators, den_enclosure);
-      const bool rounded = (!options.t || q.certain[lane_num]) &
-                           (!options.barycentric || (q.certain[0] && q.certain[1] && q.certain[2]));
-      if (rounded) [[likely]] {
-        const bool by_filter = (filter_sign[0] != uncertain_lane) & (filter_sign[1] != uncertain_lane) &
-                               (filter_sign[2] != uncertain_lane) & (den_filter != uncertain_lane) &
-                               (c->location == TriangleLocation::outside || filter_sign[lane_num] != uncertain_lane);
-        const double t = options.t ? q.t[lane_num] : not_a_number;
-        const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
-                                                            : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
-        return {{c->relation, c->location, c->owned, t, u}, by_filter ? Stage::filter : Stage::compensated,
-                Stage::compensated};
-      }
-    }
-  }
-  return full_cascade(ray, triangle, options);
-}
-
-TriangleClassification triangle_relation_certified(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  return triangle_relation_traced(ray, triangle, rule).classification;
+  if (!certain) [[unlikely]]
+    return std::nullopt;
+  const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
+  // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
+  if (!c || (options.t && sign[lane_num] == uncertain_lane)) [[unlikely]]
+    return std::nullopt;
+  const FourQuotients q = round_quotients(numerators, den_enclosure);
+  const bool rounded = (!options.t || q.certain[lane_num]) &
+                       (!options.barycentric || (q.certain[0] & q.certain[1] & q.certain[2]));
+  if (!rounded) [[unlikely]]
+    return std::nullopt;
+  const bool by_filter = (filter[0] != uncertain_lane) & (filter[1] != uncertain_lane) &
+                         (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
+                         (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
+  const double t = options.t ? q.t[lane_num] : not_a_number;
+  const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
+                                                      : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
+  return TracedTriangleIntersection{{c->relation, c->location, c->owned, t, u},
+                                    by_filter ? Stage::filter : Stage::compensated, Stage::compensated};
 }
 
 }  // namespace raykernel::detail

@@ -5,7 +5,7 @@
 
 #include "certified/enclosure.hpp"
 #include "certified/sign.hpp"
-#include "certified/triangle_bounds.hpp"
+#include "certified/error_bounds.hpp"
 #include "ray_triangle_formula.hpp"
 #include "triangle/det3_stages.hpp"
 #include "triangle/expansion_value.hpp"
@@ -22,7 +22,7 @@ namespace raykernel::detail {
 inline constexpr int value_pi_a = 0, value_pi_b = 1, value_pi_c = 2, value_den = 3, value_num = 4;
 inline constexpr int triangle_value_count = 5;
 
-// The relative constant of each determinant's filter and enclosure (triangle_bounds.hpp).
+// The relative constant of each determinant's filter and enclosure (error_bounds.hpp).
 [[nodiscard]] constexpr double filter_relative(int value) noexcept {
   return value == value_den   ? bounds::triangle_filter_den_relative
          : value == value_num ? bounds::triangle_filter_num_relative
@@ -136,21 +136,13 @@ struct TriangleExpansions {
 
 // ---- The fast path's layout: four determinants in the four lanes of a Lanes4 -------------------------------
 //
-// With GCC's vector extensions (RAYKERNEL_TRIANGLE_LANES; other compilers evaluate the values one at a time,
-// which gives the same bits): the three π and num share their structure, so one evaluation of the formula's
-// cross_terms and dot_terms on Lanes4 gives πa, πb, πc and num in lanes 0..3, lane k using the leaves
-// y = e_b, e_c, e_a, e_b and z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing
-// exactly the scalar operations, so the same bits as triangle_compensated_values (tested), the proofs' model of
-// each value. den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
+// The three π and num share their structure, so one evaluation of the formula's cross_terms and dot_terms on
+// Lanes4 (lanes.hpp) gives πa, πb, πc and num in lanes 0..3, lane k using the leaves y = e_b, e_c, e_a, e_b and
+// z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing exactly the scalar
+// operations, so the same bits as triangle_compensated_values (tested), the proofs' model of each value. den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
 // d·((b − a) × (c − a)), in lane 3 instead.
-#if defined(__GNUC__) && !defined(__clang__)
-#define RAYKERNEL_TRIANGLE_LANES 1
-#else
-#define RAYKERNEL_TRIANGLE_LANES 0
-#endif
 inline constexpr int lane_num = 3;
 
-#if RAYKERNEL_TRIANGLE_LANES
 template <class Term>
 struct TriangleLanes {
   Term lanes;       // πa, πb, πc, num (or den)
@@ -219,8 +211,6 @@ struct TriangleNumFilter {
   return {t.h[k], t.l[k], t.m[k]};
 }
 
-#endif  // RAYKERNEL_TRIANGLE_LANES
-
 // The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
 // components, or nothing when an expansion was not exact.
 [[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,
@@ -252,22 +242,5 @@ struct TriangleNumFilter {
   }
   return zero;
 }
-
-// The certified answer in the default floating-point environment (the cascade; validates what the fast path
-// does not certify, throws invalid_input).
-[[nodiscard]] TracedTriangleIntersection intersect_triangle_certified(const Ray& ray, const Triangle& triangle,
-                                                                      const TriangleOptions& options);
-[[nodiscard]] TriangleClassification triangle_relation_certified(const Ray& ray, const Triangle& triangle,
-                                                                 TriangleRule rule);
-struct TracedTriangleClassification {
-  TriangleClassification classification;
-  Stage stage;
-};
-[[nodiscard]] TracedTriangleClassification triangle_relation_traced(const Ray& ray, const Triangle& triangle,
-                                                                    TriangleRule rule);
-
-// The reason a ray/triangle is invalid input, or nothing (the triangle's own validation; to be expressed with
-// the public validate(Ray) once it exists).
-[[nodiscard]] std::optional<std::string> triangle_invalid_reason(const Ray& ray, const Triangle& triangle);
 
 }  // namespace raykernel::detail

@@ -1,92 +1,75 @@
-// The public ray–triangle entry points (raykernel/triangle.hpp): validation at the boundary, then the
-// certified cascade, the exact reference or Möller–Trumbore.
+// The public ray–triangle entry points (raykernel/triangle.hpp), as api.cpp's ray–plane ones: the default
+// floating-point environment for the call (fp_environment.hpp); the fast path on raw input
+// (triangle/ray_triangle_cascade.hpp); for what it does not certify, validation at the boundary
+// (validation.hpp) and the full cascade; or the exact reference. Möller–Trumbore runs in the caller's
+// environment, as the baseline it is.
 #include <raykernel/triangle.hpp>
 
 #include "certified/fp_requirements.hpp"
-#include "entry_checks.hpp"
 #include "exact/exact_triangle.hpp"
+#include "fp_environment.hpp"
 #include "ray_triangle_formula.hpp"
-#include "triangle/ray_triangle_stages.hpp"
+#include "triangle/ray_triangle_cascade.hpp"
+#include "validation.hpp"
 
-#include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace raykernel {
-namespace detail {
-
-std::optional<std::string> triangle_invalid_reason(const Ray& ray, const Triangle& triangle) {
-  struct Field {
-    const char* name;
-    const Vec3& value;
-  };
-  const Field fields[] = {{"ray origin", ray.origin},
-                          {"ray direction", ray.direction},
-                          {"triangle vertex a", triangle.a},
-                          {"triangle vertex b", triangle.b},
-                          {"triangle vertex c", triangle.c}};
-  for (const Field& f : fields) {
-    const double component[3] = {f.value.x, f.value.y, f.value.z};
-    for (int i = 0; i < 3; ++i) {
-      if (std::isnan(component[i])) return std::string(f.name) + " " + "xyz"[i] + " is NaN";
-      if (std::isinf(component[i]))
-        return std::string(f.name) + " " + "xyz"[i] + " is " + (component[i] > 0 ? "+inf" : "-inf");
-    }
-  }
-  const Vec3& d = ray.direction;
-  if (d.x == 0 && d.y == 0 && d.z == 0) return std::string("ray direction is the zero vector");
-  return std::nullopt;
-}
-
-}  // namespace detail
-
 namespace {
 
 void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
-  if (std::optional<std::string> reason = detail::triangle_invalid_reason(ray, triangle)) throw invalid_input(*reason);
+  if (detail::is_valid(ray) & detail::is_valid(triangle)) [[likely]]
+    return;
+  throw invalid_input(*validate(ray, triangle));
 }
 
-// The certified answer; the exact stage when the floating-point environment is not the one the bounds assume.
+// The certified answer: the fast path (multiversioned, noexcept), then — outside it, since validation
+// throws — the full cascade for valid input. In the default environment (the callers install it).
+detail::TracedTriangleClassification certified_relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  if (const auto c = detail::fast_triangle_relation(ray, triangle, rule)) [[likely]]
+    return *c;
+  throw_if_invalid(ray, triangle);
+  return detail::triangle_relation_cascade(ray, triangle, rule);
+}
+
 TracedTriangleIntersection certified(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
-  if (!detail::default_floating_point_environment()) [[unlikely]] {
-    throw_if_invalid(ray, triangle);
-    return {detail::exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
-  }
-  return detail::intersect_triangle_certified(ray, triangle, options);
+  if (const auto a = detail::fast_triangle_intersection(ray, triangle, options)) [[likely]]
+    return *a;
+  throw_if_invalid(ray, triangle);
+  return detail::triangle_intersection_cascade(ray, triangle, options);
 }
 
 }  // namespace
 
-std::optional<std::string> validate(const Ray& ray, const Triangle& triangle) {
-  return detail::triangle_invalid_reason(ray, triangle);
-}
-
 TriangleIntersection intersect(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
-  return certified(ray, triangle, options).intersection;
+  return detail::in_default_fp_environment([&] { return certified(ray, triangle, options).intersection; });
 }
 
 TracedTriangleIntersection intersect_traced(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
-  return certified(ray, triangle, options);
+  return detail::in_default_fp_environment([&] { return certified(ray, triangle, options); });
 }
 
 TriangleClassification relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  if (!detail::default_floating_point_environment()) [[unlikely]] {
-    throw_if_invalid(ray, triangle);
-    return detail::exact::classify_triangle(ray, triangle, rule);
-  }
-  return detail::triangle_relation_traced(ray, triangle, rule).classification;
+  return detail::in_default_fp_environment([&] { return certified_relation(ray, triangle, rule).classification; });
 }
 
 TriangleIntersection intersect_exact(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
-  throw_if_invalid(ray, triangle);
-  return detail::exact::intersect_triangle(ray, triangle, options);
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, triangle);
+    return detail::exact::intersect_triangle(ray, triangle, options);
+  });
 }
 
 ExactTriangleIntersection intersect_exact_rational(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  throw_if_invalid(ray, triangle);
-  return detail::exact::intersect_triangle_rational(ray, triangle, rule);
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, triangle);
+    return detail::exact::intersect_triangle_rational(ray, triangle, rule);
+  });
 }
 
+// Möller–Trumbore in the caller's environment, as the baseline it is (no guarantee, no check).
 TriangleIntersection intersect_naive(const Ray& ray, const Triangle& triangle) noexcept {
   struct V {
     double x, y, z;
