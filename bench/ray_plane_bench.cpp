@@ -90,6 +90,8 @@ void register_workload(Workload w) {
   benchmark::RegisterBenchmark(("relation/certified" + suffix).c_str(), [queries](benchmark::State& s) {
     rotate_through(s, *queries(), [](const testkit::Query& q) { return relation(q.ray, q.plane); });
   });
+  // The batch benchmarks run on all threads: they are timed by the wall clock (UseRealTime), not by the
+  // calling thread's CPU time.
   benchmark::RegisterBenchmark(("intersect/batch_certified" + suffix).c_str(), [w, queries](benchmark::State& s) {
     // The batch API over the whole buffer per iteration, on all threads; checked once against intersect.
     const SoA& soa = workload_soa(w);
@@ -108,7 +110,7 @@ void register_workload(Workload w) {
       if (a.relation != relation[i] || (a.relation <= Relation::behind && std::memcmp(&a.t, &t[i], sizeof a.t) != 0))
         return s.SkipWithError("batch != intersect");
     }
-  });
+  })->UseRealTime();
   benchmark::RegisterBenchmark(("relation/batch_certified" + suffix).c_str(), [w, queries](benchmark::State& s) {
     const SoA& soa = workload_soa(w);
     const std::size_t n = soa.ox.size();
@@ -122,7 +124,7 @@ void register_workload(Workload w) {
     const std::vector<testkit::Query>& q = *queries();
     for (std::size_t i = 0; i < n; i += 97)
       if (relation[i] != raykernel::relation(q[i].ray, q[i].plane)) return s.SkipWithError("batch != relation");
-  });
+  })->UseRealTime();
   benchmark::RegisterBenchmark(("relation/cgal_epick" + suffix).c_str(), [queries](benchmark::State& s) {
     const EpickQueries cgal(*queries());
     std::vector<std::size_t> index(cgal.size());
@@ -157,7 +159,7 @@ void register_naive_soa_and_memory() {
     for (auto _ : s) benchmark::DoNotOptimize(read_all(soa, all_threads()));
     s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(soa.ox.size()));
     s.counters["threads"] = all_threads();
-  });
+  })->UseRealTime();
 }
 
 void register_nearest(const std::string& name) {

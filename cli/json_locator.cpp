@@ -1,6 +1,6 @@
 #include "json_locator.hpp"
 
-#include "number_syntax.hpp"
+#include <raykernel/io/number.hpp>
 #include "text_format.hpp"
 
 #include <set>
@@ -85,7 +85,9 @@ class LocatingSax {
   bool number_unsigned(json::number_unsigned_t v) { return value(), dom_.number_unsigned(v); }
   bool number_float(json::number_float_t v, const json::string_t& s) {
     value();
-    if (v == 0 && denotes_nonzero(s)) note_problem(quote(s) + " " + std::string(rounds_to_zero_reason));
+    // JSON numbers are strtod numbers; the one number reader says whether a nonzero one rounded to zero.
+    if (v == 0 && io::parse_double(s).error == io::NumberError::underflow)
+      note_problem(quote(s) + " " + std::string(io::describe(io::NumberError::underflow)));
     if (const auto integer = json_integer_value(s)) {
       if (const auto* u = std::get_if<std::uint64_t>(&*integer)) return dom_.number_unsigned(*u);
       return dom_.number_integer(std::get<std::int64_t>(*integer));

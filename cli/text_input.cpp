@@ -1,13 +1,12 @@
 #include "text_input.hpp"
 
-#include "number_syntax.hpp"
 #include "text_format.hpp"
 
-#include <cerrno>
+#include <raykernel/io/number.hpp>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <istream>
 #include <string>
 
@@ -23,22 +22,19 @@ namespace {
 
 constexpr bool is_blank(char c) noexcept { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// Why `token` is not a valid number, or empty when it is one (then `value` holds it).
+// Why `token` is not a valid number, or empty when it is one (then `value` holds it). The number rules
+// (strtod syntax, correctly rounded, finite, not a nonzero that rounds to zero) are the mesh readers' too:
+// raykernel::io::parse_double is their one home.
 std::string number_problem(std::string_view token, double& value) {
-  const std::string buffer(token);  // strtod needs a terminating NUL; a NUL inside the token stops it early
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtod(buffer.c_str(), &end);
-  if (end != buffer.c_str() + buffer.size()) {
-    std::string reason = quote(token, limits::quoted_token_bytes) + " is not a number";
-    if (token.find(',') != std::string_view::npos) reason += " (separate numbers with blanks, not commas)";
-    return reason;
+  const io::NumberParse number = io::parse_double(token);
+  if (number.ok()) {
+    value = number.value;
+    return {};
   }
-  if (errno == ERANGE && std::isinf(value)) return quote(token, limits::quoted_token_bytes) + " overflows the double range";
-  if (!std::isfinite(value)) return quote(token, limits::quoted_token_bytes) + " is not finite";
-  if (value == 0 && denotes_nonzero(token))
-    return quote(token, limits::quoted_token_bytes) + " " + std::string(rounds_to_zero_reason);
-  return {};
+  std::string reason = quote(token, limits::quoted_token_bytes) + " " + std::string(io::describe(number.error));
+  if (number.error == io::NumberError::not_a_number && token.find(',') != std::string_view::npos)
+    reason += " (separate numbers with blanks, not commas)";
+  return reason;
 }
 
 struct Token {

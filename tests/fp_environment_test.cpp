@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfenv>
 #if defined(__x86_64__)
 #include <xmmintrin.h>
@@ -41,9 +42,10 @@ TEST(FpEnvironment, ProbeDetectsAContractingBuild) {
 
 // ---- The caller's environment ----------------------------------------------------------------------------
 //
-// Every public entry point, run on subnormal-heavy hard queries in each non-default environment a caller
-// can leave (set here by hand), must give the answers it gives in the default environment, bit for bit,
-// and leave the environment exactly as it found it (tests/support/entry_points.hpp). Before this was
+// Every public entry point, run on subnormal-heavy hard queries (ray–plane and ray–triangle) in each
+// non-default environment a caller can leave (set here by hand), must give the answers it gives in the
+// default environment, bit for bit, and leave the environment exactly as it found it
+// (tests/support/entry_points.hpp). Before this was
 // fixed, DAZ made `intersect` throw "plane normal is the zero vector" for the normal (2^-1070, 0, 0) and FTZ
 // made it answer t = 0 for t = 2^-1070 (the first two queries of the list).
 
@@ -51,8 +53,15 @@ const std::vector<testkit::Query>& queries() {
   static const std::vector<testkit::Query> q = test_support::environment_test_queries(3000, 0xe5e5);
   return q;
 }
+const std::vector<testkit::TriangleQuery>& triangle_queries() {
+  static const std::vector<testkit::TriangleQuery> q = test_support::environment_test_triangle_queries(3000, 0x7e5e5);
+  return q;
+}
+test_support::EntryPointAnswers answers_here() {
+  return test_support::answers_of_every_entry_point(queries(), triangle_queries(), 7);
+}
 const test_support::EntryPointAnswers& default_answers() {
-  static const test_support::EntryPointAnswers a = test_support::answers_of_every_entry_point(queries(), 7);
+  static const test_support::EntryPointAnswers a = answers_here();
   return a;
 }
 
@@ -65,7 +74,7 @@ void expect_same_answers(const test_support::EntryPointAnswers& got, const std::
       if (got.answers[k][i] == want.answers[k][i]) continue;
       ++reported;
       ADD_FAILURE() << mode << ": " << want.names[k] << ", query " << i << " ("
-                    << testkit::to_string(queries()[i]) << "):\n  default: " << want.answers[k][i]
+                    << test_support::query_text(want, k, i, queries(), triangle_queries()) << "):\n  default: " << want.answers[k][i]
                     << "\n  here:    " << got.answers[k][i];
     }
   }
@@ -73,11 +82,18 @@ void expect_same_answers(const test_support::EntryPointAnswers& got, const std::
 
 TEST(FpEnvironment, DefaultEnvironmentIsRecognized) { EXPECT_TRUE(floating_point_environment_is_default()); }
 
-TEST(FpEnvironment, TheDazAndFtzRegressionsHaveTheirContractAnswers) {
+TEST(FpEnvironment, TheDazAndFtzCasesHaveTheirContractAnswers) {
   // Hand-derived: d·n = 2^-1070 > 0, (p − o)·n = 5·2^-1070, t = 5; and num = 2^-1070, den = 1, t = 2^-1070.
   const test_support::EntryPointAnswers& a = default_answers();
   EXPECT_EQ(a.answers[0][0], "hit " + test_support::bits_of(5.0));
   EXPECT_EQ(a.answers[0][1], "hit " + test_support::bits_of(0x1p-1070));
+  // The subnormal triangle (entry_points.hpp): hit inside at t = 1, coordinates (1/2, 1/4, 1/4); the ray
+  // passes through the triangle's interior, so the owned rule agrees.
+  const auto k = static_cast<std::size_t>(
+      std::find(a.names.begin(), a.names.end(), "triangle intersect") - a.names.begin());
+  ASSERT_LT(k, a.names.size());
+  EXPECT_EQ(a.answers[k][0], "hit inside owned " + test_support::bits_of(1.0) + " " + test_support::bits_of(0.5) +
+                                 " " + test_support::bits_of(0.25) + " " + test_support::bits_of(0.25));
 }
 
 TEST(FpEnvironment, DirectedRoundingChangesNothing) {
@@ -85,7 +101,7 @@ TEST(FpEnvironment, DirectedRoundingChangesNothing) {
   for (int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
     ASSERT_EQ(std::fesetround(mode), 0);
     const bool recognized = !floating_point_environment_is_default();
-    const test_support::EntryPointAnswers got = test_support::answers_of_every_entry_point(queries(), 7);
+    const test_support::EntryPointAnswers got = answers_here();
     const int after = std::fegetround();
     std::fesetround(FE_TONEAREST);
     EXPECT_TRUE(recognized) << "mode " << mode;
@@ -102,7 +118,7 @@ void expect_same_answers_with_mxcsr(unsigned mxcsr, const std::string& mode) {
   const unsigned saved = _mm_getcsr();
   _mm_setcsr(mxcsr);
   const bool recognized = !floating_point_environment_is_default();
-  const test_support::EntryPointAnswers got = test_support::answers_of_every_entry_point(queries(), 7);
+  const test_support::EntryPointAnswers got = answers_here();
   const unsigned after = _mm_getcsr();
   _mm_setcsr(saved);
   EXPECT_EQ(recognized, (mxcsr & 0xFFC0u) != 0x1F80u) << mode;

@@ -130,7 +130,8 @@ std::string_view describe(NumberError error) noexcept {
     case NumberError::not_a_number: return "is not a number";
     case NumberError::non_finite: return "is not finite";
     case NumberError::overflow: return "overflows the double range";
-    case NumberError::underflow: return "is nonzero but rounds to zero";
+    case NumberError::underflow:
+      return "is nonzero but rounds to zero when read (its magnitude is at most 2^-1075, half the smallest subnormal)";
   }
   return "is not a number";
 }

@@ -2,10 +2,11 @@
 // distance from the bits of the doubles.
 #include <raykernel/testkit/reference_check.hpp>
 
+#include "default_environment.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
-#include <cfenv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -16,23 +17,7 @@
 namespace raykernel::testkit {
 namespace {
 
-// The default floating-point environment for the duration of a check or a report, and the caller's
-// restored exactly afterwards (control modes and raised flags): the check then reads the same in any
-// environment its caller left (printf and the stream formatting follow the rounding mode, and raise
-// flags of their own).
-class DefaultEnvironmentScope {
- public:
-  DefaultEnvironmentScope() noexcept {
-    std::fegetenv(&caller_);
-    std::fesetenv(FE_DFL_ENV);
-  }
-  ~DefaultEnvironmentScope() { std::fesetenv(&caller_); }
-  DefaultEnvironmentScope(const DefaultEnvironmentScope&) = delete;
-  DefaultEnvironmentScope& operator=(const DefaultEnvironmentScope&) = delete;
-
- private:
-  std::fenv_t caller_;
-};
+using internal::DefaultEnvironmentScope;
 
 // The position of x in the increasing order of all non-NaN doubles, -inf → 0x000fffffffffffff ... -0 →
 // 2^63 − 1, +0 → 2^63, ... +inf → 2^63 + 0x7ff0000000000000: consecutive doubles get consecutive keys

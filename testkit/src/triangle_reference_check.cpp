@@ -3,6 +3,8 @@
 
 #include <raykernel/testkit/reference_check.hpp>
 
+#include "default_environment.hpp"
+
 #include <cmath>
 #include <ostream>
 #include <sstream>
@@ -35,6 +37,7 @@ std::string to_string(const TriangleQuery& q) {
 
 TriangleReferenceCheck check_against_reference(const TriangleQuery& query, const TriangleIntersection& got,
                                                TriangleRule rule, std::uint64_t max_ulps, bool check_location) {
+  const internal::DefaultEnvironmentScope environment;
   TriangleReferenceCheck c;
   c.query = query;
   c.rule = rule;
@@ -59,6 +62,7 @@ TriangleReferenceCheck check_against_reference(const TriangleQuery& query, const
 }
 
 std::string TriangleReferenceCheck::report() const {
+  const internal::DefaultEnvironmentScope environment;
   std::ostringstream os;
   os << "raykernel triangle reference check " << (passed() ? "passed" : "FAILED");
   if (!passed()) {

@@ -1,4 +1,5 @@
-// Every public entry point of the library on a list of queries, reduced to text: the answers bit for bit
+// Every public entry point of the library on a list of queries (ray–plane queries, and ray–triangle queries for
+// the triangle entry points), reduced to text: the answers bit for bit
 // (t as its bit pattern, exact rationals as strings, exceptions as their messages). Two runs of
 // `answers_of_every_entry_point` over the same queries, one in the default floating-point environment and
 // one in another, must give the same text: that is the library's promise that its answers do not depend
@@ -15,7 +16,10 @@
 #include <raykernel/raykernel.hpp>
 #include <raykernel/testkit/hard_queries.hpp>
 #include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/triangle_queries.hpp>
+#include <raykernel/testkit/triangle_reference_check.hpp>
 #include <raykernel/transform.hpp>
+#include <raykernel/triangle.hpp>
 
 #include <bit>
 #include <cfenv>
@@ -55,6 +59,18 @@ inline std::string text_of(const Intersection& a) {
 inline std::string text_of(const std::optional<NearestHit>& h) {
   return h ? "hit " + std::to_string(h->plane) + " " + bits_of(h->t) : "miss";
 }
+inline std::string text_of(const TriangleIntersection& a) {
+  // t's and the coordinates' bits only where the contract defines them (den ≠ 0) and they were asked for.
+  std::string s = std::string(to_string(a.relation)) + " " + std::string(to_string(a.location)) +
+                  (a.owned ? " owned" : " not-owned");
+  if (a.location == TriangleLocation::none) return s;
+  for (double x : {a.t, a.barycentric[0], a.barycentric[1], a.barycentric[2]}) s += " " + bits_of(x);
+  return s;
+}
+inline std::string text_of(const TriangleClassification& c) {
+  return std::string(to_string(c.relation)) + " " + std::string(to_string(c.location)) +
+         (c.owned ? " owned" : " not-owned");
+}
 inline std::string text_of(const Vec3& v) { return bits_of(v.x) + "," + bits_of(v.y) + "," + bits_of(v.z); }
 inline std::string text_of(const Ray& r) { return text_of(r.origin) + ";" + text_of(r.direction); }
 
@@ -91,23 +107,52 @@ inline std::vector<testkit::Query> environment_test_queries(std::size_t count, s
   return q;
 }
 
+// The ray–triangle queries: every hard kind, subnormal-heavy (the tiny kind, whose products all underflow,
+// three times as often), a hand-derived subnormal triangle, and a few invalid queries.
+inline std::vector<testkit::TriangleQuery> environment_test_triangle_queries(std::size_t count, std::uint64_t seed) {
+  std::vector<testkit::TriangleQuery> q;
+  // h = 2^-1070: a = 0, b = (h, 0, 0), c = (0, h, 0); the line x = y = h/4 crosses z = 0 at barycentric
+  // coordinates (1 − 1/4 − 1/4, 1/4, 1/4) = (1/2, 1/4, 1/4), at t = 1 from z = −1. DAZ reads b and c as
+  // zero, which makes the triangle degenerate; FTZ flushes every product.
+  q.push_back({{{0x1p-1072, 0x1p-1072, -1}, {0, 0, 1}}, {{0, 0, 0}, {0x1p-1070, 0, 0}, {0, 0x1p-1070, 0}}});
+  q.push_back({{{0, 0, 0}, {0, 0, 0}}, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});  // invalid: zero direction
+  // invalid: a NaN vertex (from its bits: this file may be compiled with -ffast-math)
+  q.push_back({{{0, 0, 0}, {1, 1, 1}}, {{1, 0, 0}, {0, std::bit_cast<double>(0x7ff8000000000000ULL), 0}, {0, 0, 1}}});
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  std::vector<testkit::TriangleQueryKind> kinds(testkit::all_triangle_query_kinds.begin(),
+                                                 testkit::all_triangle_query_kinds.end());
+  kinds.push_back(testkit::TriangleQueryKind::tiny);
+  kinds.push_back(testkit::TriangleQueryKind::tiny);
+  for (std::size_t i = 0; q.size() < count; ++i) q.push_back(testkit::make_triangle_query(kinds[i % kinds.size()], bits));
+  return q;
+}
+
 struct EntryPointAnswers {
   std::vector<std::string> names;                 // one per entry point
   std::vector<std::vector<std::string>> answers;  // answers[k][i]: entry point k, query i
+  std::vector<bool> on_triangles;                 // entry point k answered the triangle queries
 };
 
-// Every public entry point on `queries`. `exact_every` limits the slow exact ones (microseconds each) to
-// every n-th query. Apart from the library's calls, the code does no floating-point arithmetic, so that it
-// can run with traps enabled.
+// Every public entry point on `queries` (the ray–plane ones) and `triangles` (the ray–triangle ones; the
+// naive Möller–Trumbore runs in the caller's environment by design and is not among them). `exact_every`
+// limits the slow exact ones (microseconds each) to every n-th query. Apart from the library's calls, the code
+// does no floating-point arithmetic, so that it can run with traps enabled.
 inline EntryPointAnswers answers_of_every_entry_point(const std::vector<testkit::Query>& queries,
+                                                      const std::vector<testkit::TriangleQuery>& triangles,
                                                       std::size_t exact_every = 1) {
   EntryPointAnswers out;
   const std::size_t n = queries.size();
-  auto add = [&](const char* name, const std::function<std::string(std::size_t)>& answer, std::size_t every = 1) {
+  auto add_over = [&](std::size_t count, bool on_triangles, const char* name,
+                      const std::function<std::string(std::size_t)>& answer, std::size_t every) {
     out.names.emplace_back(name);
+    out.on_triangles.push_back(on_triangles);
     std::vector<std::string>& a = out.answers.emplace_back();
-    a.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) a.push_back(i % every == 0 ? guarded([&] { return answer(i); }) : "");
+    a.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) a.push_back(i % every == 0 ? guarded([&] { return answer(i); }) : "");
+  };
+  auto add = [&](const char* name, const std::function<std::string(std::size_t)>& answer, std::size_t every = 1) {
+    add_over(n, false, name, answer, every);
   };
   auto ray = [&](std::size_t i) -> const Ray& { return queries[i].ray; };
   auto plane = [&](std::size_t i) -> const Plane& { return queries[i].plane; };
@@ -167,6 +212,41 @@ inline EntryPointAnswers answers_of_every_entry_point(const std::vector<testkit:
            text_of(orthographic_ray(window, px, py, image)) + " " + text_of(camera.ray(px, py, {0.3, 0.7}));
   });
 
+  // Ray–triangle (raykernel/triangle.hpp).
+  auto add_triangle = [&](const char* name, const std::function<std::string(std::size_t)>& answer,
+                          std::size_t every = 1) { add_over(triangles.size(), true, name, answer, every); };
+  auto tray = [&](std::size_t i) -> const Ray& { return triangles[i].ray; };
+  auto tri = [&](std::size_t i) -> const Triangle& { return triangles[i].triangle; };
+  const TriangleOptions closed_t_only{TriangleRule::closed, true, false};
+  const TriangleOptions closed_coordinates_only{TriangleRule::closed, false, true};
+  add_triangle("triangle intersect", [&](std::size_t i) { return text_of(intersect(tray(i), tri(i))); });
+  add_triangle("triangle intersect (closed, t only)",
+               [&](std::size_t i) { return text_of(intersect(tray(i), tri(i), closed_t_only)); });
+  add_triangle("triangle intersect (closed, coordinates only)",
+               [&](std::size_t i) { return text_of(intersect(tray(i), tri(i), closed_coordinates_only)); });
+  add_triangle("triangle relation", [&](std::size_t i) {
+    return text_of(raykernel::relation(tray(i), tri(i))) + " | " +
+           text_of(raykernel::relation(tray(i), tri(i), TriangleRule::closed));
+  });
+  add_triangle("triangle intersect_traced", [&](std::size_t i) {
+    const TracedTriangleIntersection t = intersect_traced(tray(i), tri(i));
+    return text_of(t.intersection) + " " + std::string(to_string(t.relation_stage)) + " " +
+           std::string(to_string(t.rounding_stage));
+  });
+  add_triangle("triangle validate", [&](std::size_t i) { return validate(tray(i), tri(i)).value_or("valid"); });
+  add_triangle("triangle intersect_exact", [&](std::size_t i) { return text_of(intersect_exact(tray(i), tri(i))); },
+               exact_every);
+  add_triangle("triangle intersect_exact_rational", [&](std::size_t i) {
+    const ExactTriangleIntersection e = intersect_exact_rational(tray(i), tri(i), TriangleRule::closed);
+    std::string s = text_of(e.intersection) + " " + e.den.str() + " " + e.num.str() + " " + e.pi_a.str() + " " +
+                    e.pi_b.str() + " " + e.pi_c.str();
+    if (e.t) s += " " + e.t->str();
+    return s;
+  }, exact_every);
+  add_triangle("triangle testkit::check_against_reference", [&](std::size_t i) {
+    return testkit::check_against_reference(triangles[i], intersect(tray(i), tri(i)), TriangleRule::owned, 0).report();
+  }, exact_every);
+
   // The batch forms, over all queries at once (two threads, so worker threads are covered too).
   std::vector<double> c[12];
   for (const testkit::Query& x : queries) {
@@ -204,6 +284,13 @@ inline EntryPointAnswers answers_of_every_entry_point(const std::vector<testkit:
   nearest_hit_batch({vr[0], vr[1], vr[2], vr[3], vr[4], vr[5]}, PlaneSet(valid_planes), nearest, two_threads);
   add("nearest_hit_batch", [&](std::size_t i) { return i < nearest.size() ? text_of(nearest[i]) : std::string(); });
   return out;
+}
+
+// Query i of entry point k, as text for a failure message.
+inline std::string query_text(const EntryPointAnswers& a, std::size_t k, std::size_t i,
+                              const std::vector<testkit::Query>& queries,
+                              const std::vector<testkit::TriangleQuery>& triangles) {
+  return a.on_triangles[k] ? testkit::to_string(triangles[i]) : testkit::to_string(queries[i]);
 }
 
 }  // namespace raykernel::test_support

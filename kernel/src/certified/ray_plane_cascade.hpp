@@ -25,13 +25,13 @@ class RayPlaneCascade {
   // whatever the rounding.
   [[nodiscard]] Sign den_filter() const noexcept {
     const bool zero = (q_.d[0] == 0 || q_.n[0] == 0) && (q_.d[1] == 0 || q_.n[1] == 0) && (q_.d[2] == 0 || q_.n[2] == 0);
-    return zero ? Sign::zero : static_cast<Sign>(den_filter_sign(q_));
+    return dot3_filter(q_.den, bounds::filter_den_relative, zero);
   }
   [[nodiscard]] Sign num_filter() const noexcept {
     // p_i ⊖ o_i is 0 exactly when p_i = o_i (gradual underflow): then the term's exact value is 0.
     const bool zero = (q_.diff[0] == 0 || q_.n[0] == 0) && (q_.diff[1] == 0 || q_.n[1] == 0) &&
                       (q_.diff[2] == 0 || q_.n[2] == 0);
-    return zero ? Sign::zero : static_cast<Sign>(num_filter_sign(q_));
+    return dot3_filter(q_.num, bounds::filter_num_relative, zero);
   }
 
   [[nodiscard]] const Enclosure& den_compensated() noexcept { return once(den2_, [&] { return detail::den_compensated(q_); }); }

@@ -41,16 +41,4 @@ template <class I>
   return select(first == uncertain_lane, second, first);
 }
 
-[[nodiscard]] constexpr Sign first_certain(Sign first, Sign second) noexcept {
-  return first == Sign::uncertain ? second : first;
-}
-
-[[nodiscard]] constexpr Sign negate(Sign s) noexcept {
-  switch (s) {
-    case Sign::negative: return Sign::positive;
-    case Sign::positive: return Sign::negative;
-    default: return s;
-  }
-}
-
 }  // namespace raykernel::detail

@@ -3,8 +3,9 @@
 // binary64 (precision 53, exponent range [-1073, 1024], mpfr_subnormalize): one correct rounding.
 // mpq_get_d and CGAL::to_double truncate and are never used.
 //
-// Used by the exact ray–triangle stage (exact_triangle.cpp). exact_rational.cpp holds the same code for the
-// ray–plane stage in its anonymous namespace; it should include this header instead (one home).
+// The one home of that rounding: the exact ray–plane stage and round_rational_to_double (exact_rational.cpp),
+// the exact ray–triangle stage (exact_triangle.cpp). MPFR keeps its exponent range per thread
+// (mpfr_buildopt_tls_p() is true in Debian's build, checked in tests/exact_rounding_test.cpp).
 #pragma once
 
 #include <gmpxx.h>

@@ -113,8 +113,9 @@ std::vector<PixelSample> stratified_samples_impl(std::uint32_t count, std::uint6
 }
 
 Ray camera_ray_impl(const Camera& camera, std::uint32_t i, std::uint32_t j, PixelSample s) {
-  const Ray local = camera.projection == Projection::perspective ? perspective_ray(camera.window, i, j, camera.image, s, camera.start)
-                                                          : orthographic_ray(camera.window, i, j, camera.image, s);
+  const Ray local = camera.projection == Projection::perspective
+                        ? perspective_ray_impl(camera.window, i, j, camera.image, s, camera.start)
+                        : orthographic_ray_impl(camera.window, i, j, camera.image, s);
   return detail::transform_ray_in_default_environment(camera.to_world, local, Renormalize::yes);
 }
 

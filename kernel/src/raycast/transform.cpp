@@ -93,7 +93,7 @@ Vec3 detail::transform_direction_in_default_environment(const Transform& t, cons
 }
 
 Ray detail::transform_ray_in_default_environment(const Transform& t, const Ray& ray, Renormalize renormalize) {
-  if (std::optional<std::string> reason = validate(ray)) throw invalid_input(*reason);
+  if (!detail::is_valid(ray)) throw invalid_input(*validate(ray));
   Ray r;
   if (t.is_affine()) {
     r.origin = transform_point_in_default_environment(t, ray.origin);
@@ -159,7 +159,6 @@ Transform Transform::rotation(const Vec3& axis, double radians) {
   return detail::in_default_fp_environment([&] { return rotation_impl(axis, radians); });
 }
 
-bool Transform::is_affine() const noexcept { return m[3][0] == 0 && m[3][1] == 0 && m[3][2] == 0 && m[3][3] == 1; }
 
 Transform operator*(const Transform& a, const Transform& b) noexcept {
   return detail::in_default_fp_environment([&]() -> Transform { return {formulas::multiply(a.m, b.m)}; });

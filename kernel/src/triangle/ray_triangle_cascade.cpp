@@ -322,9 +322,13 @@ std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ra
   return fast_relation(ray, triangle);  // what it certifies has no π = 0: the rules agree
 }
 
-RAYKERNEL_MULTIVERSION
-std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
-                                                                     const TriangleOptions& options) noexcept {
+namespace {
+// The body of fast_triangle_intersection, outside the multiversioned function: clang (14) rejects a call
+// that passes a 256-bit vector (Lanes4) by value from a target_clones("fma") clone to a function without
+// that target ("changes the ABI"), even an always_inline one; from this always_inline function, which the
+// clones inline, no such call is made across targets. Everything it calls is always_inline too.
+[[gnu::always_inline]] inline std::optional<TracedTriangleIntersection> fast_triangle_intersection_body(
+    const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept {
   if (!options.t && !options.barycentric) {
     const std::optional<TracedTriangleClassification> c = fast_relation(ray, triangle);
     if (!c) return std::nullopt;
@@ -361,6 +365,13 @@ std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& 
                                                       : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
   return TracedTriangleIntersection{{c->relation, c->location, c->owned, t, u},
                                     by_filter ? Stage::filter : Stage::compensated, Stage::compensated};
+}
+}  // namespace
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
+                                                                     const TriangleOptions& options) noexcept {
+  return fast_triangle_intersection_body(ray, triangle, options);
 }
 
 }  // namespace raykernel::detail
