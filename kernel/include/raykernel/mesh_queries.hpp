@@ -38,6 +38,38 @@ class PreparedMesh {
   std::vector<Triangle> leaf_triangles_;
 };
 
+// ---- nearest hit ---------------------------------------------------------------------------------------------
+
+// The nearest triangle a ray hits: its index in the mesh and the §6 answer for it (relation hit, location, t and
+// barycentric coordinates, each the exact value rounded to nearest).
+struct MeshHit {
+  std::uint32_t triangle;
+  TriangleIntersection intersection;
+};
+
+// docs/contract.md §7: among the triangles whose relation under `rule` is hit (t ≥ 0), the one with the smallest
+// exact t, ties to the smallest triangle index; or nothing. Through the BVH (a box the exact ray meets is never
+// skipped, bvh.hpp) with the certified ray–triangle cascade; two hits are ordered by their rounded t, which is
+// monotone in the exact t, and by the exact t in rationals when the rounded t are equal; the walk is pruned by
+// the successor of the best rounded t, an upper bound of the best exact t. So the answer is the brute-force one.
+// Throws invalid_input for an invalid ray (a non-finite component, a zero direction). Thread-safe; right in any
+// floating-point environment.
+[[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const PreparedMesh& mesh,
+                                                 TriangleRule rule = TriangleRule::owned);
+[[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh,  // prepares the mesh for the call
+                                                 TriangleRule rule = TriangleRule::owned);
+
+// The reference: every triangle by intersect_exact_rational (exact rationals), the smallest exact t taken in
+// rationals, ties to the smallest index. Slow (microseconds per triangle) and obviously right. Throws
+// invalid_input for an invalid ray or mesh.
+[[nodiscard]] std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh,
+                                                       TriangleRule rule = TriangleRule::owned);
+
+// The baseline people write: Möller–Trumbore in doubles (intersect_naive) on every triangle of the leaves the
+// BVH returns, pruned by the best computed t, the smallest computed t kept (ties to the smallest index). No
+// guarantee. No validation beyond the walk's (throws invalid_input for an invalid ray).
+[[nodiscard]] std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mesh);
+
 // ---- inside ---------------------------------------------------------------------------------------------------
 
 enum class PointLocation : std::uint8_t {

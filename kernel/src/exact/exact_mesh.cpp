@@ -25,7 +25,32 @@ bool within(const mpq_class& x, const mpq_class& a, const mpq_class& b) {
   return (a <= x && x <= b) || (b <= x && x <= a);
 }
 
+// t = num/den of the ray against the triangle (den ≠ 0).
+mpq_class triangle_t(const Point& o, const Point& d, const Triangle& triangle) {
+  const Point a = point(triangle.a), b = point(triangle.b), c = point(triangle.c);
+  Point e1, e2, ao;
+  for (std::size_t k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], ao[k] = a[k] - o[k];
+  const Point n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  const mpq_class num = ao[0] * n[0] + ao[1] * n[1] + ao[2] * n[2];
+  const mpq_class den = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+  return num / den;
+}
+
 }  // namespace
+
+int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& second) {
+  const Point o = point(ray.origin), d = point(ray.direction);
+  const int c = cmp(triangle_t(o, d, first), triangle_t(o, d, second));
+  return (c > 0) - (c < 0);
+}
+
+int compare_rationals(const Rational& x, const Rational& y) {
+  mpq_class a(x.numerator + "/" + x.denominator), b(y.numerator + "/" + y.denominator);
+  a.canonicalize();
+  b.canonicalize();
+  const int c = cmp(a, b);
+  return (c > 0) - (c < 0);
+}
 
 int orient2d_sign(const Vec3& p, const Vec3& q, const Vec3& r, int i, int j) {
   return orient2d(point(p), point(q), point(r), i, j);

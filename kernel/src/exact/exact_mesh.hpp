@@ -18,4 +18,11 @@ namespace raykernel::detail::exact {
 // N_k ≠ 0, inside or on the boundary; for a degenerate triangle (N = 0), on one of its three edges.
 [[nodiscard]] bool point_on_triangle(const Vec3& p, const Triangle& triangle);
 
+// The sign of t1 − t2 for the exact t = num/den of docs/contract.md §6 of `ray` against two triangles whose den are
+// nonzero: t = ((a − o)·N)/(d·N), N = (b − a) × (c − a). For nearest_hit(ray, mesh) when the rounded t tie.
+[[nodiscard]] int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& second);
+
+// The sign of x − y for two exact rationals (lowest terms or not, denominators nonzero).
+[[nodiscard]] int compare_rationals(const Rational& x, const Rational& y);
+
 }  // namespace raykernel::detail::exact
