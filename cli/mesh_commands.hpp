@@ -31,7 +31,8 @@ int inside_stream(std::istream& in, std::ostream& out, std::ostream& err, const 
                   InsideCounts& counts);
 
 struct MeshNearestOptions {
-  Method method = Method::certified;  // exact: every triangle in rationals; naive: Möller–Trumbore via the BVH
+  Method method = Method::certified;  // exact: every triangle in rationals (nearest_hit_exact); naive:
+                                      // Möller–Trumbore via the BVH (nearest_hit_naive)
   TriangleRule rule = TriangleRule::owned;
   bool exact_t = false;  // append the winner's exact t as P/Q
   bool hex = false;
@@ -43,8 +44,6 @@ struct MeshNearestCounts {
   std::uint64_t invalid = 0;
   std::uint64_t hits = 0;
   std::uint64_t misses = 0;
-  std::uint64_t triangles_tested = 0;                // certified path
-  std::uint64_t comparison_stage[stage_count] = {};  // comparisons of two t values, by the stage that decided
 };
 
 // Answers every ray line of `rays` (`ox oy oz dx dy dz`) with `hit K T` (K the triangle index) or `miss`, as
