@@ -24,6 +24,9 @@ commands:
   inside --mesh FILE [POINTS|-]
                       whether each point is inside, outside or on a closed mesh, exactly
                       (raykernel inside --help)
+  watertight FILE [--rays N] [--seed S] [--png OUT]
+                      count leaks, double hits and missed vertices along random lines: owned
+                      and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)
   triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
                       rule (raykernel triangle --help)
   render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
   else if (command == "render") status = run_render(args);
   else if (command == "triangle") status = run_triangle(args);
   else if (command == "inside") status = run_inside(args);
+  else if (command == "watertight") status = run_watertight(args);
   else {
     std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
     return exit_usage;

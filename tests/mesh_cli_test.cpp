@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <vector>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -173,6 +174,42 @@ TEST(MeshCli, UsageErrors) {
     EXPECT_FALSE(r.err.empty()) << args;
   }
   EXPECT_EQ(run("inside --help").status, 0);
+}
+
+// Each output row: the method's name, then leaks, double-hits, misses, missed-vertices.
+std::vector<std::string> row(const std::string& out, const std::string& method) {
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line))
+    if (line.starts_with(method)) {
+      std::istringstream words(line.substr(method.size()));
+      std::vector<std::string> w;
+      for (std::string x; words >> x;) w.push_back(x);
+      return w;
+    }
+  return {};
+}
+
+// On the closed octahedron the owned rule never leaks, never double-counts and never misses (docs/contract.md §6);
+// the closed rule leaks on lines through vertices: a line entering at the top vertex (0, 0, 1) meets the four
+// triangles around it and leaves through one face, 5 hits.
+TEST(MeshCli, Watertight) {
+  const std::string path = temp_path("oct.obj"), png = temp_path("watertight.png");
+  write_file(path, octahedron_obj);
+  const CliRun r = run("watertight " + path + " --rays 400 --seed 7 --png " + png);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("8 triangles, 6 vertices, closed"), std::string::npos) << r.out;
+  EXPECT_EQ(row(r.out, "owned (raykernel)"), (std::vector<std::string>{"0", "0", "0", "0"})) << r.out;
+  const auto closed = row(r.out, "closed (raykernel)");
+  ASSERT_EQ(closed.size(), 4u) << r.out;
+  EXPECT_GT(std::stoi(closed[0]), 0) << r.out;
+  EXPECT_EQ(closed[2], "0");  // the closed rule never misses a crossing
+  std::ifstream f(png, std::ios::binary);
+  EXPECT_TRUE(f.good());
+  EXPECT_EQ(run("watertight " + path + " --rays 0").status, 2);
+  EXPECT_EQ(run("watertight " + path + " --rays x").status, 2);
+  EXPECT_EQ(run("watertight").status, 2);
+  EXPECT_EQ(run("watertight " + temp_path("does-not-exist.obj")).status, 2);
 }
 
 // The three paths of the stream code on the hand-derived rays: the certified one and the exact brute force agree
