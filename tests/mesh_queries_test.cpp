@@ -18,6 +18,9 @@
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
+#include "exact/exact_mesh.hpp"
+#include "mesh/mesh_predicates.hpp"
+
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
@@ -276,6 +279,48 @@ class Totals : public ::testing::Environment {
   }
 };
 const auto* const totals = ::testing::AddGlobalTestEnvironment(new Totals);
+
+// ---- the filters of inside() against exact rationals ------------------------------------------------------------
+
+// A coordinate of one of several scales: grid values (many exact zeros and coplanar/collinear configurations),
+// values near the filters' range limits, subnormals, huge values, and arbitrary bit patterns.
+double filter_coordinate(int scale) {
+  switch (*rc::gen::inRange(0, 5)) {
+    case 0: return std::ldexp(static_cast<double>(*rc::gen::inRange(-4, 5)), scale);
+    case 1: return std::ldexp(static_cast<double>(*rc::gen::inRange<std::int64_t>(-(1LL << 53), 1LL << 53)), scale - 53);
+    case 2: return *rc::gen::element(0x1p-300, -0x1p-300, 0x1.fffffffffffffp-301, 0x1p300, 0x1.0000000000001p300,
+                                     0x1p-1074, -0x1p-1060, 0x1p-1022, 0.0, -0.0);
+    case 3: return std::ldexp(1.0 + std::ldexp(static_cast<double>(*rc::gen::inRange(-8, 9)), -52), scale);
+    default: {
+      const double x = std::bit_cast<double>(*rc::gen::arbitrary<std::uint64_t>());
+      return std::isfinite(x) ? x : 1.0;
+    }
+  }
+}
+
+Vec3 filter_point(int scale) { return {filter_coordinate(scale), filter_coordinate(scale), filter_coordinate(scale)}; }
+
+RC_GTEST_PROP(MeshFilters, Orient3dFilterNeverContradictsTheExactSign, ()) {
+  const int scale = *rc::gen::element(0, 0, -20, 30, -280, 280, -1000, 900);
+  const Vec3 o = filter_point(scale), a = filter_point(scale), b = filter_point(scale);
+  // c: random, or exactly coplanar-ish (a + b − o computed in doubles: often exact on grids).
+  const Vec3 c = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{a.x + b.x - o.x, a.y + b.y - o.y, a.z + b.z - o.z};
+  RC_PRE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+  const int filtered = mesh_detail::orient3d_filter(o, a, b, c);
+  if (filtered != 0) RC_ASSERT(filtered == detail::exact::det3_sign(o, a, b, c));
+  RC_CLASSIFY(filtered != 0, "decided by the filter");
+}
+
+RC_GTEST_PROP(MeshFilters, Orient2dFilterNeverContradictsTheExactSign, ()) {
+  const int scale = *rc::gen::element(0, 0, -20, 30, -280, 280, -1000, 900, 1020);
+  const Vec3 p = filter_point(scale), q = filter_point(scale);
+  const Vec3 r = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{2 * q.x - p.x, 2 * q.y - p.y, 2 * q.z - p.z};
+  RC_PRE(std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z));
+  const int i = *rc::gen::inRange(0, 3), j = (i + 1 + *rc::gen::inRange(0, 2)) % 3;
+  const int filtered = mesh_detail::orient2d_filter(p, q, r, i, j);
+  if (filtered != 0) RC_ASSERT(filtered == detail::exact::orient2d_sign(p, q, r, i, j));
+  RC_CLASSIFY(filtered != 0, "decided by the filter");
+}
 
 // ---- hand-derived cases -------------------------------------------------------------------------------------
 

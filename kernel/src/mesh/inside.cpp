@@ -67,7 +67,9 @@ Crossing crossing(const AxisRay& r, const Triangle& tri) {
   range(r.k, lo_k, hi_k);
   if (r.s > 0 ? hi_k < pk : lo_k > pk) return {false, 0};  // the whole triangle behind the origin
   const bool origin_in_box = lo_k <= pk && pk <= hi_k;
-  if (origin_in_box && detail::exact::point_on_triangle(p, tri)) return {true, 0};
+  // On the triangle only if coplanar: the filtered orientation rules most triangles out before the exact test.
+  const int snum = origin_in_box ? mesh_detail::orient3d_sign(p, tri.a, tri.b, tri.c) : 0;
+  if (origin_in_box && snum == 0 && detail::exact::point_on_triangle(p, tri)) return {true, 0};
 
   // den = d·N = s·orient2d(b, c, a); π(q, w) = s·orient2d(q, w, o); the tie-break vector d × (w − q) has the
   // components s·(e_k × (w − q)): 0 on axis k, −s(w_j − q_j) on axis i, s(w_i − q_i) on axis j.
@@ -86,7 +88,7 @@ Crossing crossing(const AxisRay& r, const Triangle& tri) {
   // t > 0 exactly when the crossing point lies beyond the origin along the ray: certain when the whole triangle
   // does; else the sign of num = det(a − o, b − o, c − o), exactly. (t = 0 cannot happen: the origin would lie on
   // the closed triangle, which was ruled out.)
-  auto num_sign = [&] { return origin_in_box ? detail::exact::det3_sign(p, tri.a, tri.b, tri.c) : sden; };
+  auto num_sign = [&] { return origin_in_box ? snum : sden; };
   const TriangleClassification c = detail::classify_triangle(
       TriangleRule::owned, [&] { return sden; }, pi_sign, tie_break_signs, num_sign, [] { return true; });
   return {false, c.relation == TriangleRelation::hit ? sden : 0};

@@ -44,6 +44,27 @@ namespace raykernel::bounds {
 inline constexpr double orient2d_filter_relative = 0x1p-51;
 inline constexpr double orient2d_filter_absolute = 0x1p-1071;
 
+// ---------------------------------------------------------------------------------------------------------
+// orient3d_filter — the sign of det(a − o, b − o, c − o) from binary64
+//
+// Formula: the differences ad = a ⊖ o, bd = b ⊖ o, cd = c ⊖ o; D = ad_z ⊗ (bd_x ⊗ cd_y ⊖ cd_x ⊗ bd_y) ⊕
+//          bd_z ⊗ (cd_x ⊗ ad_y ⊖ ad_x ⊗ cd_y) ⊕ cd_z ⊗ (ad_x ⊗ bd_y ⊖ bd_x ⊗ ad_y) (Shewchuk's orient3d, in his
+//          order); P = (|bd_x ⊗ cd_y| ⊕ |cd_x ⊗ bd_y|) ⊗ |ad_z| ⊕ (|cd_x ⊗ ad_y| ⊕ |ad_x ⊗ cd_y|) ⊗ |bd_z| ⊕
+//          (|ad_x ⊗ bd_y| ⊕ |bd_x ⊗ ad_y|) ⊗ |cd_z|;  D > A ⊗ P ⇒ positive, D < −(A ⊗ P) ⇒ negative, else uncertain.
+// Error bound: A = 2^-49. Shewchuk (1997, §4.3, o3derrboundA) shows |D − det| ≤ (7u + 56u²)·P for the computed
+//   D and P, u = 2^-53, the differences' roundings included, when no operation underflows or overflows; A ⊗ P is
+//   at least (7u + 56u²)P since A ≥ 2(7u + 56u²)/(1 − u) (one more rounding).
+// Valid range: each difference is 0 or has magnitude in [2^-300, 2^300] (checked; else uncertain): then every
+//   nonzero product of two is in [2^-600, 2^600] and of three in [2^-900, 2^900], and every sum of such terms
+//   stays below 2^903, so nothing underflows or overflows and Shewchuk's assumption holds. (A zero difference
+//   makes its products exact zeros. A difference of two doubles is rounded only when it is above the subnormal
+//   range.)
+// Certified by: Shewchuk's analysis with the range check above (not proved in Coq); tested against exact
+//   rationals through inside() == inside_exact (tests/mesh_queries_test.cpp).
+inline constexpr double orient3d_filter_relative = 0x1p-49;
+inline constexpr double orient3d_filter_min_difference = 0x1p-300;
+inline constexpr double orient3d_filter_max_difference = 0x1p300;
+
 }  // namespace raykernel::bounds
 
 namespace raykernel::mesh_detail {
@@ -60,6 +81,34 @@ namespace raykernel::mesh_detail {
   const double det = left - right;
   const double bound = bounds::orient2d_filter_relative * (std::fabs(left) + std::fabs(right)) + bounds::orient2d_filter_absolute;
   return (det > bound) - (det < -bound);
+}
+
+// orient3d_filter (above): the sign of det(a − o, b − o, c − o), or 0 when uncertain (never a certified zero).
+[[nodiscard]] inline int orient3d_filter(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) noexcept {
+  const double adx = a.x - o.x, ady = a.y - o.y, adz = a.z - o.z;
+  const double bdx = b.x - o.x, bdy = b.y - o.y, bdz = b.z - o.z;
+  const double cdx = c.x - o.x, cdy = c.y - o.y, cdz = c.z - o.z;
+  bool in_range = true;
+  for (const double v : {adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz}) {
+    const double m = std::fabs(v);
+    in_range &= m == 0 || (m >= bounds::orient3d_filter_min_difference && m <= bounds::orient3d_filter_max_difference);
+  }
+  if (!in_range) return 0;
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  const double bound = bounds::orient3d_filter_relative * permanent;
+  return (det > bound) - (det < -bound);
+}
+
+// The exact sign of det(a − o, b − o, c − o).
+[[nodiscard]] inline int orient3d_sign(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int s = orient3d_filter(o, a, b, c);
+  return s != 0 ? s : detail::exact::det3_sign(o, a, b, c);
 }
 
 // The exact sign of orient2d(p, q, r) in the plane of axes (i, j).
