@@ -314,11 +314,16 @@ RC_GTEST_PROP(MeshFilters, Orient3dFilterNeverContradictsTheExactSign, ()) {
 RC_GTEST_PROP(MeshFilters, Orient2dFilterNeverContradictsTheExactSign, ()) {
   const int scale = *rc::gen::element(0, 0, -20, 30, -280, 280, -1000, 900, 1020);
   const Vec3 p = filter_point(scale), q = filter_point(scale);
-  const Vec3 r = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{2 * q.x - p.x, 2 * q.y - p.y, 2 * q.z - p.z};
+  Vec3 r = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{2 * q.x - p.x, 2 * q.y - p.y, 2 * q.z - p.z};
+  if (*rc::gen::inRange(0, 4) == 0) r.x = *rc::gen::element(p.x, q.x);  // shared coordinates: exact zeros
+  if (*rc::gen::inRange(0, 4) == 0) r.y = *rc::gen::element(p.y, q.y);
+  if (*rc::gen::inRange(0, 4) == 0) r.z = *rc::gen::element(p.z, q.z);
   RC_PRE(std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z));
   const int i = *rc::gen::inRange(0, 3), j = (i + 1 + *rc::gen::inRange(0, 2)) % 3;
   const int filtered = mesh_detail::orient2d_filter(p, q, r, i, j);
-  if (filtered != 0) RC_ASSERT(filtered == detail::exact::orient2d_sign(p, q, r, i, j));
+  const int exact = detail::exact::orient2d_sign(p, q, r, i, j);
+  if (filtered != 0) RC_ASSERT(filtered == exact);
+  RC_ASSERT(mesh_detail::orient2d_sign(p, q, r, i, j) == exact);  // with its exact-zero shortcut
   RC_CLASSIFY(filtered != 0, "decided by the filter");
 }
 

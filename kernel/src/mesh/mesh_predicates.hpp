@@ -113,6 +113,12 @@ namespace raykernel::mesh_detail {
 
 // The exact sign of orient2d(p, q, r) in the plane of axes (i, j).
 [[nodiscard]] inline int orient2d_sign(const Vec3& p, const Vec3& q, const Vec3& r, int i, int j) {
+  // Both products have an exactly zero factor — a triangle parallel to the ray's axis, a point sharing a
+  // coordinate with two vertices: orient2d is exactly 0, which the filter cannot certify. (A difference of two
+  // doubles is 0 exactly when they are equal, gradual underflow included.)
+  const bool left_zero = coordinate(p, i) == coordinate(r, i) || coordinate(q, j) == coordinate(r, j);
+  const bool right_zero = coordinate(p, j) == coordinate(r, j) || coordinate(q, i) == coordinate(r, i);
+  if (left_zero && right_zero) return 0;
   const int s = orient2d_filter(p, q, r, i, j);
   return s != 0 ? s : detail::exact::orient2d_sign(p, q, r, i, j);
 }
