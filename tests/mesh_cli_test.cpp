@@ -149,7 +149,7 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
   for (const Bad& b : bad) {
     const std::string path = temp_path(b.name);
     write_file(path, b.text);
-    for (const std::string command : {"nearest --mesh ", "inside --mesh "}) {
+    for (const std::string& command : {"nearest --mesh ", "inside --mesh "}) {
       const CliRun r = run(command + path, "0 0 0 1 0 0\n");
       EXPECT_EQ(r.status, 2) << b.name;
       EXPECT_EQ(r.out, "") << b.name;
@@ -165,7 +165,7 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
 TEST(MeshCli, UsageErrors) {
   const std::string path = temp_path("oct.obj");
   write_file(path, octahedron_obj);
-  for (const std::string args : {"nearest --mesh " + path + " --planes " + path, "nearest --rule=closed --planes " + path,
+  for (const std::string& args : {"nearest --mesh " + path + " --planes " + path, "nearest --rule=closed --planes " + path,
                                  "nearest --mesh " + path + " --rule=open", std::string("nearest --mesh"), std::string("inside"),
                                  "inside --mesh " + path + " --mesh " + path, "inside --mesh " + path + " --bogus"}) {
     const CliRun r = run(args, "0 0 0\n");
