@@ -149,7 +149,7 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
   for (const Bad& b : bad) {
     const std::string path = temp_path(b.name);
     write_file(path, b.text);
-    for (const std::string& command : {"nearest --mesh ", "inside --mesh "}) {
+    for (const char* command : {"nearest --mesh ", "inside --mesh "}) {
       const CliRun r = run(command + path, "0 0 0 1 0 0\n");
       EXPECT_EQ(r.status, 2) << b.name;
       EXPECT_EQ(r.out, "") << b.name;
