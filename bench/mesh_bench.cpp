@@ -6,6 +6,9 @@
 //   mesh/bvh_traverse/<mesh>        rays/s of the certified BVH walk alone: every leaf whose box the ray may
 //                                   meet (no bound), counting candidate triangles — the cost floor of the
 //                                   exact nearest hit to come
+//   mesh/certified/<mesh>           rays/s of nearest_hit(ray, PreparedMesh): the exact nearest hit (owned rule) —
+//                                   the brute-force answer of docs/contract.md §7 — through the BVH
+//   inside/certified/<mesh>         points/s of inside(point, PreparedMesh), exact
 //   mesh/naive/<mesh>               rays/s of a nearest hit through the same BVH with Möller–Trumbore in
 //                                   doubles (no guarantee), pruning by its t
 //   mesh/{embree,embree_robust}/<mesh>   rays/s of rtcIntersect1 in Embree's default and robust modes (float
@@ -20,6 +23,7 @@
 #include "cgal_mesh_baselines.hpp"
 
 #include <raykernel/bvh.hpp>
+#include <raykernel/mesh_queries.hpp>
 #include <raykernel/io/mesh_file.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
@@ -70,6 +74,7 @@ struct Fixture {
   std::vector<Ray> rays;
   std::vector<Vec3> points;
   std::unique_ptr<MeshBvh> bvh;
+  std::unique_ptr<PreparedMesh> prepared;
   std::unique_ptr<CgalMeshQueries> cgal;
 #ifdef RAYKERNEL_HAVE_EMBREE
   std::unique_ptr<baseline::EmbreeScene> embree[2];
@@ -211,6 +216,32 @@ void register_all() {
             while (const auto leaf = walk.next()) candidates += leaf->triangles.size();
             return candidates;
           });
+    })->Apply(threads);
+
+    benchmark::RegisterBenchmark(("mesh/certified/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) {
+            const auto hit = nearest_hit(r, *f.prepared);
+            return hit ? std::uint64_t{hit->triangle} : 0;
+          });
+    })->Apply(threads);
+
+    benchmark::RegisterBenchmark(("inside/certified/" + m).c_str(), [m](benchmark::State& state) {
+      Fixture* f;
+      {
+        std::lock_guard lock(fixture_mutex);
+        f = &fixture(m);
+        part(f->prepared, [&] { return std::make_unique<PreparedMesh>(f->mesh); });
+      }
+      std::size_t i = static_cast<std::size_t>(state.thread_index()) * 7919 % f->points.size();
+      std::int64_t sum = 0;
+      for (auto _ : state) {
+        sum += static_cast<int>(inside(f->points[i], *f->prepared));
+        if (++i == f->points.size()) i = 0;
+      }
+      benchmark::DoNotOptimize(sum);
+      set_rate(state, 1);
     })->Apply(threads);
 
     benchmark::RegisterBenchmark(("mesh/naive/" + m).c_str(), [m](benchmark::State& state) {

@@ -1,6 +1,7 @@
 // The raykernel command-line tool: dispatches to the subcommands.
 #include "commands.hpp"
 #include "io.hpp"
+#include "mesh_commands.hpp"
 #include "text_format.hpp"
 #include "triangle_command.hpp"
 
@@ -18,6 +19,14 @@ commands:
   classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
+  nearest --mesh FILE [RAYS|-]
+                      the first triangle of a mesh (OBJ, PLY, STL, OFF) each ray hits, exactly
+  inside --mesh FILE [POINTS|-]
+                      whether each point is inside, outside or on a closed mesh, exactly
+                      (raykernel inside --help)
+  watertight FILE [--rays N] [--seed S] [--png OUT]
+                      count leaks, double hits and missed vertices along random lines: owned
+                      and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)
   triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
                       rule (raykernel triangle --help)
   render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
@@ -50,6 +59,8 @@ int main(int argc, char** argv) {
   else if (command == "nearest") status = run_nearest(args);
   else if (command == "render") status = run_render(args);
   else if (command == "triangle") status = run_triangle(args);
+  else if (command == "inside") status = run_inside(args);
+  else if (command == "watertight") status = run_watertight(args);
   else {
     std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
     return exit_usage;

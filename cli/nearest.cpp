@@ -1,5 +1,6 @@
 // raykernel nearest: the first plane each ray hits (docs/contract.md §4).
 #include "commands.hpp"
+#include "mesh_commands.hpp"
 #include "options.hpp"
 #include "text_format.hpp"
 #include "text_input.hpp"
@@ -15,6 +16,7 @@ namespace raykernel::cli {
 namespace {
 
 constexpr const char* nearest_help = R"(usage: raykernel nearest --planes FILE [options] [--] [RAYS|-]
+       raykernel nearest --mesh FILE [--rule=owned|closed] [options] [--] [RAYS|-]
 
 For each ray, the plane it hits first: among the planes whose relation is hit (t >= 0), the
 one with the smallest exact t = ((p - o).n) / (d.n); ties go to the smallest index.
@@ -32,8 +34,16 @@ strtod reads it back exactly. Parallel, in-plane and behind planes are never hit
 are compared exactly, never as rounded doubles: planes whose t differ by less than an ulp are
 ordered correctly, and equal t tie.
 
+With --mesh, the triangle it hits first: among the triangles of the mesh in FILE (OBJ, PLY, STL
+or OFF; triangle K counted from 0 in file order, polygons fanned) whose relation under the rule
+is hit (raykernel triangle --help), the one with the smallest exact t, ties to the smallest K;
+the answer is hit K T or miss. A file that is not a mesh is exit status 2, reported as
+raykernel: FILE:LINE: REASON (or FILE: byte N: REASON), with nothing on standard output.
+
 options:
-  --planes FILE                  the planes (required)
+  --planes FILE                  the planes (this or --mesh is required)
+  --mesh FILE                    a triangle mesh instead of planes
+  --rule=owned|closed            with --mesh: which points of a triangle count (default owned)
   --path=certified|exact|naive   which computation answers (default certified; naive is the
                                  textbook loop in plain doubles, without guarantees)
   --exact-t                      append the winner's exact t as P/Q in lowest terms
@@ -147,8 +157,9 @@ std::string describe(const NearestCounts& c, Method method) {
 
 int run_nearest(const std::vector<std::string>& args) {
   NearestOptions options;
-  std::string planes_path, rays_path;
-  bool have_planes = false, have_rays = false;
+  std::string planes_path, rays_path, mesh_path;
+  bool have_planes = false, have_rays = false, have_mesh = false, have_rule = false;
+  TriangleRule rule = TriangleRule::owned;
   bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -183,13 +194,44 @@ int run_nearest(const std::vector<std::string>& args) {
         return exit_usage;
       }
       have_planes = true;
+    } else if (a == "--mesh" || a.starts_with("--mesh=")) {
+      if (have_mesh) {
+        std::cerr << "raykernel nearest: --mesh given twice\n";
+        return exit_usage;
+      }
+      if (a == "--mesh") {
+        if (i + 1 >= args.size()) {
+          std::cerr << "raykernel nearest: --mesh needs a file\n";
+          return exit_usage;
+        }
+        mesh_path = args[++i];
+      } else {
+        mesh_path = a.substr(7);
+      }
+      have_mesh = true;
+    } else if (a == "--rule" || a.starts_with("--rule=")) {
+      if (!parse_rule_option("nearest", args, i, rule)) return exit_usage;
+      have_rule = true;
     } else {
       std::cerr << "raykernel nearest: unknown option " << quote(a) << " (see raykernel nearest --help)\n";
       return exit_usage;
     }
   }
+  if (have_planes && have_mesh) {
+    std::cerr << "raykernel nearest: --planes and --mesh cannot be given together\n";
+    return exit_usage;
+  }
+  if (have_rule && !have_mesh) {
+    std::cerr << "raykernel nearest: --rule needs --mesh (planes have no rule)\n";
+    return exit_usage;
+  }
+  if (have_mesh) {
+    const MeshNearestOptions mesh_options{
+        .method = options.method, .rule = rule, .exact_t = options.exact_t, .hex = options.hex, .stats = options.stats};
+    return run_mesh_nearest(mesh_path, have_rays ? rays_path : "-", mesh_options);
+  }
   if (!have_planes) {
-    std::cerr << "raykernel nearest: --planes FILE is required (see raykernel nearest --help)\n";
+    std::cerr << "raykernel nearest: --planes FILE or --mesh FILE is required (see raykernel nearest --help)\n";
     return exit_usage;
   }
 

@@ -67,6 +67,27 @@ std::string no_stages_text(Method method) {
   return std::string("path ") + (method == Method::exact ? "exact" : "naive") + ": no stages\n";
 }
 
+bool parse_rule_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
+                       TriangleRule& rule) {
+  const std::string& a = args[i];
+  std::string value;
+  if (a.starts_with("--rule=")) {
+    value = a.substr(7);
+  } else if (a == "--rule" && i + 1 < args.size()) {
+    value = args[++i];
+  } else {
+    std::cerr << "raykernel " << command << ": --rule needs a value: owned or closed\n";
+    return false;
+  }
+  if (value == "owned") rule = TriangleRule::owned;
+  else if (value == "closed") rule = TriangleRule::closed;
+  else {
+    std::cerr << "raykernel " << command << ": unknown rule " << quote(value) << " (owned or closed)\n";
+    return false;
+  }
+  return true;
+}
+
 std::string stage_counts_text(const std::uint64_t* counts) {
   std::string out;
   for (int k = 0; k < stage_count; ++k) {

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include <raykernel/triangle.hpp>
+
 namespace raykernel::cli {
 
 // Reads `--path=X` or `--path X` at args[i] (advancing i past X in the second form) into `method`. On a
@@ -64,6 +66,11 @@ enum class Argument { end_of_options, option, operand };
 
 // "filter N, compensated N, expansion N, exact N" for counts indexed by raykernel::Stage.
 [[nodiscard]] std::string stage_counts_text(const std::uint64_t* counts);
+
+// `--rule=X` or `--rule X` at args[i] (advancing i past X in the second form), X owned or closed; false after
+// "raykernel COMMAND: ..." on stderr when X is missing or unknown.
+[[nodiscard]] bool parse_rule_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
+                                     TriangleRule& rule);
 
 // An invalid query line (docs/contract.md §3): "invalid REASON" on `out`, "raykernel: line N: REASON" on `err`.
 void report_invalid_line(std::ostream& out, std::ostream& err, std::uint64_t line_number, const std::string& reason);

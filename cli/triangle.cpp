@@ -58,26 +58,6 @@ bool crosses(TriangleRelation r) {
   return r == TriangleRelation::hit || r == TriangleRelation::behind || r == TriangleRelation::miss;
 }
 
-// `--rule=X` or `--rule X` at args[i] (advancing i past X in the second form).
-bool parse_rule_option(const std::vector<std::string>& args, std::size_t& i, TriangleRule& rule) {
-  const std::string& a = args[i];
-  std::string value;
-  if (a.starts_with("--rule=")) {
-    value = a.substr(7);
-  } else if (a == "--rule" && i + 1 < args.size()) {
-    value = args[++i];
-  } else {
-    std::cerr << "raykernel triangle: --rule needs a value: owned or closed\n";
-    return false;
-  }
-  if (value == "owned") rule = TriangleRule::owned;
-  else if (value == "closed") rule = TriangleRule::closed;
-  else {
-    std::cerr << "raykernel triangle: unknown rule " << quote(value) << " (owned or closed)\n";
-    return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -186,7 +166,7 @@ int run_triangle(const std::vector<std::string>& args) {
     } else if (a == "--exact") {
       options.exact_t = true;
     } else if (a == "--rule" || a.starts_with("--rule=")) {
-      if (!parse_rule_option(args, i, options.rule)) return exit_usage;
+      if (!parse_rule_option("triangle", args, i, options.rule)) return exit_usage;
     } else if (a == "--exact-t") {  // classify's spelling; docs/contract.md §6 says --exact
       std::cerr << "raykernel triangle: unknown option '--exact-t' (triangle's option is --exact)\n";
       return exit_usage;

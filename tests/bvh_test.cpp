@@ -173,7 +173,23 @@ bool closed_rule_hit(const Ray& r, const Triangle& t, double bound) {
 
 // ---- The box test --------------------------------------------------------------------------------------
 
-// Checks the certified test against the exact entry; returns whether the exact ray meets the box.
+// A node whose child `slot` is `b` and whose other slots in use hold `other` (empty slots: the empty box).
+BvhNode node_with(const Box3& b, int slot, int children, const Box3& other) {
+  BvhNode n{};
+  for (int s = 0; s < BvhNode::width; ++s) {
+    const Box3 x = s == slot ? b : s < children ? other : Box3{{inf, inf, inf}, {-inf, -inf, -inf}};
+    const double f[6] = {x.lo.x, x.lo.y, x.lo.z, x.hi.x, x.hi.y, x.hi.z};
+    for (int k = 0; k < 6; ++k) n.bounds[static_cast<std::size_t>(k)][static_cast<std::size_t>(s)] = f[k];
+    n.first[static_cast<std::size_t>(s)] = 0;
+    n.count[static_cast<std::size_t>(s)] = 1;
+  }
+  n.children = static_cast<std::uint32_t>(children);
+  return n;
+}
+
+// Checks the certified test against the exact entry; returns whether the exact ray meets the box. The
+// traversal's four-lane form, with the box in a random slot of a node, must give the scalar test's answer and
+// entry bound bit for bit (each lane performs the scalar operations).
 bool check_box(const Ray& r, const Box3& b, double t0, double t1, const std::array<double, 3>& magnitude) {
   const auto slabs = ray_box_slabs(r, magnitude);
   const std::optional<double> got = ray_box_entry(slabs, b, t0, t1);
@@ -182,6 +198,14 @@ bool check_box(const Ray& r, const Box3& b, double t0, double t1, const std::arr
     RC_ASSERT(got.has_value());
     RC_ASSERT(q(*got) <= *exact);
   }
+  const int children = *rc::gen::inRange(1, BvhNode::width + 1);
+  const int slot = *rc::gen::inRange(0, children);
+  const Box3 other = *rc::gen::element(b, Box3{{-1, -1, -1}, {1, 1, 1}}, Box3{{inf, inf, inf}, {-inf, -inf, -inf}});
+  std::array<double, BvhNode::width> entries{};
+  const unsigned met = ray_box_entries(slabs, node_with(b, slot, children, other), t0, t1, entries);
+  RC_ASSERT((met >> children) == 0u);
+  RC_ASSERT(((met >> slot) & 1u) == static_cast<unsigned>(got.has_value()));
+  if (got) RC_ASSERT(std::bit_cast<std::uint64_t>(entries[static_cast<std::size_t>(slot)]) == std::bit_cast<std::uint64_t>(*got));
   return exact.has_value();
 }
 
@@ -402,7 +426,7 @@ RC_GTEST_PROP(Bvh, VisitsEveryTriangleTheExactRayMeets, ()) {
     mesh = &t.mesh;
     bvh = &t.bvh;
   }
-  const Box3& root = bvh->nodes()[0].bounds;
+  const Box3& root = bvh->bounds();
   const double s = std::max({bvh->magnitude()[0], bvh->magnitude()[1], bvh->magnitude()[2], 0x1p-1000}) * 2;
   const auto pick_triangle = [&] { return mesh->triangle(*rc::gen::inRange<std::size_t>(0, mesh->triangles.size())); };
   Ray ray;
@@ -429,9 +453,10 @@ RC_GTEST_PROP(Bvh, VisitsEveryTriangleTheExactRayMeets, ()) {
     }
     case 3: {  // a corner or a face point of a box of the hierarchy
       const BvhNode& n = bvh->nodes()[*rc::gen::inRange<std::size_t>(0, bvh->nodes().size())];
-      const Vec3 corner{*rc::gen::element(n.bounds.lo.x, n.bounds.hi.x), *rc::gen::element(n.bounds.lo.y, n.bounds.hi.y),
-                        *rc::gen::element(n.bounds.lo.z, n.bounds.hi.z)};
-      const auto p = testkit::edge_point(corner, n.bounds.hi, *rc::gen::inRange<std::int64_t>(0, 3), 1);
+      const Box3 b = n.box(*rc::gen::inRange(0, static_cast<int>(n.children)));
+      const Vec3 corner{*rc::gen::element(b.lo.x, b.hi.x), *rc::gen::element(b.lo.y, b.hi.y),
+                        *rc::gen::element(b.lo.z, b.hi.z)};
+      const auto p = testkit::edge_point(corner, b.hi, *rc::gen::inRange<std::int64_t>(0, 3), 1);
       ray = aimed_ray(p && *rc::gen::arbitrary<bool>() ? *p : corner, s);
       break;
     }
@@ -454,37 +479,52 @@ RC_GTEST_PROP(Bvh, VisitsEveryTriangleTheExactRayMeets, ()) {
 }
 
 TEST(Bvh, StructureIsExactAndComplete) {
-  // Every triangle in exactly one leaf; every node's box is the exact min/max of the vertices below it.
+  // Every triangle in exactly one leaf; every child's box is the exact min/max of the vertices below it; the
+  // root's children cover bounds(); slots beyond `children` hold the empty box; depth() is the longest path.
   for (const TestMesh& t : test_meshes()) {
     SCOPED_TRACE(t.name);
     const auto nodes = t.bvh.nodes();
     std::vector<int> seen(t.mesh.triangles.size(), 0);
-    for (const BvhNode& n : nodes)
-      if (n.count > 0)
-        for (std::uint32_t i = n.first; i < n.first + n.count; ++i) ++seen[t.bvh.triangle_order()[i]];
-    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
-    // Boxes: recompute bottom-up.
-    std::function<Box3(std::uint32_t)> check = [&](std::uint32_t i) -> Box3 {
-      const BvhNode& n = nodes[i];
-      Box3 b{{inf, inf, inf}, {-inf, -inf, -inf}};
-      auto grow = [&](const Vec3& v) {
-        b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y), std::min(b.lo.z, v.z)};
-        b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y), std::max(b.hi.z, v.z)};
-      };
-      if (n.count > 0) {
-        for (std::uint32_t j = n.first; j < n.first + n.count; ++j) {
-          const Triangle tr = t.mesh.triangle(t.bvh.triangle_order()[j]);
-          grow(tr.a), grow(tr.b), grow(tr.c);
-        }
-      } else {
-        const Box3 l = check(i + 1), r = check(n.first);
-        grow(l.lo), grow(l.hi), grow(r.lo), grow(r.hi);
-      }
-      using Six = std::array<double, 6>;
-      EXPECT_EQ(std::bit_cast<Six>(b), std::bit_cast<Six>(n.bounds)) << "node " << i;
-      return b;
+    using Six = std::array<double, 6>;
+    auto grow = [](Box3& b, const Vec3& v) {
+      b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y), std::min(b.lo.z, v.z)};
+      b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y), std::max(b.hi.z, v.z)};
     };
-    check(0);
+    const Box3 empty{{inf, inf, inf}, {-inf, -inf, -inf}};
+    int depth = 0;
+    std::function<Box3(std::uint32_t, int)> check = [&](std::uint32_t i, int level) -> Box3 {
+      depth = std::max(depth, level);
+      const BvhNode& n = nodes[i];
+      EXPECT_GE(n.children, 1u);
+      EXPECT_LE(n.children, 4u);
+      Box3 all = empty;
+      for (int s = 0; s < BvhNode::width; ++s) {
+        if (s >= static_cast<int>(n.children)) {
+          EXPECT_EQ(std::bit_cast<Six>(n.box(s)), std::bit_cast<Six>(empty)) << "node " << i << " slot " << s;
+          continue;
+        }
+        Box3 b = empty;
+        if (n.is_leaf(s)) {
+          const auto slot = static_cast<std::size_t>(s);
+          for (std::uint32_t j = n.first[slot]; j < n.first[slot] + n.count[slot]; ++j) {
+            const std::uint32_t k = t.bvh.triangle_order()[j];
+            ++seen[k];
+            const Triangle tr = t.mesh.triangle(k);
+            grow(b, tr.a), grow(b, tr.b), grow(b, tr.c);
+          }
+        } else {
+          EXPECT_GT(n.first[static_cast<std::size_t>(s)], i) << "children after their parent";
+          b = check(n.first[static_cast<std::size_t>(s)], level + 1);
+        }
+        EXPECT_EQ(std::bit_cast<Six>(b), std::bit_cast<Six>(n.box(s))) << "node " << i << " slot " << s;
+        grow(all, b.lo), grow(all, b.hi);
+      }
+      return all;
+    };
+    const Box3 root = check(0, 1);
+    EXPECT_EQ(std::bit_cast<Six>(root), std::bit_cast<Six>(t.bvh.bounds()));
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
+    EXPECT_EQ(t.bvh.depth(), depth);
     EXPECT_LE(t.bvh.depth(), MeshBvh::max_depth);
   }
 }

@@ -3,6 +3,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -45,22 +46,43 @@ RTCRayHit ray_hit(const Ray& r, float t_max) {
   return rh;
 }
 
+// The context all_hits passes: Embree hands it to the filter, which appends each hit and rejects it.
+struct CollectingContext {
+  RTCIntersectContext context;  // first: Embree sees a pointer to it
+  std::vector<EmbreeScene::Hit>* hits;
+};
+
+void collect_hit(const RTCFilterFunctionNArguments* args) {
+  const auto* collecting = reinterpret_cast<const CollectingContext*>(args->context);
+  if (collecting->hits == nullptr) return;  // intersect() and intersect8(): accept the hit
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    collecting->hits->push_back({RTCHitN_primID(args->hit, args->N, i), RTCRayN_tfar(args->ray, args->N, i)});
+    args->valid[i] = 0;  // rejected: the traversal continues
+  }
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   Mode mode = Mode::fast;
+  bool collects = false;
   FloatConversion conversion;
+  std::vector<float> vertices;  // the float mesh
+  std::vector<std::array<std::uint32_t, 3>> triangles;
   ~Impl() {
     if (scene != nullptr) rtcReleaseScene(scene);
     if (device != nullptr) rtcReleaseDevice(device);
   }
 };
 
-EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads, bool collect_all_hits)
+    : impl_(std::make_unique<Impl>()) {
   if (const auto problem = validate(mesh)) throw std::invalid_argument("EmbreeScene: " + *problem);
   impl_->mode = mode;
+  impl_->collects = collect_all_hits;
   const std::string config = threads == 0 ? std::string() : "threads=" + std::to_string(threads);
   impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   if (impl_->device == nullptr) throw std::runtime_error("Embree: rtcNewDevice failed");
@@ -87,6 +109,9 @@ EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads) : impl_(
   }
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
     for (int j = 0; j < 3; ++j) indices[3 * k + static_cast<std::size_t>(j)] = mesh.triangles[k][static_cast<std::size_t>(j)];
+  impl_->vertices.assign(vertices, vertices + 3 * mesh.vertices.size());
+  impl_->triangles = mesh.triangles;
+  if (collect_all_hits) rtcSetGeometryIntersectFilterFunction(geometry, collect_hit);
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(impl_->scene, geometry);
   rtcReleaseGeometry(geometry);
@@ -102,19 +127,38 @@ EmbreeScene::Mode EmbreeScene::mode() const noexcept { return impl_->mode; }
 const FloatConversion& EmbreeScene::conversion() const noexcept { return impl_->conversion; }
 
 std::optional<EmbreeScene::Hit> EmbreeScene::intersect(const Ray& ray, float t_max) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  CollectingContext context{{}, nullptr};
+  rtcInitIntersectContext(&context.context);
   RTCRayHit rh = ray_hit(ray, t_max);
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(impl_->scene, &context.context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return Hit{rh.hit.primID, rh.ray.tfar};
 }
 
+std::vector<EmbreeScene::Hit> EmbreeScene::all_hits(const Ray& ray, float t_max) const {
+  if (!impl_->collects) throw std::logic_error("EmbreeScene::all_hits needs a scene built with collect_all_hits");
+  std::vector<Hit> hits;
+  CollectingContext context{{}, &hits};
+  rtcInitIntersectContext(&context.context);
+  RTCRayHit rh = ray_hit(ray, t_max);
+  rtcIntersect1(impl_->scene, &context.context, &rh);
+  return hits;
+}
+
+Mesh EmbreeScene::float_mesh() const {
+  Mesh m;
+  m.vertices.reserve(impl_->vertices.size() / 3);
+  for (std::size_t i = 0; i + 2 < impl_->vertices.size(); i += 3)
+    m.vertices.push_back({impl_->vertices[i], impl_->vertices[i + 1], impl_->vertices[i + 2]});
+  m.triangles = impl_->triangles;
+  return m;
+}
+
 bool EmbreeScene::occluded(const Ray& ray, float t_max) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  CollectingContext context{{}, nullptr};
+  rtcInitIntersectContext(&context.context);
   RTCRay r = ray_hit(ray, t_max).ray;
-  rtcOccluded1(impl_->scene, &context, &r);
+  rtcOccluded1(impl_->scene, &context.context, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
 
@@ -132,12 +176,17 @@ void EmbreeScene::intersect8(std::span<const Ray> rays, std::span<std::optional<
     packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  rtcIntersect8(valid, impl_->scene, &context, &packet);
+  CollectingContext context{{}, nullptr};
+  rtcInitIntersectContext(&context.context);
+  rtcIntersect8(valid, impl_->scene, &context.context, &packet);
   for (std::size_t i = 0; i < n && i < hits.size(); ++i)
     hits[i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID ? std::nullopt
                                                               : std::optional<Hit>(Hit{packet.hit.primID[i], packet.ray.tfar[i]});
+}
+
+Ray float_ray(const Ray& r) {
+  auto f = [](double x) { return static_cast<double>(static_cast<float>(x)); };
+  return {{f(r.origin.x), f(r.origin.y), f(r.origin.z)}, {f(r.direction.x), f(r.direction.y), f(r.direction.z)}};
 }
 
 void count_float_conversion(const Ray& ray, FloatConversion& into) {

@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace raykernel::baseline {
 
@@ -33,7 +34,9 @@ class EmbreeScene {
   // Builds the scene (one triangle geometry, the mesh's triangles in order: primID = triangle index).
   // Throws std::invalid_argument when validate(mesh) fails or a coordinate is beyond the float range, and
   // std::runtime_error when Embree reports an error. `threads` = 0: Embree's default (all cores).
-  EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads = 0);
+  // `collect_all_hits`: install an intersection filter so that all_hits() can list every hit Embree's
+  // traversal reports (it costs the other queries a callback per candidate hit).
+  EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads = 0, bool collect_all_hits = false);
   ~EmbreeScene();
   EmbreeScene(EmbreeScene&&) noexcept;
   EmbreeScene& operator=(EmbreeScene&&) noexcept;
@@ -48,6 +51,13 @@ class EmbreeScene {
     float t;
   };
   [[nodiscard]] std::optional<Hit> intersect(const Ray& ray, float t_max = 1e38f) const;
+  // Every hit Embree's rtcIntersect1 traversal reports along the float ray for t in [0, t_max], in the order
+  // reported (an intersection filter records each and rejects it, so that the traversal goes on): how Embree
+  // would count crossings. Needs a scene built with collect_all_hits (throws std::logic_error otherwise).
+  // Thread-safe.
+  [[nodiscard]] std::vector<Hit> all_hits(const Ray& ray, float t_max = 1e38f) const;
+  // The float mesh Embree intersects, as doubles (each coordinate the float it was rounded to).
+  [[nodiscard]] Mesh float_mesh() const;
   // rtcOccluded1: whether Embree finds any hit with t in [0, t_max].
   [[nodiscard]] bool occluded(const Ray& ray, float t_max = 1e38f) const;
   // rtcIntersect8 over up to 8 rays at once: hits[i] for rays[i]. Thread-safe.
@@ -60,5 +70,8 @@ class EmbreeScene {
 
 // How converting one ray's origin and direction to float changes them (added to `into`).
 void count_float_conversion(const Ray& ray, FloatConversion& into);
+
+// The ray Embree intersects: each component rounded to the nearest float (as doubles).
+[[nodiscard]] Ray float_ray(const Ray& ray);
 
 }  // namespace raykernel::baseline

@@ -1,20 +1,23 @@
 // raykernel/bvh.hpp: a bounding volume hierarchy over a mesh's triangles, and a ray traversal that never
 // misses a box the exact ray meets.
 //
-// The hierarchy is built once per mesh (binned surface-area heuristic, deterministic) and stored flat:
-// each node's box is the exact min/max of its triangles' vertex doubles, so it contains them exactly. The
-// traversal asks, for each box, whether the ray o + t·d, t in [t_min, t_max], may meet it. Its answer is
-// conservative in one direction only: a box the exact ray meets is never rejected, and the lower bound it
-// reports for the box's exact entry t is never above that t (kernel/src/mesh/ray_box.hpp has the argument,
-// step by step, with overflow, underflow, zero and tiny direction components). A box may be reported that
-// the exact ray just misses; the exact primitive test decides those.
+// The hierarchy is built once per mesh (binned surface-area heuristic, deterministic, then collapsed to four
+// children per node) and stored flat: each child's box is the exact min/max of its triangles' vertex
+// doubles, so it contains them exactly. The traversal asks, for each box, whether the ray o + t·d, t in
+// [t_min, t_max], may meet it. Its answer is conservative in one direction only: a box the exact ray meets is
+// never rejected, and the lower bound it reports for the box's exact entry t is never above that t
+// (kernel/src/mesh/ray_box.hpp has the argument, step by step, with overflow, underflow, zero and tiny
+// direction components). A box may be reported that the exact ray just misses; the exact primitive test
+// decides those. The four children of a node are tested in one vector pass (AVX2 where the CPU has it), each
+// lane performing exactly the scalar test's operations, so the argument (and proofs/RayBox.v) covers every
+// lane.
 //
-// Leaves come nearest box first (each inner node's nearer child first; a deferred child is skipped when
-// popped if its entry bound already exceeds the caller's bound), so a nearest-hit search can prune: the
-// caller passes to next() an upper bound of the best exact t found so far, and a box is skipped only when
-// its certified entry lower bound is strictly greater, i.e. when its exact entry t is provably greater
-// than the best exact t — so ties between equal exact t values (broken by triangle index, docs/contract.md
-// §7) are never lost.
+// Leaves come nearest box first (each node's children in the order of their entry bounds; a deferred child is
+// skipped when popped if its entry bound already exceeds the caller's bound), so a nearest-hit search can
+// prune: the caller passes to next() an upper bound of the best exact t found so far, and a box is skipped
+// only when its certified entry lower bound is strictly greater, i.e. when its exact entry t is provably
+// greater than the best exact t — so ties between equal exact t values (broken by triangle index,
+// docs/contract.md §7) are never lost.
 #pragma once
 
 #include <raykernel/mesh.hpp>
@@ -33,12 +36,23 @@ struct Box3 {
   Vec3 lo, hi;
 };
 
-// One node of the flattened hierarchy, in depth-first order: an inner node's first child is the next node.
-struct BvhNode {
-  Box3 bounds;          // exact: min/max of the vertex doubles of every triangle below
-  std::uint32_t first;  // leaf: first position in MeshBvh::triangle_order(); inner: index of the second child
-  std::uint32_t count;  // leaf: number of triangles (≥ 1); inner: 0
-  std::uint8_t axis;    // inner: the axis its children were split along
+// One node of the flattened hierarchy: up to four children, their boxes side by side (structure of arrays,
+// one 32-byte row per face, so that one vector load reads a face of all four boxes), then what each child is.
+// 256 bytes, aligned to cache lines.
+struct alignas(64) BvhNode {
+  static constexpr int width = 4;
+  // bounds[f][s]: face f of child s's box, f = 0, 1, 2 for lo.x, lo.y, lo.z and 3, 4, 5 for hi.x, hi.y, hi.z.
+  // Slots s ≥ children hold the empty box (lo = +inf, hi = −inf).
+  std::array<std::array<double, width>, 6> bounds;
+  std::array<std::uint32_t, width> first;  // leaf child: first position in MeshBvh::triangle_order(); inner: node index
+  std::array<std::uint32_t, width> count;  // leaf child: number of triangles (≥ 1); inner child: 0
+  std::uint32_t children;                  // slots in use, 1 to 4
+
+  [[nodiscard]] Box3 box(int slot) const noexcept {
+    const auto s = static_cast<std::size_t>(slot);
+    return {{bounds[0][s], bounds[1][s], bounds[2][s]}, {bounds[3][s], bounds[4][s], bounds[5][s]}};
+  }
+  [[nodiscard]] bool is_leaf(int slot) const noexcept { return count[static_cast<std::size_t>(slot)] > 0; }
 };
 
 struct BvhBuildOptions {
@@ -55,10 +69,14 @@ class MeshBvh {
   // afterwards.
   explicit MeshBvh(const Mesh& mesh, const BvhBuildOptions& options = {});
 
+  // The nodes; the root is nodes()[0] (none for a mesh without triangles).
   [[nodiscard]] std::span<const BvhNode> nodes() const noexcept { return nodes_; }
   // Leaf ranges index this: the mesh's triangle indices, grouped by leaf.
   [[nodiscard]] std::span<const std::uint32_t> triangle_order() const noexcept { return order_; }
   [[nodiscard]] std::size_t triangle_count() const noexcept { return order_.size(); }
+  // The exact min/max of every vertex of every triangle (the empty box for no triangles).
+  [[nodiscard]] const Box3& bounds() const noexcept { return bounds_; }
+  // Nodes on the longest path from the root to a leaf (0 without triangles), at most max_depth.
   [[nodiscard]] int depth() const noexcept { return depth_; }
   // max(|lo_i|, |hi_i|) of the root box per axis: the overflow guard of the traversal uses it.
   [[nodiscard]] const std::array<double, 3>& magnitude() const noexcept { return magnitude_; }
@@ -68,16 +86,37 @@ class MeshBvh {
  private:
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> order_;
+  Box3 bounds_{};
   std::array<double, 3> magnitude_{};
   int depth_ = 0;
 };
 
-// A leaf the ray may meet: its triangles (indices into the mesh), and a lower bound of the exact t at which
-// the ray enters the leaf's box within [t_min, t_max] (≥ t_min).
+// A leaf the ray may meet: its triangles (indices into the mesh), where they start in triangle_order(), and a
+// lower bound of the exact t at which the ray enters the leaf's box within [t_min, t_max] (≥ t_min).
 struct BvhLeaf {
   std::span<const std::uint32_t> triangles;
   double entry_lower_bound;
+  std::uint32_t position;  // triangles[0] is triangle_order()[position]
 };
+
+namespace detail {
+// The state of one ray's walk (BvhRayTraversal's, and the mesh queries'); internal.
+struct BvhWalk {
+  struct Pending {
+    std::uint32_t first, count;  // a child: node index (count 0) or leaf range
+    double entry;
+  };
+  const MeshBvh* bvh = nullptr;
+  // The per-ray set-up of the box test (ray_box.hpp): origin, RN(1/d) (±inf for d = ±0, NaN for an axis left
+  // out), and per axis the rows of BvhNode::bounds holding the near and the far face.
+  std::array<double, 3> origin{}, inverse_direction{};
+  std::array<std::uint8_t, 3> near_face{}, far_face{};
+  double t_min = 0, t_max = 0;
+  std::uint64_t boxes_tested = 0;
+  int stack_size = 0;
+  std::array<Pending, (BvhNode::width - 1) * MeshBvh::max_depth + 2> stack;
+};
+}  // namespace detail
 
 // One ray's walk through a MeshBvh, leaf by leaf, nearest first.
 //
@@ -88,7 +127,8 @@ struct BvhLeaf {
 //
 // Guarantee: every leaf whose box the exact ray meets at some t in [t_min, min(t_max, t_upper)] — t_upper
 // the value passed to next() at the time the leaf's box or an ancestor's was tested — is returned. Hence
-// every triangle the exact ray meets at such a t is in a returned leaf. The bvh must outlive the walk.
+// every triangle the exact ray meets at such a t is in a returned leaf. The bvh must outlive the walk. The
+// box tests run in the default floating-point environment whatever the caller's (each call installs it).
 class BvhRayTraversal {
  public:
   // The ray must be valid (finite origin and direction, direction ≠ 0) and 0 ≤ t_min ≤ t_max (t_max may be
@@ -100,7 +140,7 @@ class BvhRayTraversal {
   // whose certified entry lower bound is > t_upper are skipped.
   [[nodiscard]] std::optional<BvhLeaf> next(double t_upper = std::numeric_limits<double>::infinity());
 
-  [[nodiscard]] std::uint64_t boxes_tested() const noexcept { return boxes_tested_; }
+  [[nodiscard]] std::uint64_t boxes_tested() const noexcept { return walk_.boxes_tested; }
 
   // The per-ray set-up of the box test (kernel/src/mesh/ray_box.hpp), exposed for tests: for each axis the
   // origin, RN(1/d) (±inf for d = ±0, NaN when the axis is left out of the test) and whether the ray
@@ -110,19 +150,10 @@ class BvhRayTraversal {
     std::array<double, 3> inverse_direction;
     std::array<bool, 3> enters_at_hi;
   };
-  [[nodiscard]] const Slabs& slabs() const noexcept { return slabs_; }
+  [[nodiscard]] Slabs slabs() const noexcept;
 
  private:
-  struct Pending {
-    std::uint32_t node;
-    double entry;
-  };
-  const MeshBvh* bvh_;
-  Slabs slabs_;
-  double t_min_, t_max_;
-  std::array<Pending, MeshBvh::max_depth + 2> stack_;
-  int stack_size_ = 0;
-  std::uint64_t boxes_tested_ = 0;
+  detail::BvhWalk walk_;
 };
 
 // The certified ray–box test on its own (kernel/src/mesh/ray_box.hpp): whether the ray may meet `box` at
@@ -132,5 +163,11 @@ class BvhRayTraversal {
 [[nodiscard]] BvhRayTraversal::Slabs ray_box_slabs(const Ray& ray, const std::array<double, 3>& magnitude);
 [[nodiscard]] std::optional<double> ray_box_entry(const BvhRayTraversal::Slabs& slabs, const Box3& box, double t_min,
                                                   double t_max) noexcept;
+
+// The same test on the four children of `node` at once, as the traversal runs it (one vector pass where the
+// CPU has AVX2; each lane the scalar test's operations): bit s of the result is set when child s may be met,
+// and entries[s] is then its entry bound. For tests.
+[[nodiscard]] unsigned ray_box_entries(const BvhRayTraversal::Slabs& slabs, const BvhNode& node, double t_min,
+                                       double t_max, std::array<double, BvhNode::width>& entries) noexcept;
 
 }  // namespace raykernel

@@ -72,13 +72,19 @@
 // ---------------------------------------------------------------------------------------------------------
 #pragma once
 
+#include "certified/lanes.hpp"
+
 #include <raykernel/bvh.hpp>
 
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <limits>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace raykernel::bounds {
 
@@ -120,6 +126,20 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
   return s;
 }
 
+// One axis of ray_box_entry, written once for one box (V = double) and for the four children of a node at
+// once (V = Lanes4, one box per lane): every lane performs exactly these operations in this order, so the
+// argument above and proofs/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
+// keeps t where the comparison is false, in particular where x is NaN.
+template <class V>
+[[gnu::always_inline]] inline void ray_box_axis(V near_plane, V far_plane, V origin, V inverse, V& t0, V& t1) noexcept {
+  const V p_near = (near_plane - origin) * inverse;
+  const V p_far = (far_plane - origin) * inverse;
+  const V near_lo = p_near * bounds::ray_box_near_factor - bounds::ray_box_absolute;
+  const V far_hi = p_far * bounds::ray_box_far_factor + bounds::ray_box_absolute;
+  t0 = detail::select(near_lo > t0, near_lo, t0);
+  t1 = detail::select(far_hi < t1, far_hi, t1);
+}
+
 // ray_box_entry: true when the ray may meet the box at some t in [t0, t1]; `entry` is then ≤ the exact entry.
 // The box is read as the six doubles lo.x, lo.y, lo.z, hi.x, hi.y, hi.z (Box3's layout); the near face of
 // axis i is element i, or i + 3 when the ray enters at the upper face.
@@ -129,15 +149,45 @@ inline bool ray_box_entry(const BvhRayTraversal::Slabs& s, const Box3& box, doub
   for (std::size_t k = 0; k < 3; ++k) {
     const std::size_t near_face = s.enters_at_hi[k] ? k + 3 : k;
     const std::size_t far_face = s.enters_at_hi[k] ? k : k + 3;
-    const double p_near = (b[near_face] - s.origin[k]) * s.inverse_direction[k];
-    const double p_far = (b[far_face] - s.origin[k]) * s.inverse_direction[k];
-    const double near_lo = p_near * bounds::ray_box_near_factor - bounds::ray_box_absolute;
-    const double far_hi = p_far * bounds::ray_box_far_factor + bounds::ray_box_absolute;
-    t0 = near_lo > t0 ? near_lo : t0;
-    t1 = far_hi < t1 ? far_hi : t1;
+    ray_box_axis<double>(b[near_face], b[far_face], s.origin[k], s.inverse_direction[k], t0, t1);
   }
   entry = t0;
   return t0 <= t1;
+}
+
+// The walk's per-ray state from the slabs: the rows of BvhNode::bounds holding each axis's near and far face.
+inline void set_walk_ray(detail::BvhWalk& w, const BvhRayTraversal::Slabs& s) noexcept {
+  for (std::size_t k = 0; k < 3; ++k) {
+    w.origin[k] = s.origin[k];
+    w.inverse_direction[k] = s.inverse_direction[k];
+    w.near_face[k] = static_cast<std::uint8_t>(s.enters_at_hi[k] ? k + 3 : k);
+    w.far_face[k] = static_cast<std::uint8_t>(s.enters_at_hi[k] ? k : k + 3);
+  }
+}
+
+// The four children of `node` at once (V = Lanes4): the test above per lane, slots beyond node.children
+// masked off (their empty boxes are rejected anyway unless every axis was left out of the test). Bit s of
+// the result: child s may be met; entries[s] is then its entry bound. Internal linkage: the body depends on
+// the instruction set of the translation unit (bvh_walk_<isa>.cpp).
+[[gnu::always_inline]] static inline unsigned ray_box_entries4(const detail::BvhWalk& w, const BvhNode& node,
+                                                               double t_min, double t_max,
+                                                               detail::Lanes4& entries) noexcept {
+  using detail::Lanes4;
+  static_assert(BvhNode::width == 4 && sizeof(Lanes4) == sizeof(node.bounds[0]) && alignof(BvhNode) % 32 == 0);
+  // Each face row is 32-byte aligned; GCC's vector types may alias their element type.
+  const auto* rows = reinterpret_cast<const Lanes4*>(node.bounds.data());
+  Lanes4 t0 = detail::broadcast<Lanes4>(t_min), t1 = detail::broadcast<Lanes4>(t_max);
+  for (std::size_t k = 0; k < 3; ++k)
+    ray_box_axis<Lanes4>(rows[w.near_face[k]], rows[w.far_face[k]], detail::broadcast<Lanes4>(w.origin[k]),
+                         detail::broadcast<Lanes4>(w.inverse_direction[k]), t0, t1);
+  entries = t0;
+  const detail::Mask4 met = t0 <= t1;
+#if defined(__AVX__)
+  const auto bits = static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(met)));
+#else
+  const auto bits = static_cast<unsigned>((met[0] & 1) | (met[1] & 2) | (met[2] & 4) | (met[3] & 8));
+#endif
+  return bits & ((1u << node.children) - 1u);
 }
 
 }  // namespace raykernel::mesh_detail

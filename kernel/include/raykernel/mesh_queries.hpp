@@ -1,0 +1,110 @@
+// raykernel/mesh_queries.hpp: exact queries on whole triangle meshes (docs/contract.md §7) — the nearest hit
+// of a ray and whether a point is inside — through the BVH, always with the brute-force answer.
+//
+// A PreparedMesh is the fast form: the mesh validated once, its BVH built once, and its triangles copied in
+// the BVH's leaf order (so that a leaf's triangles are read from consecutive memory). Build it once and query
+// it from any number of threads. The overloads taking a Mesh prepare one for the call.
+//
+// This header needs neither CGAL nor GMP.
+#pragma once
+
+#include <raykernel/bvh.hpp>
+#include <raykernel/mesh.hpp>
+#include <raykernel/triangle.hpp>
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace raykernel {
+
+class PreparedMesh {
+ public:
+  PreparedMesh() = default;
+  // Validates `mesh` (throws invalid_input naming the first bad vertex or triangle, validate(const Mesh&)) and
+  // builds its BVH. Degenerate triangles are kept (they are never hit).
+  explicit PreparedMesh(Mesh mesh, const BvhBuildOptions& options = {});
+
+  [[nodiscard]] const Mesh& mesh() const noexcept { return mesh_; }
+  [[nodiscard]] const MeshBvh& bvh() const noexcept { return bvh_; }
+  // The triangles in the order of bvh().triangle_order(): leaf_triangles()[i] is
+  // mesh().triangle(bvh().triangle_order()[i]).
+  [[nodiscard]] std::span<const Triangle> leaf_triangles() const noexcept { return leaf_triangles_; }
+
+ private:
+  Mesh mesh_;
+  MeshBvh bvh_;
+  std::vector<Triangle> leaf_triangles_;
+};
+
+// ---- nearest hit ---------------------------------------------------------------------------------------------
+
+// The nearest triangle a ray hits: its index in the mesh and the §6 answer for it (relation hit, location, t and
+// barycentric coordinates, each the exact value rounded to nearest).
+struct MeshHit {
+  std::uint32_t triangle;
+  TriangleIntersection intersection;
+};
+
+// docs/contract.md §7: among the triangles whose relation under `rule` is hit (t ≥ 0), the one with the smallest
+// exact t, ties to the smallest triangle index; or nothing. Through the BVH (a box the exact ray meets is never
+// skipped, bvh.hpp) with the certified ray–triangle cascade; two hits are ordered by their rounded t, which is
+// monotone in the exact t, and by the exact t in rationals when the rounded t are equal; the walk is pruned by
+// the successor of the best rounded t, an upper bound of the best exact t. So the answer is the brute-force one.
+// Throws invalid_input for an invalid ray (a non-finite component, a zero direction). Thread-safe; right in any
+// floating-point environment.
+[[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const PreparedMesh& mesh,
+                                                 TriangleRule rule = TriangleRule::owned);
+[[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh,  // prepares the mesh for the call
+                                                 TriangleRule rule = TriangleRule::owned);
+
+// The reference: every triangle by intersect_exact_rational (exact rationals), the smallest exact t taken in
+// rationals, ties to the smallest index. Slow (microseconds per triangle) and obviously right. Throws
+// invalid_input for an invalid ray or mesh.
+[[nodiscard]] std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh,
+                                                       TriangleRule rule = TriangleRule::owned);
+
+// The baseline people write: Möller–Trumbore in doubles (intersect_naive) on every triangle of the leaves the
+// BVH returns, pruned by the best computed t, the smallest computed t kept (ties to the smallest index). No
+// guarantee. No validation beyond the walk's (throws invalid_input for an invalid ray).
+[[nodiscard]] std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mesh);
+
+// ---- inside ---------------------------------------------------------------------------------------------------
+
+enum class PointLocation : std::uint8_t {
+  outside,     // winding number 0
+  inside,      // winding number ≠ 0
+  on_surface,  // the point lies on some triangle (with its boundary)
+};
+[[nodiscard]] std::string_view to_string(PointLocation location) noexcept;  // "outside", "inside", "on-surface"
+
+// docs/contract.md §7: `on_surface` if the point lies on some triangle — closed, exactly: on the triangle's plane
+// and inside it or on its boundary (for a degenerate triangle: on the segment or point it is) — else `inside` or
+// `outside` by the exact winding number, the signed count (+1 where den = d·N > 0, −1 where den < 0) of the
+// owned crossings (docs/contract.md §6) of a ray from the point. The ray is axis-aligned: along ±x, ±y or ±z,
+// towards the nearest face of the mesh's bounding box (a point outside that box is outside). For a closed,
+// consistently oriented mesh whose shared vertices are the same doubles the winding number does not depend on
+// the direction (§6's consequence), so any direction gives this answer; for another mesh the answer is the one
+// of that direction. Outward normals give +1 inside, inward ones −1: both are inside. Throws invalid_input for a
+// non-finite point. Thread-safe; right in any floating-point environment.
+[[nodiscard]] PointLocation inside(const Vec3& point, const PreparedMesh& mesh);
+[[nodiscard]] PointLocation inside(const Vec3& point, const Mesh& mesh);  // prepares the mesh for the call
+
+// The winding number itself (the signed count above), or nothing when the point is on the surface.
+[[nodiscard]] std::optional<std::int64_t> winding_number(const Vec3& point, const PreparedMesh& mesh);
+
+// The reference: every triangle in exact rationals — the on-surface test and the crossings of the same ray, by
+// intersect_exact_rational (owned rule) and the exact sign of den. Slow (microseconds per triangle) and
+// obviously right. Throws invalid_input for an invalid point or mesh.
+[[nodiscard]] PointLocation inside_exact(const Vec3& point, const Mesh& mesh);
+
+// Whether `point` lies on `triangle` with its boundary, exactly (the test `inside` uses).
+[[nodiscard]] bool point_on_triangle(const Vec3& point, const Triangle& triangle);
+
+// The axis-aligned direction `inside` uses for `point` and a mesh whose vertices span `bounds` (MeshBvh::bounds()):
+// ±(1, 0, 0), ±(0, 1, 0) or ±(0, 0, 1), towards the face of `bounds` nearest to the point (a heuristic: a shorter
+// walk), ties to the first of +x, −x, +y, −y, +z, −z.
+[[nodiscard]] Vec3 inside_ray_direction(const Vec3& point, const Box3& bounds) noexcept;
+
+}  // namespace raykernel

@@ -1,0 +1,14 @@
+// PreparedMesh (raykernel/mesh_queries.hpp): a mesh validated once, its BVH, and its triangles in leaf order.
+#include <raykernel/mesh_queries.hpp>
+
+#include <utility>
+
+namespace raykernel {
+
+PreparedMesh::PreparedMesh(Mesh mesh, const BvhBuildOptions& options)
+    : mesh_(std::move(mesh)), bvh_(mesh_, options) {  // MeshBvh validates (invalid_input "mesh: ...")
+  leaf_triangles_.reserve(bvh_.triangle_order().size());
+  for (const std::uint32_t k : bvh_.triangle_order()) leaf_triangles_.push_back(mesh_.triangle(k));
+}
+
+}  // namespace raykernel

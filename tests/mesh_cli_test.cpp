@@ -1,0 +1,232 @@
+// `raykernel nearest --mesh` and `raykernel inside` (docs/contract.md §7, with §3's and §4's line rules): hand-derived
+// answers on an octahedron file through the real binary, in every mesh format; the stream code's paths against
+// each other; files that are not meshes (exit 2, "raykernel: FILE:LINE: REASON", nothing on stdout); usage errors.
+#include "mesh_commands.hpp"
+
+#include <raykernel/io/mesh_file.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace raykernel::cli {
+namespace {
+
+const std::string cli = RAYKERNEL_CLI_PATH;
+
+struct CliRun {
+  int status;
+  std::string out, err;
+};
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "/mesh_cli_" + std::to_string(getpid()) + "_" + name;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  ASSERT_TRUE(f.good());
+}
+
+CliRun run(const std::string& args, const std::string& stdin_text = "") {
+  const std::string in = temp_path("stdin.txt"), err = temp_path("stderr.txt");
+  write_file(in, stdin_text);
+  CliRun r{};
+  FILE* p = popen((cli + " " + args + " < " + in + " 2> " + err).c_str(), "r");
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err);
+  std::stringstream s;
+  s << e.rdbuf();
+  r.err = s.str();
+  return r;
+}
+
+// The octahedron |x| + |y| + |z| = 1, outward normals. Triangle 0 is the face x + y + z = 1; triangles 0–3 hold
+// the top vertex (0, 0, 1) (vertex 5); triangle 4 ("f 3 1 6": (0,1,0), (1,0,0), (0,0,−1)) is the face
+// x + y − z = 1.
+const std::string octahedron_obj = R"(# octahedron
+v 1 0 0
+v -1 0 0
+v 0 1 0
+v 0 -1 0
+v 0 0 1
+v 0 0 -1
+f 1 3 5
+f 3 2 5
+f 2 4 5
+f 4 1 5
+f 3 1 6
+f 2 3 6
+f 4 2 6
+f 1 4 6
+)";
+
+// Rays and their answers, derived by hand:
+//   (0,0,0) + t(1,1,1) meets x + y + z = 1 at t = 1/3 (triangle 0; RN(1/3) prints as 0.3333333333333333);
+//   (0.25,0.25,−5) + t(0,0,1) meets x + y − z = 1 at z = −0.5, t = 4.5 (triangle 4);
+//   (2,2,2) + t(1,0,0) passes outside; (0,0,0) + t(0,0,0) is invalid; "1 2 x" is not a number.
+const std::string rays = "0 0 0 1 1 1\n0.25 0.25 -5 0 0 1\n\n# comment\n2 2 2 1 0 0\n0 0 0 0 0 0\n1 2 x 0 0 1\n";
+const std::string expected_rays =
+    "hit 0 0.3333333333333333\nhit 4 4.5\nmiss\ninvalid ray direction is the zero vector\ninvalid field 3: 'x' is not a number\n";
+
+TEST(MeshCli, NearestOnEveryFormat) {
+  const Mesh mesh = io::read_mesh(octahedron_obj, "octahedron.obj", io::MeshFormat::obj);
+  struct Format {
+    const char* name;
+    std::string bytes;
+  };
+  const Format formats[] = {
+      {"oct.obj", octahedron_obj},
+      {"oct.off", io::write_mesh(mesh, io::MeshFormat::off)},
+      {"oct.ply", io::write_mesh(mesh, io::MeshFormat::ply, io::MeshEncoding::binary_big_endian)},
+      {"oct-ascii.ply", io::write_mesh(mesh, io::MeshFormat::ply)},
+      {"oct.stl", io::write_mesh(mesh, io::MeshFormat::stl, io::MeshEncoding::binary_little_endian)},
+  };
+  for (const Format& f : formats) {
+    const std::string path = temp_path(f.name);
+    write_file(path, f.bytes);
+    const CliRun r = run("nearest --mesh " + path, rays);
+    EXPECT_EQ(r.status, 1) << f.name;  // some ray lines invalid
+    EXPECT_EQ(r.out, expected_rays) << f.name;
+    EXPECT_NE(r.err.find("raykernel: line 6: ray direction is the zero vector"), std::string::npos) << r.err;
+  }
+}
+
+TEST(MeshCli, NearestRules) {
+  const std::string path = temp_path("oct.obj");
+  write_file(path, octahedron_obj);
+  // Down the z axis onto the top vertex at t = 4: closed, every triangle around it is hit and the smallest index
+  // (0) wins; owned, exactly one of the four owns it.
+  CliRun r = run("nearest --rule=closed --mesh=" + path + " --exact-t", "0 0 5 0 0 -1\n");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "hit 0 4 4/1\n");
+  r = run("nearest --mesh " + path + " --rule owned", "0 0 5 0 0 -1\n");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_TRUE(r.out == "hit 0 4\n" || r.out == "hit 1 4\n" || r.out == "hit 2 4\n" || r.out == "hit 3 4\n") << r.out;
+  r = run("nearest --mesh " + path + " --hex", "0 0 0 1 1 1\n");
+  EXPECT_EQ(r.out, "hit 0 0x1.5555555555555p-2\n");
+  r = run("nearest --mesh " + path + " --stats -", "0 0 0 1 1 1\n");
+  EXPECT_NE(r.err.find("1 rays: 1 hit, 0 miss, 0 invalid"), std::string::npos) << r.err;
+}
+
+TEST(MeshCli, Inside) {
+  const std::string path = temp_path("oct.obj");
+  write_file(path, octahedron_obj);
+  // (0,0,0): inside; (0.5,0.5,0): on the edge (1,0,0)–(0,1,0); (0.5,0.25,0.25): on face 0; (0.5,0.5,0.25):
+  // |x|+|y|+|z| = 5/4, outside; (0,0,0.5): inside, its axis ray runs through the top vertex.
+  const CliRun r = run("inside --mesh " + path, "0 0 0\n0.5 0.5 0\n0.5 0.25 0.25\n0.5 0.5 0.25\n0 0 0.5\n1 1\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out, "inside\non-surface\non-surface\noutside\ninside\ninvalid expected 3 numbers, found 2\n");
+  const CliRun ok = run("inside --mesh " + path + " --stats", "0 0 0\n");
+  EXPECT_EQ(ok.status, 0);
+  EXPECT_EQ(ok.out, "inside\n");
+}
+
+TEST(MeshCli, FilesThatAreNotMeshes) {
+  struct Bad {
+    const char* name;
+    const char* text;
+    const char* message;  // after "raykernel: PATH"
+  };
+  const Bad bad[] = {
+      {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", ":4: "},
+      {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", ":2: "},
+      {"short.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", ":3: "},
+      {"count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", ""},
+      {"unknown.xyz", "hello\n", ""},
+      {"empty.stl", "", ""},
+  };
+  for (const Bad& b : bad) {
+    const std::string path = temp_path(b.name);
+    write_file(path, b.text);
+    for (const char* command : {"nearest --mesh ", "inside --mesh "}) {
+      const CliRun r = run(command + path, "0 0 0 1 0 0\n");
+      EXPECT_EQ(r.status, 2) << b.name;
+      EXPECT_EQ(r.out, "") << b.name;
+      EXPECT_EQ(r.err.rfind("raykernel: " + path + b.message, 0), 0u) << b.name << ": " << r.err;
+    }
+  }
+  const CliRun missing = run("inside --mesh " + temp_path("does-not-exist.obj"), "0 0 0\n");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_EQ(missing.out, "");
+  EXPECT_NE(missing.err.find("does-not-exist.obj"), std::string::npos);
+}
+
+TEST(MeshCli, UsageErrors) {
+  const std::string path = temp_path("oct.obj");
+  write_file(path, octahedron_obj);
+  for (const std::string& args : {"nearest --mesh " + path + " --planes " + path, "nearest --rule=closed --planes " + path,
+                                 "nearest --mesh " + path + " --rule=open", std::string("nearest --mesh"), std::string("inside"),
+                                 "inside --mesh " + path + " --mesh " + path, "inside --mesh " + path + " --bogus"}) {
+    const CliRun r = run(args, "0 0 0\n");
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_EQ(r.out, "") << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_EQ(run("inside --help").status, 0);
+}
+
+// Each output row: the method's name, then leaks, double-hits, misses, missed-vertices.
+std::vector<std::string> row(const std::string& out, const std::string& method) {
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line))
+    if (line.starts_with(method)) {
+      std::istringstream words(line.substr(method.size()));
+      std::vector<std::string> w;
+      for (std::string x; words >> x;) w.push_back(x);
+      return w;
+    }
+  return {};
+}
+
+// On the closed octahedron the owned rule never leaks and its crossings balance (docs/contract.md §6);
+// the closed rule leaks on lines through vertices: a line entering at the top vertex (0, 0, 1) meets the four
+// triangles around it and leaves through one face, 5 hits.
+TEST(MeshCli, Watertight) {
+  const std::string path = temp_path("oct.obj"), png = temp_path("watertight.png");
+  write_file(path, octahedron_obj);
+  const CliRun r = run("watertight " + path + " --rays 400 --seed 7 --png " + png);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("8 triangles, 6 vertices, closed"), std::string::npos) << r.out;
+  EXPECT_EQ(row(r.out, "owned (raykernel)"), (std::vector<std::string>{"0", "(reference)", "unbalanced", "0"})) << r.out;
+  const auto closed = row(r.out, "closed (raykernel)");
+  ASSERT_EQ(closed.size(), 4u) << r.out;
+  EXPECT_GT(std::stoi(closed[0]), 0) << r.out;
+  EXPECT_EQ(closed[2], "0");  // the closed rule never misses an owned crossing (the owned points are closed ones)
+  std::ifstream f(png, std::ios::binary);
+  EXPECT_TRUE(f.good());
+  EXPECT_EQ(run("watertight " + path + " --rays 0").status, 2);
+  EXPECT_EQ(run("watertight " + path + " --rays x").status, 2);
+  EXPECT_EQ(run("watertight").status, 2);
+  EXPECT_EQ(run("watertight " + temp_path("does-not-exist.obj")).status, 2);
+}
+
+// The three paths of the stream code on the hand-derived rays: the certified one and the exact brute force agree
+// (the certified one is the contract's); Möller–Trumbore agrees on these easy rays.
+TEST(MeshCli, StreamPaths) {
+  const PreparedMesh mesh(io::read_mesh(octahedron_obj, "octahedron.obj", io::MeshFormat::obj));
+  for (const Method method : {Method::certified, Method::exact, Method::naive}) {
+    std::istringstream in(rays);
+    std::ostringstream out, err;
+    MeshNearestCounts counts;
+    EXPECT_EQ(mesh_nearest_stream(in, out, err, mesh, {.method = method}, counts), exit_invalid_line);
+    EXPECT_EQ(out.str(), expected_rays);
+    EXPECT_EQ(counts.hits, 2u);
+    EXPECT_EQ(counts.misses, 1u);
+    EXPECT_EQ(counts.invalid, 2u);
+  }
+}
+
+}  // namespace
+}  // namespace raykernel::cli

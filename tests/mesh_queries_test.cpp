@@ -1,0 +1,446 @@
+// The mesh queries (kernel/include/raykernel/mesh_queries.hpp, docs/contract.md §7) against their exact
+// references.
+//
+// - nearest_hit(ray, PreparedMesh) — the BVH walk, the certified cascade, rounded-t ordering with exact ties —
+//   must equal nearest_hit_exact, the brute force over every triangle in exact rationals (intersect_exact_rational,
+//   the smallest exact t compared in GMP, ties to the smallest index): the same triangle and the same §6 answer
+//   bit for bit, or both no hit. Over the closed test meshes of the testkit and random triangle soups (shared
+//   vertices, degenerate and duplicated triangles), for rays aimed exactly at vertices, at edge points, at points
+//   inside faces, through the bounding box, from points on the surface, under both rules.
+//   The 10^6-ray run (mesh_nearest_1M) uses a cheaper brute force, every triangle by the certified `relation`
+//   and the hits ordered by exact t in GMP (brute_force below), since the rational reference costs about 10 µs
+//   per triangle.
+// - inside(point, PreparedMesh) must equal inside_exact for points at vertices, on edges, inside faces, on the
+//   axis lines through them (where the axis-aligned ray runs along edges and through vertices), and at random.
+// - Hand-derived cases (derivations in the comments) check both.
+// Each property case draws one mesh and a batch of rays or points (kBatch), so `long` runs cover 10^6 rays
+// (mesh_nearest_1M; mesh_inside_100k checks 10^5 points against inside_exact); RapidCheck prints its seed, RC_PARAMS="seed=N" reproduces a run.
+#include <raykernel/mesh_queries.hpp>
+#include <raykernel/testkit/meshes.hpp>
+
+#include "exact/exact_mesh.hpp"
+#include "mesh/mesh_predicates.hpp"
+
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace raykernel {
+namespace {
+
+constexpr int kBatch = 25;  // rays or points per property case
+
+struct TestMesh {
+  std::string name;
+  std::unique_ptr<PreparedMesh> prepared;
+};
+
+// Small closed meshes (the exact oracle is brute force: microseconds per triangle), with small leaves so that
+// the walk has several levels.
+const std::vector<TestMesh>& test_meshes() {
+  static const std::vector<TestMesh> meshes = [] {
+    std::vector<TestMesh> v;
+    auto add = [&](std::string name, Mesh m, BvhBuildOptions o = {}) {
+      v.push_back({std::move(name), std::make_unique<PreparedMesh>(std::move(m), o)});
+    };
+    add("octahedron", testkit::make_octahedron());
+    add("cube-2", testkit::make_subdivided_cube(2), {.max_leaf_size = 1, .max_leaf_size_hard = 1, .bins = 8});
+    add("cube-3-half", testkit::make_subdivided_cube(3, 0.5));
+    add("icosphere-1", testkit::make_icosphere(1), {.max_leaf_size = 2, .max_leaf_size_hard = 4, .bins = 16});
+    add("terrain-2", testkit::make_terrain(2));
+    add("octahedron-tiny", testkit::make_octahedron(0x1p-1000));
+    add("octahedron-huge", testkit::make_octahedron(0x1p400));
+    return v;
+  }();
+  return meshes;
+}
+
+// A soup of triangles of one random scale: shared vertices, repeated (hence degenerate) vertices, duplicated
+// triangles (exact ties), coplanar neighbours.
+Mesh random_soup() {
+  const int e = *rc::gen::element(0, 0, -20, 40, -1000, 600);
+  const int count = *rc::gen::inRange(1, 13);
+  Mesh m;
+  auto coordinate = [&] { return std::ldexp(static_cast<double>(*rc::gen::inRange(-16, 17)), e - 3); };
+  for (int k = 0; k < count; ++k) {
+    const int kind = *rc::gen::inRange(0, 6);
+    if (kind == 0 && !m.triangles.empty()) {  // a duplicate, maybe reversed
+      auto t = m.triangles[*rc::gen::inRange<std::size_t>(0, m.triangles.size())];
+      if (*rc::gen::arbitrary<bool>()) std::swap(t[1], t[2]);
+      m.triangles.push_back(t);
+      continue;
+    }
+    std::array<std::uint32_t, 3> t{};
+    for (auto& index : t) {
+      if (!m.vertices.empty() && *rc::gen::inRange(0, 3) == 0) {
+        index = static_cast<std::uint32_t>(*rc::gen::inRange<std::size_t>(0, m.vertices.size()));
+      } else {
+        index = static_cast<std::uint32_t>(m.vertices.size());
+        m.vertices.push_back({coordinate(), coordinate(), coordinate()});
+      }
+    }
+    m.triangles.push_back(t);
+  }
+  return m;
+}
+
+double scale_of(const Box3& b) {
+  return std::max({std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x), std::fabs(b.hi.y),
+                   std::fabs(b.hi.z), 0x1p-1000});
+}
+
+// A point of the mesh to aim at: a vertex, an edge point, a point inside a face, or a point of the bounding box.
+Vec3 target_point(const Mesh& mesh, const Box3& bounds, int kind) {
+  const Triangle t = mesh.triangle(*rc::gen::inRange<std::size_t>(0, mesh.triangles.size()));
+  switch (kind) {
+    case 0: return *rc::gen::element(t.a, t.b, t.c);
+    case 1: {
+      const int bits = *rc::gen::inRange(1, 8);
+      const auto p = testkit::edge_point(*rc::gen::element(t.a, t.b, t.c), *rc::gen::element(t.a, t.b, t.c),
+                                         *rc::gen::inRange<std::int64_t>(0, (1LL << bits) + 1), bits);
+      return p ? *p : t.a;
+    }
+    case 2: {
+      const auto p = testkit::edge_point(t.a, t.b, *rc::gen::inRange<std::int64_t>(1, 16), 4);
+      const auto r = p ? testkit::edge_point(*p, t.c, *rc::gen::inRange<std::int64_t>(1, 16), 4) : std::nullopt;
+      return r ? *r : t.c;
+    }
+    default: {
+      auto c = [](double lo, double hi) {
+        const auto p = testkit::edge_point({lo, 0, 0}, {hi, 0, 0}, *rc::gen::inRange<std::int64_t>(-2, 19), 4);
+        return p ? p->x : lo;
+      };
+      return {c(bounds.lo.x, bounds.hi.x), c(bounds.lo.y, bounds.hi.y), c(bounds.lo.z, bounds.hi.z)};
+    }
+  }
+}
+
+// A ray aimed exactly at `target` (when the difference is exact) from a coarse grid point around the mesh; some
+// origin coordinates shared with the target (zero direction components), some origins on the surface itself.
+Ray aimed_ray(const Mesh& mesh, const Box3& bounds, const Vec3& target) {
+  const double s = scale_of(bounds);
+  const int from = *rc::gen::inRange(0, 8);
+  Vec3 o;
+  if (from == 0) {
+    o = target_point(mesh, bounds, *rc::gen::inRange(0, 4));
+  } else {
+    auto coord = [&](double t) {
+      return *rc::gen::inRange(0, 4) == 0 ? t : std::ldexp(static_cast<double>(*rc::gen::inRange(-24, 25)), -3) * s;
+    };
+    o = {coord(target.x), coord(target.y), coord(target.z)};
+  }
+  Vec3 d{target.x - o.x, target.y - o.y, target.z - o.z};
+  if (d.x == 0 && d.y == 0 && d.z == 0) d = *rc::gen::element(Vec3{s, 0, 0}, Vec3{0, -s, 0}, Vec3{1, 1, 1});
+  if (*rc::gen::inRange(0, 8) == 0) d = {d.x * 0x1p-30, d.y * 0x1p-30, d.z * 0x1p-30};  // rescaled: exact
+  return {o, d};
+}
+
+bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+
+std::string describe(const std::optional<MeshHit>& h) {
+  if (!h) return "miss";
+  return "hit " + std::to_string(h->triangle) + " t=" + std::to_string(h->intersection.t) + " " +
+         std::string(to_string(h->intersection.location));
+}
+
+bool same_answer(const std::optional<MeshHit>& x, const std::optional<MeshHit>& y) {
+  if (!x || !y) return !x && !y;
+  const TriangleIntersection &a = x->intersection, &b = y->intersection;
+  return x->triangle == y->triangle && a.relation == b.relation && a.location == b.location && a.owned == b.owned &&
+         same_bits(a.t, b.t) && same_bits(a.barycentric[0], b.barycentric[0]) &&
+         same_bits(a.barycentric[1], b.barycentric[1]) && same_bits(a.barycentric[2], b.barycentric[2]);
+}
+
+// One mesh: a test mesh or a fresh soup.
+struct Drawn {
+  std::unique_ptr<PreparedMesh> own;
+  const PreparedMesh* mesh;
+};
+Drawn draw_mesh() {
+  Drawn d;
+  if (*rc::gen::inRange(0, 4) == 0) {
+    d.own = std::make_unique<PreparedMesh>(random_soup(), BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4});
+    d.mesh = d.own.get();
+  } else {
+    d.mesh = test_meshes()[*rc::gen::inRange<std::size_t>(0, test_meshes().size())].prepared.get();
+  }
+  return d;
+}
+
+std::uint64_t rays_checked = 0, rays_checked_brute_force = 0, points_checked = 0;
+
+// The brute force with a cheaper per-triangle decision, for the 10^6-ray run: every triangle's relation by the
+// certified `relation` (each one checked against exact rationals by triangle_properties_test), every hit's exact
+// t = num/den in GMP rationals from the doubles, the smallest exact t winning, ties to the smallest index; the
+// winner's §6 answer by intersect_exact (rationals and MPFR).
+std::optional<MeshHit> brute_force(const Ray& ray, const Mesh& mesh, TriangleRule rule) {
+  auto q = [](double x) { return mpq_class(x); };
+  std::optional<std::uint32_t> best;
+  mpq_class best_t;
+  for (std::uint32_t k = 0; k < mesh.triangles.size(); ++k) {
+    const Triangle t = mesh.triangle(k);
+    if (relation(ray, t, rule).relation != TriangleRelation::hit) continue;
+    const std::array<mpq_class, 3> e1{q(t.b.x) - q(t.a.x), q(t.b.y) - q(t.a.y), q(t.b.z) - q(t.a.z)},
+        e2{q(t.c.x) - q(t.a.x), q(t.c.y) - q(t.a.y), q(t.c.z) - q(t.a.z)},
+        ao{q(t.a.x) - q(ray.origin.x), q(t.a.y) - q(ray.origin.y), q(t.a.z) - q(ray.origin.z)};
+    const std::array<mpq_class, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                     e1[0] * e2[1] - e1[1] * e2[0]};
+    const mpq_class tk = (ao[0] * n[0] + ao[1] * n[1] + ao[2] * n[2]) /
+                         (q(ray.direction.x) * n[0] + q(ray.direction.y) * n[1] + q(ray.direction.z) * n[2]);
+    if (best && tk >= best_t) continue;
+    best = k;
+    best_t = tk;
+  }
+  if (!best) return std::nullopt;
+  return MeshHit{*best, intersect_exact(ray, mesh.triangle(*best), TriangleOptions{.rule = rule})};
+}
+
+RC_GTEST_PROP(MeshNearest, AgreesWithTheBruteForce, ()) {
+  const Drawn drawn = draw_mesh();
+  const PreparedMesh& prepared = *drawn.mesh;
+  const Mesh& mesh = prepared.mesh();
+  const Box3& bounds = prepared.bvh().bounds();
+  const TriangleRule rule = *rc::gen::element(TriangleRule::owned, TriangleRule::owned, TriangleRule::closed);
+  for (int n = 0; n < kBatch; ++n) {
+    const int kind = *rc::gen::inRange(0, 4);
+    const Ray ray = aimed_ray(mesh, bounds, target_point(mesh, bounds, kind));
+    const auto fast = nearest_hit(ray, prepared, rule);
+    const auto oracle = brute_force(ray, mesh, rule);
+    ++rays_checked_brute_force;
+    if (!same_answer(fast, oracle))
+      RC_FAIL("ray (" + std::to_string(ray.origin.x) + " " + std::to_string(ray.origin.y) + " " +
+              std::to_string(ray.origin.z) + ") + t(" + std::to_string(ray.direction.x) + " " +
+              std::to_string(ray.direction.y) + " " + std::to_string(ray.direction.z) + "), rule " +
+              std::string(to_string(rule)) + ": BVH " + describe(fast) + ", brute force " + describe(oracle));
+  }
+}
+
+RC_GTEST_PROP(MeshNearest, AgreesWithTheExactBruteForce, ()) {
+  const Drawn drawn = draw_mesh();
+  const PreparedMesh& prepared = *drawn.mesh;
+  const Mesh& mesh = prepared.mesh();
+  const Box3& bounds = prepared.bvh().bounds();
+  const TriangleRule rule = *rc::gen::element(TriangleRule::owned, TriangleRule::owned, TriangleRule::closed);
+  for (int n = 0; n < kBatch; ++n) {
+    const int kind = *rc::gen::inRange(0, 4);
+    const Ray ray = aimed_ray(mesh, bounds, target_point(mesh, bounds, kind));
+    const auto fast = nearest_hit(ray, prepared, rule);
+    const auto exact = nearest_hit_exact(ray, mesh, rule);
+    ++rays_checked;
+    if (!same_answer(fast, exact))
+      RC_FAIL("ray (" + std::to_string(ray.origin.x) + " " + std::to_string(ray.origin.y) + " " +
+              std::to_string(ray.origin.z) + ") + t(" + std::to_string(ray.direction.x) + " " +
+              std::to_string(ray.direction.y) + " " + std::to_string(ray.direction.z) + "), rule " +
+              std::string(to_string(rule)) + ": BVH " + describe(fast) + ", brute force " + describe(exact));
+  }
+}
+
+RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForce, ()) {
+  const Drawn drawn = draw_mesh();
+  const PreparedMesh& prepared = *drawn.mesh;
+  const Mesh& mesh = prepared.mesh();
+  const Box3& bounds = prepared.bvh().bounds();
+  const double s = scale_of(bounds);
+  for (int n = 0; n < kBatch; ++n) {
+    Vec3 p = target_point(mesh, bounds, *rc::gen::inRange(0, 4));
+    // Move it along one axis (onto the axis line through a vertex or edge point), or not at all.
+    const int axis = *rc::gen::inRange(0, 5);
+    const double step = std::ldexp(static_cast<double>(*rc::gen::inRange(-8, 9)), -4) * s;
+    if (axis == 0) p.x += step;
+    if (axis == 1) p.y += step;
+    if (axis == 2) p.z += step;
+    const PointLocation fast = inside(p, prepared);
+    const PointLocation exact = inside_exact(p, mesh);
+    ++points_checked;
+    RC_ASSERT(fast == exact);
+  }
+}
+
+// The totals, for the long runs' 10^6 claim (printed whatever filter ran).
+class Totals : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    if (rays_checked + rays_checked_brute_force + points_checked > 0)
+      std::printf("mesh_queries_test: rays checked against nearest_hit_exact %llu, against the brute force %llu; "
+                  "points against inside_exact %llu\n",
+                  static_cast<unsigned long long>(rays_checked), static_cast<unsigned long long>(rays_checked_brute_force),
+                  static_cast<unsigned long long>(points_checked));
+  }
+};
+const auto* const totals = ::testing::AddGlobalTestEnvironment(new Totals);
+
+// ---- the filters of inside() against exact rationals ------------------------------------------------------------
+
+// A coordinate of one of several scales: grid values (many exact zeros and coplanar/collinear configurations),
+// values near the filters' range limits, subnormals, huge values, and arbitrary bit patterns.
+double filter_coordinate(int scale) {
+  switch (*rc::gen::inRange(0, 5)) {
+    case 0: return std::ldexp(static_cast<double>(*rc::gen::inRange(-4, 5)), scale);
+    case 1: return std::ldexp(static_cast<double>(*rc::gen::inRange<std::int64_t>(-(1LL << 53), 1LL << 53)), scale - 53);
+    case 2: return *rc::gen::element(0x1p-300, -0x1p-300, 0x1.fffffffffffffp-301, 0x1p300, 0x1.0000000000001p300,
+                                     0x1p-1074, -0x1p-1060, 0x1p-1022, 0.0, -0.0);
+    case 3: return std::ldexp(1.0 + std::ldexp(static_cast<double>(*rc::gen::inRange(-8, 9)), -52), scale);
+    default: {
+      const double x = std::bit_cast<double>(*rc::gen::arbitrary<std::uint64_t>());
+      return std::isfinite(x) ? x : 1.0;
+    }
+  }
+}
+
+Vec3 filter_point(int scale) { return {filter_coordinate(scale), filter_coordinate(scale), filter_coordinate(scale)}; }
+
+RC_GTEST_PROP(MeshFilters, Orient3dFilterNeverContradictsTheExactSign, ()) {
+  const int scale = *rc::gen::element(0, 0, -20, 30, -280, 280, -1000, 900);
+  const Vec3 o = filter_point(scale), a = filter_point(scale), b = filter_point(scale);
+  // c: random, or exactly coplanar-ish (a + b − o computed in doubles: often exact on grids).
+  const Vec3 c = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{a.x + b.x - o.x, a.y + b.y - o.y, a.z + b.z - o.z};
+  RC_PRE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
+  const int filtered = mesh_detail::orient3d_filter(o, a, b, c);
+  if (filtered != 0) RC_ASSERT(filtered == detail::exact::det3_sign(o, a, b, c));
+  RC_CLASSIFY(filtered != 0, "decided by the filter");
+}
+
+RC_GTEST_PROP(MeshFilters, Orient2dFilterNeverContradictsTheExactSign, ()) {
+  const int scale = *rc::gen::element(0, 0, -20, 30, -280, 280, -1000, 900, 1020);
+  const Vec3 p = filter_point(scale), q = filter_point(scale);
+  Vec3 r = *rc::gen::arbitrary<bool>() ? filter_point(scale) : Vec3{2 * q.x - p.x, 2 * q.y - p.y, 2 * q.z - p.z};
+  if (*rc::gen::inRange(0, 4) == 0) r.x = *rc::gen::element(p.x, q.x);  // shared coordinates: exact zeros
+  if (*rc::gen::inRange(0, 4) == 0) r.y = *rc::gen::element(p.y, q.y);
+  if (*rc::gen::inRange(0, 4) == 0) r.z = *rc::gen::element(p.z, q.z);
+  RC_PRE(std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z));
+  const int i = *rc::gen::inRange(0, 3), j = (i + 1 + *rc::gen::inRange(0, 2)) % 3;
+  const int filtered = mesh_detail::orient2d_filter(p, q, r, i, j);
+  const int exact = detail::exact::orient2d_sign(p, q, r, i, j);
+  if (filtered != 0) RC_ASSERT(filtered == exact);
+  RC_ASSERT(mesh_detail::orient2d_sign(p, q, r, i, j) == exact);  // with its exact-zero shortcut
+  RC_CLASSIFY(filtered != 0, "decided by the filter");
+}
+
+// ---- hand-derived cases -------------------------------------------------------------------------------------
+
+// The index of the first triangle of `mesh` holding vertex `v` (by index), from the mesh data alone.
+std::uint32_t first_triangle_with(const Mesh& mesh, const Vec3& v) {
+  for (std::uint32_t k = 0; k < mesh.triangles.size(); ++k)
+    for (std::uint32_t i : mesh.triangles[k]) {
+      const Vec3& w = mesh.vertices[i];
+      if (w.x == v.x && w.y == v.y && w.z == v.z) return k;
+    }
+  return ~0u;
+}
+
+TEST(MeshNearest, HandDerivedOctahedron) {
+  const Mesh mesh = testkit::make_octahedron();  // |x| + |y| + |z| = 1
+  const PreparedMesh prepared(mesh);
+  for (const auto& fn : {+[](const Ray& r, const PreparedMesh& p, TriangleRule rule) { return nearest_hit(r, p, rule); },
+                         +[](const Ray& r, const PreparedMesh& p, TriangleRule rule) { return nearest_hit_exact(r, p.mesh(), rule); }}) {
+    // From the centre along (1, 1, 1): the face x + y + z = 1 at t = 1/3, barycentric (1/3, 1/3, 1/3).
+    auto h = fn({{0, 0, 0}, {1, 1, 1}}, prepared, TriangleRule::owned);
+    ASSERT_TRUE(h);
+    const Triangle t = mesh.triangle(h->triangle);
+    EXPECT_EQ(t.a.x + t.b.x + t.c.x, 1);  // the vertices (1,0,0), (0,1,0), (0,0,1) in some order
+    EXPECT_EQ(t.a.y + t.b.y + t.c.y, 1);
+    EXPECT_EQ(t.a.z + t.b.z + t.c.z, 1);
+    EXPECT_EQ(h->intersection.t, 1.0 / 3);  // RN(1/3)
+    EXPECT_EQ(h->intersection.location, TriangleLocation::inside);
+    // From (0, 0, 5) down the z axis: the vertex (0, 0, 1) at t = 4. Closed rule: all four triangles around it
+    // tie, the smallest index wins. Owned rule: exactly one of them owns the vertex (the ray enters the solid).
+    h = fn({{0, 0, 5}, {0, 0, -1}}, prepared, TriangleRule::closed);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->triangle, first_triangle_with(mesh, {0, 0, 1}));
+    EXPECT_EQ(h->intersection.t, 4);
+    h = fn({{0, 0, 5}, {0, 0, -1}}, prepared, TriangleRule::owned);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->intersection.t, 4);
+    EXPECT_EQ(mesh.triangle(h->triangle).a.z + mesh.triangle(h->triangle).b.z + mesh.triangle(h->triangle).c.z, 1);
+    // Past the solid: (2, 2, 2) along (1, 0, 0) meets nothing.
+    EXPECT_FALSE(fn({{2, 2, 2}, {1, 0, 0}}, prepared, TriangleRule::closed));
+    // Behind: from (2, 0, 0) along +x the octahedron lies at t < 0.
+    EXPECT_FALSE(fn({{2, 0, 0}, {1, 0, 0}}, prepared, TriangleRule::closed));
+  }
+}
+
+// Two triangles over the ray (0, 0, 0) + t(0, 0, 1) whose exact t differ by less than half an ulp of 1, so that
+// both round to 1: the flat one z = 1 (t = 1) and a tilted one through (−1, −1, 1), (3, −1, 1), (−1, 3, 1 + δ)
+// (z = 1 + δ(y + 1)/4, t = 1 + δ/4). The smaller exact t must win whatever the index order.
+TEST(MeshNearest, OrdersTiesOfTheRoundedTExactly) {
+  for (const double delta : {0x1p-52, -0x1p-52}) {  // t = 1 ± 2^-54: RN gives 1 (for −, the tie goes to even 1)
+    for (const bool tilted_first : {false, true}) {
+      Mesh m;
+      m.vertices = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}, {-1, 3, 1 + delta}};
+      const std::array<std::uint32_t, 3> flat{0, 1, 2}, tilted{0, 1, 3};
+      m.triangles = tilted_first ? std::vector{tilted, flat} : std::vector{flat, tilted};
+      const std::uint32_t flat_index = tilted_first ? 1 : 0, tilted_index = 1 - flat_index;
+      const std::uint32_t expected = delta > 0 ? flat_index : tilted_index;
+      const Ray ray{{0, 0, 0}, {0, 0, 1}};
+      for (const auto& h : {nearest_hit(ray, PreparedMesh(m)), nearest_hit_exact(ray, m)}) {
+        ASSERT_TRUE(h);
+        EXPECT_EQ(h->triangle, expected) << "delta " << delta << " tilted first " << tilted_first;
+        EXPECT_EQ(h->intersection.t, 1.0);
+      }
+    }
+  }
+  // Exactly equal t (a duplicated triangle): the smaller index.
+  Mesh m;
+  m.vertices = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 2}, {0, 1, 2}};
+  for (const auto& h : {nearest_hit({{0, 0, 0}, {0, 0, 1}}, PreparedMesh(m)), nearest_hit_exact({{0, 0, 0}, {0, 0, 1}}, m)}) {
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->triangle, 0u);
+  }
+}
+
+TEST(MeshNearest, RejectsInvalidRays) {
+  const PreparedMesh prepared(testkit::make_octahedron());
+  EXPECT_THROW((void)nearest_hit({{0, 0, 0}, {0, 0, 0}}, prepared), invalid_input);
+  EXPECT_THROW((void)nearest_hit({{std::nan(""), 0, 0}, {1, 0, 0}}, prepared), invalid_input);
+  EXPECT_THROW((void)nearest_hit_exact({{0, 0, 0}, {0, std::numeric_limits<double>::infinity(), 0}}, prepared.mesh()), invalid_input);
+  EXPECT_FALSE(nearest_hit({{0, 0, 0}, {1, 0, 0}}, PreparedMesh(Mesh{})));  // no triangles
+}
+
+TEST(MeshInside, HandDerivedOctahedron) {
+  const Mesh mesh = testkit::make_octahedron();  // |x| + |y| + |z| ≤ 1, outward normals
+  const PreparedMesh prepared(mesh);
+  struct Case {
+    Vec3 p;
+    PointLocation expected;
+  };
+  const Case cases[] = {
+      {{0, 0, 0}, PointLocation::inside},             // the centre
+      {{0.25, 0.25, 0.25}, PointLocation::inside},    // sum 3/4
+      {{0.5, 0.25, 0.25}, PointLocation::on_surface}, // sum 1, on the face
+      {{0.5, 0.5, 0}, PointLocation::on_surface},     // on the edge (1,0,0)–(0,1,0)
+      {{1, 0, 0}, PointLocation::on_surface},         // a vertex
+      {{0.5, 0.5, 0.25}, PointLocation::outside},     // sum 5/4
+      {{0, 0, 0.5}, PointLocation::inside},           // on the z axis: the axis ray runs through the vertex (0,0,1)
+      {{0.25, 0.25, 0}, PointLocation::inside},       // in the plane z = 0 of four edges
+      {{0.75, 0, 0.125}, PointLocation::inside},      // sum 7/8, its +x ray just under the vertex (1,0,0)
+      {{2, 0, 0}, PointLocation::outside},            // outside the box
+      {{0, 0, 1 + 0x1p-52}, PointLocation::outside},  // just above the top vertex
+      {{0, 0, 1 - 0x1p-53}, PointLocation::inside},   // just below it
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(inside(c.p, prepared), c.expected) << c.p.x << " " << c.p.y << " " << c.p.z;
+    EXPECT_EQ(inside_exact(c.p, mesh), c.expected) << c.p.x << " " << c.p.y << " " << c.p.z;
+  }
+  EXPECT_THROW((void)inside({std::nan(""), 0, 0}, prepared), invalid_input);
+  // Inward normals (each triangle reversed): the winding number is −1 inside, still inside.
+  Mesh reversed = mesh;
+  for (auto& t : reversed.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(winding_number({0, 0, 0}, PreparedMesh(reversed)), -1);
+  EXPECT_EQ(winding_number({0, 0, 0}, prepared), 1);
+  EXPECT_EQ(inside({0, 0, 0}, PreparedMesh(reversed)), PointLocation::inside);
+}
+
+}  // namespace
+}  // namespace raykernel
