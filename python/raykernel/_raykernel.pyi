@@ -9,6 +9,7 @@ import numpy.typing as npt
 
 from ._types import (
     ExactIntersection,
+    ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
     NearestHit,
@@ -18,7 +19,15 @@ from ._types import (
     Ray,
     RayLike,
     Relation,
+    RelationArrays,
+    RuleLike,
     TracedIntersection,
+    TracedTriangleIntersection,
+    TriangleClassification,
+    TriangleClassificationArrays,
+    TriangleIntersection,
+    TriangleIntersectionArrays,
+    TriangleLike,
 )
 
 __version__: str
@@ -28,12 +37,41 @@ class InvalidInput(ValueError): ...
 
 ArrayLike3 = npt.ArrayLike  # (n, 3) float64, or (3,) where one plane is allowed
 
-def validate(ray: RayLike, plane: PlaneLike) -> Optional[str]: ...
-def intersect(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_exact(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_exact_rational(ray: RayLike, plane: PlaneLike) -> ExactIntersection: ...
-def intersect_naive(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_traced(ray: RayLike, plane: PlaneLike) -> TracedIntersection: ...
+# The scalar queries take a plane (point, normal) or a triangle (a, b, c) as `primitive`; the triangle options
+# (rule "owned" or "closed", t, barycentric) are keyword-only and for triangles only.
+def validate(ray: RayLike, primitive: Union[PlaneLike, TriangleLike]) -> Optional[str]: ...
+@overload
+def intersect(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TriangleIntersection: ...
+@overload
+def relation(ray: RayLike, primitive: PlaneLike) -> Relation: ...
+@overload
+def relation(ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None) -> TriangleClassification: ...
+@overload
+def intersect_exact(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect_exact(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TriangleIntersection: ...
+@overload
+def intersect_exact_rational(ray: RayLike, primitive: PlaneLike) -> ExactIntersection: ...
+@overload
+def intersect_exact_rational(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None
+) -> ExactTriangleIntersection: ...
+@overload
+def intersect_naive(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect_naive(ray: RayLike, primitive: TriangleLike) -> TriangleIntersection: ...
+@overload
+def intersect_traced(ray: RayLike, primitive: PlaneLike) -> TracedIntersection: ...
+@overload
+def intersect_traced(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TracedTriangleIntersection: ...
 @overload
 def round_rational_to_double(value: Union[Fraction, int], denominator: None = None) -> float: ...
 @overload
@@ -49,6 +87,8 @@ class PlaneSet:
     def points(self) -> np.ndarray: ...
     @property
     def normals(self) -> np.ndarray: ...
+    @property
+    def candidates(self) -> np.ndarray: ...
 
 Planes = Union[PlaneSet, Sequence[PlaneLike]]
 
@@ -66,6 +106,43 @@ def intersect_batch(
     threads: Optional[int] = None,
     stats: bool = False,
 ) -> IntersectionArrays: ...
+def relation_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    points: ArrayLike3,
+    normals: ArrayLike3,
+    *,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    stats: bool = False,
+) -> RelationArrays: ...
+def intersect_triangle_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    *,
+    rule: Optional[RuleLike] = None,
+    t: bool = True,
+    barycentric: bool = True,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> TriangleIntersectionArrays: ...
+def relation_triangle_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    *,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> TriangleClassificationArrays: ...
 def nearest_hit_batch(
     origins: ArrayLike3,
     directions: ArrayLike3,
