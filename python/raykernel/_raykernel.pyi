@@ -12,6 +12,8 @@ from ._types import (
     ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
+    MeshHit,
+    MeshHitArrays,
     NearestHit,
     NearestHitArrays,
     Plane,
@@ -27,6 +29,7 @@ from ._types import (
     TriangleClassificationArrays,
     TriangleIntersection,
     TriangleIntersectionArrays,
+    Triangle,
     TriangleLike,
 )
 
@@ -34,6 +37,7 @@ __version__: str
 INVALID_RELATION_CODE: int
 
 class InvalidInput(ValueError): ...
+class MeshFileError(ValueError): ...
 
 ArrayLike3 = npt.ArrayLike  # (n, 3) float64, or (3,) where one plane is allowed
 
@@ -92,8 +96,26 @@ class PlaneSet:
 
 Planes = Union[PlaneSet, Sequence[PlaneLike]]
 
-def nearest_hit(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
-def nearest_hit_exact(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
+class Mesh:
+    def __init__(self, vertices: ArrayLike3, triangles: npt.ArrayLike) -> None: ...
+    def __len__(self) -> int: ...
+    @property
+    def vertices(self) -> np.ndarray: ...
+    @property
+    def triangles(self) -> np.ndarray: ...
+    def triangle(self, index: int) -> Triangle: ...
+    @property
+    def bvh_depth(self) -> int: ...
+
+def load_mesh(path: str) -> Mesh: ...
+@overload
+def nearest_hit(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
+@overload
+def nearest_hit_exact(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit_exact(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
 def nearest_hit_naive(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
 def intersect_batch(
     origins: ArrayLike3,
@@ -143,10 +165,22 @@ def relation_triangle_batch(
     errors: str = "raise",
     threads: Optional[int] = None,
 ) -> TriangleClassificationArrays: ...
+@overload
 def nearest_hit_batch(
     origins: ArrayLike3,
     directions: ArrayLike3,
-    planes: Planes,
+    scene: Mesh,
+    *,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> MeshHitArrays: ...
+@overload
+def nearest_hit_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    scene: Planes,
     *,
     path: str = "certified",
     errors: str = "raise",
@@ -170,6 +204,32 @@ class testkit:  # the submodule raykernel._raykernel.testkit
     def check_against_reference(
         ray: RayLike, plane: PlaneLike, relation: Union[Relation, str, int], t: float, max_t_ulps: int = 0
     ) -> dict: ...
+    TRIANGLE_QUERY_KINDS: Tuple[str, ...]
+    @staticmethod
+    def make_triangle_query(kind: str, words: Words) -> Tuple[Ray, Triangle]: ...
+    @staticmethod
+    def make_triangle_query_arrays(
+        kinds: Sequence[str], count: int, seed: int
+    ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
+    @staticmethod
+    def check_triangle_against_reference(
+        ray: RayLike,
+        triangle: TriangleLike,
+        relation: Union[str, int],
+        location: Union[str, int],
+        owned: bool,
+        t: float,
+        barycentric: Sequence[float],
+        rule: Optional[RuleLike] = None,
+        max_ulps: int = 0,
+        check_location: bool = True,
+    ) -> dict: ...
+    @staticmethod
+    def make_octahedron(radius: float = 1.0) -> Mesh: ...
+    @staticmethod
+    def make_subdivided_cube(n: int, half_size: float = 1.0) -> Mesh: ...
+    @staticmethod
+    def make_icosphere(level: int, grid_bits: int = 30) -> Mesh: ...
     @staticmethod
     def ulp_distance(a: float, b: float) -> Optional[int]: ...
     @staticmethod

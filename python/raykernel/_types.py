@@ -239,6 +239,16 @@ class ExactTriangleIntersection(NamedTuple):
     exact_barycentric: Optional[Tuple[Fraction, Fraction, Fraction]]
 
 
+class MeshHit(NamedTuple):
+    """The nearest hit of a ray on a mesh (docs/contract.md §7): the index of the triangle, and its ``t``,
+    ``location`` and ``barycentric`` coordinates as ``intersect(ray, triangle)`` gives them."""
+
+    triangle: int
+    t: float
+    location: TriangleLocation
+    barycentric: Barycentric
+
+
 class IntersectionArrays(NamedTuple):
     """The answers of ``intersect_batch``, one row per query.
 
@@ -265,6 +275,21 @@ class NearestHitArrays(NamedTuple):
     t: np.ndarray
     valid: np.ndarray
     stats: Optional[StageCounts] = None
+
+
+class MeshHitArrays(NamedTuple):
+    """The answers of ``nearest_hit_batch`` on a mesh, one row per ray: ``triangle`` (int64, -1 for a miss and
+    for invalid rays), ``t`` (float64) and ``barycentric`` ((n, 3) float64), NaN for a miss; ``location``
+    (uint8 ``TriangleLocation.code``: NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``valid``."""
+
+    triangle: np.ndarray
+    t: np.ndarray
+    location: np.ndarray
+    barycentric: np.ndarray
+    valid: np.ndarray
+
+    def locations(self) -> np.ndarray:
+        return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
 
 
 class RelationArrays(NamedTuple):

@@ -8,6 +8,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "batch_support.hpp"
+#include "mesh.hpp"
 #include "plane_set.hpp"
 
 #include <raykernel/batch.hpp>
@@ -183,9 +184,15 @@ py::object relation_batch_py(py::handle origins, py::handle directions, py::hand
   return types().relation_arrays(relation, valid, stats_py);
 }
 
-py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::handle planes_arg,
+py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::handle planes_arg, py::handle rule,
                                 const std::string& path_name, const std::string& errors,
                                 std::optional<unsigned> threads, bool want_stats) {
+  if (py::isinstance<PythonMesh>(planes_arg)) {
+    if (want_stats) throw py::value_error("stats: only for planes");
+    return nearest_hit_mesh_batch(origins, directions, planes_arg.cast<const PythonMesh&>(), rule, path_name, errors,
+                                  threads);
+  }
+  if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   ColumnsView o(origins, "origins"), d(directions, "directions");
@@ -296,18 +303,24 @@ vectorized loop, the cascade for the rest) or "exact" (rational arithmetic per r
 invalid), ``valid`` bool, and with ``stats=True`` how many rows each stage decided (``{"relation": {...}}``).
 Every relation is ``relation``'s (and ``intersect``'s). Releases the GIL.)doc");
 
-  m.def("nearest_hit_batch", &nearest_hit_batch_py, py::arg("origins"), py::arg("directions"), py::arg("planes"),
-        py::kw_only(), py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+  m.def("nearest_hit_batch", &nearest_hit_batch_py, py::arg("origins"), py::arg("directions"), py::arg("scene"),
+        py::kw_only(), py::arg("rule") = py::none(), py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
         py::arg("stats") = false,
-        R"doc(``nearest_hit`` for every ray: the first plane of ``planes`` each ray meets.
+        R"doc(``nearest_hit`` for every ray: the first plane of ``scene`` each ray meets (or triangle, for a mesh).
 
-``origins``, ``directions``: (n, 3) arrays; ``planes``: a ``PlaneSet`` (read and validated once) or a sequence
+``origins``, ``directions``: (n, 3) arrays; ``scene``: a ``PlaneSet`` (read and validated once) or a sequence
 of ``(point, normal)`` pairs. Returns ``NearestHitArrays(plane, t, valid, stats)``: ``plane`` int64, the
 index of the nearest plane hit or -1 for a miss (and for invalid rays), ``t`` float64 (NaN for a miss),
 ``valid`` bool. ``path``, ``errors``, ``threads`` and ``stats`` as in ``intersect_batch``; a ``PlaneSet`` is
 prepared once, a sequence is prepared for the call; an invalid plane
 always raises ("plane 3: plane normal is the zero vector"), an invalid ray raises "ray 17: ..." unless
-errors="mask". Releases the GIL.)doc");
+errors="mask". Releases the GIL.
+
+``scene`` may be a ``raykernel.Mesh`` instead: then each ray's ``nearest_hit(ray, mesh, rule=rule)``, as
+``MeshHitArrays(triangle, t, location, barycentric, valid)``: ``triangle`` int64 (-1 for a miss), ``t``
+float64 and ``barycentric`` (n, 3) float64 (NaN for a miss), ``location`` uint8 ``TriangleLocation`` codes
+(NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``path`` "certified" (the BVH) or "exact"
+(brute force in rationals); rays spread over threads.)doc");
 }
 
 }  // namespace raykernel::python

@@ -1,6 +1,7 @@
 // PlaneSet and the scalar nearest hit (docs/contract.md §4): the first plane one ray meets.
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "mesh.hpp"
 #include "plane_set.hpp"
 
 #include <raykernel/nearest_hit.hpp>
@@ -124,24 +125,34 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
 
   m.def(
       "nearest_hit",
-      [](py::handle ray, py::handle planes) {
-        return nearest(ray, planes, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
+      [](py::handle ray, py::handle scene, py::handle rule) {
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, false);
+        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
+        return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
       },
-      py::arg("ray"), py::arg("planes"),
-      R"doc(The first plane ``ray`` meets, decided exactly: ``NearestHit(plane, t)`` or None.
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      R"doc(The first plane or triangle ``ray`` meets, decided exactly, or None.
 
-Among the planes whose relation is HIT (t ≥ 0), the one with the smallest exact t = num/den; ties go to the
-smallest index; ``t`` is that plane's t rounded as ``intersect`` rounds it. t values are compared exactly,
-never after rounding, so planes closer than an ulp are ordered right (docs/contract.md §4). ``planes`` is a
-``PlaneSet`` or a sequence of ``(point, normal)`` pairs. Raises ``ValueError`` naming the invalid ray or
-plane.)doc");
+Planes (``scene`` a ``PlaneSet`` or a sequence of ``(point, normal)`` pairs; docs/contract.md §4): among the
+planes whose relation is HIT (t ≥ 0), the one with the smallest exact t = num/den, ties to the smallest index:
+``NearestHit(plane, t)``, ``t`` rounded as ``intersect`` rounds it. t values are compared exactly, never after
+rounding, so planes closer than an ulp are ordered right.
+
+Mesh (``scene`` a ``raykernel.Mesh``; docs/contract.md §7): among the triangles the ray hits under ``rule``
+("owned", the default, or "closed"), the one with the smallest exact t, ties to the smallest index, found
+through the mesh's BVH (the answer is the brute-force one): ``MeshHit(triangle, t, location, barycentric)``
+as ``intersect`` gives them. Releases the GIL for meshes.
+
+Raises ``ValueError`` naming the invalid ray or plane.)doc");
 
   m.def(
       "nearest_hit_exact",
-      [](py::handle ray, py::handle planes) {
+      [](py::handle ray, py::handle scene, py::handle rule) {
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, true);
+        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         const Ray r = ray_from(ray);
         std::optional<raykernel::PlaneSet> storage;
-        const raykernel::PlaneSet& set = planes_from(planes, storage);
+        const raykernel::PlaneSet& set = planes_from(scene, storage);
         std::optional<NearestHit> hit;
         {
           py::gil_scoped_release release;
@@ -149,12 +160,15 @@ plane.)doc");
         }
         return to_python(hit);
       },
-      py::arg("ray"), py::arg("planes"),
-      "The reference nearest hit, in exact rationals: the same answer as ``nearest_hit``. Releases the GIL.");
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      R"doc(The reference nearest hit, in exact rationals, by brute force (every plane or every triangle, no
+BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
 
   m.def(
       "nearest_hit_naive",
       [](py::handle ray, py::handle planes) {
+        if (py::isinstance<PythonMesh>(planes))
+          throw py::type_error("planes: nearest_hit_naive is for planes (a PlaneSet or a sequence of planes)");
         return nearest(ray, planes,
                        [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit_naive(r, p.planes()); });
       },

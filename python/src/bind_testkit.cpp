@@ -3,9 +3,11 @@
 // word and shrinks it), the reference check, ulp distances, and the fuzz decoder.
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "mesh.hpp"
 
 #include <raykernel/testkit/fuzz_decoder.hpp>
 #include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 #include <raykernel/testkit/reference_check.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
@@ -296,6 +298,26 @@ a, b, c, kind_index)``.)doc");
 with (relation, location, owned, t, barycentric), as a dict (expected, got, exact, rule, max_ulps,
 check_location, relation_matches, location_matches, owned_matches, ulps — of t, ua, ub, uc, None where not
 compared —, passed, report). Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "make_octahedron", [](double radius) { return PythonMesh(testkit::make_octahedron(radius)); },
+      py::arg("radius") = 1.0, "testkit::make_octahedron: a closed mesh, vertices ±radius on the axes, 8 triangles.");
+  m.def(
+      "make_subdivided_cube",
+      [](int n, double half_size) {
+        if (n < 1) throw py::value_error("n: expected n ≥ 1");
+        return PythonMesh(testkit::make_subdivided_cube(n, half_size));
+      },
+      py::arg("n"), py::arg("half_size") = 1.0,
+      "testkit::make_subdivided_cube: the cube [−h, h]^3, each face cut into n × n squares of two triangles.");
+  m.def(
+      "make_icosphere",
+      [](int level, int grid_bits) {
+        if (level < 0 || level > 8) throw py::value_error("level: expected 0..8");
+        return PythonMesh(testkit::make_icosphere(level, grid_bits));
+      },
+      py::arg("level"), py::arg("grid_bits") = 30,
+      "testkit::make_icosphere: the icosahedron subdivided `level` times, 20·4^level triangles, vertices on a grid.");
 
   m.def(
       "ulp_distance",

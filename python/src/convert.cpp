@@ -75,6 +75,8 @@ void load_types() {
   t->exact_triangle_intersection = m.attr("ExactTriangleIntersection");
   t->triangle_intersection_arrays = m.attr("TriangleIntersectionArrays");
   t->triangle_classification_arrays = m.attr("TriangleClassificationArrays");
+  t->mesh_hit = m.attr("MeshHit");
+  t->mesh_hit_arrays = m.attr("MeshHitArrays");
   // The Python enums list their members in the C++ enums' order, and their codes are those values.
   for (std::size_t k = 0; k < 6; ++k) t->triangle_relation[k] = m.attr("TriangleRelation").attr("from_code")(k);
   for (std::size_t k = 0; k < 9; ++k) t->triangle_location[k] = m.attr("TriangleLocation").attr("from_code")(k);
