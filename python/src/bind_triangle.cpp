@@ -78,17 +78,23 @@ py::object intersect_triangle_batch_py(py::handle origins, py::handle directions
       for (std::size_t i = begin; i < end; ++i) {
         const Ray ray = q.ray(i);
         const Triangle triangle = q.triangle(i);
-        valid_out[i] = !validate(ray, triangle).has_value();
-        if (!valid_out[i] && path != Path::naive) {
+        // The certified and exact paths validate as they answer (invalid input throws, and only then costs);
+        // the naive path answers everything and validates for `valid` alone.
+        TriangleIntersection x{};
+        valid_out[i] = true;
+        try {
+          x = path == Path::certified ? intersect(ray, triangle, options)
+              : path == Path::exact   ? intersect_exact(ray, triangle, options)
+                                      : intersect_naive(ray, triangle);
+          if (path == Path::naive) valid_out[i] = !validate(ray, triangle).has_value();
+        } catch (const invalid_input&) {
+          valid_out[i] = false;
           relation_out[i] = location_out[i] = invalid_code;
           owned_out[i] = false;
           t_out[i] = nan;
           for (int k = 0; k < 3; ++k) barycentric_out[3 * i + k] = nan;
           continue;
         }
-        const TriangleIntersection x = path == Path::certified ? intersect(ray, triangle, options)
-                                       : path == Path::exact   ? intersect_exact(ray, triangle, options)
-                                                               : intersect_naive(ray, triangle);
         relation_out[i] = static_cast<std::uint8_t>(x.relation);
         location_out[i] = static_cast<std::uint8_t>(x.location);
         owned_out[i] = x.owned;
@@ -124,18 +130,20 @@ py::object relation_triangle_batch_py(py::handle origins, py::handle directions,
       for (std::size_t i = begin; i < end; ++i) {
         const Ray ray = q.ray(i);
         const Triangle triangle = q.triangle(i);
-        valid_out[i] = !validate(ray, triangle).has_value();
-        if (!valid_out[i]) {
+        TriangleClassification x{};
+        valid_out[i] = true;
+        try {  // validated as it answers: invalid input throws
+          if (path == Path::certified) {
+            x = raykernel::relation(ray, triangle, chosen);
+          } else {  // the exact classification: intersect_exact without roundings
+            const TriangleIntersection e = intersect_exact(ray, triangle, {chosen, false, false});
+            x = {e.relation, e.location, e.owned};
+          }
+        } catch (const invalid_input&) {
+          valid_out[i] = false;
           relation_out[i] = location_out[i] = invalid_code;
           owned_out[i] = false;
           continue;
-        }
-        TriangleClassification x;
-        if (path == Path::certified) {
-          x = raykernel::relation(ray, triangle, chosen);
-        } else {  // the exact classification: intersect_exact without roundings
-          const TriangleIntersection e = intersect_exact(ray, triangle, {chosen, false, false});
-          x = {e.relation, e.location, e.owned};
         }
         relation_out[i] = static_cast<std::uint8_t>(x.relation);
         location_out[i] = static_cast<std::uint8_t>(x.location);

@@ -221,18 +221,30 @@ def _codes(values, enum) -> np.ndarray:
 
 
 def assert_triangle_arrays_match_reference(
-    origins, directions, a, b, c, relation, t=None, barycentric=None, *, location=None, owned=None,
+    origins, directions, a, b, c, relation=None, t=None, barycentric=None, *, hit=None, location=None, owned=None,
     rule: str = "owned", max_ulps: int = 0, reference_path: str = "certified",
 ) -> None:
     """Vectorized ``assert_triangle_matches_reference``: row i of the answers against the exact answer to
     query i (ray i, triangle i; or the one triangle when ``a``, ``b``, ``c`` are 3-vectors) under ``rule``.
     ``relation`` (and ``location``) as codes or names; ``t``, ``barycentric`` ((n, 3)), ``location`` and
-    ``owned`` are compared when given (NaN values are "not computed" and not compared). The exact answers come
+    ``owned`` are compared when given (NaN values are "not computed" and not compared). Code that only says hit
+    or not (Möller–Trumbore) passes ``hit=`` (bool array) instead of ``relation``: a row must be a hit exactly
+    when the exact relation is HIT, and its t and coordinates are compared where the line crosses the plane
+    (and not NaN). The exact answers come
     from ``intersect_triangle_batch`` (certified: equal to the exact path bit for bit) or, with
     ``reference_path="exact"``, the rational path. On a mismatch the AssertionError carries the count of
     wrong rows and the reference check's report of the first one."""
     expected = _raykernel.intersect_triangle_batch(origins, directions, a, b, c, rule=rule, path=reference_path)
     n = expected.relation.shape[0]
+    if (relation is None) == (hit is None):
+        raise ValueError("give either relation or hit")
+    if hit is not None:  # judged as hit or not: a non-hit stands for the exact relation when that is not HIT
+        expected_codes = expected.relation.astype(np.int64)
+        got_hit = np.asarray(hit, dtype=bool).reshape(-1)
+        if got_hit.shape != (n,):
+            raise AssertionError(f"hit has shape {got_hit.shape}, expected ({n},)")
+        miss = np.where(expected_codes == TriangleRelation.HIT.code, TriangleRelation.MISS.code, expected_codes)
+        relation = np.where(got_hit, TriangleRelation.HIT.code, miss)
     got_relation = _codes(relation, TriangleRelation)
     if got_relation.shape != (n,):
         raise AssertionError(f"relation has shape {got_relation.shape}, expected ({n},)")
