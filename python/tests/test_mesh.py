@@ -121,3 +121,16 @@ def test_load_mesh_reads_exactly_and_names_file_and_line(tmp_path):
         rk.load_mesh(str(broken))
     with pytest.raises(ValueError, match="missing.obj"):
         rk.load_mesh(str(tmp_path / "missing.obj"))
+
+
+def test_the_gil_is_released_during_a_mesh_batch():
+    from test_arrays import longest_pause_of_this_thread_while
+
+    mesh = testkit.make_icosphere(1)
+    rng = np.random.default_rng(3)
+    o = rng.uniform(-1, 1, (400, 3)) * 3
+    d = -o
+    longest, total = longest_pause_of_this_thread_while(
+        lambda: rk.nearest_hit_batch(o, d, mesh, path="exact", threads=1))
+    assert total > 0.05, "the batch was too short to tell"
+    assert longest < total / 4, f"this thread stopped for {longest:.3f} s of a {total:.3f} s batch"
