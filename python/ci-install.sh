@@ -47,13 +47,16 @@ import raykernel as rk
 from raykernel.testing.hypothesis import hard_queries  # needs Hypothesis from Debian, through the venv
 x = rk.intersect(((0, 0, 0), (10, 0, 0)), ((1, 0, 0), (1, 0, 0)))
 assert x == (rk.Relation.HIT, 0.1), x
+y = rk.intersect(((0.5, 0, -1), (0, 0, 3)), ((0, 0, 0), (1, 0, 0), (0, 1, 0)))
+assert (y.relation, y.location, y.barycentric) == ("hit", "edge-ab", (0.5, 0.5, 0.0)), y
 print(f"raykernel {rk.__version__} from {rk.__file__}: {x}")
 PY
 
 step "the API tests against the installed package"
 PYTHONDONTWRITEBYTECODE=1 "$venv_python" -m pytest -p no:cacheprovider -q \
   "$root/python/tests/test_scalar.py" "$root/python/tests/test_nearest.py" "$root/python/tests/test_arrays.py" \
-  "$root/python/tests/test_stubs.py" "$root/python/tests/test_testing.py"
+  "$root/python/tests/test_stubs.py" "$root/python/tests/test_testing.py" "$root/python/tests/test_triangles.py" \
+  "$root/python/tests/test_mesh.py"
 
 ok=1
 step "done"

@@ -8,9 +8,10 @@ import numpy as np
 EPSILON = 1e-9
 
 
-def moller_trumbore(origins, directions, a, b, c, epsilon=EPSILON):
+def moller_trumbore(origins, directions, a, b, c, epsilon=EPSILON, with_barycentric=False):
     """(hit, t) for each row: hit is a bool array, t the distance along the ray where hit (NaN elsewhere).
-    |det| ≤ epsilon counts as parallel."""
+    |det| ≤ epsilon counts as parallel. With ``with_barycentric``, also the (n, 3) weights (1 − u − v, u, v)
+    of a, b, c."""
     e1, e2 = b - a, c - a
     p = np.cross(directions, e2)
     det = np.einsum("ij,ij->i", e1, p)
@@ -22,4 +23,6 @@ def moller_trumbore(origins, directions, a, b, c, epsilon=EPSILON):
         v = np.einsum("ij,ij->i", directions, q) * inv_det
         t = np.einsum("ij,ij->i", e2, q) * inv_det
     hit = (np.abs(det) > epsilon) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t >= 0)
+    if with_barycentric:
+        return hit, np.where(hit, t, np.nan), np.column_stack([1 - u - v, u, v])
     return hit, np.where(hit, t, np.nan)

@@ -1,15 +1,20 @@
-"""raykernel's Hypothesis strategies against NumPy ray code. The three tests of 'your code' FAIL, on purpose:
+"""raykernel's Hypothesis strategies against NumPy ray code. The four tests of 'your code' FAIL, on purpose:
 Hypothesis shrinks the counterexample and the assertion prints raykernel's reference report. The control
 test runs raykernel itself through the same check and passes.
 
-    /usr/bin/python3 -m pytest python/examples        # 3 failed, 1 passed
+    /usr/bin/python3 -m pytest python/examples        # 4 failed, 1 passed
 """
 
+import numpy as np
 from hypothesis import given
 
 import raykernel
-from raykernel.testing import assert_arrays_match_reference, assert_triangle_hit_matches_reference
-from raykernel.testing.hypothesis import query_arrays, triangle_query_arrays
+from raykernel.testing import (
+    assert_arrays_match_reference,
+    assert_triangle_arrays_match_reference,
+    assert_triangle_hit_matches_reference,
+)
+from raykernel.testing.hypothesis import hard_triangle_query_arrays, query_arrays, triangle_query_arrays
 
 from numpy_moller_trumbore import moller_trumbore
 from numpy_ray_plane import ray_plane
@@ -34,6 +39,15 @@ def test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices(q):
     hit, t = moller_trumbore(q.origins, q.directions, q.a, q.b, q.c, epsilon=0.0)
     for i, query in enumerate(q.queries):
         assert_triangle_hit_matches_reference(query.ray, query.triangle, hit[i], t[i], rule="closed", max_t_ulps=None)
+
+
+@given(hard_triangle_query_arrays(["tiny", "huge", "sliver", "needle", "wide-exponents"]))
+def test_numpy_moller_trumbore_t_and_barycentric_within_4_ulps(q):
+    # Where the exact answer is a hit, a hit with t and the barycentric coordinates within 4 ulps (closed rule).
+    hit, t, barycentric = moller_trumbore(q.origins, q.directions, q.a, q.b, q.c, epsilon=0.0, with_barycentric=True)
+    assert_triangle_arrays_match_reference(q.origins, q.directions, q.a, q.b, q.c, hit=hit, t=t,
+                                           barycentric=np.where(hit[:, None], barycentric, np.nan),
+                                           rule="closed", max_ulps=4)
 
 
 @given(query_arrays())

@@ -1,4 +1,4 @@
-"""raykernel: exact ray–plane intersection for binary64 inputs, from Python.
+"""raykernel: exact ray–plane, ray–triangle and ray–mesh intersection for binary64 inputs, from Python.
 
 Every answer is exact for the doubles given (docs/contract.md §1): the relation comes from the exact signs
 of ``den = d·n`` and ``num = (p − o)·n``, and ``t`` is the exact ``num/den`` rounded to the nearest double,
@@ -10,15 +10,18 @@ ties to even. The C++ kernel does the work; this package converts values and arr
     >>> rk.intersect_exact_rational(((0, 0, 0), (10, 0, 0)), ((1, 0, 0), (1, 0, 0))).exact_t
     Fraction(1, 10)
 
-Scalar functions take a ray as ``(origin, direction)`` and a plane as ``(point, normal)``, vectors as any
-sequence of three numbers: ``intersect`` (certified), ``intersect_exact`` (rational reference),
-``intersect_exact_rational`` (with num, den and t as Fractions), ``intersect_naive`` (the textbook formula,
-no guarantee), ``intersect_traced``, ``validate``, ``nearest_hit`` / ``nearest_hit_exact`` /
-``nearest_hit_naive`` over a ``PlaneSet`` or a list of planes, ``round_rational_to_double``.
+Scalar functions take a ray as ``(origin, direction)`` and a plane as ``(point, normal)`` or a triangle as
+``(a, b, c)`` (docs/contract.md §6; keyword ``rule="owned"|"closed"``), vectors as any sequence of three
+numbers: ``intersect`` (certified), ``relation`` (the relation alone), ``intersect_exact`` (rational
+reference), ``intersect_exact_rational`` (the exact values as Fractions), ``intersect_naive`` (the textbook
+formula / Möller–Trumbore, no guarantee), ``intersect_traced``, ``validate``; ``nearest_hit`` /
+``nearest_hit_exact`` over a ``PlaneSet``, a list of planes or a ``Mesh`` (``load_mesh(path)``: OBJ, PLY, STL,
+OFF), ``nearest_hit_naive`` over planes; ``round_rational_to_double``.
 
 Vectorized functions take (n, 3) float64 arrays and loop in C++ with the GIL released:
-``intersect_batch(origins, directions, points, normals)`` and ``nearest_hit_batch(origins, directions,
-planes)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
+``intersect_batch`` / ``relation_batch(origins, directions, points, normals)``,
+``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)`` and
+``nearest_hit_batch(origins, directions, scene)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
 the row: "query 17: ray direction is the zero vector".
 
 ``raykernel.testing`` checks other code against raykernel (ulps, reports); ``raykernel.testing.hypothesis``
@@ -28,22 +31,37 @@ has Hypothesis strategies for the hard queries.
 from __future__ import annotations
 
 from ._types import (
+    Barycentric,
     ExactIntersection,
+    ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
+    MeshHit,
+    MeshHitArrays,
     NearestHit,
     NearestHitArrays,
     Plane,
     Ray,
     Relation,
+    RelationArrays,
     Stage,
     TracedIntersection,
+    TracedTriangleIntersection,
     Triangle,
+    TriangleClassification,
+    TriangleClassificationArrays,
+    TriangleIntersection,
+    TriangleIntersectionArrays,
+    TriangleLocation,
+    TriangleRelation,
+    TriangleRule,
     Vec3,
 )
 from ._raykernel import (  # noqa: E402  (the extension builds its results from ._types)
     INVALID_RELATION_CODE,
     InvalidInput,
+    Mesh,
+    MeshFileError,
     PlaneSet,
     floating_point_environment_is_default,
     intersect,
@@ -52,10 +70,15 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     intersect_exact_rational,
     intersect_naive,
     intersect_traced,
+    intersect_triangle_batch,
+    load_mesh,
     nearest_hit,
     nearest_hit_batch,
     nearest_hit_exact,
     nearest_hit_naive,
+    relation,
+    relation_batch,
+    relation_triangle_batch,
     round_rational_to_double,
     validate,
     version,
@@ -64,20 +87,35 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
 __version__ = version()
 
 __all__ = [
+    "Barycentric",
     "ExactIntersection",
+    "ExactTriangleIntersection",
     "INVALID_RELATION_CODE",
     "Intersection",
     "IntersectionArrays",
     "InvalidInput",
+    "Mesh",
+    "MeshFileError",
+    "MeshHit",
+    "MeshHitArrays",
     "NearestHit",
     "NearestHitArrays",
     "Plane",
     "PlaneSet",
     "Ray",
     "Relation",
+    "RelationArrays",
     "Stage",
     "TracedIntersection",
+    "TracedTriangleIntersection",
     "Triangle",
+    "TriangleClassification",
+    "TriangleClassificationArrays",
+    "TriangleIntersection",
+    "TriangleIntersectionArrays",
+    "TriangleLocation",
+    "TriangleRelation",
+    "TriangleRule",
     "Vec3",
     "floating_point_environment_is_default",
     "intersect",
@@ -86,10 +124,15 @@ __all__ = [
     "intersect_exact_rational",
     "intersect_naive",
     "intersect_traced",
+    "intersect_triangle_batch",
+    "load_mesh",
     "nearest_hit",
     "nearest_hit_batch",
     "nearest_hit_exact",
     "nearest_hit_naive",
+    "relation",
+    "relation_batch",
+    "relation_triangle_batch",
     "round_rational_to_double",
     "validate",
     "version",

@@ -9,8 +9,11 @@ import numpy.typing as npt
 
 from ._types import (
     ExactIntersection,
+    ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
+    MeshHit,
+    MeshHitArrays,
     NearestHit,
     NearestHitArrays,
     Plane,
@@ -18,22 +21,61 @@ from ._types import (
     Ray,
     RayLike,
     Relation,
+    RelationArrays,
+    RuleLike,
     TracedIntersection,
+    TracedTriangleIntersection,
+    TriangleClassification,
+    TriangleClassificationArrays,
+    TriangleIntersection,
+    TriangleIntersectionArrays,
+    Triangle,
+    TriangleLike,
 )
 
 __version__: str
 INVALID_RELATION_CODE: int
 
 class InvalidInput(ValueError): ...
+class MeshFileError(ValueError): ...
 
 ArrayLike3 = npt.ArrayLike  # (n, 3) float64, or (3,) where one plane is allowed
 
-def validate(ray: RayLike, plane: PlaneLike) -> Optional[str]: ...
-def intersect(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_exact(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_exact_rational(ray: RayLike, plane: PlaneLike) -> ExactIntersection: ...
-def intersect_naive(ray: RayLike, plane: PlaneLike) -> Intersection: ...
-def intersect_traced(ray: RayLike, plane: PlaneLike) -> TracedIntersection: ...
+# The scalar queries take a plane (point, normal) or a triangle (a, b, c) as `primitive`; the triangle options
+# (rule "owned" or "closed", t, barycentric) are keyword-only and for triangles only.
+def validate(ray: RayLike, primitive: Union[PlaneLike, TriangleLike]) -> Optional[str]: ...
+@overload
+def intersect(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TriangleIntersection: ...
+@overload
+def relation(ray: RayLike, primitive: PlaneLike) -> Relation: ...
+@overload
+def relation(ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None) -> TriangleClassification: ...
+@overload
+def intersect_exact(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect_exact(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TriangleIntersection: ...
+@overload
+def intersect_exact_rational(ray: RayLike, primitive: PlaneLike) -> ExactIntersection: ...
+@overload
+def intersect_exact_rational(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None
+) -> ExactTriangleIntersection: ...
+@overload
+def intersect_naive(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
+@overload
+def intersect_naive(ray: RayLike, primitive: TriangleLike) -> TriangleIntersection: ...
+@overload
+def intersect_traced(ray: RayLike, primitive: PlaneLike) -> TracedIntersection: ...
+@overload
+def intersect_traced(
+    ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
+) -> TracedTriangleIntersection: ...
 @overload
 def round_rational_to_double(value: Union[Fraction, int], denominator: None = None) -> float: ...
 @overload
@@ -49,11 +91,31 @@ class PlaneSet:
     def points(self) -> np.ndarray: ...
     @property
     def normals(self) -> np.ndarray: ...
+    @property
+    def candidates(self) -> np.ndarray: ...
 
 Planes = Union[PlaneSet, Sequence[PlaneLike]]
 
-def nearest_hit(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
-def nearest_hit_exact(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
+class Mesh:
+    def __init__(self, vertices: ArrayLike3, triangles: npt.ArrayLike) -> None: ...
+    def __len__(self) -> int: ...
+    @property
+    def vertices(self) -> np.ndarray: ...
+    @property
+    def triangles(self) -> np.ndarray: ...
+    def triangle(self, index: int) -> Triangle: ...
+    @property
+    def bvh_depth(self) -> int: ...
+
+def load_mesh(path: str) -> Mesh: ...
+@overload
+def nearest_hit(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
+@overload
+def nearest_hit_exact(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit_exact(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
 def nearest_hit_naive(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
 def intersect_batch(
     origins: ArrayLike3,
@@ -66,10 +128,59 @@ def intersect_batch(
     threads: Optional[int] = None,
     stats: bool = False,
 ) -> IntersectionArrays: ...
+def relation_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    points: ArrayLike3,
+    normals: ArrayLike3,
+    *,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    stats: bool = False,
+) -> RelationArrays: ...
+def intersect_triangle_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    *,
+    rule: Optional[RuleLike] = None,
+    t: bool = True,
+    barycentric: bool = True,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> TriangleIntersectionArrays: ...
+def relation_triangle_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    *,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> TriangleClassificationArrays: ...
+@overload
 def nearest_hit_batch(
     origins: ArrayLike3,
     directions: ArrayLike3,
-    planes: Planes,
+    scene: Mesh,
+    *,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> MeshHitArrays: ...
+@overload
+def nearest_hit_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    scene: Planes,
     *,
     path: str = "certified",
     errors: str = "raise",
@@ -93,6 +204,32 @@ class testkit:  # the submodule raykernel._raykernel.testkit
     def check_against_reference(
         ray: RayLike, plane: PlaneLike, relation: Union[Relation, str, int], t: float, max_t_ulps: int = 0
     ) -> dict: ...
+    TRIANGLE_QUERY_KINDS: Tuple[str, ...]
+    @staticmethod
+    def make_triangle_query(kind: str, words: Words) -> Tuple[Ray, Triangle]: ...
+    @staticmethod
+    def make_triangle_query_arrays(
+        kinds: Sequence[str], count: int, seed: int
+    ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
+    @staticmethod
+    def check_triangle_against_reference(
+        ray: RayLike,
+        triangle: TriangleLike,
+        relation: Union[str, int],
+        location: Union[str, int],
+        owned: bool,
+        t: float,
+        barycentric: Sequence[float],
+        rule: Optional[RuleLike] = None,
+        max_ulps: int = 0,
+        check_location: bool = True,
+    ) -> dict: ...
+    @staticmethod
+    def make_octahedron(radius: float = 1.0) -> Mesh: ...
+    @staticmethod
+    def make_subdivided_cube(n: int, half_size: float = 1.0) -> Mesh: ...
+    @staticmethod
+    def make_icosphere(level: int, grid_bits: int = 30) -> Mesh: ...
     @staticmethod
     def ulp_distance(a: float, b: float) -> Optional[int]: ...
     @staticmethod

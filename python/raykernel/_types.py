@@ -119,6 +119,136 @@ class NearestHit(NamedTuple):
 StageCounts = Dict[str, Dict[str, int]]
 
 
+# Ray–triangle (docs/contract.md §6) --------------------------------------------------------------------------
+
+
+class TriangleRule(_StrEnum):
+    """Which points of a triangle count as a hit (docs/contract.md §6). ``TriangleRule.OWNED == "owned"``."""
+
+    OWNED = "owned"  # watertight: an edge or vertex shared by a closed mesh's triangles belongs to exactly one
+    CLOSED = "closed"  # the triangle with its boundary: a ray through a shared edge hits both triangles
+
+
+class TriangleRelation(_StrEnum):
+    """How a ray meets a triangle under a rule. Members are strings: ``TriangleRelation.MISS == "miss"``.
+
+    ``code`` is the value the vectorized functions put in their uint8 ``relation`` arrays (the C++ enum's).
+    """
+
+    HIT = "hit"  # the ray passes through the triangle under the rule, at t ≥ 0
+    BEHIND = "behind"  # the line passes through it at t < 0
+    MISS = "miss"  # the line crosses the plane (den ≠ 0) outside the triangle under the rule
+    DEGENERATE = "degenerate"  # N = (b − a) × (c − a) = 0: collinear or repeated vertices, never hit
+    PARALLEL = "parallel"  # N ≠ 0, den = d·N = 0, num ≠ 0: the line never meets the plane
+    COPLANAR = "coplanar"  # N ≠ 0, den = 0, num = 0: the line lies in the plane (never a hit)
+
+    @property
+    def code(self) -> int:
+        return _TRIANGLE_RELATION_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "TriangleRelation":
+        return _TRIANGLE_RELATIONS_BY_CODE[int(code)]
+
+
+class TriangleLocation(_StrEnum):
+    """Where the ray's line meets the triangle's plane, from the signs of πa, πb, πc against den's (§6).
+    ``code`` is the value of the vectorized functions' uint8 ``location`` arrays."""
+
+    INSIDE = "inside"  # all three π nonzero with den's sign
+    EDGE_AB = "edge-ab"  # πc = 0, the others with den's sign
+    EDGE_BC = "edge-bc"  # πa = 0
+    EDGE_CA = "edge-ca"  # πb = 0
+    VERTEX_A = "vertex-a"  # πb = πc = 0
+    VERTEX_B = "vertex-b"  # πc = πa = 0
+    VERTEX_C = "vertex-c"  # πa = πb = 0
+    OUTSIDE = "outside"  # some π with the sign opposite to den's
+    NONE = "none"  # den = 0 (degenerate, parallel, coplanar): the line does not cross the plane
+
+    @property
+    def code(self) -> int:
+        return _TRIANGLE_LOCATION_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "TriangleLocation":
+        return _TRIANGLE_LOCATIONS_BY_CODE[int(code)]
+
+
+_TRIANGLE_RELATIONS_BY_CODE = tuple(TriangleRelation)
+_TRIANGLE_RELATION_CODES = {r: k for k, r in enumerate(_TRIANGLE_RELATIONS_BY_CODE)}
+_TRIANGLE_LOCATIONS_BY_CODE = tuple(TriangleLocation)
+_TRIANGLE_LOCATION_CODES = {r: k for k, r in enumerate(_TRIANGLE_LOCATIONS_BY_CODE)}
+
+
+class Barycentric(NamedTuple):
+    """Barycentric coordinates (πa, πb, πc)/den of the point where the line crosses the plane: the weights of
+    the vertices a, b, c (they sum to 1 exactly; each is rounded on its own)."""
+
+    a: float
+    b: float
+    c: float
+
+
+class TriangleIntersection(NamedTuple):
+    """The answer to one ray–triangle query (docs/contract.md §6). ``relation`` is under the rule asked
+    for; ``location`` is NONE unless the line crosses the plane; ``owned`` says whether the owned rule lets
+    the line through (False unless it crosses); ``t`` and ``barycentric`` are the exact values rounded to
+    nearest, NaN when the line does not cross the plane or when not asked for."""
+
+    relation: TriangleRelation
+    location: TriangleLocation
+    owned: bool
+    t: float
+    barycentric: Barycentric
+
+
+class TriangleClassification(NamedTuple):
+    """The relation, location and owned flag alone (``relation(ray, triangle)``): nothing rounded."""
+
+    relation: TriangleRelation
+    location: TriangleLocation
+    owned: bool
+
+
+class TracedTriangleIntersection(NamedTuple):
+    """``TriangleIntersection`` plus the stages that decided the relation and the roundings."""
+
+    relation: TriangleRelation
+    location: TriangleLocation
+    owned: bool
+    t: float
+    barycentric: Barycentric
+    relation_stage: Stage
+    rounding_stage: Stage
+
+
+class ExactTriangleIntersection(NamedTuple):
+    """The exact answer with the rationals it was decided from (``intersect_exact_rational(ray, triangle)``):
+    den = d·N, num = (a − o)·N, pi = (πa, πb, πc); when den ≠ 0, exact_t = num/den and exact_barycentric =
+    (πa, πb, πc)/den (None otherwise). ``t`` and ``barycentric`` are those rounded to nearest."""
+
+    relation: TriangleRelation
+    location: TriangleLocation
+    owned: bool
+    t: float
+    barycentric: Barycentric
+    den: Fraction
+    num: Fraction
+    pi: Tuple[Fraction, Fraction, Fraction]
+    exact_t: Optional[Fraction]
+    exact_barycentric: Optional[Tuple[Fraction, Fraction, Fraction]]
+
+
+class MeshHit(NamedTuple):
+    """The nearest hit of a ray on a mesh (docs/contract.md §7): the index of the triangle, and its ``t``,
+    ``location`` and ``barycentric`` coordinates as ``intersect(ray, triangle)`` gives them."""
+
+    triangle: int
+    t: float
+    location: TriangleLocation
+    barycentric: Barycentric
+
+
 class IntersectionArrays(NamedTuple):
     """The answers of ``intersect_batch``, one row per query.
 
@@ -134,8 +264,7 @@ class IntersectionArrays(NamedTuple):
 
     def relations(self) -> np.ndarray:
         """The relations as strings ("hit", "behind", "parallel", "in-plane"; "invalid")."""
-        names = np.array([r.value for r in _RELATIONS_BY_CODE] + ["invalid"], dtype=object)
-        return names[np.minimum(self.relation, 4)]
+        return _names(_RELATIONS_BY_CODE, self.relation)
 
 
 class NearestHitArrays(NamedTuple):
@@ -148,6 +277,82 @@ class NearestHitArrays(NamedTuple):
     stats: Optional[StageCounts] = None
 
 
+class MeshHitArrays(NamedTuple):
+    """The answers of ``nearest_hit_batch`` on a mesh, one row per ray: ``triangle`` (int64, -1 for a miss and
+    for invalid rays), ``t`` (float64) and ``barycentric`` ((n, 3) float64), NaN for a miss; ``location``
+    (uint8 ``TriangleLocation.code``: NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``valid``."""
+
+    triangle: np.ndarray
+    t: np.ndarray
+    location: np.ndarray
+    barycentric: np.ndarray
+    valid: np.ndarray
+
+    def locations(self) -> np.ndarray:
+        return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
+
+
+class RelationArrays(NamedTuple):
+    """The answers of ``relation_batch``, one row per query: ``relation`` (uint8 ``Relation.code``,
+    ``INVALID_RELATION_CODE`` for invalid rows), ``valid`` (bool), ``stats`` (relation stages)."""
+
+    relation: np.ndarray
+    valid: np.ndarray
+    stats: Optional[StageCounts] = None
+
+    def relations(self) -> np.ndarray:
+        """The relations as strings ("hit", "behind", "parallel", "in-plane"; "invalid")."""
+        return _names(_RELATIONS_BY_CODE, self.relation)
+
+
+def _names(members, codes: np.ndarray) -> np.ndarray:
+    names = np.array([m.value for m in members] + ["invalid"], dtype=object)
+    return names[np.minimum(codes, len(members))]
+
+
+class TriangleIntersectionArrays(NamedTuple):
+    """The answers of ``intersect_triangle_batch``, one row per query.
+
+    ``relation`` (uint8): ``TriangleRelation.code``, ``INVALID_RELATION_CODE`` (255) where the query is
+    invalid; ``location`` (uint8): ``TriangleLocation.code`` (255 for invalid rows); ``owned`` (bool);
+    ``t`` (float64) and ``barycentric`` ((n, 3) float64, the coordinates of a, b, c): NaN where the line does
+    not cross the plane, where not asked for, and for invalid rows; ``valid`` (bool).
+    """
+
+    relation: np.ndarray
+    location: np.ndarray
+    owned: np.ndarray
+    t: np.ndarray
+    barycentric: np.ndarray
+    valid: np.ndarray
+
+    def relations(self) -> np.ndarray:
+        """The relations as strings ("hit", "behind", "miss", ...; "invalid")."""
+        return _names(_TRIANGLE_RELATIONS_BY_CODE, self.relation)
+
+    def locations(self) -> np.ndarray:
+        """The locations as strings ("inside", "edge-ab", ..., "none"; "invalid")."""
+        return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
+
+
+class TriangleClassificationArrays(NamedTuple):
+    """The answers of ``relation_triangle_batch``: ``relation``, ``location``, ``owned``, ``valid`` as in
+    ``TriangleIntersectionArrays``."""
+
+    relation: np.ndarray
+    location: np.ndarray
+    owned: np.ndarray
+    valid: np.ndarray
+
+    def relations(self) -> np.ndarray:
+        return _names(_TRIANGLE_RELATIONS_BY_CODE, self.relation)
+
+    def locations(self) -> np.ndarray:
+        return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
+
+
 Vec3Like = Union[Vec3, Tuple[float, float, float], "np.ndarray", "list[float]"]
 RayLike = Union[Ray, Tuple[Vec3Like, Vec3Like]]
 PlaneLike = Union[Plane, Tuple[Vec3Like, Vec3Like]]
+TriangleLike = Union[Triangle, Tuple[Vec3Like, Vec3Like, Vec3Like]]
+RuleLike = Union[TriangleRule, str]

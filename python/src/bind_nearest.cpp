@@ -1,12 +1,16 @@
 // PlaneSet and the scalar nearest hit (docs/contract.md §4): the first plane one ray meets.
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "mesh.hpp"
 #include "plane_set.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 
+#include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace raykernel::python {
 namespace {
@@ -14,17 +18,11 @@ namespace {
 // Below this many planes a nearest hit takes well under a microsecond: not worth releasing the GIL.
 constexpr std::size_t release_gil_above_planes = 64;
 
-void validate_planes(std::span<const Plane> planes) {
-  for (std::size_t k = 0; k < planes.size(); ++k)
-    if (const std::optional<std::string> reason = validate(planes[k]))
-      throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
-}
-
 template <class F>
 py::object nearest(py::handle ray, py::handle planes, F&& search) {
   const Ray r = ray_from(ray);
-  std::vector<Plane> storage;
-  const std::span<const Plane> set = planes_from(planes, storage);
+  std::optional<raykernel::PlaneSet> storage;
+  const raykernel::PlaneSet& set = planes_from(planes, storage);
   std::optional<NearestHit> hit;
   if (set.size() > release_gil_above_planes) {
     py::gil_scoped_release release;
@@ -35,36 +33,34 @@ py::object nearest(py::handle ray, py::handle planes, F&& search) {
   return to_python(hit);
 }
 
-}  // namespace
-
-PlaneSet::PlaneSet(py::handle planes_or_points, py::handle normals) {
+std::vector<Plane> read_planes(py::handle planes_or_points, py::handle normals) {
+  std::vector<Plane> planes;
   if (normals.is_none()) {
+    if (!PySequence_Check(planes_or_points.ptr()) || PyUnicode_Check(planes_or_points.ptr()))
+      throw py::type_error("planes: expected a raykernel.PlaneSet or a sequence of (point, normal) pairs, got " +
+                           std::string(Py_TYPE(planes_or_points.ptr())->tp_name));
     const py::sequence seq = py::reinterpret_borrow<py::sequence>(planes_or_points);
-    if (!PySequence_Check(planes_or_points.ptr()))
-      throw py::type_error("planes: expected a sequence of (point, normal) pairs");
     const std::size_t m = py::len(planes_or_points);
-    planes_.reserve(m);
-    for (std::size_t k = 0; k < m; ++k) planes_.push_back(plane_from(seq[k], "plane " + std::to_string(k)));
+    planes.reserve(m);
+    for (std::size_t k = 0; k < m; ++k) planes.push_back(plane_from(seq[k], "plane " + std::to_string(k)));
   } else {
     ColumnsView points(planes_or_points, "points"), ns(normals, "normals");
     require_rows(ns, "normals", points.rows(), "points");
-    planes_.reserve(points.rows());
-    for (std::size_t k = 0; k < points.rows(); ++k) planes_.push_back({points.row(k), ns.row(k)});
+    planes.reserve(points.rows());
+    for (std::size_t k = 0; k < points.rows(); ++k) planes.push_back({points.row(k), ns.row(k)});
   }
-  validate_planes(planes_);
+  return planes;
 }
 
-std::span<const Plane> planes_from(py::handle value, std::vector<Plane>& storage) {
-  if (py::isinstance<PlaneSet>(value)) return value.cast<const PlaneSet&>().planes();
-  if (!PySequence_Check(value.ptr()) || PyUnicode_Check(value.ptr()))
-    throw py::type_error("planes: expected a raykernel.PlaneSet or a sequence of (point, normal) pairs, got " +
-                         std::string(Py_TYPE(value.ptr())->tp_name));
-  const std::size_t m = py::len(value);
-  storage.clear();
-  storage.reserve(m);
-  const py::sequence seq = py::reinterpret_borrow<py::sequence>(value);
-  for (std::size_t k = 0; k < m; ++k) storage.push_back(plane_from(seq[k], "plane " + std::to_string(k)));
-  return storage;
+}  // namespace
+
+PlaneSet::PlaneSet(py::handle planes_or_points, py::handle normals)
+    : prepared_(read_planes(planes_or_points, normals)) {}
+
+const raykernel::PlaneSet& planes_from(py::handle value, std::optional<raykernel::PlaneSet>& storage) {
+  if (py::isinstance<PlaneSet>(value)) return value.cast<const PlaneSet&>().prepared();
+  storage.emplace(read_planes(value, py::none()));
+  return *storage;
 }
 
 void bind_nearest(py::module_& m) {
@@ -74,7 +70,8 @@ void bind_nearest(py::module_& m) {
 ``PlaneSet(points, normals)`` takes two (m, 3) float64 arrays. Plane k is the k-th, counted from 0: the index
 ``nearest_hit`` answers. Raises ``ValueError`` naming the first invalid plane
 (``"plane 3: plane normal is the zero vector"``). Pass it to ``nearest_hit`` and ``nearest_hit_batch``
-instead of a list to read and validate the planes once.)doc")
+instead of a list to prepare the planes once: they are validated once, and each plane that coincides exactly
+with an earlier one is set aside once (``candidates``), so a query tests only the planes that can win.)doc")
       .def(py::init([](py::handle planes, py::handle normals) { return PlaneSet(planes, normals); }), py::arg("planes"),
            py::arg("normals") = py::none())
       .def("__len__", [](const PlaneSet& s) { return s.planes().size(); })
@@ -113,42 +110,67 @@ instead of a list to read and validate the planes once.)doc")
             return a;
           },
           "The planes' normals, a new (m, 3) array.")
+      .def_property_readonly(
+          "candidates",
+          [](const PlaneSet& s) {
+            const auto c = s.prepared().candidates();
+            py::array_t<std::uint32_t> a(static_cast<py::ssize_t>(c.size()));
+            std::copy(c.begin(), c.end(), a.mutable_data());
+            return a;
+          },
+          "The indices of the planes that can win a nearest hit, ascending: each plane not coinciding exactly\n"
+          "with an earlier one (a new uint32 array). A coinciding plane has the same t as the earlier one for\n"
+          "every ray, so it never wins (ties go to the smallest index).")
       .def("__repr__", [](const PlaneSet& s) { return "PlaneSet(" + std::to_string(s.planes().size()) + " planes)"; });
 
   m.def(
       "nearest_hit",
-      [](py::handle ray, py::handle planes) {
-        return nearest(ray, planes, [](const Ray& r, std::span<const Plane> p) { return nearest_hit(r, p); });
+      [](py::handle ray, py::handle scene, py::handle rule) {
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, false);
+        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
+        return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
       },
-      py::arg("ray"), py::arg("planes"),
-      R"doc(The first plane ``ray`` meets, decided exactly: ``NearestHit(plane, t)`` or None.
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      R"doc(The first plane or triangle ``ray`` meets, decided exactly, or None.
 
-Among the planes whose relation is HIT (t ≥ 0), the one with the smallest exact t = num/den; ties go to the
-smallest index; ``t`` is that plane's t rounded as ``intersect`` rounds it. t values are compared exactly,
-never after rounding, so planes closer than an ulp are ordered right (docs/contract.md §4). ``planes`` is a
-``PlaneSet`` or a sequence of ``(point, normal)`` pairs. Raises ``ValueError`` naming the invalid ray or
-plane.)doc");
+Planes (``scene`` a ``PlaneSet`` or a sequence of ``(point, normal)`` pairs; docs/contract.md §4): among the
+planes whose relation is HIT (t ≥ 0), the one with the smallest exact t = num/den, ties to the smallest index:
+``NearestHit(plane, t)``, ``t`` rounded as ``intersect`` rounds it. t values are compared exactly, never after
+rounding, so planes closer than an ulp are ordered right.
+
+Mesh (``scene`` a ``raykernel.Mesh``; docs/contract.md §7): among the triangles the ray hits under ``rule``
+("owned", the default, or "closed"), the one with the smallest exact t, ties to the smallest index, found
+through the mesh's BVH (the answer is the brute-force one): ``MeshHit(triangle, t, location, barycentric)``
+as ``intersect`` gives them. Releases the GIL for meshes.
+
+Raises ``ValueError`` naming the invalid ray or plane.)doc");
 
   m.def(
       "nearest_hit_exact",
-      [](py::handle ray, py::handle planes) {
+      [](py::handle ray, py::handle scene, py::handle rule) {
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, true);
+        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         const Ray r = ray_from(ray);
-        std::vector<Plane> storage;
-        const std::span<const Plane> set = planes_from(planes, storage);
+        std::optional<raykernel::PlaneSet> storage;
+        const raykernel::PlaneSet& set = planes_from(scene, storage);
         std::optional<NearestHit> hit;
         {
           py::gil_scoped_release release;
-          hit = nearest_hit_exact(r, set);
+          hit = nearest_hit_exact(r, set.planes());
         }
         return to_python(hit);
       },
-      py::arg("ray"), py::arg("planes"),
-      "The reference nearest hit, in exact rationals: the same answer as ``nearest_hit``. Releases the GIL.");
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      R"doc(The reference nearest hit, in exact rationals, by brute force (every plane or every triangle, no
+BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
 
   m.def(
       "nearest_hit_naive",
       [](py::handle ray, py::handle planes) {
-        return nearest(ray, planes, [](const Ray& r, std::span<const Plane> p) { return nearest_hit_naive(r, p); });
+        if (py::isinstance<PythonMesh>(planes))
+          throw py::type_error("planes: nearest_hit_naive is for planes (a PlaneSet or a sequence of planes)");
+        return nearest(ray, planes,
+                       [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit_naive(r, p.planes()); });
       },
       py::arg("ray"), py::arg("planes"),
       R"doc(The textbook loop in plain doubles: ``intersect_naive`` per plane, the smallest rounded t wins

@@ -3,14 +3,21 @@
 // word and shrinks it), the reference check, ulp distances, and the fuzz decoder.
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "mesh.hpp"
 
 #include <raykernel/testkit/fuzz_decoder.hpp>
 #include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 #include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/triangle_queries.hpp>
+#include <raykernel/testkit/triangle_reference_check.hpp>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace raykernel::python {
@@ -25,6 +32,43 @@ QueryKind query_kind_from(const std::string& name) {
   std::string known;
   for (QueryKind k : testkit::all_query_kinds) known += (known.empty() ? "" : ", ") + std::string(testkit::to_string(k));
   throw py::value_error("unknown query kind '" + name + "' (kinds: " + known + ")");
+}
+
+testkit::TriangleQueryKind triangle_kind_from(const std::string& name) {
+  std::string known;
+  for (testkit::TriangleQueryKind k : testkit::all_triangle_query_kinds) {
+    if (testkit::to_string(k) == name) return k;
+    known += (known.empty() ? "" : ", ") + std::string(testkit::to_string(k));
+  }
+  throw py::value_error("unknown triangle query kind '" + name + "' (kinds: " + known + ")");
+}
+
+// A TriangleIntersection from what Python code answered: (relation, location, owned, t, barycentric), each a
+// raykernel enum member, its string value or its code; t and the coordinates may be NaN ("not computed").
+TriangleIntersection triangle_answer_from(py::handle relation, py::handle location, bool owned, double t,
+                                          py::handle barycentric) {
+  auto code_of = [](py::handle value, std::string_view field, int count) {
+    if (PyUnicode_Check(value.ptr())) {  // the str enums' values and plain strings
+      const py::module_ types = py::module_::import("raykernel._types");
+      const char* type = field == "relation" ? "TriangleRelation" : "TriangleLocation";
+      try {
+        return types.attr(type)(value).attr("code").cast<int>();
+      } catch (py::error_already_set&) {
+        throw py::value_error(std::string(field) + ": unknown value '" + value.cast<std::string>() + "'");
+      }
+    }
+    const int code = value.cast<int>();
+    if (code < 0 || code >= count) throw py::value_error(std::string(field) + ": code out of range");
+    return code;
+  };
+  TriangleIntersection x{};
+  x.relation = static_cast<TriangleRelation>(code_of(relation, "relation", 6));
+  x.location = static_cast<TriangleLocation>(code_of(location, "location", 9));
+  x.owned = owned;
+  x.t = t;
+  const Vec3 u = vec3_from(barycentric, "barycentric");
+  x.barycentric = {u.x, u.y, u.z};
+  return x;
 }
 
 PlaneTieKind plane_tie_kind_from(const std::string& name) {
@@ -167,6 +211,113 @@ kind. For benchmarks and for vectorized code.)doc");
       R"doc(testkit::check_against_reference: the exact answer to (ray, plane) compared with ``relation``
 and ``t``, as a dict (expected, got, exact_num, exact_den, exact_t, relation_matches, t_compared, t_ulps,
 t_direction, passed, report). Raises ValueError for invalid input: it has no answer to compare with.)doc");
+
+  {
+    py::list names;
+    for (testkit::TriangleQueryKind k : testkit::all_triangle_query_kinds)
+      names.append(std::string(testkit::to_string(k)));
+    m.attr("TRIANGLE_QUERY_KINDS") = py::tuple(names);
+  }
+
+  m.def(
+      "make_triangle_query",
+      [](const std::string& kind, py::handle words) {
+        std::string storage;
+        const testkit::TriangleQuery q = make_triangle_query(triangle_kind_from(kind), python_bits(words, storage));
+        return py::make_tuple(to_python(q.ray),
+                              types().triangle(to_python(q.triangle.a), to_python(q.triangle.b), to_python(q.triangle.c)));
+      },
+      py::arg("kind"), py::arg("words"),
+      R"doc(A hard ray–triangle query of ``kind`` (one of TRIANGLE_QUERY_KINDS), as ``(Ray, Triangle)``:
+testkit::make_triangle_query with its words read as in make_query (bytes or a callable). Always valid input.)doc");
+
+  m.def(
+      "make_triangle_query_arrays",
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+        if (kinds.empty()) throw py::value_error("kinds: give at least one query kind");
+        std::vector<testkit::TriangleQueryKind> chosen;
+        for (const std::string& k : kinds) chosen.push_back(triangle_kind_from(k));
+        std::array<py::array_t<double>, 5> arrays;
+        for (auto& a : arrays) a = py::array_t<double>({count, std::size_t{3}});
+        std::array<double*, 5> out;
+        for (std::size_t k = 0; k < 5; ++k) out[k] = arrays[k].mutable_data();
+        py::array_t<std::int32_t> kind_index(static_cast<py::ssize_t>(count));
+        std::int32_t* const kinds_out = kind_index.mutable_data();
+        {
+          py::gil_scoped_release release;
+          testkit::SplitMix64 rng(seed);
+          const testkit::BitSource bits = [&rng] { return rng(); };
+          for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t which = static_cast<std::size_t>(rng() % chosen.size());
+            const testkit::TriangleQuery q = make_triangle_query(chosen[which], bits);
+            const Vec3* vs[5] = {&q.ray.origin, &q.ray.direction, &q.triangle.a, &q.triangle.b, &q.triangle.c};
+            for (std::size_t a = 0; a < 5; ++a) {
+              out[a][3 * i] = vs[a]->x, out[a][3 * i + 1] = vs[a]->y, out[a][3 * i + 2] = vs[a]->z;
+            }
+            kinds_out[i] = static_cast<std::int32_t>(which);
+          }
+        }
+        return py::make_tuple(arrays[0], arrays[1], arrays[2], arrays[3], arrays[4], kind_index);
+      },
+      py::arg("kinds"), py::arg("count"), py::arg("seed"),
+      R"doc(``count`` hard ray–triangle queries as arrays, reproducibly from ``seed``: ``(origins, directions,
+a, b, c, kind_index)``.)doc");
+
+  m.def(
+      "check_triangle_against_reference",
+      [](py::handle ray, py::handle triangle, py::handle relation, py::handle location, bool owned, double t,
+         py::handle barycentric, py::handle rule, std::uint64_t max_ulps, bool check_location) {
+        const testkit::TriangleQuery q{ray_from(ray), triangle_from(triangle)};
+        const TriangleIntersection got = triangle_answer_from(relation, location, owned, t, barycentric);
+        const TriangleRule chosen = rule.is_none() ? TriangleRule::owned : rule_from(rule);
+        std::optional<testkit::TriangleReferenceCheck> c;
+        {
+          py::gil_scoped_release release;
+          c = testkit::check_against_reference(q, got, chosen, max_ulps, check_location);
+        }
+        py::dict d;
+        d["expected"] = to_python(c->expected);
+        d["got"] = to_python(c->got);
+        d["exact"] = to_python(c->exact);
+        d["rule"] = types().triangle_rule[static_cast<std::size_t>(chosen)];
+        d["max_ulps"] = c->max_ulps;
+        d["check_location"] = c->check_location;
+        d["relation_matches"] = c->relation_matches;
+        d["location_matches"] = c->location_matches;
+        d["owned_matches"] = c->owned_matches;
+        py::list ulps;
+        for (const auto& u : c->ulps) ulps.append(u ? py::object(py::int_(*u)) : py::none());
+        d["ulps"] = py::tuple(ulps);
+        d["passed"] = c->passed();
+        d["report"] = c->report();
+        return d;
+      },
+      py::arg("ray"), py::arg("triangle"), py::arg("relation"), py::arg("location"), py::arg("owned"), py::arg("t"),
+      py::arg("barycentric"), py::arg("rule") = py::none(), py::arg("max_ulps") = 0, py::arg("check_location") = true,
+      R"doc(testkit::check_against_reference for a ray–triangle answer: the exact answer under ``rule`` compared
+with (relation, location, owned, t, barycentric), as a dict (expected, got, exact, rule, max_ulps,
+check_location, relation_matches, location_matches, owned_matches, ulps — of t, ua, ub, uc, None where not
+compared —, passed, report). Raises ValueError for invalid input.)doc");
+
+  m.def(
+      "make_octahedron", [](double radius) { return PythonMesh(testkit::make_octahedron(radius)); },
+      py::arg("radius") = 1.0, "testkit::make_octahedron: a closed mesh, vertices ±radius on the axes, 8 triangles.");
+  m.def(
+      "make_subdivided_cube",
+      [](int n, double half_size) {
+        if (n < 1) throw py::value_error("n: expected n ≥ 1");
+        return PythonMesh(testkit::make_subdivided_cube(n, half_size));
+      },
+      py::arg("n"), py::arg("half_size") = 1.0,
+      "testkit::make_subdivided_cube: the cube [−h, h]^3, each face cut into n × n squares of two triangles.");
+  m.def(
+      "make_icosphere",
+      [](int level, int grid_bits) {
+        if (level < 0 || level > 8) throw py::value_error("level: expected 0..8");
+        return PythonMesh(testkit::make_icosphere(level, grid_bits));
+      },
+      py::arg("level"), py::arg("grid_bits") = 30,
+      "testkit::make_icosphere: the icosahedron subdivided `level` times, 20·4^level triangles, vertices on a grid.");
 
   m.def(
       "ulp_distance",

@@ -2,6 +2,7 @@
 #include "convert.hpp"
 
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 namespace raykernel::python {
@@ -59,12 +60,33 @@ void load_types() {
   t->vec3 = m.attr("Vec3");
   t->ray = m.attr("Ray");
   t->plane = m.attr("Plane");
+  t->triangle = m.attr("Triangle");
   t->intersection = m.attr("Intersection");
   t->traced_intersection = m.attr("TracedIntersection");
   t->exact_intersection = m.attr("ExactIntersection");
   t->nearest_hit = m.attr("NearestHit");
   t->intersection_arrays = m.attr("IntersectionArrays");
   t->nearest_hit_arrays = m.attr("NearestHitArrays");
+  t->relation_arrays = m.attr("RelationArrays");
+  t->barycentric = m.attr("Barycentric");
+  t->triangle_intersection = m.attr("TriangleIntersection");
+  t->triangle_classification = m.attr("TriangleClassification");
+  t->traced_triangle_intersection = m.attr("TracedTriangleIntersection");
+  t->exact_triangle_intersection = m.attr("ExactTriangleIntersection");
+  t->triangle_intersection_arrays = m.attr("TriangleIntersectionArrays");
+  t->triangle_classification_arrays = m.attr("TriangleClassificationArrays");
+  t->mesh_hit = m.attr("MeshHit");
+  t->mesh_hit_arrays = m.attr("MeshHitArrays");
+  // The Python enums list their members in the C++ enums' order, and their codes are those values.
+  for (std::size_t k = 0; k < 6; ++k) t->triangle_relation[k] = m.attr("TriangleRelation").attr("from_code")(k);
+  for (std::size_t k = 0; k < 9; ++k) t->triangle_location[k] = m.attr("TriangleLocation").attr("from_code")(k);
+  t->triangle_rule = {m.attr("TriangleRule").attr("OWNED"), m.attr("TriangleRule").attr("CLOSED")};
+  for (std::size_t k = 0; k < 6; ++k)
+    if (t->triangle_relation[k].attr("value").cast<std::string>() != to_string(static_cast<TriangleRelation>(k)))
+      throw std::logic_error("raykernel._types.TriangleRelation differs from the C++ enum");
+  for (std::size_t k = 0; k < 9; ++k)
+    if (t->triangle_location[k].attr("value").cast<std::string>() != to_string(static_cast<TriangleLocation>(k)))
+      throw std::logic_error("raykernel._types.TriangleLocation differs from the C++ enum");
   const py::object relation = m.attr("Relation");
   t->relation = {relation.attr("HIT"), relation.attr("BEHIND"), relation.attr("PARALLEL"), relation.attr("IN_PLANE")};
   const py::object stage = m.attr("Stage");
@@ -88,6 +110,39 @@ Vec3 vec3_from(py::handle value, std::string_view field) {
 Ray ray_from(py::handle value, std::string_view name) { return pair_from<Ray>(value, name, "origin", "direction"); }
 
 Plane plane_from(py::handle value, std::string_view name) { return pair_from<Plane>(value, name, "point", "normal"); }
+
+Triangle triangle_from(py::handle value, std::string_view name) {
+  const py::object seq = fast_sequence(value, name, 3, "(a, b, c)");
+  PyObject** items = PySequence_Fast_ITEMS(seq.ptr());
+  return {vec3_from(items[0], str(name) + " a"), vec3_from(items[1], str(name) + " b"),
+          vec3_from(items[2], str(name) + " c")};
+}
+
+bool is_triangle(py::handle primitive) {
+  if (py::isinstance(primitive, types().triangle)) return true;
+  if (py::isinstance(primitive, types().plane)) return false;
+  const std::string wanted = "primitive: expected a plane (point, normal) or a triangle (a, b, c), got ";
+  if (!PySequence_Check(primitive.ptr()) || PyUnicode_Check(primitive.ptr()))
+    throw py::type_error(wanted + type_name(primitive));
+  const Py_ssize_t n = PySequence_Size(primitive.ptr());
+  if (n < 0) {
+    PyErr_Clear();
+    throw py::type_error(wanted + type_name(primitive));
+  }
+  if (n == 3) return true;
+  if (n == 2) return false;
+  throw py::value_error(wanted + "a sequence of " + std::to_string(n) + (n == 1 ? " item" : " items"));
+}
+
+TriangleRule rule_from(py::handle value) {
+  if (PyUnicode_Check(value.ptr())) {
+    const std::string s = value.cast<std::string>();
+    if (s == "owned") return TriangleRule::owned;
+    if (s == "closed") return TriangleRule::closed;
+    throw py::value_error("rule: expected 'owned' or 'closed', got '" + s + "'");
+  }
+  throw py::type_error("rule: expected 'owned' or 'closed' (raykernel.TriangleRule), got " + type_name(value));
+}
 
 double double_from(py::handle value, std::string_view field) {
   if (PyFloat_CheckExact(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
@@ -154,6 +209,42 @@ py::object to_python(const ExactIntersection& x) {
 py::object to_python(const std::optional<NearestHit>& hit) {
   if (!hit) return py::none();
   return types().nearest_hit(hit->plane, hit->t);
+}
+
+py::object to_python(TriangleRelation r) { return types().triangle_relation[static_cast<std::size_t>(r)]; }
+py::object to_python(TriangleLocation l) { return types().triangle_location[static_cast<std::size_t>(l)]; }
+
+namespace {
+py::object barycentric_to_python(const std::array<double, 3>& b) { return types().barycentric(b[0], b[1], b[2]); }
+}  // namespace
+
+py::object to_python(const TriangleIntersection& x) {
+  return types().triangle_intersection(to_python(x.relation), to_python(x.location), x.owned, x.t,
+                                       barycentric_to_python(x.barycentric));
+}
+
+py::object to_python(const TriangleClassification& x) {
+  return types().triangle_classification(to_python(x.relation), to_python(x.location), x.owned);
+}
+
+py::object to_python(const TracedTriangleIntersection& x) {
+  const TriangleIntersection& i = x.intersection;
+  return types().traced_triangle_intersection(to_python(i.relation), to_python(i.location), i.owned, i.t,
+                                              barycentric_to_python(i.barycentric), to_python(x.relation_stage),
+                                              to_python(x.rounding_stage));
+}
+
+py::object to_python(const ExactTriangleIntersection& x) {
+  const TriangleIntersection& i = x.intersection;
+  py::object exact_barycentric = py::none();
+  if (x.barycentric) {
+    const auto& b = *x.barycentric;
+    exact_barycentric = py::make_tuple(to_fraction(b[0]), to_fraction(b[1]), to_fraction(b[2]));
+  }
+  return types().exact_triangle_intersection(
+      to_python(i.relation), to_python(i.location), i.owned, i.t, barycentric_to_python(i.barycentric),
+      to_fraction(x.den), to_fraction(x.num), py::make_tuple(to_fraction(x.pi_a), to_fraction(x.pi_b), to_fraction(x.pi_c)),
+      x.t ? to_fraction(*x.t) : py::none(), exact_barycentric);
 }
 
 ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_single) {

@@ -14,6 +14,7 @@
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
+#include <raykernel/triangle.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -35,10 +36,16 @@ namespace py = pybind11;
 // Python objects the extension builds its results from (raykernel._types), loaded by load_types().
 
 struct PythonTypes {
-  py::object vec3, ray, plane;
+  py::object vec3, ray, plane, triangle;
   py::object intersection, traced_intersection, exact_intersection, nearest_hit;
-  py::object intersection_arrays, nearest_hit_arrays;
+  py::object intersection_arrays, nearest_hit_arrays, relation_arrays;
+  py::object barycentric, triangle_intersection, triangle_classification, traced_triangle_intersection,
+      exact_triangle_intersection, triangle_intersection_arrays, triangle_classification_arrays;
+  py::object mesh_hit, mesh_hit_arrays;
   std::array<py::object, 4> relation;  // indexed by the C++ enum's value
+  std::array<py::object, 6> triangle_relation;
+  std::array<py::object, 9> triangle_location;
+  std::array<py::object, 2> triangle_rule;
   std::array<py::object, stage_count> stage;
   py::object fraction;                 // fractions.Fraction
 };
@@ -56,6 +63,13 @@ void load_types();
 [[nodiscard]] Ray ray_from(py::handle value, std::string_view name = "ray");
 // (point, normal): a raykernel.Plane or any pair of 3-sequences.
 [[nodiscard]] Plane plane_from(py::handle value, std::string_view name = "plane");
+// (a, b, c): a raykernel.Triangle or any triple of 3-sequences.
+[[nodiscard]] Triangle triangle_from(py::handle value, std::string_view name = "triangle");
+// Whether the second argument of intersect(ray, primitive) & co. is a triangle (a raykernel.Triangle or any
+// 3-sequence) rather than a plane (a raykernel.Plane or any 2-sequence); TypeError for anything else.
+[[nodiscard]] bool is_triangle(py::handle primitive);
+// A TriangleRule from a raykernel.TriangleRule or its value ("owned", "closed").
+[[nodiscard]] TriangleRule rule_from(py::handle value);
 // A finite double from a Python number (for round_rational_to_double's sister functions, t values...).
 [[nodiscard]] double double_from(py::handle value, std::string_view field);
 // A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).
@@ -75,6 +89,12 @@ void load_types();
 [[nodiscard]] py::object to_python(const TracedIntersection& x);
 [[nodiscard]] py::object to_python(const ExactIntersection& x);
 [[nodiscard]] py::object to_python(const std::optional<NearestHit>& hit);
+[[nodiscard]] py::object to_python(TriangleRelation r);
+[[nodiscard]] py::object to_python(TriangleLocation l);
+[[nodiscard]] py::object to_python(const TriangleIntersection& x);
+[[nodiscard]] py::object to_python(const TriangleClassification& x);
+[[nodiscard]] py::object to_python(const TracedTriangleIntersection& x);
+[[nodiscard]] py::object to_python(const ExactTriangleIntersection& x);
 // An exact rational (decimal strings in lowest terms) as a fractions.Fraction.
 [[nodiscard]] py::object to_fraction(const Rational& r);
 

@@ -23,6 +23,8 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_ray_plane(m);
   bind_nearest(m);
   bind_batch(m);
+  bind_triangle(m);
+  bind_mesh(m);
   bind_testkit(m);
 
   m.attr("__version__") = std::string(raykernel::version());

@@ -1,12 +1,13 @@
-// PlaneSet: the planes of a scene, read from Python and validated once, for nearest_hit and its vectorized
-// form. It is the Python home of a prepared plane set: when the kernel gains one (issue 13: validated once,
-// duplicates found once), PlaneSet holds it and nothing in the Python API changes.
+// PlaneSet: the planes of a scene, read from Python and prepared once (raykernel::PlaneSet: validated once,
+// planes coinciding with earlier ones set aside once), for nearest_hit and its vectorized form.
 #pragma once
 
 #include "convert.hpp"
 
+#include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -18,13 +19,15 @@ class PlaneSet {
   // Throws InvalidInput naming the first invalid plane ("plane 3: plane normal is the zero vector").
   PlaneSet(py::handle planes_or_points, py::handle normals);
 
-  [[nodiscard]] std::span<const Plane> planes() const noexcept { return planes_; }
+  [[nodiscard]] std::span<const Plane> planes() const noexcept { return prepared_.planes(); }
+  [[nodiscard]] const raykernel::PlaneSet& prepared() const noexcept { return prepared_; }
 
  private:
-  std::vector<Plane> planes_;
+  raykernel::PlaneSet prepared_;
 };
 
-// The planes of a PlaneSet, or of any sequence of planes (read into `storage`).
-[[nodiscard]] std::span<const Plane> planes_from(py::handle value, std::vector<Plane>& storage);
+// The prepared planes of a PlaneSet, or of any sequence of planes (prepared into `storage` for the call).
+// Throws InvalidInput naming the first invalid plane.
+[[nodiscard]] const raykernel::PlaneSet& planes_from(py::handle value, std::optional<raykernel::PlaneSet>& storage);
 
 }  // namespace raykernel::python

@@ -46,6 +46,28 @@ def test_certified_equals_exact_on_hard_queries(hard):
     assert (c.relation == e.relation).all() and same_bits(c.t, e.t)
 
 
+def test_relation_alone_scalar_and_vectorized(hard):
+    o, d, p, n = hard
+    full = rk.intersect_batch(o, d, p, n)
+    for path in ("certified", "exact"):
+        got = rk.relation_batch(o, d, p, n, path=path)
+        assert (got.relation == full.relation).all() and got.valid.all(), path
+    for i in range(0, len(o), 53):
+        assert rk.relation((o[i], d[i]), (p[i], n[i])) is rk.Relation.from_code(full.relation[i])
+    stats = rk.relation_batch(o, d, p, n, stats=True).stats["relation"]
+    assert sum(stats.values()) == len(o) and stats["exact"] > 0  # the hard queries reach the exact stage
+    one = rk.relation_batch(o, d, p[0], n[0])
+    assert (one.relation == rk.intersect_batch(o, d, p[0], n[0]).relation).all()
+    bad = d.copy()
+    bad[5] = 0
+    with pytest.raises(rk.InvalidInput, match="^query 5: ray direction is the zero vector$"):
+        rk.relation_batch(o, bad, p, n)
+    masked = rk.relation_batch(o, bad, p, n, errors="mask")
+    assert not masked.valid[5] and masked.relation[5] == rk.INVALID_RELATION_CODE and masked.relations()[5] == "invalid"
+    with pytest.raises(ValueError, match="^path: expected 'certified' or 'exact', got 'naive'$"):
+        rk.relation_batch(o, d, p, n, path="naive")
+
+
 def test_every_layout_gives_the_same_answers(hard):
     o, d, p, n = (a[:1000] for a in hard)
     reference = rk.intersect_batch(o, d, p, n)

@@ -30,10 +30,12 @@ def run(tmp_path_factory):
 def test_the_numpy_code_fails_and_the_control_passes(run):
     out = run.stdout
     assert run.returncode == 1, out + run.stderr  # test failures, not an error
-    assert re.search(r"^3 failed, 1 passed", out.splitlines()[-1]), out[-2000:]
+    assert re.search(r"^4 failed, 1 passed", out.splitlines()[-1]), out[-2000:]
     assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_ray_plane_matches_raykernel", out, re.M)
     assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_moller_trumbore_hits_edges_and_vertices", out, re.M)
     assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices",
+                     out, re.M)
+    assert re.search(r"^FAILED \S*test_numpy_examples\.py::test_numpy_moller_trumbore_t_and_barycentric_within_4_ulps",
                      out, re.M)
     assert "test_control_raykernel_passes_the_same_check" not in out.split("short test summary")[-1]
 
@@ -43,7 +45,9 @@ def test_each_failure_shows_a_shrunk_counterexample_and_the_report(run):
     assert "Falsifying example: test_numpy_ray_plane_matches_raykernel(" in out
     assert "Falsifying example: test_numpy_moller_trumbore_hits_edges_and_vertices(" in out
     assert "Falsifying example: test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices(" in out
+    assert "Falsifying example: test_numpy_moller_trumbore_t_and_barycentric_within_4_ulps(" in out
     assert out.count("raykernel reference check FAILED") >= 3
+    assert "raykernel triangle reference check FAILED" in out  # the C++ toolkit's triangle report, ulps included
     # Without an epsilon, what Möller–Trumbore misses is a ray exactly through an edge or a vertex.
     section = out.index("_ test_numpy_moller_trumbore_without_epsilon_hits_edges_and_vertices _")
     no_epsilon = out[section:out.index("Falsifying example: test_numpy_moller_trumbore_without_epsilon", section)]

@@ -68,3 +68,13 @@ def test_plane_errors_name_the_plane():
         rk.nearest_hit(((0, 0, 0), (0, 0, 0)), PLANES)
     with pytest.raises(ValueError, match="normals has 2 rows, points has 3"):
         rk.PlaneSet(np.zeros((3, 3)), np.ones((2, 3)))
+
+
+def test_plane_set_sets_coinciding_planes_aside():
+    # Plane 1 is plane 0 (x = 2) with another point on it and its normal scaled by −4; plane 2 is x = 3. Exact
+    # coincidence: plane 1 can never win (same t as plane 0 for every ray, ties to the smaller index).
+    s = rk.PlaneSet([((2, 0, 0), (1, 0, 0)), ((2, 7, -3), (-4, 0, 0)), ((3, 0, 0), (1, 0, 0))])
+    assert s.candidates.tolist() == [0, 2]
+    assert rk.nearest_hit(RAY, s) == rk.nearest_hit_exact(RAY, s) == (0, 2.0)
+    near = rk.PlaneSet([((2, 0, 0), (1, 0, 0)), ((2, 2.0**-60, 0), (1, 1e-300, 0))])  # not exactly the same plane
+    assert near.candidates.tolist() == [0, 1]

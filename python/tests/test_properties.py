@@ -10,10 +10,14 @@ from hypothesis import strategies as st
 
 import raykernel as rk
 from raykernel._raykernel import testkit
-from raykernel.testing import exact
+from raykernel.testing import assert_triangle_matches_reference, exact
 from raykernel.testing.hypothesis import (
+    HARD_TRIANGLE_QUERY_KINDS,
     QUERY_KINDS,
     TRIANGLE_QUERY_KINDS,
+    TRIANGLE_SCALES,
+    hard_triangle_queries,
+    hard_triangle_query_arrays,
     arbitrary_queries,
     exact_degeneracies,
     hard_queries,
@@ -127,8 +131,55 @@ def test_triangle_queries_keep_their_promises(q):
         assert answer.location == q.location
     if q.exact_t is not None:
         assert answer.exact_t == q.exact_t
-    if q.kind == "near-edge":  # one ulp from an edge point: the barycentric coordinate of that edge is tiny
+    if q.kind in ("near-edge", "near-vertex"):  # one ulp from an edge point or a vertex: a coordinate is tiny
         assert min(abs(u) for u in answer.barycentric) < Fraction(1, 2**20)
+
+
+@given(triangle_queries())
+def test_the_kernel_keeps_the_triangle_queries_promises(q):
+    # The promises are the construction's (exact by the dyadic argument), the Fraction oracle shares no code with
+    # the kernel: the kernel's certified and exact paths must both agree with them, under both rules.
+    oracle = exact.exact_ray_triangle(q.ray, q.triangle)
+    for rule in ("owned", "closed"):
+        x = rk.intersect(q.ray, q.triangle, rule=rule)
+        assert same_triangle(x, rk.intersect_exact(q.ray, q.triangle, rule=rule))
+        if oracle.kind != "crossing":
+            assert x.relation.value == oracle.kind and x.location is rk.TriangleLocation.NONE
+            continue
+        assert x.location.value == oracle.location
+        assert x.relation.value == (oracle.owned if rule == "owned" else oracle.closed)
+        assert same(x.t, exact.round_to_double(oracle.exact_t))
+        assert all(same(u, exact.round_to_double(e)) for u, e in zip(x.barycentric, oracle.barycentric))
+        if q.exact_t is not None:
+            assert rk.intersect_exact_rational(q.ray, q.triangle, rule=rule).exact_t == q.exact_t
+
+
+def same_triangle(x, y) -> bool:
+    return (x.relation is y.relation and x.location is y.location and x.owned == y.owned and same(x.t, y.t)
+            and all(same(a, b) for a, b in zip(x.barycentric, y.barycentric)))
+
+
+@given(hard_triangle_queries(), st.sampled_from(["owned", "closed"]))
+def test_certified_triangle_equals_exact_on_hard_queries(q, rule):
+    event(q.kind)
+    x = rk.intersect(q.ray, q.triangle, rule=rule)
+    assert same_triangle(x, rk.intersect_exact(q.ray, q.triangle, rule=rule))
+    assert tuple(rk.relation(q.ray, q.triangle, rule=rule)) == (x.relation, x.location, x.owned)
+    assert_triangle_matches_reference(q.ray, q.triangle, x, rule=rule)  # the C++ toolkit's check, 0 ulps
+
+
+@given(hard_triangle_query_arrays(max_size=8), st.sampled_from(["owned", "closed"]))
+def test_vectorized_triangles_equal_scalar(q, rule):
+    for path, scalar in (("certified", rk.intersect), ("exact", rk.intersect_exact)):
+        arrays = rk.intersect_triangle_batch(q.origins, q.directions, q.a, q.b, q.c, rule=rule, path=path)
+        for i, query in enumerate(q.queries):
+            x = scalar(query.ray, query.triangle, rule=rule)
+            assert arrays.relation[i] == x.relation.code and arrays.location[i] == x.location.code
+            assert arrays.owned[i] == x.owned and same(arrays.t[i], x.t)
+            assert all(same(arrays.barycentric[i, k], x.barycentric[k]) for k in range(3))
+    classified = rk.relation_triangle_batch(q.origins, q.directions, q.a, q.b, q.c, rule=rule)
+    assert (classified.relation == arrays.relation).all() and (classified.location == arrays.location).all()
+    assert (classified.owned == arrays.owned).all()
 
 
 @given(triangle_query_arrays(TRIANGLE_QUERY_KINDS, max_size=4))
@@ -142,4 +193,11 @@ def test_every_kind_is_reachable():
         assert find(queries(kind), lambda q: True).kind == kind
     for kind in TRIANGLE_QUERY_KINDS:
         assert find(triangle_queries([kind]), lambda q: True).kind == kind
+    for scale in TRIANGLE_SCALES:  # the extreme scales reach them: subnormal or huge coordinates
+        q = find(triangle_queries(["through-edge"], scales=[scale]), lambda q: True)
+        biggest = max(abs(x) for v in (q.ray.origin, *q.triangle) for x in v)
+        assert {"moderate": 2.0**-70 < biggest < 2.0**90, "subnormal": 0 < biggest < 2.0**-980,
+                "huge": biggest >= 2.0**900}[scale], (scale, q)
+    for kind in HARD_TRIANGLE_QUERY_KINDS:
+        assert find(hard_triangle_queries([kind]), lambda q: True).kind == kind
     assert {find(hard_queries(), lambda q, k=k: q.kind == k).kind for k in QUERY_KINDS} == set(QUERY_KINDS)

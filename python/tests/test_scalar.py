@@ -124,8 +124,10 @@ def test_malformed_values_name_the_field():
         rk.intersect(SEED_RAY, ((0, "5", 0), (0, 0, 1)))
     with pytest.raises(ValueError, match=r"^ray: expected \(origin, direction\), got a sequence of 3 items$"):
         rk.intersect(((0, 0, 0), (0, 0, 1), (0, 0, 1)), SEED_PLANE)
-    with pytest.raises(TypeError, match="^plane: expected"):
+    with pytest.raises(TypeError, match=r"^primitive: expected a plane \(point, normal\) or a triangle \(a, b, c\), got NoneType$"):
         rk.intersect(SEED_RAY, None)
+    with pytest.raises(ValueError, match="^primitive: expected .*, got a sequence of 4 items$"):
+        rk.intersect(SEED_RAY, ((0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)))
     with pytest.raises(ValueError, match="^ray origin z is too large for a double$"):
         rk.intersect(((0, 0, 10**400), (0, 0, 1)), SEED_PLANE)
 

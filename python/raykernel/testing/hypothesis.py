@@ -17,10 +17,13 @@ bytes that Hypothesis draws (the fuzz decoder's layout: 8 bytes per word, little
 shrinks — toward zero words, the simplest query of its kind — and replays from Hypothesis's database. Plane pairs (``plane_pairs``) tie exactly or differ by less than an ulp of t, for
 nearest-hit code.
 
-Ray–triangle queries (``triangle_queries``) aim rays exactly through edges and vertices, just beside edges,
-and inside triangles, all on dyadic grids so that the aim is exact; each carries the location and the exact
-t it was built to have (docs/contract.md §6). The kernel's triangles are not there yet; these strategies are
-pure Python, and ``raykernel.testing`` checks answers against ``raykernel.testing.exact`` for now.
+Ray–triangle queries come in two families. ``triangle_queries`` (pure Python) aim rays exactly through edges
+and vertices, one ulp beside them, and inside triangles, all on dyadic grids so that the aim is exact, at
+moderate, subnormal or huge scales; each carries the location and the exact t it was built to have
+(docs/contract.md §6). ``hard_triangle_queries`` come from the C++ toolkit (testkit/triangle_queries.hpp,
+``HARD_TRIANGLE_QUERY_KINDS``): through and near vertices and edges, slivers, needles, degenerate, parallel and
+coplanar triangles, origins on the triangle, rounding ties of t, wide exponents, tiny and huge scales.
+``raykernel.testing.assert_triangle_matches_reference`` checks an answer against them, in ulps.
 
 Every strategy has an array form for vectorized code: ``query_arrays`` and ``triangle_query_arrays`` give
 (n, 3) float64 arrays built from lists of such queries (the lists shrink too).
@@ -48,10 +51,22 @@ QUERY_KINDS: Tuple[str, ...] = tuple(_tk.QUERY_KINDS)
 PLANE_TIE_KINDS: Tuple[str, ...] = tuple(_tk.PLANE_TIE_KINDS)
 """Kinds of plane pairs: "coincident", "pivot" (exact ties), "parallel-offset", "pivot-offset" (< 1 ulp)."""
 
-TRIANGLE_QUERY_KINDS: Tuple[str, ...] = ("through-edge", "through-vertex", "near-edge", "inside", "degenerate")
-"""Kinds of ray–triangle queries: a ray exactly through a point of an edge (not a vertex), exactly through a
-vertex, through an edge point moved by one ulp, through an interior point, and through a degenerate
-(collinear) triangle."""
+TRIANGLE_QUERY_KINDS: Tuple[str, ...] = (
+    "through-edge", "through-vertex", "near-edge", "near-vertex", "inside", "degenerate")
+"""Kinds of ``triangle_queries``: a ray exactly through a point of an edge (not a vertex), exactly through a
+vertex, through an edge point or a vertex with one origin coordinate moved by one ulp, through an interior
+point, and through a degenerate (collinear) triangle."""
+
+TRIANGLE_SCALES: Tuple[str, ...] = ("moderate", "subnormal", "huge")
+"""Scales of ``triangle_queries``: the construction's integers scaled by 2^-60..2^60; by 2^-1050..2^-1030
+("subnormal": coordinates below 2^-980, many subnormal, and every product of two of them — the terms of den,
+num and the π — underflows in binary64); or by 2^900..2^960 ("huge": every such product overflows). Direction
+and points are scaled together at the extreme scales, so t stays moderate."""
+
+HARD_TRIANGLE_QUERY_KINDS: Tuple[str, ...] = tuple(_tk.TRIANGLE_QUERY_KINDS)
+"""The kinds of ``hard_triangle_queries``, as testkit names them: "random", "through-vertex", "through-edge",
+"through-interior", "near-vertex", "near-edge", "origin-on-triangle", "sliver", "needle", "degenerate",
+"parallel", "coplanar", "rounding-tie", "wide-exponents", "tiny", "huge"."""
 
 WORDS_PER_QUERY = 32
 """Random words drawn for one construction: more than any kind uses (the most is about 24)."""
@@ -263,7 +278,7 @@ def _int3(coordinate: SearchStrategy[int]) -> SearchStrategy[_I3]:
 
 
 @st.composite
-def _triangle_query(draw, kind: str) -> TriangleQuery:
+def _triangle_query(draw, kind: str, scales: Sequence[str] = ("moderate",)) -> TriangleQuery:
     a = draw(_int3(_vertex_coordinate))
     u = draw(_int3(_vertex_coordinate))
     u = u if u != (0, 0, 0) else (1, 0, 0)
@@ -294,10 +309,10 @@ def _triangle_query(draw, kind: str) -> TriangleQuery:
         k = draw(st.integers(1, scale - 1)) if scale > 1 else 1
         e = tuple(p[i] + Fraction(k, scale) * (q[i] - p[i]) for i in range(3))
         location = f"edge-{names[first]}{names[(first + 1) % 3]}" if kind == "through-edge" else None
-    elif kind == "through-vertex":
+    elif kind in ("through-vertex", "near-vertex"):
         which = draw(st.integers(0, 2))
         e = vertices[which]
-        location = f"vertex-{names[which]}"
+        location = f"vertex-{names[which]}" if kind == "through-vertex" else None
     elif kind == "inside":  # barycentric weights k1/2^m, k2/2^m and the rest, all positive
         m = max(m, 2)
         scale = 2**m
@@ -321,7 +336,14 @@ def _triangle_query(draw, kind: str) -> TriangleQuery:
     o = tuple(e[i] - step * d[i] for i in range(3))
     exact_t = step
 
-    p_scale, r_scale = draw(st.integers(-60, 60)), draw(st.integers(-30, 30))
+    # 2^20·o, 2^20·e and the vertices are integers of at most 43 bits, d of 11: the scales keep every coordinate a
+    # double (the least significant bit at 2^(p_scale − 20) ≥ 2^-1074, the largest below 2^(p_scale + 23)).
+    scale_kind = draw(st.sampled_from(tuple(scales)))
+    if scale_kind == "moderate":
+        p_scale, r_scale = draw(st.integers(-60, 60)), draw(st.integers(-30, 30))
+    else:
+        p_scale = draw(st.integers(-1050, -1030) if scale_kind == "subnormal" else st.integers(900, 960))
+        r_scale = p_scale + draw(st.integers(-20, 20))
     points = [tuple(x * Fraction(2) ** p_scale for x in pt) for pt in (o, *vertices)]
     direction = tuple(Fraction(x) * Fraction(2) ** r_scale for x in d)
     exact_t = exact_t * Fraction(2) ** (p_scale - r_scale)
@@ -342,7 +364,7 @@ def _triangle_query(draw, kind: str) -> TriangleQuery:
     o_v, a_v, b_v, c_v = (place(pt) for pt in points)
     d_v = place(direction)
     ray = Ray(o_v, d_v)
-    if kind == "near-edge":  # one coordinate of the origin one ulp off: within an ulp of the edge, either side
+    if kind in ("near-edge", "near-vertex"):  # one coordinate of the origin one ulp off, either side
         axis, up = draw(st.integers(0, 2)), draw(st.booleans())
         moved = list(o_v)
         moved[axis] = float(np.nextafter(moved[axis], np.inf if up else -np.inf))
@@ -353,10 +375,14 @@ def _triangle_query(draw, kind: str) -> TriangleQuery:
     return TriangleQuery(kind, ray, Triangle(a_v, b_v, c_v), location, exact_t)
 
 
-def triangle_queries(kinds: Optional[Iterable[str]] = None) -> SearchStrategy[TriangleQuery]:
-    """Ray–triangle queries of a kind drawn from ``kinds`` (default: all of TRIANGLE_QUERY_KINDS)."""
+def triangle_queries(
+    kinds: Optional[Iterable[str]] = None, *, scales: Optional[Iterable[str]] = None
+) -> SearchStrategy[TriangleQuery]:
+    """Ray–triangle queries of a kind drawn from ``kinds`` (default: all of TRIANGLE_QUERY_KINDS) at a scale
+    drawn from ``scales`` (default: all of TRIANGLE_SCALES). Always valid input."""
     chosen = _check_kinds(kinds, TRIANGLE_QUERY_KINDS, "triangle_queries")
-    return st.sampled_from(chosen).flatmap(_triangle_query)
+    chosen_scales = _check_kinds(scales, TRIANGLE_SCALES, "triangle_queries scales")
+    return st.sampled_from(chosen).flatmap(lambda kind: _triangle_query(kind, chosen_scales))
 
 
 def rays_through_triangle_edges() -> SearchStrategy[TriangleQuery]:
@@ -367,6 +393,11 @@ def rays_through_triangle_edges() -> SearchStrategy[TriangleQuery]:
 def rays_through_triangle_vertices() -> SearchStrategy[TriangleQuery]:
     """A ray exactly through a vertex: location "vertex-a", "vertex-b" or "vertex-c"."""
     return _triangle_query("through-vertex")
+
+
+def rays_near_triangle_vertices() -> SearchStrategy[TriangleQuery]:
+    """A ray through a vertex with one coordinate of the origin moved by one ulp."""
+    return _triangle_query("near-vertex")
 
 
 def rays_near_triangle_edges() -> SearchStrategy[TriangleQuery]:
@@ -404,7 +435,40 @@ def _to_triangle_arrays(qs: Sequence[TriangleQuery]) -> TriangleQueryArrays:
 
 
 def triangle_query_arrays(
+    kinds: Optional[Iterable[str]] = None,
+    *,
+    scales: Optional[Iterable[str]] = None,
+    min_size: int = 1,
+    max_size: int = 16,
+) -> SearchStrategy[TriangleQueryArrays]:
+    """Lists of ``triangle_queries(kinds, scales=scales)`` as arrays, for vectorized triangle code."""
+    return st.lists(triangle_queries(kinds, scales=scales), min_size=min_size, max_size=max_size).map(
+        _to_triangle_arrays)
+
+
+@st.composite
+def _hard_triangle_query(draw, kind: str) -> TriangleQuery:
+    ray, triangle = _tk.make_triangle_query(kind, draw(words))
+    return TriangleQuery(kind, ray, triangle, None, None)
+
+
+def hard_triangle_queries(kinds: Optional[Iterable[str]] = None) -> SearchStrategy[TriangleQuery]:
+    """Ray–triangle queries from the C++ toolkit's constructions, of a kind drawn from ``kinds`` (default: all
+    of HARD_TRIANGLE_QUERY_KINDS), their random words drawn as bytes (so they shrink toward the simplest query
+    of the kind). Always valid input; nothing promised (``location`` and ``exact_t`` are None): check answers
+    with ``raykernel.testing.assert_triangle_matches_reference``."""
+    chosen = _check_kinds(kinds, HARD_TRIANGLE_QUERY_KINDS, "hard_triangle_queries")
+    return st.sampled_from(chosen).flatmap(_hard_triangle_query)
+
+
+def slivers() -> SearchStrategy[TriangleQuery]:
+    """Sliver and needle triangles (a vertex within a few ulps of the opposite edge; two vertices a few ulps
+    apart), from the C++ toolkit."""
+    return hard_triangle_queries(["sliver", "needle"])
+
+
+def hard_triangle_query_arrays(
     kinds: Optional[Iterable[str]] = None, *, min_size: int = 1, max_size: int = 16
 ) -> SearchStrategy[TriangleQueryArrays]:
-    """Lists of ``triangle_queries(kinds)`` as arrays, for vectorized triangle code."""
-    return st.lists(triangle_queries(kinds), min_size=min_size, max_size=max_size).map(_to_triangle_arrays)
+    """Lists of ``hard_triangle_queries(kinds)`` as arrays."""
+    return st.lists(hard_triangle_queries(kinds), min_size=min_size, max_size=max_size).map(_to_triangle_arrays)

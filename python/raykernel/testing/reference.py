@@ -1,9 +1,11 @@
 """The reference check: is an answer the exact one, and if not, how far off — in ulps, with a report that
 reproduces the query exactly (raykernel::testkit's reference check, testkit/reference_check.hpp).
 
-Ray–plane answers are checked by the C++ toolkit (exact rationals, correctly rounded t). Ray–triangle
-answers are checked against ``raykernel.testing.exact`` (docs/contract.md §6 in Fractions) until the kernel
-has triangles. Arrays are compared in one vectorized pass, and the first mismatching row gets the full report.
+Ray–plane and ray–triangle answers are checked by the C++ toolkit (exact rationals, correctly rounded t and
+barycentric coordinates; testkit/triangle_reference_check.hpp for triangles). A bare hit/miss and t (what a
+Möller–Trumbore test gives) can also be checked against ``raykernel.testing.exact`` (docs/contract.md §6 in
+Fractions, sharing no code with the kernel). Arrays are compared in one vectorized pass, and the first
+mismatching row gets the full report.
 """
 
 from __future__ import annotations
@@ -11,12 +13,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Optional, Union
+from typing import Optional, Tuple, Union
 
 import numpy as np
 
 from .. import _raykernel
-from .._types import Intersection, Relation
+from .._types import (
+    ExactTriangleIntersection,
+    Intersection,
+    Relation,
+    TriangleIntersection,
+    TriangleLocation,
+    TriangleRelation,
+)
 from . import exact
 
 _tk = _raykernel.testkit
@@ -153,6 +162,129 @@ def _describe_t(t: float) -> str:
 
 @dataclass(frozen=True)
 class TriangleReferenceCheck:
+    """A full ray–triangle answer compared with the exact one (testkit::TriangleReferenceCheck): relation,
+    location and owned flag, and t and the barycentric coordinates in ulps (``ulps``: t, ua, ub, uc; None
+    where not compared: den = 0, or the answer's value NaN, i.e. not computed)."""
+
+    expected: TriangleIntersection
+    got: TriangleIntersection
+    exact: ExactTriangleIntersection
+    rule: str
+    max_ulps: int
+    check_location: bool
+    relation_matches: bool
+    location_matches: bool
+    owned_matches: bool
+    ulps: Tuple[Optional[int], Optional[int], Optional[int], Optional[int]]
+    passed: bool
+    report: str
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+
+def check_triangle_against_reference(
+    ray, triangle, answer, *, rule: str = "owned", max_ulps: int = 0, check_location: bool = True
+) -> TriangleReferenceCheck:
+    """Compares ``answer`` — ``(relation, location, owned, t, barycentric)``, e.g. a ``TriangleIntersection``;
+    relation and location as raykernel enum members, their strings or their codes — with the exact answer to
+    (``ray``, ``triangle``) under ``rule`` (docs/contract.md §6). The relation must be equal; the location and
+    the owned flag too when ``check_location`` (False for code that computes neither, like Möller–Trumbore);
+    t and each barycentric coordinate within ``max_ulps`` of the correctly rounded exact value, where the exact
+    den ≠ 0 and the answer's value is not NaN. The report gives the query in hexadecimal floats, a
+    ``raykernel triangle`` line that replays it, both answers, the exact rationals and the errors in ulps.
+    Raises ValueError for invalid input."""
+    relation, location, owned, t, barycentric = answer
+    d = _tk.check_triangle_against_reference(ray, triangle, relation, location, bool(owned), float(t),
+                                             tuple(float(x) for x in barycentric), rule, max_ulps, check_location)
+    d["rule"] = str(d["rule"].value)
+    d["ulps"] = tuple(d["ulps"])
+    return TriangleReferenceCheck(**d)
+
+
+def assert_triangle_matches_reference(
+    ray, triangle, answer, *, rule: str = "owned", max_ulps: int = 0, check_location: bool = True
+) -> None:
+    """``check_triangle_against_reference``, raising AssertionError with the report on a mismatch."""
+    check = check_triangle_against_reference(ray, triangle, answer, rule=rule, max_ulps=max_ulps,
+                                             check_location=check_location)
+    if not check.passed:
+        raise AssertionError("\n" + check.report)
+
+
+def _codes(values, enum) -> np.ndarray:
+    v = np.asarray(values)
+    if v.dtype.kind in "iub":
+        return v.astype(np.int64)
+    names = {m.value: m.code for m in enum}
+    return np.array([names.get(str(getattr(x, "value", x)), -1) for x in v.ravel()], dtype=np.int64).reshape(v.shape)
+
+
+def assert_triangle_arrays_match_reference(
+    origins, directions, a, b, c, relation=None, t=None, barycentric=None, *, hit=None, location=None, owned=None,
+    rule: str = "owned", max_ulps: int = 0, reference_path: str = "certified",
+) -> None:
+    """Vectorized ``assert_triangle_matches_reference``: row i of the answers against the exact answer to
+    query i (ray i, triangle i; or the one triangle when ``a``, ``b``, ``c`` are 3-vectors) under ``rule``.
+    ``relation`` (and ``location``) as codes or names; ``t``, ``barycentric`` ((n, 3)), ``location`` and
+    ``owned`` are compared when given (NaN values are "not computed" and not compared). Code that only says hit
+    or not (Möller–Trumbore) passes ``hit=`` (bool array) instead of ``relation``: a row must be a hit exactly
+    when the exact relation is HIT, and its t and coordinates are compared where the line crosses the plane
+    (and not NaN). The exact answers come
+    from ``intersect_triangle_batch`` (certified: equal to the exact path bit for bit) or, with
+    ``reference_path="exact"``, the rational path. On a mismatch the AssertionError carries the count of
+    wrong rows and the reference check's report of the first one."""
+    expected = _raykernel.intersect_triangle_batch(origins, directions, a, b, c, rule=rule, path=reference_path)
+    n = expected.relation.shape[0]
+    if (relation is None) == (hit is None):
+        raise ValueError("give either relation or hit")
+    if hit is not None:  # judged as hit or not: a non-hit stands for the exact relation when that is not HIT
+        expected_codes = expected.relation.astype(np.int64)
+        got_hit = np.asarray(hit, dtype=bool).reshape(-1)
+        if got_hit.shape != (n,):
+            raise AssertionError(f"hit has shape {got_hit.shape}, expected ({n},)")
+        miss = np.where(expected_codes == TriangleRelation.HIT.code, TriangleRelation.MISS.code, expected_codes)
+        relation = np.where(got_hit, TriangleRelation.HIT.code, miss)
+    got_relation = _codes(relation, TriangleRelation)
+    if got_relation.shape != (n,):
+        raise AssertionError(f"relation has shape {got_relation.shape}, expected ({n},)")
+    wrong = got_relation != expected.relation.astype(np.int64)
+    crossing = expected.location != TriangleLocation.NONE.code
+    if location is not None:
+        wrong |= _codes(location, TriangleLocation) != expected.location.astype(np.int64)
+    if owned is not None:
+        wrong |= np.asarray(owned, dtype=bool) != expected.owned
+    got_t = np.full(n, np.nan) if t is None else np.asarray(t, dtype=np.float64).reshape(n)
+    got_u = np.full((n, 3), np.nan) if barycentric is None else np.asarray(barycentric, dtype=np.float64).reshape(n, 3)
+    too_far = lambda want, got: crossing & ~np.isnan(got) & (ulp_distances(want, got) > np.uint64(max_ulps))  # noqa: E731
+    wrong |= too_far(expected.t, got_t)
+    for k in range(3):
+        wrong |= too_far(expected.barycentric[:, k], got_u[:, k])
+    if not wrong.any():
+        return
+    bad = np.flatnonzero(wrong)
+    i = int(bad[0])
+
+    def row(x):
+        x = np.asarray(x, dtype=np.float64)
+        return tuple(float(v) for v in (x if x.shape == (3,) else x.reshape(-1, 3)[i]))
+
+    code = int(got_relation[i])
+    got_location = (int(_codes(location, TriangleLocation)[i]) if location is not None
+                    else int(expected.location[i]))
+    got_owned = bool(np.asarray(owned)[i]) if owned is not None else bool(expected.owned[i])
+    note = "" if 0 <= code < len(TriangleRelation) else f"  (row {i} answered relation code {code})\n"
+    answer = (code if 0 <= code < len(TriangleRelation) else TriangleRelation.MISS.code,
+              got_location if 0 <= got_location < len(TriangleLocation) else TriangleLocation.NONE.code,
+              got_owned, float(got_t[i]), tuple(float(x) for x in got_u[i]))
+    check = check_triangle_against_reference((row(origins), row(directions)), (row(a), row(b), row(c)), answer,
+                                             rule=rule, max_ulps=max_ulps,
+                                             check_location=location is not None or owned is not None)
+    raise AssertionError(f"\n{len(bad)} of {n} rows differ from the exact answer; row {i}:\n{note}{check.report}")
+
+
+@dataclass(frozen=True)
+class TriangleHitCheck:
     """A ray–triangle hit answer compared with the exact one (docs/contract.md §6) under ``rule``."""
 
     expected: exact.ExactTriangleAnswer
@@ -171,7 +303,7 @@ class TriangleReferenceCheck:
 
 def check_triangle_hit_against_reference(
     ray, triangle, hit: bool, t: float, *, rule: str = "closed", max_t_ulps: Optional[int] = 0
-) -> TriangleReferenceCheck:
+) -> TriangleHitCheck:
     """Is ``hit`` (and, when it is a hit, ``t``) the exact answer for the ray and the triangle (a, b, c)?
 
     The exact hit is §6's relation "hit" under ``rule`` ("closed": the triangle with its boundary; "owned":
@@ -217,7 +349,7 @@ def check_triangle_hit_against_reference(
         lines.append(f"  exact     num = (a − o)·N = {answer.num}, den = d·N = {answer.den}")
     if t_ulps is not None:
         lines.append(f"  t error   {t_ulps} ulps" + _tolerance(max_t_ulps))
-    return TriangleReferenceCheck(answer, rule, bool(hit), float(t), max_t_ulps, hit_matches, t_ulps, passed,
+    return TriangleHitCheck(answer, rule, bool(hit), float(t), max_t_ulps, hit_matches, t_ulps, passed,
                                   "\n".join(lines) + "\n")
 
 

@@ -1,0 +1,100 @@
+// What every vectorized binding shares: the choice of path, the error policy, threads over a C++ loop, and
+// the walk through arrays that must be gathered into columns. The loops themselves are in bind_batch.cpp
+// (planes), bind_triangle.cpp and bind_mesh.cpp; none of them runs Python code, so they run with the GIL
+// released.
+#pragma once
+
+#include "convert.hpp"
+
+#include <raykernel/batch.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace raykernel::python {
+
+// relation[i] (and location[i]) where valid[i] is false: not one of the enums' codes.
+inline constexpr std::uint8_t invalid_code = 255;
+inline constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+enum class Path { certified, exact, naive };
+
+// "certified", "exact" or "naive" (the last only where `allow_naive`), or ValueError naming the choices.
+[[nodiscard]] inline Path path_from(const std::string& path, bool allow_naive = true) {
+  if (path == "certified") return Path::certified;
+  if (path == "exact") return Path::exact;
+  if (path == "naive" && allow_naive) return Path::naive;
+  throw py::value_error(allow_naive ? "path: expected 'certified', 'exact' or 'naive', got '" + path + "'"
+                                    : "path: expected 'certified' or 'exact', got '" + path + "'");
+}
+
+[[nodiscard]] inline unsigned threads_from(const std::optional<unsigned>& threads) { return threads.value_or(0); }
+
+// Runs work(begin, end) over [0, n) on up to `threads` threads (0: the hardware's), at least `grain` items
+// each; rethrows the first exception after all have joined.
+template <class Work>
+void parallel_for(std::size_t n, unsigned threads, std::size_t grain, Work&& work) {
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t wanted = threads != 0 ? threads : hardware;
+  const std::size_t count = std::max<std::size_t>(1, std::min(wanted, n / std::max<std::size_t>(grain, 1)));
+  std::vector<std::exception_ptr> failures(count);
+  auto part = [&](std::size_t k) {
+    try {
+      work(n * k / count, n * (k + 1) / count);
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < count; ++k) pool.emplace_back(part, k);
+  part(0);
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& f : failures)
+    if (f) std::rethrow_exception(f);
+}
+
+// Items per thread below which a thread costs more than it saves: exact queries take microseconds, certified
+// ones tens of nanoseconds, naive ones a few.
+inline constexpr std::size_t exact_grain = 256;
+inline constexpr std::size_t certified_grain = std::size_t{1} << 13;
+inline constexpr std::size_t naive_grain = std::size_t{1} << 15;
+
+[[nodiscard]] inline std::size_t grain_of(Path path) {
+  return path == Path::exact ? exact_grain : path == Path::certified ? certified_grain : naive_grain;
+}
+
+// Rows per call into the batch API when an input must be gathered into columns (a row-major array): the
+// gathered chunk stays in cache for the batch, and a large array is never copied whole. 2^16 queries are
+// still enough for the batch API to split over threads.
+inline constexpr std::size_t gather_chunk = std::size_t{1} << 16;
+
+// Calls work(begin, end) over [0, n) in chunks: one chunk when every view is contiguous, else gather_chunk rows.
+template <class Work>
+void in_chunks(std::size_t n, std::initializer_list<const ColumnsView*> views, Work&& work) {
+  bool contiguous = true;
+  for (const ColumnsView* v : views) contiguous = contiguous && v->contiguous();
+  const std::size_t step = contiguous ? std::max<std::size_t>(n, 1) : gather_chunk;
+  for (std::size_t begin = 0; begin < n; begin += step) work(begin, std::min(n, begin + step));
+}
+
+[[nodiscard]] inline RayBatch ray_batch(ColumnsView& o, ColumnsView& d, std::size_t begin, std::size_t end) {
+  const auto oc = o.columns(begin, end), dc = d.columns(begin, end);
+  return {oc[0], oc[1], oc[2], dc[0], dc[1], dc[2]};
+}
+
+// The first row whose valid[i] is false, if any.
+[[nodiscard]] inline std::optional<std::size_t> first_invalid_row(std::span<const bool> valid) {
+  const auto it = std::find(valid.begin(), valid.end(), false);
+  if (it == valid.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - valid.begin());
+}
+
+}  // namespace raykernel::python

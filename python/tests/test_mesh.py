@@ -1,0 +1,136 @@
+"""Meshes from Python (docs/contract.md §7): Mesh, load_mesh, and the nearest hit through the BVH against the
+brute-force exact answer; hand-derived hits; errors naming the vertex, triangle, file and line."""
+
+import numpy as np
+import pytest
+
+import raykernel as rk
+from raykernel._raykernel import testkit
+
+from test_arrays import same_bits
+
+L = rk.TriangleLocation
+
+
+def test_hand_derived_hits_on_the_octahedron():
+    octahedron = testkit.make_octahedron()  # vertices ±1 on the axes, 8 triangles, outward normals
+    assert len(octahedron) == 8 and octahedron.vertices.shape == (6, 3)
+    # Along +z from (1/4, 1/4, −5): the lower face with x, y > 0 is the plane x + y − z = 1, met at z = −1/2,
+    # t = 4.5, strictly inside that face (barycentric weights 1/4 of +x, 1/4 of +y, 1/2 of −z).
+    hit = rk.nearest_hit(((0.25, 0.25, -5), (0, 0, 1)), octahedron)
+    assert hit.t == 4.5 and hit.location is L.INSIDE
+    assert sorted(hit.barycentric) == [0.25, 0.25, 0.5]
+    face = octahedron.triangle(hit.triangle)
+    assert sorted(map(tuple, face)) == sorted([(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, -1.0)])
+    # Along +z from (0, 0, −5): exactly through the vertex −z, t = 4. Four faces share it; the owned rule gives
+    # it to exactly one of them, the closed rule to all four (the smallest index wins the exact tie).
+    ray = ((0, 0, -5), (0, 0, 1))
+    owned_hits = [k for k in range(8) if rk.intersect(ray, octahedron.triangle(k)).relation is rk.TriangleRelation.HIT
+                  and rk.intersect(ray, octahedron.triangle(k)).t == 4.0]
+    closed_hits = [k for k in range(8)
+                   if rk.intersect(ray, octahedron.triangle(k), rule="closed").relation is rk.TriangleRelation.HIT
+                   and rk.intersect(ray, octahedron.triangle(k), rule="closed").t == 4.0]
+    assert len(owned_hits) == 1 and len(closed_hits) == 4
+    assert rk.nearest_hit(ray, octahedron).triangle == owned_hits[0]
+    closed = rk.nearest_hit(ray, octahedron, rule="closed")
+    assert closed.triangle == min(closed_hits) and closed.t == 4.0 and closed.location.value.startswith("vertex")
+    # Pointing away, and passing beside: no hit.
+    assert rk.nearest_hit(((0, 0, -5), (0, 0, -1)), octahedron) is None
+    assert rk.nearest_hit(((3, 3, -5), (0, 0, 1)), octahedron) is None
+
+
+@pytest.mark.parametrize("rule", ["owned", "closed"])
+def test_bvh_nearest_hit_equals_brute_force_exact(rule):
+    rng = np.random.default_rng(7)
+    for mesh in (testkit.make_icosphere(2), testkit.make_subdivided_cube(4)):
+        # Rays from outside aimed near the centre, and rays through the cube's grid points exactly (edges and
+        # vertices shared by several triangles: dyadic coordinates, axis-parallel directions).
+        o = rng.uniform(-1, 1, (300, 3)) * 3
+        d = -o + rng.uniform(-0.3, 0.3, (300, 3))
+        grid = rng.integers(-4, 5, (100, 2)) / 4.0
+        o2 = np.column_stack([grid, np.full(100, -5.0)])
+        d2 = np.tile([0.0, 0.0, 1.0], (100, 1))
+        o, d = np.vstack([o, o2]), np.vstack([d, d2])
+        got = rk.nearest_hit_batch(o, d, mesh, rule=rule)
+        exact = rk.nearest_hit_batch(o, d, mesh, rule=rule, path="exact")
+        assert (got.triangle == exact.triangle).all() and same_bits(got.t, exact.t)
+        assert same_bits(got.barycentric, exact.barycentric) and (got.location == exact.location).all()
+        assert (got.triangle >= 0).sum() > 300  # most rays do hit
+        for i in range(0, len(o), 37):  # scalar == vectorized
+            one = rk.nearest_hit((o[i], d[i]), mesh, rule=rule)
+            assert (one.triangle if one else -1) == got.triangle[i]
+            assert one is None or (same_bits(one.t, got.t[i]) and one == rk.nearest_hit_exact((o[i], d[i]), mesh, rule=rule))
+
+
+def test_the_closed_cube_is_watertight_under_the_owned_rule():
+    cube = testkit.make_subdivided_cube(4)  # grid lines at multiples of 1/4 on each face
+    tris = [cube.triangle(k) for k in range(len(cube))]
+    a, b, c = (np.array([t[j] for t in tris]) for j in range(3))
+    for x in np.arange(-1, 1.25, 0.25)[1:-1]:
+        for y in np.arange(-1, 1.25, 0.25)[1:-1]:  # through grid vertices and edges of both z faces, exactly
+            o = np.tile([x, y, -5.0], (len(tris), 1))
+            d = np.tile([0.0, 0.0, 1.0], (len(tris), 1))
+            r = rk.intersect_triangle_batch(o, d, a, b, c)
+            assert (r.relation == rk.TriangleRelation.HIT.code).sum() == 2, (x, y)  # in once, out once
+
+
+def test_mesh_from_arrays_and_its_errors():
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+    mesh = rk.Mesh(vertices, [[0, 1, 2]])
+    assert same_bits(mesh.vertices, vertices) and mesh.triangles.tolist() == [[0, 1, 2]] and "1 triangles" in repr(mesh)
+    assert rk.nearest_hit(((0.25, 0.25, -1), (0, 0, 1)), mesh) == rk.MeshHit(0, 1.0, L.INSIDE, (0.5, 0.25, 0.25))
+    bad = vertices.copy()
+    bad[1, 1] = np.nan
+    with pytest.raises(ValueError, match="^mesh: vertex 1: y is not finite$"):
+        rk.Mesh(bad, [[0, 1, 2]])
+    with pytest.raises(ValueError, match=r"^mesh: triangle 0: vertex index 5 is out of range \(3 vertices\)$"):
+        rk.Mesh(vertices, [[0, 1, 5]])
+    with pytest.raises(ValueError, match="^mesh: triangle 0: vertex index -1 is out of range"):
+        rk.Mesh(vertices, [[0, -1, 2]])
+    with pytest.raises(ValueError, match=r"^triangles: expected an \(m, 3\) array"):
+        rk.Mesh(vertices, [0, 1, 2])
+    with pytest.raises(ValueError, match="^rule: only meshes have rules"):
+        rk.nearest_hit(((0, 0, 0), (0, 0, 1)), [((0, 0, 1), (0, 0, 1))], rule="closed")
+    with pytest.raises(TypeError, match="^planes: nearest_hit_naive is for planes"):
+        rk.nearest_hit_naive(((0, 0, 0), (0, 0, 1)), mesh)
+
+
+def test_mesh_batch_invalid_rays_raise_or_are_masked():
+    mesh = testkit.make_octahedron()
+    o = np.tile([0.25, 0.25, -5.0], (5, 1))
+    d = np.tile([0.0, 0.0, 1.0], (5, 1))
+    d[3] = 0
+    with pytest.raises(rk.InvalidInput, match="^ray 3: ray direction is the zero vector$"):
+        rk.nearest_hit_batch(o, d, mesh)
+    masked = rk.nearest_hit_batch(o, d, mesh, errors="mask")
+    assert masked.valid.tolist() == [True, True, True, False, True]
+    assert masked.triangle[3] == -1 and masked.location[3] == rk.INVALID_RELATION_CODE
+    assert (masked.t[masked.valid] == 4.5).all() and list(masked.locations()[:1]) == ["inside"]
+
+
+def test_load_mesh_reads_exactly_and_names_file_and_line(tmp_path):
+    path = tmp_path / "square.obj"
+    # 0.1 and 1e-310 (subnormal) must be read correctly rounded; the quad is fanned into (0, 1, 2), (0, 2, 3).
+    path.write_text("v 0 0 0\nv 0.1 0 0\nv 0.1 1e-310 0\nv 0 1 0\nf 1 2 3 4\n")
+    mesh = rk.load_mesh(str(path))
+    assert mesh.vertices[1, 0] == 0.1 and mesh.vertices[2, 1] == 1e-310
+    assert mesh.triangles.tolist() == [[0, 1, 2], [0, 2, 3]]
+    broken = tmp_path / "broken.obj"
+    broken.write_text("v 0 0 0\nv 1 0 0\nf 1 2\n")
+    with pytest.raises(rk.MeshFileError, match=r"broken\.obj:3: "):
+        rk.load_mesh(str(broken))
+    with pytest.raises(ValueError, match="missing.obj"):
+        rk.load_mesh(str(tmp_path / "missing.obj"))
+
+
+def test_the_gil_is_released_during_a_mesh_batch():
+    from test_arrays import longest_pause_of_this_thread_while
+
+    mesh = testkit.make_icosphere(1)
+    rng = np.random.default_rng(3)
+    o = rng.uniform(-1, 1, (400, 3)) * 3
+    d = -o
+    longest, total = longest_pause_of_this_thread_while(
+        lambda: rk.nearest_hit_batch(o, d, mesh, path="exact", threads=1))
+    assert total > 0.05, "the batch was too short to tell"
+    assert longest < total / 4, f"this thread stopped for {longest:.3f} s of a {total:.3f} s batch"
