@@ -1,0 +1,348 @@
+// The C++ side of the differential runner (proofs/README.md, "The twins and the differential runner").
+//
+// Reads the runner's input lines ("routine x1 x2 ...", inputs as unsigned decimal 64-bit patterns),
+// computes every line with the compiled kernel routine of that name, and compares the output line, bit for
+// bit (every NaN written as 0x7ff8000000000000, i.e. NaNs compared as a class), with the line the extracted
+// Coq twin produced for the same input. Prints the mismatches (input, C++ output, twin output) and a count
+// per routine; exits 1 on any mismatch.
+//
+// Compiled once per variant the kernel runs (proofs/CMakeLists.txt), all with the kernel's floating-point
+// flags (-ffp-contract=off, no fast-math):
+//   scalar, -mfma          std::fma is the FMA instruction
+//   scalar, no -mfma       std::fma is libm's fma
+//   RAYKERNEL_TWIN_LANES=4 -march=x86-64-v3: the lane-templated routines instantiated for Lanes4 (the AVX2
+//                          batch loop), four input lines per call
+//   RAYKERNEL_TWIN_LANES=8 -march=x86-64-v4 (the AVX-512 batch loop; run only where the CPU has AVX-512),
+//                          and -march=x86-64-v3 (Lanes8 lowered to AVX2 pairs)
+// The lane variants run only the lane-templated routines and report the others as skipped.
+//
+// Usage: raykernel_twin_driver INPUTS TWIN_OUTPUTS
+//
+// When a routine the kernel exports changes its name or signature, the function of the same name below is
+// the one line to update (proofs/README.md lists them).
+#include "certified/compare_quotients.hpp"
+#include "certified/dot3_compensated.hpp"
+#include "certified/dot3_filter.hpp"
+#include "certified/eft.hpp"
+#include "certified/enclosure.hpp"
+#include "certified/error_bounds.hpp"
+#include "certified/expansion.hpp"
+#include "certified/lanes.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef RAYKERNEL_TWIN_LANES
+#define RAYKERNEL_TWIN_LANES 0
+#endif
+
+namespace {
+
+using namespace raykernel::detail;
+using Words = std::vector<std::uint64_t>;
+
+constexpr std::uint64_t canonical_nan = 0x7ff8000000000000ULL;
+
+double from_word(std::uint64_t w) { return std::bit_cast<double>(w); }
+
+// The output tokens of one line: doubles as bit patterns (NaN canonical), integers as they are.
+struct Out {
+  std::string text;
+  void f(double x) {
+    const std::uint64_t w = std::isnan(x) ? canonical_nan : std::bit_cast<std::uint64_t>(x);
+    text += ' ';
+    text += std::to_string(w);
+  }
+  void i(long long v) {
+    text += ' ';
+    text += std::to_string(v);
+  }
+};
+
+// ---- The lane-templated routines, written once for V = double, Lanes4, Lanes8 ----------------------------
+// Each takes its inputs as V values (one query per lane) and appends one output line per lane.
+
+template <class V>
+double lane(const V& v, int k) {
+  if constexpr (std::is_same_v<V, double>) {
+    return v;
+  } else {
+    return v[k];
+  }
+}
+template <class I>
+long long lane_int(const I& v, int k) {
+  if constexpr (std::is_same_v<I, std::int64_t>) {
+    return v;
+  } else {
+    return static_cast<long long>(v[k]);
+  }
+}
+
+template <class V>
+void lanes_two_sum(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_sum(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_two_diff(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_diff(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_two_prod(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_prod(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_dot3_rounded(const V* x, std::vector<Out>& out) {
+  const Dot3RoundedT<V> r = dot3_rounded(x, x + 3);
+  for (int k = 0; k < width_of<V>; ++k) {
+    for (int i = 0; i < 3; ++i) out[k].f(lane(r.product[i], k));
+    out[k].f(lane(r.value, k));
+    out[k].f(lane(r.magnitude, k));
+  }
+}
+template <class V>
+void lanes_filter_den(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = dot3_filter_lanes(dot3_rounded(x, x + 3), bounds::filter_den_relative);
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+template <class V>
+void lanes_filter_num(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = dot3_filter_lanes(dot3_rounded(x, x + 3), bounds::filter_num_relative);
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+template <class V>
+void lanes_compensated(const V* x, std::vector<Out>& out) {
+  const EnclosureT<V> e = compensated_dot3(x, x + 3, x + 6, dot3_rounded(x, x + 6));
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
+}
+template <class V>
+void lanes_enclosure_sign(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = enclosure_sign_lanes(EnclosureT<V>{x[0], x[1], x[2]});
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+
+struct LaneRoutine {
+  int arity;
+  std::function<void(const double*, std::vector<Out>&)> scalar;
+#if RAYKERNEL_TWIN_LANES == 4
+  std::function<void(const Lanes4*, std::vector<Out>&)> lanes;
+#elif RAYKERNEL_TWIN_LANES == 8
+  std::function<void(const Lanes8*, std::vector<Out>&)> lanes;
+#endif
+};
+
+#if RAYKERNEL_TWIN_LANES == 4
+using LaneV = Lanes4;
+#elif RAYKERNEL_TWIN_LANES == 8
+using LaneV = Lanes8;
+#endif
+
+#if RAYKERNEL_TWIN_LANES == 0
+#define RAYKERNEL_LANE_ROUTINE(name, n) {#name, {n, lanes_##name<double>}}
+#else
+#define RAYKERNEL_LANE_ROUTINE(name, n) {#name, {n, lanes_##name<double>, lanes_##name<LaneV>}}
+#endif
+
+const std::map<std::string, LaneRoutine>& lane_routines() {
+  static const std::map<std::string, LaneRoutine> table = {
+      RAYKERNEL_LANE_ROUTINE(two_sum, 2),       RAYKERNEL_LANE_ROUTINE(two_diff, 2),
+      RAYKERNEL_LANE_ROUTINE(two_prod, 2),      RAYKERNEL_LANE_ROUTINE(dot3_rounded, 6),
+      RAYKERNEL_LANE_ROUTINE(filter_den, 6),    RAYKERNEL_LANE_ROUTINE(filter_num, 6),
+      RAYKERNEL_LANE_ROUTINE(compensated, 9),   RAYKERNEL_LANE_ROUTINE(enclosure_sign, 3),
+  };
+  return table;
+}
+
+// ---- Scalar-only routines ----------------------------------------------------------------------------------
+// Each takes one line's inputs as doubles and returns its output tokens (false: wrong arity).
+
+using ScalarRoutine = std::function<bool(const std::vector<double>&, Out&)>;
+
+Out enclosure_out(const Enclosure& e) {
+  Out o;
+  o.f(e.hi), o.f(e.lo), o.f(e.radius);
+  return o;
+}
+
+const std::map<std::string, ScalarRoutine>& scalar_routines() {
+  static const std::map<std::string, ScalarRoutine> table = {
+      {"fast_two_sum",
+       [](const std::vector<double>& x, Out& o) {
+         if (x.size() != 2) return false;
+         const DoubleDouble r = fast_two_sum(x[0], x[1]);
+         o.f(r.hi), o.f(r.lo);
+         return true;
+       }},
+      {"refined",
+       [](const std::vector<double>& x, Out& o) {
+         if (x.size() != 9) return false;
+         o = enclosure_out(compensated_dot3_refined(x.data(), x.data() + 3, x.data() + 6,
+                                                    dot3_rounded(x.data(), x.data() + 6)));
+         return true;
+       }},
+      {"tail_enclosure",
+       [](const std::vector<double>& x, Out& o) {
+         if (x.empty() || x.size() > 32) return false;
+         Expansion<32> e;
+         for (double c : x) e.component[e.size++] = c;
+         o = enclosure_out(expansion_tail_enclosure(e));
+         return true;
+       }},
+  };
+  return table;
+}
+
+// ---- Input, comparison, report ------------------------------------------------------------------------------
+
+struct Line {
+  std::string name;
+  Words words;
+  std::string text;
+};
+
+bool parse(const std::string& text, Line& line) {
+  std::istringstream in(text);
+  if (!(in >> line.name)) return false;
+  line.words.clear();
+  for (std::string token; in >> token;) line.words.push_back(std::stoull(token));
+  line.text = text;
+  return true;
+}
+
+struct Tally {
+  std::map<std::string, long> checked, mismatched, skipped;
+  int reported = 0;
+};
+
+// Runs every line of INPUTS through the compiled routine and compares with the line of TWIN_OUTPUTS.
+int check(const char* inputs_path, const char* expected_path, Tally& tally) {
+  std::ifstream inputs(inputs_path), expected(expected_path);
+  if (!inputs || !expected) {
+    std::cerr << "cannot read " << inputs_path << " or " << expected_path << '\n';
+    return 2;
+  }
+  std::vector<Line> lines;
+  std::vector<std::string> want;
+  for (std::string text, expect; std::getline(inputs, text);) {
+    Line line;
+    if (!parse(text, line)) continue;
+    if (!std::getline(expected, expect)) {
+      std::cerr << expected_path << " has fewer lines than " << inputs_path << '\n';
+      return 2;
+    }
+    lines.push_back(std::move(line));
+    want.push_back(std::move(expect));
+  }
+
+  auto compare = [&](std::size_t index, const std::string& got_tokens) {
+    const std::string got = lines[index].name + got_tokens;
+    ++tally.checked[lines[index].name];
+    if (got == want[index]) return;
+    ++tally.mismatched[lines[index].name];
+    if (tally.reported++ < 20)
+      std::cerr << "MISMATCH " << inputs_path << ":" << index + 1 << ": " << lines[index].text << "\n  C++:  " << got
+                << "\n  twin: " << want[index] << '\n';
+  };
+
+  for (std::size_t i = 0; i < lines.size();) {
+    const Line& line = lines[i];
+    if (const auto lr = lane_routines().find(line.name); lr != lane_routines().end()) {
+      const LaneRoutine& r = lr->second;
+#if RAYKERNEL_TWIN_LANES == 0
+      if (static_cast<int>(line.words.size()) != r.arity) {
+        std::cerr << "line " << i + 1 << ": wrong arity\n";
+        return 2;
+      }
+      std::vector<double> x(line.words.size());
+      for (std::size_t j = 0; j < x.size(); ++j) x[j] = from_word(line.words[j]);
+      std::vector<Out> out(1);
+      r.scalar(x.data(), out);
+      compare(i, out[0].text);
+      ++i;
+#else
+      // W consecutive lines of the same routine fill the lanes; a shorter tail is padded by repeating its
+      // last line (whose extra outputs are not compared).
+      constexpr int W = RAYKERNEL_TWIN_LANES;
+      std::size_t n = 0;
+      while (n < W && i + n < lines.size() && lines[i + n].name == line.name) ++n;
+      std::vector<LaneV> x(static_cast<std::size_t>(r.arity));
+      for (int k = 0; k < W; ++k) {
+        const Line& l = lines[i + std::min<std::size_t>(static_cast<std::size_t>(k), n - 1)];
+        if (static_cast<int>(l.words.size()) != r.arity) {
+          std::cerr << "line " << i + 1 + static_cast<std::size_t>(k) << ": wrong arity\n";
+          return 2;
+        }
+        for (int j = 0; j < r.arity; ++j)
+          x[static_cast<std::size_t>(j)][k] = from_word(l.words[static_cast<std::size_t>(j)]);
+      }
+      std::vector<Out> out(W);
+      r.lanes(x.data(), out);
+      for (std::size_t k = 0; k < n; ++k) compare(i + k, out[k].text);
+      i += n;
+#endif
+      continue;
+    }
+    if (const auto sr = scalar_routines().find(line.name); sr != scalar_routines().end()) {
+#if RAYKERNEL_TWIN_LANES == 0
+      std::vector<double> x(line.words.size());
+      for (std::size_t j = 0; j < x.size(); ++j) x[j] = from_word(line.words[j]);
+      Out out;
+      if (!sr->second(x, out)) {
+        std::cerr << "line " << i + 1 << ": wrong arity for " << line.name << '\n';
+        return 2;
+      }
+      compare(i, out.text);
+#else
+      ++tally.skipped[line.name];
+#endif
+      ++i;
+      continue;
+    }
+    std::cerr << "line " << i + 1 << ": unknown routine " << line.name << '\n';
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3 || argc % 2 == 0) {
+    std::cerr << "usage: raykernel_twin_driver INPUTS TWIN_OUTPUTS [INPUTS TWIN_OUTPUTS ...]\n";
+    return 2;
+  }
+#if RAYKERNEL_TWIN_LANES == 8 && defined(__AVX512F__)
+  __builtin_cpu_init();
+  if (!__builtin_cpu_supports("avx512f")) {
+    std::cout << "SKIPPED: this CPU has no AVX-512 (the -march=x86-64-v4 build cannot run)\n";
+    return 77;
+  }
+#endif
+  Tally tally;
+  for (int k = 1; k + 1 < argc; k += 2)
+    if (const int status = check(argv[k], argv[k + 1], tally); status != 0) return status;
+
+  long total_mismatches = 0;
+  for (const auto& [name, count] : tally.checked) {
+    total_mismatches += tally.mismatched[name];
+    std::cout << name << ": " << count << " inputs, " << tally.mismatched[name] << " mismatches\n";
+  }
+  for (const auto& [name, count] : tally.skipped)
+    std::cout << name << ": " << count << " inputs skipped (not lane-templated)\n";
+  std::cout << (total_mismatches == 0 ? "ok: the compiled routines and the Coq twins agree bit for bit\n"
+                                      : "FAILED: the compiled routines and the Coq twins disagree\n");
+  return total_mismatches == 0 ? 0 : 1;
+}
