@@ -22,8 +22,8 @@
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Flocq Require IEEE754.Binary IEEE754.Bits.
-From Raykernel Require Import Constants Model Filter Compensated Classification CompareQuotients FloatCore
-  ConstantsCpp Twins CompareTwins Expansions.
+From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification CompareQuotients
+  Cascade FloatCore ConstantsCpp Twins CompareTwins Expansions.
 Import ListNotations.
 Open Scope R_scope.
 
@@ -301,13 +301,7 @@ Proof.
     - split; [unfold zd, zn, dot3_filter_lanes_b; apply sign_lanes_range|]. split; [exact Sn1|].
       destruct (Fn1 E) as [? [? [? [? [? [? [? [? ?]]]]]]]]. repeat split; assumption. }
   destruct Ld as [Ld [Cd [FD FN]]]. destruct Ln as [Ln [Cn [FO [FP _]]]].
-  destruct (lane_sign_certain sd Ld Ud) as [[Ed' Ed]|[Ed' Ed]]; rewrite Ed in Cd;
-    destruct (lane_sign_certain sn Ln Un) as [[En' En]|[En' En]]; rewrite En in Cn; cbn in Cd, Cn;
-    rewrite Ed', En'; cbn -[classify];
-    (split; [| repeat split; auto; intros Z; unfold ray_den, dot in Cd; rewrite Z in Cd; cbn in Cd; lra]);
-    unfold classify, relation_from_signs, sign_of;
-    [rewrite (Rcompare_Lt (ray_den _ _)), (Rcompare_Lt (ray_num _ _ _)) by assumption
-    |rewrite (Rcompare_Lt (ray_den _ _)), (Rcompare_Gt (ray_num _ _ _)) by assumption
-    |rewrite (Rcompare_Gt (ray_den _ _)), (Rcompare_Lt (ray_num _ _ _)) by assumption
-    |rewrite (Rcompare_Gt (ray_den _ _)), (Rcompare_Gt (ray_num _ _ _)) by assumption]; reflexivity.
+  destruct (lanes_relation sn sd (v3R o) (v3R d) (v3R p) (v3R n) Ln Ld Un Ud Cn Cd) as [Rel [_ Nd]].
+  destruct (den_nonzero_valid _ _ Nd) as [Vd Vn].
+  exact (conj Rel (conj FO (conj FD (conj FP (conj FN (conj Vd Vn)))))).
 Qed.

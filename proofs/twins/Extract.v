@@ -13,10 +13,12 @@
     wrong one would show as a mismatch against the compiled C++. *)
 
 From Coq Require Import ZArith List.
-From Raykernel Require Import Model FloatCore ConstantsCpp Twins.
+From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
+  Expansions CascadeTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
+Open Scope Z_scope.
 
 Definition b := to_bits.
 Definition f := of_bits.
@@ -62,5 +64,106 @@ Definition run_enclosure_sign (x : list Z) : list Z :=
 Definition run_tail_enclosure (x : list Z) : list Z :=
   match x with e0 :: rest => enc_bits (expansion_tail_enclosure_b (f e0) (map f rest)) | [] => [] end.
 
+(** The values of [enum class Sign] (−1, 0, +1, 2 for uncertain) and [Stage] (0..3). *)
+Definition sign_code (s : sign) : Z := match s with Negative => -1 | Zero => 0 | Positive => 1 | Uncertain => 2 end.
+Definition bool_code (x : bool) : Z := if x then 1 else 0.
+Definition list_bits (l : list float) : list Z := Z.of_nat (length l) :: map b l.
+
+(** compare_quotients.hpp *)
+Definition run_filter_enclosure (C : float) (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] =>
+    let e := filter_enclosure_b (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2)) C in
+    [b (rvalueb e); b (rradiusb e)] | _ => [] end.
+Definition run_filter_enclosure_den := run_filter_enclosure Cpp.filter_den_relative.
+Definition run_filter_enclosure_num := run_filter_enclosure Cpp.filter_num_relative.
+Definition run_propagated (x : list Z) : list Z :=
+  match x with [x1; e1; y1; f1; x2; e2; y2; f2] =>
+    [b (compare_propagated_error_b (f x1) (f e1) (f y1) (f f1) (f x2) (f e2) (f y2) (f f2))] | _ => [] end.
+Definition renc (v r : Z) : RoundedEnclosureB := {| rvalueb := f v; rradiusb := f r |}.
+Definition run_compare_filter (x : list Z) : list Z :=
+  match x with [x1; e1; y1; f1; x2; e2; y2; f2] =>
+    [sign_code (compare_quotients_filter_b (renc x1 e1) (renc y1 f1) (renc x2 e2) (renc y2 f2))] | _ => [] end.
+Definition enc (h l r : Z) : EnclosureB := {| hib := f h; lob := f l; radiusb := f r |}.
+Definition run_compare_compensated (x : list Z) : list Z :=
+  match x with [h1; l1; r1; h2; l2; r2; h3; l3; r3; h4; l4; r4] =>
+    enc_bits (compare_quotients_compensated_b (enc h1 l1 r1) (enc h2 l2 r2) (enc h3 l3 r3) (enc h4 l4 r4))
+  | _ => [] end.
+
+(** expansion.hpp: "k e_1 .. e_k f_1 .." for two lists, "b e_1 .." for a scale. *)
+Definition split_at (x : list Z) : list float * list float :=
+  match x with k :: rest => (map f (firstn (Z.to_nat k) rest), map f (skipn (Z.to_nat k) rest)) | [] => ([], []) end.
+Definition run_exp_sum_gen fts (x : list Z) : list Z :=
+  let '(e, g) := split_at x in list_bits (sum_gen fts e g).
+Definition run_exp_scale_gen fts (x : list Z) : list Z :=
+  match x with bb :: e => let r := scale_gen fts true (map f e) (f bb) in bool_code (fst r) :: list_bits (snd r)
+  | [] => [] end.
+Definition run_exp_sum := run_exp_sum_gen fast_two_sum_b.
+Definition run_exp_scale := run_exp_scale_gen fast_two_sum_b.
+Definition run_exp_sum_p := run_exp_sum_gen two_sum_b.
+Definition run_exp_scale_p := run_exp_scale_gen two_sum_b.
+Definition run_exp_sign_top (x : list Z) : list Z := [sign_code (sign_top (map f x))].
+Definition run_exp_sign_p (x : list Z) : list Z := [sign_code (expansion_sign_b (map f x))].
+
+(** Queries "ox oy oz dx dy dz px py pz nx ny nz". *)
+Definition v3 (x y z : Z) : Vec3B := V3 (f x) (f y) (f z).
+Definition run_build_expansions_gen fts (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let '(num, den, ex) := rps_expansions fts (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    list_bits num ++ list_bits den ++ [bool_code ex] | _ => [] end.
+Definition run_build_expansions := run_build_expansions_gen fast_two_sum_b.
+Definition run_build_expansions_p := run_build_expansions_gen two_sum_b.
+Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
+    let o := v3 ox oy oz in let d := v3 dx dy dz in
+    let '(na, da, xa) := rps_expansions fts o d (v3 pax pay paz) (v3 nax nay naz) in
+    let '(nb, db, xb) := rps_expansions fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
+    [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
+Definition run_compare_expansion := run_compare_expansion_gen fast_two_sum_b sign_top.
+Definition run_compare_expansion_p := run_compare_expansion_gen two_sum_b expansion_sign_b.
+
+(** The call sites. *)
+Definition run_stages (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let o := v3 ox oy oz in let d := v3 dx dy dz in let p := v3 px py pz in let n := v3 nx ny nz in
+    dot3_bits (rps_den1 d n) ++ dot3_bits (rps_num1 o p n) ++ enc_bits (rps_den2 d n) ++ enc_bits (rps_num2 o p n) ++
+    enc_bits (rps_den2r d n) ++ enc_bits (rps_num2r o p n) ++
+    [bool_code (den_trivially_zero_b d n); bool_code (num_trivially_zero_b o p n)] | _ => [] end.
+Definition signs_code (r : option (sign * sign * Z)) : list Z :=
+  match r with Some (ns, ds, st) => [sign_code ns; sign_code ds; st] | None => [-9] end.
+Definition run_certified_signs_gen fts sgn (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    signs_code (certified_signs_gen fts sgn (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_certified_signs := run_certified_signs_gen fast_two_sum_b sign_top.
+Definition run_certified_signs_p := run_certified_signs_gen two_sum_b expansion_sign_b.
+Definition run_fast_answer (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let '(behind, by_compensated, certain) := fast_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    [bool_code behind; bool_code by_compensated; bool_code certain] | _ => [] end.
+Definition run_refined_answer (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let '(behind, by_compensated, certain) := refined_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    [bool_code behind; bool_code by_compensated; bool_code certain] | _ => [] end.
+Definition run_filter_signs (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let '(den, num) := filter_signs_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    [sign_code den; sign_code num] | _ => [] end.
+(** [compare_hit_distances] on two hit candidates whose signs [certified_signs] decided (−9 otherwise:
+    not a pair nearest_hit would compare). *)
+Definition run_hit_order (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
+    let o := v3 ox oy oz in let d := v3 dx dy dz in
+    let pa := v3 pax pay paz in let na := v3 nax nay naz in let pb := v3 pbx pby pbz in let nb := v3 nbx nby nbz in
+    match certified_signs_b o d pa na, certified_signs_b o d pb nb with
+    | Some (nsa, dsa, _), Some (nsb, dsb, _) =>
+        if (Z.eqb (sign_to_Z dsa) 0%Z || Z.eqb (sign_to_Z dsb) 0%Z ||
+            Z.ltb (sign_to_Z nsa * sign_to_Z dsa)%Z 0%Z || Z.ltb (sign_to_Z nsb * sign_to_Z dsb)%Z 0%Z)%bool then [-9%Z]
+        else let '(order, stage) := hit_order_b o d pa na pb nb nsa dsa nsb dsb in [order; stage]
+    | _, _ => [-9]
+    end | _ => [] end.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_fast_two_sum run_two_prod run_dot3_rounded run_filter_den
-  run_filter_num run_compensated run_refined run_enclosure_sign run_tail_enclosure.
+  run_filter_num run_compensated run_refined run_enclosure_sign run_tail_enclosure run_filter_enclosure_den
+  run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated run_exp_sum run_exp_scale
+  run_exp_sum_p run_exp_scale_p run_exp_sign_top run_exp_sign_p run_build_expansions run_build_expansions_p
+  run_compare_expansion run_compare_expansion_p run_stages run_certified_signs run_certified_signs_p
+  run_fast_answer run_refined_answer run_filter_signs run_hit_order.

@@ -13,6 +13,7 @@
 // Deterministic in SEED (SplitMix64), which is printed.
 //
 // Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
+#include "certified/compare_quotients.hpp"
 #include "certified/eft.hpp"
 #include "certified/ray_plane_stages.hpp"
 
@@ -139,6 +140,45 @@ std::vector<double> expansion_components(const testkit::Query& q, bool num) {
   return c;
 }
 
+// A ray and two planes: a near-tie plane pair (testkit/plane_pairs.hpp), or the ray of one hard query with
+// the planes of it and of another.
+Args pair_args(Source& s) {
+  Args a;
+  auto push3 = [&](const Vec3& v) { a.push_back(v.x), a.push_back(v.y), a.push_back(v.z); };
+  if (s.chance(2)) {
+    const testkit::PlanePair pp = s.plane_pair();
+    push3(pp.ray.origin), push3(pp.ray.direction);
+    for (const Plane& p : pp.planes) push3(p.point), push3(p.normal);
+  } else {
+    const testkit::Query q1 = s.query(), q2 = s.query();
+    push3(q1.ray.origin), push3(q1.ray.direction), push3(q1.plane.point), push3(q1.plane.normal);
+    push3(q2.plane.point), push3(q2.plane.normal);
+  }
+  return a;
+}
+
+testkit::Query query_of(const Args& a, int plane) {
+  const std::size_t at = 6 + 6 * static_cast<std::size_t>(plane);
+  return {{{a[0], a[1], a[2]}, {a[3], a[4], a[5]}}, {{a[at], a[at + 1], a[at + 2]}, {a[at + 3], a[at + 4], a[at + 5]}}};
+}
+
+Args query_args(const testkit::Query& q) {
+  return {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z,    q.ray.direction.x,
+          q.ray.direction.y, q.ray.direction.z, q.plane.point.x,   q.plane.point.y,
+          q.plane.point.z,   q.plane.normal.x,  q.plane.normal.y,  q.plane.normal.z};
+}
+
+// An expansion: the components of a query's num or den expansion, or a raw list.
+std::vector<double> some_expansion(Source& s, std::size_t max_raw) {
+  if (s.chance(3)) {
+    std::vector<double> c;
+    const std::size_t n = 1 + static_cast<std::size_t>(s.below(max_raw));
+    for (std::size_t i = 0; i < n; ++i) c.push_back(s.raw());
+    return c;
+  }
+  return expansion_components(s.query(), s.chance(2));
+}
+
 using Generator = std::function<Args(Source&)>;
 
 const std::map<std::string, Generator>& generators() {
@@ -187,6 +227,70 @@ const std::map<std::string, Generator>& generators() {
          }
          return Args{e.hi, e.lo, e.radius};
        }},
+      {"filter_enclosure_den", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
+      {"filter_enclosure_num", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), true, false); }},
+      {"propagated",
+       [](Source& s) {
+         if (s.chance(3)) return raw_args(s, 8);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num_rounded(), detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den_rounded(), detail::bounds::filter_den_relative);
+           r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
+         }
+         return r;
+       }},
+      {"compare_filter",
+       [](Source& s) {
+         if (s.chance(4)) return raw_args(s, 8);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num_rounded(), detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den_rounded(), detail::bounds::filter_den_relative);
+           r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
+         }
+         return r;
+       }},
+      {"compare_compensated",
+       [](Source& s) {
+         if (s.chance(4)) return raw_args(s, 12);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
+           for (const detail::Enclosure& e : {st.num_compensated(), st.den_compensated()})
+             r.insert(r.end(), {e.hi, e.lo, e.radius});
+         }
+         return r;
+       }},
+      {"exp_sum",
+       [](Source& s) {
+         const std::vector<double> e = some_expansion(s, 8), f = some_expansion(s, 8);
+         Args r{std::bit_cast<double>(static_cast<std::uint64_t>(e.size()))};
+         r.insert(r.end(), e.begin(), e.end());
+         r.insert(r.end(), f.begin(), f.end());
+         return r;
+       }},
+      {"exp_scale",
+       [](Source& s) {
+         const std::vector<double> e = some_expansion(s, 8);
+         Args r{s.chance(3) ? s.raw() : terms(s.query()).n[s.below(3)]};
+         r.insert(r.end(), e.begin(), e.end());
+         return r;
+       }},
+      {"exp_sign_top", [](Source& s) { return some_expansion(s, 12); }},
+      {"build_expansions", [](Source& s) { return query_args(s.query()); }},
+      {"compare_expansion", [](Source& s) { return pair_args(s); }},
+      {"stages", [](Source& s) { return query_args(s.query()); }},
+      {"certified_signs", [](Source& s) { return query_args(s.query()); }},
+      {"fast_answer", [](Source& s) { return query_args(s.query()); }},
+      {"refined_answer", [](Source& s) { return query_args(s.query()); }},
+      {"filter_signs", [](Source& s) { return query_args(s.query()); }},
+      {"hit_order", [](Source& s) { return pair_args(s); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));
@@ -218,7 +322,9 @@ int main(int argc, char** argv) {
   }
   Source source(seed);
   for (const std::string& name : routines) {
-    const auto g = generators().find(name);
+    // The proposed stage 3 (name_p) runs on the inputs of the current one.
+    const std::string base = name.size() > 2 && name.compare(name.size() - 2, 2, "_p") == 0 ? name.substr(0, name.size() - 2) : name;
+    const auto g = generators().find(base == "exp_sign" ? std::string("exp_sign_top") : base);
     if (g == generators().end()) {
       std::cerr << "unknown routine " << name << '\n';
       return 2;

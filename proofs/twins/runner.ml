@@ -15,6 +15,28 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("refined", Twins.run_refined);
   ("enclosure_sign", Twins.run_enclosure_sign);
   ("tail_enclosure", Twins.run_tail_enclosure);
+  ("filter_enclosure_den", Twins.run_filter_enclosure_den);
+  ("filter_enclosure_num", Twins.run_filter_enclosure_num);
+  ("propagated", Twins.run_propagated);
+  ("compare_filter", Twins.run_compare_filter);
+  ("compare_compensated", Twins.run_compare_compensated);
+  ("exp_sum", Twins.run_exp_sum);
+  ("exp_scale", Twins.run_exp_scale);
+  ("exp_sum_p", Twins.run_exp_sum_p);
+  ("exp_scale_p", Twins.run_exp_scale_p);
+  ("exp_sign_top", Twins.run_exp_sign_top);
+  ("exp_sign_p", Twins.run_exp_sign_p);
+  ("build_expansions", Twins.run_build_expansions);
+  ("build_expansions_p", Twins.run_build_expansions_p);
+  ("compare_expansion", Twins.run_compare_expansion);
+  ("compare_expansion_p", Twins.run_compare_expansion_p);
+  ("stages", Twins.run_stages);
+  ("certified_signs", Twins.run_certified_signs);
+  ("certified_signs_p", Twins.run_certified_signs_p);
+  ("fast_answer", Twins.run_fast_answer);
+  ("refined_answer", Twins.run_refined_answer);
+  ("filter_signs", Twins.run_filter_signs);
+  ("hit_order", Twins.run_hit_order);
 ]
 
 let () =
