@@ -1,42 +1,50 @@
-// raykernel_bench: the cost of one ray–plane query on each path, measured in one run so that the ratios
-// compare like with like.
+// raykernel_bench: the cost of ray–plane queries on each path, measured in one run so that the ratios
+// compare like with like (bench/README.md has the table, the machine and the command).
 //
-//   intersect/<path>/<workload>   path: naive, certified, exact, cgal_epick, cgal_epeck, batch_certified
-//                                 workload: random, wide, degenerate, render
-//   nearest/<path>/<planes>       the demo camera's rays against 4 or 64 planes: naive, certified, exact
-//                                 (items: rays; one nearest hit each)
-//   sweep/<path>/<k>              queries at angle 2^-k between ray and plane (k = 0, 4, ..., 100)
+//   intersect/<path>/<workload>    naive, certified, batch_certified, exact, cgal_epeck (t from the point);
+//                                  naive_soa on random_l2 (the naive formula over arrays, auto-vectorized)
+//   relation/<path>/<workload>     certified (`relation`), batch_certified (`relation_batch`), cgal_epick
+//                                  (CGAL's yes/no do_intersect)
+//   memory/read/random             reading the random workload's arrays once: the floor for streaming
+//   nearest/<path>/<set>           rays against a prepared plane set: naive, certified, exact;
+//                                  demo4/demo64 (the demo camera's rays and planes), random4/random64
+//   render/<path>/demo             the whole demo image, one sample per pixel: camera ray, nearest plane,
+//                                  shading; naive or certified
+//   sweep/<path>/<k>               queries at angle 2^-k between ray and plane, k = 0, 4, ..., 100
 //
-// Items per second count ray–plane queries. Each benchmark rotates through a pre-generated buffer (96 MiB
-// for the workloads, beyond the last-level cache) that was checked once (certified == exact). The certified
-// benchmarks report, as counters, the fraction of the buffer's queries whose relation (rel_*) and whose t
-// (t_*) each stage decided.
+// Workloads: random (2^20 queries, 96 MiB: streaming), random_l2 (2^12 queries: in L2), wide, degenerate,
+// render. Items per second count queries (rays for nearest/ and render/). Every buffer is checked once
+// (certified == exact) before anything is timed.
 #include "cgal_baselines.hpp"
 #include "workloads.hpp"
 
 #include <raykernel/batch.hpp>
+#include <raykernel/camera.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <span>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace raykernel::bench {
 namespace {
 
 constexpr int chunk = 256;  // queries per benchmark iteration
 
-template <class Query, class F>
-void rotate_through(benchmark::State& state, const std::vector<Query>& queries, F&& f) {
+template <class Item, class F>
+void rotate_through(benchmark::State& state, const std::vector<Item>& items, F&& f) {
   std::size_t i = 0;
-  const std::size_t n = queries.size();
+  const std::size_t n = items.size();
   for (auto _ : state) {
     for (int k = 0; k < chunk; ++k) {
-      auto r = f(queries[i]);
+      auto r = f(items[i]);
       benchmark::DoNotOptimize(r);
       if (++i == n) i = 0;
     }
@@ -44,148 +52,167 @@ void rotate_through(benchmark::State& state, const std::vector<Query>& queries, 
   state.SetItemsProcessed(state.iterations() * chunk);
 }
 
+// The fraction of the buffer's queries whose relation and whose t each stage of the cascade decided.
 void add_stage_counters(benchmark::State& state, const std::vector<testkit::Query>& queries) {
-  std::array<double, 4> relation{}, t{};
+  std::array<double, stage_count> relation{}, t{};
   double with_t = 0;
   for (const auto& q : queries) {
     const TracedIntersection r = intersect_traced(q.ray, q.plane);
-    relation[static_cast<int>(r.relation_stage)] += 1;
+    relation[static_cast<std::size_t>(r.relation_stage)] += 1;
     if (r.intersection.relation == Relation::hit || r.intersection.relation == Relation::behind) {
-      t[static_cast<int>(r.t_stage)] += 1;
+      t[static_cast<std::size_t>(r.t_stage)] += 1;
       with_t += 1;
     }
   }
   const double n = static_cast<double>(queries.size());
-  const char* names[4] = {"filter", "compensated", "expansion", "exact"};
-  for (int s = 0; s < 4; ++s) {
-    state.counters[std::string("rel_") + names[s]] = relation[static_cast<std::size_t>(s)] / n;
-    if (s > 0) state.counters[std::string("t_") + names[s]] = with_t > 0 ? t[static_cast<std::size_t>(s)] / with_t : 0;
+  for (std::size_t s = 0; s < stage_count; ++s) {
+    const std::string name(to_string(static_cast<Stage>(s)));
+    state.counters["rel_" + name] = relation[s] / n;
+    if (s > 0) state.counters["t_" + name] = with_t > 0 ? t[s] / with_t : 0;
   }
 }
 
-auto naive = [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane); };
-auto certified = [](const testkit::Query& q) { return intersect(q.ray, q.plane); };
-auto exact = [](const testkit::Query& q) { return intersect_exact(q.ray, q.plane); };
+unsigned all_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-void register_path_benchmarks(const std::string& workload_name, const std::vector<testkit::Query>* (*queries)(),
-                              bool with_cgal) {
-  auto name = [&](const char* path) { return "intersect/" + std::string(path) + "/" + workload_name; };
-  benchmark::RegisterBenchmark(name("naive").c_str(), [queries](benchmark::State& s) {
-    rotate_through(s, *queries(), naive);
+void register_workload(Workload w) {
+  const std::string suffix = "/" + to_string(w);
+  auto queries = [w] { return &workload(w); };
+  benchmark::RegisterBenchmark(("intersect/naive" + suffix).c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane); });
   });
-  benchmark::RegisterBenchmark(name("certified").c_str(), [queries](benchmark::State& s) {
-    rotate_through(s, *queries(), certified);
+  benchmark::RegisterBenchmark(("intersect/certified" + suffix).c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return intersect(q.ray, q.plane); });
     add_stage_counters(s, *queries());
   });
-  benchmark::RegisterBenchmark(name("exact").c_str(), [queries](benchmark::State& s) {
-    rotate_through(s, *queries(), exact);
+  benchmark::RegisterBenchmark(("intersect/exact" + suffix).c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return intersect_exact(q.ray, q.plane); });
   });
-  benchmark::RegisterBenchmark(name("batch_certified").c_str(), [queries, workload_name](benchmark::State& s) {
-    // The batch API over the whole buffer per iteration (threads: all cores), counted per query.
-    const Workload w = workload_name == "random" ? Workload::random
-                       : workload_name == "wide" ? Workload::wide
-                       : workload_name == "degenerate" ? Workload::degenerate
-                                                       : Workload::render;
+  benchmark::RegisterBenchmark(("relation/certified" + suffix).c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return relation(q.ray, q.plane); });
+  });
+  // The batch benchmarks run on all threads: they are timed by the wall clock (UseRealTime), not by the
+  // calling thread's CPU time.
+  benchmark::RegisterBenchmark(("intersect/batch_certified" + suffix).c_str(), [w, queries](benchmark::State& s) {
+    // The batch API over the whole buffer per iteration, on all threads; checked once against intersect.
     const SoA& soa = workload_soa(w);
     const std::size_t n = soa.ox.size();
     std::vector<Relation> relation(n);
     std::vector<double> t(n);
-    BatchStats stats;
     for (auto _ : s) {
-      intersect_batch({soa.ox, soa.oy, soa.oz, soa.dx, soa.dy, soa.dz}, {soa.px, soa.py, soa.pz, soa.nx, soa.ny, soa.nz},
-                      {relation, t}, {.stats = &stats});
+      intersect_batch(soa.rays(), soa.planes(), {relation, t}, {.threads = all_threads()});
       benchmark::DoNotOptimize(t.data());
       benchmark::ClobberMemory();
     }
     s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(n));
-    // Checked once: the batch answers are intersect's.
     const std::vector<testkit::Query>& q = *queries();
     for (std::size_t i = 0; i < n; i += 97) {
       const Intersection a = intersect(q[i].ray, q[i].plane);
-      if (a.relation != relation[i] || (a.relation <= Relation::behind && std::memcmp(&a.t, &t[i], sizeof a.t) != 0)) {
-        s.SkipWithError("batch != intersect");
-        return;
-      }
+      if (a.relation != relation[i] || (a.relation <= Relation::behind && std::memcmp(&a.t, &t[i], sizeof a.t) != 0))
+        return s.SkipWithError("batch != intersect");
     }
-    const double total = static_cast<double>(s.iterations()) * static_cast<double>(n);
-    s.counters["rel_filter"] = static_cast<double>(stats.relation_stage[0]) / total;
-    s.counters["rel_compensated"] = static_cast<double>(stats.relation_stage[1]) / total;
-    s.counters["rel_expansion"] = static_cast<double>(stats.relation_stage[2]) / total;
-    s.counters["rel_exact"] = static_cast<double>(stats.relation_stage[3]) / total;
-  });
-  if (!with_cgal) return;
-  benchmark::RegisterBenchmark(name("cgal_epick").c_str(), [queries](benchmark::State& s) {
-    static const EpickQueries cgal(*queries());
+  })->UseRealTime();
+  benchmark::RegisterBenchmark(("relation/batch_certified" + suffix).c_str(), [w, queries](benchmark::State& s) {
+    const SoA& soa = workload_soa(w);
+    const std::size_t n = soa.ox.size();
+    std::vector<Relation> relation(n);
+    for (auto _ : s) {
+      relation_batch(soa.rays(), soa.planes(), {relation}, {.threads = all_threads()});
+      benchmark::DoNotOptimize(relation.data());
+      benchmark::ClobberMemory();
+    }
+    s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(n));
+    const std::vector<testkit::Query>& q = *queries();
+    for (std::size_t i = 0; i < n; i += 97)
+      if (relation[i] != raykernel::relation(q[i].ray, q[i].plane)) return s.SkipWithError("batch != relation");
+  })->UseRealTime();
+  benchmark::RegisterBenchmark(("relation/cgal_epick" + suffix).c_str(), [queries](benchmark::State& s) {
+    const EpickQueries cgal(*queries());
     std::vector<std::size_t> index(cgal.size());
     for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
-    rotate_through(s, index, [](std::size_t i) { return cgal.do_intersect(i); });
+    rotate_through(s, index, [&cgal](std::size_t i) { return cgal.do_intersect(i); });
   });
-  benchmark::RegisterBenchmark(name("cgal_epeck").c_str(), [queries](benchmark::State& s) {
-    // Lazy exact objects are large: 2^16 queries of the workload (the cost is not memory-bound anyway).
-    static const EpeckQueries cgal(std::vector<testkit::Query>(queries()->begin(), queries()->begin() + (1 << 16)));
+  benchmark::RegisterBenchmark(("intersect/cgal_epeck" + suffix).c_str(), [queries](benchmark::State& s) {
+    // Lazy exact objects are large: at most 2^16 queries of the workload (the cost is not memory-bound).
+    const std::vector<testkit::Query>& q = *queries();
+    const EpeckQueries cgal(std::vector<testkit::Query>(q.begin(), q.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(q.size(), 1 << 16))));
     std::vector<std::size_t> index(cgal.size());
     for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
-    rotate_through(s, index, [](std::size_t i) { return cgal.intersection_t(i); });
+    rotate_through(s, index, [&cgal](std::size_t i) { return cgal.intersection_t(i); });
   });
 }
 
-template <Workload W>
-const std::vector<testkit::Query>* workload_queries() {
-  return &workload(W);
-}
-template <int K>
-const std::vector<testkit::Query>* sweep_queries() {
-  return &angle_sweep(K);
+void register_naive_soa_and_memory() {
+  benchmark::RegisterBenchmark("intersect/naive_soa/random_l2", [](benchmark::State& s) {
+    const SoA& soa = workload_soa(Workload::random_l2);
+    const std::size_t n = soa.ox.size();
+    std::vector<Relation> relation(n);
+    std::vector<double> t(n);
+    for (auto _ : s) {
+      naive_soa(soa, relation.data(), t.data());
+      benchmark::DoNotOptimize(t.data());
+      benchmark::ClobberMemory();
+    }
+    s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(n));
+  });
+  benchmark::RegisterBenchmark("memory/read/random", [](benchmark::State& s) {
+    const SoA& soa = workload_soa(Workload::random);
+    for (auto _ : s) benchmark::DoNotOptimize(read_all(soa, all_threads()));
+    s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(soa.ox.size()));
+    s.counters["threads"] = all_threads();
+  })->UseRealTime();
 }
 
-void register_nearest(std::size_t planes) {
-  const std::string suffix = "/" + std::to_string(planes);
-  auto run = [planes](benchmark::State& s, auto nearest) {
-    const NearestWorkload& w = nearest_workload(planes);
+void register_nearest(const std::string& name) {
+  auto run = [name](benchmark::State& s, auto nearest) {
+    const NearestWorkload& w = nearest_workload(name);
     std::size_t i = 0;
     for (auto _ : s) {
       for (int k = 0; k < chunk; ++k) {
-        auto r = nearest(w.rays[i], std::span<const Plane>(w.planes));
+        auto r = nearest(w, w.rays[i]);
         benchmark::DoNotOptimize(r);
         if (++i == w.rays.size()) i = 0;
       }
     }
     s.SetItemsProcessed(s.iterations() * chunk);
   };
-  benchmark::RegisterBenchmark(("nearest/naive" + suffix).c_str(), [run](benchmark::State& s) {
-    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit_naive(r, p); });
+  benchmark::RegisterBenchmark(("nearest/naive/" + name).c_str(), [run](benchmark::State& s) {
+    run(s, [](const NearestWorkload& w, const Ray& r) { return nearest_hit_naive(r, w.planes); });
   });
-  benchmark::RegisterBenchmark(("nearest/certified" + suffix).c_str(), [run, planes](benchmark::State& s) {
-    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit(r, p); });
-    // Counters: the slowest stage each ray needed, over the whole image.
-    const NearestWorkload& w = nearest_workload(planes);
-    std::array<double, 4> slowest{};
-    for (const Ray& r : w.rays) slowest[static_cast<std::size_t>(nearest_hit_traced(r, w.planes).slowest_stage())] += 1;
-    const char* names[4] = {"filter", "compensated", "expansion", "exact"};
-    for (int k = 0; k < 4; ++k)
-      s.counters[std::string("ray_") + names[k]] = slowest[static_cast<std::size_t>(k)] / static_cast<double>(w.rays.size());
+  benchmark::RegisterBenchmark(("nearest/certified/" + name).c_str(), [run](benchmark::State& s) {
+    run(s, [](const NearestWorkload& w, const Ray& r) { return nearest_hit(r, w.prepared); });
   });
-  benchmark::RegisterBenchmark(("nearest/exact" + suffix).c_str(), [run](benchmark::State& s) {
-    run(s, [](const Ray& r, std::span<const Plane> p) { return nearest_hit_exact(r, p); });
+  benchmark::RegisterBenchmark(("nearest/exact/" + name).c_str(), [run](benchmark::State& s) {
+    run(s, [](const NearestWorkload& w, const Ray& r) { return nearest_hit_exact(r, w.planes); });
   });
 }
 
+// sweep/<path>/<k>: queries at angle 2^-k between ray and plane (k = 0, 4, ..., 100), for the degeneracy
+// plot (bench/plot-degeneracy.sh).
 template <int K>
 void register_sweep() {
   if constexpr (K <= 100) {
-    const std::string prefix = "sweep/";
     const std::string suffix = "/" + std::to_string(K);
-    benchmark::RegisterBenchmark((prefix + "naive" + suffix).c_str(), [](benchmark::State& s) {
-      rotate_through(s, *sweep_queries<K>(), naive);
+    benchmark::RegisterBenchmark(("sweep/naive" + suffix).c_str(), [](benchmark::State& s) {
+      rotate_through(s, angle_sweep(K), [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane); });
     });
-    benchmark::RegisterBenchmark((prefix + "certified" + suffix).c_str(), [](benchmark::State& s) {
-      rotate_through(s, *sweep_queries<K>(), certified);
-      add_stage_counters(s, *sweep_queries<K>());
+    benchmark::RegisterBenchmark(("sweep/certified" + suffix).c_str(), [](benchmark::State& s) {
+      rotate_through(s, angle_sweep(K), [](const testkit::Query& q) { return intersect(q.ray, q.plane); });
+      add_stage_counters(s, angle_sweep(K));
     });
-    benchmark::RegisterBenchmark((prefix + "exact" + suffix).c_str(), [](benchmark::State& s) {
-      rotate_through(s, *sweep_queries<K>(), exact);
+    benchmark::RegisterBenchmark(("sweep/exact" + suffix).c_str(), [](benchmark::State& s) {
+      rotate_through(s, angle_sweep(K), [](const testkit::Query& q) { return intersect_exact(q.ray, q.plane); });
     });
     register_sweep<K + 4>();
+  }
+}
+
+void register_render() {
+  for (const bool certified : {false, true}) {
+    benchmark::RegisterBenchmark(certified ? "render/certified/demo" : "render/naive/demo", [certified](benchmark::State& s) {
+      const DemoRender& demo = demo_render();
+      for (auto _ : s) benchmark::DoNotOptimize(demo.render_once(certified));
+      s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(demo.pixels()));
+    });
   }
 }
 
@@ -194,12 +221,11 @@ void register_sweep() {
 
 int main(int argc, char** argv) {
   using namespace raykernel::bench;
-  register_path_benchmarks("random", &workload_queries<Workload::random>, true);
-  register_path_benchmarks("wide", &workload_queries<Workload::wide>, true);
-  register_path_benchmarks("degenerate", &workload_queries<Workload::degenerate>, true);
-  register_path_benchmarks("render", &workload_queries<Workload::render>, true);
-  register_nearest(4);
-  register_nearest(64);
+  for (Workload w : {Workload::random, Workload::random_l2, Workload::wide, Workload::degenerate, Workload::render})
+    register_workload(w);
+  register_naive_soa_and_memory();
+  for (const char* set : {"demo4", "demo64", "random4", "random64"}) register_nearest(set);
+  register_render();
   register_sweep<0>();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Runs raykernel_bench once and prints the table of bench/README.md: ns per query per path and workload,
-the goal ratios of issue 6, and the fallback rates. All ratios come from one run on one machine.
+"""Runs raykernel_bench once and prints the tables of bench/README.md: ns per query for each path and workload,
+the goal ratios (all from this one run on this one machine), and the certified path's fallback rates.
 
-  bench/report.py [BUILD_DIR] [--min-time SECONDS]      (python3 standard library only)
+  bench/report.py [BUILD_DIR] [--min-time SECONDS] [--json FILE]     (python3 standard library only)
+
+--json FILE reads a saved run (raykernel_bench --benchmark_format=json) instead of running the benchmarks.
 """
 import json
 import os
@@ -10,87 +12,116 @@ import platform
 import subprocess
 import sys
 
+FILTER = "^(intersect|relation|memory|nearest|render|triangle)/"
+
 
 def run(build, min_time):
-    cmd = [os.path.join(build, "bin", "raykernel_bench"),
-           "--benchmark_filter=^(intersect|nearest)/",
-           f"--benchmark_min_time={min_time}",
-           "--benchmark_format=json"]
-    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
-    return json.loads(out)
+    cmd = [os.path.join(build, "bin", "raykernel_bench"), f"--benchmark_filter={FILTER}",
+           f"--benchmark_min_time={min_time}", "--benchmark_format=json"]
+    return json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+
+
+def fmt(v):
+    if v is None:
+        return "—"
+    return f"{v:.1f}" if v < 100 else f"{v:,.0f}"
+
+
+def table(title, rows, columns, ns, name):
+    print(title + "\n")
+    print("| path | " + " | ".join(columns) + " |")
+    print("|---|" + "---:|" * len(columns))
+    for r in rows:
+        cells = [fmt(ns.get(name(r, c))) for c in columns]
+        if all(c == "—" for c in cells):
+            continue
+        print(f"| {r} | " + " | ".join(cells) + " |")
+    print()
 
 
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     build = args[0] if args else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build")
-    min_time = 1.0
+    min_time, saved = 1.0, None
     for i, a in enumerate(sys.argv):
         if a == "--min-time":
             min_time = float(sys.argv[i + 1])
-    data = run(build, min_time)
-    ns = {}
-    counters = {}
+        if a == "--json":
+            saved = sys.argv[i + 1]
+    data = json.load(open(saved)) if saved else run(build, min_time)
+    ns, bench = {}, {}
     for b in data["benchmarks"]:
-        if "items_per_second" not in b:
-            continue
-        ns[b["name"]] = 1e9 / b["items_per_second"]
-        counters[b["name"]] = b
+        if "items_per_second" in b:
+            ns[b["name"]] = 1e9 / b["items_per_second"]
+            bench[b["name"]] = b
     ctx = data["context"]
     print(f"machine: {platform.processor() or ctx.get('host_name', '?')}, {ctx['num_cpus']} cores at "
           f"{ctx['mhz_per_cpu']} MHz, load average {ctx.get('load_avg', '?')}; {ctx['date']}\n")
 
-    paths = ["naive", "certified", "batch_certified", "exact", "cgal_epick", "cgal_epeck"]
-    workloads = ["random", "wide", "degenerate", "render"]
-    print("ns per query (lower is better):\n")
-    print("| path | " + " | ".join(workloads) + " |")
-    print("|---|" + "---:|" * len(workloads))
-    for p in paths:
-        cells = []
-        for w in workloads:
-            v = ns.get(f"intersect/{p}/{w}")
-            cells.append("—" if v is None else (f"{v:.1f}" if v < 100 else f"{v:.0f}"))
-        print(f"| {p} | " + " | ".join(cells) + " |")
-    print()
-    print("| nearest hit, ns per ray | 4 planes | 64 planes |")
-    print("|---|---:|---:|")
-    for p in ["naive", "certified", "exact"]:
-        cells = [ns.get(f"nearest/{p}/{k}") for k in (4, 64)]
-        print(f"| {p} | " + " | ".join("—" if c is None else f"{c:.0f}" for c in cells) + " |")
-    print()
+    workloads = ["random", "random_l2", "wide", "degenerate", "render"]
+    table("ns per query, intersection (lower is better):",
+          ["naive", "naive_soa", "certified", "batch_certified", "exact", "cgal_epeck"], workloads, ns,
+          lambda p, w: f"intersect/{p}/{w}")
+    table("ns per query, relation only:", ["certified", "batch_certified", "cgal_epick"], workloads, ns,
+          lambda p, w: f"relation/{p}/{w}")
+    print(f"memory floor (reading the random workload's arrays on all threads): "
+          f"{fmt(ns.get('memory/read/random'))} ns per query\n")
+    table("nearest hit, ns per ray (prepared plane set):", ["naive", "certified", "exact"],
+          ["demo4", "demo64", "random4", "random64"], ns, lambda p, s: f"nearest/{p}/{s}")
+    table("render of the demo image (1 sample per pixel, 1 thread), ns per pixel:", ["naive", "certified"], ["demo"],
+          ns, lambda p, s: f"render/{p}/{s}")
+    table("ray–triangle, ns per query:", ["naive", "relation", "certified", "exact", "cgal_epick", "cgal_epeck"],
+          ["random", "degenerate"], ns, lambda p, w: f"triangle/{p}/{w}")
 
     def ratio(a, b):
-        return ns[a] / ns[b] if a in ns and b in ns else float("nan")
+        return ns[a] / ns[b] if a in ns and b in ns else None
+
+    def throughput_ratio(a, b):  # how many times as many items per second a does as b
+        return ns[b] / ns[a] if a in ns and b in ns else None
 
     goals = [
-        ("certified/random ≤ 1.25 × naive/random", ratio("intersect/certified/random", "intersect/naive/random"), 1.25, "≤"),
-        ("batch_certified/random throughput ≥ 2 × naive/random",
-         ratio("intersect/naive/random", "intersect/batch_certified/random"), 2.0, "≥"),
-        ("certified/degenerate ≤ 10 × naive/degenerate",
-         ratio("intersect/certified/degenerate", "intersect/naive/degenerate"), 10.0, "≤"),
-        ("certified ≥ 50 × cgal_epeck throughput (random)",
-         ratio("intersect/cgal_epeck/random", "intersect/certified/random"), 50.0, "≥"),
-        ("certified ≥ 1.5 × cgal_epick throughput (random)",
-         ratio("intersect/cgal_epick/random", "intersect/certified/random"), 1.5, "≥"),
+        ("relation/certified/random_l2 ≤ 1.3 × intersect/naive/random_l2",
+         ratio("relation/certified/random_l2", "intersect/naive/random_l2"), lambda v: v <= 1.3),
+        ("relation/certified/random_l2 throughput ≥ 5 × relation/cgal_epick/random_l2",
+         throughput_ratio("relation/certified/random_l2", "relation/cgal_epick/random_l2"), lambda v: v >= 5),
+        ("intersect/certified/random_l2 ≤ 4 × intersect/naive/random_l2 (aim 3×)",
+         ratio("intersect/certified/random_l2", "intersect/naive/random_l2"), lambda v: v <= 4),
+        ("intersect/batch_certified/random within 1.25 × memory/read/random",
+         ratio("intersect/batch_certified/random", "memory/read/random"), lambda v: v <= 1.25),
+        ("intersect/batch_certified/random_l2 ≤ 3 × intersect/naive_soa/random_l2",
+         ratio("intersect/batch_certified/random_l2", "intersect/naive_soa/random_l2"), lambda v: v <= 3),
+        ("intersect/certified/degenerate ≤ 10 × intersect/naive/degenerate",
+         ratio("intersect/certified/degenerate", "intersect/naive/degenerate"), lambda v: v <= 10),
+        ("nearest/certified/random64 ≤ 2.5 × nearest/naive/random64",
+         ratio("nearest/certified/random64", "nearest/naive/random64"), lambda v: v <= 2.5),
+        ("nearest/certified/demo64 ≤ 3 × nearest/naive/demo64",
+         ratio("nearest/certified/demo64", "nearest/naive/demo64"), lambda v: v <= 3),
+        ("render/certified/demo ≤ 2 × render/naive/demo",
+         ratio("render/certified/demo", "render/naive/demo"), lambda v: v <= 2),
+        ("triangle/relation/random ≤ 2 × triangle/naive/random",
+         ratio("triangle/relation/random", "triangle/naive/random"), lambda v: v <= 2),
+        ("triangle/certified/random ≤ 10 × triangle/naive/random (aim 6×)",
+         ratio("triangle/certified/random", "triangle/naive/random"), lambda v: v <= 10),
     ]
     print("| goal | measured | met |")
     print("|---|---:|:---:|")
-    for name, value, target, sense in goals:
-        met = value <= target if sense == "≤" else value >= target
-        print(f"| {name} | {value:.2f} | {'yes' if met else 'no'} |")
-    c = counters.get("intersect/certified/random", {})
-    exact_rate = c.get("rel_exact", float("nan")) + c.get("t_exact", 0.0)
-    print(f"| exact stage on random < 1e-7 | {exact_rate:.1e} (of {2**20} queries) | "
-          f"{'yes' if exact_rate < 1e-7 else 'no'} |")
+    for text, value, ok in goals:
+        if value is not None:
+            print(f"| {text} | {value:.2f} | {'yes' if ok(value) else 'no'} |")
     print()
-    print("fallback rates (fraction of queries whose relation / t each stage decided, certified path):\n")
-    print("| workload | rel filter | rel compensated | rel expansion | rel exact | t compensated | t expansion | t exact |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+
+    print("fallback rates of the certified path (fraction of the workload's queries whose relation / t each "
+          "stage decided):\n")
+    stages = ["filter", "compensated", "expansion", "exact"]
+    print("| workload | " + " | ".join(f"rel {s}" for s in stages) + " | " +
+          " | ".join(f"t {s}" for s in stages[1:]) + " |")
+    print("|---|" + "---:|" * 7)
     for w in workloads:
-        c = counters.get(f"intersect/certified/{w}")
-        if not c:
+        b = bench.get(f"intersect/certified/{w}")
+        if not b:
             continue
-        keys = ["rel_filter", "rel_compensated", "rel_expansion", "rel_exact", "t_compensated", "t_expansion", "t_exact"]
-        print(f"| {w} | " + " | ".join(f"{c.get(k, 0):.4g}" for k in keys) + " |")
+        cells = [b.get(f"rel_{s}", 0) for s in stages] + [b.get(f"t_{s}", 0) for s in stages[1:]]
+        print(f"| {w} | " + " | ".join(f"{c:.4g}" for c in cells) + " |")
 
 
 if __name__ == "__main__":

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <string>
+#include <thread>
 
 namespace raykernel::bench {
 namespace {
@@ -114,6 +116,7 @@ const Value& cached(Key key, Make make) {
 std::string to_string(Workload w) {
   switch (w) {
     case Workload::random: return "random";
+    case Workload::random_l2: return "random_l2";
     case Workload::wide: return "wide";
     case Workload::degenerate: return "degenerate";
     case Workload::render: return "render";
@@ -126,6 +129,7 @@ const std::vector<Query>& workload(Workload w) {
     std::vector<Query> q;
     switch (w) {
       case Workload::random: q = generate(QueryKind::random, 1, workload_size); break;
+      case Workload::random_l2: q = generate(QueryKind::random, 1, l2_workload_size); break;
       case Workload::wide: q = generate(QueryKind::wide_exponents, 2, workload_size); break;
       case Workload::degenerate: q = degenerate_mix(workload_size); break;
       case Workload::render: q = render_pairs(); break;
@@ -149,21 +153,76 @@ const SoA& workload_soa(Workload w) {
   });
 }
 
-const NearestWorkload& nearest_workload(std::size_t plane_count) {
-  return cached<std::size_t, NearestWorkload>(plane_count, [plane_count] {
-    NearestWorkload w;
-    w.rays = demo_camera_rays();
-    const std::vector<Plane> base = demo_planes();
-    // More planes than the demo has: copies moved along their normals by small dyadic steps (parallel
-    // layers, as in a scene with thin slabs), so that the nearest hit keeps changing with the count.
-    for (std::size_t k = 0; k < plane_count; ++k) {
-      Plane p = base[k % base.size()];
-      const double step = std::ldexp(static_cast<double>(k / base.size()), -4);
-      p.point = {p.point.x + step * p.normal.x, p.point.y + step * p.normal.y, p.point.z + step * p.normal.z};
-      w.planes.push_back(p);
+const NearestWorkload& nearest_workload(const std::string& name) {
+  return cached<std::string, NearestWorkload>(name, [&name] {
+    std::vector<Ray> rays;
+    std::vector<Plane> planes;
+    const std::size_t plane_count = name.ends_with("64") ? 64 : 4;
+    if (name.starts_with("demo")) {
+      rays = demo_camera_rays();
+      const std::vector<Plane> base = demo_planes();
+      // More planes than the demo has: copies moved along their normals by small dyadic steps (parallel
+      // layers, as in a scene with thin slabs), so that the nearest hit keeps changing with the count.
+      for (std::size_t k = 0; k < plane_count; ++k) {
+        Plane p = base[k % base.size()];
+        const double step = std::ldexp(static_cast<double>(k / base.size()), -4);
+        p.point = {p.point.x + step * p.normal.x, p.point.y + step * p.normal.y, p.point.z + step * p.normal.z};
+        planes.push_back(p);
+      }
+    } else {
+      for (const Query& q : generate(QueryKind::random, 11, l2_workload_size)) rays.push_back(q.ray);
+      for (const Query& q : generate(QueryKind::random, 12, plane_count)) planes.push_back(q.plane);
     }
-    return w;
+    PlaneSet prepared(planes);
+    return NearestWorkload{std::move(rays), std::move(planes), std::move(prepared)};
   });
+}
+
+double read_all(const SoA& soa, unsigned threads) {
+  const std::vector<double>* arrays[12] = {&soa.ox, &soa.oy, &soa.oz, &soa.dx, &soa.dy, &soa.dz,
+                                           &soa.px, &soa.py, &soa.pz, &soa.nx, &soa.ny, &soa.nz};
+  const std::size_t n = soa.ox.size();
+  std::vector<double> sums(threads, 0.0);
+  auto part = [&](unsigned k) {
+    const std::size_t begin = n * k / threads, end = n * (k + 1) / threads;
+    double s[4] = {0, 0, 0, 0};
+    for (const std::vector<double>* a : arrays)
+      for (std::size_t i = begin; i < end; ++i) s[i % 4] += (*a)[i];
+    sums[k] = (s[0] + s[1]) + (s[2] + s[3]);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(part, k);
+  part(0);
+  for (std::thread& t : pool) t.join();
+  double total = 0;
+  for (double x : sums) total += x;
+  return total;
+}
+
+DemoRender::DemoRender()
+    : camera_(cli::parse_scene(cli::demo_scene_json()).scene->camera),
+      planes_(demo_planes()),
+      prepared_(planes_) {}
+
+// Lambert shading against the ray, |d·n| / (|d|·|n|), the same work for both paths.
+double DemoRender::render_once(bool certified) const {
+  double total = 0;
+  for (std::uint32_t j = 0; j < camera_.image.height; ++j)
+    for (std::uint32_t i = 0; i < camera_.image.width; ++i) {
+      const Ray ray = camera_.ray(i, j);
+      const std::optional<NearestHit> hit = certified ? nearest_hit(ray, prepared_) : nearest_hit_naive(ray, planes_);
+      if (!hit) continue;
+      const Vec3& n = planes_[hit->plane].normal;
+      const Vec3& d = ray.direction;
+      const double dn = d.x * n.x + d.y * n.y + d.z * n.z;
+      total += std::fabs(dn) / std::sqrt((d.x * d.x + d.y * d.y + d.z * d.z) * (n.x * n.x + n.y * n.y + n.z * n.z));
+    }
+  return total;
+}
+
+const DemoRender& demo_render() {
+  static const DemoRender render;
+  return render;
 }
 
 const std::vector<Query>& angle_sweep(int k) {

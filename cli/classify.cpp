@@ -1,9 +1,9 @@
 // raykernel classify: one ray–plane query per line (docs/contract.md §3).
 #include "commands.hpp"
 #include "options.hpp"
+#include "text_format.hpp"
 #include "text_input.hpp"
 
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -11,25 +11,29 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* classify_help = R"(usage: raykernel classify [options] [FILE|-]
+constexpr const char* classify_help = R"(usage: raykernel classify [options] [--] [FILE|-]
 
 Classifies one ray-plane query per input line (standard input when FILE is - or absent):
   ox oy oz dx dy dz px py pz nx ny nz
-numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks.
-Blank lines and lines starting with # are skipped. Each other line gives one output line:
+numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks;
+a number must be finite when read, and a nonzero number must not round to zero (1e-400 is
+invalid, 4e-324 reads as a subnormal and is fine). Blank lines and lines starting with # are
+skipped; a UTF-8 byte-order mark at the start is ignored. Each other line gives one output line:
   hit T | behind T | parallel | in-plane | invalid REASON
 where T is t = ((p - o).n) / (d.n) rounded to the nearest double (ties to even), printed so
 that strtod reads it back exactly.
 
 options:
   --path=certified|exact|naive   which computation answers (default certified; naive is the
-                                 lecture's formula in plain doubles, without guarantees)
+                                 textbook formula in plain doubles, without guarantees)
   --exact-t                      append the exact t as P/Q in lowest terms
   --hex                          print T as a hexadecimal float
   --stats                        print to stderr how many queries each stage decided
   --help                         this text
+  --                             end of options (a FILE may then start with -)
 
-exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error
+exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
+input, or standard output that cannot be written: classify then stops reading)
 )";
 
 Ray ray_of(const NumberLine& line) {
@@ -45,11 +49,10 @@ Plane plane_of(const NumberLine& line) {
 
 int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, const ClassifyOptions& options,
                     ClassifyCounts& counts) {
+  LineReader lines(in);
   std::string line;
   std::string answer;
-  std::uint64_t line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
+  while (out && lines.next(line)) {
     const NumberLine parsed = parse_number_line(line, 12);
     if (parsed.status == LineStatus::skip) continue;
     ++counts.lines_answered;
@@ -62,13 +65,13 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
     }
     if (!reason.empty()) {
       ++counts.invalid;
-      report_invalid_line(out, err, line_number, reason);
+      report_invalid_line(out, err, lines.line_number(), reason);
       continue;
     }
 
     Intersection result{};
-    switch (options.path) {
-      case Path::certified: {
+    switch (options.method) {
+      case Method::certified: {
         const TracedIntersection traced = intersect_traced(ray, plane);
         result = traced.intersection;
         ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
@@ -76,8 +79,8 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
           ++counts.t_stage[static_cast<int>(traced.t_stage)];
         break;
       }
-      case Path::exact: result = intersect_exact(ray, plane); break;
-      case Path::naive: result = intersect_naive(ray, plane); break;
+      case Method::exact: result = intersect_exact(ray, plane); break;
+      case Method::naive: result = intersect_naive(ray, plane); break;
     }
     ++counts.relation[static_cast<int>(result.relation)];
 
@@ -96,15 +99,15 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
   return counts.invalid == 0 ? exit_ok : exit_invalid_line;
 }
 
-std::string describe(const ClassifyCounts& c, Path path) {
+std::string describe(const ClassifyCounts& c, Method method) {
   std::ostringstream s;
   s << c.lines_answered << " queries: " << c.relation[0] << " hit, " << c.relation[1] << " behind, "
     << c.relation[2] << " parallel, " << c.relation[3] << " in-plane, " << c.invalid << " invalid\n";
-  if (path == Path::certified) {
+  if (method == Method::certified) {
     s << "relation decided by: " << stage_counts_text(c.relation_stage) << "\n";
     s << "t (hit, behind) decided by: " << stage_counts_text(c.t_stage) << "\n";
   } else {
-    s << no_stages_text(path);
+    s << no_stages_text(method);
   }
   return s.str();
 }
@@ -113,33 +116,38 @@ int run_classify(const std::vector<std::string>& args) {
   ClassifyOptions options;
   std::string file;
   bool have_file = false;
+  bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
-      std::cout << classify_help;
-      return exit_ok;
-    }
-    if (const SharedOption shared = parse_shared_option("classify", args, i, options);
-        shared != SharedOption::not_shared) {
-      if (shared == SharedOption::usage_error) return exit_usage;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::cerr << "raykernel classify: unknown option '" << a << "' (see raykernel classify --help)\n";
-      return exit_usage;
-    } else if (have_file) {
-      std::cerr << "raykernel classify: more than one input file ('" << file << "', '" << a << "')\n";
-      return exit_usage;
-    } else {
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (have_file) {
+        std::cerr << "raykernel classify: more than one input file (" << quote(file, file.size()) << ", "
+                  << quote(a, a.size()) << ")\n";
+        return exit_usage;
+      }
       file = a;
       have_file = true;
+    } else if (a == "--help" || a == "-h") {
+      std::cout << classify_help;
+      return finish_standard_output(exit_ok);
+    } else if (const SharedOption shared = parse_shared_option("classify", args, i, options);
+               shared != SharedOption::not_shared) {
+      if (shared == SharedOption::usage_error) return exit_usage;
+    } else {
+      std::cerr << "raykernel classify: unknown option " << quote(a) << " (see raykernel classify --help)\n";
+      return exit_usage;
     }
   }
 
-  std::ifstream file_stream;
-  std::istream* in = open_input("classify", "file", have_file ? file : "-", file_stream);
-  if (in == nullptr) return exit_usage;
+  const std::string path = have_file ? file : "-";
+  Input input(path);
+  if (!check_opened("classify", "file", path, input)) return exit_usage;
   ClassifyCounts counts;
-  const int status = classify_stream(*in, std::cout, std::cerr, options, counts);
-  return finish_stream_command("classify", *in, "input", status, options.stats, describe(counts, options.path));
+  const int status = classify_stream(input.stream(), std::cout, std::cerr, options, counts);
+  return finish_stream_command("classify", input, input_name(path), status, options.stats,
+                               describe(counts, options.method));
 }
 
 }  // namespace raykernel::cli

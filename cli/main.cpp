@@ -1,5 +1,8 @@
 // The raykernel command-line tool: dispatches to the subcommands.
 #include "commands.hpp"
+#include "io.hpp"
+#include "text_format.hpp"
+#include "triangle_command.hpp"
 
 #include <iostream>
 #include <string>
@@ -15,6 +18,8 @@ commands:
   classify [FILE|-]   classify ray-plane queries, one per line (raykernel classify --help)
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
+  triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
+                      rule (raykernel triangle --help)
   render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)
@@ -27,21 +32,28 @@ commands:
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
+  using namespace raykernel::cli;
+  use_checked_standard_streams();
   const std::vector<std::string> args(argv + (argc > 1 ? 2 : 1), argv + argc);
   const std::string command = argc > 1 ? argv[1] : "";
-  using namespace raykernel::cli;
   if (command.empty() || command == "--help" || command == "-h" || command == "help") {
     std::cout << overview;
-    return exit_ok;
+    return finish_standard_output(exit_ok);
   }
   if (command == "--version" || command == "version") {
     std::cout << "raykernel " << raykernel::version() << '\n';
-    return exit_ok;
+    return finish_standard_output(exit_ok);
   }
-  if (command == "classify") return run_classify(args);
-  if (command == "demo") return run_demo(args);
-  if (command == "nearest") return run_nearest(args);
-  if (command == "render") return run_render(args);
-  std::cerr << "raykernel: unknown command '" << command << "'\n" << overview;
-  return exit_usage;
+  int status = exit_usage;
+  if (command == "classify") status = run_classify(args);
+  else if (command == "demo") status = run_demo(args);
+  else if (command == "nearest") status = run_nearest(args);
+  else if (command == "render") status = run_render(args);
+  else if (command == "triangle") status = run_triangle(args);
+  else {
+    std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
+    return exit_usage;
+  }
+  // Every command ends its own output; this catches anything written after (the message is printed once).
+  return finish_standard_output(status);
 }

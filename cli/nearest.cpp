@@ -1,11 +1,11 @@
 // raykernel nearest: the first plane each ray hits (docs/contract.md §4).
 #include "commands.hpp"
 #include "options.hpp"
+#include "text_format.hpp"
 #include "text_input.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -14,7 +14,7 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* nearest_help = R"(usage: raykernel nearest --planes FILE [options] [RAYS|-]
+constexpr const char* nearest_help = R"(usage: raykernel nearest --planes FILE [options] [--] [RAYS|-]
 
 For each ray, the plane it hits first: among the planes whose relation is hit (t >= 0), the
 one with the smallest exact t = ((p - o).n) / (d.n); ties go to the smallest index.
@@ -22,8 +22,10 @@ one with the smallest exact t = ((p - o).n) / (d.n); ties go to the smallest ind
   FILE   one plane per line: px py pz nx ny nz (plane K is the K-th plane line, from 0)
   RAYS   one ray per line: ox oy oz dx dy dz (standard input when RAYS is - or absent)
 
-Numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks;
-blank lines and lines starting with # are skipped. Each ray line gives one output line:
+Numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks,
+finite when read, and not rounding to zero unless zero (as for classify); blank lines and lines
+starting with # are skipped, and so is a UTF-8 byte-order mark at the start of a file. Each ray
+line gives one output line:
   hit K T | miss | invalid REASON
 where T is the exact t of plane K rounded to the nearest double (ties to even), printed so that
 strtod reads it back exactly. Parallel, in-plane and behind planes are never hit. Two t values
@@ -33,13 +35,15 @@ ordered correctly, and equal t tie.
 options:
   --planes FILE                  the planes (required)
   --path=certified|exact|naive   which computation answers (default certified; naive is the
-                                 lecture's loop in plain doubles, without guarantees)
+                                 textbook loop in plain doubles, without guarantees)
   --exact-t                      append the winner's exact t as P/Q in lowest terms
   --hex                          print T as a hexadecimal float
   --stats                        print to stderr how many decisions each stage made
   --help                         this text
+  --                             end of options (RAYS may then start with -)
 
-exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error or an invalid
+exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error (an unreadable
+file, or standard output that cannot be written: nearest then stops reading) or an invalid
 plane line (reported as raykernel: FILE:N: REASON, with nothing on standard output)
 )";
 
@@ -52,21 +56,20 @@ Ray ray_of(const NumberLine& line) {
 
 PlanesFile read_planes(std::istream& in) {
   PlanesFile file;
+  LineReader lines(in);
   std::string line;
-  std::uint64_t line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
+  while (lines.next(line)) {
     const NumberLine parsed = parse_number_line(line, 6);
     if (parsed.status == LineStatus::skip) continue;
     std::string reason = parsed.reason;
     if (parsed.status == LineStatus::numbers) {
       const auto& v = parsed.value;
       const Plane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-      if (std::optional<std::string> invalid = validate_plane(plane)) reason = *invalid;
+      if (std::optional<std::string> invalid = validate(plane)) reason = *invalid;
       else file.planes.push_back(plane);
     }
     if (!reason.empty()) {
-      file.error_line = line_number;
+      file.error_line = lines.line_number();
       file.error = reason;
       file.planes.clear();
       return file;
@@ -77,11 +80,10 @@ PlanesFile read_planes(std::istream& in) {
 
 int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std::span<const Plane> planes,
                    const NearestOptions& options, NearestCounts& counts) {
+  LineReader lines(rays);
   std::string line;
   std::string answer;
-  std::uint64_t line_number = 0;
-  while (std::getline(rays, line)) {
-    ++line_number;
+  while (out && lines.next(line)) {
     const NumberLine parsed = parse_number_line(line, 6);
     if (parsed.status == LineStatus::skip) continue;
     ++counts.lines_answered;
@@ -89,17 +91,17 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
     std::string reason = parsed.reason;
     const Ray ray = ray_of(parsed);
     if (parsed.status == LineStatus::numbers) {
-      if (std::optional<std::string> invalid = validate_ray(ray)) reason = *invalid;
+      if (std::optional<std::string> invalid = validate(ray)) reason = *invalid;
     }
     if (!reason.empty()) {
       ++counts.invalid;
-      report_invalid_line(out, err, line_number, reason);
+      report_invalid_line(out, err, lines.line_number(), reason);
       continue;
     }
 
     std::optional<NearestHit> hit;
-    switch (options.path) {
-      case Path::certified: {
+    switch (options.method) {
+      case Method::certified: {
         const TracedNearestHit traced = nearest_hit_traced(ray, planes);
         hit = traced.hit;
         ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
@@ -107,8 +109,8 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
         if (hit) ++counts.t_stage[static_cast<int>(traced.t_stage)];
         break;
       }
-      case Path::exact: hit = nearest_hit_exact(ray, planes); break;
-      case Path::naive: hit = nearest_hit_naive(ray, planes); break;
+      case Method::exact: hit = nearest_hit_exact(ray, planes); break;
+      case Method::naive: hit = nearest_hit_naive(ray, planes); break;
     }
     if (!hit) {
       ++counts.misses;
@@ -130,15 +132,15 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
   return counts.invalid == 0 ? exit_ok : exit_invalid_line;
 }
 
-std::string describe(const NearestCounts& c, Path path) {
+std::string describe(const NearestCounts& c, Method method) {
   std::ostringstream s;
   s << c.lines_answered << " rays: " << c.hits << " hit, " << c.misses << " miss, " << c.invalid << " invalid\n";
-  if (path == Path::certified) {
+  if (method == Method::certified) {
     s << "relations (slowest stage per ray): " << stage_counts_text(c.relation_stage) << "\n";
     s << "comparisons of two t: " << stage_counts_text(c.comparison_stage) << "\n";
     s << "t of the nearest plane: " << stage_counts_text(c.t_stage) << "\n";
   } else {
-    s << no_stages_text(path);
+    s << no_stages_text(method);
   }
   return s.str();
 }
@@ -147,16 +149,26 @@ int run_nearest(const std::vector<std::string>& args) {
   NearestOptions options;
   std::string planes_path, rays_path;
   bool have_planes = false, have_rays = false;
+  bool options_ended = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (have_rays) {
+        std::cerr << "raykernel nearest: more than one rays file (" << quote(rays_path, rays_path.size()) << ", "
+                  << quote(a, a.size()) << ")\n";
+        return exit_usage;
+      }
+      rays_path = a;
+      have_rays = true;
+    } else if (a == "--help" || a == "-h") {
       std::cout << nearest_help;
-      return exit_ok;
-    }
-    if (const SharedOption shared = parse_shared_option("nearest", args, i, options);
-        shared != SharedOption::not_shared) {
+      return finish_standard_output(exit_ok);
+    } else if (const SharedOption shared = parse_shared_option("nearest", args, i, options);
+               shared != SharedOption::not_shared) {
       if (shared == SharedOption::usage_error) return exit_usage;
-    } else if (a == "--planes" || a.rfind("--planes=", 0) == 0) {
+    } else if (a == "--planes" || a.starts_with("--planes=")) {
       if (a == "--planes") {
         if (i + 1 >= args.size()) {
           std::cerr << "raykernel nearest: --planes needs a file\n";
@@ -171,15 +183,9 @@ int run_nearest(const std::vector<std::string>& args) {
         return exit_usage;
       }
       have_planes = true;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::cerr << "raykernel nearest: unknown option '" << a << "' (see raykernel nearest --help)\n";
-      return exit_usage;
-    } else if (have_rays) {
-      std::cerr << "raykernel nearest: more than one rays file ('" << rays_path << "', '" << a << "')\n";
-      return exit_usage;
     } else {
-      rays_path = a;
-      have_rays = true;
+      std::cerr << "raykernel nearest: unknown option " << quote(a) << " (see raykernel nearest --help)\n";
+      return exit_usage;
     }
   }
   if (!have_planes) {
@@ -187,27 +193,29 @@ int run_nearest(const std::vector<std::string>& args) {
     return exit_usage;
   }
 
-  std::ifstream planes_stream(planes_path, std::ios::binary);
-  if (!planes_stream) {
-    std::cerr << "raykernel nearest: cannot open planes file '" << planes_path << "'\n";
-    return exit_usage;
-  }
-  const PlanesFile planes = read_planes(planes_stream);
-  if (planes_stream.bad()) {
-    std::cerr << "raykernel nearest: I/O error while reading planes file '" << planes_path << "'\n";
-    return exit_usage;
+  PlanesFile planes;
+  {
+    Input planes_input(planes_path, Input::Dash::is_a_file);
+    if (!check_opened("nearest", "planes file", planes_path, planes_input)) return exit_usage;
+    planes = read_planes(planes_input.stream());
+    if (const std::string error = planes_input.read_error(); !error.empty()) {
+      std::cerr << "raykernel nearest: I/O error reading planes file '" << printable(planes_path) << "': " << error
+                << '\n';
+      return exit_usage;
+    }
   }
   if (!planes.ok()) {
-    std::cerr << "raykernel: " << planes_path << ":" << planes.error_line << ": " << planes.error << '\n';
+    std::cerr << "raykernel: " << printable(planes_path) << ":" << planes.error_line << ": " << planes.error << '\n';
     return exit_usage;
   }
 
-  std::ifstream rays_stream;
-  std::istream* in = open_input("nearest", "rays file", have_rays ? rays_path : "-", rays_stream);
-  if (in == nullptr) return exit_usage;
+  const std::string path = have_rays ? rays_path : "-";
+  Input rays(path);
+  if (!check_opened("nearest", "rays file", path, rays)) return exit_usage;
   NearestCounts counts;
-  const int status = nearest_stream(*in, std::cout, std::cerr, planes.planes, options, counts);
-  return finish_stream_command("nearest", *in, "rays", status, options.stats, describe(counts, options.path));
+  const int status = nearest_stream(rays.stream(), std::cout, std::cerr, planes.planes, options, counts);
+  return finish_stream_command("nearest", rays, input_name(path), status, options.stats,
+                               describe(counts, options.method));
 }
 
 }  // namespace raykernel::cli

@@ -1,14 +1,17 @@
 #include "options.hpp"
 
+#include "text_format.hpp"
+
 #include <iostream>
 #include <sstream>
 
 namespace raykernel::cli {
 
-bool parse_path_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i, Path& path) {
+bool parse_method_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
+                         Method& method) {
   const std::string& a = args[i];
   std::string value;
-  if (a.size() > 6 && a[6] == '=') {
+  if (a.starts_with("--path=")) {
     value = a.substr(7);
   } else if (a == "--path" && i + 1 < args.size()) {
     value = args[++i];
@@ -16,33 +19,41 @@ bool parse_path_option(std::string_view command, const std::vector<std::string>&
     std::cerr << "raykernel " << command << ": --path needs a value: certified, exact or naive\n";
     return false;
   }
-  if (value == "certified") path = Path::certified;
-  else if (value == "exact") path = Path::exact;
-  else if (value == "naive") path = Path::naive;
+  if (value == "certified") method = Method::certified;
+  else if (value == "exact") method = Method::exact;
+  else if (value == "naive") method = Method::naive;
   else {
-    std::cerr << "raykernel " << command << ": unknown path '" << value << "' (certified, exact or naive)\n";
+    std::cerr << "raykernel " << command << ": unknown path " << quote(value) << " (certified, exact or naive)\n";
     return false;
   }
   return true;
 }
 
-std::istream* open_input(std::string_view command, std::string_view what, const std::string& path,
-                         std::ifstream& storage) {
-  if (path.empty() || path == "-") return &std::cin;
-  storage.open(path, std::ios::binary);
-  if (!storage) {
-    std::cerr << "raykernel " << command << ": cannot open " << what << " '" << path << "'\n";
-    return nullptr;
+Argument argument_kind(const std::string& arg, bool& options_ended) {
+  if (options_ended) return Argument::operand;
+  if (arg == "--") {
+    options_ended = true;
+    return Argument::end_of_options;
   }
-  return &storage;
+  return arg.size() > 1 && arg[0] == '-' ? Argument::option : Argument::operand;
 }
 
-int finish_stream_command(std::string_view command, std::istream& in, std::string_view input_name, int status,
+std::string input_name(const std::string& path) {
+  return path.empty() || path == "-" ? "standard input" : "'" + printable(path) + "'";
+}
+
+bool check_opened(std::string_view command, std::string_view what, const std::string& path, const Input& input) {
+  if (input.is_open()) return true;
+  std::cerr << "raykernel " << command << ": cannot open " << what << " '" << printable(path)
+            << "': " << input.open_error() << '\n';
+  return false;
+}
+
+int finish_stream_command(std::string_view command, const Input& input, std::string_view input_name, int status,
                           bool stats, const std::string& stats_text) {
-  std::cout.flush();
-  if (in.bad() || !std::cout) {
-    std::cerr << "raykernel " << command << ": I/O error while "
-              << (in.bad() ? "reading " + std::string(input_name) : std::string("writing output")) << "\n";
+  if (!flush_standard_output()) return exit_usage;
+  if (const std::string error = input.read_error(); !error.empty()) {
+    std::cerr << "raykernel " << command << ": I/O error reading " << input_name << ": " << error << '\n';
     return exit_usage;
   }
   if (stats) {
@@ -52,8 +63,8 @@ int finish_stream_command(std::string_view command, std::istream& in, std::strin
   return status;
 }
 
-std::string no_stages_text(Path path) {
-  return std::string("path ") + (path == Path::exact ? "exact" : "naive") + ": no stages\n";
+std::string no_stages_text(Method method) {
+  return std::string("path ") + (method == Method::exact ? "exact" : "naive") + ": no stages\n";
 }
 
 std::string stage_counts_text(const std::uint64_t* counts) {

@@ -1,11 +1,11 @@
-// Command-line pieces shared by the stream commands (classify, nearest): the --path option, opening an
-// input file or standard input, and the end of a run (I/O errors, --stats).
+// Command-line pieces shared by the stream commands (classify, nearest): the --path option, the answer
+// options, opening an input, and the end of a run (I/O errors, --stats).
 #pragma once
 
 #include "commands.hpp"
+#include "io.hpp"
 
 #include <cstdint>
-#include <fstream>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -13,10 +13,10 @@
 
 namespace raykernel::cli {
 
-// Reads `--path=X` or `--path X` at args[i] (advancing i past X in the second form) into `path`. On a
+// Reads `--path=X` or `--path X` at args[i] (advancing i past X in the second form) into `method`. On a
 // missing or unknown value, prints "raykernel COMMAND: ..." on stderr and returns false.
-[[nodiscard]] bool parse_path_option(std::string_view command, const std::vector<std::string>& args, std::size_t& i,
-                                     Path& path);
+[[nodiscard]] bool parse_method_option(std::string_view command, const std::vector<std::string>& args,
+                                       std::size_t& i, Method& method);
 
 // The answer options classify and nearest share: --exact-t, --hex, --stats and --path X, read from args[i]
 // (advancing i past a separate --path value) into `options`, whose members of those names both option
@@ -32,26 +32,34 @@ template <class Options>
     options.hex = true;
   } else if (a == "--stats") {
     options.stats = true;
-  } else if (a.rfind("--path", 0) == 0) {
-    return parse_path_option(command, args, i, options.path) ? SharedOption::read : SharedOption::usage_error;
+  } else if (a == "--path" || a.starts_with("--path=")) {
+    return parse_method_option(command, args, i, options.method) ? SharedOption::read : SharedOption::usage_error;
   } else {
     return SharedOption::not_shared;
   }
   return SharedOption::read;
 }
 
-// The --stats line of a path without stages: "path exact: no stages" or "path naive: no stages".
-[[nodiscard]] std::string no_stages_text(Path path);
+// What an argument is: the first "--" (the end of the options: every later argument is an operand, even one
+// starting with '-'), an option (starts with '-' and is not "-" alone), or an operand (a file; "-" is
+// standard input). `options_ended` carries the state from one argument to the next.
+enum class Argument { end_of_options, option, operand };
+[[nodiscard]] Argument argument_kind(const std::string& arg, bool& options_ended);
 
-// The stream to read: standard input for "" or "-", else the file (opened into `storage`). Prints
-// "raykernel COMMAND: cannot open WHAT 'PATH'" and returns nullptr when the file cannot be opened.
-[[nodiscard]] std::istream* open_input(std::string_view command, std::string_view what, const std::string& path,
-                                       std::ifstream& storage);
+// How messages name an input: "standard input" for "-" or "", else the path in quotes ('rays.txt').
+[[nodiscard]] std::string input_name(const std::string& path);
 
-// Ends a stream command: flushes stdout; an input or output error (a directory given as a file, a closed
-// pipe) is a usage/I-O error (exit 2); otherwise prints the --stats text line by line as
-// "raykernel: stats: ..." when asked, and returns `status`.
-[[nodiscard]] int finish_stream_command(std::string_view command, std::istream& in, std::string_view input_name,
+// The --stats line of a method without stages: "path exact: no stages" or "path naive: no stages".
+[[nodiscard]] std::string no_stages_text(Method method);
+
+// Prints "raykernel COMMAND: cannot open WHAT 'PATH': REASON" and returns false when `input` did not open.
+[[nodiscard]] bool check_opened(std::string_view command, std::string_view what, const std::string& path,
+                                const Input& input);
+
+// Ends a stream command: an output error (io.hpp) or an input error ("raykernel COMMAND: I/O error reading
+// NAME: REASON") is exit status 2; otherwise prints the --stats text line by line as "raykernel: stats: ..."
+// when asked, and returns `status`.
+[[nodiscard]] int finish_stream_command(std::string_view command, const Input& input, std::string_view input_name,
                                         int status, bool stats, const std::string& stats_text);
 
 // "filter N, compensated N, expansion N, exact N" for counts indexed by raykernel::Stage.

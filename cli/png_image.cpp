@@ -1,6 +1,8 @@
-// PNG output with libpng's simplified API (png_image_write_to_file / png_image_finish_read), which reports
+// PNG output with libpng's simplified API (png_image_write_to_memory / png_image_finish_read), which reports
 // errors in a message instead of longjmp.
 #include "png_image.hpp"
+
+#include "text_format.hpp"
 
 #include <png.h>
 
@@ -10,26 +12,44 @@
 
 namespace raykernel::cli {
 
-std::optional<std::string> write_png(const std::string& path, const Image& image) {
-  if (image.width == 0 || image.height == 0 || image.rgb.size() != std::size_t{image.width} * image.height * 3)
-    return std::string("empty or malformed image");
-  // Open first, so that an unwritable path gives the system's reason.
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return std::string("cannot create '") + path + "': " + std::strerror(errno);
+std::vector<std::uint8_t> encode_png(const Image& image, std::string& error) {
+  error.clear();
+  if (image.width == 0 || image.height == 0 || image.rgb.size() != std::size_t{image.width} * image.height * 3) {
+    error = "empty or malformed image";
+    return {};
+  }
   png_image png;
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;
   png.width = image.width;
   png.height = image.height;
   png.format = PNG_FORMAT_RGB;
-  const int ok = png_image_write_to_stdio(&png, f, 0, image.rgb.data(), 0, nullptr);
-  const bool closed = std::fclose(f) == 0;
-  if (!ok) {
-    std::string reason = std::string("cannot write PNG '") + path + "': " + png.message;
-    png_image_free(&png);
-    return reason;
+  png_alloc_size_t size = 0;
+  std::vector<std::uint8_t> bytes;
+  // The first call measures, the second writes.
+  if (png_image_write_to_memory(&png, nullptr, &size, 0, image.rgb.data(), 0, nullptr)) {
+    bytes.resize(size);
+    if (png_image_write_to_memory(&png, bytes.data(), &size, 0, image.rgb.data(), 0, nullptr)) {
+      bytes.resize(size);
+      return bytes;
+    }
   }
-  if (!closed) return std::string("cannot write '") + path + "': " + std::strerror(errno);
+  error = std::string("cannot encode PNG: ") + png.message;
+  png_image_free(&png);
+  return {};
+}
+
+std::optional<std::string> write_png(const std::string& path, const Image& image) {
+  std::string error;
+  const std::vector<std::uint8_t> bytes = encode_png(image, error);
+  if (!error.empty()) return error;
+  // Open first, so that an unwritable path gives the system's reason.
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) return "cannot create '" + printable(path) + "': " + std::strerror(errno);
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+  const int write_errno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !closed) return "cannot write '" + printable(path) + "': " + std::strerror(written ? errno : write_errno);
   return std::nullopt;
 }
 

@@ -24,8 +24,12 @@ struct Image {
   }
 };
 
-// Writes `image` as an 8-bit RGB PNG to `path`. Returns the reason on failure (cannot create the file, a
-// libpng error), nothing on success.
+// `image` as the bytes of an 8-bit RGB PNG file, or the reason it cannot be encoded (an empty or malformed
+// image, a libpng error) in `error`.
+[[nodiscard]] std::vector<std::uint8_t> encode_png(const Image& image, std::string& error);
+
+// Writes `image` as an 8-bit RGB PNG to `path`. Returns the reason on failure ("cannot create 'PATH':
+// REASON", a libpng error, "cannot write 'PATH': REASON"), nothing on success.
 [[nodiscard]] std::optional<std::string> write_png(const std::string& path, const Image& image);
 
 // Reads an 8-bit RGB PNG (as write_png writes it), for tests. Returns nothing on any failure.

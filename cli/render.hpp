@@ -3,13 +3,14 @@
 //
 // Robustness made visible: the stage image marks the pixels where the certified path needed a slower
 // stage than the binary64 filter (for a plane's relation, for ordering two t values, or for rounding the
-// winner's t); the naive-difference image marks the pixels where the seed's loop in plain doubles
-// (nearest_hit_naive) picks another plane than the exact answer.
+// winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
+// (nearest_hit_naive, docs/ray-casting.md §1.1) picks another plane than the exact answer.
 #pragma once
 
 #include "png_image.hpp"
 #include "scene.hpp"
 
+#include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <array>
@@ -17,6 +18,17 @@
 #include <functional>
 
 namespace raykernel::cli {
+
+// The slowest stage a traced nearest hit needed beyond the fast path, what `render --show-stages` marks:
+// the slower of its relation and comparison stages, or its t stage if that is slower still. Rounding t
+// starts at the compensated stage (the filter only gives signs), so a t rounded there is the fast path and
+// counts as filter; expansion and exact count.
+[[nodiscard]] inline Stage slowest_stage(const TracedNearestHit& traced) noexcept {
+  Stage s = traced.relation_stage;
+  if (traced.comparison_stage > s) s = traced.comparison_stage;
+  if (traced.t_stage > Stage::compensated && traced.t_stage > s) s = traced.t_stage;
+  return s;
+}
 
 struct RenderOptions {
   unsigned threads = 0;                  // 0: std::thread::hardware_concurrency()

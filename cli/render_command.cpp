@@ -1,73 +1,100 @@
 // raykernel render: a scene of planes to PNG, with the stage and naive-difference images.
 #include "commands.hpp"
+#include "io.hpp"
+#include "limits.hpp"
+#include "options.hpp"
+#include "parallel_rows.hpp"
 #include "render.hpp"
+#include "render_summary.hpp"
 #include "scene.hpp"
+#include "text_format.hpp"
 
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <iostream>
+#include <iterator>
 #include <optional>
-#include <sstream>
 #include <string>
 
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* render_help = R"(usage: raykernel render [SCENE.json] [options]
+// A printf format: the limits are filled in from limits.hpp.
+constexpr const char* render_help = R"(usage: raykernel render [options] [--] [SCENE.json|-]
 
 Renders a scene of infinite planes by ray casting: for every pixel and sample, the plane the ray
 hits first, decided exactly (the same nearest_hit as `raykernel nearest`), coloured by plane or
 checker, darkened at grazing angles and faded with distance. Without SCENE.json it renders the
-built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes).
-Rows are rendered in parallel on every core. Prints the render time, rays per second and how
-many pixels needed which stage.
+built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes);
+with - it reads the scene from standard input.
+Rows are rendered in parallel on every core. Prints what it renders before it starts, then the
+render time, rays per second and how many pixels needed which stage.
 
 options:
-  -o, --output FILE          the PNG to write (default render.png)
+  -o, --output FILE          the PNG to write (default render.png; - writes it to standard output,
+                             and the report then goes to standard error)
   --show-stages[=FILE]       also write an image marking the pixels where the certified path needed
                              a slower stage than the binary64 filter: yellow compensated (double-
                              double), orange expansion (exact expansions), crimson exact (rationals)
-                             (default FILE: OUTPUT with -stages.png)
-  --compare-naive[=FILE]     also run the seed's loop in plain doubles on the same rays and write an
-                             image marking in magenta the pixels where it picks another plane than the
-                             exact answer, with the counts (default FILE: OUTPUT with -naive-diff.png)
+                             (default FILE: OUTPUT with -stages.png for its .png)
+  --compare-naive[=FILE]     also run the textbook loop in plain doubles on the same rays and write
+                             an image marking in magenta the pixels where it picks another plane than
+                             the exact answer, with the counts (default FILE: OUTPUT with
+                             -naive-diff.png)
   --naive-image[=FILE]       also write the scene as the plain-double loop renders it
                              (default FILE: OUTPUT with -naive.png)
-  --width N, --height N      override the scene's image size
-  --samples N                override the samples per pixel (stratified, reproducible)
-  --threads N                worker threads (default: every core)
+  --width N, --height N      override the scene's image size (1 to %u)
+  --samples N                override the samples per pixel (1 to %u; stratified, reproducible)
+  --threads N                worker threads (1 to %u; default: every core)
   --progress, --no-progress  force or suppress the progress bar (default: on a terminal)
   --print-demo-scene         print the demo scene's JSON (a starting point for your own) and exit
   --help                     this text
+  --                         end of options (SCENE.json may then start with -)
+Two outputs may not be the same file.
 
-Scene file (JSON; unknown fields are errors; examples in scenes/):
-  {"image":  {"width": W, "height": H, "samples_per_pixel": 1, "seed": 1},
-   "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z],
-              "perspective": {"fov_degrees": F, "near": 0.1}
+Scene file (JSON; unknown fields and keys given twice are errors; examples in scenes/). Only
+"camera" (eye, target) and "planes" (point, normal) are required; the defaults are shown:
+  {"image":  {"width": 960, "height": 540, "samples_per_pixel": 1, "seed": 1},
+   "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [0,1,0],
+              "perspective": {"fov_degrees": 60, "near": 0.1, "ray_start": "near_plane"}
                  or {"window": {"left": l, "right": r, "bottom": b, "top": t}, "near": n}
               or "orthographic": {"height": h} or {"window": {...}, "near": n}},
-   "background": [r,g,b] or {"horizon": [r,g,b], "zenith": [r,g,b]},     (optional)
-   "fog": {"distance": D},         (optional: half of a colour fades away every D units)
+   "background": [r,g,b] or {"horizon": [r,g,b], "zenith": [r,g,b]},
+   "fog": {"distance": D},         (half of a colour fades away every D units; default none)
    "planes": [{"name": "floor", "point": [x,y,z], "normal": [x,y,z],
                "color": [r,g,b]  or  "checker": {"colors": [[r,g,b], [r,g,b]], "size": s,
                                                  "u_axis": [x,y,z] (optional)}}, ...],
-   "description": "..."}          (optional)
-Colours are display (sRGB) values in [0, 1]. Planes are numbered from 0 in file order; on an exact
-tie the smaller number wins.
+   "description": "..."}
+Integers may be written as any JSON number with an integer value (1e3). Colours are display
+(sRGB) values in [0, 1]; a plane without a colour gets one from a built-in palette. Planes are
+numbered from 0 in file order; on an exact tie the smaller number wins.
+
+Perspective cameras: fov_degrees is the VERTICAL field of view (the horizontal one follows from
+the image's aspect ratio). Rays start on the near plane, at distance near in front of the eye
+(z = -near in camera space), not at the eye: anything closer to the eye than the near plane is
+clipped. A near-plane window grows as near * tan(fov/2), and rays at the image's edges start up to
+near / cos(angle off the view axis) from the eye, so with a wide field of view a floor or wall
+close to the camera is visibly cut away towards the sides. "ray_start": "eye" starts every ray
+at the eye instead (same directions; nothing is clipped); a smaller near clips less.
 
 exit status: 0 rendered; 2 usage error, unreadable or invalid scene (reported as
-raykernel: FILE: /json/pointer: REASON), or an image that cannot be written
+raykernel: FILE: /json/pointer: REASON), an image that cannot be written, or standard output
+that cannot be written
 )";
 
-// OUTPUT with its ".png" replaced by `suffix` ("render.png" → "render-stages.png").
+// OUTPUT with its ".png" (any case) replaced by `suffix` ("render.png", "OUT.PNG" → "render-stages.png",
+// "OUT-stages.png"); OUTPUT without .png gets the suffix appended.
 std::string sibling(const std::string& output, const std::string& suffix) {
-  const std::string stem = output.size() > 4 && output.compare(output.size() - 4, 4, ".png") == 0
-                               ? output.substr(0, output.size() - 4)
-                               : output;
+  std::string stem = output;
+  if (stem.size() > 4) {
+    std::string extension = stem.substr(stem.size() - 4);
+    for (char& c : extension) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    if (extension == ".png") stem.resize(stem.size() - 4);
+  }
   return stem + suffix;
 }
 
@@ -78,19 +105,15 @@ std::optional<std::uint32_t> parse_count(const std::string& text, std::uint32_t 
   return static_cast<std::uint32_t>(v);
 }
 
-std::string with_thousands(std::uint64_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
-std::string percent(std::uint64_t part, std::uint64_t whole) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f%%", whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
-  return buf;
+// Whether two output paths name the same file: the same path once made absolute, normalized and with
+// symbolic links of existing directories resolved ("out.png", "./out.png" and "dir/../out.png" are one).
+bool same_file(const std::string& a, const std::string& b) {
+  if (a == "-" || b == "-") return a == b;
+  std::error_code ea, eb;
+  const std::filesystem::path pa = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ea), ea);
+  const std::filesystem::path pb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, eb), eb);
+  if (ea || eb) return std::filesystem::path(a).lexically_normal() == std::filesystem::path(b).lexically_normal();
+  return pa == pb;
 }
 
 // A one-line progress bar on stderr, redrawn in place; it appears only once a render has taken 0.3 s.
@@ -109,9 +132,13 @@ class ProgressBar {
     std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s", label_.c_str(), bar.c_str(), static_cast<int>(fraction * 100), elapsed);
     std::fflush(stderr);
   }
-  ~ProgressBar() {
-    if (shown_) std::fprintf(stderr, "\r%*s\r", 80, "");  // erase the bar
+  // Erases the bar, so that the report after the render starts on a clean line.
+  void finish() {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", 80, "");
+    shown_ = false;
+    enabled_ = false;
   }
+  ~ProgressBar() { finish(); }
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
 
@@ -131,6 +158,7 @@ int run_render(const std::vector<std::string>& args) {
   unsigned threads = 0;
   int progress_mode = -1;  // −1: on a terminal
   bool have_scene = false;
+  bool options_ended = false;
 
   auto value_of = [&](std::size_t& i, const std::string& a, const std::string& name) -> std::optional<std::string> {
     if (a == name) {
@@ -139,42 +167,52 @@ int run_render(const std::vector<std::string>& args) {
     }
     return a.substr(name.size() + 1);  // --name=value
   };
-  auto is_option = [](const std::string& a, const std::string& name) {
-    return a == name || a.rfind(name + "=", 0) == 0;
-  };
+  auto is_named = [](const std::string& a, const std::string& name) { return a == name || a.starts_with(name + "="); };
+  // --show-stages[=FILE] and its kind: nothing when absent, "" for the derived name.
+  auto optional_file = [](const std::string& a, const std::string& name) { return a.size() > name.size() ? a.substr(name.size() + 1) : ""; };
 
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
-      std::cout << render_help;
-      return exit_ok;
-    }
-    if (a == "--print-demo-scene") {
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (have_scene) {
+        std::cerr << "raykernel render: more than one scene file (" << quote(scene_path, scene_path.size()) << ", "
+                  << quote(a, a.size()) << ")\n";
+        return exit_usage;
+      }
+      scene_path = a;
+      have_scene = true;
+    } else if (a == "--help" || a == "-h") {
+      std::cout << formatted(render_help, limits::max_image_side, limits::max_samples_per_pixel, limits::max_threads);
+      return finish_standard_output(exit_ok);
+    } else if (a == "--print-demo-scene") {
       std::cout << demo_scene_json();
-      return exit_ok;
-    }
-    if (a == "-o" || is_option(a, "--output")) {
+      return finish_standard_output(exit_ok);
+    } else if (a == "-o" || is_named(a, "--output")) {
       const std::optional<std::string> v = value_of(i, a, a == "-o" ? "-o" : "--output");
       if (!v || v->empty()) {
-        std::cerr << "raykernel render: " << a << " needs a file name\n";
+        std::cerr << "raykernel render: " << a << " needs a file name (or - for standard output)\n";
         return exit_usage;
       }
       output = *v;
-    } else if (a == "--show-stages" || a.rfind("--show-stages=", 0) == 0) {
-      stages_path = a.size() > 14 ? a.substr(14) : "";
-    } else if (a == "--compare-naive" || a.rfind("--compare-naive=", 0) == 0) {
-      naive_diff_path = a.size() > 16 ? a.substr(16) : "";
-    } else if (a == "--naive-image" || a.rfind("--naive-image=", 0) == 0) {
-      naive_image_path = a.size() > 14 ? a.substr(14) : "";
-    } else if (is_option(a, "--width") || is_option(a, "--height") || is_option(a, "--samples") ||
-               is_option(a, "--threads")) {
+    } else if (is_named(a, "--show-stages")) {
+      stages_path = optional_file(a, "--show-stages");
+    } else if (is_named(a, "--compare-naive")) {
+      naive_diff_path = optional_file(a, "--compare-naive");
+    } else if (is_named(a, "--naive-image")) {
+      naive_image_path = optional_file(a, "--naive-image");
+    } else if (is_named(a, "--width") || is_named(a, "--height") || is_named(a, "--samples") ||
+               is_named(a, "--threads")) {
       const std::string name = a.substr(0, a.find('='));
       const std::optional<std::string> v = value_of(i, a, name);
-      const std::uint32_t max = name == "--samples" ? 4096 : (name == "--threads" ? 1024 : 16384);
+      const std::uint32_t max = name == "--samples"   ? limits::max_samples_per_pixel
+                                : name == "--threads" ? limits::max_threads
+                                                      : limits::max_image_side;
       const std::optional<std::uint32_t> n = v ? parse_count(*v, max) : std::nullopt;
       if (!n) {
-        std::cerr << "raykernel render: " << name << " needs an integer from 1 to " << max << (v ? ", not '" + *v + "'" : "")
-                  << "\n";
+        std::cerr << "raykernel render: " << name << " needs an integer from 1 to " << max
+                  << (v ? ", not " + quote(*v) : "") << "\n";
         return exit_usage;
       }
       if (name == "--width") overrides.width = *n;
@@ -185,54 +223,80 @@ int run_render(const std::vector<std::string>& args) {
       progress_mode = 1;
     } else if (a == "--no-progress") {
       progress_mode = 0;
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::cerr << "raykernel render: unknown option '" << a << "' (see raykernel render --help)\n";
-      return exit_usage;
-    } else if (have_scene) {
-      std::cerr << "raykernel render: more than one scene file ('" << scene_path << "', '" << a << "')\n";
-      return exit_usage;
     } else {
-      scene_path = a;
-      have_scene = true;
+      std::cerr << "raykernel render: unknown option " << quote(a) << " (see raykernel render --help)\n";
+      return exit_usage;
     }
   }
-  if (stages_path && stages_path->empty()) stages_path = sibling(output, "-stages.png");
-  if (naive_diff_path && naive_diff_path->empty()) naive_diff_path = sibling(output, "-naive-diff.png");
-  if (naive_image_path && naive_image_path->empty()) naive_image_path = sibling(output, "-naive.png");
+
+  // The outputs: derived names, then no two the same.
+  struct Output {
+    const char* option;
+    std::optional<std::string>* path;
+    const char* suffix;
+  };
+  std::optional<std::string> main_output = output;
+  const Output outputs[] = {{"--output", &main_output, ""},
+                            {"--show-stages", &stages_path, "-stages.png"},
+                            {"--compare-naive", &naive_diff_path, "-naive-diff.png"},
+                            {"--naive-image", &naive_image_path, "-naive.png"}};
+  for (const Output& o : outputs) {
+    if (!o.path->has_value() || !(*o.path)->empty()) continue;
+    if (output == "-") {
+      std::cerr << "raykernel render: " << o.option << " needs =FILE when the image goes to standard output\n";
+      return exit_usage;
+    }
+    *o.path = sibling(output, o.suffix);
+  }
+  for (std::size_t x = 0; x < std::size(outputs); ++x)
+    for (std::size_t y = x + 1; y < std::size(outputs); ++y)
+      if (outputs[x].path->has_value() && outputs[y].path->has_value() && same_file(**outputs[x].path, **outputs[y].path)) {
+        std::cerr << "raykernel render: " << outputs[x].option << " and " << outputs[y].option << " name the same file "
+                  << quote(**outputs[y].path, (*outputs[y].path)->size()) << "\n";
+        return exit_usage;
+      }
+  bool image_to_standard_output = false;
+  for (const Output& o : outputs) image_to_standard_output |= o.path->has_value() && **o.path == "-";
+  // The report goes where the image does not.
+  std::ostream& report = image_to_standard_output ? std::cerr : std::cout;
 
   // The scene.
   std::string text;
   std::string scene_name = "demo scene";
   if (have_scene) {
-    std::ifstream in(scene_path, std::ios::binary);
-    std::ostringstream content;
-    if (in) content << in.rdbuf();
-    if (!in || in.bad()) {
-      std::cerr << "raykernel render: cannot read scene file '" << scene_path << "'\n";
+    Input input(scene_path);
+    if (!check_opened("render", "scene file", scene_path, input)) return exit_usage;
+    text.assign(std::istreambuf_iterator<char>(input.stream()), std::istreambuf_iterator<char>());
+    if (const std::string error = input.read_error(); !error.empty()) {
+      std::cerr << "raykernel render: I/O error reading scene file " << input_name(scene_path) << ": " << error << '\n';
       return exit_usage;
     }
-    text = content.str();
-    scene_name = scene_path;
+    scene_name = scene_path == "-" ? "standard input" : scene_path;
   } else {
     text = demo_scene_json();
   }
   const SceneParse parsed = parse_scene(text, overrides);
   if (!parsed.scene) {
-    std::cerr << "raykernel: " << (have_scene ? scene_path : "built-in demo scene") << ": " << parsed.error.str() << '\n';
+    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
+              << '\n';
     return exit_usage;
   }
   const Scene& scene = *parsed.scene;
 
   RenderOptions options;
-  options.threads = threads;
+  options.threads = worker_threads(threads);
   options.stage_image = stages_path.has_value();
   options.compare_naive = naive_diff_path.has_value();
   options.naive_image = naive_image_path.has_value();
   options.legend = true;
+  // Say what is about to happen before it takes its time (and stop now if nobody can read it).
+  report << render_header(scene_name, scene, options.threads);
+  report.flush();
+  if (!image_to_standard_output && !flush_standard_output()) return exit_usage;
+
   const bool show_progress = progress_mode == 1 || (progress_mode == -1 && isatty(STDERR_FILENO));
   ProgressBar bar(show_progress, "raykernel render");
   options.progress = [&bar](double fraction) { bar(fraction); };
-
   RenderResult result;
   try {
     result = render_scene(scene, options);
@@ -240,9 +304,19 @@ int run_render(const std::vector<std::string>& args) {
     std::cerr << "raykernel render: " << e.what() << '\n';
     return exit_usage;
   }
-  bar(1.0);
+  bar.finish();
 
   auto write = [](const std::string& path, const Image& image) {
+    if (path == "-") {
+      std::string error;
+      const std::vector<std::uint8_t> bytes = encode_png(image, error);
+      if (!error.empty()) {
+        std::cerr << "raykernel render: " << error << '\n';
+        return false;
+      }
+      std::cout.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      return flush_standard_output();
+    }
     if (const std::optional<std::string> error = write_png(path, image)) {
       std::cerr << "raykernel render: " << *error << '\n';
       return false;
@@ -251,43 +325,21 @@ int run_render(const std::vector<std::string>& args) {
   };
   const RenderStats& s = result.stats;
   if (!write(output, result.image)) return exit_usage;
-  std::cout << "raykernel render: " << scene_name << ", " << scene.image.width << "x" << scene.image.height << ", "
-            << scene.samples_per_pixel << " sample" << (scene.samples_per_pixel == 1 ? "" : "s") << " per pixel, "
-            << scene.planes.size() << " planes, " << s.threads << " thread" << (s.threads == 1 ? "" : "s") << "\n";
-  char line[160];
-  std::snprintf(line, sizeof line, "wrote %s: %s rays in %.3f s, %.2f million rays/s (%s hit a plane)\n", output.c_str(),
-                with_thousands(s.rays).c_str(), s.seconds, s.rays_per_second() / 1e6, percent(s.hit_rays, s.rays).c_str());
-  std::cout << line;
-  std::cout << "pixels by the slowest stage they needed:";
-  for (int k = 0; k < stage_count; ++k)
-    std::cout << (k ? ", " : " ") << to_string(static_cast<Stage>(k)) << " " << with_thousands(s.pixels_by_stage[static_cast<std::size_t>(k)]);
-  std::cout << "\nrays by the slowest stage they needed: ";
-  for (int k = 0; k < stage_count; ++k)
-    std::cout << (k ? ", " : "") << to_string(static_cast<Stage>(k)) << " " << with_thousands(s.rays_by_stage[static_cast<std::size_t>(k)]);
-  std::cout << "\ncomparisons of two t values by stage: ";
-  for (int k = 0; k < stage_count; ++k)
-    std::cout << (k ? ", " : "") << to_string(static_cast<Stage>(k)) << " " << with_thousands(s.comparisons_by_stage[static_cast<std::size_t>(k)]);
-  std::cout << "\n";
+  report << render_statistics(output, s);
   if (stages_path) {
     if (!write(*stages_path, result.stages)) return exit_usage;
-    std::cout << "wrote " << *stages_path << ": " << with_thousands(s.pixels - s.pixels_by_stage[0])
-              << " pixels needed a slower stage than the filter (yellow compensated, orange expansion, crimson exact)\n";
+    report << stage_image_line(*stages_path, s);
   }
-  if (s.naive_compared) {
-    std::snprintf(line, sizeof line, "naive loop (plain doubles, %.3f s): picks another plane than the exact answer at %s pixels (%s), %s of %s rays\n",
-                  s.naive_seconds, with_thousands(s.naive_pixels_differ).c_str(), percent(s.naive_pixels_differ, s.pixels).c_str(),
-                  with_thousands(s.naive_rays_differ).c_str(), with_thousands(s.rays).c_str());
-    std::cout << line;
-  }
+  if (s.naive_compared) report << naive_comparison_line(s);
   if (naive_diff_path) {
     if (!write(*naive_diff_path, result.naive_difference)) return exit_usage;
-    std::cout << "wrote " << *naive_diff_path << ": those pixels in magenta\n";
+    report << naive_difference_line(*naive_diff_path);
   }
   if (naive_image_path) {
     if (!write(*naive_image_path, result.naive)) return exit_usage;
-    std::cout << "wrote " << *naive_image_path << ": the scene as the naive loop renders it\n";
+    report << naive_image_line(*naive_image_path);
   }
-  return exit_ok;
+  return finish_standard_output(exit_ok);
 }
 
 }  // namespace raykernel::cli

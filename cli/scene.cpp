@@ -1,9 +1,12 @@
-// Scene files for `raykernel render`: JSON parsing with the JSON Pointer of every error, and validation.
+// Scene files for `raykernel render`: validation, with the JSON Pointer of every error (json_locator.hpp
+// parses), and the defaults of optional fields.
 #include "scene.hpp"
 
-#include <raykernel/transform.hpp>
+#include "json_locator.hpp"
+#include "limits.hpp"
+#include "text_format.hpp"
 
-#include <nlohmann/json.hpp>
+#include <raykernel/transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -17,124 +20,11 @@ namespace {
 
 using nlohmann::json;
 
-constexpr std::uint32_t max_image_side = 16384;
-constexpr std::uint32_t max_samples_per_pixel = 4096;
+using limits::max_image_side;
+using limits::max_samples_per_pixel;
 
-// ---- JSON Pointers -----------------------------------------------------------------------------------
-
-std::string escape_token(std::string_view key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
-  }
-  return out;
-}
-std::string child(const std::string& pointer, std::string_view key) { return pointer + "/" + escape_token(key); }
-std::string child(const std::string& pointer, std::size_t index) { return pointer + "/" + std::to_string(index); }
-
-// ---- Syntax: a SAX handler that builds the document and knows where it is --------------------------------
-
-// Forwards every event to nlohmann's DOM builder and keeps the pointer of the value being parsed, so that
-// a number outside the double range (which the parser reports without a location) gets its pointer.
-class LocatingSax {
- public:
-  explicit LocatingSax(json& root) : dom_(root, false) {}
-
-  bool null() { return value(), dom_.null(); }
-  bool boolean(bool v) { return value(), dom_.boolean(v); }
-  bool number_integer(json::number_integer_t v) { return value(), dom_.number_integer(v); }
-  bool number_unsigned(json::number_unsigned_t v) { return value(), dom_.number_unsigned(v); }
-  bool number_float(json::number_float_t v, const json::string_t& s) { return value(), dom_.number_float(v, s); }
-  bool string(json::string_t& v) { return value(), dom_.string(v); }
-  bool binary(json::binary_t& v) { return value(), dom_.binary(v); }
-  bool start_object(std::size_t n) {
-    value();
-    frames_.push_back({false, -1, {}});
-    return dom_.start_object(n);
-  }
-  bool key(json::string_t& k) {
-    frames_.back().key = k;
-    return dom_.key(k);
-  }
-  bool end_object() {
-    frames_.pop_back();
-    return dom_.end_object();
-  }
-  bool start_array(std::size_t n) {
-    value();
-    frames_.push_back({true, -1, {}});
-    return dom_.start_array(n);
-  }
-  bool end_array() {
-    frames_.pop_back();
-    return dom_.end_array();
-  }
-  template <class Exception>
-  bool parse_error(std::size_t position, const std::string& last_token, const Exception& ex) {
-    // `position` is just past the offending token: point at its first character.
-    error_position_ = position >= last_token.size() ? position - last_token.size() : 0;
-    error_id_ = ex.id;
-    error_what_ = ex.what();
-    error_pointer_ = pointer_of_next_value();
-    return dom_.parse_error(position, last_token, ex);
-  }
-
-  [[nodiscard]] bool failed() const noexcept { return error_id_ != 0; }
-  [[nodiscard]] int error_id() const noexcept { return error_id_; }
-  [[nodiscard]] std::size_t error_position() const noexcept { return error_position_; }
-  [[nodiscard]] const std::string& error_what() const noexcept { return error_what_; }
-  [[nodiscard]] const std::string& error_pointer() const noexcept { return error_pointer_; }
-
- private:
-  struct Frame {
-    bool array;
-    long index;       // the element being parsed (arrays)
-    std::string key;  // the member being parsed (objects)
-  };
-  void value() {
-    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-  }
-  // The pointer of the value the parser is reading now: in an array, the element after the last one
-  // started; in an object, the member of the last key.
-  std::string pointer_of_next_value() const {
-    std::string p;
-    for (std::size_t f = 0; f < frames_.size(); ++f) {
-      const Frame& frame = frames_[f];
-      const bool innermost = f + 1 == frames_.size();
-      if (frame.array) p = child(p, static_cast<std::size_t>(frame.index + (innermost ? 1 : 0)));
-      else p = child(p, frame.key);
-    }
-    return p;
-  }
-
-  nlohmann::detail::json_sax_dom_parser<json> dom_;
-  std::vector<Frame> frames_;
-  int error_id_ = 0;
-  std::size_t error_position_ = 0;
-  std::string error_what_, error_pointer_;
-};
-
-// "line L, column C" of a byte offset (1-based, as nlohmann counts).
-std::string line_and_column(std::string_view text, std::size_t position) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < position && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
-std::string without_prefix(const std::string& what) {
-  const std::size_t end = what.find("] ");
-  return end == std::string::npos ? what : what.substr(end + 2);
-}
+std::string child(const std::string& pointer, std::string_view key) { return json_pointer_child(pointer, key); }
+std::string child(const std::string& pointer, std::size_t index) { return json_pointer_child(pointer, index); }
 
 // ---- Validation --------------------------------------------------------------------------------------
 
@@ -146,7 +36,10 @@ struct Invalid {
 
 std::string describe_type(const json& v) {
   if (v.is_number_integer() || v.is_number_unsigned()) return "an integer";
-  if (v.is_number_float()) return "a number with a fraction";
+  if (v.is_number_float()) {
+    const double x = v.get<double>();
+    return std::trunc(x) == x ? "a number" : "a number with a fraction";
+  }
   const std::string t = v.type_name();
   return (t == "array" || t == "object") ? "an " + t : "a " + t;
 }
@@ -187,13 +80,27 @@ double positive_number(const json& v, const std::string& p) {
   return x;
 }
 
+// An integer field. The parser turned every number whose text is an integer that fits in 64 bits into an
+// integer ("1e3" included, json_locator.hpp); a number that is still a double is either not an integer or
+// too large for 64 bits, or -0 (which is 0).
 std::uint64_t integer(const json& v, const std::string& p, std::uint64_t min, std::uint64_t max) {
-  if (!(v.is_number_integer() || v.is_number_unsigned())) fail(p, "expected an integer, found " + describe_type(v));
   const std::string too_small = min == 1 ? "must be positive" : "must be at least " + std::to_string(min);
+  const std::string too_large = "out of range (at most " + std::to_string(max) + ")";
+  if (v.is_number_float()) {
+    const double x = v.get<double>();
+    if (x == 0) {
+      if (min > 0) fail(p, too_small);
+      return 0;
+    }
+    if (x < 0) fail(p, too_small);
+    if (x >= 0x1p64) fail(p, too_large);
+    fail(p, "expected an integer, found a number with a fraction");
+  }
+  if (!(v.is_number_integer() || v.is_number_unsigned())) fail(p, "expected an integer, found " + describe_type(v));
   if (!v.is_number_unsigned() && v.get<std::int64_t>() < 0) fail(p, too_small);
   const std::uint64_t x = v.get<std::uint64_t>();
   if (x < min) fail(p, too_small);
-  if (x > max) fail(p, "too large (at most " + std::to_string(max) + ")");
+  if (x > max) fail(p, too_large);
   return x;
 }
 
@@ -223,22 +130,30 @@ Rgb color(const json& v, const std::string& p) {
   return {c[0], c[1], c[2]};
 }
 
-ImageSize read_image(const json& v, const std::string& p, Scene& scene, const SceneOverrides& overrides) {
-  expect_object(v, p);
-  only_fields(v, p, {"width", "height", "samples_per_pixel", "seed"});
-  auto width = static_cast<std::uint32_t>(integer(required_field(v, p, "width"), child(p, "width"), 1, max_image_side));
-  auto height = static_cast<std::uint32_t>(integer(required_field(v, p, "height"), child(p, "height"), 1, max_image_side));
-  if (const json* s = optional_field(v, "samples_per_pixel"))
-    scene.samples_per_pixel = static_cast<std::uint32_t>(integer(*s, child(p, "samples_per_pixel"), 1, max_samples_per_pixel));
-  if (const json* s = optional_field(v, "seed"))
-    scene.seed = integer(*s, child(p, "seed"), 0, std::numeric_limits<std::uint64_t>::max());
-  if (overrides.width) width = *overrides.width;
-  if (overrides.height) height = *overrides.height;
+// The image settings of a scene: the file's (each optional, with the defaults of scene.hpp), each checked,
+// then the overrides.
+ImageSize read_image(const json* v, const std::string& p, Scene& scene, const SceneOverrides& overrides) {
+  ImageSize size{scene_defaults::width, scene_defaults::height};
+  if (v != nullptr) {
+    expect_object(*v, p);
+    only_fields(*v, p, {"width", "height", "samples_per_pixel", "seed"});
+    if (const json* w = optional_field(*v, "width"))
+      size.width = static_cast<std::uint32_t>(integer(*w, child(p, "width"), 1, max_image_side));
+    if (const json* h = optional_field(*v, "height"))
+      size.height = static_cast<std::uint32_t>(integer(*h, child(p, "height"), 1, max_image_side));
+    if (const json* s = optional_field(*v, "samples_per_pixel"))
+      scene.samples_per_pixel =
+          static_cast<std::uint32_t>(integer(*s, child(p, "samples_per_pixel"), 1, max_samples_per_pixel));
+    if (const json* s = optional_field(*v, "seed"))
+      scene.seed = integer(*s, child(p, "seed"), 0, std::numeric_limits<std::uint64_t>::max());
+  }
+  if (overrides.width) size.width = *overrides.width;
+  if (overrides.height) size.height = *overrides.height;
   if (overrides.samples_per_pixel) scene.samples_per_pixel = *overrides.samples_per_pixel;
-  if (width == 0 || height == 0 || width > max_image_side || height > max_image_side || scene.samples_per_pixel == 0 ||
-      scene.samples_per_pixel > max_samples_per_pixel)
+  if (size.width == 0 || size.height == 0 || size.width > max_image_side || size.height > max_image_side ||
+      scene.samples_per_pixel == 0 || scene.samples_per_pixel > max_samples_per_pixel)
     fail(p, "image size or samples per pixel out of range after overrides");
-  return {width, height};
+  return size;
 }
 
 NearPlaneWindow read_window(const json& v, const std::string& p, double near) {
@@ -284,7 +199,8 @@ Camera read_camera_unchecked(const json& v, const std::string& p, ImageSize imag
   only_fields(v, p, {"eye", "target", "up", "perspective", "orthographic"});
   const Vec3 eye = vec3(required_field(v, p, "eye"), child(p, "eye"));
   const Vec3 target = vec3(required_field(v, p, "target"), child(p, "target"));
-  const Vec3 up = nonzero_vec3(required_field(v, p, "up"), child(p, "up"));
+  const json* up_field = optional_field(v, "up");
+  const Vec3 up = up_field ? nonzero_vec3(*up_field, child(p, "up")) : scene_defaults::up;
   if (eye.x == target.x && eye.y == target.y && eye.z == target.z) fail(child(p, "target"), "same point as eye");
   // The view direction target − eye must be a finite vector (camera_to_world normalizes it); a target so far
   // from the eye that the difference overflows is the target's fault, not the up vector's.
@@ -295,30 +211,46 @@ Camera read_camera_unchecked(const json& v, const std::string& p, ImageSize imag
   try {
     to_world = camera_to_world(eye, target, up);
   } catch (const invalid_input&) {
-    fail(child(p, "up"), "parallel to the view direction (eye to target)");
+    if (up_field) fail(child(p, "up"), "parallel to the view direction (eye to target)");
+    fail(p, "the default up vector [0, 1, 0] is parallel to the view direction (eye to target): give \"up\"");
   }
 
   const json* perspective = optional_field(v, "perspective");
   const json* orthographic = optional_field(v, "orthographic");
   if (perspective && orthographic) fail(p, "give either perspective or orthographic, not both");
-  if (!perspective && !orthographic) fail(child(p, "perspective"), "missing field (or orthographic)");
   const double aspect = static_cast<double>(image.width) / image.height;
 
-  if (perspective) {
+  if (!orthographic) {
+    if (!perspective) {  // the default camera
+      return Camera::perspective(
+          to_world, window_from_field_of_view(scene_defaults::fov_degrees, aspect, scene_defaults::near), image);
+    }
     const std::string q = child(p, "perspective");
     expect_object(*perspective, q);
-    only_fields(*perspective, q, {"fov_degrees", "window", "near"});
+    only_fields(*perspective, q, {"fov_degrees", "window", "near", "ray_start"});
     const json* fov = optional_field(*perspective, "fov_degrees");
     const json* window = optional_field(*perspective, "window");
     const json* near_field = optional_field(*perspective, "near");
     if (fov && window) fail(q, "give either fov_degrees or window, not both");
     if (!fov && !window) fail(child(q, "fov_degrees"), "missing field (or window)");
     if (window && !near_field) fail(child(q, "near"), "missing field (a window lies at z = -near)");
-    const double near = near_field ? positive_number(*near_field, child(q, "near")) : 0.1;
-    if (window) return Camera::perspective(to_world, read_window(*window, child(q, "window"), near), image);
-    const double degrees = number(*fov, child(q, "fov_degrees"));
-    if (!(degrees > 0 && degrees < 180)) fail(child(q, "fov_degrees"), "must be in (0, 180)");
-    return Camera::perspective(to_world, window_from_field_of_view(degrees, aspect, near), image);
+    const double near = near_field ? positive_number(*near_field, child(q, "near")) : scene_defaults::near;
+    RayStart start = RayStart::near_plane;
+    if (const json* s = optional_field(*perspective, "ray_start")) {
+      const std::string sq = child(q, "ray_start");
+      if (!s->is_string()) fail(sq, "expected \"near_plane\" or \"eye\", found " + describe_type(*s));
+      if (*s == "eye") start = RayStart::eye;
+      else if (*s != "near_plane") fail(sq, "expected \"near_plane\" or \"eye\", found " + quote(s->get<std::string>()));
+    }
+    Camera camera = Camera::perspective(
+        to_world, window ? read_window(*window, child(q, "window"), near) : NearPlaneWindow{}, image);
+    if (!window) {
+      const double degrees = number(*fov, child(q, "fov_degrees"));
+      if (!(degrees > 0 && degrees < 180)) fail(child(q, "fov_degrees"), "must be in (0, 180)");
+      camera.window = window_from_field_of_view(degrees, aspect, near);
+    }
+    camera.start = start;
+    return camera;
   }
 
   const std::string q = child(p, "orthographic");
@@ -368,7 +300,10 @@ ScenePlane read_plane(const json& v, const std::string& p, std::size_t index) {
   const json* solid = optional_field(v, "color");
   const json* checker = optional_field(v, "checker");
   if (solid && checker) fail(p, "give either color or checker, not both");
-  if (!solid && !checker) fail(child(p, "color"), "missing field (or checker)");
+  if (!solid && !checker) {
+    plane.color = scene_defaults::plane_colors[index % scene_defaults::plane_colors.size()];
+    return plane;
+  }
   if (solid) {
     plane.color = color(*solid, child(p, "color"));
     return plane;
@@ -402,9 +337,9 @@ Scene read_scene(const json& doc, const SceneOverrides& overrides) {
   Scene scene;
   if (const json* d = optional_field(doc, "description"); d && !d->is_string())
     fail("/description", "expected a string, found " + describe_type(*d));
-  scene.image = read_image(required_field(doc, root, "image"), "/image", scene, overrides);
+  scene.image = read_image(optional_field(doc, "image"), "/image", scene, overrides);
   scene.camera = read_camera(required_field(doc, root, "camera"), "/camera", scene.image);
-  scene.background = {{0.86, 0.90, 0.96}, {0.42, 0.60, 0.88}};
+  scene.background = scene_defaults::background;
   if (const json* b = optional_field(doc, "background")) scene.background = read_background(*b, "/background");
   if (const json* f = optional_field(doc, "fog")) {
     expect_object(*f, "/fog");
@@ -426,24 +361,13 @@ std::vector<Plane> Scene::geometry() const {
   return g;
 }
 
-std::string SceneError::str() const { return pointer.empty() ? message : pointer + ": " + message; }
+std::string SceneError::str() const { return printable(pointer.empty() ? message : pointer + ": " + message); }
 
 SceneParse parse_scene(std::string_view text, const SceneOverrides& overrides) {
-  json doc;
-  LocatingSax sax(doc);
-  const bool parsed = json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, true);
-  if (!parsed || sax.failed()) {
-    SceneParse r;
-    if (sax.error_id() == 406) {  // a number outside the double range: its value is known
-      r.error = {sax.error_pointer(), "number outside the double range (not finite), at " +
-                                          line_and_column(text, sax.error_position())};
-    } else {
-      r.error = {"", "invalid JSON: " + without_prefix(sax.error_what())};
-    }
-    return r;
-  }
+  const LocatedJson parsed = parse_located_json(text);
+  if (!parsed.error.empty()) return {std::nullopt, {parsed.error_pointer, parsed.error}};
   try {
-    return {read_scene(doc, overrides), {}};
+    return {read_scene(parsed.document, overrides), {}};
   } catch (const Invalid& invalid) {
     return {std::nullopt, invalid.error};
   }

@@ -3,7 +3,8 @@
 // the error with the JSON Pointer (RFC 6901) of the offending value, so the CLI, tests and the scene fuzzer
 // share it.
 //
-// Format (every field is described in `raykernel render --help`, examples in scenes/):
+// Format (every field is described in `raykernel render --help`, examples in scenes/; only "camera" with
+// its eye and target, and "planes" with point and normal, are required):
 //
 //   {
 //     "image":  {"width": 960, "height": 540, "samples_per_pixel": 4, "seed": 1},
@@ -22,6 +23,7 @@
 #include <raykernel/camera.hpp>
 #include <raykernel/raykernel.hpp>
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -68,12 +70,29 @@ struct Scene {
   [[nodiscard]] std::vector<Plane> geometry() const;  // the planes, in order, for nearest_hit
 };
 
+// What a scene file may leave out. A minimal scene is a camera (eye and target) and planes.
+namespace scene_defaults {
+inline constexpr std::uint32_t width = 960, height = 540;  // samples_per_pixel 1, seed 1 (Scene's members)
+inline constexpr Vec3 up{0, 1, 0};
+inline constexpr double fov_degrees = 60;  // vertical, of a perspective camera
+inline constexpr double near = 0.1;
+inline constexpr Background background{{0.86, 0.90, 0.96}, {0.42, 0.60, 0.88}};
+// The colours of planes without "color" or "checker", by plane index modulo 6.
+inline constexpr std::array<Rgb, 6> plane_colors = {{{0.85, 0.84, 0.80},
+                                                     {0.78, 0.30, 0.24},
+                                                     {0.30, 0.66, 0.36},
+                                                     {0.22, 0.55, 0.75},
+                                                     {0.85, 0.72, 0.45},
+                                                     {0.55, 0.40, 0.75}}};
+}  // namespace scene_defaults
+
 // Where and why a scene is invalid: `pointer` is the JSON Pointer of the offending value ("/planes/2/normal";
 // empty for the document itself or for a syntax error), `message` says what is wrong ("zero vector").
 struct SceneError {
   std::string pointer;
   std::string message;
-  [[nodiscard]] std::string str() const;  // "/planes/2/normal: zero vector", or the message alone
+  // "/planes/2/normal: zero vector", or the message alone; bytes that are not printable escaped (printable).
+  [[nodiscard]] std::string str() const;
 };
 
 struct SceneParse {
@@ -87,9 +106,11 @@ struct SceneOverrides {
   std::optional<std::uint32_t> width, height, samples_per_pixel;
 };
 
-// Parses and validates a scene: JSON syntax (errors give line and column), every required field, types,
-// finite numbers in range, nonzero normals and vectors, a positive image size, a camera that can be built
-// (eye ≠ target, up not parallel to the view direction). Unknown fields are errors, so typos are caught.
+// Parses and validates a scene: JSON syntax (errors give line and column), no key twice in one object, every
+// required field, types (an integer field accepts any number whose value is an integer: 1e3), finite
+// numbers in range, nonzero normals and vectors, a positive image size, a camera that can be built (eye ≠
+// target, up not parallel to the view direction) and whose rays are all finite. Unknown fields are errors,
+// so typos are caught; fields left out take the defaults above.
 [[nodiscard]] SceneParse parse_scene(std::string_view json_text, const SceneOverrides& overrides = {});
 
 // The built-in demo scene (what `raykernel render` draws without a scene file), as JSON text: planes meeting

@@ -1,79 +1,88 @@
 #include "text_input.hpp"
 
-#include <cerrno>
+#include "text_format.hpp"
+
+#include <raykernel/io/number.hpp>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <istream>
 #include <string>
 
 namespace raykernel::cli {
+
+bool LineReader::next(std::string& line) {
+  if (!std::getline(in_, line)) return false;
+  if (++line_number_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
+  return true;
+}
+
 namespace {
 
 constexpr bool is_blank(char c) noexcept { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// A token as it may be quoted in an error message: at most 40 characters, control bytes escaped.
-std::string quoted(std::string_view token) {
-  std::string out = "'";
-  const std::size_t shown = token.size() > 40 ? 40 : token.size();
-  for (std::size_t i = 0; i < shown; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    if (c < 0x20 || c == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", c);
-      out += buf;
-    } else {
-      out += static_cast<char>(c);
-    }
+// Why `token` is not a valid number, or empty when it is one (then `value` holds it). The number rules
+// (strtod syntax, correctly rounded, finite, not a nonzero that rounds to zero) are the mesh readers' too:
+// raykernel::io::parse_double is their one home.
+std::string number_problem(std::string_view token, double& value) {
+  const io::NumberParse number = io::parse_double(token);
+  if (number.ok()) {
+    value = number.value;
+    return {};
   }
-  if (shown < token.size()) out += "...";
-  return out + "'";
+  std::string reason = quote(token, limits::quoted_token_bytes) + " " + std::string(io::describe(number.error));
+  if (number.error == io::NumberError::not_a_number && token.find(',') != std::string_view::npos)
+    reason += " (separate numbers with blanks, not commas)";
+  return reason;
 }
+
+struct Token {
+  std::string_view text;
+  std::size_t column;  // 1-based byte column in the line
+};
 
 }  // namespace
 
 NumberLine parse_number_line(std::string_view line, int expected) {
   NumberLine result;
-  std::string_view tokens[max_numbers_per_line + 1];
+  Token tokens[max_numbers_per_line + 1];
   int count = 0;
-  std::size_t i = 0;
-  while (true) {
+  for (std::size_t i = 0;;) {
     while (i < line.size() && is_blank(line[i])) ++i;
     if (i == line.size()) break;
     if (count == 0 && line[i] == '#') return result;  // a comment line
     const std::size_t start = i;
     while (i < line.size() && !is_blank(line[i])) ++i;
-    if (count <= expected) tokens[count] = line.substr(start, i - start);
+    if (count <= expected) tokens[count] = {line.substr(start, i - start), start + 1};
     ++count;
   }
   if (count == 0) return result;  // a blank line
 
   result.status = LineStatus::invalid;
-  if (count != expected) {
-    result.reason = "expected " + std::to_string(expected) + " numbers, found " + std::to_string(count);
-    return result;
-  }
-  std::string buffer;
-  for (int k = 0; k < expected; ++k) {
-    const std::string_view token = tokens[k];
-    const std::string field = "field " + std::to_string(k + 1) + ": ";
-    buffer.assign(token);  // strtod needs a terminating NUL; a NUL inside the token stops it early
-    char* end = nullptr;
-    errno = 0;
-    const double value = std::strtod(buffer.c_str(), &end);
-    if (end != buffer.c_str() + buffer.size() || token.empty() || is_blank(token.front())) {
-      result.reason = field + quoted(token) + " is not a number";
-      return result;
-    }
-    if (errno == ERANGE && std::isinf(value)) {
-      result.reason = field + quoted(token) + " overflows the double range (non-finite)";
-      return result;
-    }
-    if (!std::isfinite(value)) {
-      result.reason = field + quoted(token) + " is not finite (non-finite)";
+  // A bad token first (it explains a wrong count too: "1,2,3"), then the count.
+  const int checked = count < expected ? count : expected;
+  for (int k = 0; k < checked; ++k) {
+    double value = 0;
+    if (std::string problem = number_problem(tokens[k].text, value); !problem.empty()) {
+      result.reason = "field " + std::to_string(k + 1) + ": " + problem;
       return result;
     }
     result.value[static_cast<std::size_t>(k)] = value;
+  }
+  if (count != expected) {
+    result.reason = "expected " + std::to_string(expected) + " numbers, found " + std::to_string(count);
+    if (count > expected) {
+      const Token& extra = tokens[expected];
+      std::string_view rest = line.substr(extra.column - 1);
+      rest = rest.substr(0, rest.find_last_not_of(" \t\r\v\f") + 1);
+      result.reason += "; the extra ones start at token " + std::to_string(expected + 1) + ", column " +
+                       std::to_string(extra.column) + ": " +
+                       quote(rest, limits::quoted_token_bytes);
+      if (extra.text.starts_with("#")) result.reason += " (a # comment must be on a line of its own)";
+    }
+    result.value = {};
+    return result;
   }
   result.status = LineStatus::numbers;
   return result;

@@ -2,13 +2,32 @@
 // that strtod reads them back exactly.
 #pragma once
 
+#include "limits.hpp"
+
 #include <array>
+#include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <string_view>
 
 namespace raykernel::cli {
 
-inline constexpr int max_numbers_per_line = 12;
+inline constexpr int max_numbers_per_line = limits::max_numbers_per_line;
+
+// The lines of a query, planes or rays file, as std::getline splits them, numbered from 1. A UTF-8
+// byte-order mark (EF BB BF) at the very start of the input is dropped, as editors on some systems write it.
+class LineReader {
+ public:
+  explicit LineReader(std::istream& in) noexcept : in_(in) {}
+  // The next line into `line` (without its '\n'); false at the end of the input or when reading fails.
+  [[nodiscard]] bool next(std::string& line);
+  // The number of the line `next` returned last (1 for the first).
+  [[nodiscard]] std::uint64_t line_number() const noexcept { return line_number_; }
+
+ private:
+  std::istream& in_;
+  std::uint64_t line_number_ = 0;
+};
 
 enum class LineStatus { skip, numbers, invalid };
 
@@ -18,11 +37,13 @@ struct NumberLine {
   std::string reason;                                // when status == invalid
 };
 
-// Reads a line of exactly `expected` (≤ 12) finite numbers separated by blanks (space, tab, CR, VT, FF).
+// Reads a line of exactly `expected` (≤ max_numbers_per_line) finite numbers separated by blanks (space, tab, CR, VT, FF).
 // Blank lines and lines whose first non-blank character is '#' are `skip`. A number is anything C's strtod
-// accepts in the "C" locale (decimal, scientific, hexadecimal with 0x) that is finite and does not overflow
-// when read; underflow to a subnormal or zero is accepted, as strtod rounds it. Anything else is `invalid`
-// with a reason naming the field.
+// accepts in the "C" locale (decimal, scientific, hexadecimal with 0x) whose value, rounded to a double, is
+// finite and is zero only when the number is zero: a value that overflows (1e400) or a nonzero value that
+// rounds to zero (1e-400, -2e-324) is invalid; one that rounds to a subnormal (4e-324) is fine. Anything
+// else is `invalid` with a reason naming the field and the token (quoted with printable bytes), or, for a
+// wrong count, where the extra tokens start.
 [[nodiscard]] NumberLine parse_number_line(std::string_view line, int expected);
 
 // The shortest decimal text that strtod reads back as exactly x ("inf", "-inf", "-0" included).

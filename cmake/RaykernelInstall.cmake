@@ -3,10 +3,11 @@
 #   cmake --install build --prefix P
 #
 #   P/include/raykernel/...                     public headers (kernel and raykernel::testkit)
-#   P/lib/libraykernel.a, libraykernel_testkit.a
+#   P/lib/libraykernel.a, libraykernel_testkit.a, libraykernel_io.a
 #   P/bin/raykernel                             the CLI (when built)
 #   P/lib/cmake/raykernel/                      raykernel-config.cmake, raykernel-config-version.cmake, the
-#                                               exported targets raykernel::raykernel and raykernel::testkit,
+#                                               exported targets raykernel::raykernel, raykernel::testkit and
+#                                               raykernel::io (mesh files),
 #                                               and RaykernelDependencies.cmake (GMP, gmpxx, MPFR for linking)
 #   P/lib/pkgconfig/raykernel.pc, raykernel-testkit.pc
 #
@@ -26,7 +27,7 @@ set(RAYKERNEL_INSTALL_PKGCONFIGDIR "${CMAKE_INSTALL_LIBDIR}/pkgconfig" CACHE STR
 # BUILD_SHARED_LIBS the libraries carry the version, and 0.x releases are ABI-incompatible with each other
 # (SONAME libraykernel.so.0.1).
 set_target_properties(raykernel_testkit PROPERTIES EXPORT_NAME testkit)
-set_target_properties(raykernel raykernel_testkit PROPERTIES
+set_target_properties(raykernel raykernel_testkit raykernel_io PROPERTIES
   VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 
 # The targets' $<INSTALL_INTERFACE:include> covers the default include directory; any other is added.
@@ -34,7 +35,7 @@ set(_raykernel_includes "")
 if(NOT CMAKE_INSTALL_INCLUDEDIR STREQUAL "include")
   set(_raykernel_includes INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
-install(TARGETS raykernel raykernel_testkit
+install(TARGETS raykernel raykernel_testkit raykernel_io
   EXPORT raykernel-targets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -44,6 +45,7 @@ install(TARGETS raykernel raykernel_testkit
 # Every public header, including ones added later (raykernel/testkit/fuzz_decoder.hpp, ray casting): the
 # directories are the targets' include directories, nothing private lives there.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/kernel/include/ ${PROJECT_SOURCE_DIR}/testkit/include/
+                  ${PROJECT_SOURCE_DIR}/io/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
 

@@ -12,7 +12,9 @@
 #     through the installed CLI, gives the report's expected answer;
 #   - the fuzz harness (decode_fuzz_query + check_against_reference) finds the naive code's mismatch: with
 #     libFuzzer when clang++-14 (or $RAYKERNEL_FUZZ_CXX) is available, then replays the saved crash input
-#     with the plain replay program; without clang, the replay program on seeded random inputs.
+#     with the plain replay program; without clang, the replay program on seeded random inputs;
+#   - the ClusterFuzzLite template (examples/clusterfuzzlite/build.sh) builds the harness against the
+#     installed package with ClusterFuzzLite's variables, and the fuzzer it writes runs and finds the mismatch.
 #
 # Reuses build/ (or $RAYKERNEL_BUILD_DIR) when it holds a CMake cache: re-configured, and only the installed
 # targets rebuilt. Otherwise builds raykernel alone (no tests, no benchmarks) in the temporary directory.
@@ -174,6 +176,31 @@ if [ -n "$fuzz_cxx" ]; then
   tail -1 "$work/replay-crash.out"
 else
   echo "no clang++-14: libFuzzer harness skipped (the replay program ran above)"
+fi
+
+step "ClusterFuzzLite template (examples/clusterfuzzlite/build.sh) against the installed package"
+if [ -n "$fuzz_cxx" ]; then
+  # The template's build.sh as ClusterFuzzLite runs it — from the project's tree, with its variables — but
+  # with RAYKERNEL_PREFIX: the installed package instead of a raykernel built from source (the prefix is
+  # built with libstdc++, so CXXFLAGS here do not ask for OSS-Fuzz's libc++).
+  cf=$work/cflite
+  mkdir -p "$cf/src" "$cf/work" "$cf/out"
+  cp -r "$work/examples-src" "$cf/src/myproject"
+  cp examples/clusterfuzzlite/build.sh "$cf/src/build.sh"
+  cf_flags="-O1 -fno-omit-frame-pointer -gline-tables-only -fsanitize=address,undefined -fsanitize=fuzzer-no-link"
+  (cd "$cf/src/myproject" && SRC=$cf/src WORK=$cf/work OUT=$cf/out CC=${fuzz_cxx/clang++/clang} CXX=$fuzz_cxx \
+     CFLAGS="$cf_flags" CXXFLAGS="$cf_flags" LIB_FUZZING_ENGINE=-fsanitize=fuzzer RAYKERNEL_PREFIX=$prefix \
+     bash -eu "$cf/src/build.sh") > "$cf/build.log" 2>&1 || { cat "$cf/build.log"; fail "the template's build.sh failed"; }
+  grep '^build.sh: ' "$cf/build.log"
+  unexpected=$(ldd "$cf/out/fuzz_my_intersect" | grep -E 'libgmp|libmpfr|libraykernel' || true)
+  [ -z "$unexpected" ] || fail "the template's fuzzer links shared libraries the runner lacks: $unexpected"
+  status=0
+  (cd "$cf/work" && "$cf/out/fuzz_my_intersect" -max_total_time=30 -seed=1 > fuzz.log 2>&1) || status=$?
+  [ "$status" != 0 ] && grep -q "raykernel reference check FAILED" "$cf/work/fuzz.log" \
+    || { tail -30 "$cf/work/fuzz.log"; fail "the template's fuzzer found no mismatch in my::ray_plane in 30 s"; }
+  echo "the template's fuzzer runs and finds my::ray_plane's mismatch: $(grep -m1 '^raykernel reference check' "$cf/work/fuzz.log")"
+else
+  echo "no clang++-14: the ClusterFuzzLite template was not built"
 fi
 
 ok=1

@@ -4,11 +4,12 @@
 // The input is the whole text of an input file. It is classified three times — default options; --path=exact
 // --exact-t --hex --stats; --path=naive --exact-t — and for each run the harness checks, against its own
 // reading of the text:
-//   - lines are split as std::getline splits them and numbered from 1; blank lines and lines whose first
-//     non-blank character is '#' produce no output; every other line produces exactly one output line, in
+//   - lines are split as std::getline splits them, after a UTF-8 byte-order mark at the start, and numbered
+//     from 1; blank lines and lines whose first non-blank character is '#' produce no output; every other line produces exactly one output line, in
 //     order, and nothing else is written to stdout;
 //   - a line is a query when it has exactly 12 blank-separated tokens, each read completely by strtod as a
-//     finite value that did not overflow (the values must be the ones strtod reads), and the direction and
+//     finite value that neither overflowed nor underflowed to zero (strtod's ERANGE; the values must be the
+//     ones strtod reads), and the direction and
 //     normal are nonzero; any other line is answered `invalid REASON` on stdout and reported as
 //     `raykernel: line N: REASON` on stderr, with the same REASON and the right N, and nothing else goes to
 //     stderr;
@@ -77,7 +78,7 @@ void check_run(std::string_view text, const std::vector<std::string_view>& lines
   std::ostringstream out, err;
   cli::ClassifyCounts counts;
   const int status = cli::classify_stream(in, out, err, run.options, counts);
-  (void)cli::describe(counts, run.options.path);
+  (void)cli::describe(counts, run.options.method);
   // Message prefixes, built only when a check fails.
   auto run_label = [&] { return std::string("[") + run.name + "] "; };
   std::size_t i = 0;  // the current line, from 0
@@ -85,10 +86,12 @@ void check_run(std::string_view text, const std::vector<std::string_view>& lines
     return run_label() + "line " + std::to_string(i + 1) + ": " + std::string(what);
   };
 
-  const std::vector<std::string_view> out_lines = getline_lines(out.view());
-  const std::vector<std::string_view> err_lines = getline_lines(err.view());
-  check(out.view().empty() || out.view().back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
-  check(err.view().empty() || err.view().back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
+  // str(), not view(): ostringstream::view() needs libc++ 17 (ClusterFuzzLite's is newer; clang-14's is not).
+  const std::string out_text = out.str(), err_text = err.str();
+  const std::vector<std::string_view> out_lines = getline_lines(out_text);
+  const std::vector<std::string_view> err_lines = getline_lines(err_text);
+  check(out_text.empty() || out_text.back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
+  check(err_text.empty() || err_text.back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
 
   std::size_t next_out = 0, next_err = 0, answered = 0, invalid = 0, valid = 0, with_t = 0;
   for (i = 0; i < lines.size(); ++i) {
@@ -135,9 +138,9 @@ void check_run(std::string_view text, const std::vector<std::string_view>& lines
     const raykernel::Plane plane{{v[6], v[7], v[8]}, {v[9], v[10], v[11]}};
     const std::vector<std::string_view> words = tokens_of(answer);
     check(!words.empty(), [&] { return at("the answer is not empty"); });
-    if (run.options.path == cli::Path::naive) continue;  // no guarantee beyond answering
+    if (run.options.method == cli::Method::naive) continue;  // no guarantee beyond answering
 
-    const raykernel::Intersection want = run.options.path == cli::Path::exact ? raykernel::intersect_exact(ray, plane)
+    const raykernel::Intersection want = run.options.method == cli::Method::exact ? raykernel::intersect_exact(ray, plane)
                                                                               : raykernel::intersect(ray, plane);
     const bool has_t = want.relation == raykernel::Relation::hit || want.relation == raykernel::Relation::behind;
     const std::size_t want_words = has_t ? (run.options.exact_t ? 3 : 2) : 1;
@@ -174,7 +177,7 @@ void check_run(std::string_view text, const std::vector<std::string_view>& lines
     t_stages += counts.t_stage[k];
   }
   check(relations == valid, [&] { return run_label() + "relation counts add up"; });
-  if (run.options.path == cli::Path::certified) {
+  if (run.options.method == cli::Method::certified) {
     check(relation_stages == valid, [&] { return run_label() + "relation stage counts add up"; });
     check(t_stages == with_t, [&] { return run_label() + "t stage counts add up"; });
   }
@@ -197,12 +200,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }();
   (void)initialized;
   current_text = std::string_view(reinterpret_cast<const char*>(data), size);
-  const std::vector<std::string_view> lines = getline_lines(current_text);
+  const std::vector<std::string_view> lines = raykernel::fuzz::input_lines(current_text);
 
   static const Run runs[] = {
-      {{cli::Path::certified, false, false, false}, "default"},
-      {{cli::Path::exact, true, true, true}, "--path=exact --exact-t --hex --stats"},
-      {{cli::Path::naive, true, false, false}, "--path=naive --exact-t"},
+      {{cli::Method::certified, false, false, false}, "default"},
+      {{cli::Method::exact, true, true, true}, "--path=exact --exact-t --hex --stats"},
+      {{cli::Method::naive, true, false, false}, "--path=naive --exact-t"},
   };
   for (const Run& run : runs) check_run(current_text, lines, run);
 

@@ -4,8 +4,9 @@
 //
 // Input: the planes text, a line "%%", the rays text. Without a "%%" line the whole input is both files
 // (a planes line is also a valid rays line). Checked, against the harness's own reading of the text:
+//   - both files are read as fuzz_text.hpp's input_lines reads them (a byte-order mark at the start skipped);
 //   - read_planes: the planes are the non-skipped lines, in order, read as 6 numbers by strtod (bit for
-//     bit); the first line that is not 6 finite numbers with a nonzero normal stops it, with its number
+//     bit; a number that overflows or underflows to zero is invalid); the first line that is not 6 finite numbers with a nonzero normal stops it, with its number
 //     (counting every line from 1), no planes, and parse_number_line's or validate_plane's reason;
 //   - nearest_stream, three times (default; --path=exact --exact-t --hex --stats; --path=naive --exact-t):
 //     every rays line that is not skipped gets exactly one output line, in order: `hit K T [P/Q]` with K and
@@ -91,7 +92,7 @@ struct ExpectedPlanes {
 
 ExpectedPlanes expected_planes(std::string_view text) {
   ExpectedPlanes e;
-  const std::vector<std::string_view> lines = getline_lines(text);
+  const std::vector<std::string_view> lines = raykernel::fuzz::input_lines(text);
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const raykernel::fuzz::ExpectedNumbers numbers = raykernel::fuzz::expected_numbers(lines[i], 6);
     if (numbers.skipped) continue;
@@ -102,7 +103,7 @@ ExpectedPlanes expected_planes(std::string_view text) {
       continue;
     }
     e.error_line = i + 1;
-    e.error = numbers.numbers ? raykernel::validate_plane(plane).value_or("")
+    e.error = numbers.numbers ? raykernel::validate(plane).value_or("")
                               : cli::parse_number_line(lines[i], 6).reason;
     check(!e.error.empty(), [&] {
       return "line " + std::to_string(i + 1) + " of the planes: an invalid line has a reason (parse_number_line, "
@@ -194,17 +195,19 @@ StreamOutput check_stream(std::string_view text, const std::vector<std::string_v
   } catch (const std::exception& e) {
     check(false, [&] { return std::string("[") + run.name + "] nearest_stream throws: " + e.what(); });
   }
-  (void)cli::describe(counts, run.options.path);
+  (void)cli::describe(counts, run.options.method);
   auto run_label = [&] { return std::string("[") + run.name + "] "; };
   std::size_t i = 0;
   auto at = [&](std::string_view what) {
     return run_label() + "rays line " + std::to_string(i + 1) + ": " + std::string(what);
   };
 
-  const std::vector<std::string_view> out_lines = getline_lines(out.view());
-  const std::vector<std::string_view> err_lines = getline_lines(err.view());
-  check(out.view().empty() || out.view().back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
-  check(err.view().empty() || err.view().back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
+  // str(), not view(): ostringstream::view() needs libc++ 17 (ClusterFuzzLite's is newer; clang-14's is not).
+  const std::string out_text = out.str(), err_text = err.str();
+  const std::vector<std::string_view> out_lines = getline_lines(out_text);
+  const std::vector<std::string_view> err_lines = getline_lines(err_text);
+  check(out_text.empty() || out_text.back() == '\n', [&] { return run_label() + "stdout ends with a newline"; });
+  check(err_text.empty() || err_text.back() == '\n', [&] { return run_label() + "stderr ends with a newline"; });
 
   std::size_t next_out = 0, next_err = 0;
   std::uint64_t answered = 0, invalid = 0, hits = 0, misses = 0;
@@ -235,7 +238,7 @@ StreamOutput check_stream(std::string_view text, const std::vector<std::string_v
           [&] { return at("answered 'hit K T' or 'miss', got '" + std::string(answer) + "'"); });
     if (words[0] == "miss") ++misses;
     else ++hits;
-    if (run.options.path == cli::Path::naive) {  // no guarantee beyond answering with a plane that exists
+    if (run.options.method == cli::Method::naive) {  // no guarantee beyond answering with a plane that exists
       if (words[0] == "hit") {
         check(words.size() == (run.options.exact_t ? 4u : 3u) && std::stoull(std::string(words[1])) < planes.size(),
               [&] { return at("the naive path answers 'hit K T P/Q' with a plane K, got '" + std::string(answer) + "'"); });
@@ -274,7 +277,7 @@ StreamOutput check_stream(std::string_view text, const std::vector<std::string_v
         [&] { return run_label() + "exit status 0 when every rays line is valid, else 1"; });
   check(counts.lines_answered == answered && counts.invalid == invalid && counts.hits == hits && counts.misses == misses,
         [&] { return run_label() + "counts of answered, invalid, hit and miss lines"; });
-  if (run.options.path == cli::Path::certified) {
+  if (run.options.method == cli::Method::certified) {
     for (std::size_t k = 0; k < 4; ++k) {
       check(counts.relation_stage[k] == relation_stage[k] && counts.comparison_stage[k] == comparison_stage[k] &&
                 counts.t_stage[k] == t_stage[k],
@@ -393,12 +396,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ++executions;
   split_inputs += current_split ? 1 : 0;
   if (planes.error_line == 0) {
-    const std::vector<std::string_view> lines = getline_lines(current_rays);
+    const std::vector<std::string_view> lines = raykernel::fuzz::input_lines(current_rays);
     const std::vector<ExpectedRay> expected = expected_rays(lines, planes.planes);
     static const Run runs[] = {
-        {{cli::Path::certified, false, false, false}, "default"},
-        {{cli::Path::exact, true, true, true}, "--path=exact --exact-t --hex --stats"},
-        {{cli::Path::naive, true, false, false}, "--path=naive --exact-t"},
+        {{cli::Method::certified, false, false, false}, "default"},
+        {{cli::Method::exact, true, true, true}, "--path=exact --exact-t --hex --stats"},
+        {{cli::Method::naive, true, false, false}, "--path=naive --exact-t"},
     };
     for (const Run& run : runs) {
       StreamOutput o = check_stream(current_rays, lines, expected, planes.planes, run);

@@ -200,7 +200,7 @@ void check_render(const cli::Scene& scene) {
                   raykernel::fuzz::hex(ray.direction.z));
       });
       const raykernel::TracedNearestHit traced = raykernel::nearest_hit_traced(ray, geometry);
-      const raykernel::Stage stage = traced.slowest_stage();
+      const raykernel::Stage stage = raykernel::cli::slowest_stage(traced);
       ++pixels_by_stage[static_cast<std::size_t>(stage)];
       hits += traced.hit ? 1 : 0;
       const std::uint8_t* marked = result.stages.pixel(i, row);
@@ -259,7 +259,7 @@ const char* const field_names[] = {"description", "image", "width", "height", "s
                                    "eye", "target", "up", "perspective", "orthographic", "fov_degrees", "near",
                                    "window", "left", "right", "bottom", "top", "background", "horizon", "zenith", "fog",
                                    "distance", "planes", "name", "point", "normal", "color", "checker", "colors",
-                                   "size", "u_axis"};
+                                   "size", "u_axis", "ray_start"};
 
 // Every value of the document, parents before children.
 void collect(json& v, std::vector<json*>& out) {

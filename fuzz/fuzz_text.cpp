@@ -22,6 +22,11 @@ std::vector<std::string_view> getline_lines(std::string_view text) {
   return lines;
 }
 
+std::vector<std::string_view> input_lines(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  return getline_lines(text);
+}
+
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 std::vector<std::string_view> tokens_of(std::string_view line) {
@@ -50,7 +55,8 @@ ExpectedNumbers expected_numbers(std::string_view line, std::size_t count) {
     errno = 0;
     const double v = std::strtod(token.c_str(), &end);
     const bool overflowed = errno == ERANGE && std::isinf(v);
-    if (end != token.c_str() + token.size() || !std::isfinite(v) || overflowed) return e;
+    const bool underflowed_to_zero = errno == ERANGE && v == 0;
+    if (end != token.c_str() + token.size() || !std::isfinite(v) || overflowed || underflowed_to_zero) return e;
     e.value[k] = v;
   }
   e.numbers = true;

@@ -9,9 +9,19 @@
     results together, as one tuple (each Print Assumptions walks the whole real-number library, about a
     second). *)
 
-From Raykernel Require Import Constants Model Filter Compensated RoundQuotient Classification CompareQuotients
-  Cascade FloatCore ConstantsCpp Twins CompareTwins Expansions CascadeTwins Liveness.
+From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
+  CompareQuotients Cascade RayBox.
+From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
+From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness.
 
+Goal True. idtac "@@ near_bound_sound". Abort.
+Print Assumptions near_bound_sound.
+Goal True. idtac "@@ far_bound_sound". Abort.
+Print Assumptions far_bound_sound.
+Goal True. idtac "@@ slab_sound". Abort.
+Print Assumptions slab_sound.
+Goal True. idtac "@@ ray_box_sound". Abort.
+Print Assumptions ray_box_sound.
 Goal True. idtac "@@ den_filter_sound". Abort.
 Print Assumptions den_filter_sound.
 Goal True. idtac "@@ num_filter_sound". Abort.
@@ -30,8 +40,10 @@ Goal True. idtac "@@ tail_sum_enclosure". Abort.
 Print Assumptions tail_sum_enclosure.
 Goal True. idtac "@@ round_quotient_sound". Abort.
 Print Assumptions round_quotient_sound.
-Goal True. idtac "@@ round_quotient_decision_sound". Abort.
-Print Assumptions round_quotient_decision_sound.
+Goal True. idtac "@@ round_quotient_if_certain_sound". Abort.
+Print Assumptions round_quotient_if_certain_sound.
+Goal True. idtac "@@ round_quotient_candidate_normal". Abort.
+Print Assumptions round_quotient_candidate_normal.
 Goal True. idtac "@@ relation_correct". Abort.
 Print Assumptions relation_correct.
 Goal True. idtac "@@ compensated_t_correct". Abort.
@@ -44,8 +56,10 @@ Goal True. idtac "@@ cascade_quotient_correct". Abort.
 Print Assumptions cascade_quotient_correct.
 Goal True. idtac "@@ fast_answer_correct". Abort.
 Print Assumptions fast_answer_correct.
-Goal True. idtac "@@ refined_answer_correct". Abort.
-Print Assumptions refined_answer_correct.
+Goal True. idtac "@@ fast_relation_correct". Abort.
+Print Assumptions fast_relation_correct.
+Goal True. idtac "@@ compensated_dot3_exact_inputs". Abort.
+Print Assumptions compensated_dot3_exact_inputs.
 Goal True. idtac "@@ intersect_fast_correct". Abort.
 Print Assumptions intersect_fast_correct.
 Goal True. idtac "@@ fast_path_den_valid". Abort.
@@ -70,8 +84,12 @@ Definition supporting_results :=
    dot3_rounded_dominated,
    compensated_den_enclosure,
    compensated_num_enclosure,
-   round_quotient_candidate_normal,
    half_gap_bits,
+   prepare_divisor_spec,
+   quotient_residuals,
+   quotient_candidate,
+   quotient_constants_binary64,
+   two_prod_threshold_exact,
    relation_hit_iff,
    relation_behind_iff,
    relation_parallel_iff,
@@ -94,9 +112,50 @@ Definition supporting_results :=
    num_filter_lanes_sound,
    lane_sign_certain,
    lanes_relation,
-   den_nonzero_valid).
-Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure round_quotient_candidate_normal half_gap_bits relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid". Abort.
+   den_nonzero_valid,
+   relation_of_nonzero).
+Goal True. idtac "@@ two_sum_exact two_prod_guard_exact constants_binary64 den_filter_encloses num_filter_encloses dot3_rounded_dominated compensated_den_enclosure compensated_num_enclosure half_gap_bits prepare_divisor_spec quotient_residuals quotient_candidate quotient_constants_binary64 two_prod_threshold_exact relation_hit_iff relation_behind_iff relation_parallel_iff relation_in_plane_iff ray_meets_plane_iff hit_at_origin certified_sign certified_relation filter_relation_correct compensated_signs_correct filter_enclosure_encloses two_prod_error quotient_order_sign hit_distance_order_correct origin_order_correct compensated_den_refined_enclosure compensated_num_refined_enclosure refined_signs_correct den_filter_lanes_sound num_filter_lanes_sound lane_sign_certain lanes_relation den_nonzero_valid relation_of_nonzero". Abort.
 Print Assumptions supporting_results.
+
+(** Ray–triangle (issue 14). *)
+Goal True. idtac "@@ absolute_term_lower". Abort.
+Print Assumptions absolute_term_lower.
+Goal True. idtac "@@ det3_filter_encloses". Abort.
+Print Assumptions det3_filter_encloses.
+Goal True. idtac "@@ pi_filter_sound". Abort.
+Print Assumptions pi_filter_sound.
+Goal True. idtac "@@ num_filter_sound". Abort.
+Print Assumptions num_filter_sound.
+Goal True. idtac "@@ den_filter_sound". Abort.
+Print Assumptions den_filter_sound.
+Goal True. idtac "@@ det3_compensated_encloses". Abort.
+Print Assumptions det3_compensated_encloses.
+Goal True. idtac "@@ pi_compensated_encloses". Abort.
+Print Assumptions pi_compensated_encloses.
+Goal True. idtac "@@ num_compensated_encloses". Abort.
+Print Assumptions num_compensated_encloses.
+Goal True. idtac "@@ den_compensated_encloses". Abort.
+Print Assumptions den_compensated_encloses.
+Goal True. idtac "@@ stage2_filter_view". Abort.
+Print Assumptions stage2_filter_view.
+Goal True. idtac "@@ owned_sign_antisymmetric". Abort.
+Print Assumptions owned_sign_antisymmetric.
+Goal True. idtac "@@ owned_sign_nonzero". Abort.
+Print Assumptions owned_sign_nonzero.
+Goal True. idtac "@@ edge_value_shift". Abort.
+Print Assumptions edge_value_shift.
+Goal True. idtac "@@ triangle_location_correct". Abort.
+Print Assumptions triangle_location_correct.
+Goal True. idtac "@@ triangle_fast_sign_correct". Abort.
+Print Assumptions triangle_fast_sign_correct.
+Goal True. idtac "@@ fast_location_correct". Abort.
+Print Assumptions fast_location_correct.
+Goal True. idtac "@@ triangle_quotient_correct". Abort.
+Print Assumptions triangle_quotient_correct.
+Goal True. idtac "@@ triangle_quotient_expansion_correct". Abort.
+Print Assumptions triangle_quotient_expansion_correct.
+Goal True. idtac "@@ den_nonzero_direction". Abort.
+Print Assumptions den_nonzero_direction.
 
 (** The twins (issue 16), one block per file: each tuple's assumptions are the union of its members'. *)
 
@@ -110,14 +169,12 @@ Definition twin_results_0 :=
    den_filter_twin_sound,
    num_filter_twin_sound,
    compensated_dot3_twin,
-   compensated_dot3_refined_twin,
+   compensated_dot3_exact_twin,
    enclosure_sign_twin,
    den_compensated_twin_sound,
    num_compensated_twin_sound,
-   den_refined_twin_sound,
-   num_refined_twin_sound,
    expansion_tail_enclosure_twin).
-Goal True. idtac "@@ two_sum_twin two_sum_twin_exact two_prod_twin dot3_rounded_twin dot3_filter_lanes_twin den_filter_twin_sound num_filter_twin_sound compensated_dot3_twin compensated_dot3_refined_twin enclosure_sign_twin den_compensated_twin_sound num_compensated_twin_sound den_refined_twin_sound num_refined_twin_sound expansion_tail_enclosure_twin". Abort.
+Goal True. idtac "@@ two_sum_twin two_sum_twin_exact two_prod_twin dot3_rounded_twin dot3_filter_lanes_twin den_filter_twin_sound num_filter_twin_sound compensated_dot3_twin compensated_dot3_exact_twin enclosure_sign_twin den_compensated_twin_sound num_compensated_twin_sound expansion_tail_enclosure_twin". Abort.
 Print Assumptions twin_results_0.
 
 (** the compiled constants are the proved ones *)
@@ -141,13 +198,11 @@ Definition twin_results_1 :=
 Goal True. idtac "@@ cpp_filter_den_relative cpp_filter_num_relative cpp_filter_absolute cpp_compensated_relative cpp_compensated_absolute cpp_refined_relative cpp_refined_low_relative cpp_refined_absolute cpp_tail_sum_relative cpp_tail_sum_absolute cpp_tail_sum_max_terms cpp_compare_filter_relative cpp_compare_propagation_factor cpp_compare_absolute cpp_compare_compensated_relative fle_largest_finite". Abort.
 Print Assumptions twin_results_1.
 
-(** CompareTwins.v, CascadeTwins.v: the comparison of two quotients and the call sites *)
+(** CompareTwins.v: the comparison of two quotients *)
 Definition twin_results_2 :=
   (compare_quotients_filter_twin,
-   compare_quotients_compensated_twin,
-   certified_signs_sound,
-   fast_answer_sound).
-Goal True. idtac "@@ compare_quotients_filter_twin compare_quotients_compensated_twin certified_signs_sound fast_answer_sound". Abort.
+   compare_quotients_compensated_twin).
+Goal True. idtac "@@ compare_quotients_filter_twin compare_quotients_compensated_twin". Abort.
 Print Assumptions twin_results_2.
 
 (** Expansions.v: stage 3 *)

@@ -42,8 +42,8 @@ Definition compare_quotients_filter_b (n1 d1 n2 d2 : RoundedEnclosureB) : sign :
                           (fmul Cpp.compare_propagation_factor propagated)) Cpp.compare_absolute in
   if flt bound delta then Positive else if flt delta (fneg bound) then Negative else Uncertain.
 
-(** [compare_quotients_compensated(n1, d1, n2, d2)]; [finite ? radius : HUGE_VAL] with
-    [finite = std::isfinite(s.hi) && std::isfinite(lo)]. *)
+(** [compare_quotients_compensated(n1, d1, n2, d2)] (no finiteness test: the radius is not finite when
+    an input or M is not). *)
 Definition compare_quotients_compensated_b (n1 d1 n2 d2 : EnclosureB) : EnclosureB :=
   let a1 := two_sum_b (hib n1) (lob n1) in
   let b1 := two_sum_b (hib d1) (lob d1) in
@@ -60,7 +60,7 @@ Definition compare_quotients_compensated_b (n1 d1 n2 d2 : EnclosureB) : Enclosur
                       (fst a2) (radiusb n2) (fst b2) (radiusb d2) in
   let radius := fadd (fadd (fmul Cpp.compare_compensated_relative magnitude)
                            (fmul Cpp.compare_propagation_factor propagated)) Cpp.compare_absolute in
-  {| hib := fst s; lob := lo; radiusb := if (fin (fst s) && fin lo)%bool then radius else finf |}.
+  {| hib := fst s; lob := lo; radiusb := radius |}.
 
 Lemma propagated_nonneg_b : forall x1 e1 y1 f1 x2 e2 y2 f2,
   nonneg e1 -> nonneg f1 -> nonneg e2 -> nonneg f2 ->
@@ -108,10 +108,10 @@ Proof.
   fold bound. unfold bound, compare_propagated_error_b. to_model. reflexivity.
 Qed.
 
-(** The radius being finite, every operation is finite and the model's. *)
+(** The radius, hi and lo being finite, every operation is finite and the model's. *)
 Theorem compare_quotients_compensated_twin : forall n1 d1 n2 d2,
   let e := compare_quotients_compensated_b n1 d1 n2 d2 in
-  fin (radiusb e) = true ->
+  fin (radiusb e) = true -> fin (hib e) = true -> fin (lob e) = true ->
   fin (hib n1) = true /\ fin (lob n1) = true /\ fin (radiusb n1) = true /\
   fin (hib d1) = true /\ fin (lob d1) = true /\ fin (radiusb d1) = true /\
   fin (hib n2) = true /\ fin (lob n2) = true /\ fin (radiusb n2) = true /\
@@ -119,10 +119,8 @@ Theorem compare_quotients_compensated_twin : forall n1 d1 n2 d2,
   fin (hib e) = true /\ fin (lob e) = true /\
   enc_R e = compare_quotients_compensated (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2).
 Proof.
-  intros [hn1 ln1 e1] [hd1 ld1 f1] [hn2 ln2 e2] [hd2 ld2 f2] e H. subst e.
+  intros [hn1 ln1 e1] [hd1 ld1 f1] [hn2 ln2 e2] [hd2 ld2 f2] e H Fs Flo. subst e.
   unfold compare_quotients_compensated_b in *. cbv zeta in *. cbn [hib lob radiusb] in *.
-  match type of H with fin (if ?c then _ else _) = true => destruct c eqn:C; [|discriminate] end.
-  apply andb_prop in C. destruct C as [Fs Flo].
   unfold compare_propagated_error_b in H. cpp_fin. fin_down2.
   repeat split; try assumption.
   unfold enc_R, compare_quotients_compensated, compare_propagated_error, compare_propagated_error_b, fma.

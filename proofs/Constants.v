@@ -10,9 +10,15 @@ From Coq Require Import Reals.
 From Flocq Require Import Core.
 Open Scope R_scope.
 
-(** Unit roundoff u = 2^-53 and smallest positive subnormal mu = 2^-1074 of binary64. *)
+(** Unit roundoff u = 2^-53, smallest positive subnormal mu = 2^-1074 and largest finite number
+    (2^53 − 1)·2^971 = 2^1024 − 2^971 of binary64. *)
 Definition unit_roundoff : R := bpow radix2 (-53).
 Definition min_subnormal : R := bpow radix2 (-1074).
+Definition largest_finite : R := 9007199254740991 * bpow radix2 (971).
+
+(** TwoProduct is exact when its rounded product is at least 2^-968 in magnitude (Model.v,
+    [two_prod_guard_exact]; Cascade.v, [two_prod_threshold_exact]). *)
+Definition exact_product_threshold : R := bpow radix2 (-968).
 
 (** Stage 1, dot3_filter (Filter.v): B = (C ⊗ m) ⊕ filter_absolute. *)
 Definition filter_den_relative : R := (3 + 16 * unit_roundoff) * unit_roundoff.
@@ -34,11 +40,15 @@ Definition tail_sum_relative : R := bpow radix2 (-48).
 Definition tail_sum_absolute : R := 2 * min_subnormal.
 Definition tail_sum_max_terms : nat := 32.
 
-(** round_quotient (RoundQuotient.v). *)
+(** prepare_divisor and round_quotient (QuotientRounding.v): the guards |N| ≥ 2^-900, 2^-900 ≤ |q|,
+    2^-1000 ≤ |D| ≤ 2^1000, and the test's constants; half_gap_to_nearer_neighbour's valid range. *)
 Definition quotient_min_magnitude : R := bpow radix2 (-900).
+Definition divisor_min_magnitude : R := bpow radix2 (-1000).
+Definition divisor_max_magnitude : R := bpow radix2 (1000).
 Definition quotient_relative : R := bpow radix2 (-101).
 Definition quotient_enclosure_factor : R := 1 + bpow radix2 (-9).
 Definition quotient_test_factor : R := 1 + bpow radix2 (-45).
+Definition half_gap_min_magnitude : R := bpow radix2 (-968).
 
 (** Comparing two quotients, compare_quotients_filter and compare_quotients_compensated
     (CompareQuotients.v): B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c and E = ((K_c ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c. *)
@@ -46,3 +56,19 @@ Definition compare_filter_relative : R := (2 + 16 * unit_roundoff) * unit_roundo
 Definition compare_propagation_factor : R := 1 + 16 * unit_roundoff.
 Definition compare_absolute : R := 8 * min_subnormal.
 Definition compare_compensated_relative : R := bpow radix2 (-101).
+
+(** ** Ray–triangle (kernel/src/triangle/): the determinants' filter and enclosures (TriangleFilter.v,
+    TriangleCompensated.v). *)
+
+(** The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A of both stages. *)
+Definition triangle_absolute_scale : R := bpow radix2 (-1070).
+Definition triangle_absolute : R := bpow radix2 (-1069).
+
+(** Stage 1, det3_filter: B = (C ⊗ m) ⊕ A. *)
+Definition triangle_filter_pi_relative : R := 8 * unit_roundoff.
+Definition triangle_filter_num_relative : R := 9 * unit_roundoff.
+Definition triangle_filter_den_relative : R := 10 * unit_roundoff.
+
+(** Stage 2, det3_compensated: E = (K ⊗ m) ⊕ A. *)
+Definition triangle_compensated_relative : R := 128 * (unit_roundoff * unit_roundoff).
+Definition triangle_compensated_den_relative : R := 256 * (unit_roundoff * unit_roundoff).

@@ -394,16 +394,14 @@ Theorem compensated_live : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
 Proof.
   intros a0 a1 a2 al0 al1 al2 b0 b1 b2 A0 A1 A2 L0 L1 L2 B0 B1 B2 Al0 Al1 Al2 L.
   set (e := compensated_dot3_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2)).
-  (* no overflow anywhere: hi, lo and the raw radius are bounded, so the radius is not replaced by +inf *)
+  (* no overflow anywhere: hi, lo and the radius are bounded *)
   assert (Bounds : fbnd 1000 (hib e) /\ fbnd 1000 (lob e) /\ fbnd 1000 (radiusb e)).
-  { unfold e, compensated_dot3_b, dot3_rounded_b. cbv zeta. cbn [qb0 qb1 qb2 magnitudeb hib lob radiusb].
-    match goal with |- fbnd _ ?H /\ fbnd _ ?Lo /\ fbnd _ (fold_finite _ _ ?Rad) =>
-      assert (FH : fbnd 1000 H) by (eapply fbnd_le; [fbnd_tac | lia]);
-      assert (FL : fbnd 1000 Lo) by (eapply fbnd_le; [fbnd_tac | lia]);
-      assert (FR : fbnd 1000 Rad) by (eapply fbnd_le; [fbnd_tac | lia]) end.
-    unfold fold_finite. rewrite !fle_largest_finite, (proj1 FH), (proj1 FL). exact (conj FH (conj FL FR)). }
+  { unfold e, compensated_dot3_b, compensated_from_low_parts_b, dot3_rounded_b. cbv zeta.
+    cbn [qb0 qb1 qb2 magnitudeb hib lob radiusb].
+    split; [|split]; (eapply fbnd_le; [fbnd_tac | lia]). }
   destruct Bounds as [BH [BL BR]].
-  destruct (compensated_dot3_twin a0 a1 a2 al0 al1 al2 b0 b1 b2 (proj1 BR)) as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ E]]]]]]]]]]].
+  destruct (compensated_dot3_twin a0 a1 a2 al0 al1 al2 b0 b1 b2 (proj1 BR) (proj1 BH) (proj1 BL))
+    as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ E]]]]]]]]]]].
   fold e in E.
   apply (enclosure_sign_live e ((B2R a0 + B2R al0) * B2R b0 + (B2R a1 + B2R al1) * B2R b1 +
                                 (B2R a2 + B2R al2) * B2R b2) BH BL BR).
@@ -414,16 +412,31 @@ Proof.
 Qed.
 
 (** The two calls, den (α = 0) and num (α the TwoDiff low parts), in the words of the query. *)
-Corollary compensated_den_live : forall d0 d1 d2 n0 n1 n2,
+Theorem compensated_den_live : forall d0 d1 d2 n0 n1 n2,
   fbnd 400 d0 -> fbnd 400 d1 -> fbnd 400 d2 -> fbnd 400 n0 -> fbnd 400 n1 -> fbnd 400 n2 ->
   bpow radix2 (-98) * (Rabs (B2R d0 * B2R n0) + Rabs (B2R d1 * B2R n1) + Rabs (B2R d2 * B2R n2)) +
     bpow radix2 (-1060) < Rabs (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) ->
   enclosure_sign_lanes_b (den_compensated_b d0 d1 d2 n0 n1 n2) <> uncertain_lane.
 Proof.
-  intros d0 d1 d2 n0 n1 n2 D0 D1 D2 N0 N1 N2 L. unfold den_compensated_b.
-  assert (Z : forall x, Rabs (B2R fzero) <= u * Rabs x) by (intros; change (B2R fzero) with 0;
-    rewrite Rabs_R0; pose proof u_pos; pose proof (Rabs_pos x); nra).
-  apply compensated_live; auto using fbnd_zero; try (eapply fbnd_le; [exact fbnd_zero | lia]).
-  change (B2R fzero) with 0. rewrite !Rplus_0_r. exact L.
+  intros d0 d1 d2 n0 n1 n2 D0 D1 D2 N0 N1 N2 L.
+  set (e := compensated_dot3_exact_b d0 d1 d2 n0 n1 n2 (dot3_rounded_b d0 d1 d2 n0 n1 n2)).
+  change (den_compensated_b d0 d1 d2 n0 n1 n2) with e.
+  assert (Bounds : fbnd 1000 (hib e) /\ fbnd 1000 (lob e) /\ fbnd 1000 (radiusb e)).
+  { unfold e, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b. cbv zeta.
+    cbn [qb0 qb1 qb2 magnitudeb hib lob radiusb].
+    split; [|split]; (eapply fbnd_le; [fbnd_tac | lia]). }
+  destruct Bounds as [BH [BL BR]].
+  destruct (compensated_dot3_exact_twin d0 d1 d2 n0 n1 n2 (proj1 BR) (proj1 BH) (proj1 BL))
+    as [_ [_ [_ [_ [_ [_ E]]]]]].
+  fold e in E.
+  apply (enclosure_sign_live e (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) BH BL BR).
+  - rewrite E. replace (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) with
+      ((B2R d0 + 0) * B2R n0 + (B2R d1 + 0) * B2R n1 + (B2R d2 + 0) * B2R n2) by ring.
+    apply compensated_dot3_enclosure; try apply binary64_B2R; try apply binary64_0;
+      rewrite Rabs_R0; pose proof u_pos; pose proof (Rabs_pos (B2R d0)); pose proof (Rabs_pos (B2R d1));
+      pose proof (Rabs_pos (B2R d2)); nra.
+  - change (B2R (radiusb e)) with (radius (enc_R e)). rewrite E.
+    pose proof (compensated_radius_upper (B2R d0) (B2R d1) (B2R d2) 0 0 0
+                  (B2R n0) (B2R n1) (B2R n2)) as U. cbv zeta in U. lra.
 Qed.
 

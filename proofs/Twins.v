@@ -7,18 +7,19 @@
     certifies (its decision says certain, or the radius it returns is finite), every input and every
     output is finite and equal, as a real number, to what the model of Model.v computes from the same
     inputs, so the soundness theorems of Filter.v and Compensated.v apply to the twin's outputs.  The
-    corollaries [*_twin_sound] state the result end to end, for every bit pattern of every input, with
-    no hypothesis: what the C++ certifies is true of the exact values.  This is the argument about
-    overflow, inf, NaN and ±0 that proofs/README.md used to make in prose.
+    corollaries [*_twin_sound] state the result end to end, for every bit pattern of every input: what
+    the C++ certifies is true of the exact values — for stage 1 with no hypothesis; for stage 2 given
+    that hi and lo are finite (the C++ tests no finiteness since issue 13: that a finite magnitude keeps
+    hi and lo finite is argued in proofs/README.md, "Overflow", not yet proved here).
 
     - eft.hpp: [two_sum_b], [two_diff_b], [fast_two_sum_b], [two_prod_b] ([two_sum_twin], [two_prod_twin]);
     - dot3_filter.hpp: [dot3_rounded_b], [dot3_filter_lanes_b], [dot3_filter_b] ([dot3_rounded_twin],
       [dot3_filter_lanes_twin]; [den_filter_twin_sound], [num_filter_twin_sound]);
-    - dot3_compensated.hpp: [compensated_dot3_b], [compensated_dot3_refined_b]
-      ([compensated_dot3_twin], [compensated_dot3_refined_twin]);
+    - dot3_compensated.hpp: [compensated_dot3_b], [compensated_dot3_exact_b] (α = 0),
+      [compensated_dot3_refined_b] ([compensated_dot3_twin], [compensated_dot3_exact_twin]; the refined
+      twin is checked by the runner, its theorem is not restored yet: proofs/README.md, "What remains");
     - enclosure.hpp: [enclosure_sign_lanes_b] ([enclosure_sign_twin]; end to end
-      [den_compensated_twin_sound], [num_compensated_twin_sound], [den_refined_twin_sound],
-      [num_refined_twin_sound]);
+      [den_compensated_twin_sound], [num_compensated_twin_sound]);
     - expansion.hpp: [expansion_tail_enclosure_b] ([expansion_tail_enclosure_twin]).
 
     The constants are the compiled ones: [Cpp.NAME] (ConstantsCpp.v, generated from the compiled
@@ -27,7 +28,7 @@
 
 From Coq Require Import Reals Lra Lia ZArith List.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
-From Raykernel Require Import Constants Model Filter Compensated FloatCore ConstantsCpp.
+From Raykernel Require Import Constants Model Filter Compensated Cascade FloatCore ConstantsCpp.
 Open Scope R_scope.
 
 (** ** Constants: the compiled values of error_bounds.hpp are the ones the theorems use. *)
@@ -439,21 +440,25 @@ Record EnclosureB := { hib : float; lob : float; radiusb : float }.
 Definition enc_R (e : EnclosureB) : Enclosure :=
   {| hi := B2R (hib e); lo := B2R (lob e); radius := B2R (radiusb e) |}.
 
-(** [select(both(|hi| <= largest_finite, |lo| <= largest_finite), radius, +inf)]: the C++ folds a
-    non-finite hi or lo into the radius. *)
-Definition fold_finite (hi lo radius : float) : float :=
-  if (fle (fabs hi) largest_finite_f && fle (fabs lo) largest_finite_f)%bool then radius else finf.
-
-(** [compensated_dot3(a, alpha, b, stage1)]. *)
-Definition compensated_dot3_b (a0 a1 a2 al0 al1 al2 b0 b1 b2 : float) (stage1 : Dot3B) : EnclosureB :=
-  let l0 := ffma a0 b0 (fneg (qb0 stage1)) in let g0 := ffma al0 b0 l0 in
-  let l1 := ffma a1 b1 (fneg (qb1 stage1)) in let g1 := ffma al1 b1 l1 in
-  let l2 := ffma a2 b2 (fneg (qb2 stage1)) in let g2 := ffma al2 b2 l2 in
+(** [compensated_dot3_from_low_parts(g, stage1)]: the sums shared by both forms. *)
+Definition compensated_from_low_parts_b (g0 g1 g2 : float) (stage1 : Dot3B) : EnclosureB :=
   let s2 := two_sum_b (qb0 stage1) (qb1 stage1) in
   let s3 := two_sum_b (fst s2) (qb2 stage1) in
   let lo := fadd (fadd (fadd g0 g1) g2) (fadd (snd s2) (snd s3)) in
   let radius := fadd (fmul Cpp.compensated_relative (magnitudeb stage1)) Cpp.compensated_absolute in
-  {| hib := fst s3; lob := lo; radiusb := fold_finite (fst s3) lo radius |}.
+  {| hib := fst s3; lob := lo; radiusb := radius |}.
+
+(** [compensated_dot3(a, alpha, b, stage1)]: l_i = fma(a_i, b_i, −h_i), g_i = fma(α_i, b_i, l_i). *)
+Definition compensated_dot3_b (a0 a1 a2 al0 al1 al2 b0 b1 b2 : float) (stage1 : Dot3B) : EnclosureB :=
+  let l0 := ffma a0 b0 (fneg (qb0 stage1)) in let g0 := ffma al0 b0 l0 in
+  let l1 := ffma a1 b1 (fneg (qb1 stage1)) in let g1 := ffma al1 b1 l1 in
+  let l2 := ffma a2 b2 (fneg (qb2 stage1)) in let g2 := ffma al2 b2 l2 in
+  compensated_from_low_parts_b g0 g1 g2 stage1.
+
+(** [compensated_dot3_exact(a, b, stage1)]: the α = 0 form, g_i = l_i (den). *)
+Definition compensated_dot3_exact_b (a0 a1 a2 b0 b1 b2 : float) (stage1 : Dot3B) : EnclosureB :=
+  compensated_from_low_parts_b (ffma a0 b0 (fneg (qb0 stage1))) (ffma a1 b1 (fneg (qb1 stage1)))
+    (ffma a2 b2 (fneg (qb2 stage1))) stage1.
 
 
 (** [compensated_dot3_refined(a, alpha, b, stage1)]; [double tail = 0] is +0. *)
@@ -469,7 +474,7 @@ Definition compensated_dot3_refined_b (a0 a1 a2 al0 al1 al2 b0 b1 b2 : float) (s
   let lo := fadd (snd x) tail in
   let radius := fadd (fadd (fmul Cpp.refined_relative (magnitudeb stage1))
                            (fmul Cpp.refined_low_relative (fabs lo))) Cpp.refined_absolute in
-  {| hib := fst x; lob := lo; radiusb := fold_finite (fst x) lo radius |}.
+  {| hib := fst x; lob := lo; radiusb := radius |}.
 
 (** [enclosure_sign_lanes(e)]: v = hi + lo, twice_radius = radius + radius,
     [sign_lanes(v > twice_radius, v < −twice_radius)]. *)
@@ -478,17 +483,6 @@ Definition enclosure_sign_lanes_b (e : EnclosureB) : Z :=
   let twice_radius := fadd (radiusb e) (radiusb e) in
   sign_lanes (flt twice_radius v) (flt v (fneg twice_radius)).
 
-Lemma fold_finite_fin : forall hi lo radius, fin (fold_finite hi lo radius) = true ->
-  fin hi = true /\ fin lo = true /\ fin radius = true /\ fold_finite hi lo radius = radius.
-Proof.
-  intros hi lo radius H. unfold fold_finite in *.
-  destruct (fle (fabs hi) largest_finite_f) eqn:A; destruct (fle (fabs lo) largest_finite_f) eqn:B;
-    try discriminate.
-  rewrite fle_largest_finite in A, B. cbn. auto.
-Qed.
-
-Lemma fold_finite_nonneg : forall hi lo radius, nonneg radius -> nonneg (fold_finite hi lo radius).
-Proof. intros hi lo radius N. unfold fold_finite. destruct (_ && _)%bool; [exact N | apply finf_nonneg]. Qed.
 
 (** The stage-1 fields the stage-2 twins read, as the model's. *)
 Lemma dot3_fields : forall a0 a1 a2 b0 b1 b2,
@@ -499,17 +493,19 @@ Lemma dot3_fields : forall a0 a1 a2 b0 b1 b2,
   B2R (magnitudeb r) = magnitude m.
 Proof. intros a0 a1 a2 b0 b1 b2 r m E. rewrite <- E. repeat split. Qed.
 
-(** A finite radius means a finite computation: every operation flows into hi, lo or the radius. *)
+(** A finite hi, lo and radius mean a finite computation equal to the model's: every operation flows into
+    one of them.  (The C++ tests no finiteness: a finite magnitude m bounds |hi| ≤ m and |lo| ≤ 5u·m when α
+    is a TwoDiff low part, which proofs/README.md, "Overflow", argues and these theorems take as the
+    hypotheses on hi and lo.) *)
 Theorem compensated_dot3_twin : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
   let e := compensated_dot3_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2) in
-  fin (radiusb e) = true ->
+  fin (radiusb e) = true -> fin (hib e) = true -> fin (lob e) = true ->
   fin a0 = true /\ fin a1 = true /\ fin a2 = true /\ fin al0 = true /\ fin al1 = true /\ fin al2 = true /\
   fin b0 = true /\ fin b1 = true /\ fin b2 = true /\ fin (hib e) = true /\ fin (lob e) = true /\
   enc_R e = compensated_dot3 (B2R a0) (B2R a1) (B2R a2) (B2R al0) (B2R al1) (B2R al2) (B2R b0) (B2R b1) (B2R b2).
 Proof.
-  intros a0 a1 a2 al0 al1 al2 b0 b1 b2 e H. subst e.
-  unfold compensated_dot3_b in *. cbv zeta in *. cbn [hib lob radiusb] in *.
-  destruct (fold_finite_fin _ _ _ H) as [Fhi [Flo [Frad Efold]]].
+  intros a0 a1 a2 al0 al1 al2 b0 b1 b2 e Frad Fhi Flo. subst e.
+  unfold compensated_dot3_b, compensated_from_low_parts_b in *. cbv zeta in *. cbn [hib lob radiusb] in *.
   set (r := dot3_rounded_b a0 a1 a2 b0 b1 b2) in *.
   assert (Fm : fin (magnitudeb r) = true) by (fin_down2; assumption).
   destruct (dot3_rounded_twin a0 a1 a2 b0 b1 b2 Fm) as [Fa0 [Fa1 [Fa2 [Fb0 [Fb1 [Fb2 [Fq0 [Fq1 [Fq2 [_ E]]]]]]]]]].
@@ -518,20 +514,19 @@ Proof.
   clearbody r. cpp_fin. fin_down2.
   repeat split; try assumption.
   unfold enc_R, compensated_dot3, fma. cbv zeta. cbn [hib lob radiusb hi lo radius].
-  rewrite Efold. to_model2. rewrite E0, E1, E2, Em. reflexivity.
+  to_model2. rewrite E0, E1, E2, Em. reflexivity.
 Qed.
 
-Theorem compensated_dot3_refined_twin : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
-  let e := compensated_dot3_refined_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2) in
-  fin (radiusb e) = true ->
-  fin a0 = true /\ fin a1 = true /\ fin a2 = true /\ fin al0 = true /\ fin al1 = true /\ fin al2 = true /\
-  fin b0 = true /\ fin b1 = true /\ fin b2 = true /\ fin (hib e) = true /\ fin (lob e) = true /\
-  enc_R e = compensated_dot3_refined (B2R a0) (B2R a1) (B2R a2) (B2R al0) (B2R al1) (B2R al2)
-              (B2R b0) (B2R b1) (B2R b2).
+(** The α = 0 form (den), against Cascade.v's [compensated_dot3_exact], which [compensated_dot3_exact_inputs]
+    shows is [compensated_dot3] with α = 0. *)
+Theorem compensated_dot3_exact_twin : forall a0 a1 a2 b0 b1 b2,
+  let e := compensated_dot3_exact_b a0 a1 a2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2) in
+  fin (radiusb e) = true -> fin (hib e) = true -> fin (lob e) = true ->
+  fin a0 = true /\ fin a1 = true /\ fin a2 = true /\ fin b0 = true /\ fin b1 = true /\ fin b2 = true /\
+  enc_R e = compensated_dot3 (B2R a0) (B2R a1) (B2R a2) 0 0 0 (B2R b0) (B2R b1) (B2R b2).
 Proof.
-  intros a0 a1 a2 al0 al1 al2 b0 b1 b2 e H. subst e.
-  unfold compensated_dot3_refined_b in *. cbv zeta in *. cbn [hib lob radiusb] in *.
-  destruct (fold_finite_fin _ _ _ H) as [Fhi [Flo [Frad Efold]]].
+  intros a0 a1 a2 b0 b1 b2 e Frad Fhi Flo. subst e. rewrite <- compensated_dot3_exact_inputs.
+  unfold compensated_dot3_exact_b, compensated_from_low_parts_b in *. cbv zeta in *. cbn [hib lob radiusb] in *.
   set (r := dot3_rounded_b a0 a1 a2 b0 b1 b2) in *.
   assert (Fm : fin (magnitudeb r) = true) by (fin_down2; assumption).
   destruct (dot3_rounded_twin a0 a1 a2 b0 b1 b2 Fm) as [Fa0 [Fa1 [Fa2 [Fb0 [Fb1 [Fb2 [Fq0 [Fq1 [Fq2 [_ E]]]]]]]]]].
@@ -539,9 +534,10 @@ Proof.
   destruct (dot3_fields a0 a1 a2 b0 b1 b2 E) as [E0 [E1 [E2 Em]]]. fold r in E0, E1, E2, Em.
   clearbody r. cpp_fin. fin_down2.
   repeat split; try assumption.
-  unfold enc_R, compensated_dot3_refined, fma. cbv zeta. cbn [hib lob radiusb hi lo radius].
-  rewrite Efold. to_model2. rewrite E0, E1, E2, Em. reflexivity.
+  unfold enc_R, compensated_dot3_exact, fma. cbv zeta. cbn [hib lob radiusb hi lo radius].
+  to_model2. rewrite E0, E1, E2, Em. reflexivity.
 Qed.
+
 
 Lemma Bsign_false_nonneg : forall x : float, Bsign x = false -> 0 <= B2R x.
 Proof.
@@ -620,26 +616,18 @@ Qed.
 Lemma compensated_radius_nonneg : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
   nonneg (radiusb (compensated_dot3_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2))).
 Proof.
-  intros. unfold compensated_dot3_b, dot3_rounded_b. cbv zeta. cbn [radiusb magnitudeb].
-  apply fold_finite_nonneg. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+  intros. unfold compensated_dot3_b, compensated_from_low_parts_b, dot3_rounded_b. cbv zeta. cbn [radiusb magnitudeb].
+  apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
   apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
 Qed.
 
-Lemma refined_radius_nonneg : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
-  nonneg (radiusb (compensated_dot3_refined_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2))).
-Proof.
-  intros. unfold compensated_dot3_refined_b, dot3_rounded_b. cbv zeta. cbn [radiusb magnitudeb].
-  apply fold_finite_nonneg. apply fadd_nonneg; [apply fadd_nonneg; apply fmul_nonneg|]; try const_nonneg.
-  - apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
-  - apply fabs_nonneg.
-Qed.
 
 (** ** End to end: the sign the first or second level of stage 2 certifies, for every bit pattern of the
     inputs, is the sign of the exact value (the calls of fast_path.hpp and ray_plane_stages.hpp: den with
     [exact_low_part] = {+0, +0, +0}, num with the rounded differences and their TwoDiff low parts). *)
 
 Definition den_compensated_b (d0 d1 d2 n0 n1 n2 : float) : EnclosureB :=
-  compensated_dot3_b d0 d1 d2 fzero fzero fzero n0 n1 n2 (dot3_rounded_b d0 d1 d2 n0 n1 n2).
+  compensated_dot3_exact_b d0 d1 d2 n0 n1 n2 (dot3_rounded_b d0 d1 d2 n0 n1 n2).
 Definition num_compensated_b (p0 p1 p2 o0 o1 o2 n0 n1 n2 : float) : EnclosureB :=
   let a0 := two_diff_b p0 o0 in let a1 := two_diff_b p1 o1 in let a2 := two_diff_b p2 o2 in
   compensated_dot3_b (fst a0) (fst a1) (fst a2) (snd a0) (snd a1) (snd a2) n0 n1 n2
@@ -654,15 +642,15 @@ Definition num_refined_b (p0 p1 p2 o0 o1 o2 n0 n1 n2 : float) : EnclosureB :=
 (** A stage-2 sign that is certain implies a finite radius, hence a finite computation equal to the
     model's (the two theorems above), whose sign is sound ([enclosure_sign_sound]). *)
 Lemma stage2_sign_twin : forall (e : EnclosureB) (V : R),
-  nonneg (radiusb e) ->
-  (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true /\ encloses (enc_R e) V) ->
+  nonneg (radiusb e) -> fin (hib e) = true -> fin (lob e) = true ->
+  (fin (radiusb e) = true -> encloses (enc_R e) V) ->
   certifies (sign_from_Z (enclosure_sign_lanes_b e)) V /\
   (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros e V N H. destruct (Z.eq_dec (enclosure_sign_lanes_b e) uncertain_lane) as [U|U].
+  intros e V N Fh Fl H. destruct (Z.eq_dec (enclosure_sign_lanes_b e) uncertain_lane) as [U|U].
   - split; [rewrite U; exact I | intros C; contradiction].
   - pose proof (enclosure_sign_radius_finite e N U) as Fr.
-    destruct (H Fr) as [Fh [Fl Enc]].
+    pose proof (H Fr) as Enc.
     destruct (enclosure_sign_twin e Fh Fl N U) as [_ E].
     split; [| intros _; exact Fr].
     rewrite E. apply enclosure_sign_sound; [apply binary64_B2R .. | exact Enc].
@@ -677,56 +665,36 @@ Proof.
 Qed.
 
 Theorem den_compensated_twin_sound : forall d0 d1 d2 n0 n1 n2 : float,
-  certifies (sign_from_Z (enclosure_sign_lanes_b (den_compensated_b d0 d1 d2 n0 n1 n2)))
-    (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) /\
-  (enclosure_sign_lanes_b (den_compensated_b d0 d1 d2 n0 n1 n2) <> uncertain_lane ->
-   fin (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)) = true).
+  let e := den_compensated_b d0 d1 d2 n0 n1 n2 in
+  fin (hib e) = true -> fin (lob e) = true ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e)) (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) /\
+  (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros. apply stage2_sign_twin; [apply compensated_radius_nonneg|]. intros Fr.
-  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr) as [? [? [? [? [? [? [? [? [? [Fh [Fl E]]]]]]]]]]].
-  repeat split; try assumption. unfold den_compensated_b. rewrite E. change (B2R fzero) with 0.
-  apply compensated_den_enclosure; apply binary64_B2R.
+  intros d0 d1 d2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption.
+  - unfold e, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
+    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
+  - intros Fr. destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [? [? [? E]]]]]].
+    unfold e, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
 Qed.
 
 Theorem num_compensated_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
-  certifies (sign_from_Z (enclosure_sign_lanes_b (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)))
+  let e := num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2 in
+  fin (hib e) = true -> fin (lob e) = true ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e))
     ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2) /\
-  (enclosure_sign_lanes_b (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2) <> uncertain_lane ->
-   fin (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true).
+  (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros. apply stage2_sign_twin; [apply compensated_radius_nonneg|]. intros Fr.
-  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr) as [? [? [? [A0 [A1 [A2 [? [? [? [Fh [Fl E]]]]]]]]]]].
+  intros p0 p1 p2 o0 o1 o2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption; [apply compensated_radius_nonneg|].
+  intros Fr.
+  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
   destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
   destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
-  repeat split; try assumption. unfold num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
+  unfold e, num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
   apply compensated_num_enclosure; apply binary64_B2R.
 Qed.
 
-Theorem den_refined_twin_sound : forall d0 d1 d2 n0 n1 n2 : float,
-  certifies (sign_from_Z (enclosure_sign_lanes_b (den_refined_b d0 d1 d2 n0 n1 n2)))
-    (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) /\
-  (enclosure_sign_lanes_b (den_refined_b d0 d1 d2 n0 n1 n2) <> uncertain_lane ->
-   fin (radiusb (den_refined_b d0 d1 d2 n0 n1 n2)) = true).
-Proof.
-  intros. apply stage2_sign_twin; [apply refined_radius_nonneg|]. intros Fr.
-  destruct (compensated_dot3_refined_twin _ _ _ _ _ _ _ _ _ Fr) as [? [? [? [? [? [? [? [? [? [Fh [Fl E]]]]]]]]]]].
-  repeat split; try assumption. unfold den_refined_b. rewrite E. change (B2R fzero) with 0.
-  apply compensated_den_refined_enclosure; apply binary64_B2R.
-Qed.
 
-Theorem num_refined_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
-  certifies (sign_from_Z (enclosure_sign_lanes_b (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)))
-    ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2) /\
-  (enclosure_sign_lanes_b (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2) <> uncertain_lane ->
-   fin (radiusb (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true).
-Proof.
-  intros. apply stage2_sign_twin; [apply refined_radius_nonneg|]. intros Fr.
-  destruct (compensated_dot3_refined_twin _ _ _ _ _ _ _ _ _ Fr) as [? [? [? [A0 [A1 [A2 [? [? [? [Fh [Fl E]]]]]]]]]]].
-  destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
-  destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
-  repeat split; try assumption. unfold num_refined_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
-  apply compensated_num_refined_enclosure; apply binary64_B2R.
-Qed.
 
 (** ** expansion.hpp: [expansion_tail_enclosure] *)
 

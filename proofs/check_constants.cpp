@@ -13,7 +13,9 @@
 // proofs_constants_one_ulp) checks that the comparison is exact: each compiled constant moved by one ulp
 // either way must compare unequal.
 //
-// Usage: raykernel_check_constants [--one-ulp] ERROR_BOUNDS_HPP CONSTANTS_V PENDING_TXT
+// Usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT
+// (files told apart by their extension: the headers' constants are merged, and so are the Coq files', read in
+// order with one environment, so that a later file may use an earlier file's names).
 #include "certified/error_bounds.hpp"
 
 #include <cmath>
@@ -203,6 +205,10 @@ std::vector<Row> table() {
   return {
       {"unit_roundoff", "bpow radix2 (-53)", Dyadic::pow2(-53), b::unit_roundoff, {}},
       {"min_subnormal", "bpow radix2 (-1074)", Dyadic::pow2(-1074), b::min_subnormal, {}},
+      // (2^53 − 1)·2^971 = 2^1024 − 2^971, std::numeric_limits<double>::max()
+      {"largest_finite", "9007199254740991 * bpow radix2 (971)",
+       Dyadic::integer((std::uint64_t{1} << 53) - 1) * Dyadic::pow2(971), b::largest_finite, {}},
+      {"exact_product_threshold", "bpow radix2 (-968)", Dyadic::pow2(-968), b::exact_product_threshold, {}},
       // (3 + 16u)u = 3·2^-53 + 2^-102
       {"filter_den_relative", "(3 + 16 * u) * u", 3 * Dyadic::pow2(-53) + Dyadic::pow2(-102),
        b::filter_den_relative, {}},
@@ -220,6 +226,9 @@ std::vector<Row> table() {
       {"tail_sum_absolute", "2 * mu", 2 * Dyadic::pow2(-1074), b::tail_sum_absolute, {}},
       {"tail_sum_max_terms", "32", Dyadic::integer(32), {}, b::tail_sum_max_terms},
       {"quotient_min_magnitude", "bpow radix2 (-900)", Dyadic::pow2(-900), b::quotient_min_magnitude, {}},
+      {"divisor_min_magnitude", "bpow radix2 (-1000)", Dyadic::pow2(-1000), b::divisor_min_magnitude, {}},
+      {"divisor_max_magnitude", "bpow radix2 (1000)", Dyadic::pow2(1000), b::divisor_max_magnitude, {}},
+      {"half_gap_min_magnitude", "bpow radix2 (-968)", Dyadic::pow2(-968), b::half_gap_min_magnitude, {}},
       {"quotient_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::quotient_relative, {}},
       {"quotient_enclosure_factor", "1 + bpow radix2 (-9)", 1 + Dyadic::pow2(-9), b::quotient_enclosure_factor,
        {}},
@@ -233,6 +242,16 @@ std::vector<Row> table() {
       {"compare_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::compare_absolute, {}},
       {"compare_compensated_relative", "bpow radix2 (-101)", Dyadic::pow2(-101), b::compare_compensated_relative,
        {}},
+      // Ray–triangle (error_bounds.hpp's and Constants.v's last sections).
+      {"triangle_absolute_scale", "bpow radix2 (-1070)", Dyadic::pow2(-1070), b::triangle_absolute_scale, {}},
+      {"triangle_absolute", "bpow radix2 (-1069)", Dyadic::pow2(-1069), b::triangle_absolute, {}},
+      {"triangle_filter_pi_relative", "8 * u", 8 * Dyadic::pow2(-53), b::triangle_filter_pi_relative, {}},
+      {"triangle_filter_num_relative", "9 * u", 9 * Dyadic::pow2(-53), b::triangle_filter_num_relative, {}},
+      {"triangle_filter_den_relative", "10 * u", 10 * Dyadic::pow2(-53), b::triangle_filter_den_relative, {}},
+      {"triangle_compensated_relative", "128 * (u * u)", 128 * Dyadic::pow2(-106), b::triangle_compensated_relative,
+       {}},
+      {"triangle_compensated_den_relative", "256 * (u * u)", 256 * Dyadic::pow2(-106),
+       b::triangle_compensated_den_relative, {}},
   };
 }
 
@@ -341,9 +360,8 @@ class CoqExpression {
   std::size_t pos_ = 0;
 };
 
-std::map<std::string, Dyadic> parse_coq_constants(const std::string& path) {
+std::map<std::string, Dyadic> parse_coq_constants(const std::string& path, std::map<std::string, Dyadic> env = {}) {
   const std::string text = strip_coq_comments(read_file(path));
-  std::map<std::string, Dyadic> env;
   std::regex definition(R"(Definition\s+([A-Za-z_][A-Za-z0-9_']*)\s*:\s*(R|nat)\s*:=\s*([^.]*)\.)");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), definition); it != std::sregex_iterator(); ++it) {
     const std::string name = (*it)[1];
@@ -408,8 +426,15 @@ int main(int argc, char** argv) {
     else
       paths.push_back(arg);
   }
-  if (paths.size() != 3) {
-    std::cerr << "usage: raykernel_check_constants [--one-ulp] ERROR_BOUNDS_HPP CONSTANTS_V PENDING_TXT\n";
+  std::vector<std::string> headers, coq_files, pending_files;
+  for (const std::string& path : paths) {
+    auto ends_with = [&](const std::string& suffix) {
+      return path.size() >= suffix.size() && path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    (ends_with(".hpp") ? headers : ends_with(".v") ? coq_files : pending_files).push_back(path);
+  }
+  if (headers.empty() || coq_files.empty() || pending_files.size() != 1) {
+    std::cerr << "usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT\n";
     return 2;
   }
 
@@ -436,9 +461,11 @@ int main(int argc, char** argv) {
       return failures == 0 ? 0 : 1;
     }
 
-    const std::map<std::string, Dyadic> cpp = parse_cpp_constants(paths[0]);
-    const std::map<std::string, Dyadic> coq = parse_coq_constants(paths[1]);
-    const std::vector<std::string> pending = parse_pending_constants(paths[2]);
+    std::map<std::string, Dyadic> cpp;
+    for (const std::string& h : headers) cpp.merge(parse_cpp_constants(h));
+    std::map<std::string, Dyadic> coq;
+    for (const std::string& v : coq_files) coq = parse_coq_constants(v, coq);
+    const std::vector<std::string> pending = parse_pending_constants(pending_files[0]);
     auto is_pending = [&](const std::string& name) {
       for (const std::string& p : pending)
         if (p == name) return true;
@@ -458,13 +485,13 @@ int main(int argc, char** argv) {
 
       const auto c = coq.find(name);
       if (c == coq.end())
-        fail(name + ": no `Definition " + name + "` in " + paths[1]);
+        fail(name + ": no `Definition " + name + "` in the Coq constants files");
       else if (!(c->second == row.expected))
         fail(name + ": Constants.v gives " + c->second.str() + ", expected " + want + " (" + row.coq_formula + ")");
 
       const auto h = cpp.find(name);
       if (h == cpp.end())
-        fail(name + ": no `inline constexpr` " + name + " in " + paths[0]);
+        fail(name + ": no `inline constexpr` " + name + " in the bounds headers");
       else if (!(h->second == row.expected))
         fail(name + ": the literal in error_bounds.hpp is " + h->second.str() + ", the proofs use " + want + " (" +
              row.coq_formula + ")");
@@ -487,8 +514,8 @@ int main(int argc, char** argv) {
         fail(name + " is defined in error_bounds.hpp but not checked (add it to Constants.v and check_constants.cpp)");
     }
     if (failures == 0)
-      std::cout << "ok: " << rows.size() << " constants agree exactly between error_bounds.hpp, its compiled values "
-                << "and proofs/Constants.v\n";
+      std::cout << "ok: " << rows.size() << " constants agree exactly between the bounds headers, their compiled values "
+                << "and the Coq constants files\n";
   } catch (const std::exception& e) {
     fail(e.what());
   }

@@ -1,11 +1,12 @@
-// ctest proofs_half_gap: the C++ bit manipulation half_gap_to_nearer_neighbour (round_quotient.hpp)
-// computes the model's half_gap (proofs/RoundQuotient.v):
+// ctest proofs_half_gap: the C++ bit manipulation half_gap_to_nearer_neighbour (quotient_rounding.hpp)
+// computes the model's half_gap (proofs/QuotientRounding.v):
 //   half_gap q = min(succ q − q, q − pred q) / 2,
 // where succ and pred are the neighbouring doubles, i.e. std::nextafter towards ±inf. Checked for both
-// signs, every exponent from −968 (the function's precondition; round_quotient_candidate_normal proves
-// |q| ≥ 2^-901 wherever it is called) to 1023, and several significands per exponent: the power of two,
-// its successor, the largest significand and seeded pseudo-random ones.
-#include "certified/round_quotient.hpp"
+// signs, every exponent from −968 (the function's precondition, bounds::half_gap_min_magnitude;
+// round_quotient_candidate_normal proves |q| ≥ 2^-900 wherever round_quotient certifies) to 1023, and
+// several significands per exponent: the power of two, its successor, the largest significand and seeded
+// pseudo-random ones.
+#include "certified/quotient_rounding.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -27,7 +28,7 @@ int main() {
   const std::uint64_t seed = 0x5eed'4a1f'9a9bULL;
   std::mt19937_64 random(seed);
   long checked = 0, failures = 0;
-  for (int e = -968; e <= 1023; ++e) {
+  for (int e = std::ilogb(raykernel::detail::bounds::half_gap_min_magnitude); e <= 1023; ++e) {
     const double base = std::ldexp(1.0, e);
     const double significands[] = {1.0, 1.0 + 0x1p-52, 2.0 - 0x1p-52, 1.5};
     auto check = [&](double q) {

@@ -127,8 +127,8 @@ TEST(Batch, EveryInstructionSetVariantAgreesWithTheScalarFastPath) {
     for (std::size_t i = 0; i < q.size(); ++i) {
       const double o[3] = {soa.ox[i], soa.oy[i], soa.oz[i]}, d[3] = {soa.dx[i], soa.dy[i], soa.dz[i]};
       const double p[3] = {soa.px[i], soa.py[i], soa.pz[i]}, n[3] = {soa.nx[i], soa.ny[i], soa.nz[i]};
-      const detail::FastAnswer a = detail::FastQuery(o, d, p, n).answer();
-      const bool scalar_certified = a.relation_certain & a.t_certain;
+      const detail::FastAnswer a = detail::fast_answer(detail::ray_plane_terms(o, d, p, n));
+      const bool scalar_certified = a.certain;
       ASSERT_EQ((outcome[i] & batch_kernel::certified_by_fast_path) != 0, scalar_certified) << i;
       if (!scalar_certified) continue;
       ++certified;

@@ -1,5 +1,5 @@
 # Fails when an instruction-set-specific object of the batch fast loop (fast_loop_avx2/avx512) defines any
-# global symbol besides raykernel::batch_kernel::<isa>::pairwise/broadcast.
+# global symbol besides its entry points raykernel::batch_kernel::<isa>::{pairwise,broadcast}[_relation].
 set(bad "")
 foreach(object IN LISTS OBJECTS)
   if(object MATCHES "fast_loop_(avx2|avx512)\\.cpp\\.o$")
@@ -13,7 +13,7 @@ foreach(object IN LISTS OBJECTS)
       if(line STREQUAL "")
         continue()
       endif()
-      if(NOT line MATCHES "raykernel::batch_kernel::${isa}::(pairwise|broadcast)\\(")
+      if(NOT line MATCHES "raykernel::batch_kernel::${isa}::(pairwise|broadcast|pairwise_relation|broadcast_relation)\\(")
         list(APPEND bad "${object}: ${line}")
       endif()
     endforeach()

@@ -4,9 +4,17 @@
 #include "support/answer_lines.hpp"
 #include "text_input.hpp"
 
+#include "text_format.hpp"
+
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+
 #include <array>
+#include <csignal>
+#include <filesystem>
+#include <thread>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -55,7 +63,7 @@ CliRun run(const std::string& args, const std::string& stdin_text = "") {
 // ---- Number syntax -----------------------------------------------------------------------------------
 
 TEST(NumberLine, AcceptsEveryStrtodSyntax) {
-  const NumberLine l = parse_number_line(" 1 -2.5 3e2\t0x1.8p1 .5 5. +7 -0 1e-400 0X10 0x1p-1074 4.9e-324 ", 12);
+  const NumberLine l = parse_number_line(" 1 -2.5 3e2\t0x1.8p1 .5 5. +7 -0 0e-400 0X10 0x1p-1074 4.9e-324 ", 12);
   ASSERT_EQ(l.status, LineStatus::numbers) << l.reason;
   const double want[12] = {1, -2.5, 300, 3, 0.5, 5, 7, -0.0, 0, 16, 0x1p-1074, 0x1p-1074};
   for (int i = 0; i < 12; ++i) EXPECT_EQ(l.value[static_cast<std::size_t>(i)], want[i]) << i;
@@ -76,14 +84,59 @@ TEST(NumberLine, NamesWhatIsWrong) {
     return l.reason;
   };
   EXPECT_EQ(reason("0 0 0 1 0 0 1 0 0 1 0"), "expected 12 numbers, found 11");
-  EXPECT_EQ(reason("0 0 0 1 0 0 1 0 0 1 0 0 7"), "expected 12 numbers, found 13");
   EXPECT_EQ(reason("0 0 0 1 0 0 1 0 0 1 abc 0"), "field 11: 'abc' is not a number");
   EXPECT_EQ(reason("0 0 0 1 0 0 1 0 0 1 1.0x 0"), "field 11: '1.0x' is not a number");
-  EXPECT_EQ(reason("nan 0 0 1 0 0 0 0 0 1 0 0"), "field 1: 'nan' is not finite (non-finite)");
-  EXPECT_EQ(reason("0 0 0 -inf 0 0 1 0 0 1 0 0"), "field 4: '-inf' is not finite (non-finite)");
-  EXPECT_EQ(reason("0 0 0 1 0 0 1e400 0 0 1 0 0"), "field 7: '1e400' overflows the double range (non-finite)");
-  EXPECT_EQ(reason("0 0 0 1 0 0 1 0 0 1 0 0 # trailing comment"), "expected 12 numbers, found 15");
+  // Said once, not "not finite (non-finite)".
+  EXPECT_EQ(reason("nan 0 0 1 0 0 0 0 0 1 0 0"), "field 1: 'nan' is not finite");
+  EXPECT_EQ(reason("0 0 0 -inf 0 0 1 0 0 1 0 0"), "field 4: '-inf' is not finite");
+  EXPECT_EQ(reason("0 0 0 1 0 0 1e400 0 0 1 0 0"), "field 7: '1e400' overflows the double range");
   EXPECT_EQ(reason(std::string("0 0 0 1 0 0 1 0 0 1 0 0\0x", 25)), "field 12: '0\\x00x' is not a number");
+}
+
+TEST(NumberLine, SaysWhereExtraTokensStart) {
+  // Tokens 13 and 14 ("#" at column 25, "x"): a comment after the numbers is not a comment line.
+  const NumberLine comment = parse_number_line("0 0 0 1 0 0 1 0 0 1 0 0 # x", 12);
+  ASSERT_EQ(comment.status, LineStatus::invalid);
+  EXPECT_EQ(comment.reason,
+            "expected 12 numbers, found 14; the extra ones start at token 13, column 25: '# x' (a # comment must be on "
+            "a line of its own)");
+  EXPECT_EQ(parse_number_line("1 2 3 4 5 6   7\r", 6).reason,
+            "expected 6 numbers, found 7; the extra ones start at token 7, column 15: '7'");
+}
+
+TEST(NumberLine, NamesTheBadTokenOfACommaSeparatedLine) {
+  // Four tokens, but the count is not the problem: the first token is.
+  EXPECT_EQ(parse_number_line("0,0,0 0,0,1 0,0,5 0,0,1", 12).reason,
+            "field 1: '0,0,0' is not a number (separate numbers with blanks, not commas)");
+  EXPECT_EQ(parse_number_line("0, 0, 0, 0, 0, 1", 6).reason,
+            "field 1: '0,' is not a number (separate numbers with blanks, not commas)");
+}
+
+TEST(NumberLine, ANonzeroNumberThatRoundsToZeroIsInvalid) {
+  // 2^-1075 is half the smallest subnormal 2^-1074: every magnitude up to it rounds to zero (2^-1075 itself
+  // is a tie, to the even 0); 4e-324 and 2.4703282292062328e-324 are above it and round to 2^-1074.
+  const std::string why = " is nonzero but rounds to zero when read (its magnitude is at most 2^-1075, half the "
+                          "smallest subnormal)";
+  EXPECT_EQ(parse_number_line("0 0 0 1e-400 0 0", 6).reason, "field 4: '1e-400'" + why);
+  EXPECT_EQ(parse_number_line("-2e-324 0 0 1 0 0", 6).reason, "field 1: '-2e-324'" + why);
+  EXPECT_EQ(parse_number_line("0 0x1p-1075 0 1 0 0", 6).reason, "field 2: '0x1p-1075'" + why);
+  EXPECT_EQ(parse_number_line("0 0 2.4703282292062327e-324 1 0 0", 6).reason, "field 3: '2.4703282292062327e-324'" + why);
+  for (const char* subnormal : {"4e-324", "2.4703282292062328e-324", "0x1p-1074", "-0x0.0000000000001p-1022"}) {
+    const NumberLine l = parse_number_line(std::string("0 0 0 ") + subnormal + " 0 0", 6);
+    ASSERT_EQ(l.status, LineStatus::numbers) << subnormal << ": " << l.reason;
+    EXPECT_EQ(std::fabs(l.value[3]), 0x1p-1074) << subnormal;
+  }
+  for (const char* zero : {"0e-400", "-0.000e-999", "0x0p-2000", "0x0.000p+5"}) {
+    const NumberLine l = parse_number_line(std::string("0 0 0 1 0 0 ") + zero, 7);
+    EXPECT_EQ(l.status, LineStatus::numbers) << zero << ": " << l.reason;
+  }
+}
+
+TEST(NumberLine, EscapesBytesThatAreNotPrintable) {
+  // A control byte, DEL, a byte that is not UTF-8, and a right-to-left override (U+202E), each as \xNN;
+  // ordinary UTF-8 (é) passes.
+  EXPECT_EQ(parse_number_line("\x01\x7f\xff\xe2\x80\xae\xc3\xa9 0 0 1 0 0", 6).reason,
+            "field 1: '\\x01\\x7f\\xff\\xe2\\x80\\xae\xc3\xa9' is not a number");
 }
 
 TEST(Format, ShortestRoundTripsEveryDouble) {
@@ -102,6 +155,55 @@ TEST(Format, ShortestRoundTripsEveryDouble) {
   EXPECT_EQ(format_hex(-std::numeric_limits<double>::infinity()), "-inf");
 }
 
+// ---- Text shown to people (text_format.hpp) --------------------------------------------------------------
+
+TEST(TextFormat, CountsPluralsAndPercentages) {
+  EXPECT_EQ(with_thousands(0), "0");
+  EXPECT_EQ(with_thousands(999), "999");
+  EXPECT_EQ(with_thousands(1000), "1,000");
+  EXPECT_EQ(with_thousands(2073600), "2,073,600");
+  EXPECT_EQ(with_thousands(18446744073709551615u), "18,446,744,073,709,551,615");
+  EXPECT_EQ(count_of(1, "plane"), "1 plane");
+  EXPECT_EQ(count_of(0, "plane"), "0 planes");
+  EXPECT_EQ(count_of(1234, "query", "queries"), "1,234 queries");
+  EXPECT_EQ(percent(1, 3), "33.33%");
+  EXPECT_EQ(percent(137478, 518400), "26.52%");
+  EXPECT_EQ(percent(1, 3, 1), "33.3%");
+  EXPECT_EQ(percent(5, 0), "0.00%");
+}
+
+TEST(TextFormat, RatesNeverShowZeroPointZeroZero) {
+  // Three significant digits in the unit where the value is at least 1 (k from 999.5, M from 999,500).
+  EXPECT_EQ(rate(4.31e6, "rays/s"), "4.31 M rays/s");
+  EXPECT_EQ(rate(812.4e3, "rays/s"), "812 k rays/s");
+  EXPECT_EQ(rate(1234, "rays/s"), "1.23 k rays/s");
+  EXPECT_EQ(rate(999.4, "rays/s"), "999 rays/s");
+  EXPECT_EQ(rate(999.6, "rays/s"), "1.00 k rays/s");
+  EXPECT_EQ(rate(999.6e3, "rays/s"), "1.00 M rays/s");
+  EXPECT_EQ(rate(35.2, "rays/s"), "35.2 rays/s");
+  EXPECT_EQ(rate(0.004, "rays/s"), "0.004 rays/s");
+  EXPECT_EQ(rate(0, "rays/s"), "0 rays/s");
+  EXPECT_EQ(duration(0.481), "0.481 s");
+  EXPECT_EQ(duration(2.345), "2.35 s");
+  EXPECT_EQ(duration(0.0123), "12.3 ms");
+  EXPECT_EQ(duration(0.0000851), "85.1 \u00b5s");
+}
+
+TEST(TextFormat, PrintableEscapesWhatATerminalWouldNotShow) {
+  EXPECT_EQ(printable("plain text, UTF-8 \xc3\xa9 \xe2\x82\xac"), "plain text, UTF-8 \xc3\xa9 \xe2\x82\xac");
+  EXPECT_EQ(printable(std::string("a\0b\n\t\x1b[0m\x7f", 10)), "a\\x00b\\x0a\\x09\\x1b[0m\\x7f");
+  // Not UTF-8: a lone continuation byte, a truncated sequence, an overlong form, a surrogate.
+  EXPECT_EQ(printable("\x80 \xc3 \xc0\xaf \xed\xa0\x80"), "\\x80 \\xc3 \\xc0\\xaf \\xed\\xa0\\x80");
+  // Characters that print as nothing or reorder text: a C1 control, a zero-width space, a right-to-left
+  // override, the byte-order mark.
+  EXPECT_EQ(printable("\xc2\x85|\xe2\x80\x8b|\xe2\x80\xae|\xef\xbb\xbf"),
+            "\\xc2\\x85|\\xe2\\x80\\x8b|\\xe2\\x80\\xae|\\xef\\xbb\\xbf");
+  EXPECT_EQ(quote("abc"), "'abc'");
+  EXPECT_EQ(quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "...'");
+  // Cut before a character, not inside it: 39 ASCII bytes and a 2-byte é straddling byte 40.
+  EXPECT_EQ(quote(std::string(39, 'x') + "\xc3\xa9yz"), "'" + std::string(39, 'x') + "...'");
+}
+
 // ---- classify on streams -------------------------------------------------------------------------------
 
 std::string classify(const std::string& input, const ClassifyOptions& options, int* status = nullptr,
@@ -116,7 +218,7 @@ std::string classify(const std::string& input, const ClassifyOptions& options, i
 }
 
 TEST(Classify, OneOutputLinePerQueryLine) {
-  // Hand-derived: line 2 → hit 5 (seed example), line 4 → behind −5, line 5 → parallel, line 6 → in-plane.
+  // Hand-derived: line 2 → hit 5 (the example of docs/ray-casting.md §2), line 4 → behind −5, line 5 → parallel, line 6 → in-plane.
   const std::string input =
       "# comment\n"
       "0 0 0  0 0 1  0 0 5  0 0 1\n"
@@ -127,6 +229,73 @@ TEST(Classify, OneOutputLinePerQueryLine) {
   int status = -1;
   EXPECT_EQ(classify(input, {}, &status), "hit 5\nbehind -5\nparallel\nin-plane\n");
   EXPECT_EQ(status, exit_ok);
+}
+
+TEST(Classify, SkipsAByteOrderMarkAtTheStartOnly) {
+  // The UTF-8 byte-order mark some editors write: ignored at the start of the input (even before a comment
+  // or a blank line), an invalid byte sequence anywhere else (escaped in the message).
+  EXPECT_EQ(classify("\xEF\xBB\xBF" "0 0 0  0 0 1  0 0 5  0 0 1\n", {}), "hit 5\n");
+  EXPECT_EQ(classify("\xEF\xBB\xBF" "# comment\n0 0 0  0 0 1  0 0 5  0 0 1\n", {}), "hit 5\n");
+  EXPECT_EQ(classify("\xEF\xBB\xBF\n0 0 0  0 0 1  0 0 5  0 0 1\n", {}), "hit 5\n");
+  std::string err;
+  EXPECT_EQ(classify("0 0 0  0 0 1  0 0 5  0 0 1\n\xEF\xBB\xBF" "0 0 0  0 0 1  0 0 5  0 0 1\n", {}, nullptr, &err),
+            "hit 5\ninvalid field 1: '\\xef\\xbb\\xbf0' is not a number\n");
+  EXPECT_EQ(err, "raykernel: line 2: field 1: '\\xef\\xbb\\xbf0' is not a number\n");
+}
+
+TEST(Classify, ADirectionThatRoundsToZeroIsNotCalledTheZeroVector) {
+  // 1e-400 read as a double is 0; the line is invalid for that reason, not for a zero direction. 4e-324
+  // reads as 2^-1074: a valid direction, and t = 1/2^-1074 overflows to inf (hand-derived: num = 1·1,
+  // den = 2^-1074·1).
+  int status = -1;
+  EXPECT_EQ(classify("0 0 0  1e-400 0 0  1 0 0  1 0 0\n0 0 0  4e-324 0 0  1 0 0  1 0 0\n", {}, &status),
+            "invalid field 4: '1e-400' is nonzero but rounds to zero when read (its magnitude is at most 2^-1075, half "
+            "the smallest subnormal)\nhit inf\n");
+  EXPECT_EQ(status, exit_invalid_line);
+}
+
+// An output stream buffer that accepts `capacity` bytes and then fails, like a pipe whose reader left.
+class FailingAfter : public std::streambuf {
+ public:
+  explicit FailingAfter(std::size_t capacity) : capacity_(capacity) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (written_ >= capacity_) return traits_type::eof();
+    ++written_;
+    return c;
+  }
+
+ private:
+  std::size_t capacity_, written_ = 0;
+};
+
+TEST(Classify, StopsReadingWhenItsOutputFails) {
+  // classify: 10,000 queries answered "hit 5"; nearest: 10,000 rays answered "hit 0 5". The output takes 60
+  // bytes (a few answers) and then fails: the streams must stop at once, not read and compute the rest.
+  for (bool nearest : {false, true}) {
+    const std::string line = nearest ? "0 0 0  0 0 1\n" : "0 0 0  0 0 1  0 0 5  0 0 1\n";
+    std::string input;
+    for (int k = 0; k < 10000; ++k) input += line;
+    std::istringstream in(input);
+    FailingAfter sink(60);
+    std::ostream out(&sink);
+    std::ostringstream err;
+    std::uint64_t answered = 0;
+    if (nearest) {
+      const std::vector<Plane> planes = {{{0, 0, 5}, {0, 0, 1}}};
+      NearestCounts counts;
+      (void)nearest_stream(in, out, err, planes, {}, counts);
+      answered = counts.lines_answered;
+    } else {
+      ClassifyCounts counts;
+      (void)classify_stream(in, out, err, {}, counts);
+      answered = counts.lines_answered;
+    }
+    EXPECT_FALSE(out);
+    EXPECT_LE(answered, 11u) << (nearest ? "nearest" : "classify");
+    EXPECT_LT(static_cast<std::size_t>(in.tellg()), 12 * line.size()) << (nearest ? "nearest" : "classify");
+  }
 }
 
 TEST(Classify, InvalidLinesAreAnsweredAndReportedWithTheirLineNumber) {
@@ -162,11 +331,11 @@ TEST(Classify, NaivePathShowsTheLecturesMistakes) {
   // to 0, so the naive path calls the ray in-plane.
   const std::string line = "0 0 0 0x1p-600 0 0 0x1p-600 0 0 0x1p-600 0 0\n";
   ClassifyOptions naive;
-  naive.path = Path::naive;
+  naive.method = Method::naive;
   EXPECT_EQ(classify(line, {}), "hit 1\n");
   EXPECT_EQ(classify(line, naive), "in-plane\n");
   ClassifyOptions exact;
-  exact.path = Path::exact;
+  exact.method = Method::exact;
   EXPECT_EQ(classify(line, exact), "hit 1\n");
 }
 
@@ -175,10 +344,10 @@ TEST(Classify, ContractSampleOnEveryPathThatGuarantees) {
   const auto expected = test_support::read_lines(cases + "/classify-sample.expected");
   std::string input;
   for (const auto& l : input_lines) input += l + "\n";
-  for (Path path : {Path::certified, Path::exact}) {
+  for (Method method : {Method::certified, Method::exact}) {
     ClassifyOptions o;
     o.exact_t = true;
-    o.path = path;
+    o.method = method;
     int status = -1;
     std::istringstream out(classify(input, o, &status));
     std::vector<std::string> got;
@@ -234,6 +403,221 @@ TEST(Binary, StatsNameEveryStage) {
 }
 
 TEST(Binary, ADirectoryIsAnIoError) { EXPECT_EQ(run("classify " + cases).status, 2); }
+
+// ---- Every write checked -------------------------------------------------------------------------------
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "/raykernel_cli_test_" + std::to_string(getpid()) + "_" + name;
+}
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+}
+
+// Runs the binary with standard output sent to `stdout_target` (a path such as /dev/full); returns the status
+// and standard error.
+CliRun run_to(const std::string& args, const std::string& stdout_target, const std::string& stdin_text = "") {
+  const std::string in = temp_path("stdin.txt"), err = temp_path("stderr.txt");
+  write_file(in, stdin_text);
+  const int status = std::system((cli + " " + args + " < " + in + " > " + stdout_target + " 2> " + err).c_str());
+  CliRun r{};
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err);
+  std::stringstream text;
+  text << e.rdbuf();
+  r.err = text.str();
+  return r;
+}
+
+const std::string disk_full = "raykernel: I/O error writing standard output: No space left on device\n";
+
+TEST(WriteErrors, EveryCommandExitsWithTwoWhenStandardOutputIsFull) {
+  const std::string planes = temp_path("planes.txt");
+  write_file(planes, "0 0 5 0 0 1\n");
+  const std::string query = "0 0 0 0 0 1 0 0 5 0 0 1\n";
+  const std::string png = temp_path("full.png");
+  const struct {
+    std::string args, input;
+  } commands[] = {
+      {"", ""},
+      {"--help", ""},
+      {"--version", ""},
+      {"classify --help", ""},
+      {"nearest --help", ""},
+      {"render --help", ""},
+      {"demo --help", ""},
+      {"render --print-demo-scene", ""},
+      {"demo --per-kind 3", ""},
+      {"classify", query},
+      {"classify --stats", query},
+      {"nearest --planes " + planes, "0 0 0 0 0 1\n"},
+      {"render --width 4 --height 2 --no-progress -o " + png, ""},
+  };
+  for (const auto& c : commands) {
+    const CliRun r = run_to(c.args, "/dev/full", c.input);
+    EXPECT_EQ(r.status, 2) << "raykernel " << c.args;
+    EXPECT_EQ(r.err, disk_full) << "raykernel " << c.args;
+  }
+}
+
+// The binary with `args`, `lines` copies of `line` written to its standard input by a thread, and a reader
+// of its standard output that reads one byte and closes the pipe; SIGPIPE is ignored (in the child too), so
+// writes to the closed pipe fail with EPIPE.
+struct ClosedReaderRun {
+  int status = -1;
+  std::string err;
+  bool input_all_written = false;
+};
+ClosedReaderRun run_with_closed_reader(const std::vector<std::string>& args, const std::string& line, int lines) {
+  std::signal(SIGPIPE, SIG_IGN);
+  int in[2], out[2];
+  if (pipe(in) != 0 || pipe(out) != 0) return {};
+  const std::string err_path = temp_path("closed_reader_stderr.txt");
+  const pid_t child = fork();
+  if (child == 0) {
+    dup2(in[0], 0);
+    dup2(out[1], 1);
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(err, 2);
+    for (int fd : {in[0], in[1], out[0], out[1], err}) close(fd);
+    std::vector<char*> argv{const_cast<char*>(cli.c_str())};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(cli.c_str(), argv.data());
+    _exit(127);
+  }
+  close(in[0]);
+  close(out[1]);
+  ClosedReaderRun r;
+  std::thread writer([&] {
+    std::string block;
+    for (int k = 0; k < 1000; ++k) block += line;
+    bool ok = true;
+    for (int k = 0; ok && k < lines / 1000; ++k)
+      for (std::size_t done = 0; ok && done < block.size();) {
+        const ssize_t n = write(in[1], block.data() + done, block.size() - done);
+        ok = n > 0;
+        if (ok) done += static_cast<std::size_t>(n);
+      }
+    r.input_all_written = ok;
+    close(in[1]);
+  });
+  char byte = 0;
+  EXPECT_EQ(read(out[0], &byte, 1), 1);
+  close(out[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  writer.join();
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream text;
+  text << e.rdbuf();
+  r.err = text.str();
+  return r;
+}
+
+TEST(WriteErrors, ClassifyAndNearestStopReadingWhenTheReaderLeaves) {
+  // 400,000 input lines (10 MB for classify). A command that kept reading after its output broke would
+  // consume all of them; one that stops exits after the first failed write, and the rest of the input is
+  // never written (the writer gets EPIPE once the command has exited).
+  const std::string planes = temp_path("closed_reader_planes.txt");
+  write_file(planes, "0 0 5 0 0 1\n");
+  const ClosedReaderRun classify = run_with_closed_reader({"classify"}, "0 0 0 0 0 1 0 0 5 0 0 1\n", 400000);
+  EXPECT_EQ(classify.status, 2);
+  EXPECT_EQ(classify.err, "raykernel: I/O error writing standard output: Broken pipe\n");
+  EXPECT_FALSE(classify.input_all_written);
+  const ClosedReaderRun nearest = run_with_closed_reader({"nearest", "--planes", planes}, "0 0 0 0 0 1\n", 400000);
+  EXPECT_EQ(nearest.status, 2);
+  EXPECT_EQ(nearest.err, "raykernel: I/O error writing standard output: Broken pipe\n");
+  EXPECT_FALSE(nearest.input_all_written);
+}
+
+// ---- Messages ------------------------------------------------------------------------------------------
+
+TEST(Messages, OpenFailuresGiveTheFileAndTheSystemsReason) {
+  const std::string dir = ::testing::TempDir();
+  EXPECT_EQ(run("classify /nonexistent/queries.txt").err,
+            "raykernel classify: cannot open file '/nonexistent/queries.txt': No such file or directory\n");
+  CliRun r = run("classify " + dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel classify: cannot open file '" + dir + "': Is a directory\n");
+  const std::string planes = temp_path("open_planes.txt");
+  write_file(planes, "0 0 5 0 0 1\n");
+  r = run("nearest --planes " + dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel nearest: cannot open planes file '" + dir + "': Is a directory\n");
+  r = run("nearest --planes " + planes + " /nonexistent/rays.txt");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel nearest: cannot open rays file '/nonexistent/rays.txt': No such file or directory\n");
+  if (geteuid() != 0) {  // root reads every file
+    const std::string locked = temp_path("locked.txt");
+    write_file(locked, "0 0 0 0 0 1 0 0 5 0 0 1\n");
+    chmod(locked.c_str(), 0);
+    EXPECT_EQ(run("classify " + locked).err, "raykernel classify: cannot open file '" + locked + "': Permission denied\n");
+  }
+}
+
+TEST(Messages, BytesThatAreNotPrintableAreEscapedEverywhere) {
+  // A file name, an option and a command with a control byte (0x01) and an escape (0x1b): shown as \x01 and
+  // \x1b, never raw, so a message cannot move the cursor or change a terminal's colours.
+  const std::string odd = "\"$(printf '/nonexistent/a\\001b\\033[31m')\"";
+  EXPECT_EQ(run("classify " + odd).err,
+            "raykernel classify: cannot open file '/nonexistent/a\\x01b\\x1b[31m': No such file or directory\n");
+  EXPECT_EQ(run("nearest --planes " + odd).err,
+            "raykernel nearest: cannot open planes file '/nonexistent/a\\x01b\\x1b[31m': No such file or directory\n");
+  EXPECT_EQ(run("classify \"$(printf -- '--x\\001')\"").err,
+            "raykernel classify: unknown option '--x\\x01' (see raykernel classify --help)\n");
+  EXPECT_EQ(run("\"$(printf 'x\\033')\"").err.rfind("raykernel: unknown command 'x\\x1b'\n", 0), 0u);
+}
+
+// ---- Options -------------------------------------------------------------------------------------------
+
+TEST(Options, DoubleDashEndsTheOptions) {
+  // A query file whose name starts with '-': an option before "--", the file after it.
+  const std::string dir = temp_path("dashdir");
+  std::filesystem::create_directories(dir);
+  write_file(dir + "/-q.txt", "0 0 0 0 0 1 0 0 5 0 0 1\n");
+  write_file(dir + "/-p.txt", "0 0 5 0 0 1\n");
+  write_file(dir + "/-r.txt", "0 0 0 0 0 1\n");
+  const std::string in_dir = "cd '" + dir + "' && " + cli;
+  auto shell = [&](const std::string& args) {
+    FILE* p = popen((in_dir + " " + args + " 2>&1").c_str(), "r");
+    std::string out;
+    char buf[4096];
+    for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+    const int status = pclose(p);
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, out);
+  };
+  EXPECT_EQ(shell("classify -- -q.txt"), std::make_pair(0, std::string("hit 5\n")));
+  EXPECT_EQ(shell("classify --exact-t -- -q.txt"), std::make_pair(0, std::string("hit 5 5/1\n")));
+  EXPECT_EQ(shell("classify -q.txt").first, 2);  // an unknown option
+  EXPECT_EQ(shell("nearest --planes -p.txt -- -r.txt"), std::make_pair(0, std::string("hit 0 5\n")));
+  EXPECT_EQ(shell("classify -- -q.txt --hex").first, 2);  // "--hex" after "--" is a second file
+}
+
+TEST(Options, DemoValuesAreCheckedNotClamped) {
+  CliRun r = run("demo --per-kind");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel demo: --per-kind needs a value (an integer from 1 to 100000000)\n");
+  r = run("demo --seed");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "raykernel demo: --seed needs a value (an integer from 0 to 18446744073709551615)\n");
+  // 2^64 and above, and negative values (strtoull would wrap -1 to 2^64 − 1), are refused.
+  for (const char* seed : {"18446744073709551616", "99999999999999999999999", "-1", "+5", "0x10", " 7"}) {
+    r = run(std::string("demo --per-kind 1 --seed '") + seed + "'");
+    EXPECT_EQ(r.status, 2) << seed;
+    EXPECT_EQ(r.err, std::string("raykernel demo: bad value for --seed: '") + seed +
+                         "' (an integer from 0 to 18446744073709551615)\n");
+  }
+  for (const char* per_kind : {"0", "100000001", "1e3"}) {
+    r = run(std::string("demo --per-kind ") + per_kind);
+    EXPECT_EQ(r.status, 2) << per_kind;
+  }
+  // The largest seed is accepted, and both spellings of an option work.
+  r = run("demo --per-kind=2 --seed=18446744073709551615");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("(seed 18446744073709551615)"), std::string::npos) << r.out;
+}
 
 }  // namespace
 }  // namespace raykernel::cli

@@ -1,6 +1,6 @@
 // docs/contract.md §1–§2 on hand-derived cases: every expected value is worked out in the comment beside it, from
 // den = d·n, num = (p − o)·n and the rounding rules, not taken from any code. Each case runs through
-// `intersect` (certified) and `intersect_exact` (reference); where the lecture's formula in plain doubles
+// `intersect` (certified) and `intersect_exact` (reference); where the textbook formula (docs/ray-casting.md §2) in plain doubles
 // gets it wrong, the case says so and checks that `intersect_naive` indeed differs.
 #include "support/oracle.hpp"
 
@@ -34,7 +34,7 @@ void expect_answer(const Ray& r, const Plane& p, Relation relation, double t) {
   }
 }
 
-// ---- The seed's formula and definitions (docs/ray-casting.md §2) ------------------------------------------------------
+// ---- The formula and definitions of docs/ray-casting.md §2 ------------------------------------------------------
 
 TEST(Seed, RayTowardsPlaneHitsAtTheDistanceAlongAUnitDirection) {
   // Plane z = 5 (p = (0,0,5), n = (0,0,1)); ray from the origin along +z. den = 1, num = 5: t = 5, and

@@ -3,12 +3,14 @@
 // probed; a deliberately contracting build of the same expression shows the probe can tell; and the run-time
 // check is exercised by switching the rounding mode and flush-to-zero on and off.
 #include "fp_probe.hpp"
+#include "support/entry_points.hpp"
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfenv>
 #if defined(__x86_64__)
 #include <xmmintrin.h>
@@ -38,57 +40,111 @@ TEST(FpEnvironment, ProbeDetectsAContractingBuild) {
   EXPECT_EQ(test_support::contracting_probe(probe_a, probe_c), 0x1p-60);
 }
 
-// A near tie: num = 2^53 + 1 + 2^-27, den = 2^53, t = 1 + 2^-53 + 2^-80 → RN is 1 + 2^-52 (hand-derived in
-// contract_test.cpp). Under a directed rounding mode the certified stages' bounds do not hold, so
-// `intersect` must notice and still give the round-to-nearest answer.
-const Ray near_tie_ray{{-1, 0, 0}, {0x1p53, 0, 0}};
-const Plane near_tie_plane{{0x1p53, 0x1p-27, 0}, {1, 1, 0}};
+// ---- The caller's environment ----------------------------------------------------------------------------
+//
+// Every public entry point, run on subnormal-heavy hard queries (ray–plane and ray–triangle) in each
+// non-default environment a caller can leave (set here by hand), must give the answers it gives in the
+// default environment, bit for bit, and leave the environment exactly as it found it
+// (tests/support/entry_points.hpp). Before this was
+// fixed, DAZ made `intersect` throw "plane normal is the zero vector" for the normal (2^-1070, 0, 0) and FTZ
+// made it answer t = 0 for t = 2^-1070 (the first two queries of the list).
+
+const std::vector<testkit::Query>& queries() {
+  static const std::vector<testkit::Query> q = test_support::environment_test_queries(3000, 0xe5e5);
+  return q;
+}
+const std::vector<testkit::TriangleQuery>& triangle_queries() {
+  static const std::vector<testkit::TriangleQuery> q = test_support::environment_test_triangle_queries(3000, 0x7e5e5);
+  return q;
+}
+test_support::EntryPointAnswers answers_here() {
+  return test_support::answers_of_every_entry_point(queries(), triangle_queries(), 7);
+}
+const test_support::EntryPointAnswers& default_answers() {
+  static const test_support::EntryPointAnswers a = answers_here();
+  return a;
+}
+
+void expect_same_answers(const test_support::EntryPointAnswers& got, const std::string& mode) {
+  const test_support::EntryPointAnswers& want = default_answers();
+  ASSERT_EQ(got.names, want.names);
+  for (std::size_t k = 0; k < want.names.size(); ++k) {
+    int reported = 0;
+    for (std::size_t i = 0; i < want.answers[k].size() && reported < 3; ++i) {
+      if (got.answers[k][i] == want.answers[k][i]) continue;
+      ++reported;
+      ADD_FAILURE() << mode << ": " << want.names[k] << ", query " << i << " ("
+                    << test_support::query_text(want, k, i, queries(), triangle_queries()) << "):\n  default: " << want.answers[k][i]
+                    << "\n  here:    " << got.answers[k][i];
+    }
+  }
+}
 
 TEST(FpEnvironment, DefaultEnvironmentIsRecognized) { EXPECT_TRUE(floating_point_environment_is_default()); }
 
-TEST(FpEnvironment, DirectedRoundingFallsBackToTheExactStage) {
+TEST(FpEnvironment, TheDazAndFtzCasesHaveTheirContractAnswers) {
+  // Hand-derived: d·n = 2^-1070 > 0, (p − o)·n = 5·2^-1070, t = 5; and num = 2^-1070, den = 1, t = 2^-1070.
+  const test_support::EntryPointAnswers& a = default_answers();
+  EXPECT_EQ(a.answers[0][0], "hit " + test_support::bits_of(5.0));
+  EXPECT_EQ(a.answers[0][1], "hit " + test_support::bits_of(0x1p-1070));
+  // The subnormal triangle (entry_points.hpp): hit inside at t = 1, coordinates (1/2, 1/4, 1/4); the ray
+  // passes through the triangle's interior, so the owned rule agrees.
+  const auto k = static_cast<std::size_t>(
+      std::find(a.names.begin(), a.names.end(), "triangle intersect") - a.names.begin());
+  ASSERT_LT(k, a.names.size());
+  EXPECT_EQ(a.answers[k][0], "hit inside owned " + test_support::bits_of(1.0) + " " + test_support::bits_of(0.5) +
+                                 " " + test_support::bits_of(0.25) + " " + test_support::bits_of(0.25));
+}
+
+TEST(FpEnvironment, DirectedRoundingChangesNothing) {
+  (void)default_answers();  // the queries and the reference, computed in the default environment first
   for (int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
     ASSERT_EQ(std::fesetround(mode), 0);
     const bool recognized = !floating_point_environment_is_default();
-    const TracedIntersection r = intersect_traced(near_tie_ray, near_tie_plane);
+    const test_support::EntryPointAnswers got = answers_here();
+    const int after = std::fegetround();
     std::fesetround(FE_TONEAREST);
     EXPECT_TRUE(recognized) << "mode " << mode;
-    EXPECT_EQ(r.relation_stage, Stage::exact);
-    EXPECT_EQ(r.intersection.t, 0x1.0000000000001p+0);
+    EXPECT_EQ(after, mode);
+    expect_same_answers(got, "rounding mode " + std::to_string(mode));
   }
 }
 
 #if defined(__x86_64__)
-TEST(FpEnvironment, FlushToZeroFallsBackToTheExactStage) {
-  // FTZ (bit 15) and DAZ (bit 6), as -ffast-math's startup code sets them. Products of 2^-600 underflow;
-  // with DAZ a subnormal input would read as zero. The answer (t = 1, hand-derived in contract_test.cpp)
-  // must not change.
-  const Ray r{{0, 0, 0}, {0x1p-600, 0, 0}};
-  const Plane p{{0x1p-600, 0, 0}, {0x1p-600, 0, 0}};
+// MXCSR: DAZ bit 6, FTZ bit 15; exception masks bits 7–12 (invalid, denormal, divide-by-zero, overflow,
+// underflow, precision); flags bits 0–5.
+void expect_same_answers_with_mxcsr(unsigned mxcsr, const std::string& mode) {
+  (void)default_answers();  // the queries and the reference, computed in the default environment first
   const unsigned saved = _mm_getcsr();
-  _mm_setcsr(saved | 0x8040u);
+  _mm_setcsr(mxcsr);
   const bool recognized = !floating_point_environment_is_default();
-  const TracedIntersection got = intersect_traced(r, p);
+  const test_support::EntryPointAnswers got = answers_here();
+  const unsigned after = _mm_getcsr();
   _mm_setcsr(saved);
-  EXPECT_TRUE(recognized);
-  EXPECT_EQ(got.relation_stage, Stage::exact);
-  EXPECT_EQ(got.intersection.relation, Relation::hit);
-  EXPECT_EQ(got.intersection.t, 1.0);
+  EXPECT_EQ(recognized, (mxcsr & 0xFFC0u) != 0x1F80u) << mode;
+  EXPECT_EQ(after, mxcsr) << mode << ": the environment was not restored exactly";
+  expect_same_answers(got, mode);
 }
 
-TEST(FpEnvironment, UnmaskedExceptionsFallBackToTheExactStage) {
-  // A parallel ray: the branch-free fast path would divide by d·n = 0 on the way to discarding the
-  // quotient; with division-by-zero and invalid-operation traps enabled that must not happen.
-  const Ray r{{0, 0, 0}, {1, 0, 0}};
-  const Plane p{{0, 0, 5}, {0, 0, 1}};
-  const unsigned saved = _mm_getcsr();
-  _mm_setcsr(saved & ~0x0280u);  // unmask ZM (bit 9) and IM (bit 7)
-  const bool recognized = !floating_point_environment_is_default();
-  const TracedIntersection got = intersect_traced(r, p);
-  _mm_setcsr(saved);
-  EXPECT_TRUE(recognized);
-  EXPECT_EQ(got.relation_stage, Stage::exact);
-  EXPECT_EQ(got.intersection.relation, Relation::parallel);
+TEST(FpEnvironment, FlushToZeroAndDenormalsAreZeroChangeNothing) {
+  expect_same_answers_with_mxcsr(0x1F80u | 0x8000u, "FTZ");
+  expect_same_answers_with_mxcsr(0x1F80u | 0x0040u, "DAZ");
+  expect_same_answers_with_mxcsr(0x1F80u | 0x8040u, "FTZ+DAZ (what -ffast-math sets)");
+}
+
+TEST(FpEnvironment, UnmaskedExceptionsNeitherTrapNorChangeAnything) {
+  // Each exception unmasked alone, then all of them: the fast paths divide by zero, form inf − inf or
+  // touch subnormals on some of these queries, which must not trap.
+  const char* names[6] = {"invalid", "denormal", "divide-by-zero", "overflow", "underflow", "precision"};
+  for (int bit = 0; bit < 6; ++bit)
+    expect_same_answers_with_mxcsr(0x1F80u & ~(0x80u << bit), std::string("trap on ") + names[bit]);
+  expect_same_answers_with_mxcsr(0x0000u, "every trap enabled");
+}
+
+TEST(FpEnvironment, StickyFlagsAreKeptExactly) {
+  // All six flags already raised by the caller, default control bits: still the default environment, and
+  // the flags stay exactly as they were (the library's own inexact results do not clear or add any).
+  expect_same_answers_with_mxcsr(0x1F80u | 0x3Fu, "all flags raised");
 }
 #endif
 

@@ -9,9 +9,11 @@
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
-#include "certified/round_quotient.hpp"
+#include "certified/quotient_rounding.hpp"
+#include "certified/ray_plane_query.hpp"
 
 #include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/reference_check.hpp>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +28,11 @@ using detail::Sign;
 using testkit::Query;
 
 int sign_of(const mpq_class& q) { return sgn(q); }
+
+// round_quotient as the cascade calls it: the divisor prepared from den's enclosure.
+std::optional<double> round_quotient(const Enclosure& num, const Enclosure& den) {
+  return detail::round_quotient_if_certain(num, detail::prepare_divisor(den));
+}
 
 // Whether |exact − (hi + lo)| ≤ radius, in exact arithmetic.
 bool encloses(const Enclosure& e, const mpq_class& exact) {
@@ -83,6 +90,11 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
     // Stage 2: the enclosures contain the exact values; the signs they certify are right.
     const Enclosure den2 = detail::compensated_dot3(in.d, zero, in.n, den1);
     const Enclosure num2 = detail::compensated_dot3(in.diff, in.diff_lo, in.n, num1);
+    // The α = 0 form den uses in the cascade computes the same bits (g_i = l_i = RN(0·b_i + l_i)).
+    const Enclosure den2_exact = detail::compensated_dot3_exact(in.d, in.n, den1);
+    ASSERT_TRUE(test_support::same_bits(den2.hi, den2_exact.hi) && test_support::same_bits(den2.lo, den2_exact.lo) &&
+                test_support::same_bits(den2.radius, den2_exact.radius))
+        << "compensated_dot3_exact differs from compensated_dot3 with α = 0, query " << i;
     ASSERT_TRUE(encloses(den2, exact.den)) << "den enclosure, query " << i;
     ASSERT_TRUE(encloses(num2, exact.num)) << "num enclosure, query " << i;
     for (const auto& [e, value] : {std::pair{den2, exact.den}, std::pair{num2, exact.num}}) {
@@ -113,7 +125,7 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
     // round_quotient: whatever it returns is RN(num/den).
     if (exact.num != 0 && exact.den != 0) {
       const double expected = test_support::round_by_integer_division(exact.num / exact.den);
-      if (const std::optional<double> t = detail::round_quotient(num2, den2)) {
+      if (const std::optional<double> t = round_quotient(num2, den2)) {
         ++decided[2];
         ASSERT_TRUE(test_support::same_bits(*t, expected)) << "round_quotient, query " << i << ": " << std::hexfloat << *t
                                                    << " vs " << expected;
@@ -129,7 +141,7 @@ TEST_P(StagesOnHardQueries, EachStageIsRightWhenItDecides) {
       };
       const std::optional<Enclosure> exact_num = tight(exact.num), exact_den = tight(exact.den);
       if (exact_num && exact_den) {
-        if (const std::optional<double> t = detail::round_quotient(*exact_num, *exact_den)) {
+        if (const std::optional<double> t = round_quotient(*exact_num, *exact_den)) {
           ++decided[3];
           ASSERT_TRUE(test_support::same_bits(*t, expected)) << "round_quotient on tight enclosures, query " << i;
         }
@@ -163,14 +175,14 @@ TEST(RoundQuotient, DeclinesExactTies) {
   // t = 1 + 3·2^-53 is a tie, which no enclosure of positive width can decide.
   const Enclosure num{0x1p53, 3, 0x1p-1074};
   const Enclosure den{0x1p53, 0, 0x1p-1074};
-  EXPECT_FALSE(detail::round_quotient(num, den).has_value());
+  EXPECT_FALSE(round_quotient(num, den).has_value());
 }
 
 TEST(RoundQuotient, DecidesAClearCase) {
   // num = 1, den = 3 known to within 2^-200: 1/3 is far from any midpoint.
   const Enclosure num{1, 0, 0x1p-200};
   const Enclosure den{3, 0, 0x1p-200};
-  const std::optional<double> t = detail::round_quotient(num, den);
+  const std::optional<double> t = round_quotient(num, den);
   ASSERT_TRUE(t.has_value());
   EXPECT_EQ(*t, 0x1.5555555555555p-2);
 }
@@ -179,7 +191,7 @@ TEST(RoundQuotient, DeclinesWideEnclosures) {
   // den known only to 2^-40 relative: t's rounding cannot be certified.
   const Enclosure num{1, 0, 0};
   const Enclosure den{3, 0, 0x1p-40};
-  EXPECT_FALSE(detail::round_quotient(num, den).has_value());
+  EXPECT_FALSE(round_quotient(num, den).has_value());
 }
 
 TEST(Expansion, ZeroIsTheSingleComponentZero) {
@@ -202,6 +214,39 @@ TEST(Expansion, UnderflowingProductIsFlaggedInexact) {
   detail::ExpansionBuilder ok;
   (void)ok.product(0x1p-484, 0x1p-484);  // 2^-968: exact
   EXPECT_TRUE(ok.exact());
+}
+
+}  // namespace
+}  // namespace raykernel
+
+namespace raykernel {
+namespace {
+
+// intersect's and relation's fast paths evaluate den and num side by side as the two lanes of a Lanes2;
+// the proofs model each value's own evaluation (fast_answer on RayPlaneTermsT<double>). Every lane must be
+// that evaluation, bit for bit: the certification, the relation and t.
+TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
+  std::size_t certified = 0, queries = 0;
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
+    testkit::SplitMix64 rng(0x1a2e5 + static_cast<std::uint64_t>(kind));
+    const testkit::BitSource bits = [&rng] { return rng(); };
+    for (int i = 0; i < 2000; ++i, ++queries) {
+      const testkit::Query q = testkit::make_query(kind, bits);
+      const detail::RayPlaneTerms terms = detail::ray_plane_terms(q.ray, q.plane);
+      const detail::FastAnswer scalar = detail::fast_answer(terms);
+      const detail::FastAnswer paired = detail::fast_answer(q.ray, q.plane);
+      ASSERT_EQ(scalar.certain, paired.certain) << testkit::to_string(q);
+      ASSERT_EQ(scalar.relation_by_filter, paired.relation_by_filter) << testkit::to_string(q);
+      const detail::FastRelationT<double> rs = detail::fast_relation(terms), rp = detail::fast_relation(q.ray, q.plane);
+      ASSERT_EQ(rs.certain, rp.certain) << testkit::to_string(q);
+      if (rs.certain) ASSERT_EQ(rs.behind, rp.behind) << testkit::to_string(q);
+      if (!scalar.certain) continue;
+      ++certified;
+      ASSERT_EQ(scalar.behind, paired.behind) << testkit::to_string(q);
+      ASSERT_TRUE(test_support::same_bits(scalar.t, paired.t)) << testkit::to_string(q);
+    }
+  }
+  EXPECT_GT(certified, queries / 5);  // the easy kinds (about a quarter of these): the comparison is not vacuous
 }
 
 }  // namespace

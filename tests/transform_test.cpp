@@ -1,4 +1,4 @@
-// Rays and transforms (docs/ray-casting.md §1.3–1.4): the seed's own examples, hand-derived rays, the refusals, and
+// Rays and transforms (docs/ray-casting.md §1.3–1.4): the examples of the notes, hand-derived rays, the refusals, and
 // RapidCheck properties comparing the double API with exact rational evaluation of the same templated
 // formulas (raykernel/transform.hpp, namespace formulas): exact where binary64 is exact, and within the
 // standard rounding-error bound (Higham, "Accuracy and Stability of Numerical Algorithms", §3.1:
@@ -45,7 +45,7 @@ Matrix4<mpq_class> exact_matrix(const Transform& t) {
 }
 Vector3<mpq_class> exact_vector(const Vec3& v) { return {mpq_class(v.x), mpq_class(v.y), mpq_class(v.z)}; }
 
-// ---- The seed's examples (§1.4) --------------------------------------------------------------------------
+// ---- The examples of docs/ray-casting.md §1.4 --------------------------------------------------------------------------
 
 TEST(SeedExamples, TranslationMovesPointsButNotDirections) {
   // "consider a direction (1, 0, 0) pointing from ray origin (5, 1, 1) towards the point (6, 1, 1). Under a
@@ -142,7 +142,7 @@ TEST(Rays, FieldOfView) {
 }
 
 TEST(Rays, NdcRaysThroughTheInversePerspectiveAreCameraRays) {
-  // The seed's recommended route: NDC ray → inverse perspective projection (two points and their
+  // The notes' recommended route (docs/ray-casting.md §1.3): NDC ray → inverse perspective projection (two points and their
   // difference) → camera space. The result starts on the near-plane window at the pixel's point and
   // points away from the eye along it.
   const double l = -2, r = 2, b = -1, t = 1, n = 1, f = 100;

@@ -138,6 +138,10 @@ HAND_CLI = {
                            "0x1p-1000 0 0 -0x1p600 0 0 0 0 0 1 0 0\n"
                            "-1 0 0 0x1p53 0 0 0x1p53 0 0 1 0 0\n",
     "hand-long-token": "0 0 0 1 0 0 1 0 0 1 0 " + "1" * 400 + "\n0 0 0 1 0 0 1 0 0 1 0 0." + "0" * 400 + "1\n",
+    "hand-byte-order-mark": "\xef\xbb\xbf0 0 0 0 0 1 0 0 5 0 0 1\n\xef\xbb\xbf0 0 0 0 0 1 0 0 5 0 0 1\n",
+    "hand-rounds-to-zero": "0 0 0 1e-400 0 0 1 0 0 1 0 0\n0 0 0 1 0 0 -2e-324 0 0 1 0 0\n0 0 0 1 0 0 1 0 0 1 0x1p-1075 0\n"
+                           "0 0 0 4e-324 0 0 1 0 0 1 0 0\n0 0 0 1 0 0 1 0 0 1 0 0e-400\n0 0 0 1 0 0 1 0 0 1 0 2.4703282292062328e-324\n",
+    "hand-messages": "0 0 0 0 0 1 0 0 5 0 0 1 # comment\n0,0,0,0,0,1,0,0,5,0,0,1\n0 0 0 0 0 1 0 0 5 0 0 \xe2\x80\xae1\n",
 }
 
 CLASSIFY_DICT = [
@@ -345,6 +349,9 @@ HAND_NEAREST_CLI = {
                            "0 0 0 0 0 0x1p-1000\n0 0 0 0 0 -0x1p-1000\n0 0 0 0x1p-600 0 0x1p-600\n",
     "hand-control-bytes": "0 0 5 0 0 1\x0b\n\x0c0 0 3 0 0 1\n%%\n0 0 0 0 0 1\x00\n\xff 0 0 0 0 1\n0 0 0 0 0 1\x7f\n",
     "hand-long-token": "0 0 5 0 0 " + "1" * 400 + "\n%%\n0 0 0 0 0 0." + "0" * 400 + "1\n",
+    "hand-byte-order-mark": "\xef\xbb\xbf0 0 5 0 0 1\n%%\n0 0 0 0 0 1\n",
+    "hand-rounds-to-zero": "0 0 5 0 0 1\n%%\n0 0 0 0 0 1e-400\n0 0 0 0 0 -2e-324\n0 0 0 0 0 4e-324\n",
+    "hand-rounds-to-zero-plane": "0 0 5 0 0 1\n0 0 5 0 0 1e-400\n%%\n0 0 0 0 0 1\n",
 }
 
 
@@ -367,10 +374,8 @@ def write_nearest_cli(fuzz):
 # ---- scene --------------------------------------------------------------------------------------------------
 # Scene files (fuzz/fuzz_scene.cpp): the example scenes, the built-in demo, and broken variants of the demo.
 def demo_scene_text():
-    """The text of demo_scene_json() (cli/demo_scene.cpp's raw string literal)."""
-    source = (ROOT / "cli" / "demo_scene.cpp").read_text()
-    start = source.index('R"json(') + len('R"json(')
-    return source[start:source.index(')json"', start)]
+    """The text of demo_scene_json(): scenes/demo.json, which the build compiles in."""
+    return (ROOT / "scenes" / "demo.json").read_text()
 
 
 def scene_variants(demo):
@@ -470,7 +475,17 @@ def scene_variants(demo):
             ("syntax-deep-nesting", "[" * 2000 + "]" * 2000), ("syntax-deep-nesting-in-field", text.replace('"fog": {"distance": 150}', '"fog": ' + "[" * 500 + "]" * 500)),
             ("syntax-invalid-utf8", text.replace('"floor"', '"fl\udcffor"', 1)),
             ("duplicate-keys", text.replace('"fog": {', '"fog": {"distance": -1, ', 1)),
-            ("numbers-as-big-integers", text.replace('"width": 960', '"width": 18446744073709551616', 1))]
+            ("duplicate-keys-nested", text.replace('"name": "pool",', '"name": "pool", "name": "pond",', 1)),
+            ("numbers-as-big-integers", text.replace('"width": 960', '"width": 18446744073709551616', 1)),
+            ("integer-with-exponent", text.replace('"width": 960', '"width": 9.6e2', 1)),
+            ("integer-with-fraction-zero", text.replace('"seed": 1', '"seed": 1.000', 1)),
+            ("seed-two-64", text.replace('"seed": 1', '"seed": 1.8446744073709552e19', 1)),
+            ("seed-minus-zero", text.replace('"seed": 1', '"seed": -0.0', 1)),
+            ("minimal", '{"camera": {"eye": [0, 2, 6], "target": [0, 0, 0]},\n "planes": [{"point": [0, 0, 0], "normal": [0, 1, 0]},'
+                        ' {"point": [0, 0, -4], "normal": [0, 0, 1]}]}'),
+            ("minimal-looking-down", '{"camera": {"eye": [0, 5, 0], "target": [0, 0, 0]}, "planes": []}'),
+            ("ray-start-eye", text.replace('"near": 0.1}', '"near": 0.1, "ray_start": "eye"}', 1)),
+            ("ray-start-unknown", text.replace('"near": 0.1}', '"near": 0.1, "ray_start": "pupil"}', 1))]
     return out
 
 
@@ -489,11 +504,12 @@ def write_scene(fuzz):
     tokens = ['{', '}', '[', ']', ':', ',', '"', 'true', 'false', 'null', '0', '-0', '1', '-1', '0.5', '1e308', '1e309',
               '1e400', '-1e400', '5e-324', '1.7976931348623157e308', '2.2250738585072014e-308', '179.99999999999997',
               '18446744073709551615', '18446744073709551616', '-9223372036854775809', '\\u0000', '\\"', '\\/', '~0', '~1',
-              '[0, 0, 0]', '[0, 1, 0]', '[1e308, 1e308, 1e308]', '[0.5, 0.5, 0.5]']
+              '[0, 0, 0]', '[0, 1, 0]', '[1e308, 1e308, 1e308]', '[0.5, 0.5, 0.5]', '1e3', '9.6e2', '1.8446744073709552e19',
+              '"eye"', '"near_plane"']
     fields = ["description", "image", "width", "height", "samples_per_pixel", "seed", "camera", "eye", "target", "up",
               "perspective", "orthographic", "fov_degrees", "near", "window", "left", "right", "bottom", "top",
               "background", "horizon", "zenith", "fog", "distance", "planes", "name", "point", "normal", "color",
-              "checker", "colors", "size", "u_axis"]
+              "checker", "colors", "size", "u_axis", "ray_start"]
     with open(fuzz / "dict" / "scene.dict", "w") as f:
         f.write("# libFuzzer dictionary for fuzz_scene: JSON syntax, numbers at the edges of binary64, the scene format's\n"
                 "# field names (generated by fuzz/tools/make_seeds.py)\n")
@@ -572,13 +588,14 @@ def main():
                   "0x1p-1074", "0x1.fffffffffffffp1023", "0x1p1024", "4.9e-324", "2.4703282292062327e-324",
                   "2.4703282292062328e-324", "1.7976931348623157e308", "1.7976931348623158e308",
                   "1.7976931348623159e308", "2.2250738585072011e-308", "0.1", "1e16", "9007199254740993",
-                  "0 0 0 1 0 0 1 0 0 1 0 0\n", "0 0 0 0 0 0 ", "0 0 0 "]
+                  "0 0 0 1 0 0 1 0 0 1 0 0\n", "0 0 0 0 0 0 ", "0 0 0 ", "\xef\xbb\xbf", "1e-400", "-2e-324", "0x1p-1075",
+                  ","]
     with open(FUZZ / "dict" / "cli.dict", "w") as f:
         f.write("# libFuzzer dictionary for fuzz_cli: number syntax (generated by fuzz/tools/make_seeds.py)\n")
         for i, t in enumerate(cli_tokens):
             f.write(dict_line("t%02d" % i, t.encode("latin-1")))
     nearest_tokens = cli_tokens[:42] + ["%%\n", "\n%%\n", "0 0 0 0 0 1\n", "0 0 5 0 0 1\n", "0 0 0 ",
-                                        "0x1.bffffffffffffp+2", "0x1.c000000000001p+2"]
+                                        "0x1.bffffffffffffp+2", "0x1.c000000000001p+2", "\xef\xbb\xbf", "1e-400"]
     with open(FUZZ / "dict" / "nearest_cli.dict", "w") as f:
         f.write("# libFuzzer dictionary for fuzz_nearest_cli: number syntax, the %% line between the planes and the\n"
                 "# rays, plane and ray lines (generated by fuzz/tools/make_seeds.py)\n")

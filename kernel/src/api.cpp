@@ -1,81 +1,115 @@
-// The public entry points: validation at the boundary, then the certified cascade, the exact reference or
-// the naive baseline.
+// The public ray–plane entry points: the default floating-point environment for the call
+// (fp_environment.hpp), the fast path on raw input, and — for what it does not certify — validation at the
+// boundary (validation.hpp) and the rest of the cascade from the same per-query state
+// (certified/ray_plane_query.hpp); or the exact reference; or the naive baseline.
 #include <raykernel/raykernel.hpp>
 
 #include "certified/fp_requirements.hpp"
-#include "certified/intersect_certified.hpp"
-#include "entry_checks.hpp"
-#include "fp_probe.hpp"
+#include "certified/multiversion.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/exact.hpp"
+#include "fp_environment.hpp"
+#include "fp_probe.hpp"
 #include "ray_plane_formula.hpp"
+#include "validation.hpp"
 
-#include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
-
 
 namespace raykernel {
 namespace {
 
 void throw_if_invalid(const Ray& ray, const Plane& plane) {
-  if (detail::plausibly_valid(ray, plane)) return;
-  if (std::optional<std::string> reason = validate(ray, plane)) throw invalid_input(*reason);
+  if (detail::is_valid(ray) & detail::is_valid(plane)) [[likely]]
+    return;
+  throw invalid_input(*validate(ray, plane));
 }
 
-// The certified answer for any input. The fast path needs no validation (a certified answer implies valid
-// input, certified/fast_path.hpp); the full cascade validates before it computes.
-inline TracedIntersection certified(const Ray& ray, const Plane& plane) {
-  if (!detail::default_floating_point_environment()) [[unlikely]] {
-    throw_if_invalid(ray, plane);
-    return {detail::exact::intersect(ray, plane), Stage::exact, Stage::exact};
-  }
-  return detail::intersect_certified(ray, plane);
+// The multiversioned functions below (certified/multiversion.hpp) never throw: GCC 12 treats a
+// target_clones function as nothrow, so its callers would skip their cleanups (here: restoring the
+// caller's floating-point environment) if an exception passed through one. Validation, which throws, is
+// done between them.
+
+// The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
+// caller reports), else the cascade's answer. Out of line: the fast path stays small. The cascade starts
+// from the same terms the fast path computed (RayPlaneCascade recomputes them with the same operations:
+// cheaper than storing them on every call, which costs the fast path about 40 instructions).
+[[gnu::noinline]] std::optional<Intersection> intersection_rest(const Ray& ray, const Plane& plane) noexcept {
+  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  detail::RayPlaneCascade query(ray, plane);
+  return detail::intersect_cascade(query).intersection;
+}
+
+[[gnu::noinline]] std::optional<Relation> relation_rest(const Ray& ray, const Plane& plane) noexcept {
+  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  detail::RayPlaneCascade query(ray, plane);
+  const detail::CertifiedSigns signs = detail::certified_signs(query);
+  return detail::relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den));
+}
+
+// The whole certified path for one query, in the default environment: the fast path, then the rest.
+RAYKERNEL_MULTIVERSION
+std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& plane) noexcept {
+  const detail::FastAnswer a = detail::fast_answer(ray, plane);
+  if (a.certain) [[likely]]
+    return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
+  return intersection_rest(ray, plane);
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<Relation> certified_relation(const Ray& ray, const Plane& plane) noexcept {
+  const detail::FastRelationT<double> r = detail::fast_relation(ray, plane);
+  if (r.certain) [[likely]]
+    return r.behind ? Relation::behind : Relation::hit;
+  return relation_rest(ray, plane);
 }
 
 }  // namespace
 
-std::optional<std::string> validate(const Ray& ray, const Plane& plane) {
-  struct Field {
-    const char* name;
-    const Vec3& value;
-  };
-  const Field fields[] = {{"ray origin", ray.origin},
-                          {"ray direction", ray.direction},
-                          {"plane point", plane.point},
-                          {"plane normal", plane.normal}};
-  for (const Field& f : fields) {
-    const double component[3] = {f.value.x, f.value.y, f.value.z};
-    for (int i = 0; i < 3; ++i) {
-      if (std::isnan(component[i])) return std::string(f.name) + " " + "xyz"[i] + " is NaN";
-      if (std::isinf(component[i]))
-        return std::string(f.name) + " " + "xyz"[i] + " is " + (component[i] > 0 ? "+inf" : "-inf");
-    }
-  }
-  const Vec3& d = ray.direction;
-  if (d.x == 0 && d.y == 0 && d.z == 0) return std::string("ray direction is the zero vector");
-  const Vec3& n = plane.normal;
-  if (n.x == 0 && n.y == 0 && n.z == 0) return std::string("plane normal is the zero vector");
-  return std::nullopt;
+bool floating_point_environment_is_default() noexcept { return detail::fp_environment_is_default(); }
+
+Intersection intersect(const Ray& ray, const Plane& plane) {
+  const std::optional<Intersection> a = detail::in_default_fp_environment([&] { return certified_intersection(ray, plane); });
+  if (!a) [[unlikely]]
+    throw invalid_input(*validate(ray, plane));
+  return *a;
 }
 
-bool floating_point_environment_is_default() noexcept { return detail::default_floating_point_environment(); }
+Relation relation(const Ray& ray, const Plane& plane) {
+  const std::optional<Relation> r = detail::in_default_fp_environment([&] { return certified_relation(ray, plane); });
+  if (!r) [[unlikely]]
+    throw invalid_input(*validate(ray, plane));
+  return *r;
+}
 
-TracedIntersection intersect_traced(const Ray& ray, const Plane& plane) { return certified(ray, plane); }
-
-Intersection intersect(const Ray& ray, const Plane& plane) { return certified(ray, plane).intersection; }
+// The cascade stage by stage (filter first), so that the stages it reports are the cascade's, not the
+// fused fast path's.
+TracedIntersection intersect_traced(const Ray& ray, const Plane& plane) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    detail::RayPlaneCascade query(ray, plane);
+    return detail::intersect_cascade(query);
+  });
+}
 
 Intersection intersect_exact(const Ray& ray, const Plane& plane) {
-  throw_if_invalid(ray, plane);
-  return detail::exact::intersect(ray, plane);
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    return detail::exact::intersect(ray, plane);
+  });
 }
 
 ExactIntersection intersect_exact_rational(const Ray& ray, const Plane& plane) {
-  throw_if_invalid(ray, plane);
-  return detail::exact::intersect_rational(ray, plane);
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    return detail::exact::intersect_rational(ray, plane);
+  });
 }
 
+// The seed's formula in the caller's environment, as the baseline it is (no guarantee, no check).
 Intersection intersect_naive(const Ray& ray, const Plane& plane) noexcept {
-  const auto [num, den] = detail::ray_plane_terms<double>(ray, plane, [](double x) { return x; });
+  const auto [num, den] = detail::ray_plane_values<double>(ray, plane, [](double x) { return x; });
   if (den == 0) return {num == 0 ? Relation::in_plane : Relation::parallel, std::numeric_limits<double>::quiet_NaN()};
   const double t = num / den;
   return {t >= 0 ? Relation::hit : Relation::behind, t};

@@ -15,9 +15,13 @@ which of three checks catch it:
 Every mutation that changes behaviour must be caught by at least one; the script exits 1 otherwise. It is
 slow (each mutation rebuilds the kernel, the tests and five drivers): run it by hand, not in CI.
 
-    /usr/bin/python3 proofs/mutation/run.py [--workdir DIR] [--count N] [--only NAME,...]
+    /usr/bin/python3 proofs/mutation/run.py [--workdir DIR] [--count N] [--only NAME,...] [--tests REGEX]
+                                            [--in-place BUILD_DIR]
 
 The copy and its build live in --workdir (default /tmp/raykernel-mutation); the repository is not touched.
+--in-place mutates the repository's own files (restored after each mutation) and uses an existing,
+configured build directory (with RAYKERNEL_BUILD_PROOFS=ON), which saves the clean build. --tests limits the
+C++ tests to a ctest regex (the whole suite by default).
 """
 
 import argparse
@@ -43,14 +47,30 @@ MUTATIONS = [
      "const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);",
      "const V lo = ((g[0] + g[1]) + g[2]) + s2.lo;",
      "compensated_dot3: drop the second TwoSum's error from lo"),
-    ("drop_guard", "kernel/src/certified/dot3_compensated.hpp",
-     "return {s3.hi, lo, select(finite, radius, V{} + HUGE_VAL)};",
-     "return {s3.hi, lo, radius};",
-     "compensated_dot3: drop the finiteness guard of the radius"),
+    ("drop_guard", "kernel/src/certified/quotient_rounding.hpp",
+     "both(abs_D >= bounds::divisor_min_magnitude, abs_D <= bounds::divisor_max_magnitude);",
+     "abs_D >= bounds::divisor_min_magnitude;",
+     "prepare_divisor: drop the guard |D| ≤ 2^1000"),
     ("drop_absolute", "kernel/src/certified/dot3_filter.hpp",
-     "const V bound = relative_constant * r.magnitude + bounds::filter_absolute;",
-     "const V bound = relative_constant * r.magnitude;",
-     "dot3_filter_lanes: drop the absolute term 3μ of the bound"),
+     "return relative_constant * r.magnitude + bounds::filter_absolute;",
+     "return relative_constant * r.magnitude;",
+     "dot3_filter_bound: drop the absolute term 3μ of the bound"),
+    ("quotient_residual", "kernel/src/certified/quotient_rounding.hpp",
+     "const V r2 = fma(-q0, den.lo, N.lo);",
+     "const V r2 = fma(q0, den.lo, N.lo);",
+     "round_quotient: a wrong sign in the second residual"),
+    ("half_gap_shift", "kernel/src/certified/quotient_rounding.hpp",
+     "const Bits shift = (Bits{} + 53)",
+     "const Bits shift = (Bits{} + 52)",
+     "half_gap_to_nearer_neighbour: twice the half gap"),
+    ("quotient_test_factor", "kernel/src/certified/quotient_rounding.hpp",
+     "return {q, both(in_range, (x + y) * quotient_test_factor < h * abs_D)};",
+     "return {q, both(in_range, (x + y) < h * abs_D)};",
+     "round_quotient: the test without its factor 1 + 2^-45"),
+    ("exact_form_for_num", "kernel/src/certified/ray_plane_query.hpp",
+     "return compensated_dot3(q.diff, low, q.n, q.num);",
+     "return compensated_dot3_exact(q.diff, q.n, q.num);",
+     "num_compensated: the α = 0 form (the TwoDiff low parts dropped)"),
     ("comparison_ge", "kernel/src/certified/enclosure.hpp",
      "return sign_lanes(v > twice_radius, v < -twice_radius);",
      "return sign_lanes(v >= twice_radius, v < -twice_radius);",
@@ -77,28 +97,32 @@ MUTATIONS = [
      "inline constexpr double compensated_relative = 0x1p-101;",
      "inline constexpr double compensated_relative = 0x1p-103;",
      "error_bounds.hpp: the stage-2 constant 4 times too small"),
-    ("call_site_fast_path", "kernel/src/certified/fast_path.hpp",
-     "const IntegerOf<V> num_filter = dot3_filter_lanes(num1_, bounds::filter_num_relative);",
-     "const IntegerOf<V> num_filter = dot3_filter_lanes(num1_, bounds::filter_den_relative);",
-     "FastQuery::answer: num filtered with den's constant"),
-    ("call_site_cascade", "kernel/src/certified/intersect_certified.cpp",
-     "Sign num_sign = dot3_filter(query.num_rounded(), bounds::filter_num_relative, query.num_trivially_zero());",
-     "Sign num_sign = dot3_filter(query.num_rounded(), bounds::filter_den_relative, query.num_trivially_zero());",
-     "certified_signs: num filtered with den's constant"),
+    ("call_site_fast_path", "kernel/src/certified/ray_plane_query.hpp",
+     "return dot3_filter_lanes(q.num, bounds::filter_num_relative);",
+     "return dot3_filter_lanes(q.num, bounds::filter_den_relative);",
+     "num_filter_sign (fast_answer on the terms, the batch lanes): num filtered with den's constant"),
+    ("call_site_pair", "kernel/src/certified/ray_plane_query.hpp",
+     "const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});",
+     "const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_num_relative, bounds::filter_den_relative});",
+     "fast_answer(o, d, p, n): the Lanes2 constants swapped"),
+    ("call_site_cascade", "kernel/src/certified/ray_plane_cascade.hpp",
+     "return dot3_filter(q_.num, bounds::filter_num_relative, zero);",
+     "return dot3_filter(q_.num, bounds::filter_den_relative, zero);",
+     "RayPlaneCascade::num_filter: num filtered with den's constant"),
     ("call_site_nearest", "kernel/src/raycast/nearest_hit.cpp",
-     "Sign delta = compare_quotients_filter(filter_enclosure(qa.num_rounded(), bounds::filter_num_relative),",
-     "Sign delta = compare_quotients_filter(filter_enclosure(qa.num_rounded(), bounds::filter_den_relative),",
+     "Sign delta = compare_quotients_filter(filter_enclosure(a.num, bounds::filter_num_relative),",
+     "Sign delta = compare_quotients_filter(filter_enclosure(a.num, bounds::filter_den_relative),",
      "compare_hit_distances: num's enclosure with den's constant"),
-    ("low_part_dropped", "kernel/src/certified/ray_plane_stages.hpp",
-     "for (int i = 0; i < 3; ++i) diff_low_part[i] = two_diff(q_.p[i], q_.o[i]).lo;",
-     "for (int i = 0; i < 3; ++i) diff_low_part[i] = 0;",
-     "RayPlaneStages: num's stage 2 without the TwoDiff low parts"),
+    ("low_part_dropped", "kernel/src/certified/ray_plane_query.hpp",
+     "for (int i = 0; i < 3; ++i) low[i] = two_diff(q.p[i], q.o[i]).lo;",
+     "for (int i = 0; i < 3; ++i) low[i] = 0;",
+     "difference_low_parts: num's stage 2 without the TwoDiff low parts"),
     ("fast_two_sum_order", "kernel/src/certified/expansion.hpp",
      "const DoubleDouble s = fast_two_sum(take_smaller(), q);",
      "const DoubleDouble s = fast_two_sum(q, take_smaller());",
      "ExpansionBuilder::sum: Fast2Sum's operands swapped"),
     ("product_guard", "kernel/src/certified/expansion.hpp",
-     "(std::fabs(p) >= 0x1p-968)",
+     "(std::fabs(p) >= bounds::exact_product_threshold)",
      "(std::fabs(p) >= 0x1p-1000)",
      "note_product: a weaker guard (TwoProduct may be inexact)"),
     ("sign_zero", "kernel/src/certified/expansion.hpp",
@@ -110,9 +134,9 @@ MUTATIONS = [
      "(Bits##W{} + 0x7ffffffffffffffeULL)",
      "Lanes4/Lanes8 abs: clears the last significand bit too"),
     ("literal_for_constant", "kernel/src/certified/dot3_filter.hpp",
-     "const V bound = relative_constant * r.magnitude + bounds::filter_absolute;",
-     "const V bound = relative_constant * r.magnitude + 0x0.0000000000003p-1022;",
-     "dot3_filter_lanes: bounds::filter_absolute written as a literal (same value)"),
+     "return relative_constant * r.magnitude + bounds::filter_absolute;",
+     "return relative_constant * r.magnitude + 0x0.0000000000003p-1022;",
+     "dot3_filter_bound: bounds::filter_absolute written as a literal (same value)"),
 ]
 
 
@@ -138,21 +162,32 @@ def main():
     parser.add_argument("--workdir", default="/tmp/raykernel-mutation")
     parser.add_argument("--count", default="100000", help="runner inputs per routine")
     parser.add_argument("--only", default="", help="comma-separated mutation names")
+    parser.add_argument("--tests", default="", help="ctest regex of the C++ tests to run (default: all)")
+    parser.add_argument("--in-place", default="", metavar="BUILD_DIR",
+                        help="mutate the repository itself, building in this existing build directory")
     args = parser.parse_args()
 
-    src = os.path.join(args.workdir, "src")
-    build = os.path.join(args.workdir, "build")
-    log = os.path.join(args.workdir, "log.txt")
     os.makedirs(args.workdir, exist_ok=True)
-    copy_repo(REPO, src)
+    log = os.path.join(args.workdir, "log.txt")
     open(log, "w").close()
     jobs = ["-j2"]
-    configure = ["cmake", "-S", src, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
-                 "-DRAYKERNEL_BUILD_PROOFS=ON", "-DRAYKERNEL_BUILD_BENCH=OFF", "-DRAYKERNEL_TWIN_COUNT=" + args.count]
+    if args.in_place:
+        src = REPO
+        build = os.path.abspath(args.in_place)
+        configure = ["cmake", "-S", src, "-B", build, "-DRAYKERNEL_TWIN_COUNT=" + args.count]
+    else:
+        src = os.path.join(args.workdir, "src")
+        build = os.path.join(args.workdir, "build")
+        copy_repo(REPO, src)
+        configure = ["cmake", "-S", src, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+                     "-DRAYKERNEL_BUILD_PROOFS=ON", "-DRAYKERNEL_BUILD_BENCH=OFF", "-DRAYKERNEL_TWIN_COUNT=" + args.count]
     if run(configure, args.workdir, log) != 0 or run(["cmake", "--build", build] + jobs, args.workdir, log) != 0:
         sys.exit("the clean copy does not build; see " + log)
+    test_filter = ["-R", args.tests] if args.tests else []
     # The clean run: the twins' outputs the drivers are compared with, and all checks green.
-    if run(["ctest", "--test-dir", build, "-j2", "--output-on-failure"], args.workdir, log) != 0:
+    if run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-L", "proofs"], args.workdir, log) != 0 or \
+            run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-LE", "proofs"] + test_filter,
+                args.workdir, log) != 0:
         sys.exit("the clean copy fails its tests; see " + log)
     twins_dir = os.path.join(build, "proofs", "twins")
     variants = [v for v in ("fma", "libm", "lanes4", "lanes8_v3", "lanes8_avx512")
@@ -194,7 +229,7 @@ def main():
                     runner = None  # the twins do not build: the proofs caught it
             else:
                 runner = runner_catches()
-            tests = run(["ctest", "--test-dir", build, "-j2", "-LE", "proofs", "--output-on-failure"],
+            tests = run(["ctest", "--test-dir", build, "-j2", "-LE", "proofs", "--output-on-failure"] + test_filter,
                         args.workdir, log) != 0
             proof_checks = (not proofs_built) or run(
                 ["ctest", "--test-dir", build, "-L", "proofs", "-E", "proofs_twins", "--output-on-failure"],

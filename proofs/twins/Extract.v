@@ -14,7 +14,7 @@
 
 From Coq Require Import ZArith List.
 From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
-  Expansions CascadeTwins.
+  Expansions QueryTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -50,6 +50,10 @@ Definition run_filter_num := run_filter Cpp.filter_num_relative.
 Definition run_compensated (x : list Z) : list Z :=
   match x with [a0; a1; a2; l0; l1; l2; b0; b1; b2] =>
     enc_bits (compensated_dot3_b (f a0) (f a1) (f a2) (f l0) (f l1) (f l2) (f b0) (f b1) (f b2)
+                (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))) | _ => [] end.
+Definition run_compensated_exact (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] =>
+    enc_bits (compensated_dot3_exact_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2)
                 (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))) | _ => [] end.
 Definition run_refined (x : list Z) : list Z :=
   match x with [a0; a1; a2; l0; l1; l2; b0; b1; b2] =>
@@ -104,66 +108,52 @@ Definition run_exp_scale_p := run_exp_scale_gen two_sum_b.
 Definition run_exp_sign_top (x : list Z) : list Z := [sign_code (sign_top (map f x))].
 Definition run_exp_sign_p (x : list Z) : list Z := [sign_code (expansion_sign_b (map f x))].
 
+(** quotient_rounding.hpp: "num.hi num.lo num.radius den.hi den.lo den.radius" → t, certain, and the
+    prepared divisor's fields. *)
+Definition run_round_quotient (x : list Z) : list Z :=
+  match x with [h1; l1; r1; h2; l2; r2] =>
+    let dv := prepare_divisor_b (enc h2 l2 r2) in
+    let t := round_quotient_b (enc h1 l1 r1) dv in
+    [b (fst t); bool_code (snd t); b (dhib dv); b (dlob dv); b (dreciprocalb dv); bool_code (din_rangeb dv)]
+  | _ => [] end.
+Definition run_half_gap (x : list Z) : list Z :=
+  match x with [q] => [b (half_gap_b (f q))] | _ => [] end.
+
 (** Queries "ox oy oz dx dy dz px py pz nx ny nz". *)
 Definition v3 (x y z : Z) : Vec3B := V3 (f x) (f y) (f z).
+Definition answer_code (a : float * bool * bool * bool) : list Z :=
+  let '(t, behind, certain, by_filter) := a in [b t; bool_code behind; bool_code certain; bool_code by_filter].
+Definition run_fast_answer (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    answer_code (fast_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_fast_answer_pair (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    answer_code (fast_answer_pair_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition relation_code (r : bool * bool) : list Z := [bool_code (fst r); bool_code (snd r)].
+Definition run_fast_relation (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    relation_code (fast_relation_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_fast_relation_pair (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    relation_code (fast_relation_pair_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
 Definition run_build_expansions_gen fts (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    let '(num, den, ex) := rps_expansions fts (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    let '(num, den, ex) := ray_plane_expansions_b fts (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
     list_bits num ++ list_bits den ++ [bool_code ex] | _ => [] end.
 Definition run_build_expansions := run_build_expansions_gen fast_two_sum_b.
 Definition run_build_expansions_p := run_build_expansions_gen two_sum_b.
 Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
     let o := v3 ox oy oz in let d := v3 dx dy dz in
-    let '(na, da, xa) := rps_expansions fts o d (v3 pax pay paz) (v3 nax nay naz) in
-    let '(nb, db, xb) := rps_expansions fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
+    let '(na, da, xa) := ray_plane_expansions_b fts o d (v3 pax pay paz) (v3 nax nay naz) in
+    let '(nb, db, xb) := ray_plane_expansions_b fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
     [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
 Definition run_compare_expansion := run_compare_expansion_gen fast_two_sum_b sign_top.
 Definition run_compare_expansion_p := run_compare_expansion_gen two_sum_b expansion_sign_b.
 
-(** The call sites. *)
-Definition run_stages (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    let o := v3 ox oy oz in let d := v3 dx dy dz in let p := v3 px py pz in let n := v3 nx ny nz in
-    dot3_bits (rps_den1 d n) ++ dot3_bits (rps_num1 o p n) ++ enc_bits (rps_den2 d n) ++ enc_bits (rps_num2 o p n) ++
-    enc_bits (rps_den2r d n) ++ enc_bits (rps_num2r o p n) ++
-    [bool_code (den_trivially_zero_b d n); bool_code (num_trivially_zero_b o p n)] | _ => [] end.
-Definition signs_code (r : option (sign * sign * Z)) : list Z :=
-  match r with Some (ns, ds, st) => [sign_code ns; sign_code ds; st] | None => [-9] end.
-Definition run_certified_signs_gen fts sgn (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    signs_code (certified_signs_gen fts sgn (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
-Definition run_certified_signs := run_certified_signs_gen fast_two_sum_b sign_top.
-Definition run_certified_signs_p := run_certified_signs_gen two_sum_b expansion_sign_b.
-Definition run_fast_answer (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    let '(behind, by_compensated, certain) := fast_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
-    [bool_code behind; bool_code by_compensated; bool_code certain] | _ => [] end.
-Definition run_refined_answer (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    let '(behind, by_compensated, certain) := refined_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
-    [bool_code behind; bool_code by_compensated; bool_code certain] | _ => [] end.
-Definition run_filter_signs (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
-    let '(den, num) := filter_signs_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
-    [sign_code den; sign_code num] | _ => [] end.
-(** [compare_hit_distances] on two hit candidates whose signs [certified_signs] decided (−9 otherwise:
-    not a pair nearest_hit would compare). *)
-Definition run_hit_order (x : list Z) : list Z :=
-  match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
-    let o := v3 ox oy oz in let d := v3 dx dy dz in
-    let pa := v3 pax pay paz in let na := v3 nax nay naz in let pb := v3 pbx pby pbz in let nb := v3 nbx nby nbz in
-    match certified_signs_b o d pa na, certified_signs_b o d pb nb with
-    | Some (nsa, dsa, _), Some (nsb, dsb, _) =>
-        if (Z.eqb (sign_to_Z dsa) 0%Z || Z.eqb (sign_to_Z dsb) 0%Z ||
-            Z.ltb (sign_to_Z nsa * sign_to_Z dsa)%Z 0%Z || Z.ltb (sign_to_Z nsb * sign_to_Z dsb)%Z 0%Z)%bool then [-9%Z]
-        else let '(order, stage) := hit_order_b o d pa na pb nb nsa dsa nsb dsb in [order; stage]
-    | _, _ => [-9]
-    end | _ => [] end.
-
 Extraction "twins.ml" run_two_sum run_two_diff run_fast_two_sum run_two_prod run_dot3_rounded run_filter_den
-  run_filter_num run_compensated run_refined run_enclosure_sign run_tail_enclosure run_filter_enclosure_den
-  run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated run_exp_sum run_exp_scale
-  run_exp_sum_p run_exp_scale_p run_exp_sign_top run_exp_sign_p run_build_expansions run_build_expansions_p
-  run_compare_expansion run_compare_expansion_p run_stages run_certified_signs run_certified_signs_p
-  run_fast_answer run_refined_answer run_filter_signs run_hit_order.
+  run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
+  run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
+  run_exp_sum run_exp_scale run_exp_sum_p run_exp_scale_p run_exp_sign_top run_exp_sign_p run_round_quotient
+  run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
+  run_build_expansions run_build_expansions_p run_compare_expansion run_compare_expansion_p.

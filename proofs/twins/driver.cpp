@@ -27,10 +27,9 @@
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
-#include "certified/fast_path.hpp"
 #include "certified/lanes.hpp"
-#include "certified/ray_plane_stages.hpp"
-#include "raycast/nearest_hit_internal.hpp"
+#include "certified/quotient_rounding.hpp"
+#include "certified/ray_plane_query.hpp"
 #include "proposed_stage3.hpp"
 
 #include <bit>
@@ -132,13 +131,37 @@ void lanes_compensated(const V* x, std::vector<Out>& out) {
   const EnclosureT<V> e = compensated_dot3(x, x + 3, x + 6, dot3_rounded(x, x + 6));
   for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
 }
-// FastQueryT<V>::answer (fast_path.hpp): the relation fields (t and t_certain are round_quotient_decision's).
+template <class V>
+void lanes_compensated_exact(const V* x, std::vector<Out>& out) {
+  const EnclosureT<V> e = compensated_dot3_exact(x, x + 3, dot3_rounded(x, x + 3));
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
+}
+// ray_plane_query.hpp: fast_answer and fast_relation on the terms (the batch API's form), per lane.
 template <class V>
 void lanes_fast_answer(const V* x, std::vector<Out>& out) {
-  const FastAnswerT<V> a = FastQueryT<V>(x, x + 3, x + 6, x + 9).answer();
+  const FastAnswerT<V> a = fast_answer(ray_plane_terms(x, x + 3, x + 6, x + 9));
   for (int k = 0; k < width_of<V>; ++k)
-    out[k].i(lane_int(a.behind, k) != 0), out[k].i(lane_int(a.relation_by_compensated, k) != 0),
-        out[k].i(lane_int(a.relation_certain, k) != 0);
+    out[k].f(lane(a.t, k)), out[k].i(lane_int(a.behind, k) != 0), out[k].i(lane_int(a.certain, k) != 0),
+        out[k].i(lane_int(a.relation_by_filter, k) != 0);
+}
+template <class V>
+void lanes_fast_relation(const V* x, std::vector<Out>& out) {
+  const FastRelationT<V> r = fast_relation(ray_plane_terms(x, x + 3, x + 6, x + 9));
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(r.behind, k) != 0), out[k].i(lane_int(r.certain, k) != 0);
+}
+// quotient_rounding.hpp: prepare_divisor of den's enclosure, round_quotient of num's over it.
+template <class V>
+void lanes_round_quotient(const V* x, std::vector<Out>& out) {
+  const DivisorT<V> d = prepare_divisor(EnclosureT<V>{x[3], x[4], x[5]});
+  const QuotientRoundingT<V> r = round_quotient(EnclosureT<V>{x[0], x[1], x[2]}, d);
+  for (int k = 0; k < width_of<V>; ++k)
+    out[k].f(lane(r.t, k)), out[k].i(lane_int(r.certain, k) != 0), out[k].f(lane(d.hi, k)), out[k].f(lane(d.lo, k)),
+        out[k].f(lane(d.reciprocal, k)), out[k].i(lane_int(d.in_range, k) != 0);
+}
+template <class V>
+void lanes_half_gap(const V* x, std::vector<Out>& out) {
+  const V h = half_gap_to_nearer_neighbour(x[0]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(h, k));
 }
 template <class V>
 void lanes_enclosure_sign(const V* x, std::vector<Out>& out) {
@@ -174,7 +197,9 @@ const std::map<std::string, LaneRoutine>& lane_routines() {
       RAYKERNEL_LANE_ROUTINE(two_prod, 2),      RAYKERNEL_LANE_ROUTINE(dot3_rounded, 6),
       RAYKERNEL_LANE_ROUTINE(filter_den, 6),    RAYKERNEL_LANE_ROUTINE(filter_num, 6),
       RAYKERNEL_LANE_ROUTINE(compensated, 9),   RAYKERNEL_LANE_ROUTINE(enclosure_sign, 3),
-      RAYKERNEL_LANE_ROUTINE(fast_answer, 12),
+      RAYKERNEL_LANE_ROUTINE(fast_answer, 12),  RAYKERNEL_LANE_ROUTINE(compensated_exact, 6),
+      RAYKERNEL_LANE_ROUTINE(fast_relation, 12), RAYKERNEL_LANE_ROUTINE(round_quotient, 6),
+      RAYKERNEL_LANE_ROUTINE(half_gap, 1),
   };
   return table;
 }
@@ -218,9 +243,8 @@ int sign_code(Sign s) { return static_cast<int>(s); }
 raykernel::Ray ray_of(const std::vector<double>& x, std::size_t at = 0) { return {{x[at], x[at + 1], x[at + 2]}, {x[at + 3], x[at + 4], x[at + 5]}}; }
 raykernel::Plane plane_of(const std::vector<double>& x, std::size_t at) { return {{x[at], x[at + 1], x[at + 2]}, {x[at + 3], x[at + 4], x[at + 5]}}; }
 
-void signs_out(Out& o, const std::optional<CertifiedSigns>& s) {
-  if (!s) return o.i(-9);
-  o.i(sign_code(s->num)), o.i(sign_code(s->den)), o.i(static_cast<int>(s->stage));
+RayPlaneTerms terms_of(const std::vector<double>& x, std::size_t plane_at = 6) {
+  return ray_plane_terms(ray_of(x), plane_of(x, plane_at));
 }
 
 // The current and the proposed stage 3 (twins/proposed_stage3.hpp) on the same inputs: how often they differ.
@@ -360,9 +384,9 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
        [](const Words& w, Out& o) {
          if (w.size() != 12) return false;
          const std::vector<double> x = doubles(w);
-         RayPlaneStages st(ray_of(x), plane_of(x, 6));
-         const ExactExpansions& e = st.expansions();
-         const ExactExpansions ep = proposed::build_expansions(st.terms());
+         const RayPlaneTerms t = terms_of(x);
+         const ExactExpansions e = ray_plane_expansions(t);
+         const ExactExpansions ep = proposed::build_expansions(t);
          auto same = [](const auto& a, const auto& b) {
            if (a.size != b.size) return false;
            for (std::size_t i = 0; i < a.size; ++i)
@@ -376,9 +400,7 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
       {"build_expansions_p",
        [](const Words& w, Out& o) {
          if (w.size() != 12) return false;
-         const std::vector<double> x = doubles(w);
-         RayPlaneStages st(ray_of(x), plane_of(x, 6));
-         const ExactExpansions e = proposed::build_expansions(st.terms());
+         const ExactExpansions e = proposed::build_expansions(terms_of(doubles(w)));
          expansion_out(o, e.num), expansion_out(o, e.den), o.i(e.exact);
          return true;
        }},
@@ -386,10 +408,9 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
        [](const Words& w, Out& o) {
          if (w.size() != 18) return false;
          const std::vector<double> x = doubles(w);
-         RayPlaneStages a(ray_of(x), plane_of(x, 6)), b(ray_of(x), plane_of(x, 12));
-         const Sign s = compare_quotients_expansion(a.expansions(), b.expansions());
-         const Sign sp = proposed::compare_quotients_expansion(proposed::build_expansions(a.terms()),
-                                                               proposed::build_expansions(b.terms()));
+         const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
+         const Sign s = compare_quotients_expansion(ray_plane_expansions(a), ray_plane_expansions(b));
+         const Sign sp = proposed::compare_quotients_expansion(proposed::build_expansions(a), proposed::build_expansions(b));
          if (is_certain(sp) && sp != s) ++current_vs_proposed_differences;
          o.i(sign_code(s));
          return true;
@@ -398,77 +419,25 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
        [](const Words& w, Out& o) {
          if (w.size() != 18) return false;
          const std::vector<double> x = doubles(w);
-         RayPlaneStages a(ray_of(x), plane_of(x, 6)), b(ray_of(x), plane_of(x, 12));
-         o.i(sign_code(proposed::compare_quotients_expansion(proposed::build_expansions(a.terms()),
-                                                              proposed::build_expansions(b.terms()))));
+         const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
+         o.i(sign_code(proposed::compare_quotients_expansion(proposed::build_expansions(a), proposed::build_expansions(b))));
          return true;
        }},
-      {"stages",
+      // The one-query forms: den and num as the two lanes of a Lanes2.
+      {"fast_answer_pair",
        [](const Words& w, Out& o) {
          if (w.size() != 12) return false;
          const std::vector<double> x = doubles(w);
-         RayPlaneStages st(ray_of(x), plane_of(x, 6));
-         dot3_out(o, st.den_rounded()), dot3_out(o, st.num_rounded());
-         enclosure_out(o, st.den_compensated()), enclosure_out(o, st.num_compensated());
-         enclosure_out(o, st.den_refined()), enclosure_out(o, st.num_refined());
-         o.i(st.den_trivially_zero()), o.i(st.num_trivially_zero());
+         const FastAnswer a = fast_answer(ray_of(x), plane_of(x, 6));
+         o.f(a.t), o.i(a.behind), o.i(a.certain), o.i(a.relation_by_filter);
          return true;
        }},
-      {"certified_signs",
+      {"fast_relation_pair",
        [](const Words& w, Out& o) {
          if (w.size() != 12) return false;
          const std::vector<double> x = doubles(w);
-         RayPlaneStages st(ray_of(x), plane_of(x, 6));
-         const std::optional<CertifiedSigns> s = certified_signs(st);
-         RayPlaneStages sp_st(ray_of(x), plane_of(x, 6));
-         const std::optional<CertifiedSigns> sp = proposed::certified_signs(sp_st);
-         if (sp && !(s && s->num == sp->num && s->den == sp->den && s->stage == sp->stage)) ++current_vs_proposed_differences;
-         signs_out(o, s);
-         return true;
-       }},
-      {"certified_signs_p",
-       [](const Words& w, Out& o) {
-         if (w.size() != 12) return false;
-         const std::vector<double> x = doubles(w);
-         RayPlaneStages st(ray_of(x), plane_of(x, 6));
-         signs_out(o, proposed::certified_signs(st));
-         return true;
-       }},
-      {"refined_answer",
-       [](const Words& w, Out& o) {
-         if (w.size() != 12) return false;
-         const std::vector<double> x = doubles(w);
-         const FastAnswer a = FastQuery(x.data(), x.data() + 3, x.data() + 6, x.data() + 9).refined_answer();
-         o.i(a.behind), o.i(a.relation_by_compensated), o.i(a.relation_certain);
-         return true;
-       }},
-      {"filter_signs",
-       [](const Words& w, Out& o) {
-         if (w.size() != 12) return false;
-         const std::vector<double> x = doubles(w);
-         const FastQuery::FilterSigns s = FastQuery(x.data(), x.data() + 3, x.data() + 6, x.data() + 9).filter_signs();
-         o.i(sign_code(s.den)), o.i(sign_code(s.num));
-         return true;
-       }},
-      {"hit_order",
-       [](const Words& w, Out& o) {
-         if (w.size() != 18) return false;
-         const std::vector<double> x = doubles(w);
-         const raykernel::Ray ray = ray_of(x);
-         HitCandidate a(0, ray, plane_of(x, 6)), b(1, ray, plane_of(x, 12));
-         for (HitCandidate* c : {&a, &b}) {
-           const std::optional<CertifiedSigns> s = certified_signs(c->stages);
-           if (!s || s->den == Sign::zero || static_cast<int>(s->num) * static_cast<int>(s->den) < 0) {
-             o.i(-9);
-             return true;
-           }
-           c->num_sign = s->num, c->den_sign = s->den, c->relation_stage = s->stage;
-         }
-         const DistanceOrder order = compare_hit_distances(a, b);
-         if (order.stage == raykernel::Stage::exact)
-           o.i(0), o.i(3);
-         else
-           o.i(order.sign), o.i(static_cast<int>(order.stage));
+         const FastRelationT<double> r = fast_relation(ray_of(x), plane_of(x, 6));
+         o.i(r.behind), o.i(r.certain);
          return true;
        }},
   };

@@ -15,7 +15,7 @@
 // Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
 #include "certified/compare_quotients.hpp"
 #include "certified/eft.hpp"
-#include "certified/ray_plane_stages.hpp"
+#include "certified/ray_plane_query.hpp"
 
 #include <raykernel/testkit/hard_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
@@ -124,14 +124,13 @@ Args raw_args(Source& s, int n) {
 }
 
 detail::Enclosure stage2(const testkit::Query& q, bool num, bool refined) {
-  detail::RayPlaneStages st(q.ray, q.plane);
-  if (refined) return num ? st.num_refined() : st.den_refined();
-  return num ? st.num_compensated() : st.den_compensated();
+  const detail::RayPlaneTerms t = detail::ray_plane_terms(q.ray, q.plane);
+  if (refined) return num ? detail::num_refined(t) : detail::den_refined(t);
+  return num ? detail::num_compensated(t) : detail::den_compensated(t);
 }
 
 std::vector<double> expansion_components(const testkit::Query& q, bool num) {
-  detail::RayPlaneStages st(q.ray, q.plane);
-  const detail::ExactExpansions& e = st.expansions();
+  const detail::ExactExpansions e = detail::ray_plane_expansions(detail::ray_plane_terms(q.ray, q.plane));
   std::vector<double> c;
   if (num)
     c.assign(e.num.component, e.num.component + e.num.size);
@@ -235,9 +234,9 @@ const std::map<std::string, Generator>& generators() {
          const Args a = pair_args(s);
          Args r;
          for (int k = 0; k < 2; ++k) {
-           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
-           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num_rounded(), detail::bounds::filter_num_relative);
-           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den_rounded(), detail::bounds::filter_den_relative);
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num, detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den, detail::bounds::filter_den_relative);
            r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
          }
          return r;
@@ -248,9 +247,9 @@ const std::map<std::string, Generator>& generators() {
          const Args a = pair_args(s);
          Args r;
          for (int k = 0; k < 2; ++k) {
-           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
-           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num_rounded(), detail::bounds::filter_num_relative);
-           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den_rounded(), detail::bounds::filter_den_relative);
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num, detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den, detail::bounds::filter_den_relative);
            r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
          }
          return r;
@@ -261,8 +260,8 @@ const std::map<std::string, Generator>& generators() {
          const Args a = pair_args(s);
          Args r;
          for (int k = 0; k < 2; ++k) {
-           detail::RayPlaneStages st(query_of(a, k).ray, query_of(a, k).plane);
-           for (const detail::Enclosure& e : {st.num_compensated(), st.den_compensated()})
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           for (const detail::Enclosure& e : {detail::num_compensated(st), detail::den_compensated(st)})
              r.insert(r.end(), {e.hi, e.lo, e.radius});
          }
          return r;
@@ -285,12 +284,29 @@ const std::map<std::string, Generator>& generators() {
       {"exp_sign_top", [](Source& s) { return some_expansion(s, 12); }},
       {"build_expansions", [](Source& s) { return query_args(s.query()); }},
       {"compare_expansion", [](Source& s) { return pair_args(s); }},
-      {"stages", [](Source& s) { return query_args(s.query()); }},
-      {"certified_signs", [](Source& s) { return query_args(s.query()); }},
       {"fast_answer", [](Source& s) { return query_args(s.query()); }},
-      {"refined_answer", [](Source& s) { return query_args(s.query()); }},
-      {"filter_signs", [](Source& s) { return query_args(s.query()); }},
-      {"hit_order", [](Source& s) { return pair_args(s); }},
+      {"fast_answer_pair", [](Source& s) { return query_args(s.query()); }},
+      {"fast_relation", [](Source& s) { return query_args(s.query()); }},
+      {"fast_relation_pair", [](Source& s) { return query_args(s.query()); }},
+      {"compensated_exact", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
+      // num's and den's stage-2 enclosures of one query (the operands round_quotient gets), sometimes with a
+      // raw value in one field.
+      {"round_quotient",
+       [](Source& s) {
+         if (s.chance(8)) return raw_args(s, 6);
+         const testkit::Query q = s.query();
+         const detail::Enclosure n = stage2(q, true, false), d = stage2(q, false, false);
+         Args a{n.hi, n.lo, n.radius, d.hi, d.lo, d.radius};
+         if (s.chance(6)) a[s.below(6)] = s.raw();
+         return a;
+       }},
+      // a quotient's bits: raw, or a quotient of two query values.
+      {"half_gap",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 1);
+         const Terms t = terms(s.query());
+         return Args{(t.diff[0] * t.n[0]) / (t.d[0] * t.n[0])};
+       }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

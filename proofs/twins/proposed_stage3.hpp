@@ -18,7 +18,7 @@
 #include "certified/eft.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
-#include "certified/ray_plane_stages.hpp"
+#include "certified/ray_plane_query.hpp"
 #include "certified/sign.hpp"
 
 #include <cmath>
@@ -125,8 +125,8 @@ class ExpansionBuilder {
   bool exact_ = true;
 };
 
-// ray_plane_stages.hpp's build_expansions with the builder above.
-[[nodiscard]] inline ExactExpansions build_expansions(const QueryTerms& q) noexcept {
+// ray_plane_query.hpp's ray_plane_expansions with the builder above.
+[[nodiscard]] inline ExactExpansions build_expansions(const RayPlaneTerms& q) noexcept {
   ExpansionBuilder builder;
   Expansion<12> num;
   Expansion<6> den;
@@ -185,29 +185,6 @@ void multiply_expansions(ExpansionBuilder& builder, const Expansion<M>& e, const
   builder.check_finite(delta);
   if (!builder.exact()) return Sign::uncertain;
   return expansion_sign(delta);
-}
-
-// intersect_certified.cpp's certified_signs with the proposed stage 3.
-[[nodiscard]] inline std::optional<CertifiedSigns> certified_signs(RayPlaneStages& query) noexcept {
-  Sign den_sign = dot3_filter(query.den_rounded(), bounds::filter_den_relative, query.den_trivially_zero());
-  Sign num_sign = dot3_filter(query.num_rounded(), bounds::filter_num_relative, query.num_trivially_zero());
-  Stage stage = Stage::filter;
-  if (!is_certain(den_sign) || !is_certain(num_sign)) {
-    stage = Stage::compensated;
-    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_compensated());
-    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_compensated());
-    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_refined());
-    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_refined());
-  }
-  if (!is_certain(den_sign) || !is_certain(num_sign)) {
-    const ExactExpansions e = proposed::build_expansions(query.terms());
-    if (!e.exact) return std::nullopt;
-    stage = Stage::expansion;
-    den_sign = expansion_sign(e.den);
-    num_sign = expansion_sign(e.num);
-    if (!is_certain(den_sign) || !is_certain(num_sign)) return std::nullopt;  // change 3: to the exact stage
-  }
-  return CertifiedSigns{num_sign, den_sign, stage};
 }
 
 }  // namespace raykernel::detail::proposed

@@ -12,6 +12,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("filter_den", Twins.run_filter_den);
   ("filter_num", Twins.run_filter_num);
   ("compensated", Twins.run_compensated);
+  ("compensated_exact", Twins.run_compensated_exact);
   ("refined", Twins.run_refined);
   ("enclosure_sign", Twins.run_enclosure_sign);
   ("tail_enclosure", Twins.run_tail_enclosure);
@@ -26,17 +27,16 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("exp_scale_p", Twins.run_exp_scale_p);
   ("exp_sign_top", Twins.run_exp_sign_top);
   ("exp_sign_p", Twins.run_exp_sign_p);
+  ("round_quotient", Twins.run_round_quotient);
+  ("half_gap", Twins.run_half_gap);
+  ("fast_answer", Twins.run_fast_answer);
+  ("fast_answer_pair", Twins.run_fast_answer_pair);
+  ("fast_relation", Twins.run_fast_relation);
+  ("fast_relation_pair", Twins.run_fast_relation_pair);
   ("build_expansions", Twins.run_build_expansions);
   ("build_expansions_p", Twins.run_build_expansions_p);
   ("compare_expansion", Twins.run_compare_expansion);
   ("compare_expansion_p", Twins.run_compare_expansion_p);
-  ("stages", Twins.run_stages);
-  ("certified_signs", Twins.run_certified_signs);
-  ("certified_signs_p", Twins.run_certified_signs_p);
-  ("fast_answer", Twins.run_fast_answer);
-  ("refined_answer", Twins.run_refined_answer);
-  ("filter_signs", Twins.run_filter_signs);
-  ("hit_order", Twins.run_hit_order);
 ]
 
 let () =

@@ -2,6 +2,8 @@
 // distance from the bits of the doubles.
 #include <raykernel/testkit/reference_check.hpp>
 
+#include "default_environment.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -14,6 +16,8 @@
 
 namespace raykernel::testkit {
 namespace {
+
+using internal::DefaultEnvironmentScope;
 
 // The position of x in the increasing order of all non-NaN doubles, -inf → 0x000fffffffffffff ... -0 →
 // 2^63 − 1, +0 → 2^63, ... +inf → 2^63 + 0x7ff0000000000000: consecutive doubles get consecutive keys
@@ -102,6 +106,7 @@ std::string classify_line(const Query& q) {
 }
 
 ReferenceCheck check_against_reference(const Query& query, const Intersection& got, std::uint64_t max_t_ulps) {
+  const DefaultEnvironmentScope environment;
   const ExactIntersection exact = intersect_exact_rational(query.ray, query.plane);  // throws invalid_input
   ReferenceCheck c;
   c.query = query;
@@ -127,6 +132,7 @@ ReferenceCheck check_against_reference(const Query& query, Relation relation, do
 }
 
 std::string ReferenceCheck::report() const {
+  const DefaultEnvironmentScope environment;
   std::ostringstream os;
   os << "raykernel reference check " << (passed() ? "passed" : "FAILED");
   if (!passed()) {

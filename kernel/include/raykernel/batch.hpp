@@ -40,6 +40,12 @@ struct IntersectionBatch {
   std::span<bool> valid = {};
 };
 
+// Where relation_batch's answers go: relation[i] as `relation` would return it; `valid` as above.
+struct RelationBatch {
+  std::span<Relation> relation;
+  std::span<bool> valid = {};
+};
+
 // Which stages answered the batch: relation_stage[s] and t_stage[s] count queries (t_stage over those
 // with a t, hit or behind), as intersect_traced reports them.
 struct BatchStats {
@@ -60,8 +66,17 @@ void intersect_batch(const RayBatch& rays, const PlaneBatch& planes, Intersectio
 // Query i is (ray i, plane): many rays against one plane. Same contract.
 void intersect_batch(const RayBatch& rays, const Plane& plane, IntersectionBatch out, BatchOptions options = {});
 
-// Many rays against many planes: out[i] = nearest_hit(ray i, planes), rays spread over threads. Throws
-// invalid_input for an invalid plane, or for the first invalid ray (naming its index).
+// The relation alone (`relation`) for each query i = (ray i, plane i), or (ray i, plane): the binary64
+// filter as one vectorized loop, the cascade for the rest. Same contract as intersect_batch (stats count
+// relation stages only).
+void relation_batch(const RayBatch& rays, const PlaneBatch& planes, RelationBatch out, BatchOptions options = {});
+void relation_batch(const RayBatch& rays, const Plane& plane, RelationBatch out, BatchOptions options = {});
+
+// Many rays against a set of planes: out[i] = nearest_hit(ray i, planes), rays spread over threads. Throws
+// invalid_input for the first invalid ray, naming it ("ray 17: ray direction is the zero vector"); the span
+// form also for an invalid plane ("plane 3: ..."), checked first.
+void nearest_hit_batch(const RayBatch& rays, const PlaneSet& planes, std::span<std::optional<NearestHit>> out,
+                       BatchOptions options = {});
 void nearest_hit_batch(const RayBatch& rays, std::span<const Plane> planes, std::span<std::optional<NearestHit>> out,
                        BatchOptions options = {});
 

@@ -10,6 +10,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace raykernel {
@@ -24,5 +26,11 @@ struct Mesh {
     return {vertices[t[0]], vertices[t[1]], vertices[t[2]]};
   }
 };
+
+// Why `mesh` is not valid input for the mesh queries (docs/contract.md §7), or nothing when it is: the first
+// vertex with a coordinate that is NaN or infinite ("vertex 7: y is not finite"), or the first triangle with
+// a vertex index out of range ("triangle 3: vertex index 12 is out of range (10 vertices)"). Degenerate
+// triangles are valid. Every mesh the readers of <raykernel/io/mesh_file.hpp> return is valid.
+[[nodiscard]] std::optional<std::string> validate(const Mesh& mesh);
 
 }  // namespace raykernel

@@ -20,6 +20,8 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace raykernel {
 
@@ -31,11 +33,33 @@ struct NearestHit {
   friend bool operator==(const NearestHit&, const NearestHit&) = default;
 };
 
-// The certified nearest hit (docs/contract.md §4), or nothing when no plane is hit (no planes, or every plane
-// parallel, in-plane or behind). Throws invalid_input when the ray or a plane is invalid (a non-finite
-// component, a zero direction or normal); what() names it, e.g. "plane 3: plane normal is the zero
-// vector". Thread-safe; no global state. In a non-default floating-point environment (directed rounding,
-// flush-to-zero) it answers through the exact path, like `intersect`.
+// A set of planes prepared for many nearest-hit queries: validated once, and each plane that coincides
+// exactly with an earlier one (the same geometric plane: parallel normals and a common point, decided in
+// exact arithmetic; identical bits included) set aside once, since for every ray it has the same t as the
+// earlier plane and so never wins (ties go to the smallest index). Building costs O(k log k) exact
+// operations for k planes; queries then cost a binary64 filter per plane in the common case.
+class PlaneSet {
+ public:
+  // Throws invalid_input naming the first invalid plane ("plane 3: plane normal is the zero vector").
+  explicit PlaneSet(std::span<const Plane> planes);
+
+  [[nodiscard]] std::size_t size() const noexcept { return planes_.size(); }
+  [[nodiscard]] std::span<const Plane> planes() const noexcept { return planes_; }
+  // The indices of the planes that can win, ascending: each plane not coinciding with an earlier one.
+  [[nodiscard]] std::span<const std::uint32_t> candidates() const noexcept { return candidates_; }
+
+ private:
+  std::vector<Plane> planes_;
+  std::vector<std::uint32_t> candidates_;
+};
+
+// The certified nearest hit (docs/contract.md §4), or nothing when no plane is hit (no planes, or every
+// plane parallel, in-plane or behind). Throws invalid_input when the ray is invalid (a non-finite
+// component, a zero direction). Thread-safe; right in any floating-point environment (as `intersect`).
+[[nodiscard]] std::optional<NearestHit> nearest_hit(const Ray& ray, const PlaneSet& planes);
+
+// The same for planes given as a span: prepares a PlaneSet for the call (so it also throws invalid_input
+// for an invalid plane: "plane 3: plane normal is the zero vector"). For many rays, prepare the set once.
 [[nodiscard]] std::optional<NearestHit> nearest_hit(const Ray& ray, std::span<const Plane> planes);
 
 // The reference: every num and den in exact rationals, the minimum t taken exactly, the winner's t rounded
@@ -56,23 +80,8 @@ struct TracedNearestHit {
   Stage comparison_stage = Stage::filter;  // slowest over all comparisons (filter when there were none)
   Stage t_stage = Stage::filter;           // winner's t (its relation stage when t = 0 exactly; filter on a miss)
   std::array<std::uint32_t, stage_count> comparisons{};  // comparisons decided by each stage
-
-  // The slowest stage this answer needed beyond the fast path, what `raykernel render --show-stages` marks:
-  // the slower of relation_stage and comparison_stage, or t_stage if that is slower still. Rounding t
-  // starts at the compensated stage (the filter only gives signs), so t_stage == compensated is the fast
-  // path and counts as filter here; expansion and exact count.
-  [[nodiscard]] Stage slowest_stage() const noexcept {
-    Stage s = relation_stage;
-    if (comparison_stage > s) s = comparison_stage;
-    if (t_stage > Stage::compensated && t_stage > s) s = t_stage;
-    return s;
-  }
 };
+[[nodiscard]] TracedNearestHit nearest_hit_traced(const Ray& ray, const PlaneSet& planes);
 [[nodiscard]] TracedNearestHit nearest_hit_traced(const Ray& ray, std::span<const Plane> planes);
-
-// The reason `plane` is invalid input (as `validate` words it), or nothing when it is valid.
-[[nodiscard]] std::optional<std::string> validate_plane(const Plane& plane);
-// The reason `ray` is invalid input, or nothing when it is valid.
-[[nodiscard]] std::optional<std::string> validate_ray(const Ray& ray);
 
 }  // namespace raykernel

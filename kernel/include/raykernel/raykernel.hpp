@@ -63,15 +63,25 @@ class invalid_input : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// The reason `ray`/`plane` are invalid input (the same text `invalid_input::what()` carries), or nothing
-// when they are valid.
+// The reason the input is invalid (the same text `invalid_input::what()` carries), or nothing when it is
+// valid: a NaN or infinite component ("ray origin y is NaN", "plane normal x is -inf"), a zero direction
+// ("ray direction is the zero vector") or a zero normal. Decided from the bits, in any floating-point
+// environment. With a ray and a plane, every non-finite component is reported before a zero vector.
+[[nodiscard]] std::optional<std::string> validate(const Ray& ray);
+[[nodiscard]] std::optional<std::string> validate(const Plane& plane);
 [[nodiscard]] std::optional<std::string> validate(const Ray& ray, const Plane& plane);
 
 // The certified intersection: the exact answer of docs/contract.md §1, computed by the cheapest stage whose
-// certified error bound decides it. Thread-safe; no global state. If the floating-point environment is not
-// the one the error bounds assume (round-to-nearest, no flush-to-zero/denormals-are-zero), it answers
-// through the exact stage instead. Throws invalid_input.
+// certified error bound decides it. Thread-safe; no global state. Right in any floating-point environment
+// the caller left (rounding mode, flush-to-zero, denormals-are-zero, trap masks), which it leaves exactly
+// as it found it. Throws invalid_input.
 [[nodiscard]] Intersection intersect(const Ray& ray, const Plane& plane);
+
+// The certified relation alone (hit, behind, parallel or in-plane), without t: the yes/no predicate
+// beside the construction, as CGAL keeps `do_intersect` beside `intersection`. For random queries the
+// binary64 filter decides it, at about the cost of the naive formula. Same guarantees and errors as
+// `intersect`.
+[[nodiscard]] Relation relation(const Ray& ray, const Plane& plane);
 
 // The reference: exact rational arithmetic (CGAL::Exact_rational) for num and den, MPFR for the rounding of
 // t. Slow (microseconds) and obviously right. Throws invalid_input.
@@ -129,8 +139,9 @@ struct ExactIntersection {
 
 // Whether this thread's floating-point environment is the one the certified stages assume: round to
 // nearest, and (on x86) neither flush-to-zero nor denormals-are-zero, and no floating-point exception
-// unmasked (trapping). `intersect` checks it on every call and answers through the exact stage when it is
-// not.
+// unmasked (trapping). Every entry point checks it and, when it is not, installs the default for the call
+// and restores the caller's environment, status flags included, before returning (README,
+// "Floating-point assumptions").
 [[nodiscard]] bool floating_point_environment_is_default() noexcept;
 
 // The library's version, "MAJOR.MINOR.PATCH".

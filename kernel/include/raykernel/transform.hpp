@@ -65,6 +65,7 @@ template <class T>
 // W = 0·x + 0·y + 0·z + 1·1 = 1 exactly and the divide changes nothing.
 template <class T>
 [[nodiscard]] Vector3<T> perspective_divide(const Vector4<T>& h) {
+  if (h[3] == 1) return {h[0], h[1], h[2]};  // x/1 = x exactly: an affine transform needs no division
   return {h[0] / h[3], h[1] / h[3], h[2] / h[3]};
 }
 
@@ -180,7 +181,7 @@ struct Transform {
   [[nodiscard]] static Transform rotation(const Vec3& axis, double radians);
 
   // Bottom row exactly (0, 0, 0, 1): no perspective, so directions transform as (x, y, z, 0).
-  [[nodiscard]] bool is_affine() const noexcept;
+  [[nodiscard]] bool is_affine() const noexcept { return m[3][0] == 0 && m[3][1] == 0 && m[3][2] == 0 && m[3][3] == 1; }
 
   friend bool operator==(const Transform&, const Transform&) = default;
 };

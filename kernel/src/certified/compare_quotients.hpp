@@ -4,7 +4,7 @@
 //     sign(t_1 − t_2) = sign(Δ)·sign(D_1)·sign(D_2),        Δ = N_1·D_2 − N_2·D_1,
 //
 // and Δ, a degree-2 polynomial in the four values, is decided by the same cascade as the relation, from
-// the same per-plane stage results (certified/ray_plane_stages.hpp):
+// the same per-plane stage results (certified/ray_plane_query.hpp):
 //
 //   stage 1  compare_quotients_filter        binary64 from the stage-1 values and their error bounds
 //   stage 2  compare_quotients_compensated   double-double from the stage-2 enclosures
@@ -21,7 +21,7 @@
 #include "certified/enclosure.hpp"
 #include "certified/error_bounds.hpp"
 #include "certified/expansion.hpp"
-#include "certified/ray_plane_stages.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/sign.hpp"
 
 #include <cmath>
@@ -39,7 +39,7 @@ struct RoundedEnclosure {
 // against (the same operations, in the same order). |s − V| ≤ that bound is, for den and for num,
 // proofs/Filter.v's `den_filter_encloses` and `num_filter_encloses` (both by `dot3_filter_bound_encloses`).
 [[nodiscard]] inline RoundedEnclosure filter_enclosure(const Dot3Rounded& r, double relative_constant) noexcept {
-  return {r.value, relative_constant * r.magnitude + bounds::filter_absolute};
+  return {r.value, dot3_filter_bound(r, relative_constant)};
 }
 
 // R = ((|x_1| ⊗ f_2) ⊕ (e_1 ⊗ (|y_2| ⊕ f_2))) ⊕ ((|x_2| ⊗ f_1) ⊕ (e_2 ⊗ (|y_1| ⊕ f_1))): a computed bound, up
@@ -80,7 +80,7 @@ struct RoundedEnclosure {
 //                c_1 = fma(a_1, β_2, α_1 ⊗ b_2), c_2 = fma(a_2, β_1, α_2 ⊗ b_1), (S, s) = TwoSum(P, −Q),
 //                hi = S, lo = ((p ⊖ q) ⊕ (c_1 ⊖ c_2)) ⊕ s, E = ((K_c ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c, M = |P| ⊕ |Q|.
 //   Error bound: |Δ − (hi + lo)| ≤ (1+u)ρ + 16.02u²(|P| + |Q|) + 6.02η ≤ E, K_c = 2^-101 (error_bounds.hpp).
-//   Valid range: all finite inputs; the radius is +inf (no information) when a value overflows.
+//   Valid range: all finite inputs; the radius is +inf or NaN (no information) when a value overflows.
 //   Certified by: proofs/CompareQuotients.v, `compare_quotients_compensated_enclosure`, then
 //   `enclosure_sign_sound` for the sign.
 [[nodiscard]] inline Enclosure compare_quotients_compensated(const Enclosure& n1, const Enclosure& d1,
@@ -99,10 +99,9 @@ struct RoundedEnclosure {
   const double magnitude = std::fabs(p.hi) + std::fabs(q.hi);
   const double propagated =
       compare_propagated_error(a1.hi, n1.radius, b1.hi, d1.radius, a2.hi, n2.radius, b2.hi, d2.radius);
-  const double radius =
-      (compare_compensated_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
-  const bool finite = std::isfinite(s.hi) && std::isfinite(lo);
-  return {s.hi, lo, finite ? radius : HUGE_VAL};
+  // No finiteness test: |S| ≤ M and the low parts are below 3u·M, so they are finite whenever M is; a
+  // non-finite input (an enclosure with no information) makes M, R or the radius non-finite.
+  return {s.hi, lo, (compare_compensated_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute};
 }
 
 // ---------------------------------------------------------------------------------------------------------

@@ -13,32 +13,42 @@
 
 namespace raykernel::detail {
 
-inline constexpr double largest_finite = 0x1.fffffffffffffp+1023;
-
 // compensated_dot3: an enclosure of V = Σ (a_i + α_i)·b_i, where a_i are the values stage 1 multiplied
-// (stage1.product[i] == a_i ⊗ b_i) and α_i their exact low parts, |α_i| ≤ u|a_i| (zero for den; the TwoSum
-// error of p_i ⊖ o_i for num).
+// (stage1.product[i] == a_i ⊗ b_i) and α_i their exact low parts, |α_i| ≤ u|a_i| (the TwoSum error of
+// p_i ⊖ o_i for num). compensated_dot3_exact is the same for α = 0 (den = d·n, exact inputs): it computes
+// g_i = l_i, which is what RN(0·b_i + l_i) is, without the three FMAs by zero.
 //   Error bound: |V − (hi + lo)| ≤ (2^-101 ⊗ m) ⊕ 2^-1070, m the stage-1 magnitude (error_bounds.hpp).
-//   Valid range: all finite inputs; the radius is not finite if anything overflowed.
-//   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`.
+//   Valid range: all finite inputs. Overflow needs no test of its own: |hi| ≤ m and |lo| ≤ 5u·m by
+//   monotonicity of rounding, so hi and lo are finite whenever m is, and otherwise the radius is +inf or
+//   NaN ("no information": every decision compares against it and fails).
+//   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`; the α = 0 form computes the same
+//   enclosure bit for bit: proofs/Cascade.v, `compensated_dot3_exact_inputs`.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3_from_low_parts(const V g[3],
+                                                                                          const Dot3RoundedT<V>& stage1) noexcept {
+  const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
+  const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
+  const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
+  return {s3.hi, lo, bounds::compensated_relative * stage1.magnitude + bounds::compensated_absolute};
+}
+
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3(const V a[3], const V alpha[3], const V b[3],
                                                                            const Dot3RoundedT<V>& stage1) noexcept {
   V g[3];
   for (int i = 0; i < 3; ++i) {
-    const V h = stage1.product[i];
-    const V l = fma(a[i], b[i], -h);  // l_i = RN(a_i b_i − h_i): exact unless a_i b_i underflows
-    g[i] = fma(alpha[i], b[i], l);    // g_i = RN(α_i b_i + l_i)
+    const V l = fma(a[i], b[i], -stage1.product[i]);  // l_i = RN(a_i b_i − h_i): exact unless a_i b_i underflows
+    g[i] = fma(alpha[i], b[i], l);                     // g_i = RN(α_i b_i + l_i)
   }
-  const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
-  const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
-  const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
-  const V radius = bounds::compensated_relative * stage1.magnitude + bounds::compensated_absolute;
-  // A NaN or infinite hi/lo (an overflow inside TwoSum or the FMAs) must reach the decisions as "no
-  // information": fold it into the radius, which every decision compares against. (|x| ≤ max is isfinite
-  // written for both lane types.)
-  const MaskOf<V> finite = both(abs(s3.hi) <= largest_finite, abs(lo) <= largest_finite);
-  return {s3.hi, lo, select(finite, radius, V{} + HUGE_VAL)};
+  return compensated_dot3_from_low_parts(g, stage1);
+}
+
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3_exact(const V a[3], const V b[3],
+                                                                                 const Dot3RoundedT<V>& stage1) noexcept {
+  V g[3];
+  for (int i = 0; i < 3; ++i) g[i] = fma(a[i], b[i], -stage1.product[i]);  // l_i
+  return compensated_dot3_from_low_parts(g, stage1);
 }
 
 // compensated_dot3_refined: the same V as compensated_dot3, enclosed more tightly (error of order
@@ -69,10 +79,10 @@ template <class V>
   for (int i = 0; i < 3; ++i) tail += second_order[i];
   const DoubleDouble x = two_sum(s3.hi, sigma);
   const double lo = x.lo + tail;
-  const double radius = (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
-                        bounds::refined_absolute;
-  const bool finite = (std::fabs(x.hi) <= largest_finite) & (std::fabs(lo) <= largest_finite);
-  return {x.hi, lo, finite ? radius : HUGE_VAL};
+  // As for the first level, hi and lo are finite whenever m is, and otherwise the radius is not finite.
+  return {x.hi, lo,
+          (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
+              bounds::refined_absolute};
 }
 
 }  // namespace raykernel::detail

@@ -42,10 +42,18 @@ template <class V>
 // dot3_filter_lanes gives the sign as an integer (Sign's values) per lane; branch-free: the sign of a random
 // query is unpredictable, its certainty almost always predictable. Neither comparison holds when the bound
 // or the value is NaN: uncertain.
-template <class V>
+// The bound itself, B = (C ⊗ m) ⊕ 3μ: |s − a·b| ≤ B (proofs/Filter.v, `den_filter_encloses`,
+// `num_filter_encloses`). Every stage-1 decision compares against it.
+// (The constant is a double, or one per lane: den's and num's when a vector holds both of one query.)
+template <class V, class C>
+[[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, C relative_constant) noexcept {
+  return relative_constant * r.magnitude + bounds::filter_absolute;
+}
+
+template <class V, class C>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> dot3_filter_lanes(const Dot3RoundedT<V>& r,
-                                                                           double relative_constant) noexcept {
-  const V bound = relative_constant * r.magnitude + bounds::filter_absolute;
+                                                                           C relative_constant) noexcept {
+  const V bound = dot3_filter_bound(r, relative_constant);
   return sign_lanes(r.value > bound, r.value < -bound);
 }
 

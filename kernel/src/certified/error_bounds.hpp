@@ -1,7 +1,9 @@
-// The error constants of the certified stages, each beside its derivation, its valid range and the
-// theorem in proofs/ that certifies it. This file is the only place they are written; the stages include
-// it, tests/error_constants_test.cpp recomputes every constant from its formula, and the proofs state their
-// theorems about these exact numbers (proofs/README.md explains how the two are compared).
+// The error constants of the certified stages — ray–plane, the comparison of quotients, ray–triangle — each
+// beside its derivation, its valid range and the theorem in proofs/ that certifies it. This file is the only
+// place they are written; the stages include it, tests/error_constants_test.cpp and
+// tests/triangle_constants_test.cpp recompute every constant from its formula, and the proofs state their
+// theorems about these exact numbers (proofs/Constants.v, proofs/TriangleConstants.v; proofs/README.md
+// explains how the two are compared).
 //
 // Notation. Binary64, round to nearest (ties to even; the bounds hold for any tie rule).
 //   u = 2^-53           unit roundoff
@@ -23,6 +25,13 @@ namespace raykernel::detail::bounds {
 
 inline constexpr double unit_roundoff = 0x1p-53;          // u
 inline constexpr double min_subnormal = 0x0.0000000000001p-1022;  // μ = 2^-1074
+inline constexpr double largest_finite = 0x1.fffffffffffffp+1023;  // |x| ≤ largest_finite ⇔ x is finite
+
+// TwoProduct (certified/eft.hpp) is exact when a·b = 0 or |a·b| ≥ 2^-969 = 2^(emin + 2p − 1) (Flocq
+// `mult_error_FLT`); |a ⊗ b| ≥ 2^-968 implies |a·b| ≥ 2^-969 (a rounding moves a value by at most half an
+// ulp), so the expansion stage checks the rounded product against this threshold.
+// Certified by: proofs/Model.v, `two_prod_guard_exact`.
+inline constexpr double exact_product_threshold = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
 // Stage 1: dot3_filter (certified/dot3_filter.hpp)
@@ -109,27 +118,47 @@ inline constexpr double tail_sum_absolute = 0x0.0000000000002p-1022;  // 2μ
 inline constexpr int tail_sum_max_terms = 32;
 
 // ---------------------------------------------------------------------------------------------------------
-// round_quotient (certified/round_quotient.hpp): the correctly rounded t = num/den from enclosures
-//   |num − (N_hi + N_lo)| ≤ E_n,  |den − (D_hi + D_lo)| ≤ E_d.
+// round_quotient (certified/quotient_rounding.hpp): the correctly rounded t = num/den from enclosures
+//   |num − (N + n)| ≤ E_n,  |den − (D + d)| ≤ E_d,
+// where (N, n) and (D, d) are normalized pairs (the outputs of TwoSum: |n| ≤ u|N|, |d| ≤ u|D|). One
+// reciprocal serves every quotient with the same denominator (prepare_divisor), so a triangle's t and its
+// three barycentric coordinates share it.
 //
-// (N, n) = TwoSum(N_hi, N_lo), (D, d) = TwoSum(D_hi, D_lo), q0 = N ⊘ D, r = RN(N − q0·D) ⊕ RN(n − q0·d)
-// (two FMAs), c = r ⊘ D, (q, w) = TwoSum(q0, c). Guards: |N|, |D|, |q0| ≥ 2^-900 (every residual is then a
-// normal number, so the η terms are below 2^-170·|q0|), q finite. Then, with ρ_d = E_d/|D|
-// (implied ≤ 2^-50 by the test below) and ϕ = 1/(1 − u − 2^-10):
-//   |num − q0·den − r| ≤ (u² + (2+u)u² + 3.01u²)|q0 D| + 2η
-//   |t − q0 − c| ≤ |q0|·(3.02u(u + ρ_d)ϕ + 3.01u² + 6.02u²ϕ + 2^-170) + ϕ(E_n + |q0|E_d)/|D|
-//               ≤ 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D|                     =: rad
-// and |t − q| ≤ |w| + rad. If |t − q| < h, half the gap from q to its nearer neighbour (2^(e−53) for
-// q ∈ [2^e, 2^(e+1)), 2^(e−54) when |q| = 2^e), then q is the rounding of t to nearest: t lies strictly
+//   R = 1 ⊘ D,  q0 = N ⊗ R,  r = RN(N − q0·D) ⊕ RN(n − q0·d)  (two FMAs),  c = r ⊗ R,
+//   q = q0 ⊕ c,  w = c ⊖ (q ⊖ q0)                                (Fast2Sum: q + w = q0 + c exactly).
+// Guards: |N| ≥ 2^-900, 2^-1000 ≤ |D| ≤ 2^1000, 2^-900 ≤ |q| ≤ largest_finite. Derivation, with
+// X = N + n, Y = D + d, T = X/Y and the exact correction c* = T − q0 = (ρ_1 + ρ_2)/Y, ρ_1 = N − q0·D,
+// ρ_2 = n − q0·d:
+//   R = (1/D)(1 + δ_R) (R normal by the guard on D), q0 = (N/D)(1 + δ_R)(1 + δ_q) + η_q (N·R alone could
+//   underflow under the guards on N and D; the guard |q| ≥ 2^-900 keeps η_q, like every η below, under
+//   2^-170·|q0|), so
+//   |ρ_1| ≤ (2u + u²)|N|, |ρ_2| ≤ u|N| + u|q0 D| ≤ (2u + 3u²)|N|, |c*| ≤ (4u + 7u²)|N/D|;
+//   c = (ρ_1(1+ε_1) + ρ_2(1+ε_2) + η_1 + η_2)(1+ε_3)(1+δ_R)(1+ε_4)/D + η_4, and 1/Y = (1/D)/(1 + d/D), so
+//   |c − c*| ≤ |N/D|·((4u + 3u²)(4u + 7u²) + (4u + 3u²)·u(1 + 3u)) + 2.01η/|D| + η ≤ 20.1u²·|q0|
+// (the proof, bounding the residual against Y rather than D, gets 23u²·|q0|, still below 32u² = 2^-101; with
+// 2^-102 = 16u² it fails),
+// the η terms being below 2^-172·|q0| by the guards (|N| ≥ 2^-900 makes η/|D| ≤ 2^-175·|N/D|). With the
+// Fast2Sum (exact since |c| ≤ 5u|q0|), |T − q| ≤ |w| + 20.1u²·|q0|. The enclosures add
+//   |t − T| ≤ (E_n + |T|·E_d)/(|Y| − E_d) ≤ (1 + 2^-50)·(E_n + |q0|·E_d)/|D|
+// once the test below holds (it implies E_d ≤ 2^-52·|D|). So
+//   |t − q| ≤ |w| + 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D|                       (32u² ≥ 20.1u²)
+// and q = RN(t) when this is below h, half the gap from q to its nearer neighbour: t then lies strictly
 // inside q's rounding interval, so no tie can arise. The code tests, without division,
-//   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|
-// where ϕ_c = 1 + 2^-9 and the factor 1 + 2^-45 absorbs the six roundings of the left side; h ⊗ |D| is
-// exact (a power of two times a double, no underflow as |q·D| ≈ |N| ≥ 2^-900).
-// Certified by: proofs/RoundQuotient.v, theorem `round_quotient_sound`.
-inline constexpr double quotient_min_magnitude = 0x1p-900;
+//   ((((|q0| ⊗ E_d) ⊕ E_n) ⊗ ϕ_c) ⊕ (((|q0| ⊗ 2^-101) ⊕ |w|) ⊗ |D|)) ⊗ (1 + 2^-45)  <  h ⊗ |D|,
+// ϕ_c = 1 + 2^-9; the factor 1 + 2^-45 absorbs the relative errors of the six roundings of the left side,
+// and their absolute (underflow) errors, which can occur when E_n or E_d is tiny, fit in the slack between
+// 2^-101 and the 23u² the proof needs; h ⊗ |D| is a power of two times a double.
+// Certified by: proofs/QuotientRounding.v, theorem `round_quotient_sound`.
+inline constexpr double quotient_min_magnitude = 0x1p-900;   // |N| and |q|
+inline constexpr double divisor_min_magnitude = 0x1p-1000;   // |D|: 1/D finite
+inline constexpr double divisor_max_magnitude = 0x1p+1000;   // |D|: 1/D normal
 inline constexpr double quotient_relative = 0x1p-101;
-inline constexpr double quotient_enclosure_factor = 0x1.008p+0;  // 1 + 2^-9
+inline constexpr double quotient_enclosure_factor = 0x1.008p+0;      // 1 + 2^-9
 inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-45
+// half_gap_to_nearer_neighbour builds 2^(e−53) (or 2^(e−54) at a power of two) from q's exponent bits; the
+// result is normal, as the proofs require, for |q| ≥ 2^-968 (the guard above keeps |q| ≥ 2^-900).
+// Certified by: proofs/QuotientRounding.v, `half_gap_bits`, and the test `proofs_half_gap`.
+inline constexpr double half_gap_min_magnitude = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
 // Comparing two quotients (certified/compare_quotients.hpp): the order of t_1 = N_1/D_1 and t_2 = N_2/D_2
@@ -199,5 +228,94 @@ inline constexpr double compare_compensated_relative = 0x1p-101;  // K_c = 32u²
 // num_i and den_i (Shewchuk's scale_expansion and fast_expansion_sum, Theorems 19 and 13): exact whenever
 // the builder reports no underflowing TwoProduct and nothing non-finite. No constant. Stage 4 (exact
 // rationals) decides the rest.
+
+// =========================================================================================================
+// Ray–triangle (kernel/src/triangle/, docs/contract.md §6). Notation as above; in particular a sum or
+// difference of two doubles has no absolute error.
+//
+// The values. Every value is a 3×3 determinant det(x, y, z) = x·(y × z) of leaves (ray_triangle_formula.hpp):
+//   πa = d·(e_b × e_c), πb = d·(e_c × e_a), πc = d·(e_a × e_b), num = e_a·(e_b × e_c), den = (πa + πb) + πc,
+// where d is an input (exact) and e_v = v − o a difference of inputs. The leaves of stage 1 are d and
+// ê_v = v ⊖ o (|ê − e| ≤ u|ê|, no absolute error: a difference of doubles); the leaves of stage 2 are d and
+// the exact double-doubles (h, l) = TwoDiff(v, o).
+//
+// Evaluation (both stages, the same operations on the high parts): for a cross component
+//   P = y_j ⊗ z_k,  Q = y_k ⊗ z_j,  c = P ⊖ Q,  M = |P| ⊕ |Q|,
+// then t_i = x_i ⊗ c_i with magnitude x-term m_i = |x_i| ⊗ M_i, and s = (t_0 ⊕ t_1) ⊕ t_2,
+// m = (m_0 ⊕ m_1) ⊕ m_2 (den: the π's and their m's summed the same way). m is the permanent
+// Σ|x_i|(|y_j z_k| + |y_k z_j|) as computed, Shewchuk's orient3d "permanent".
+//
+// Underflow. A product y_j ⊗ z_k that underflows errs by up to η, and the outer product multiplies that error
+// by |x_i|, which may be up to 2^1024: no constant absolute term covers it. The bound therefore has a
+// dynamic absolute term proportional to S = (|x_0| ⊕ |x_1|) ⊕ |x_2|,
+//   A = (K_A ⊗ S) ⊕ U_A,
+// computed once per vector x (d for the π's and den, e_a for num) and shared by both stages.
+//
+// Overflow. m dominates every intermediate in magnitude (|c_i| ≤ M_i, |t_i| ≤ m_i, |s| ≤ m, and stage 2's low
+// parts are O(u)·m); an overflow anywhere makes m (or S) +inf or NaN, and then every certifying comparison
+// is false. Stage 2 also folds a non-finite high or low part into an infinite radius, as compensated_dot3.
+//
+// The quotients t = num/den and πk/den are rounded by round_quotient (above) from the stage-2 enclosures
+// (or stage 3's tail enclosures), all four over one divisor prepared once from den's enclosure.
+
+// ---------------------------------------------------------------------------------------------------------
+// The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A (both stages).
+//
+// Derivation. Each P, Q errs by up to u|P| + η; the η's reach the value multiplied by |x_i| in the outer
+// products: stage 1 carries at most 3η·Σ|x_i| + 6η (a determinant) or 9η·Σ|d_i| + 18η (den); stage 2 (the
+// TwoProduct residuals and the FMAs of each cross component, then the outer FMAs) at most 8.3η·Σ|x_h| + 16η,
+// or 25η·Σ|d_i| + 49η for den. With S ≥ (1−u)²·Σ|x_i| and the two roundings of A,
+//   A ≥ (1−u)(K_A(1−u)³·Σ|x_i| − η + U_A)                                     (absolute_term_lower)
+// and the bounds below need (1−u)(A − η) ≥ that absolute part: K_A = 32η and U_A = 64η give
+// (1−u)(A − η) ≥ 31.9η·Σ|x_i| + 61.9η, which covers all of them.
+// Valid for all finite inputs; A = +inf when S overflows (then nothing is certified).
+// Certified by: proofs/TriangleFilter.v, `absolute_term_lower`, `det3_filter_encloses`
+// Certified by: proofs/TriangleCompensated.v, `det3_compensated_encloses`
+inline constexpr double triangle_absolute_scale = 0x1p-1070;  // K_A = 32η = 16μ
+inline constexpr double triangle_absolute = 0x1p-1069;        // U_A = 64η = 32μ
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 1: det3_filter (triangle/det3_stages.hpp), B = (C ⊗ m) ⊕ A;  v > B ⇒ V > 0,  v < −B ⇒ V < 0.
+//
+// Derivation (proofs/TriangleFilter.v carries |v − V| ≤ α·m + β through each operation, m the computed
+// permanent, the leaves within relative error u of the exact differences and x within ex ∈ {0, u}):
+//   product of two leaves   α = 3u + 6u²,          β = (1 + 3u)η             (leaf_mul_approx)
+//   cross component         α = 4u + 11u²,         β = (2 + 6u)η             (cross_approx)
+//   outer term x_i·c_i      α = 5u + ex + 40u²,    β = 3η·|x_i| + 2η         (outer_approx)
+//   the determinant         α = 7u + ex + 60u²,    β = 3η·Σ|x_i| + 6η        (det3_approx)
+//   den = (π̂a ⊕ π̂b) ⊕ π̂c    α ≤ 9u + 80u²,        β = 9η·Σ|d_i| + 18η       (den_approx)
+// with ex = 0 for the π's (x = d, exact) and ex = u for num (x = ê_a). The bound covers α·m + β when
+// α ≤ C(1−u)² (bound_covers: (C ⊗ m) ⊕ A ≥ C(1−u)²·m + (1−u)(A − η)), so C = 8u, 9u, 10u.
+// Valid for all finite inputs (subnormal included); uncertain (never wrong) when m or A is not finite.
+// Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
+inline constexpr double triangle_filter_pi_relative = 0x1p-50;     // 8u
+inline constexpr double triangle_filter_num_relative = 0x1.2p-50;  // 9u
+inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
+
+// ---------------------------------------------------------------------------------------------------------
+// Stage 2: det3_compensated (triangle/det3_stages.hpp): an enclosure |V − (h + l)| ≤ E, E = (K ⊗ m) ⊕ A.
+//
+// Double-double leaves (h, l), |l| ≤ u|h|, exact. A product of two leaves (or of a leaf x and a cross
+// component (h, l)): P = a_h ⊗ b_h, l = RN(a_h·b_l + RN(a_l·b_h + RN(a_h·b_h − P))) (three FMAs; the term a_l·b_l
+// is dropped). A sum or difference: (s, σ) = TwoSum(a_h, ±b_h), l = (a_l ⊕ ±b_l) ⊕ σ. proofs/TriangleCompensated.v
+// carries |h + l − V| ≤ α·m + β and |l| ≤ λ·m + κ through each operation:
+//   product of two leaves   α = 7u²,    β = 4η,                 λ = 4u,    κ = 7η       (cleaf_mul_capprox)
+//   cross component         α = 17u²,   β = 8.1η,               λ = 6u,    κ = 15η      (ccross_capprox)
+//   outer term              α = 35u²,   β = 8.2η·|x_h| + 5η,    λ = 10u,   κ = 16η·|x_h| + 6η (couter_capprox)
+//   the determinant         α = 80u²,   β = 8.3η·Σ|x_h| + 16η,  λ = 13u                  (cdet3_capprox)
+//   den (two more sums)     α ≤ 136u²,  β ≤ 25η·Σ|d_i| + 49η
+// The radius covers α·m + β when α ≤ K(1−u)² (radius_covers), so
+//   K_π = K_num = 128u² = 2^-99,   K_den = 256u² = 2^-98.
+// Valid for all finite inputs; the radius is +inf when a value is not finite. Decides signs unless the value
+// is within ~2^-98 of m (exact zeros go on to stage 3), and lets round_quotient round t and the
+// barycentric coordinates for condition numbers up to ~2^40.
+// Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+// Certified by: proofs/TriangleCompensated.v, `den_compensated_encloses`, `stage2_filter_view`
+inline constexpr double triangle_compensated_relative = 0x1p-99;      // K_π = K_num = 128u²
+inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den = 256u²
+
+// Stage 3 (triangle/expansion_value.hpp) computes the five values, the tie-break vectors and N as exact
+// expansions (Shewchuk's Theorems 13 and 19) whenever no TwoProduct underflowed and nothing overflowed: no
+// constant. Stage 4 (exact rationals) decides the rest.
 
 }  // namespace raykernel::detail::bounds

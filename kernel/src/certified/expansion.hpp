@@ -115,9 +115,10 @@ class ExpansionBuilder {
   }
 
  private:
-  // TwoProduct is exact when a·b == 0 or |a·b| ≥ 2^-969; |a ⊗ b| ≥ 2^-968 implies the latter.
+  // TwoProduct is exact when a·b == 0 or |a·b| ≥ 2^-969; |a ⊗ b| ≥ 2^-968 implies the latter
+  // (bounds::exact_product_threshold).
   void note_product(double a, double b, double p) noexcept {
-    const bool exact = (p == 0) ? (a == 0 || b == 0) : (std::fabs(p) >= 0x1p-968);
+    const bool exact = (p == 0) ? (a == 0 || b == 0) : (std::fabs(p) >= bounds::exact_product_threshold);
     exact_ &= exact && std::isfinite(p);
   }
 

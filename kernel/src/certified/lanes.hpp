@@ -1,6 +1,7 @@
 // Lanes: the number types the certified routines are written for, so that each routine is written once and
-// runs both on one query (`double`) and on four or eight at a time (`Lanes4`, `Lanes8`: GCC/clang vectors
-// of doubles) in the batch API. Every operation on Lanes8 is the same IEEE-754 operation applied to each lane separately:
+// runs both on one value (`double`) and on two, four or eight at a time (`Lanes2`, `Lanes4`, `Lanes8`:
+// GCC/clang vectors of doubles): den and num of one query side by side (`intersect`), or four or eight
+// queries in the batch API. Every operation on Lanes8 is the same IEEE-754 operation applied to each lane separately:
 // + − × / are the vector extensions' lane-wise operations, `fma` is one correctly rounded fused
 // multiply-add per lane, `abs` clears the sign bit. So each lane computes exactly the bits the scalar
 // routine computes for that query, and the proofs (which model the scalar operations) cover every lane.
@@ -15,13 +16,21 @@
 
 namespace raykernel::detail {
 
-// Vectors of 4 doubles (AVX2: one ymm) and 8 doubles (AVX-512: one zmm), their comparison masks and their
-// bit patterns. (Spelled out: GCC ignores a vector_size that depends on a template parameter.)
+// Vectors of 2 doubles (one xmm), 4 doubles (AVX2: one ymm) and 8 doubles (AVX-512: one zmm), their
+// comparison masks and their bit patterns. (Spelled out: GCC ignores a vector_size that depends on a template
+// parameter.) A mask is the type a comparison of two vectors yields, whose element type differs between the
+// compilers: `long` (std::int64_t) with GCC, `long long` with clang. Declared as that type, it is the one
+// the overloads below and sign.hpp's are found for with either compiler.
+using Lanes2 = double __attribute__((vector_size(2 * sizeof(double))));
 using Lanes4 = double __attribute__((vector_size(4 * sizeof(double))));
-using Mask4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
-using Bits4 = std::uint64_t __attribute__((vector_size(4 * sizeof(std::uint64_t))));
 using Lanes8 = double __attribute__((vector_size(8 * sizeof(double))));
-using Mask8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+using Mask2 = decltype(Lanes2{} < Lanes2{});
+using Mask4 = decltype(Lanes4{} < Lanes4{});
+using Mask8 = decltype(Lanes8{} < Lanes8{});
+static_assert(sizeof(Mask2) == sizeof(Lanes2) && sizeof(Mask4) == sizeof(Lanes4) && sizeof(Mask8) == sizeof(Lanes8));
+static_assert(sizeof(Mask4{}[0]) == sizeof(std::int64_t), "a mask has one 64-bit integer per lane");
+using Bits2 = std::uint64_t __attribute__((vector_size(2 * sizeof(std::uint64_t))));
+using Bits4 = std::uint64_t __attribute__((vector_size(4 * sizeof(std::uint64_t))));
 using Bits8 = std::uint64_t __attribute__((vector_size(8 * sizeof(std::uint64_t))));
 
 // The mask and integer types of a lane type: bool / std::int64_t for double, the mask vector for vectors.
@@ -33,6 +42,13 @@ struct LaneTypes<double> {
   using integer = std::int64_t;
   using bits = std::uint64_t;
   static constexpr int width = 1;
+};
+template <>
+struct LaneTypes<Lanes2> {
+  using mask = Mask2;
+  using integer = Mask2;
+  using bits = Bits2;
+  static constexpr int width = 2;
 };
 template <>
 struct LaneTypes<Lanes4> {
@@ -107,6 +123,7 @@ inline constexpr int width_of = LaneTypes<V>::width;
   [[gnu::always_inline]] inline Bits##W to_bits(Lanes##W x) noexcept { return reinterpret_cast<Bits##W>(x); } \
   [[gnu::always_inline]] inline Lanes##W from_bits(Bits##W b) noexcept { return reinterpret_cast<Lanes##W>(b); }
 
+RAYKERNEL_VECTOR_LANE_OPERATIONS(2)
 RAYKERNEL_VECTOR_LANE_OPERATIONS(4)
 RAYKERNEL_VECTOR_LANE_OPERATIONS(8)
 #undef RAYKERNEL_VECTOR_LANE_OPERATIONS

@@ -13,6 +13,11 @@ enum class Sign : std::int8_t { negative = -1, zero = 0, positive = 1, uncertain
 
 [[nodiscard]] constexpr bool is_certain(Sign s) noexcept { return s != Sign::uncertain; }
 
+// The Sign of an exact integer sign (−1, 0, +1, or any int by its sign).
+[[nodiscard]] constexpr Sign sign_from_int(int s) noexcept {
+  return s < 0 ? Sign::negative : (s > 0 ? Sign::positive : Sign::zero);
+}
+
 // Signs as integer lanes, for the routines written for both double and Lanes8: the values of Sign
 // (+1, −1, 0, and 2 for uncertain) in a std::int64_t, or in each lane of a Mask8.
 inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::uncertain);
@@ -24,7 +29,7 @@ inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::u
 }
 // The same per lane of a vector (masks are −1 where true).
 template <class Mask>
-  requires std::is_same_v<Mask, Mask4> || std::is_same_v<Mask, Mask8>
+  requires std::is_same_v<Mask, Mask2> || std::is_same_v<Mask, Mask4> || std::is_same_v<Mask, Mask8>
 [[nodiscard]] [[gnu::always_inline]] inline Mask sign_lanes(Mask above, Mask below) noexcept {
   const Mask s = below - above;
   return s - 2 * (s == 0);
@@ -34,18 +39,6 @@ template <class Mask>
 template <class I>
 [[nodiscard]] [[gnu::always_inline]] inline I first_certain_lanes(I first, I second) noexcept {
   return select(first == uncertain_lane, second, first);
-}
-
-[[nodiscard]] constexpr Sign first_certain(Sign first, Sign second) noexcept {
-  return first == Sign::uncertain ? second : first;
-}
-
-[[nodiscard]] constexpr Sign negate(Sign s) noexcept {
-  switch (s) {
-    case Sign::negative: return Sign::positive;
-    case Sign::positive: return Sign::negative;
-    default: return s;
-  }
 }
 
 }  // namespace raykernel::detail

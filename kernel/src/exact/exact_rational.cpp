@@ -4,16 +4,17 @@
 //  * Doubles are converted to rationals from their bit patterns (sign, exponent, significand), never
 //    through floating-point operations, so the conversion is exact whatever the FP environment (GMP's
 //    mpq_set_d goes through FP arithmetic, which flush-to-zero modes would corrupt).
-//  * t is rounded with MPFR in an emulated binary64 (precision 53, exponent range [-1073, 1024],
-//    mpfr_subnormalize): one correct rounding to nearest-even with gradual underflow and overflow to ±inf.
-//    mpq_get_d and CGAL::to_double truncate and are not used.
+//  * t is rounded with MPFR in an emulated binary64 (exact/binary64_rounding.hpp, the one rounding every
+//    exact t and coordinate goes through): one correct rounding to nearest-even with gradual underflow and
+//    overflow to ±inf. mpq_get_d and CGAL::to_double truncate and are not used.
 #include "exact/exact.hpp"
 
+#include "exact/binary64_rounding.hpp"
 #include "exact/rational_from_double.hpp"
+#include "fp_environment.hpp"
 #include "ray_plane_formula.hpp"
 
 #include <CGAL/Exact_rational.h>
-#include <mpfr.h>
 
 #include <cmath>
 #include <limits>
@@ -31,49 +32,16 @@ static_assert(std::is_same_v<Rational, mpq_class>,
 // Doubles become rationals from their bits: rational_from_double (CGAL::Exact_rational is mpq_class).
 Rational to_rational(double x) { return rational_from_double(x); }
 
-// Sets MPFR's exponent range to binary64's for the lifetime of the object (MPFR keeps it per thread:
-// mpfr_buildopt_tls_p() is true in Debian's build, checked in tests/exact_rounding_test.cpp).
-class Binary64ExponentRange {
- public:
-  Binary64ExponentRange() : emin_(mpfr_get_emin()), emax_(mpfr_get_emax()) {
-    // MPFR's significands are in [1/2, 1): binary64's normal range [2^-1022, 2^1024) is exponents
-    // [-1021, 1024], and with 53-bit precision the subnormals reach down to 2^-1074 = 1/2 · 2^-1073.
-    mpfr_set_emin(-1073);
-    mpfr_set_emax(1024);
-  }
-  ~Binary64ExponentRange() {
-    mpfr_set_emin(emin_);
-    mpfr_set_emax(emax_);
-  }
-  Binary64ExponentRange(const Binary64ExponentRange&) = delete;
-  Binary64ExponentRange& operator=(const Binary64ExponentRange&) = delete;
-
- private:
-  mpfr_exp_t emin_, emax_;
-};
-
-// RN(q) in binary64 with ties to even, gradual underflow (sign kept) and overflow to ±inf.
-double round_to_nearest_even(const Rational& q) {
-  const Binary64ExponentRange range;
-  mpfr_t x;
-  mpfr_init2(x, std::numeric_limits<double>::digits);
-  int ternary = mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
-  ternary = mpfr_subnormalize(x, ternary, MPFR_RNDN);
-  const double rounded = mpfr_get_d(x, MPFR_RNDN);  // exact: x is now a binary64 value or ±0 or ±inf
-  mpfr_clear(x);
-  return rounded;
+RayPlaneValues<Rational> exact_terms(const Ray& ray, const Plane& plane) {
+  return ray_plane_values<Rational>(ray, plane, to_rational);
 }
 
-RayPlaneTerms<Rational> exact_terms(const Ray& ray, const Plane& plane) {
-  return ray_plane_terms<Rational>(ray, plane, to_rational);
-}
-
-Intersection decide(const RayPlaneTerms<Rational>& terms, Rational* exact_t) {
+Intersection decide(const RayPlaneValues<Rational>& terms, Rational* exact_t) {
   const Relation relation = relation_from_signs(CGAL::sign(terms.num), CGAL::sign(terms.den));
   if (relation == Relation::parallel || relation == Relation::in_plane)
     return {relation, std::numeric_limits<double>::quiet_NaN()};
   Rational t = terms.num / terms.den;  // 0/den is the canonical 0, which rounds to +0
-  const double rounded = round_to_nearest_even(t);
+  const double rounded = round_rational_to_nearest_even(t);
   if (exact_t != nullptr) *exact_t = std::move(t);
   return {relation, rounded};
 }
@@ -87,7 +55,7 @@ Intersection decide(const RayPlaneTerms<Rational>& terms, Rational* exact_t) {
 Intersection intersect(const Ray& ray, const Plane& plane) { return decide(exact_terms(ray, plane), nullptr); }
 
 ExactIntersection intersect_rational(const Ray& ray, const Plane& plane) {
-  const RayPlaneTerms<Rational> terms = exact_terms(ray, plane);
+  const RayPlaneValues<Rational> terms = exact_terms(ray, plane);
   Rational t;
   const Intersection result = decide(terms, &t);
   ExactIntersection exact{result, to_public(terms.num), to_public(terms.den), std::nullopt};
@@ -100,13 +68,15 @@ ExactIntersection intersect_rational(const Ray& ray, const Plane& plane) {
 namespace raykernel {
 
 double round_rational_to_double(std::string_view numerator, std::string_view denominator) {
+  return detail::in_default_fp_environment([&] {
   mpz_class num, den;
   if (num.set_str(std::string(numerator), 10) != 0 || den.set_str(std::string(denominator), 10) != 0)
     throw std::invalid_argument("round_rational_to_double: not a decimal integer");
   if (den == 0) throw std::invalid_argument("round_rational_to_double: zero denominator");
   mpq_class q(num, den);
   q.canonicalize();
-  return detail::exact::round_to_nearest_even(q);
+  return detail::exact::round_rational_to_nearest_even(q);
+  });
 }
 
 }  // namespace raykernel

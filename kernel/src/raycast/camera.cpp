@@ -2,6 +2,9 @@
 // stratified samples.
 #include <raykernel/camera.hpp>
 
+#include "fp_environment.hpp"
+#include "raycast/transform_internal.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -57,31 +60,35 @@ double stratum_position(std::uint32_t k, double jitter, std::uint32_t count) noe
 
 }  // namespace
 
-Ray ndc_ray(std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
+// The bodies of the public functions, which run them in the default floating-point environment
+// (fp_environment.hpp) once, however deeply they call each other.
+namespace {
+
+Ray ndc_ray_impl(std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
   check_pixel(i, j, image);
   const auto o = formulas::ndc_ray_origin<double>(i, j, image.width, image.height, s.x, s.y);
   return {{o[0], o[1], o[2]}, {0, 0, 1}};
 }
 
-Ray perspective_ray(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s,
+Ray perspective_ray_impl(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s,
                     RayStart start) {
   check_pixel(i, j, image);
   check_window(w);
   if (!(w.near > 0)) throw invalid_input("perspective camera: near must be positive");
   const auto o = window_point(w, i, j, image, s);
   const Vec3 point{o[0], o[1], o[2]};
-  const Vec3 direction = normalized(point);  // o/‖o‖: from the eye through the window point
+  const Vec3 direction = detail::normalized_in_default_environment(point);  // o/‖o‖: from the eye through the window point
   return {start == RayStart::eye ? Vec3{0, 0, 0} : point, direction};
 }
 
-Ray orthographic_ray(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
+Ray orthographic_ray_impl(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
   check_pixel(i, j, image);
   check_window(w);
   const auto o = window_point(w, i, j, image, s);
   return {{o[0], o[1], o[2]}, {0, 0, -1}};
 }
 
-NearPlaneWindow window_from_field_of_view(double fov_degrees, double aspect, double near) {
+NearPlaneWindow window_from_field_of_view_impl(double fov_degrees, double aspect, double near) {
   if (!(fov_degrees > 0 && fov_degrees < 180)) throw invalid_input("field of view must be in (0, 180) degrees");
   if (!(aspect > 0 && std::isfinite(aspect))) throw invalid_input("aspect ratio must be positive and finite");
   if (!(near > 0 && std::isfinite(near))) throw invalid_input("near must be positive and finite");
@@ -90,7 +97,7 @@ NearPlaneWindow window_from_field_of_view(double fov_degrees, double aspect, dou
   return {-right, right, -top, top, near};
 }
 
-std::vector<PixelSample> stratified_samples(std::uint32_t count, std::uint64_t seed, std::uint32_t i, std::uint32_t j) {
+std::vector<PixelSample> stratified_samples_impl(std::uint32_t count, std::uint64_t seed, std::uint32_t i, std::uint32_t j) {
   if (count == 0) throw invalid_input("samples per pixel must be positive");
   if (count == 1) return {PixelSample{}};
   SampleStream stream(mix(seed ^ mix((std::uint64_t{i} << 32) | j)));
@@ -105,10 +112,38 @@ std::vector<PixelSample> stratified_samples(std::uint32_t count, std::uint64_t s
   return samples;
 }
 
+Ray camera_ray_impl(const Camera& camera, std::uint32_t i, std::uint32_t j, PixelSample s) {
+  const Ray local = camera.projection == Projection::perspective
+                        ? perspective_ray_impl(camera.window, i, j, camera.image, s, camera.start)
+                        : orthographic_ray_impl(camera.window, i, j, camera.image, s);
+  return detail::transform_ray_in_default_environment(camera.to_world, local, Renormalize::yes);
+}
+
+}  // namespace
+
+Ray ndc_ray(std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
+  return detail::in_default_fp_environment([&] { return ndc_ray_impl(i, j, image, s); });
+}
+
+Ray perspective_ray(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s,
+                    RayStart start) {
+  return detail::in_default_fp_environment([&] { return perspective_ray_impl(w, i, j, image, s, start); });
+}
+
+Ray orthographic_ray(const NearPlaneWindow& w, std::uint32_t i, std::uint32_t j, ImageSize image, PixelSample s) {
+  return detail::in_default_fp_environment([&] { return orthographic_ray_impl(w, i, j, image, s); });
+}
+
+NearPlaneWindow window_from_field_of_view(double fov_degrees, double aspect, double near) {
+  return detail::in_default_fp_environment([&] { return window_from_field_of_view_impl(fov_degrees, aspect, near); });
+}
+
+std::vector<PixelSample> stratified_samples(std::uint32_t count, std::uint64_t seed, std::uint32_t i, std::uint32_t j) {
+  return detail::in_default_fp_environment([&] { return stratified_samples_impl(count, seed, i, j); });
+}
+
 Ray Camera::ray(std::uint32_t i, std::uint32_t j, PixelSample s) const {
-  const Ray local = projection == Projection::perspective ? perspective_ray(window, i, j, image, s, start)
-                                                          : orthographic_ray(window, i, j, image, s);
-  return transform_ray(to_world, local, Renormalize::yes);
+  return detail::in_default_fp_environment([&] { return camera_ray_impl(*this, i, j, s); });
 }
 
 }  // namespace raykernel

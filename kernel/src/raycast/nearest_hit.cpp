@@ -1,22 +1,23 @@
-// nearest_hit: the plane with the smallest exact t among those a ray hits (docs/contract.md §4), by the certified
-// cascade for each plane's relation and the certified comparison of t values (compare_quotients.hpp).
+// nearest_hit: the plane with the smallest exact t among those a ray hits (docs/contract.md §4), over a
+// PlaneSet prepared once (validated, coincident planes set aside).
 //
-// Only the relation of each plane is decided in the loop (signs of num and den, stage 1 for almost every
-// plane); t is rounded once, for the winner. The best plane so far keeps its cascade state, so the stages 2
-// and 3 it computed for one comparison serve the next ones and the final rounding of t.
+// Per plane, stage 1 of the relation (the binary64 filter of den and num) in the common case, the rest of
+// the cascade only for planes it cannot decide. Per hit, the certified comparison with the best so far
+// (certified/compare_quotients.hpp), starting from the same stage-1 values and escalating stage by stage
+// only when a comparison needs it. t is rounded once, for the winner.
 #include <raykernel/nearest_hit.hpp>
 
 #include "certified/compare_quotients.hpp"
 #include "certified/fp_requirements.hpp"
-#include "certified/intersect_certified.hpp"
-#include "certified/ray_plane_stages.hpp"
+#include "certified/multiversion.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "exact/exact.hpp"
 #include "exact/exact_compare.hpp"
+#include "fp_environment.hpp"
 #include "raycast/nearest_hit_internal.hpp"
 #include "ray_plane_formula.hpp"
+#include "validation.hpp"
 
-#include <cmath>
-#include <cstring>
 #include <optional>
 #include <string>
 
@@ -24,53 +25,44 @@ namespace raykernel {
 namespace detail {
 namespace {
 
-[[nodiscard]] Sign sign_of(int s) noexcept { return s < 0 ? Sign::negative : (s > 0 ? Sign::positive : Sign::zero); }
-
-[[nodiscard]] bool same_bits(const Plane& a, const Plane& b) noexcept { return std::memcmp(&a, &b, sizeof(Plane)) == 0; }
-
-[[nodiscard]] bool finite(const Vec3& v) noexcept {
-  return (v.x - v.x) + (v.y - v.y) + (v.z - v.z) == 0;  // x − x is NaN for ±inf and NaN
-}
-[[nodiscard]] bool nonzero(const Vec3& v) noexcept { return v.x != 0 || v.y != 0 || v.z != 0; }
-
-constexpr Ray valid_ray{{0, 0, 0}, {1, 0, 0}};
-constexpr Plane valid_plane{{0, 0, 0}, {1, 0, 0}};
-
-void throw_if_invalid(const Ray& ray, std::span<const Plane> planes) {
-  if (!(finite(ray.origin) && finite(ray.direction) && nonzero(ray.direction))) {
-    if (std::optional<std::string> reason = validate(ray, valid_plane)) throw invalid_input(*reason);
-  }
-  for (std::size_t k = 0; k < planes.size(); ++k) {
-    const Plane& p = planes[k];
-    if (finite(p.point) && finite(p.normal) && nonzero(p.normal)) continue;
-    if (std::optional<std::string> reason = validate(valid_ray, p))
-      throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
-  }
-}
-
 [[nodiscard]] Stage slower(Stage a, Stage b) noexcept { return a > b ? a : b; }
+
+void throw_if_invalid(const Ray& ray) {
+  if (!is_valid(ray)) throw invalid_input(*validate(ray));
+}
+
+// Records the stages of a traced query; NoTrace compiles to nothing.
+struct NoTrace {
+  void relation(Stage) noexcept {}
+  void comparison(Stage) noexcept {}
+};
+struct Trace {
+  TracedNearestHit* out;
+  void relation(Stage s) noexcept { out->relation_stage = slower(out->relation_stage, s); }
+  void comparison(Stage s) noexcept {
+    ++out->comparisons[static_cast<std::size_t>(s)];
+    out->comparison_stage = slower(out->comparison_stage, s);
+  }
+};
 
 }  // namespace
 
 RAYKERNEL_MULTIVERSION
-DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) {
+DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) noexcept {
   // t = 0 exactly (the origin on the plane) comes first; num's sign is exact.
   const bool a_at_origin = a.num_sign == Sign::zero, b_at_origin = b.num_sign == Sign::zero;
   if (a_at_origin || b_at_origin) return {static_cast<int>(!a_at_origin) - static_cast<int>(!b_at_origin), Stage::filter};
-  // The same doubles give the same exact t.
-  if (same_bits(a.stages.plane(), b.stages.plane())) return {0, Stage::filter};
 
   // sign(t_a − t_b) = sign(Δ)·sign(den_a)·sign(den_b).
   const int orientation = a.den_sign == b.den_sign ? 1 : -1;
-  RayPlaneStages& qa = a.stages;
-  RayPlaneStages& qb = b.stages;
-
-  Sign delta = compare_quotients_filter(filter_enclosure(qa.num_rounded(), bounds::filter_num_relative),
-                                        filter_enclosure(qa.den_rounded(), bounds::filter_den_relative),
-                                        filter_enclosure(qb.num_rounded(), bounds::filter_num_relative),
-                                        filter_enclosure(qb.den_rounded(), bounds::filter_den_relative));
+  Sign delta = compare_quotients_filter(filter_enclosure(a.num, bounds::filter_num_relative),
+                                        filter_enclosure(a.den, bounds::filter_den_relative),
+                                        filter_enclosure(b.num, bounds::filter_num_relative),
+                                        filter_enclosure(b.den, bounds::filter_den_relative));
   if (is_certain(delta)) return {orientation * static_cast<int>(delta), Stage::filter};
 
+  RayPlaneCascade& qa = a.cascade();
+  RayPlaneCascade& qb = b.cascade();
   delta = enclosure_sign(compare_quotients_compensated(qa.num_compensated(), qa.den_compensated(),
                                                        qb.num_compensated(), qb.den_compensated()));
   if (is_certain(delta)) return {orientation * static_cast<int>(delta), Stage::compensated};
@@ -78,84 +70,124 @@ DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) {
   delta = compare_quotients_expansion(qa.expansions(), qb.expansions());
   if (is_certain(delta)) return {orientation * static_cast<int>(delta), Stage::expansion};
 
-  return {orientation * exact::compare_quotients(qa.ray(), qa.plane(), qb.plane()), Stage::exact};
+  return {orientation * exact::compare_quotients(*a.ray, *a.plane, *b.plane), Stage::exact};
 }
 
 namespace {
 
-RAYKERNEL_MULTIVERSION
-TracedNearestHit nearest_hit_certified_valid(const Ray& ray, std::span<const Plane> planes) {
-  TracedNearestHit trace;
+// For a valid ray, in the default environment. The multiversioned functions here are noexcept (see
+// certified/ray_plane_query.hpp): the ray is validated before.
+template <class Tracer>
+[[gnu::always_inline]] inline std::optional<NearestHit> nearest_in_default_environment(const Ray& ray, const PlaneSet& set,
+                                                                                       Tracer tracer, Stage& t_stage) noexcept {
+  const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const std::span<const Plane> planes = set.planes();
   // Two slots: the best candidate so far and the one being examined, so neither is ever copied.
   std::optional<HitCandidate> slot[2];
   int best = -1;
-  for (std::size_t k = 0; k < planes.size(); ++k) {
+  for (const std::uint32_t k : set.candidates()) {
+    const Plane& plane = planes[k];
+    const double n[3] = {plane.normal.x, plane.normal.y, plane.normal.z};
+    const double diff[3] = {plane.point.x - o[0], plane.point.y - o[1], plane.point.z - o[2]};
+    const Dot3Rounded den = dot3_rounded(d, n), num = dot3_rounded(diff, n);
+    const std::int64_t den_filter = dot3_filter_lanes(den, bounds::filter_den_relative);
+    const std::int64_t num_filter = dot3_filter_lanes(num, bounds::filter_num_relative);
     const int current = best == 0 ? 1 : 0;
-    HitCandidate& candidate = slot[current].emplace(k, ray, planes[k]);
-    if (const std::optional<CertifiedSigns> signs = certified_signs(candidate.stages)) {
-      candidate.num_sign = signs->num;
-      candidate.den_sign = signs->den;
-      candidate.relation_stage = signs->stage;
-    } else {  // stage 3 was not exact: the exact stage decides
-      const exact::ExactSigns exact_signs = exact::ray_plane_signs(ray, planes[k]);
-      candidate.num_sign = sign_of(exact_signs.num);
-      candidate.den_sign = sign_of(exact_signs.den);
+    if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
+      if (signs_say_behind(num_filter, den_filter)) continue;
+      HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
+      c.num_sign = static_cast<Sign>(num_filter);
+      c.den_sign = static_cast<Sign>(den_filter);
+      tracer.relation(Stage::filter);
+    } else {
+      HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
+      const CertifiedSigns signs = certified_signs(c.cascade());
+      tracer.relation(signs.stage);
+      if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) continue;
+      c.num_sign = signs.num;
+      c.den_sign = signs.den;
+      c.relation_stage = signs.stage;
     }
-    trace.relation_stage = slower(trace.relation_stage, candidate.relation_stage);
-    const Relation relation =
-        relation_from_signs(static_cast<int>(candidate.num_sign), static_cast<int>(candidate.den_sign));
-    if (relation != Relation::hit) continue;
     if (best < 0) {
       best = current;
       continue;
     }
-    const DistanceOrder order = compare_hit_distances(candidate, *slot[best]);
-    ++trace.comparisons[static_cast<std::size_t>(order.stage)];
-    trace.comparison_stage = slower(trace.comparison_stage, order.stage);
+    const DistanceOrder order = compare_hit_distances(*slot[current], *slot[best]);
+    tracer.comparison(order.stage);
     if (order.sign < 0) best = current;  // strictly nearer; a tie keeps the smaller index
   }
-  if (best < 0) return trace;
+  if (best < 0) return std::nullopt;
 
   HitCandidate& winner = *slot[best];
-  if (winner.num_sign == Sign::zero) {
-    trace.hit = NearestHit{winner.index, 0.0};  // exact zero: +0, decided with the relation
-    trace.t_stage = winner.relation_stage;
-    return trace;
+  if (winner.num_sign == Sign::zero) {  // exact zero: +0, decided with the relation
+    t_stage = winner.relation_stage;
+    return NearestHit{winner.index, 0.0};
   }
-  const auto [t, t_stage] = certified_quotient(winner.stages);
-  trace.hit = NearestHit{winner.index, t};
-  trace.t_stage = t_stage;
+  RayPlaneCascade& cascade = winner.cascade();
+  if (winner.relation_stage == Stage::exact) {  // extreme exponents: the exact stage rounds t too
+    t_stage = Stage::exact;
+    return NearestHit{winner.index, exact::intersect(ray, *winner.plane).t};
+  }
+  const auto [t, stage] = certified_quotient(cascade);
+  t_stage = stage;
+  return NearestHit{winner.index, t};
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<NearestHit> nearest_untraced(const Ray& ray, const PlaneSet& set) noexcept {
+  Stage t_stage;
+  return nearest_in_default_environment(ray, set, NoTrace{}, t_stage);
+}
+
+RAYKERNEL_MULTIVERSION
+TracedNearestHit nearest_traced(const Ray& ray, const PlaneSet& set) noexcept {
+  TracedNearestHit trace;
+  trace.hit = nearest_in_default_environment(ray, set, Trace{&trace}, trace.t_stage);
+  if (!trace.hit) trace.t_stage = Stage::filter;
   return trace;
 }
 
 }  // namespace
 }  // namespace detail
 
-std::optional<std::string> validate_plane(const Plane& plane) { return validate(detail::valid_ray, plane); }
-
-std::optional<std::string> validate_ray(const Ray& ray) { return validate(ray, detail::valid_plane); }
-
-TracedNearestHit nearest_hit_traced(const Ray& ray, std::span<const Plane> planes) {
-  detail::throw_if_invalid(ray, planes);
-  if (!floating_point_environment_is_default()) {
-    TracedNearestHit trace;
-    trace.relation_stage = trace.comparison_stage = trace.t_stage = Stage::exact;
-    if (const std::optional<std::size_t> k = detail::exact::nearest_plane(ray, planes))
-      trace.hit = NearestHit{*k, detail::exact::intersect(ray, planes[*k]).t};
-    return trace;
-  }
-  return detail::nearest_hit_certified_valid(ray, planes);
+PlaneSet::PlaneSet(std::span<const Plane> planes) : planes_(planes.begin(), planes.end()) {
+  for (std::size_t k = 0; k < planes_.size(); ++k)
+    if (!detail::is_valid(planes_[k]))
+      throw invalid_input("plane " + std::to_string(k) + ": " + *validate(planes_[k]));
+  detail::in_default_fp_environment([&] { candidates_ = detail::exact::distinct_planes(planes_); });
 }
 
+std::optional<NearestHit> nearest_hit(const Ray& ray, const PlaneSet& planes) {
+  detail::throw_if_invalid(ray);
+  return detail::in_default_fp_environment([&] { return detail::nearest_untraced(ray, planes); });
+}
+
+// The ray is checked before the planes, as the contract's CLI reports a bad ray line before anything else.
 std::optional<NearestHit> nearest_hit(const Ray& ray, std::span<const Plane> planes) {
-  return nearest_hit_traced(ray, planes).hit;
+  detail::throw_if_invalid(ray);
+  return nearest_hit(ray, PlaneSet(planes));
+}
+
+TracedNearestHit nearest_hit_traced(const Ray& ray, const PlaneSet& planes) {
+  detail::throw_if_invalid(ray);
+  return detail::in_default_fp_environment([&] { return detail::nearest_traced(ray, planes); });
+}
+
+TracedNearestHit nearest_hit_traced(const Ray& ray, std::span<const Plane> planes) {
+  detail::throw_if_invalid(ray);
+  return nearest_hit_traced(ray, PlaneSet(planes));
 }
 
 std::optional<NearestHit> nearest_hit_exact(const Ray& ray, std::span<const Plane> planes) {
-  detail::throw_if_invalid(ray, planes);
-  const std::optional<std::size_t> k = detail::exact::nearest_plane(ray, planes);
-  if (!k) return std::nullopt;
-  return NearestHit{*k, detail::exact::intersect(ray, planes[*k]).t};
+  return detail::in_default_fp_environment([&]() -> std::optional<NearestHit> {
+    if (auto reason = validate(ray)) throw invalid_input(*reason);
+    for (std::size_t k = 0; k < planes.size(); ++k)
+      if (auto reason = validate(planes[k])) throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
+    const std::optional<std::size_t> k = detail::exact::nearest_plane(ray, planes);
+    if (!k) return std::nullopt;
+    return NearestHit{*k, detail::exact::intersect(ray, planes[*k]).t};
+  });
 }
 
 std::optional<NearestHit> nearest_hit_naive(const Ray& ray, std::span<const Plane> planes) noexcept {

@@ -1,27 +1,40 @@
-// The parts of nearest_hit that tests drive directly: a plane the ray hits with its cascade state, and the
+// The parts of nearest_hit that tests drive directly: a plane the ray hits, with what decided it, and the
 // certified order of two such planes' t.
 #pragma once
 
-#include "certified/ray_plane_stages.hpp"
+#include "certified/dot3_filter.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/sign.hpp"
 
 #include <raykernel/raykernel.hpp>
 
 #include <cstddef>
+#include <optional>
 
 namespace raykernel::detail {
 
-// A plane whose relation to the ray is hit, with the exact signs of its num and den (den ≠ 0; num is zero
-// or has den's sign) and the cascade state that decided them.
+// A plane whose relation to the ray is hit: the exact signs of its num and den (den ≠ 0; num is zero or
+// has den's sign), the stage-1 values every comparison starts from, and the rest of its cascade, built
+// the first time a comparison needs a later stage.
 struct HitCandidate {
-  HitCandidate(std::size_t plane_index, const Ray& ray, const Plane& plane) noexcept
-      : index(plane_index), stages(ray, plane) {}
+  HitCandidate(std::size_t plane_index, const Ray& ray, const Plane& plane, const Dot3Rounded& den_stage1,
+               const Dot3Rounded& num_stage1) noexcept
+      : index(plane_index), ray(&ray), plane(&plane), den(den_stage1), num(num_stage1) {}
+
+  // The cascade of this plane (stage 1 recomputed once, on the rare comparisons the filter cannot decide).
+  [[nodiscard]] RayPlaneCascade& cascade() noexcept {
+    if (!full) full.emplace(*ray, *plane);
+    return *full;
+  }
 
   std::size_t index;
+  const Ray* ray;
+  const Plane* plane;
+  Dot3Rounded den, num;  // stage 1
   Sign num_sign = Sign::uncertain;
   Sign den_sign = Sign::uncertain;
-  Stage relation_stage = Stage::exact;  // the stage that certified the two signs
-  RayPlaneStages stages;
+  Stage relation_stage = Stage::filter;  // the stage that certified the two signs
+  std::optional<RayPlaneCascade> full;
 };
 
 // The sign of t_a − t_b (−1, 0, +1) and the cheapest stage that certified it.
@@ -30,10 +43,10 @@ struct DistanceOrder {
   Stage stage;
 };
 
-// The exact order of the t of two hit candidates along the same ray: t = 0 (num = 0) first; identical
-// planes tie; otherwise sign(Δ)·sign(den_a)·sign(den_b) with Δ = num_a·den_b − num_b·den_a decided by
-// compare_quotients_filter, compare_quotients_compensated, compare_quotients_expansion, and the exact
-// stage (certified/compare_quotients.hpp). Computes the stages 2 and 3 of either candidate on demand.
-[[nodiscard]] DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b);
+// The exact order of the t of two hit candidates along the same ray: t = 0 (num = 0) first; otherwise
+// sign(Δ)·sign(den_a)·sign(den_b) with Δ = num_a·den_b − num_b·den_a decided by compare_quotients_filter,
+// compare_quotients_compensated, compare_quotients_expansion, and the exact stage
+// (certified/compare_quotients.hpp), each asked only when the cheaper ones cannot decide.
+[[nodiscard]] DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) noexcept;
 
 }  // namespace raykernel::detail

@@ -1,0 +1,321 @@
+// raykernel_mesh_bench: meshes at scale — readers, BVH build and traversal, and the baselines people use.
+//
+//   io/read_{obj,off,ply_ascii,ply_binary,stl_binary}/icosphere-1M   MB/s and triangles/s of read_mesh on a
+//                                                                   ~10^6-triangle file made in memory
+//   mesh/bvh_build/<mesh>, mesh/embree_build/<mesh>                  build times
+//   mesh/bvh_traverse/<mesh>        rays/s of the certified BVH walk alone: every leaf whose box the ray may
+//                                   meet (no bound), counting candidate triangles — the cost floor of the
+//                                   exact nearest hit to come
+//   mesh/naive/<mesh>               rays/s of a nearest hit through the same BVH with Möller–Trumbore in
+//                                   doubles (no guarantee), pruning by its t
+//   mesh/{embree,embree_robust}/<mesh>   rays/s of rtcIntersect1 in Embree's default and robust modes (float
+//                                   mesh and rays: Embree's answers are for the float data)
+//   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
+//   mesh/cgal_aabb/<mesh>           rays/s of CGAL's AABB_tree::first_intersected_primitive (Epick)
+//   inside/cgal/<mesh>              points/s of CGAL's Side_of_triangle_mesh
+// Meshes (testkit, exact dyadic vertices): icosphere, subdivided cube and terrain at ~10^3, ~10^5 and
+// ~10^6 triangles. Rays: 2^16 per mesh, from a sphere around it towards random points of its box (fixed
+// seed). Every ray benchmark runs on 1 thread and on all threads (items_per_second is the total).
+// bench/README.md has the command and the numbers.
+#include "cgal_mesh_baselines.hpp"
+
+#include <raykernel/bvh.hpp>
+#include <raykernel/io/mesh_file.hpp>
+#include <raykernel/testkit/meshes.hpp>
+
+#ifdef RAYKERNEL_HAVE_EMBREE
+#include "embree_scene.hpp"
+#endif
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace raykernel::bench {
+namespace {
+
+struct MeshSpec {
+  std::string name;
+  std::function<Mesh()> make;
+};
+
+const std::vector<MeshSpec>& mesh_specs() {
+  static const std::vector<MeshSpec> specs = {
+      {"icosphere-1k", [] { return testkit::make_icosphere(3); }},         // 1,280 triangles
+      {"cube-1k", [] { return testkit::make_subdivided_cube(9); }},         // 972
+      {"terrain-1k", [] { return testkit::make_terrain(16); }},             // 1,152
+      {"icosphere-100k", [] { return testkit::make_icosphere(6); }},       // 81,920
+      {"cube-100k", [] { return testkit::make_subdivided_cube(91); }},      // 99,372
+      {"terrain-100k", [] { return testkit::make_terrain(158); }},          // 101,120
+      {"icosphere-1M", [] { return testkit::make_icosphere(8); }},         // 1,310,720
+      {"cube-1M", [] { return testkit::make_subdivided_cube(289); }},       // 1,002,252
+      {"terrain-1M", [] { return testkit::make_terrain(500); }},            // 1,004,000
+  };
+  return specs;
+}
+
+// Everything one mesh's benchmarks need, built on first use (under a lock: the threads of a benchmark all
+// ask). One mesh at a time is kept.
+struct Fixture {
+  std::string name;
+  Mesh mesh;
+  std::vector<Ray> rays;
+  std::vector<Vec3> points;
+  std::unique_ptr<MeshBvh> bvh;
+  std::unique_ptr<CgalMeshQueries> cgal;
+#ifdef RAYKERNEL_HAVE_EMBREE
+  std::unique_ptr<baseline::EmbreeScene> embree[2];
+#endif
+};
+
+std::mutex fixture_mutex;
+std::unique_ptr<Fixture> current;
+
+Fixture& fixture(const std::string& name) {
+  if (current && current->name == name) return *current;
+  current.reset();
+  auto f = std::make_unique<Fixture>();
+  f->name = name;
+  for (const MeshSpec& s : mesh_specs())
+    if (s.name == name) f->mesh = s.make();
+  Box3 box{f->mesh.vertices[0], f->mesh.vertices[0]};
+  for (const Vec3& v : f->mesh.vertices) {
+    box.lo = {std::min(box.lo.x, v.x), std::min(box.lo.y, v.y), std::min(box.lo.z, v.z)};
+    box.hi = {std::max(box.hi.x, v.x), std::max(box.hi.y, v.y), std::max(box.hi.z, v.z)};
+  }
+  const Vec3 c{(box.lo.x + box.hi.x) / 2, (box.lo.y + box.hi.y) / 2, (box.lo.z + box.hi.z) / 2};
+  const Vec3 e{box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z};
+  const double radius = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+  std::mt19937_64 rng(15);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  for (int i = 0; i < (1 << 16); ++i) {
+    Vec3 u{normal(rng), normal(rng), normal(rng)};
+    const double n = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+    const Vec3 o{c.x + radius * u.x / n, c.y + radius * u.y / n, c.z + radius * u.z / n};
+    const Vec3 target{c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)};
+    f->rays.push_back({o, {target.x - o.x, target.y - o.y, target.z - o.z}});
+    f->points.push_back({c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)});
+  }
+  current = std::move(f);
+  return *current;
+}
+
+template <class Part, class Make>
+const Part& part(std::unique_ptr<Part>& slot, Make&& make) {
+  if (!slot) slot = make();
+  return *slot;
+}
+
+// Möller–Trumbore in doubles (the baseline users compare; to be replaced by intersect_naive(Ray, Triangle)
+// when it lands): t of a hit, or nothing.
+std::optional<double> moller_trumbore(const Ray& r, const Triangle& tri) {
+  const Vec3 e1{tri.b.x - tri.a.x, tri.b.y - tri.a.y, tri.b.z - tri.a.z}, e2{tri.c.x - tri.a.x, tri.c.y - tri.a.y, tri.c.z - tri.a.z};
+  const Vec3& d = r.direction;
+  const Vec3 p{d.y * e2.z - d.z * e2.y, d.z * e2.x - d.x * e2.z, d.x * e2.y - d.y * e2.x};
+  const double det = e1.x * p.x + e1.y * p.y + e1.z * p.z;
+  if (det == 0) return std::nullopt;
+  const double inv = 1 / det;
+  const Vec3 s{r.origin.x - tri.a.x, r.origin.y - tri.a.y, r.origin.z - tri.a.z};
+  const double u = (s.x * p.x + s.y * p.y + s.z * p.z) * inv;
+  if (u < 0 || u > 1) return std::nullopt;
+  const Vec3 q{s.y * e1.z - s.z * e1.y, s.z * e1.x - s.x * e1.z, s.x * e1.y - s.y * e1.x};
+  const double v = (d.x * q.x + d.y * q.y + d.z * q.z) * inv;
+  if (v < 0 || u + v > 1) return std::nullopt;
+  const double t = (e2.x * q.x + e2.y * q.y + e2.z * q.z) * inv;
+  if (t < 0) return std::nullopt;
+  return t;
+}
+
+void set_rate(benchmark::State& state, std::int64_t per_iteration) {
+  state.SetItemsProcessed(state.iterations() * per_iteration);
+}
+
+// A ray benchmark: `query(fixture, ray)` for ray after ray, each thread starting elsewhere in the list.
+template <class Prepare, class Query>
+void ray_benchmark(benchmark::State& state, const std::string& mesh, Prepare prepare, Query query) {
+  Fixture* f;
+  {
+    std::lock_guard lock(fixture_mutex);
+    f = &fixture(mesh);
+    prepare(*f);
+  }
+  const std::size_t n = f->rays.size();
+  std::size_t i = static_cast<std::size_t>(state.thread_index()) * 7919 % n;
+  std::uint64_t sink = 0;
+  for (auto _ : state) {
+    sink += query(*f, f->rays[i]);
+    if (++i == n) i = 0;
+  }
+  benchmark::DoNotOptimize(sink);
+  set_rate(state, 1);
+}
+
+void threads(benchmark::internal::Benchmark* b) {
+  const int all = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  b->Threads(1);
+  if (all > 1) b->Threads(all);
+  b->UseRealTime();
+}
+
+void register_all() {
+
+  // Readers, on the 10^6 icosphere written in each format.
+  for (auto [label, format, encoding] :
+       {std::tuple{"obj", io::MeshFormat::obj, io::MeshEncoding::ascii}, {"off", io::MeshFormat::off, io::MeshEncoding::ascii},
+        {"ply_ascii", io::MeshFormat::ply, io::MeshEncoding::ascii},
+        {"ply_binary", io::MeshFormat::ply, io::MeshEncoding::binary_little_endian},
+        {"stl_binary", io::MeshFormat::stl, io::MeshEncoding::binary_little_endian},
+        {"stl_ascii", io::MeshFormat::stl, io::MeshEncoding::ascii}}) {
+    benchmark::RegisterBenchmark(("io/read_" + std::string(label) + "/icosphere-1M").c_str(),
+                                 [format = format, encoding = encoding](benchmark::State& state) {
+                                   // icosphere vertices (multiples of 2^-30 in [-1, 1]) are floats too, as STL needs
+                                   const Mesh mesh = testkit::make_icosphere(8, 23);
+                                   const std::string bytes = io::write_mesh(mesh, format, encoding);
+                                   std::size_t triangles = 0;
+                                   for (auto _ : state) triangles = io::read_mesh(bytes, "bench", format).triangles.size();
+                                   state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(bytes.size()));
+                                   state.counters["triangles/s"] = benchmark::Counter(static_cast<double>(triangles),
+                                                                                      benchmark::Counter::kIsIterationInvariantRate);
+                                 })
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(2);
+  }
+
+  for (const MeshSpec& spec : mesh_specs()) {
+    const std::string m = spec.name;
+    benchmark::RegisterBenchmark(("mesh/bvh_build/" + m).c_str(), [m](benchmark::State& state) {
+      const Mesh* mesh;
+      {
+        std::lock_guard lock(fixture_mutex);
+        mesh = &fixture(m).mesh;
+      }
+      for (auto _ : state) benchmark::DoNotOptimize(MeshBvh(*mesh).nodes().size());
+      state.counters["triangles"] = static_cast<double>(mesh->triangles.size());
+    })->Unit(benchmark::kMillisecond)->MinTime(1);
+
+    benchmark::RegisterBenchmark(("mesh/bvh_traverse/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.bvh, [&] { return std::make_unique<MeshBvh>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) {
+            std::uint64_t candidates = 0;
+            BvhRayTraversal walk(*f.bvh, r);
+            while (const auto leaf = walk.next()) candidates += leaf->triangles.size();
+            return candidates;
+          });
+    })->Apply(threads);
+
+    benchmark::RegisterBenchmark(("mesh/naive/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.bvh, [&] { return std::make_unique<MeshBvh>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) {
+            double best = std::numeric_limits<double>::infinity();
+            std::uint64_t best_k = ~0ull;
+            BvhRayTraversal walk(*f.bvh, r);
+            // Pruning by a naive t is not certified (it may be off by rounding); this is the baseline.
+            while (const auto leaf = walk.next(best))
+              for (std::uint32_t k : leaf->triangles)
+                if (const auto t = moller_trumbore(r, f.mesh.triangle(k)); t && (*t < best || (*t == best && k < best_k))) {
+                  best = *t;
+                  best_k = k;
+                }
+            return best_k;
+          });
+    })->Apply(threads);
+
+#ifdef RAYKERNEL_HAVE_EMBREE
+    for (int robust = 0; robust < 2; ++robust) {
+      const std::string mode = robust ? "embree_robust" : "embree";
+      benchmark::RegisterBenchmark(("mesh/" + mode + "_build/" + m).c_str(), [m, robust](benchmark::State& state) {
+        const Mesh* mesh;
+        {
+          std::lock_guard lock(fixture_mutex);
+          mesh = &fixture(m).mesh;
+        }
+        for (auto _ : state)
+          benchmark::DoNotOptimize(baseline::EmbreeScene(*mesh, robust ? baseline::EmbreeScene::Mode::robust : baseline::EmbreeScene::Mode::fast, 1));
+      })->Unit(benchmark::kMillisecond)->MinTime(1);
+      benchmark::RegisterBenchmark(("mesh/" + mode + "/" + m).c_str(), [m, robust](benchmark::State& state) {
+        ray_benchmark(
+            state, m,
+            [robust](Fixture& f) {
+              part(f.embree[robust], [&] {
+                auto s = std::make_unique<baseline::EmbreeScene>(f.mesh, robust ? baseline::EmbreeScene::Mode::robust
+                                                                                 : baseline::EmbreeScene::Mode::fast);
+                return s;
+              });
+            },
+            [robust](Fixture& f, const Ray& r) {
+              const auto hit = f.embree[robust]->intersect(r);
+              return hit ? std::uint64_t{hit->triangle} : 0;
+            });
+        std::lock_guard lock(fixture_mutex);
+        state.counters["coords_changed_by_float"] =
+            benchmark::Counter(static_cast<double>(current->embree[robust]->conversion().inexact), benchmark::Counter::kAvgThreads);
+      })->Apply(threads);
+    }
+    benchmark::RegisterBenchmark(("mesh/embree_robust_packet8/" + m).c_str(), [m](benchmark::State& state) {
+      Fixture* f;
+      {
+        std::lock_guard lock(fixture_mutex);
+        f = &fixture(m);
+        part(f->embree[1], [&] { return std::make_unique<baseline::EmbreeScene>(f->mesh, baseline::EmbreeScene::Mode::robust); });
+      }
+      std::optional<baseline::EmbreeScene::Hit> hits[8];
+      std::size_t i = static_cast<std::size_t>(state.thread_index()) * 7912 % f->rays.size();
+      for (auto _ : state) {
+        f->embree[1]->intersect8(std::span(f->rays).subspan(i, 8), hits);
+        benchmark::DoNotOptimize(hits);
+        i = (i + 8) % f->rays.size();
+      }
+      set_rate(state, 8);
+    })->Apply(threads);
+#endif
+
+    benchmark::RegisterBenchmark(("mesh/cgal_aabb/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.cgal, [&] { return std::make_unique<CgalMeshQueries>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) {
+            const auto hit = f.cgal->first_hit(r);
+            return hit ? std::uint64_t{*hit} : 0;
+          });
+    })->Apply(threads);
+
+    benchmark::RegisterBenchmark(("inside/cgal/" + m).c_str(), [m](benchmark::State& state) {
+      Fixture* f;
+      {
+        std::lock_guard lock(fixture_mutex);
+        f = &fixture(m);
+        part(f->cgal, [&] { return std::make_unique<CgalMeshQueries>(f->mesh); });
+      }
+      std::size_t i = 0;
+      std::int64_t sum = 0;
+      for (auto _ : state) {
+        sum += f->cgal->side(f->points[i]);
+        if (++i == f->points.size()) i = 0;
+      }
+      benchmark::DoNotOptimize(sum);
+      set_rate(state, 1);
+    });  // Side_of_triangle_mesh is not thread-safe: 1 thread
+  }
+}
+
+}  // namespace
+}  // namespace raykernel::bench
+
+int main(int argc, char** argv) {
+  raykernel::bench::register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,22 @@
+// The CLI's limits, in one place: what the options and scene files accept, and how much of a bad token a
+// message quotes. (The library has no such limits; these keep a command's memory and time bounded.)
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace raykernel::cli::limits {
+
+// A render: image side and samples per pixel (scene files and --width, --height, --samples), worker threads.
+inline constexpr std::uint32_t max_image_side = 16384;
+inline constexpr std::uint32_t max_samples_per_pixel = 4096;
+inline constexpr std::uint32_t max_threads = 1024;
+
+// `raykernel demo --per-kind N`.
+inline constexpr std::uint64_t max_demo_queries_per_kind = 100'000'000;
+
+// The most numbers a query line holds (classify's 12), and the bytes of a bad token a message quotes.
+inline constexpr int max_numbers_per_line = 15;  // a triangle line (docs/contract.md §6)
+inline constexpr std::size_t quoted_token_bytes = 40;
+
+}  // namespace raykernel::cli::limits

@@ -1,0 +1,39 @@
+// Shading for `raykernel render`: what colour a ray's nearest hit (or miss) gets. Legible, not physical:
+// the plane's colour or checker square, darkened at grazing angles, faded into the horizon colour with
+// distance; a miss shows the sky.
+#pragma once
+
+#include "colour.hpp"
+#include "scene.hpp"
+
+#include <raykernel/nearest_hit.hpp>
+
+#include <optional>
+#include <vector>
+
+namespace raykernel::cli {
+
+class Shader {
+ public:
+  explicit Shader(const Scene& scene);
+
+  // The colour, in linear light, of `ray` whose nearest hit is `hit` (nothing: a miss).
+  [[nodiscard]] Linear shade(const Ray& ray, const std::optional<NearestHit>& hit) const noexcept;
+
+ private:
+  // A plane's shading data: unit normal, checker axes in the plane, its one or two colours.
+  struct PreparedPlane {
+    Vec3 unit_normal;
+    Vec3 u, v;
+    Linear color[2];
+    double checker_size = 0;  // 0: solid colour
+  };
+  static PreparedPlane prepare(const ScenePlane& plane);
+  [[nodiscard]] Linear sky(const Vec3& unit_direction) const noexcept;
+
+  const Scene& scene_;
+  std::vector<PreparedPlane> planes_;
+  Linear horizon_, zenith_;
+};
+
+}  // namespace raykernel::cli

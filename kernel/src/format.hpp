@@ -1,0 +1,23 @@
+// Doubles in the library's messages, written the same way whatever the floating-point environment:
+// std::to_chars gives the shortest text that reads back to the same double, by integer arithmetic only
+// (printf's %g follows the x87 rounding mode a caller may have changed, so its digits would depend on it).
+#pragma once
+
+#include <raykernel/raykernel.hpp>
+
+#include <charconv>
+#include <string>
+
+namespace raykernel::detail {
+
+[[nodiscard]] inline std::string shortest_text(double x) {
+  char buf[32];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+[[nodiscard]] inline std::string shortest_text(const Vec3& v) {
+  return "(" + shortest_text(v.x) + ", " + shortest_text(v.y) + ", " + shortest_text(v.z) + ")";
+}
+
+}  // namespace raykernel::detail

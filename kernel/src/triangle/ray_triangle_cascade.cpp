@@ -1,0 +1,377 @@
+// The certified ray–triangle cascade: filter → compensated → expansion → exact, for the signs of πa, πb, πc,
+// den and num (and, when a π or den is exactly 0, the tie-break and degeneracy signs), and the correctly
+// rounded quotients t = num/den and πk/den.
+//
+// The fast path evaluates stage 2 (whose high parts are stage 1's values) when something is to be rounded, or
+// stage 1 alone for the relation, takes every sign from the filter or else from the enclosure, and when the
+// signs of den and the three π are certain (then nonzero: the branch-free decisions never certify zero, and
+// the input is valid, see below) decides the location directly: inside when all three have den's sign, else
+// outside, and the owned rule agrees with the closed one (no π is 0). The quotients are rounded by
+// round_quotient on the stage-2 enclosures, t and the three coordinates over one divisor prepared once from
+// den's enclosure (one reciprocal). What the fast path does not certify, the caller validates and hands to the
+// full cascade (ray_triangle_cascade.hpp), which escalates each sign and each quotient on its own.
+//
+// No validation is needed before the fast path: a certified sign of den implies finite inputs and d ≠ 0. Its
+// magnitude m sums the permanents of all three π, so a NaN or infinite component anywhere (o and d reach every
+// π; a vertex reaches two of the cross products) makes m, hence the bound and the radius, non-finite; and
+// d = 0 makes every product of den exactly 0, which neither stage certifies as nonzero.
+//
+// Certified by:
+//   signs, stage 1:      proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
+//   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`
+//                        proofs/TriangleCompensated.v, `num_compensated_encloses`
+//                        proofs/Compensated.v, `enclosure_sign_sound`
+//   the fast path:       proofs/TriangleCascade.v, `triangle_fast_sign_correct`, `fast_location_correct`
+//                        proofs/TriangleCascade.v, `den_nonzero_direction`
+//                        proofs/TriangleCompensated.v, `stage2_filter_view`
+//   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
+//   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
+//   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
+//                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
+//   stage 3 values:      Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
+//
+// Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
+#include "triangle/ray_triangle_cascade.hpp"
+
+#include "certified/fp_requirements.hpp"
+#include "certified/multiversion.hpp"
+#include "certified/quotient_rounding.hpp"
+#include "exact/exact_triangle.hpp"
+#include "triangle/ray_triangle_stages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace raykernel::detail {
+namespace {
+
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+Stage later(Stage a, Stage b) noexcept { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
+
+// The values to round: t = num/den (index 0) and πa/den, πb/den, πc/den (indices 1–3), as determinant indices.
+constexpr int numerator_value[4] = {value_num, value_pi_a, value_pi_b, value_pi_c};
+
+// The four quotients in the fast path's lane order: RN(πa/den), RN(πb/den), RN(πc/den), RN(num/den).
+struct FourQuotients {
+  double t[4];
+  bool certain[4];
+};
+
+// The one place where the fast path rounds: round_quotient of each numerator's enclosure (lanes πa, πb, πc,
+// num) over one divisor prepared from den's enclosure — one reciprocal for all four — in one Lanes4 pass,
+// four roundings per vector operation (each lane the scalar operations: proofs/TriangleCascade.v,
+// `triangle_quotient_correct`, with the divisor shared).
+[[gnu::always_inline]] inline FourQuotients round_quotients(const EnclosureT<Lanes4>& numerators,
+                                                             const Enclosure& den) noexcept {
+  const Divisor d = prepare_divisor(den);
+  const DivisorT<Lanes4> shared{broadcast<Lanes4>(d.hi), broadcast<Lanes4>(d.lo), broadcast<Lanes4>(d.radius),
+                                broadcast<Lanes4>(d.reciprocal), Mask4{} - static_cast<std::int64_t>(d.in_range)};
+  const QuotientRoundingT<Lanes4> r = round_quotient(numerators, shared);
+  FourQuotients q;
+  for (int k = 0; k < 4; ++k) {
+    q.t[k] = r.t[k];
+    q.certain[k] = r.certain[k] != 0;
+  }
+  return q;
+}
+
+// The relative constants of the four lanes (π, π, π, num).
+const Lanes4 filter_relative_lanes{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
+                                   bounds::triangle_filter_pi_relative, bounds::triangle_filter_num_relative};
+
+// Numerator k of the quotients (t, ua, ub, uc) and its lane in the fast path's layout.
+constexpr int numerator_lane[4] = {lane_num, value_pi_a, value_pi_b, value_pi_c};
+
+TriangleIntersection answer(const TriangleClassification& c) noexcept {
+  return {c.relation, c.location, c.owned, not_a_number, {not_a_number, not_a_number, not_a_number}};
+}
+
+// ---- The full cascade --------------------------------------------------------------------------------------
+
+// One query in the full cascade: each sign escalated on its own, stage by stage, the stages computed once.
+class TriangleCascade {
+ public:
+  TriangleCascade(const Ray& ray, const Triangle& triangle) : ray_(ray), triangle_(triangle) {}
+
+  // The classification through stage 3, or nothing when a sign needed the exact stage.
+  std::optional<TriangleClassification> classify(TriangleRule rule) {
+    const TriangleClassification c = classify_triangle(
+        rule, [&] { return sign(value_den); }, [&](int k) { return sign(k); },
+        [&](int k) { return tie_break(k); }, [&] { return sign(value_num); }, [&] { return normal_is_zero(); });
+    if (needs_exact_) return std::nullopt;
+    return c;
+  }
+
+  // The exact sign of determinant v (stages 1–3); sets needs_exact_ (and returns 0) when stage 3 is not exact.
+  int sign(int v) {
+    Sign s = det3_filter_sign(v);
+    if (s == Sign::uncertain) {
+      stage_ = later(stage_, Stage::compensated);
+      s = enclosure_sign(compensated().enclosure(v));
+    }
+    if (s == Sign::uncertain) {
+      stage_ = later(stage_, Stage::expansion);
+      s = expansion(v).sign();
+    }
+    if (s == Sign::uncertain) {
+      needs_exact_ = true;
+      return 0;
+    }
+    return static_cast<int>(s);
+  }
+
+  [[nodiscard]] Stage stage() const noexcept { return stage_; }
+  [[nodiscard]] bool needs_exact() const noexcept { return needs_exact_; }
+
+  // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
+  // and has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
+  std::optional<Enclosure> expansion_enclosure(int v) {
+    const ExpansionValue<192>& value = expansion(v);
+    if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
+    Expansion<bounds::tail_sum_max_terms> short_form{};
+    for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
+    short_form.size = value.e.size;
+    return expansion_tail_enclosure(short_form);
+  }
+  const TriangleCompensatedValues& compensated() {
+    if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
+    return *compensated_;
+  }
+  // Stage 3 of determinant v, computed on first use.
+  const ExpansionValue<192>& expansion(int v) {
+    std::optional<ExpansionValue<192>>& x = expansion_[static_cast<std::size_t>(v)];
+    if (!x) x = value_expansion(ray_, triangle_, v);
+    return *x;
+  }
+
+ private:
+  Sign det3_filter_sign(int v) {
+    if (!filter_) filter_ = compensated_ ? compensated_->filter() : triangle_filter_values(ray_, triangle_);
+    return static_cast<Sign>(
+        det3_filter_lanes(filter_->value[static_cast<std::size_t>(v)], filter_relative(v), filter_->absolute(v)));
+  }
+  std::array<int, 3> tie_break(int k) {
+    stage_ = later(stage_, Stage::expansion);
+    if (const auto s = tie_break_signs_by_expansion(ray_, triangle_, k)) return *s;
+    needs_exact_ = true;
+    return {1, 0, 0};
+  }
+  bool normal_is_zero() {
+    stage_ = later(stage_, Stage::expansion);
+    if (const auto z = normal_is_zero_by_expansion(triangle_)) return *z;
+    needs_exact_ = true;
+    return false;
+  }
+
+  const Ray& ray_;
+  const Triangle& triangle_;
+  Stage stage_ = Stage::filter;
+  bool needs_exact_ = false;
+  std::optional<TriangleFilterValues> filter_;
+  std::optional<TriangleCompensatedValues> compensated_;
+  std::array<std::optional<ExpansionValue<192>>, triangle_value_count> expansion_;
+};
+
+// Four scalar enclosures (in lane order) as the lanes of one.
+[[gnu::always_inline]] inline EnclosureT<Lanes4> enclosure_lanes(const Enclosure e[4]) noexcept {
+  EnclosureT<Lanes4> n;
+  for (int k = 0; k < 4; ++k) {
+    n.hi[k] = e[k].hi;
+    n.lo[k] = e[k].lo;
+    n.radius[k] = e[k].radius;
+  }
+  return n;
+}
+
+// ---- The fast path -----------------------------------------------------------------------------------------
+
+// The decision when den and the three π have certain (hence nonzero) signs: inside or outside, the same under
+// both rules. `num_sign` is consulted only inside. Returns nothing when num's sign is needed and uncertain.
+[[gnu::always_inline]] inline std::optional<TriangleClassification> decide_nonzero(std::int64_t sa, std::int64_t sb,
+                                                                                   std::int64_t sc, std::int64_t sden,
+                                                                                   std::int64_t snum) noexcept {
+  const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
+  if (!inside) return TriangleClassification{TriangleRelation::miss, TriangleLocation::outside, false};
+  if (snum == uncertain_lane) return std::nullopt;
+  return TriangleClassification{snum == sden ? TriangleRelation::hit : TriangleRelation::behind,
+                                TriangleLocation::inside, true};
+}
+
+// The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
+// directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle.
+[[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(const Ray& ray,
+                                                                                      const Triangle& triangle) noexcept {
+  const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
+  // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain).
+  const Lanes4 bound = bounds::triangle_filter_pi_relative * s1.lanes.m + s1.absolute;
+  const Lanes4 one = broadcast<Lanes4>(1.0);
+  const Lanes4 sign = select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});
+  const double sa = sign[0], sb = sign[1], sc = sign[2], sden = sign[3];
+  const bool certain = (sa * sb) * (sc * sden) != 0;
+  if (certain) [[likely]] {
+    const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
+    if (!inside) return TracedTriangleClassification{{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
+    const TriangleNumFilter num = triangle_num_filter(ray, triangle);
+    const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
+    if (num_sign != uncertain_lane)
+      return TracedTriangleClassification{
+          {static_cast<double>(num_sign) == sden ? TriangleRelation::hit : TriangleRelation::behind,
+           TriangleLocation::inside, true},
+          Stage::filter};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+// ---- The full cascade --------------------------------------------------------------------------------------
+
+TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                         const TriangleOptions& options) {
+  TriangleCascade query(ray, triangle);
+  const std::optional<TriangleClassification> classified = query.classify(options.rule);
+  if (!classified) return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
+  const Stage relation_stage = query.stage();
+  TracedTriangleIntersection r{answer(*classified), relation_stage, relation_stage};
+  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return r;
+
+  // The quotients: an exactly zero numerator gives +0; the others are rounded from the stage-2 enclosures,
+  // then from stage 3's, or else exactly.
+  const bool asked[4] = {options.t, options.barycentric, options.barycentric, options.barycentric};
+  int numerator_sign[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k)
+    if (asked[k]) numerator_sign[k] = query.sign(numerator_value[k]);
+  if (query.needs_exact()) {
+    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+    r.intersection.t = e.t;
+    r.intersection.barycentric = e.barycentric;
+    r.rounding_stage = Stage::exact;
+    return r;
+  }
+  bool certain[4];
+  bool all_certain = true;
+  double value[4];
+  for (int k = 0; k < 4; ++k) {
+    certain[k] = !asked[k] || numerator_sign[k] == 0;
+    all_certain = all_certain && certain[k];
+    value[k] = asked[k] ? 0.0 : not_a_number;  // an exact 0/den is +0
+  }
+  r.rounding_stage = query.stage();
+  auto with_values = [&] {
+    r.intersection.t = value[0];
+    r.intersection.barycentric = {value[1], value[2], value[3]};
+    return r;
+  };
+  if (all_certain) return with_values();
+
+  // Stage 2: round_quotient on the enclosures, over one divisor.
+  r.rounding_stage = later(r.rounding_stage, Stage::compensated);
+  const TriangleCompensatedValues& s2 = query.compensated();
+  Enclosure numerators[4];
+  for (int k = 0; k < 4; ++k) numerators[numerator_lane[k]] = s2.enclosure(numerator_value[k]);
+  const FourQuotients rounded = round_quotients(enclosure_lanes(numerators), s2.enclosure(value_den));
+  all_certain = true;
+  for (int k = 0; k < 4; ++k) {
+    if (certain[k]) continue;
+    value[k] = rounded.t[numerator_lane[k]];
+    certain[k] = rounded.certain[numerator_lane[k]];
+    all_certain = all_certain && certain[k];
+  }
+  if (all_certain) return with_values();
+
+  // Stage 3: round_quotient on the expansions' tail enclosures over one divisor (den's tail enclosure, or
+  // stage 2's when den's expansion is too long), then the exact stage for what is left (exact ties among it).
+  r.rounding_stage = later(r.rounding_stage, Stage::expansion);
+  const std::optional<Enclosure> den = query.expansion_enclosure(value_den);
+  const Divisor divisor = prepare_divisor(den ? *den : s2.enclosure(value_den));
+  all_certain = true;
+  for (int k = 0; k < 4; ++k) {
+    if (certain[k]) continue;
+    if (const std::optional<Enclosure> n = query.expansion_enclosure(numerator_value[k])) {
+      const QuotientRounding e = round_quotient(*n, divisor);
+      value[k] = e.t;
+      certain[k] = e.certain;
+    }
+    all_certain = all_certain && certain[k];
+  }
+  if (!all_certain) {
+    r.rounding_stage = Stage::exact;
+    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+    const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
+    for (int k = 0; k < 4; ++k)
+      if (!certain[k]) value[k] = exact_value[k];
+  }
+  return with_values();
+}
+
+TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  TriangleCascade query(ray, triangle);
+  if (const std::optional<TriangleClassification> c = query.classify(rule)) return {*c, query.stage()};
+  return {exact::classify_triangle(ray, triangle, rule), Stage::exact};
+}
+
+// ---- The fast paths (multiversioned: noexcept, nothing here throws) ----------------------------------------
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray, const Triangle& triangle,
+                                                                   TriangleRule) noexcept {
+  return fast_relation(ray, triangle);  // what it certifies has no π = 0: the rules agree
+}
+
+namespace {
+// The body of fast_triangle_intersection, outside the multiversioned function: clang (14) rejects a call
+// that passes a 256-bit vector (Lanes4) by value from a target_clones("fma") clone to a function without
+// that target ("changes the ABI"), even an always_inline one; from this always_inline function, which the
+// clones inline, no such call is made across targets. Everything it calls is always_inline too.
+[[gnu::always_inline]] inline std::optional<TracedTriangleIntersection> fast_triangle_intersection_body(
+    const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept {
+  if (!options.t && !options.barycentric) {
+    const std::optional<TracedTriangleClassification> c = fast_relation(ray, triangle);
+    if (!c) return std::nullopt;
+    return TracedTriangleIntersection{answer(c->classification), c->stage, c->stage};
+  }
+  // Stages 1 and 2 of the π's and num in one Lanes4 evaluation; den summed from the lanes.
+  const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, triangle);
+  const CompensatedTerm<double> den = (lane(s2.lanes, 0) + lane(s2.lanes, 1)) + lane(s2.lanes, 2);
+  const double absolute_d = s2.absolute[0];
+  const Mask4 filter = det3_filter_lanes(filter_view(s2.lanes), filter_relative_lanes, s2.absolute);
+  const EnclosureT<Lanes4> numerators = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
+  const Mask4 sign = first_certain_lanes(filter, enclosure_sign_lanes(numerators));
+  const std::int64_t den_filter = det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, absolute_d);
+  const Enclosure den_enclosure = det3_enclosure(den, bounds::triangle_compensated_den_relative, absolute_d);
+  const std::int64_t den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den_enclosure));
+  const bool certain = (sign[0] != uncertain_lane) & (sign[1] != uncertain_lane) & (sign[2] != uncertain_lane) &
+                       (den_sign != uncertain_lane);
+  if (!certain) [[unlikely]]
+    return std::nullopt;
+  const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
+  // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
+  if (!c || (options.t && sign[lane_num] == uncertain_lane)) [[unlikely]]
+    return std::nullopt;
+  const FourQuotients q = round_quotients(numerators, den_enclosure);
+  const bool rounded = (!options.t || q.certain[lane_num]) &
+                       (!options.barycentric || (q.certain[0] & q.certain[1] & q.certain[2]));
+  if (!rounded) [[unlikely]]
+    return std::nullopt;
+  const bool by_filter = (filter[0] != uncertain_lane) & (filter[1] != uncertain_lane) &
+                         (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
+                         (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
+  const double t = options.t ? q.t[lane_num] : not_a_number;
+  const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
+                                                      : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
+  return TracedTriangleIntersection{{c->relation, c->location, c->owned, t, u},
+                                    by_filter ? Stage::filter : Stage::compensated, Stage::compensated};
+}
+}  // namespace
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
+                                                                     const TriangleOptions& options) noexcept {
+  return fast_triangle_intersection_body(ray, triangle, options);
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,43 @@
+// The certified ray–triangle path (ray_triangle_cascade.cpp), for the public entry points (triangle_api.cpp)
+// and whatever else asks triangle queries (meshes):
+//
+//   fast_triangle_intersection, fast_triangle_relation   the fast paths on raw input: multiversioned
+//                                                        (certified/multiversion.hpp), noexcept, branch-free
+//                                                        up to the decision; nothing when they do not certify
+//   triangle_intersection_cascade, triangle_relation_cascade   everything else, for validated input
+//
+// The split is the one certified/multiversion.hpp requires: the multiversioned functions never throw, and
+// validation (which throws) happens between the two, in the caller. Every function assumes the default
+// floating-point environment (fp_environment.hpp), which the public entry points install.
+#pragma once
+
+#include <raykernel/raykernel.hpp>
+#include <raykernel/triangle.hpp>
+
+#include <optional>
+
+namespace raykernel::detail {
+
+struct TracedTriangleClassification {
+  TriangleClassification classification;
+  Stage stage;
+};
+
+// The answer when the fast path certifies it: the signs of den and the three π (and of num for a line
+// through the triangle) from stage 1 or stage 2's first evaluation, and — when asked for — t and the
+// barycentric coordinates rounded by round_quotient over one divisor. Nothing otherwise (then the input may
+// also be invalid: a certified sign implies valid input, see ray_triangle_cascade.cpp).
+[[nodiscard]] std::optional<TracedTriangleIntersection> fast_triangle_intersection(
+    const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept;
+[[nodiscard]] std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray,
+                                                                                 const Triangle& triangle,
+                                                                                 TriangleRule rule) noexcept;
+
+// The whole cascade, each sign and each quotient escalated on its own (filter, compensated, expansion,
+// exact). Requires valid input (validation.hpp).
+[[nodiscard]] TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                                       const TriangleOptions& options);
+[[nodiscard]] TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle,
+                                                                     TriangleRule rule);
+
+}  // namespace raykernel::detail

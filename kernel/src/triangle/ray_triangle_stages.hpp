@@ -1,0 +1,246 @@
+// The per-query state of the certified ray–triangle cascade: the leaves, stage 1 or stage 2 values of the five
+// determinants (πa, πb, πc, den, num), and stage 3 on demand. Used by the cascade (ray_triangle_cascade.cpp)
+// and by the stage tests, which check each stage alone against exact rationals.
+#pragma once
+
+#include "certified/enclosure.hpp"
+#include "certified/sign.hpp"
+#include "certified/error_bounds.hpp"
+#include "ray_triangle_formula.hpp"
+#include "triangle/det3_stages.hpp"
+#include "triangle/expansion_value.hpp"
+
+#include <raykernel/raykernel.hpp>
+#include <raykernel/triangle.hpp>
+
+#include <array>
+#include <optional>
+
+namespace raykernel::detail {
+
+// Indices of the five determinants.
+inline constexpr int value_pi_a = 0, value_pi_b = 1, value_pi_c = 2, value_den = 3, value_num = 4;
+inline constexpr int triangle_value_count = 5;
+
+// The relative constant of each determinant's filter and enclosure (error_bounds.hpp).
+[[nodiscard]] constexpr double filter_relative(int value) noexcept {
+  return value == value_den   ? bounds::triangle_filter_den_relative
+         : value == value_num ? bounds::triangle_filter_num_relative
+                              : bounds::triangle_filter_pi_relative;
+}
+[[nodiscard]] constexpr double compensated_relative(int value) noexcept {
+  return value == value_den ? bounds::triangle_compensated_den_relative : bounds::triangle_compensated_relative;
+}
+
+// Stage 1 of one query: the five values with their permanents, and the two absolute terms (d: π's and den;
+// ê_a: num).
+struct TriangleFilterValues {
+  std::array<FilterTerm<double>, triangle_value_count> value;
+  double absolute_d, absolute_e;
+  [[nodiscard]] double absolute(int v) const noexcept { return v == value_num ? absolute_e : absolute_d; }
+};
+
+// Stage 2 of one query (whose high parts and magnitudes are stage 1's).
+struct TriangleCompensatedValues {
+  std::array<CompensatedTerm<double>, triangle_value_count> value;
+  double absolute_d, absolute_e;
+  [[nodiscard]] double absolute(int v) const noexcept { return v == value_num ? absolute_e : absolute_d; }
+  [[nodiscard]] TriangleFilterValues filter() const noexcept {
+    TriangleFilterValues f{};
+    for (int v = 0; v < triangle_value_count; ++v) f.value[static_cast<std::size_t>(v)] = filter_view(value[static_cast<std::size_t>(v)]);
+    f.absolute_d = absolute_d;
+    f.absolute_e = absolute_e;
+    return f;
+  }
+  [[nodiscard]] Enclosure enclosure(int v) const noexcept {
+    return det3_enclosure(value[static_cast<std::size_t>(v)], compensated_relative(v), absolute(v));
+  }
+};
+
+// Stage 3: the five values as exact expansions (πa, πb, πc, den, num), each usable when `.exact`.
+struct TriangleExpansions {
+  std::array<ExpansionValue<192>, 3> pi;
+  ExpansionValue<192> den;
+  ExpansionValue<192> num;
+  [[nodiscard]] Sign sign(int v) const noexcept {
+    return v == value_den ? den.sign() : v == value_num ? num.sign() : pi[static_cast<std::size_t>(v)].sign();
+  }
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleFilterValues triangle_filter_values(const Ray& ray, const Triangle& triangle) noexcept {
+  const auto leaves = ray_triangle_leaves<FilterLeaf<double>>(
+      ray, triangle, [](double x) { return FilterLeaf<double>{x}; },
+      [](double v, double w) { return FilterLeaf<double>{v - w}; });
+  const auto t = ray_triangle_terms(leaves);
+  const auto& d = leaves.d;
+  const auto& ea = leaves.e[0];
+  return {{t.pi[0], t.pi[1], t.pi[2], t.den, t.num},
+          det3_absolute_term(d[0].v, d[1].v, d[2].v),
+          det3_absolute_term(ea[0].v, ea[1].v, ea[2].v)};
+}
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleCompensatedValues triangle_compensated_values(const Ray& ray,
+                                                                           const Triangle& triangle) noexcept {
+  const auto leaves = ray_triangle_leaves<CompensatedLeaf<double>>(
+      ray, triangle, [](double x) { return CompensatedLeaf<double>{x, 0.0}; },
+      [](double v, double w) {
+        const DoubleDouble s = two_diff(v, w);
+        return CompensatedLeaf<double>{s.hi, s.lo};
+      });
+  const auto t = ray_triangle_terms(leaves);
+  const auto& d = leaves.d;
+  const auto& ea = leaves.e[0];
+  return {{t.pi[0], t.pi[1], t.pi[2], t.den, t.num},
+          det3_absolute_term(d[0].h, d[1].h, d[2].h),
+          det3_absolute_term(ea[0].h, ea[1].h, ea[2].h)};
+}
+
+// Stage 3, one value at a time (the cascade asks only for the values the cheaper stages left open): the
+// formula's determinants in expansions. π(p, q) = d·((p − o) × (q − o)); den = π(b, c) seen from a, i.e.
+// d·((b − a) × (c − a)) (the same exact value as (πa + πb) + πc, with a shorter expansion); num =
+// (a − o)·((b − o) × (c − o)).
+[[nodiscard]] inline ExpansionValue<192> edge_expansion(const Vec3& o, const Vec3& d, const Vec3& p,
+                                                        const Vec3& q) noexcept {
+  auto diff = [&o](const Vec3& v) {
+    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
+                                            expansion_difference(v.z, o.z)};
+  };
+  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
+  return dot_terms(dl, cross_terms(diff(p), diff(q)));
+}
+[[nodiscard]] inline ExpansionValue<192> num_expansion(const Ray& ray, const Triangle& t) noexcept {
+  const Vec3& o = ray.origin;
+  auto diff = [&o](const Vec3& v) {
+    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
+                                            expansion_difference(v.z, o.z)};
+  };
+  return dot_terms(diff(t.a), cross_terms(diff(t.b), diff(t.c)));
+}
+[[nodiscard]] inline ExpansionValue<192> value_expansion(const Ray& ray, const Triangle& t, int v) noexcept {
+  const Vec3 &o = ray.origin, &d = ray.direction;
+  switch (v) {
+    case value_pi_a: return edge_expansion(o, d, t.b, t.c);
+    case value_pi_b: return edge_expansion(o, d, t.c, t.a);
+    case value_pi_c: return edge_expansion(o, d, t.a, t.b);
+    case value_den: return edge_expansion(t.a, d, t.b, t.c);
+    default: return num_expansion(ray, t);
+  }
+}
+
+[[nodiscard]] inline TriangleExpansions triangle_expansions(const Ray& ray, const Triangle& triangle) noexcept {
+  return {{value_expansion(ray, triangle, value_pi_a), value_expansion(ray, triangle, value_pi_b),
+           value_expansion(ray, triangle, value_pi_c)},
+          value_expansion(ray, triangle, value_den),
+          value_expansion(ray, triangle, value_num)};
+}
+
+// ---- The fast path's layout: four determinants in the four lanes of a Lanes4 -------------------------------
+//
+// The three π and num share their structure, so one evaluation of the formula's cross_terms and dot_terms on
+// Lanes4 (lanes.hpp) gives πa, πb, πc and num in lanes 0..3, lane k using the leaves y = e_b, e_c, e_a, e_b and
+// z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing exactly the scalar
+// operations, so the same bits as triangle_compensated_values (tested), the proofs' model of each value. den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
+// d·((b − a) × (c − a)), in lane 3 instead.
+inline constexpr int lane_num = 3;
+
+template <class Term>
+struct TriangleLanes {
+  Term lanes;       // πa, πb, πc, num (or den)
+  Lanes4 absolute;  // the absolute term of each lane's outer vector
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleLanes<CompensatedTerm<Lanes4>> triangle_compensated_lanes(
+    const Ray& ray, const Triangle& triangle) noexcept {
+  const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c, &o = ray.origin, &d = ray.direction;
+  const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z}, ov[3] = {o.x, o.y, o.z};
+  const double dv[3] = {d.x, d.y, d.z};
+  std::array<CompensatedLeaf<Lanes4>, 3> y, z, x;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Lanes4 from = broadcast<Lanes4>(ov[i]);
+    const DD<Lanes4> ey = two_diff(Lanes4{bv[i], cv[i], av[i], bv[i]}, from);
+    const DD<Lanes4> ez = two_diff(Lanes4{cv[i], av[i], bv[i], cv[i]}, from);
+    const DoubleDouble ea = two_diff(av[i], ov[i]);
+    y[i] = {ey.hi, ey.lo};
+    z[i] = {ez.hi, ez.lo};
+    x[i] = {Lanes4{dv[i], dv[i], dv[i], ea.hi}, Lanes4{0.0, 0.0, 0.0, ea.lo}};
+  }
+  const auto cr = cross_terms(y, z);
+  return {dot_terms(x, cr), det3_absolute_term(x[0].h, x[1].h, x[2].h)};
+}
+
+// The relation-only fast path's layout: πa, πb, πc and den = d·((b − a) × (c − a)) in lanes 0..3, each a
+// determinant of d and two rounded differences (lane 3 is π(b, c) seen from a: the same determinant with a in
+// the origin's place, so the π's filter constant holds for it). num, needed only for a line through the
+// triangle, is evaluated on its own (triangle_num_filter).
+[[nodiscard]] [[gnu::always_inline]] inline TriangleLanes<FilterTerm<Lanes4>> triangle_relation_lanes(
+    const Ray& ray, const Triangle& triangle) noexcept {
+  const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c, &o = ray.origin, &d = ray.direction;
+  const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z}, cv[3] = {c.x, c.y, c.z}, ov[3] = {o.x, o.y, o.z};
+  const double dv[3] = {d.x, d.y, d.z};
+  std::array<FilterLeaf<Lanes4>, 3> y, z, x;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Lanes4 from{ov[i], ov[i], ov[i], av[i]};
+    y[i] = {Lanes4{bv[i], cv[i], av[i], bv[i]} - from};
+    z[i] = {Lanes4{cv[i], av[i], bv[i], cv[i]} - from};
+    x[i] = {broadcast<Lanes4>(dv[i])};
+  }
+  const auto cr = cross_terms(y, z);
+  return {dot_terms(x, cr), det3_absolute_term(x[0].v, x[1].v, x[2].v)};
+}
+
+// num = ê_a·(ê_b × ê_c) in stage 1, with its absolute term.
+struct TriangleNumFilter {
+  FilterTerm<double> value;
+  double absolute;
+};
+[[nodiscard]] [[gnu::always_inline]] inline TriangleNumFilter triangle_num_filter(const Ray& ray,
+                                                                                  const Triangle& triangle) noexcept {
+  const auto leaves = ray_triangle_leaves<FilterLeaf<double>>(
+      ray, triangle, [](double x) { return FilterLeaf<double>{x}; },
+      [](double v, double w) { return FilterLeaf<double>{v - w}; });
+  const auto& [ea, eb, ec] = leaves.e;
+  return {dot_terms(ea, cross_terms(eb, ec)), det3_absolute_term(ea[0].v, ea[1].v, ea[2].v)};
+}
+
+// Lane k of a lane value, as a scalar value.
+[[nodiscard]] [[gnu::always_inline]] inline FilterTerm<double> lane(const FilterTerm<Lanes4>& t, int k) noexcept {
+  return {t.v[k], t.m[k]};
+}
+[[nodiscard]] [[gnu::always_inline]] inline CompensatedTerm<double> lane(const CompensatedTerm<Lanes4>& t,
+                                                                         int k) noexcept {
+  return {t.h[k], t.l[k], t.m[k]};
+}
+
+// The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
+// components, or nothing when an expansion was not exact.
+[[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,
+                                                                                     const Triangle& triangle,
+                                                                                     int k) noexcept {
+  // Only edge k's vector: d × (q − p) for b → c, c → a, a → b.
+  const Vec3& p = k == 0 ? triangle.b : k == 1 ? triangle.c : triangle.a;
+  const Vec3& q = k == 0 ? triangle.c : k == 1 ? triangle.a : triangle.b;
+  const Vec3& d = ray.direction;
+  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
+  const std::array<ExpansionValue<2>, 3> edge{expansion_difference(q.x, p.x), expansion_difference(q.y, p.y),
+                                              expansion_difference(q.z, p.z)};
+  const auto v = cross_terms(dl, edge);
+  std::array<int, 3> s{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!v[i].exact) return std::nullopt;
+    s[i] = static_cast<int>(v[i].e.sign());
+  }
+  return s;
+}
+
+// Whether N = (b − a) × (c − a) is the zero vector, exactly, or nothing when an expansion was not exact.
+[[nodiscard]] inline std::optional<bool> normal_is_zero_by_expansion(const Triangle& triangle) noexcept {
+  const auto n = triangle_normal<ExpansionValue<2>>(triangle, expansion_difference);
+  bool zero = true;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!n[i].exact) return std::nullopt;
+    zero = zero && n[i].e.sign() == Sign::zero;
+  }
+  return zero;
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,41 @@
+// Validation of the inputs, in one place: what makes a ray, a plane or a triangle query invalid (docs/
+// contract.md §1, §6: a NaN or infinite component, a zero direction, a zero normal), decided from the
+// bits of the doubles so that the answer does not depend on the floating-point environment (DAZ would
+// make a subnormal compare equal to zero). The public functions (validate in raykernel.hpp and triangle.hpp)
+// give the reason in words; the inline predicates here say only yes or no, for the entry points' fast checks.
+#pragma once
+
+#include <raykernel/raykernel.hpp>
+
+#include <bit>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace raykernel::detail {
+
+[[nodiscard]] inline bool is_finite(double x) noexcept {
+  constexpr std::uint64_t exponent = 0x7FF0000000000000ULL;
+  return (std::bit_cast<std::uint64_t>(x) & exponent) != exponent;
+}
+[[nodiscard]] inline bool is_zero(double x) noexcept { return (std::bit_cast<std::uint64_t>(x) << 1) == 0; }
+[[nodiscard]] inline bool is_finite(const Vec3& v) noexcept { return is_finite(v.x) & is_finite(v.y) & is_finite(v.z); }
+[[nodiscard]] inline bool is_zero(const Vec3& v) noexcept { return is_zero(v.x) & is_zero(v.y) & is_zero(v.z); }
+
+[[nodiscard]] inline bool is_valid(const Ray& r) noexcept {
+  return is_finite(r.origin) & is_finite(r.direction) & !is_zero(r.direction);
+}
+[[nodiscard]] inline bool is_valid(const Plane& p) noexcept {
+  return is_finite(p.point) & is_finite(p.normal) & !is_zero(p.normal);
+}
+// A triangle is valid when its vertices are finite; a degenerate one (N = 0) is valid input (docs/contract.md
+// §6).
+[[nodiscard]] inline bool is_valid(const Triangle& t) noexcept {
+  return is_finite(t.a) & is_finite(t.b) & is_finite(t.c);
+}
+
+// The reason a vector named `name` is not finite ("ray origin y is NaN", "plane normal x is -inf"), or
+// nothing.
+[[nodiscard]] std::optional<std::string> non_finite_reason(const char* name, const Vec3& v);
+
+}  // namespace raykernel::detail

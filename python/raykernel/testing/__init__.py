@@ -1,0 +1,43 @@
+"""Testing other ray code against raykernel, in Python (the counterpart of raykernel::testkit in C++).
+
+    from raykernel.testing import assert_matches_reference, ulp_distance
+    assert_matches_reference(ray, plane, my_relation, my_t, max_t_ulps=4)   # AssertionError with a report
+
+- ``check_against_reference`` / ``assert_matches_reference``: one ray–plane answer against the exact one
+  (relation, and t in ulps), with a report that gives the query in hexadecimal floats, a
+  ``raykernel classify`` line that replays it, the expected and the got answers, and the exact t as a fraction;
+- ``assert_arrays_match_reference``: the same for arrays of answers, in one vectorized pass;
+- ``check_triangle_hit_against_reference`` / ``assert_triangle_hit_matches_reference``: a ray–triangle hit
+  and t against docs/contract.md §6 (closed or owned rule), checked in Fractions until the kernel has triangles;
+- ``ulp_distance``, ``ulp_difference``, ``ulp_distances`` (arrays), ``hex_string``;
+- ``raykernel.testing.exact``: the contract in pure-Python Fractions, an oracle sharing no code with the kernel;
+- ``raykernel.testing.hypothesis``: Hypothesis strategies for the hard queries (imports Hypothesis).
+"""
+
+from .reference import (
+    ReferenceCheck,
+    TriangleReferenceCheck,
+    assert_arrays_match_reference,
+    assert_matches_reference,
+    assert_triangle_hit_matches_reference,
+    check_against_reference,
+    check_triangle_hit_against_reference,
+    hex_string,
+    ulp_difference,
+    ulp_distance,
+    ulp_distances,
+)
+
+__all__ = [
+    "ReferenceCheck",
+    "TriangleReferenceCheck",
+    "assert_arrays_match_reference",
+    "assert_matches_reference",
+    "assert_triangle_hit_matches_reference",
+    "check_against_reference",
+    "check_triangle_hit_against_reference",
+    "hex_string",
+    "ulp_difference",
+    "ulp_distance",
+    "ulp_distances",
+]

@@ -1,0 +1,410 @@
+"""Hypothesis strategies for the queries where floating-point ray code goes wrong.
+
+    from hypothesis import given
+    from raykernel.testing.hypothesis import hard_queries
+    from raykernel.testing import assert_matches_reference
+
+    @given(hard_queries())
+    def test_my_ray_plane(q):
+        relation, t = my_ray_plane(q.ray, q.plane)
+        assert_matches_reference(q.ray, q.plane, relation, t, max_t_ulps=4)
+
+Ray–plane queries come from raykernel's C++ testing toolkit (testkit/hard_queries.hpp), the same
+constructions its RapidCheck generators and fuzz decoder use: near-parallel and near-coplanar queries,
+exact degeneracies, rounding ties and near ties, subnormal and huge components, t overflowing and
+underflowing (``QUERY_KINDS``). The random 64-bit words a construction uses are read from one block of
+bytes that Hypothesis draws (the fuzz decoder's layout: 8 bytes per word, little-endian), so a failing query
+shrinks — toward zero words, the simplest query of its kind — and replays from Hypothesis's database. Plane pairs (``plane_pairs``) tie exactly or differ by less than an ulp of t, for
+nearest-hit code.
+
+Ray–triangle queries (``triangle_queries``) aim rays exactly through edges and vertices, just beside edges,
+and inside triangles, all on dyadic grids so that the aim is exact; each carries the location and the exact
+t it was built to have (docs/contract.md §6). The kernel's triangles are not there yet; these strategies are
+pure Python, and ``raykernel.testing`` checks answers against ``raykernel.testing.exact`` for now.
+
+Every strategy has an array form for vectorized code: ``query_arrays`` and ``triangle_query_arrays`` give
+(n, 3) float64 arrays built from lists of such queries (the lists shrink too).
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Iterable, NamedTuple, Optional, Sequence, Tuple
+
+import numpy as np
+from hypothesis import strategies as st
+from hypothesis.strategies import SearchStrategy
+
+from .. import _raykernel
+from .._types import Plane, Ray, Triangle, Vec3
+
+_tk = _raykernel.testkit
+
+QUERY_KINDS: Tuple[str, ...] = tuple(_tk.QUERY_KINDS)
+"""The kinds of hard ray–plane queries, as testkit names them: "random", "wide-exponents", "near-parallel",
+"near-coplanar", "exact-parallel", "exact-in-plane", "origin-on-plane", "rounding-tie", "near-tie",
+"subnormal", "huge-products", "t-overflow", "t-underflow"."""
+
+PLANE_TIE_KINDS: Tuple[str, ...] = tuple(_tk.PLANE_TIE_KINDS)
+"""Kinds of plane pairs: "coincident", "pivot" (exact ties), "parallel-offset", "pivot-offset" (< 1 ulp)."""
+
+TRIANGLE_QUERY_KINDS: Tuple[str, ...] = ("through-edge", "through-vertex", "near-edge", "inside", "degenerate")
+"""Kinds of ray–triangle queries: a ray exactly through a point of an edge (not a vertex), exactly through a
+vertex, through an edge point moved by one ulp, through an interior point, and through a degenerate
+(collinear) triangle."""
+
+WORDS_PER_QUERY = 32
+"""Random words drawn for one construction: more than any kind uses (the most is about 24)."""
+
+words = st.binary(min_size=8 * WORDS_PER_QUERY, max_size=8 * WORDS_PER_QUERY)
+"""The random words of one testkit construction, as bytes (shrinking makes them zero, word by word). One
+draw per query instead of one per word: Hypothesis generates and shrinks it several times faster."""
+
+
+def _check_kinds(kinds: Optional[Iterable[str]], known: Sequence[str], what: str) -> Tuple[str, ...]:
+    chosen = tuple(known if kinds is None else kinds)
+    unknown = [k for k in chosen if k not in known]
+    if unknown or not chosen:
+        raise ValueError(f"{what}: unknown or no kinds {unknown or chosen!r}; known: {', '.join(known)}")
+    return chosen
+
+
+# Ray–plane ---------------------------------------------------------------------------------------------------
+
+
+class HardQuery(NamedTuple):
+    """A ray–plane query and the kind of construction it came from."""
+
+    kind: str
+    ray: Ray
+    plane: Plane
+
+
+@st.composite
+def _query_of_kind(draw, kind: str) -> HardQuery:
+    ray, plane = _tk.make_query(kind, draw(words))
+    return HardQuery(kind, ray, plane)
+
+
+def queries(kind: str) -> SearchStrategy[HardQuery]:
+    """Queries of one kind (one of QUERY_KINDS). Always valid input."""
+    _check_kinds([kind], QUERY_KINDS, "queries")
+    return _query_of_kind(kind)
+
+
+def hard_queries(kinds: Optional[Iterable[str]] = None) -> SearchStrategy[HardQuery]:
+    """Queries of a kind drawn from ``kinds`` (default: all of QUERY_KINDS). Always valid input."""
+    chosen = _check_kinds(kinds, QUERY_KINDS, "hard_queries")
+    return st.sampled_from(chosen).flatmap(_query_of_kind)
+
+
+def near_parallel_queries() -> SearchStrategy[HardQuery]:
+    """The direction within a few ulps of the plane: d·n tiny, its sign decided by the last bits."""
+    return queries("near-parallel")
+
+
+def near_coplanar_queries() -> SearchStrategy[HardQuery]:
+    """The origin within a few ulps of the plane: (p − o)·n tiny."""
+    return queries("near-coplanar")
+
+
+def exact_degeneracies() -> SearchStrategy[HardQuery]:
+    """d·n = 0 exactly (parallel, in-plane) or (p − o)·n = 0 exactly (t = 0), with unround coordinates."""
+    return hard_queries(["exact-parallel", "exact-in-plane", "origin-on-plane"])
+
+
+def rounding_ties() -> SearchStrategy[HardQuery]:
+    """t exactly halfway between two doubles, or within 2^-20..2^-60 ulps of halfway."""
+    return hard_queries(["rounding-tie", "near-tie"])
+
+
+def subnormal_queries() -> SearchStrategy[HardQuery]:
+    """Components between 2^-1074 and 2^-400: the products underflow in binary64, the exact values do not."""
+    return queries("subnormal")
+
+
+def huge_product_queries() -> SearchStrategy[HardQuery]:
+    """Components up to 2^1023: products and differences overflow binary64."""
+    return queries("huge-products")
+
+
+def t_overflow_queries() -> SearchStrategy[HardQuery]:
+    """|t| near or beyond the largest double."""
+    return queries("t-overflow")
+
+
+def t_underflow_queries() -> SearchStrategy[HardQuery]:
+    """|t| in or below the subnormal range."""
+    return queries("t-underflow")
+
+
+def arbitrary_queries(*, allow_invalid: bool = False) -> SearchStrategy[HardQuery]:
+    """Queries with each component any double Hypothesis likes (subnormals, ±0, huge values); with
+    ``allow_invalid``, also NaN, ±inf and zero vectors, for testing how code rejects them."""
+    component = st.floats(allow_nan=allow_invalid, allow_infinity=allow_invalid)
+    vector = st.builds(Vec3, component, component, component)
+    query = st.builds(lambda o, d, p, n: HardQuery("arbitrary", Ray(o, d), Plane(p, n)), vector, vector, vector, vector)
+    if allow_invalid:
+        return query
+    return query.filter(lambda q: _raykernel.validate(q.ray, q.plane) is None)
+
+
+class PlanePair(NamedTuple):
+    """One ray and two planes it hits, whose exact t tie (``order`` 0) or differ by less than an ulp of t
+    (``order`` the sign of t1 − t0)."""
+
+    kind: str
+    ray: Ray
+    planes: Tuple[Plane, Plane]
+    order: int
+
+    @property
+    def nearest(self) -> int:
+        """The index docs/contract.md §4 answers: the smaller exact t, ties to the smaller index."""
+        return 1 if self.order < 0 else 0
+
+
+@st.composite
+def _plane_pair(draw, kind: Optional[str]) -> PlanePair:
+    k, ray, planes, order = _tk.make_plane_pair(kind, draw(words))
+    return PlanePair(k, ray, tuple(planes), order)
+
+
+def plane_pairs(kind: Optional[str] = None) -> SearchStrategy[PlanePair]:
+    """Near ties between two planes along one ray (testkit/plane_pairs.hpp), of ``kind`` (one of
+    PLANE_TIE_KINDS) or of a drawn kind."""
+    if kind is not None:
+        _check_kinds([kind], PLANE_TIE_KINDS, "plane_pairs")
+    return _plane_pair(kind)
+
+
+def _exact_repr(name: str, fields: Sequence[Tuple[str, np.ndarray]]) -> str:
+    with np.printoptions(floatmode="unique", threshold=10**9, linewidth=10**9):
+        inner = ", ".join(f"{k}=np.{np.array_repr(v)}" for k, v in fields)
+    return f"{name}({inner})"
+
+
+class QueryArrays(NamedTuple):
+    """n ray–plane queries as (n, 3) float64 arrays, with each query's kind. Its repr is exact (shortest
+    round-trip decimals), so a printed counterexample can be pasted back."""
+
+    origins: np.ndarray
+    directions: np.ndarray
+    points: np.ndarray
+    normals: np.ndarray
+    kinds: Tuple[str, ...]
+
+    def __repr__(self) -> str:
+        fields = [(k, getattr(self, k)) for k in ("origins", "directions", "points", "normals")]
+        return _exact_repr("QueryArrays", fields)[:-1] + f", kinds={self.kinds!r})"
+
+    def query(self, i: int) -> Tuple[Ray, Plane]:
+        v = lambda a: Vec3(*map(float, a[i]))  # noqa: E731
+        return Ray(v(self.origins), v(self.directions)), Plane(v(self.points), v(self.normals))
+
+
+def _to_query_arrays(qs: Sequence[HardQuery]) -> QueryArrays:
+    rows = lambda f: np.array([f(q) for q in qs], dtype=np.float64).reshape(-1, 3)  # noqa: E731
+    return QueryArrays(
+        rows(lambda q: q.ray.origin),
+        rows(lambda q: q.ray.direction),
+        rows(lambda q: q.plane.point),
+        rows(lambda q: q.plane.normal),
+        tuple(q.kind for q in qs),
+    )
+
+
+def query_arrays(
+    kinds: Optional[Iterable[str]] = None, *, min_size: int = 1, max_size: int = 16
+) -> SearchStrategy[QueryArrays]:
+    """Lists of ``hard_queries(kinds)`` as arrays, for vectorized code. (Each query takes 256 bytes of
+    Hypothesis's 8 KiB buffer per test case: keep ``max_size`` below about 24.)"""
+    return st.lists(hard_queries(kinds), min_size=min_size, max_size=max_size).map(_to_query_arrays)
+
+
+# Ray–triangle ------------------------------------------------------------------------------------------------
+#
+# Exactness by construction: the vertices are integers of at most 21 bits, the aimed-at point e has a
+# denominator 2^m with m ≤ 20 (so 2^20·e is an integer of at most 42 bits), the direction is an integer vector
+# of at most 11 bits, and the origin o = e ∓ 2^j·d (|j| ≤ 8) has 2^20·o an integer of at most 43 bits: every
+# coordinate is a double exactly, and the ray meets the aimed-at point at t = ±2^j exactly. Then the points
+# are scaled by 2^p and the direction by 2^r (t becomes ±2^(j+p−r)), and the axes permuted and flipped
+# (which multiplies den and every π by the same ±1, so the location is unchanged).
+
+_I3 = Tuple[int, int, int]
+
+
+class TriangleQuery(NamedTuple):
+    """A ray and a triangle, with what the construction promises: the location (docs/contract.md §6:
+    "edge-ab", "vertex-c", "inside", ...) and the exact t at which the ray meets it (None where nothing is
+    promised: "near-edge" queries, degenerate triangles)."""
+
+    kind: str
+    ray: Ray
+    triangle: Triangle
+    location: Optional[str]
+    exact_t: Optional[Fraction]
+
+
+def _cross(u: _I3, v: _I3) -> _I3:
+    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+
+
+def _dot(u: _I3, v: _I3) -> int:
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+_vertex_coordinate = st.integers(-(2**20), 2**20)
+_direction_coordinate = st.integers(-(2**10), 2**10)
+
+
+def _int3(coordinate: SearchStrategy[int]) -> SearchStrategy[_I3]:
+    return st.tuples(coordinate, coordinate, coordinate)
+
+
+@st.composite
+def _triangle_query(draw, kind: str) -> TriangleQuery:
+    a = draw(_int3(_vertex_coordinate))
+    u = draw(_int3(_vertex_coordinate))
+    u = u if u != (0, 0, 0) else (1, 0, 0)
+    m = draw(st.integers(1, 20))  # the aimed-at point is on the grid 2^-m
+    scale = 2**m
+    if kind == "degenerate":  # c on the line through a and b, at a + (k/2^m)(b − a): collinear, exactly
+        k = draw(st.integers(-(2**m), 2**m))
+        b = tuple(a[i] + u[i] for i in range(3))
+        c_num = tuple(a[i] * scale + k * u[i] for i in range(3))
+        vertices = [tuple(Fraction(x) for x in a), tuple(Fraction(x) for x in b),
+                    tuple(Fraction(x, scale) for x in c_num)]
+        normal = None
+    else:
+        v = draw(_int3(_vertex_coordinate))
+        if _cross(u, v) == (0, 0, 0):  # keep the triangle proper: a vector orthogonal to u is never parallel to it
+            v = _cross(u, (1, 0, 0)) if _cross(u, (1, 0, 0)) != (0, 0, 0) else _cross(u, (0, 1, 0))
+        b = tuple(a[i] + u[i] for i in range(3))
+        c = tuple(a[i] + v[i] for i in range(3))
+        vertices = [tuple(Fraction(x) for x in p) for p in (a, b, c)]
+        normal = _cross(u, v)
+
+    names = "abc"
+    location: Optional[str]
+    if kind in ("through-edge", "near-edge", "degenerate"):
+        # (a degenerate triangle's c has the denominator 2^m already: aim at its edge ab, whose ends are integers)
+        first = draw(st.integers(0, 2)) if kind != "degenerate" else 0
+        p, q = vertices[first], vertices[(first + 1) % 3]
+        k = draw(st.integers(1, scale - 1)) if scale > 1 else 1
+        e = tuple(p[i] + Fraction(k, scale) * (q[i] - p[i]) for i in range(3))
+        location = f"edge-{names[first]}{names[(first + 1) % 3]}" if kind == "through-edge" else None
+    elif kind == "through-vertex":
+        which = draw(st.integers(0, 2))
+        e = vertices[which]
+        location = f"vertex-{names[which]}"
+    elif kind == "inside":  # barycentric weights k1/2^m, k2/2^m and the rest, all positive
+        m = max(m, 2)
+        scale = 2**m
+        k1 = draw(st.integers(1, scale - 2))
+        k2 = draw(st.integers(1, scale - 1 - k1))
+        e = tuple(vertices[0][i] + Fraction(k1, scale) * (vertices[1][i] - vertices[0][i])
+                  + Fraction(k2, scale) * (vertices[2][i] - vertices[0][i]) for i in range(3))
+        location = "inside"
+    else:  # pragma: no cover - guarded by _check_kinds
+        raise ValueError(kind)
+
+    d = draw(_int3(_direction_coordinate))
+    if d == (0, 0, 0):
+        d = (0, 0, 1)
+    if normal is not None and _dot(d, normal) == 0:  # not parallel to the plane: d + e_k with N_k ≠ 0 has d·N = N_k
+        axis = next(i for i in range(3) if normal[i] != 0)
+        d = tuple(d[i] + (1 if i == axis else 0) for i in range(3))
+    j = draw(st.integers(-8, 8))
+    behind = draw(st.booleans())
+    step = Fraction(2) ** j * (-1 if behind else 1)  # o + step·d = e
+    o = tuple(e[i] - step * d[i] for i in range(3))
+    exact_t = step
+
+    p_scale, r_scale = draw(st.integers(-60, 60)), draw(st.integers(-30, 30))
+    points = [tuple(x * Fraction(2) ** p_scale for x in pt) for pt in (o, *vertices)]
+    direction = tuple(Fraction(x) * Fraction(2) ** r_scale for x in d)
+    exact_t = exact_t * Fraction(2) ** (p_scale - r_scale)
+
+    permutation = draw(st.permutations([0, 1, 2]))
+    flips = draw(st.tuples(st.booleans(), st.booleans(), st.booleans()))
+
+    def place(v) -> Vec3:
+        out = []
+        for axis in range(3):
+            x = v[permutation[axis]]
+            x = -x if flips[axis] else x
+            f = float(x)
+            assert Fraction(f) == x, "construction left the doubles"  # the exactness argument above
+            out.append(f)
+        return Vec3(*out)
+
+    o_v, a_v, b_v, c_v = (place(pt) for pt in points)
+    d_v = place(direction)
+    ray = Ray(o_v, d_v)
+    if kind == "near-edge":  # one coordinate of the origin one ulp off: within an ulp of the edge, either side
+        axis, up = draw(st.integers(0, 2)), draw(st.booleans())
+        moved = list(o_v)
+        moved[axis] = float(np.nextafter(moved[axis], np.inf if up else -np.inf))
+        ray = Ray(Vec3(*moved), d_v)
+        exact_t = None
+    if kind == "degenerate":
+        exact_t = None
+    return TriangleQuery(kind, ray, Triangle(a_v, b_v, c_v), location, exact_t)
+
+
+def triangle_queries(kinds: Optional[Iterable[str]] = None) -> SearchStrategy[TriangleQuery]:
+    """Ray–triangle queries of a kind drawn from ``kinds`` (default: all of TRIANGLE_QUERY_KINDS)."""
+    chosen = _check_kinds(kinds, TRIANGLE_QUERY_KINDS, "triangle_queries")
+    return st.sampled_from(chosen).flatmap(_triangle_query)
+
+
+def rays_through_triangle_edges() -> SearchStrategy[TriangleQuery]:
+    """A ray exactly through a point of an edge (not a vertex): location "edge-ab", "edge-bc" or "edge-ca"."""
+    return _triangle_query("through-edge")
+
+
+def rays_through_triangle_vertices() -> SearchStrategy[TriangleQuery]:
+    """A ray exactly through a vertex: location "vertex-a", "vertex-b" or "vertex-c"."""
+    return _triangle_query("through-vertex")
+
+
+def rays_near_triangle_edges() -> SearchStrategy[TriangleQuery]:
+    """A ray through an edge point with one coordinate of the origin moved by one ulp: inside, outside or
+    still on the edge, decided by the last bit."""
+    return _triangle_query("near-edge")
+
+
+class TriangleQueryArrays(NamedTuple):
+    """n ray–triangle queries as (n, 3) float64 arrays (exact repr), with each query's construction."""
+
+    origins: np.ndarray
+    directions: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+    queries: Tuple[TriangleQuery, ...]
+
+    def __repr__(self) -> str:
+        fields = [(k, getattr(self, k)) for k in ("origins", "directions", "a", "b", "c")]
+        kinds = tuple(q.kind for q in self.queries)
+        return _exact_repr("TriangleQueryArrays", fields)[:-1] + f", kinds={kinds!r})"
+
+
+def _to_triangle_arrays(qs: Sequence[TriangleQuery]) -> TriangleQueryArrays:
+    rows = lambda f: np.array([f(q) for q in qs], dtype=np.float64).reshape(-1, 3)  # noqa: E731
+    return TriangleQueryArrays(
+        rows(lambda q: q.ray.origin),
+        rows(lambda q: q.ray.direction),
+        rows(lambda q: q.triangle.a),
+        rows(lambda q: q.triangle.b),
+        rows(lambda q: q.triangle.c),
+        tuple(qs),
+    )
+
+
+def triangle_query_arrays(
+    kinds: Optional[Iterable[str]] = None, *, min_size: int = 1, max_size: int = 16
+) -> SearchStrategy[TriangleQueryArrays]:
+    """Lists of ``triangle_queries(kinds)`` as arrays, for vectorized triangle code."""
+    return st.lists(triangle_queries(kinds), min_size=min_size, max_size=max_size).map(_to_triangle_arrays)

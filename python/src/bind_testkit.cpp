@@ -1,0 +1,213 @@
+// raykernel::testkit for Python (the submodule raykernel._raykernel.testkit, used by raykernel.testing): the
+// hard-query constructors with the random words drawn from a Python callable (so that Hypothesis draws each
+// word and shrinks it), the reference check, ulp distances, and the fuzz decoder.
+#include "bindings.hpp"
+#include "convert.hpp"
+
+#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
+#include <raykernel/testkit/reference_check.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace raykernel::python {
+namespace {
+
+using testkit::PlaneTieKind;
+using testkit::QueryKind;
+
+QueryKind query_kind_from(const std::string& name) {
+  for (QueryKind k : testkit::all_query_kinds)
+    if (testkit::to_string(k) == name) return k;
+  std::string known;
+  for (QueryKind k : testkit::all_query_kinds) known += (known.empty() ? "" : ", ") + std::string(testkit::to_string(k));
+  throw py::value_error("unknown query kind '" + name + "' (kinds: " + known + ")");
+}
+
+PlaneTieKind plane_tie_kind_from(const std::string& name) {
+  for (PlaneTieKind k : testkit::all_plane_tie_kinds)
+    if (testkit::to_string(k) == name) return k;
+  throw py::value_error("unknown plane tie kind '" + name + "'");
+}
+
+// The words a construction draws: from bytes (8 at a time, little-endian, then zero words: the fuzz decoder's
+// source, testkit::bit_source_from_bytes), or from a Python callable returning ints (taken modulo 2^64;
+// exceptions it raises, e.g. Hypothesis stopping a test case, propagate through the construction unchanged).
+// `storage` keeps the bytes alive while the source reads them.
+testkit::BitSource python_bits(py::handle words, std::string& storage) {
+  if (PyBytes_Check(words.ptr())) {
+    storage = words.cast<std::string>();
+    return testkit::bit_source_from_bytes({reinterpret_cast<const std::uint8_t*>(storage.data()), storage.size()});
+  }
+  if (!PyCallable_Check(words.ptr()))
+    throw py::type_error("words: expected bytes or a callable returning ints, got " +
+                         std::string(Py_TYPE(words.ptr())->tp_name));
+  const py::function draw = py::reinterpret_borrow<py::function>(words);
+  return [draw]() -> std::uint64_t {
+    const py::object word = draw();
+    const unsigned long long w = PyLong_AsUnsignedLongLongMask(word.ptr());
+    if (w == static_cast<unsigned long long>(-1) && PyErr_Occurred()) throw py::error_already_set();
+    return w;
+  };
+}
+
+py::object query_to_python(const testkit::Query& q) { return py::make_tuple(to_python(q.ray), to_python(q.plane)); }
+
+py::bytes to_bytes(const std::vector<std::uint8_t>& v) {
+  return {reinterpret_cast<const char*>(v.data()), v.size()};
+}
+
+py::tuple kind_names() {
+  py::list names;
+  for (QueryKind k : testkit::all_query_kinds) names.append(std::string(testkit::to_string(k)));
+  return py::tuple(names);
+}
+
+}  // namespace
+
+void bind_testkit(py::module_& parent) {
+  py::module_ m = parent.def_submodule("testkit", "raykernel::testkit: hard queries, reference check, fuzz decoder.");
+
+  m.attr("QUERY_KINDS") = kind_names();
+  {
+    py::list names;
+    for (PlaneTieKind k : testkit::all_plane_tie_kinds) names.append(std::string(testkit::to_string(k)));
+    m.attr("PLANE_TIE_KINDS") = py::tuple(names);
+  }
+
+  m.def(
+      "make_query",
+      [](const std::string& kind, py::handle words) {
+        std::string storage;
+        return query_to_python(make_query(query_kind_from(kind), python_bits(words, storage)));
+      },
+      py::arg("kind"), py::arg("words"),
+      R"doc(A hard ray–plane query of ``kind`` (one of QUERY_KINDS), as ``(Ray, Plane)``: testkit::make_query with
+its random 64-bit words read from ``words``: bytes (8 per word, little-endian, zero words after the end) or a
+callable returning one word per call. Deterministic in the words: the same words give the same query, and
+smaller words give simpler queries (all zero words: the simplest of the kind).)doc");
+
+  m.def(
+      "make_query_arrays",
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+        if (kinds.empty()) throw py::value_error("kinds: give at least one query kind");
+        std::vector<QueryKind> chosen;
+        for (const std::string& k : kinds) chosen.push_back(query_kind_from(k));
+        py::array_t<double> o({count, std::size_t{3}}), d({count, std::size_t{3}}), p({count, std::size_t{3}}),
+            n({count, std::size_t{3}});
+        py::array_t<std::int32_t> kind_index(static_cast<py::ssize_t>(count));
+        double* const out[4] = {o.mutable_data(), d.mutable_data(), p.mutable_data(), n.mutable_data()};
+        std::int32_t* const kinds_out = kind_index.mutable_data();
+        {
+          py::gil_scoped_release release;
+          testkit::SplitMix64 rng(seed);
+          const testkit::BitSource bits = [&rng] { return rng(); };
+          for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t which = static_cast<std::size_t>(rng() % chosen.size());
+            const testkit::Query q = make_query(chosen[which], bits);
+            const Vec3* vs[4] = {&q.ray.origin, &q.ray.direction, &q.plane.point, &q.plane.normal};
+            for (int a = 0; a < 4; ++a) {
+              out[a][3 * i] = vs[a]->x, out[a][3 * i + 1] = vs[a]->y, out[a][3 * i + 2] = vs[a]->z;
+            }
+            kinds_out[i] = static_cast<std::int32_t>(which);
+          }
+        }
+        return py::make_tuple(o, d, p, n, kind_index);
+      },
+      py::arg("kinds"), py::arg("count"), py::arg("seed"),
+      R"doc(``count`` hard queries as arrays, reproducibly from ``seed`` (SplitMix64): ``(origins, directions,
+points, normals, kind_index)``, four (count, 3) float64 arrays and the index into ``kinds`` of each query's
+kind. For benchmarks and for vectorized code.)doc");
+
+  m.def(
+      "make_plane_pair",
+      [](const std::optional<std::string>& kind, py::handle words) {
+        std::string storage;
+        const testkit::BitSource bits = python_bits(words, storage);
+        const testkit::PlanePair pp = kind ? testkit::make_plane_pair_near_tie(plane_tie_kind_from(*kind), bits)
+                                           : testkit::make_plane_pair_near_tie(bits);
+        return py::make_tuple(std::string(testkit::to_string(pp.kind)), to_python(pp.ray),
+                              py::make_tuple(to_python(pp.planes[0]), to_python(pp.planes[1])), pp.order);
+      },
+      py::arg("kind"), py::arg("words"),
+      R"doc(One ray and two planes it hits whose exact t tie or differ by less than an ulp
+(testkit::make_plane_pair_near_tie): ``(kind, ray, (plane0, plane1), order)``, ``order`` the sign of t1 − t0.
+``kind`` one of PLANE_TIE_KINDS, or None to draw it; ``words`` as in make_query.)doc");
+
+  m.def(
+      "check_against_reference",
+      [](py::handle ray, py::handle plane, py::handle relation, py::handle t, std::uint64_t max_t_ulps) {
+        const testkit::Query q{ray_from(ray), plane_from(plane)};
+        const Relation r = relation_from(relation);
+        const double got_t = double_from(t, "t");
+        testkit::ReferenceCheck c;
+        {
+          py::gil_scoped_release release;
+          c = testkit::check_against_reference(q, Intersection{r, got_t}, max_t_ulps);
+        }
+        py::dict d;
+        d["expected"] = to_python(c.expected);
+        d["got"] = to_python(c.got);
+        d["exact_num"] = to_fraction(c.exact_num);
+        d["exact_den"] = to_fraction(c.exact_den);
+        d["exact_t"] = c.exact_t ? to_fraction(*c.exact_t) : py::none();
+        d["max_t_ulps"] = c.max_t_ulps;
+        d["relation_matches"] = c.relation_matches;
+        d["t_compared"] = c.t_compared;
+        d["t_ulps"] = c.t_ulps ? py::object(py::int_(*c.t_ulps)) : py::none();
+        d["t_direction"] = c.t_direction;
+        d["passed"] = c.passed();
+        d["report"] = c.report();
+        return d;
+      },
+      py::arg("ray"), py::arg("plane"), py::arg("relation"), py::arg("t"), py::arg("max_t_ulps") = 0,
+      R"doc(testkit::check_against_reference: the exact answer to (ray, plane) compared with ``relation``
+and ``t``, as a dict (expected, got, exact_num, exact_den, exact_t, relation_matches, t_compared, t_ulps,
+t_direction, passed, report). Raises ValueError for invalid input: it has no answer to compare with.)doc");
+
+  m.def(
+      "ulp_distance",
+      [](double a, double b) -> std::optional<std::uint64_t> { return testkit::ulp_distance(a, b); }, py::arg("a"),
+      py::arg("b"),
+      R"doc(The number of steps from a to b through the doubles in increasing order (−0 and +0 one step apart,
+DBL_MAX to inf one step): 0 exactly when a and b have the same bits. None when either is NaN.)doc");
+  m.def(
+      "ulp_difference",
+      [](double a, double b) -> std::optional<std::int64_t> { return testkit::ulp_difference(a, b); }, py::arg("a"),
+      py::arg("b"), "ulp_distance with the sign of b − a in that order (saturated to ±(2^63 − 1)); None for NaN.");
+  m.def("hex_string", &testkit::hex_string, py::arg("x"), "x as a hexadecimal float (\"0x1.8p+1\"): exact.");
+  m.def("shortest_decimal", &testkit::shortest_decimal, py::arg("x"),
+        "x in the shortest decimal that reads back to the same double.");
+  m.def(
+      "classify_line",
+      [](py::handle ray, py::handle plane) { return testkit::classify_line({ray_from(ray), plane_from(plane)}); },
+      py::arg("ray"), py::arg("plane"), "The query as one line of `raykernel classify` input, in hex floats.");
+
+  m.def(
+      "decode_fuzz_query",
+      [](const py::bytes& data) {
+        const std::string s = data;
+        const testkit::FuzzQuery f = testkit::decode_fuzz_query(
+            {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()});
+        return py::make_tuple(to_python(f.query.ray), to_python(f.query.plane),
+                              f.kind ? py::object(py::str(std::string(testkit::to_string(*f.kind)))) : py::none());
+      },
+      py::arg("data"),
+      R"doc(Any bytes as a query (testkit/fuzz_decoder.hpp): raw doubles when the first byte is below 0x80
+(possibly invalid input), else a hard query of kind QUERY_KINDS[(byte − 0x80) mod 13] built from the
+following bytes. ``(ray, plane, kind or None)``.)doc");
+  m.def(
+      "encode_raw_fuzz_input", [](py::handle ray, py::handle plane) { return to_bytes(testkit::encode_raw_fuzz_input(ray_from(ray), plane_from(plane))); },
+      py::arg("ray"), py::arg("plane"), "The raw-mode fuzz input that decodes to exactly (ray, plane).");
+  m.def(
+      "encode_hard_query_fuzz_input",
+      [](const std::string& kind, const std::vector<std::uint64_t>& words) {
+        return to_bytes(testkit::encode_hard_query_fuzz_input(query_kind_from(kind), words));
+      },
+      py::arg("kind"), py::arg("words"), "The fuzz input that decodes to make_query(kind, words then zeros).");
+}
+
+}  // namespace raykernel::python

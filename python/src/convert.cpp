@@ -1,0 +1,217 @@
+// Between Python objects and raykernel's C++ types (convert.hpp).
+#include "convert.hpp"
+
+#include <cstring>
+#include <string>
+
+namespace raykernel::python {
+namespace {
+
+PythonTypes* loaded_types = nullptr;
+
+std::string type_name(py::handle value) { return Py_TYPE(value.ptr())->tp_name; }
+
+std::string str(std::string_view s) { return std::string(s); }
+
+// One component of a vector: any Python number (int, float, NumPy scalar, anything with __float__).
+double component(PyObject* item, std::string_view field, int axis) {
+  if (PyFloat_CheckExact(item)) return PyFloat_AS_DOUBLE(item);
+  const double x = PyFloat_AsDouble(item);
+  if (x == -1.0 && PyErr_Occurred()) {
+    const bool overflow = PyErr_ExceptionMatches(PyExc_OverflowError) != 0;
+    PyErr_Clear();
+    const std::string where = str(field) + " " + "xyz"[axis];
+    if (overflow) throw py::value_error(where + " is too large for a double");
+    throw py::type_error(where + ": expected a number, got " + type_name(item));
+  }
+  return x;
+}
+
+// The items of a sequence of exactly `count` elements, or an error naming `field` and `what`.
+py::object fast_sequence(py::handle value, std::string_view field, Py_ssize_t count, std::string_view what) {
+  PyObject* seq = PySequence_Fast(value.ptr(), "");
+  if (seq == nullptr) {
+    PyErr_Clear();
+    throw py::type_error(str(field) + ": expected " + str(what) + ", got " + type_name(value));
+  }
+  py::object holder = py::reinterpret_steal<py::object>(seq);
+  const Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+  if (n != count)
+    throw py::value_error(str(field) + ": expected " + str(what) + ", got a sequence of " + std::to_string(n) +
+                          (n == 1 ? " item" : " items"));
+  return holder;
+}
+
+template <class Pair>
+Pair pair_from(py::handle value, std::string_view name, const char* first, const char* second) {
+  const py::object seq = fast_sequence(value, name, 2, "(" + std::string(first) + ", " + second + ")");
+  PyObject** items = PySequence_Fast_ITEMS(seq.ptr());
+  return {vec3_from(items[0], str(name) + " " + first), vec3_from(items[1], str(name) + " " + second)};
+}
+
+}  // namespace
+
+void load_types() {
+  // Owned for the life of the process: these objects must outlive every call into the extension, and
+  // releasing them at interpreter shutdown would race with module teardown.
+  auto* t = new PythonTypes;
+  const py::module_ m = py::module_::import("raykernel._types");
+  t->vec3 = m.attr("Vec3");
+  t->ray = m.attr("Ray");
+  t->plane = m.attr("Plane");
+  t->intersection = m.attr("Intersection");
+  t->traced_intersection = m.attr("TracedIntersection");
+  t->exact_intersection = m.attr("ExactIntersection");
+  t->nearest_hit = m.attr("NearestHit");
+  t->intersection_arrays = m.attr("IntersectionArrays");
+  t->nearest_hit_arrays = m.attr("NearestHitArrays");
+  const py::object relation = m.attr("Relation");
+  t->relation = {relation.attr("HIT"), relation.attr("BEHIND"), relation.attr("PARALLEL"), relation.attr("IN_PLANE")};
+  const py::object stage = m.attr("Stage");
+  t->stage = {stage.attr("FILTER"), stage.attr("COMPENSATED"), stage.attr("EXPANSION"), stage.attr("EXACT")};
+  t->fraction = py::module_::import("fractions").attr("Fraction");
+  // The C++ enums' values are the codes the arrays carry; the Python enums must agree.
+  for (int k = 0; k < 4; ++k)
+    if (t->relation[static_cast<std::size_t>(k)].attr("code").cast<int>() != k)
+      throw std::logic_error("raykernel._types.Relation codes differ from the C++ enum");
+  loaded_types = t;
+}
+
+const PythonTypes& types() { return *loaded_types; }
+
+Vec3 vec3_from(py::handle value, std::string_view field) {
+  const py::object seq = fast_sequence(value, field, 3, "a sequence of 3 numbers");
+  PyObject** items = PySequence_Fast_ITEMS(seq.ptr());
+  return {component(items[0], field, 0), component(items[1], field, 1), component(items[2], field, 2)};
+}
+
+Ray ray_from(py::handle value, std::string_view name) { return pair_from<Ray>(value, name, "origin", "direction"); }
+
+Plane plane_from(py::handle value, std::string_view name) { return pair_from<Plane>(value, name, "point", "normal"); }
+
+double double_from(py::handle value, std::string_view field) {
+  if (PyFloat_CheckExact(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
+  const double x = PyFloat_AsDouble(value.ptr());
+  if (x == -1.0 && PyErr_Occurred()) {
+    const bool overflow = PyErr_ExceptionMatches(PyExc_OverflowError) != 0;
+    PyErr_Clear();
+    if (overflow) throw py::value_error(str(field) + " is too large for a double");
+    throw py::type_error(str(field) + ": expected a number, got " + type_name(value));
+  }
+  return x;
+}
+
+Relation relation_from(py::handle value, std::string_view field) {
+  if (PyUnicode_Check(value.ptr())) {  // raykernel.Relation is a str enum: its value is the name
+    const std::string s = value.cast<std::string>();
+    if (s == "hit") return Relation::hit;
+    if (s == "behind") return Relation::behind;
+    if (s == "parallel") return Relation::parallel;
+    if (s == "in-plane" || s == "in_plane") return Relation::in_plane;
+    throw py::value_error(str(field) + ": expected hit, behind, parallel or in-plane, got '" + s + "'");
+  }
+  if (PyLong_Check(value.ptr())) {
+    const long code = value.cast<long>();
+    if (code >= 0 && code <= 3) return static_cast<Relation>(code);
+    throw py::value_error(str(field) + ": relation codes are 0..3, got " + std::to_string(code));
+  }
+  throw py::type_error(str(field) + ": expected a raykernel.Relation, got " + type_name(value));
+}
+
+std::string decimal_digits(py::handle integer, std::string_view field) {
+  if (!PyLong_Check(integer.ptr()) || PyBool_Check(integer.ptr()))
+    throw py::type_error(str(field) + ": expected an int, got " + type_name(integer));
+  return py::str(integer).cast<std::string>();
+}
+
+py::object to_python(const Vec3& v) { return types().vec3(v.x, v.y, v.z); }
+py::object to_python(const Ray& r) { return types().ray(to_python(r.origin), to_python(r.direction)); }
+py::object to_python(const Plane& p) { return types().plane(to_python(p.point), to_python(p.normal)); }
+py::object to_python(Relation r) { return types().relation[static_cast<std::size_t>(r)]; }
+py::object to_python(Stage s) { return types().stage[static_cast<std::size_t>(s)]; }
+
+py::object to_python(const Intersection& x) { return types().intersection(to_python(x.relation), x.t); }
+
+py::object to_python(const TracedIntersection& x) {
+  return types().traced_intersection(to_python(x.intersection.relation), x.intersection.t, to_python(x.relation_stage),
+                                     to_python(x.t_stage));
+}
+
+py::object to_fraction(const Rational& r) {
+  auto integer = [](const std::string& digits) {
+    PyObject* v = PyLong_FromString(digits.c_str(), nullptr, 10);
+    if (v == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::object>(v);
+  };
+  return types().fraction(integer(r.numerator), integer(r.denominator));
+}
+
+py::object to_python(const ExactIntersection& x) {
+  return types().exact_intersection(to_python(x.intersection.relation), x.intersection.t, to_fraction(x.num),
+                                    to_fraction(x.den), x.t ? to_fraction(*x.t) : py::none());
+}
+
+py::object to_python(const std::optional<NearestHit>& hit) {
+  if (!hit) return py::none();
+  return types().nearest_hit(hit->plane, hit->t);
+}
+
+ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_single) {
+  const std::string shape_wanted = allow_single ? "an array of shape (n, 3) or (3,)" : "an array of shape (n, 3)";
+  array_ = py::array_t<double, py::array::forcecast>::ensure(value);
+  if (!array_) throw py::type_error(str(name) + ": expected " + shape_wanted + " of numbers, got " + type_name(value));
+  const auto* base = reinterpret_cast<const char*>(array_.data());
+  if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
+    single_ = true;
+    rows_ = 1;
+    for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(0);
+    return;
+  }
+  if (array_.ndim() != 2 || array_.shape(1) != 3) {
+    std::string shape = "(";
+    for (py::ssize_t k = 0; k < array_.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array_.shape(k));
+    shape += array_.ndim() == 1 ? ",)" : ")";
+    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape);
+  }
+  rows_ = static_cast<std::size_t>(array_.shape(0));
+  row_stride_ = array_.strides(0);
+  for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(1);
+}
+
+Vec3 ColumnsView::row(std::size_t i) const noexcept {
+  const py::ssize_t offset = static_cast<py::ssize_t>(i) * row_stride_;
+  double c[3];
+  for (std::size_t k = 0; k < 3; ++k) std::memcpy(&c[k], firsts_[k] + offset, sizeof(double));  // may be unaligned
+  return {c[0], c[1], c[2]};
+}
+
+std::array<std::span<const double>, 3> ColumnsView::columns(std::size_t begin, std::size_t end) {
+  const std::size_t n = end - begin;
+  std::array<std::span<const double>, 3> out;
+  if (contiguous()) {
+    for (std::size_t k = 0; k < 3; ++k)
+      out[k] = {reinterpret_cast<const double*>(firsts_[k]) + (single_ ? 0 : begin), single_ ? 1 : n};
+    return out;
+  }
+  scratch_.resize(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {  // row by row: each row is read once, in order
+    const Vec3 v = row(begin + i);
+    scratch_[i] = v.x, scratch_[n + i] = v.y, scratch_[2 * n + i] = v.z;
+  }
+  for (std::size_t k = 0; k < 3; ++k) out[k] = {scratch_.data() + k * n, n};
+  return out;
+}
+
+void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name) {
+  if (view.single() || view.rows() == rows) return;
+  throw py::value_error(str(name) + " has " + std::to_string(view.rows()) + " rows, " + str(reference_name) + " has " +
+                        std::to_string(rows));
+}
+
+ErrorPolicy error_policy_from(std::string_view errors) {
+  if (errors == "raise") return ErrorPolicy::raise;
+  if (errors == "mask") return ErrorPolicy::mask;
+  throw py::value_error("errors: expected 'raise' or 'mask', got '" + str(errors) + "'");
+}
+
+}  // namespace raykernel::python

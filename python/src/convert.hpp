@@ -1,0 +1,129 @@
+// Between Python objects and raykernel's C++ types: the one place that knows both.
+//
+// Inputs are read from any Python sequence of the right length (tuples, lists, the NamedTuples of
+// raykernel._types, NumPy rows), and every error names the field it is about ("ray origin: expected 3
+// numbers, got 2"), so a user sees which argument to fix. Results are built as the NamedTuples and enums of
+// raykernel._types (loaded once, when the extension is imported). Arrays are (n, 3) float64 NumPy arrays:
+// `ColumnsView` reads their three columns as the contiguous spans the batch API takes, without a copy when a
+// column is contiguous (an F-ordered array, e.g. `soa.T` for a (3, n) structure of arrays), copying it
+// otherwise.
+//
+// Adding a primitive (triangles, meshes) means adding its `*_from` reader and its result builders here, and a
+// bind_*.cpp beside the others; nothing else changes.
+#pragma once
+
+#include <raykernel/nearest_hit.hpp>
+#include <raykernel/raykernel.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>  // std::optional, std::vector arguments and results
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace raykernel::python {
+
+namespace py = pybind11;
+
+// ---------------------------------------------------------------------------------------------------------
+// Python objects the extension builds its results from (raykernel._types), loaded by load_types().
+
+struct PythonTypes {
+  py::object vec3, ray, plane;
+  py::object intersection, traced_intersection, exact_intersection, nearest_hit;
+  py::object intersection_arrays, nearest_hit_arrays;
+  std::array<py::object, 4> relation;  // indexed by the C++ enum's value
+  std::array<py::object, stage_count> stage;
+  py::object fraction;                 // fractions.Fraction
+};
+
+// Imports raykernel._types and fractions once; called from the module's init.
+void load_types();
+[[nodiscard]] const PythonTypes& types();
+
+// ---------------------------------------------------------------------------------------------------------
+// Reading Python values. Each throws py::type_error or py::value_error naming `field`.
+
+// A sequence of three real numbers (int, float, or anything with __float__), e.g. "ray origin".
+[[nodiscard]] Vec3 vec3_from(py::handle value, std::string_view field);
+// (origin, direction): a raykernel.Ray or any pair of 3-sequences. `name` prefixes the fields ("ray").
+[[nodiscard]] Ray ray_from(py::handle value, std::string_view name = "ray");
+// (point, normal): a raykernel.Plane or any pair of 3-sequences.
+[[nodiscard]] Plane plane_from(py::handle value, std::string_view name = "plane");
+// A finite double from a Python number (for round_rational_to_double's sister functions, t values...).
+[[nodiscard]] double double_from(py::handle value, std::string_view field);
+// A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).
+[[nodiscard]] Relation relation_from(py::handle value, std::string_view field = "relation");
+// An integer as its decimal digits (for exact rationals): Python ints of any size.
+[[nodiscard]] std::string decimal_digits(py::handle integer, std::string_view field);
+
+// ---------------------------------------------------------------------------------------------------------
+// Building Python results.
+
+[[nodiscard]] py::object to_python(const Vec3& v);
+[[nodiscard]] py::object to_python(const Ray& r);
+[[nodiscard]] py::object to_python(const Plane& p);
+[[nodiscard]] py::object to_python(Relation r);
+[[nodiscard]] py::object to_python(Stage s);
+[[nodiscard]] py::object to_python(const Intersection& x);
+[[nodiscard]] py::object to_python(const TracedIntersection& x);
+[[nodiscard]] py::object to_python(const ExactIntersection& x);
+[[nodiscard]] py::object to_python(const std::optional<NearestHit>& hit);
+// An exact rational (decimal strings in lowest terms) as a fractions.Fraction.
+[[nodiscard]] py::object to_fraction(const Rational& r);
+
+// ---------------------------------------------------------------------------------------------------------
+// Arrays.
+
+// The rows of an (n, 3) float64 array (or a single 3-vector, a broadcast row, when allowed), any memory
+// layout. Construct with the GIL held (it converts the Python value); reading needs no GIL. The batch API
+// takes contiguous columns: `columns(begin, end)` gives them as views into the array when its columns are
+// contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the rows
+// [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
+// row-major array in chunks that stay in cache instead of copying it whole.
+class ColumnsView {
+ public:
+  ColumnsView(py::handle value, std::string_view name, bool allow_single = false);
+
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] bool single() const noexcept { return single_; }
+  // The columns can be handed to the batch API as they are.
+  [[nodiscard]] bool contiguous() const noexcept { return single_ || rows_ <= 1 || row_stride_ == sizeof(double); }
+  // Row i as a Vec3 (row 0 when single()).
+  [[nodiscard]] Vec3 row(std::size_t i) const noexcept;
+  // The x, y, z columns of rows [begin, end), contiguous.
+  [[nodiscard]] std::array<std::span<const double>, 3> columns(std::size_t begin, std::size_t end);
+
+ private:
+  py::array_t<double, py::array::forcecast> array_;  // keeps the data alive
+  std::array<const char*, 3> firsts_{};              // the first element of each column
+  py::ssize_t row_stride_ = 0;                       // bytes from one row to the next (0 for a single row)
+  std::size_t rows_ = 0;
+  bool single_ = false;
+  std::vector<double> scratch_;                      // gathered columns of a non-contiguous array
+};
+
+// Checks that `view` has `rows` rows (or is a single row when that is allowed), naming both arrays.
+void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name);
+
+// A fresh 1-D NumPy array of n elements (uninitialized).
+template <class T>
+[[nodiscard]] py::array_t<T> new_array(std::size_t n) {
+  return py::array_t<T>(static_cast<py::ssize_t>(n));
+}
+template <class T>
+[[nodiscard]] std::span<T> span_of(py::array_t<T>& a) {
+  return {a.mutable_data(), static_cast<std::size_t>(a.size())};
+}
+
+// What a vectorized call does with invalid rows.
+enum class ErrorPolicy { raise, mask };
+[[nodiscard]] ErrorPolicy error_policy_from(std::string_view errors);
+
+}  // namespace raykernel::python
