@@ -163,6 +163,12 @@ def main():
     parser.add_argument("--count", default="100000", help="runner inputs per routine")
     parser.add_argument("--only", default="", help="comma-separated mutation names")
     parser.add_argument("--tests", default="", help="ctest regex of the C++ tests to run (default: all)")
+    parser.add_argument("--targets", default="", help="comma-separated build targets per mutation (default: all)")
+    parser.add_argument("--variants", default="", help="comma-separated runner variants (default: all built)")
+    parser.add_argument("--skip-assumptions", action="store_true",
+                        help="leave out proofs_assumptions per mutation (slow; no mutation here edits a citation)")
+    parser.add_argument("--no-clean-run", action="store_true",
+                        help="with --in-place: the build directory's tests already pass and its twin outputs exist")
     parser.add_argument("--in-place", default="", metavar="BUILD_DIR",
                         help="mutate the repository itself, building in this existing build directory")
     args = parser.parse_args()
@@ -181,16 +187,20 @@ def main():
         copy_repo(REPO, src)
         configure = ["cmake", "-S", src, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
                      "-DRAYKERNEL_BUILD_PROOFS=ON", "-DRAYKERNEL_BUILD_BENCH=OFF", "-DRAYKERNEL_TWIN_COUNT=" + args.count]
-    if run(configure, args.workdir, log) != 0 or run(["cmake", "--build", build] + jobs, args.workdir, log) != 0:
+    if run(configure, args.workdir, log) != 0 or run(["cmake", "--build", build] + jobs + build_targets,
+                                                     args.workdir, log) != 0:
         sys.exit("the clean copy does not build; see " + log)
     test_filter = ["-R", args.tests] if args.tests else []
+    build_targets = ["--target"] + args.targets.split(",") if args.targets else []
+    proof_exclude = "proofs_twins|proofs_assumptions" if args.skip_assumptions else "proofs_twins"
     # The clean run: the twins' outputs the drivers are compared with, and all checks green.
-    if run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-L", "proofs"], args.workdir, log) != 0 or \
+    if not (args.in_place and args.no_clean_run) and run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-L", "proofs"], args.workdir, log) != 0 or \
             run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-LE", "proofs"] + test_filter,
                 args.workdir, log) != 0:
         sys.exit("the clean copy fails its tests; see " + log)
     twins_dir = os.path.join(build, "proofs", "twins")
-    variants = [v for v in ("fma", "libm", "lanes4", "lanes8_v3", "lanes8_avx512")
+    variants = [v for v in (args.variants.split(",") if args.variants else
+                            ("fma", "libm", "lanes4", "lanes8_v3", "lanes8_avx512"))
                 if os.path.exists(os.path.join(twins_dir, "raykernel_twin_driver_" + v))]
     groups = sorted(f[len("inputs_"):-len(".txt")] for f in os.listdir(twins_dir) if f.startswith("inputs_"))
 
@@ -218,7 +228,7 @@ def main():
             out.write(f"\n===== {name}: {what}\n")
         try:
             # -k 0: build everything that still builds (a Coq failure does not stop the C++)
-            built = run(["cmake", "--build", build, "-k", "0"] + jobs, args.workdir, log) == 0
+            built = run(["cmake", "--build", build, "-k", "0"] + jobs + build_targets, args.workdir, log) == 0
             proofs_built = run(["cmake", "--build", build, "--target", "proofs"] + jobs, args.workdir, log) == 0
             if "error_bounds.hpp" in path:
                 # the twins read the constants: rebuilt and rerun with them, if the proofs still hold
@@ -232,7 +242,7 @@ def main():
             tests = run(["ctest", "--test-dir", build, "-j2", "-LE", "proofs", "--output-on-failure"] + test_filter,
                         args.workdir, log) != 0
             proof_checks = (not proofs_built) or run(
-                ["ctest", "--test-dir", build, "-L", "proofs", "-E", "proofs_twins", "--output-on-failure"],
+                ["ctest", "--test-dir", build, "-L", "proofs", "-E", proof_exclude, "--output-on-failure"],
                 args.workdir, log) != 0
         finally:
             open(target, "w", encoding="utf-8").write(original)
@@ -243,7 +253,7 @@ def main():
               f"proofs={'caught' if proof_checks else '-'}{'' if built else ' (build failed)'}"
               f"{'' if proofs_built else ' (Coq build failed)'} [{row[7]} s]", flush=True)
     # rebuild the clean copy so that the workdir is left consistent
-    run(["cmake", "--build", build] + jobs, args.workdir, log)
+    run(["cmake", "--build", build] + jobs + build_targets, args.workdir, log)
 
     print("\n| mutation | change | runner | C++ tests | proofs |")
     print("| --- | --- | --- | --- | --- |")
