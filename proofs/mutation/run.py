@@ -177,6 +177,9 @@ def main():
     log = os.path.join(args.workdir, "log.txt")
     open(log, "w").close()
     jobs = ["-j2"]
+    test_filter = ["-R", args.tests] if args.tests else []
+    build_targets = ["--target"] + args.targets.split(",") if args.targets else []
+    proof_exclude = "proofs_twins|proofs_assumptions" if args.skip_assumptions else "proofs_twins"
     if args.in_place:
         src = REPO
         build = os.path.abspath(args.in_place)
@@ -190,9 +193,7 @@ def main():
     if run(configure, args.workdir, log) != 0 or run(["cmake", "--build", build] + jobs + build_targets,
                                                      args.workdir, log) != 0:
         sys.exit("the clean copy does not build; see " + log)
-    test_filter = ["-R", args.tests] if args.tests else []
-    build_targets = ["--target"] + args.targets.split(",") if args.targets else []
-    proof_exclude = "proofs_twins|proofs_assumptions" if args.skip_assumptions else "proofs_twins"
+
     # The clean run: the twins' outputs the drivers are compared with, and all checks green.
     if not (args.in_place and args.no_clean_run) and run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-L", "proofs"], args.workdir, log) != 0 or \
             run(["ctest", "--test-dir", build, "-j2", "--output-on-failure", "-LE", "proofs"] + test_filter,
@@ -228,7 +229,7 @@ def main():
             out.write(f"\n===== {name}: {what}\n")
         try:
             # -k 0: build everything that still builds (a Coq failure does not stop the C++)
-            built = run(["cmake", "--build", build, "-k", "0"] + jobs + build_targets, args.workdir, log) == 0
+            built = run(["cmake", "--build", build] + jobs + build_targets + ["--", "-k", "0"], args.workdir, log) == 0
             proofs_built = run(["cmake", "--build", build, "--target", "proofs"] + jobs, args.workdir, log) == 0
             if "error_bounds.hpp" in path:
                 # the twins read the constants: rebuilt and rerun with them, if the proofs still hold
