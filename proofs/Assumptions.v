@@ -12,6 +12,7 @@
 From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
   CompareQuotients Cascade RayBox.
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
+From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -155,3 +156,74 @@ Goal True. idtac "@@ triangle_quotient_expansion_correct". Abort.
 Print Assumptions triangle_quotient_expansion_correct.
 Goal True. idtac "@@ den_nonzero_direction". Abort.
 Print Assumptions den_nonzero_direction.
+
+(** The twins (issue 16), one block per file: each tuple's assumptions are the union of its members'. *)
+
+(** Twins.v: the twins of stages 1 and 2, tied to the model, and sound end to end *)
+Definition twin_results_0 :=
+  (two_sum_twin,
+   two_sum_twin_exact,
+   two_prod_twin,
+   dot3_rounded_twin,
+   dot3_filter_lanes_twin,
+   den_filter_twin_sound,
+   num_filter_twin_sound,
+   compensated_dot3_twin,
+   compensated_dot3_exact_twin,
+   enclosure_sign_twin,
+   den_compensated_twin_sound,
+   num_compensated_twin_sound,
+   expansion_tail_enclosure_twin).
+Goal True. idtac "@@ two_sum_twin two_sum_twin_exact two_prod_twin dot3_rounded_twin dot3_filter_lanes_twin den_filter_twin_sound num_filter_twin_sound compensated_dot3_twin compensated_dot3_exact_twin enclosure_sign_twin den_compensated_twin_sound num_compensated_twin_sound expansion_tail_enclosure_twin". Abort.
+Print Assumptions twin_results_0.
+
+(** the compiled constants are the proved ones *)
+Definition twin_results_1 :=
+  (cpp_filter_den_relative,
+   cpp_filter_num_relative,
+   cpp_filter_absolute,
+   cpp_compensated_relative,
+   cpp_compensated_absolute,
+   cpp_refined_relative,
+   cpp_refined_low_relative,
+   cpp_refined_absolute,
+   cpp_tail_sum_relative,
+   cpp_tail_sum_absolute,
+   cpp_tail_sum_max_terms,
+   cpp_compare_filter_relative,
+   cpp_compare_propagation_factor,
+   cpp_compare_absolute,
+   cpp_compare_compensated_relative,
+   fle_largest_finite).
+Goal True. idtac "@@ cpp_filter_den_relative cpp_filter_num_relative cpp_filter_absolute cpp_compensated_relative cpp_compensated_absolute cpp_refined_relative cpp_refined_low_relative cpp_refined_absolute cpp_tail_sum_relative cpp_tail_sum_absolute cpp_tail_sum_max_terms cpp_compare_filter_relative cpp_compare_propagation_factor cpp_compare_absolute cpp_compare_compensated_relative fle_largest_finite". Abort.
+Print Assumptions twin_results_1.
+
+(** CompareTwins.v: the comparison of two quotients *)
+Definition twin_results_2 :=
+  (compare_quotients_filter_twin,
+   compare_quotients_compensated_twin).
+Goal True. idtac "@@ compare_quotients_filter_twin compare_quotients_compensated_twin". Abort.
+Print Assumptions twin_results_2.
+
+(** Expansions.v: stage 3 *)
+Definition twin_results_3 :=
+  (sum_gen_exact,
+   scale_gen_exact,
+   multiply_gen_exact,
+   build_expansions_exact,
+   expansion_sign_sound,
+   certified_signs_expansion_sound,
+   compare_quotients_expansion_sound).
+Goal True. idtac "@@ sum_gen_exact scale_gen_exact multiply_gen_exact build_expansions_exact expansion_sign_sound certified_signs_expansion_sound compare_quotients_expansion_sound". Abort.
+Print Assumptions twin_results_3.
+
+(** Liveness.v *)
+Definition twin_results_4 :=
+  (filter_live,
+   filter_den_live,
+   filter_num_live,
+   enclosure_sign_live,
+   compensated_live,
+   compensated_den_live).
+Goal True. idtac "@@ filter_live filter_den_live filter_num_live enclosure_sign_live compensated_live compensated_den_live". Abort.
+Print Assumptions twin_results_4.

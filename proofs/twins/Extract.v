@@ -1,0 +1,159 @@
+(** * Extraction of the twins to OCaml, for the differential runner (proofs/twins/README in
+    proofs/README.md, "The twins and the differential runner").
+
+    Every entry point takes the inputs of one call as 64-bit patterns (the runner reads them as decimal
+    integers) and returns the outputs: doubles as bit patterns (every NaN as 0x7ff8000000000000, the
+    runner compares NaNs as a class), signs and flags as small integers.  The functions called are the
+    twins the theorems are about; the only code between them and the numbers the C++ prints is
+    [of_bits]/[to_bits] (Flocq's Bits) and the OCaml main (twins/runner.ml), which parses and prints.
+
+    Integers are extracted to zarith (ExtrOcamlZBigInt, exact); Fast.v replaces four of Coq's and
+    Flocq's bit-by-bit loops by the equivalent zarith primitives (shifts, bit length, power), which
+    makes the extracted arithmetic about 60 times faster.  The runner checks those replacements too: a
+    wrong one would show as a mismatch against the compiled C++. *)
+
+From Coq Require Import ZArith List.
+From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
+  Expansions QueryTwins.
+Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
+From Raykernel Require Import Fast.
+Import ListNotations.
+Open Scope Z_scope.
+
+Definition b := to_bits.
+Definition f := of_bits.
+
+Definition enc_bits (e : EnclosureB) : list Z := [b (hib e); b (lob e); b (radiusb e)].
+Definition dot3_bits (r : Dot3B) : list Z := [b (qb0 r); b (qb1 r); b (qb2 r); b (valueb r); b (magnitudeb r)].
+
+(** eft.hpp *)
+Definition run_two_sum (x : list Z) : list Z :=
+  match x with [a; c] => let r := two_sum_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
+Definition run_two_diff (x : list Z) : list Z :=
+  match x with [a; c] => let r := two_diff_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
+Definition run_fast_two_sum (x : list Z) : list Z :=
+  match x with [a; c] => let r := fast_two_sum_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
+Definition run_two_prod (x : list Z) : list Z :=
+  match x with [a; c] => let r := two_prod_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
+
+(** dot3_filter.hpp: the rounded dot product and the filter with each constant. *)
+Definition run_dot3_rounded (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] => dot3_bits (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))
+  | _ => [] end.
+Definition run_filter (C : float) (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] =>
+    [dot3_filter_lanes_b (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2)) C] | _ => [] end.
+Definition run_filter_den := run_filter Cpp.filter_den_relative.
+Definition run_filter_num := run_filter Cpp.filter_num_relative.
+
+(** dot3_compensated.hpp: stage 1 computed from a and b, as every caller does. *)
+Definition run_compensated (x : list Z) : list Z :=
+  match x with [a0; a1; a2; l0; l1; l2; b0; b1; b2] =>
+    enc_bits (compensated_dot3_b (f a0) (f a1) (f a2) (f l0) (f l1) (f l2) (f b0) (f b1) (f b2)
+                (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))) | _ => [] end.
+Definition run_compensated_exact (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] =>
+    enc_bits (compensated_dot3_exact_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2)
+                (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))) | _ => [] end.
+Definition run_refined (x : list Z) : list Z :=
+  match x with [a0; a1; a2; l0; l1; l2; b0; b1; b2] =>
+    enc_bits (compensated_dot3_refined_b (f a0) (f a1) (f a2) (f l0) (f l1) (f l2) (f b0) (f b1) (f b2)
+                (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2))) | _ => [] end.
+
+(** enclosure.hpp *)
+Definition run_enclosure_sign (x : list Z) : list Z :=
+  match x with [h; l; r] => [enclosure_sign_lanes_b {| hib := f h; lob := f l; radiusb := f r |}] | _ => [] end.
+
+(** expansion.hpp: the components e_0 .. e_k. *)
+Definition run_tail_enclosure (x : list Z) : list Z :=
+  match x with e0 :: rest => enc_bits (expansion_tail_enclosure_b (f e0) (map f rest)) | [] => [] end.
+
+(** The values of [enum class Sign] (−1, 0, +1, 2 for uncertain) and [Stage] (0..3). *)
+Definition sign_code (s : sign) : Z := match s with Negative => -1 | Zero => 0 | Positive => 1 | Uncertain => 2 end.
+Definition bool_code (x : bool) : Z := if x then 1 else 0.
+Definition list_bits (l : list float) : list Z := Z.of_nat (length l) :: map b l.
+
+(** compare_quotients.hpp *)
+Definition run_filter_enclosure (C : float) (x : list Z) : list Z :=
+  match x with [a0; a1; a2; b0; b1; b2] =>
+    let e := filter_enclosure_b (dot3_rounded_b (f a0) (f a1) (f a2) (f b0) (f b1) (f b2)) C in
+    [b (rvalueb e); b (rradiusb e)] | _ => [] end.
+Definition run_filter_enclosure_den := run_filter_enclosure Cpp.filter_den_relative.
+Definition run_filter_enclosure_num := run_filter_enclosure Cpp.filter_num_relative.
+Definition run_propagated (x : list Z) : list Z :=
+  match x with [x1; e1; y1; f1; x2; e2; y2; f2] =>
+    [b (compare_propagated_error_b (f x1) (f e1) (f y1) (f f1) (f x2) (f e2) (f y2) (f f2))] | _ => [] end.
+Definition renc (v r : Z) : RoundedEnclosureB := {| rvalueb := f v; rradiusb := f r |}.
+Definition run_compare_filter (x : list Z) : list Z :=
+  match x with [x1; e1; y1; f1; x2; e2; y2; f2] =>
+    [sign_code (compare_quotients_filter_b (renc x1 e1) (renc y1 f1) (renc x2 e2) (renc y2 f2))] | _ => [] end.
+Definition enc (h l r : Z) : EnclosureB := {| hib := f h; lob := f l; radiusb := f r |}.
+Definition run_compare_compensated (x : list Z) : list Z :=
+  match x with [h1; l1; r1; h2; l2; r2; h3; l3; r3; h4; l4; r4] =>
+    enc_bits (compare_quotients_compensated_b (enc h1 l1 r1) (enc h2 l2 r2) (enc h3 l3 r3) (enc h4 l4 r4))
+  | _ => [] end.
+
+(** expansion.hpp: "k e_1 .. e_k f_1 .." for two lists, "b e_1 .." for a scale. *)
+Definition split_at (x : list Z) : list float * list float :=
+  match x with k :: rest => (map f (firstn (Z.to_nat k) rest), map f (skipn (Z.to_nat k) rest)) | [] => ([], []) end.
+Definition run_exp_sum_gen fts (x : list Z) : list Z :=
+  let '(e, g) := split_at x in list_bits (sum_gen fts e g).
+Definition run_exp_scale_gen fts (x : list Z) : list Z :=
+  match x with bb :: e => let r := scale_gen fts true (map f e) (f bb) in bool_code (fst r) :: list_bits (snd r)
+  | [] => [] end.
+Definition run_exp_sum := run_exp_sum_gen fast_two_sum_b.
+Definition run_exp_scale := run_exp_scale_gen fast_two_sum_b.
+Definition run_exp_sum_p := run_exp_sum_gen two_sum_b.
+Definition run_exp_scale_p := run_exp_scale_gen two_sum_b.
+Definition run_exp_sign_top (x : list Z) : list Z := [sign_code (sign_top (map f x))].
+Definition run_exp_sign_p (x : list Z) : list Z := [sign_code (expansion_sign_b (map f x))].
+
+(** quotient_rounding.hpp: "num.hi num.lo num.radius den.hi den.lo den.radius" → t, certain, and the
+    prepared divisor's fields. *)
+Definition run_round_quotient (x : list Z) : list Z :=
+  match x with [h1; l1; r1; h2; l2; r2] =>
+    let dv := prepare_divisor_b (enc h2 l2 r2) in
+    let t := round_quotient_b (enc h1 l1 r1) dv in
+    [b (fst t); bool_code (snd t); b (dhib dv); b (dlob dv); b (dreciprocalb dv); bool_code (din_rangeb dv)]
+  | _ => [] end.
+Definition run_half_gap (x : list Z) : list Z :=
+  match x with [q] => [b (half_gap_b (f q))] | _ => [] end.
+
+(** Queries "ox oy oz dx dy dz px py pz nx ny nz". *)
+Definition v3 (x y z : Z) : Vec3B := V3 (f x) (f y) (f z).
+Definition answer_code (a : float * bool * bool * bool) : list Z :=
+  let '(t, behind, certain, by_filter) := a in [b t; bool_code behind; bool_code certain; bool_code by_filter].
+Definition run_fast_answer (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    answer_code (fast_answer_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_fast_answer_pair (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    answer_code (fast_answer_pair_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition relation_code (r : bool * bool) : list Z := [bool_code (fst r); bool_code (snd r)].
+Definition run_fast_relation (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    relation_code (fast_relation_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_fast_relation_pair (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    relation_code (fast_relation_pair_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz)) | _ => [] end.
+Definition run_build_expansions_gen fts (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let '(num, den, ex) := ray_plane_expansions_b fts (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
+    list_bits num ++ list_bits den ++ [bool_code ex] | _ => [] end.
+Definition run_build_expansions := run_build_expansions_gen fast_two_sum_b.
+Definition run_build_expansions_p := run_build_expansions_gen two_sum_b.
+Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
+    let o := v3 ox oy oz in let d := v3 dx dy dz in
+    let '(na, da, xa) := ray_plane_expansions_b fts o d (v3 pax pay paz) (v3 nax nay naz) in
+    let '(nb, db, xb) := ray_plane_expansions_b fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
+    [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
+Definition run_compare_expansion := run_compare_expansion_gen fast_two_sum_b sign_top.
+Definition run_compare_expansion_p := run_compare_expansion_gen two_sum_b expansion_sign_b.
+
+Extraction "twins.ml" run_two_sum run_two_diff run_fast_two_sum run_two_prod run_dot3_rounded run_filter_den
+  run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
+  run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
+  run_exp_sum run_exp_scale run_exp_sum_p run_exp_scale_p run_exp_sign_top run_exp_sign_p run_round_quotient
+  run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
+  run_build_expansions run_build_expansions_p run_compare_expansion run_compare_expansion_p.

@@ -1,0 +1,587 @@
+// The C++ side of the differential runner (proofs/README.md, "The twins and the differential runner").
+//
+// Reads the runner's input lines ("routine x1 x2 ...", inputs as unsigned decimal 64-bit patterns),
+// computes every line with the compiled kernel routine of that name, and compares the output line, bit for
+// bit (every NaN written as 0x7ff8000000000000, i.e. NaNs compared as a class), with the line the extracted
+// Coq twin produced for the same input. Prints the mismatches (input, C++ output, twin output) and a count
+// per routine; exits 1 on any mismatch.
+//
+// Compiled once per variant the kernel runs (proofs/CMakeLists.txt), all with the kernel's floating-point
+// flags (-ffp-contract=off, no fast-math):
+//   scalar, -mfma          std::fma is the FMA instruction
+//   scalar, no -mfma       std::fma is libm's fma
+//   RAYKERNEL_TWIN_LANES=4 -march=x86-64-v3: the lane-templated routines instantiated for Lanes4 (the AVX2
+//                          batch loop), four input lines per call
+//   RAYKERNEL_TWIN_LANES=8 -march=x86-64-v4 (the AVX-512 batch loop; run only where the CPU has AVX-512),
+//                          and -march=x86-64-v3 (Lanes8 lowered to AVX2 pairs)
+// The lane variants run only the lane-templated routines and report the others as skipped.
+//
+// Usage: raykernel_twin_driver INPUTS TWIN_OUTPUTS
+//
+// When a routine the kernel exports changes its name or signature, the function of the same name below is
+// the one line to update (proofs/README.md lists them).
+#include "certified/compare_quotients.hpp"
+#include "certified/dot3_compensated.hpp"
+#include "certified/dot3_filter.hpp"
+#include "certified/eft.hpp"
+#include "certified/enclosure.hpp"
+#include "certified/error_bounds.hpp"
+#include "certified/expansion.hpp"
+#include "certified/lanes.hpp"
+#include "certified/quotient_rounding.hpp"
+#include "certified/ray_plane_query.hpp"
+#include "proposed_stage3.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef RAYKERNEL_TWIN_LANES
+#define RAYKERNEL_TWIN_LANES 0
+#endif
+
+namespace {
+
+using namespace raykernel::detail;
+using Words = std::vector<std::uint64_t>;
+
+constexpr std::uint64_t canonical_nan = 0x7ff8000000000000ULL;
+
+double from_word(std::uint64_t w) { return std::bit_cast<double>(w); }
+
+// The output tokens of one line: doubles as bit patterns (NaN canonical), integers as they are.
+struct Out {
+  std::string text;
+  void f(double x) {
+    const std::uint64_t w = std::isnan(x) ? canonical_nan : std::bit_cast<std::uint64_t>(x);
+    text += ' ';
+    text += std::to_string(w);
+  }
+  void i(long long v) {
+    text += ' ';
+    text += std::to_string(v);
+  }
+};
+
+// ---- The lane-templated routines, written once for V = double, Lanes4, Lanes8 ----------------------------
+// Each takes its inputs as V values (one query per lane) and appends one output line per lane.
+
+template <class V>
+double lane(const V& v, int k) {
+  if constexpr (std::is_same_v<V, double>) {
+    return v;
+  } else {
+    return v[k];
+  }
+}
+template <class I>
+long long lane_int(const I& v, int k) {
+  if constexpr (std::is_arithmetic_v<I>) {
+    return static_cast<long long>(v);
+  } else {
+    return static_cast<long long>(v[k]);
+  }
+}
+
+template <class V>
+void lanes_two_sum(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_sum(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_two_diff(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_diff(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_two_prod(const V* x, std::vector<Out>& out) {
+  const DD<V> r = two_prod(x[0], x[1]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(r.hi, k)), out[k].f(lane(r.lo, k));
+}
+template <class V>
+void lanes_dot3_rounded(const V* x, std::vector<Out>& out) {
+  const Dot3RoundedT<V> r = dot3_rounded(x, x + 3);
+  for (int k = 0; k < width_of<V>; ++k) {
+    for (int i = 0; i < 3; ++i) out[k].f(lane(r.product[i], k));
+    out[k].f(lane(r.value, k));
+    out[k].f(lane(r.magnitude, k));
+  }
+}
+template <class V>
+void lanes_filter_den(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = dot3_filter_lanes(dot3_rounded(x, x + 3), bounds::filter_den_relative);
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+template <class V>
+void lanes_filter_num(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = dot3_filter_lanes(dot3_rounded(x, x + 3), bounds::filter_num_relative);
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+template <class V>
+void lanes_compensated(const V* x, std::vector<Out>& out) {
+  const EnclosureT<V> e = compensated_dot3(x, x + 3, x + 6, dot3_rounded(x, x + 6));
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
+}
+template <class V>
+void lanes_compensated_exact(const V* x, std::vector<Out>& out) {
+  const EnclosureT<V> e = compensated_dot3_exact(x, x + 3, dot3_rounded(x, x + 3));
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
+}
+// ray_plane_query.hpp: fast_answer and fast_relation on the terms (the batch API's form), per lane.
+template <class V>
+void lanes_fast_answer(const V* x, std::vector<Out>& out) {
+  const FastAnswerT<V> a = fast_answer(ray_plane_terms(x, x + 3, x + 6, x + 9));
+  for (int k = 0; k < width_of<V>; ++k)
+    out[k].f(lane(a.t, k)), out[k].i(lane_int(a.behind, k) != 0), out[k].i(lane_int(a.certain, k) != 0),
+        out[k].i(lane_int(a.relation_by_filter, k) != 0);
+}
+template <class V>
+void lanes_fast_relation(const V* x, std::vector<Out>& out) {
+  const FastRelationT<V> r = fast_relation(ray_plane_terms(x, x + 3, x + 6, x + 9));
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(r.behind, k) != 0), out[k].i(lane_int(r.certain, k) != 0);
+}
+// quotient_rounding.hpp: prepare_divisor of den's enclosure, round_quotient of num's over it.
+template <class V>
+void lanes_round_quotient(const V* x, std::vector<Out>& out) {
+  const DivisorT<V> d = prepare_divisor(EnclosureT<V>{x[3], x[4], x[5]});
+  const QuotientRoundingT<V> r = round_quotient(EnclosureT<V>{x[0], x[1], x[2]}, d);
+  for (int k = 0; k < width_of<V>; ++k)
+    out[k].f(lane(r.t, k)), out[k].i(lane_int(r.certain, k) != 0), out[k].f(lane(d.hi, k)), out[k].f(lane(d.lo, k)),
+        out[k].f(lane(d.reciprocal, k)), out[k].i(lane_int(d.in_range, k) != 0);
+}
+template <class V>
+void lanes_half_gap(const V* x, std::vector<Out>& out) {
+  const V h = half_gap_to_nearer_neighbour(x[0]);
+  for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(h, k));
+}
+template <class V>
+void lanes_enclosure_sign(const V* x, std::vector<Out>& out) {
+  const IntegerOf<V> s = enclosure_sign_lanes(EnclosureT<V>{x[0], x[1], x[2]});
+  for (int k = 0; k < width_of<V>; ++k) out[k].i(lane_int(s, k));
+}
+
+struct LaneRoutine {
+  int arity;
+  std::function<void(const double*, std::vector<Out>&)> scalar;
+#if RAYKERNEL_TWIN_LANES == 4
+  std::function<void(const Lanes4*, std::vector<Out>&)> lanes;
+#elif RAYKERNEL_TWIN_LANES == 8
+  std::function<void(const Lanes8*, std::vector<Out>&)> lanes;
+#endif
+};
+
+#if RAYKERNEL_TWIN_LANES == 4
+using LaneV = Lanes4;
+#elif RAYKERNEL_TWIN_LANES == 8
+using LaneV = Lanes8;
+#endif
+
+#if RAYKERNEL_TWIN_LANES == 0
+#define RAYKERNEL_LANE_ROUTINE(name, n) {#name, {n, lanes_##name<double>}}
+#else
+#define RAYKERNEL_LANE_ROUTINE(name, n) {#name, {n, lanes_##name<double>, lanes_##name<LaneV>}}
+#endif
+
+const std::map<std::string, LaneRoutine>& lane_routines() {
+  static const std::map<std::string, LaneRoutine> table = {
+      RAYKERNEL_LANE_ROUTINE(two_sum, 2),       RAYKERNEL_LANE_ROUTINE(two_diff, 2),
+      RAYKERNEL_LANE_ROUTINE(two_prod, 2),      RAYKERNEL_LANE_ROUTINE(dot3_rounded, 6),
+      RAYKERNEL_LANE_ROUTINE(filter_den, 6),    RAYKERNEL_LANE_ROUTINE(filter_num, 6),
+      RAYKERNEL_LANE_ROUTINE(compensated, 9),   RAYKERNEL_LANE_ROUTINE(enclosure_sign, 3),
+      RAYKERNEL_LANE_ROUTINE(fast_answer, 12),  RAYKERNEL_LANE_ROUTINE(compensated_exact, 6),
+      RAYKERNEL_LANE_ROUTINE(fast_relation, 12), RAYKERNEL_LANE_ROUTINE(round_quotient, 6),
+      RAYKERNEL_LANE_ROUTINE(half_gap, 1),
+  };
+  return table;
+}
+
+// ---- Scalar-only routines ----------------------------------------------------------------------------------
+// Each takes one line's input words and returns its output tokens (false: wrong arity).
+
+using ScalarRoutine = std::function<bool(const Words&, Out&)>;
+
+std::vector<double> doubles(const Words& w, std::size_t from = 0) {
+  std::vector<double> x;
+  for (std::size_t j = from; j < w.size(); ++j) x.push_back(from_word(w[j]));
+  return x;
+}
+
+Out enclosure_out(const Enclosure& e) {
+  Out o;
+  o.f(e.hi), o.f(e.lo), o.f(e.radius);
+  return o;
+}
+void dot3_out(Out& o, const Dot3Rounded& r) {
+  for (double q : r.product) o.f(q);
+  o.f(r.value), o.f(r.magnitude);
+}
+void enclosure_out(Out& o, const Enclosure& e) { o.f(e.hi), o.f(e.lo), o.f(e.radius); }
+template <std::size_t N>
+void expansion_out(Out& o, const Expansion<N>& e) {
+  o.i(static_cast<long long>(e.size));
+  for (std::size_t i = 0; i < e.size; ++i) o.f(e.component[i]);
+}
+template <std::size_t N>
+bool fill(Expansion<N>& e, const std::vector<double>& x, std::size_t from, std::size_t count) {
+  if (count == 0 || count > N || from + count > x.size()) return false;
+  e.size = count;
+  for (std::size_t i = 0; i < count; ++i) e.component[i] = x[from + i];
+  return true;
+}
+int sign_code(Sign s) { return static_cast<int>(s); }
+
+// A ray and a plane from "ox oy oz dx dy dz px py pz nx ny nz".
+raykernel::Ray ray_of(const std::vector<double>& x, std::size_t at = 0) { return {{x[at], x[at + 1], x[at + 2]}, {x[at + 3], x[at + 4], x[at + 5]}}; }
+raykernel::Plane plane_of(const std::vector<double>& x, std::size_t at) { return {{x[at], x[at + 1], x[at + 2]}, {x[at + 3], x[at + 4], x[at + 5]}}; }
+
+RayPlaneTerms terms_of(const std::vector<double>& x, std::size_t plane_at = 6) {
+  return ray_plane_terms(ray_of(x), plane_of(x, plane_at));
+}
+
+// The current and the proposed stage 3 (twins/proposed_stage3.hpp) on the same inputs: how often they differ.
+long current_vs_proposed_differences = 0;
+
+const std::map<std::string, ScalarRoutine>& scalar_routines() {
+  static const std::map<std::string, ScalarRoutine> table = {
+      {"fast_two_sum",
+       [](const Words& w, Out& o) {
+         if (w.size() != 2) return false;
+         const DoubleDouble r = fast_two_sum(from_word(w[0]), from_word(w[1]));
+         o.f(r.hi), o.f(r.lo);
+         return true;
+       }},
+      {"refined",
+       [](const Words& w, Out& o) {
+         if (w.size() != 9) return false;
+         const std::vector<double> x = doubles(w);
+         o = enclosure_out(compensated_dot3_refined(x.data(), x.data() + 3, x.data() + 6,
+                                                    dot3_rounded(x.data(), x.data() + 6)));
+         return true;
+       }},
+      {"tail_enclosure",
+       [](const Words& w, Out& o) {
+         Expansion<32> e;
+         if (!fill(e, doubles(w), 0, w.size())) return false;
+         o = enclosure_out(expansion_tail_enclosure(e));
+         return true;
+       }},
+      // compare_quotients.hpp
+      {"filter_enclosure_den",
+       [](const Words& w, Out& o) {
+         if (w.size() != 6) return false;
+         const std::vector<double> x = doubles(w);
+         const RoundedEnclosure e = filter_enclosure(dot3_rounded(x.data(), x.data() + 3), bounds::filter_den_relative);
+         o.f(e.value), o.f(e.radius);
+         return true;
+       }},
+      {"filter_enclosure_num",
+       [](const Words& w, Out& o) {
+         if (w.size() != 6) return false;
+         const std::vector<double> x = doubles(w);
+         const RoundedEnclosure e = filter_enclosure(dot3_rounded(x.data(), x.data() + 3), bounds::filter_num_relative);
+         o.f(e.value), o.f(e.radius);
+         return true;
+       }},
+      {"propagated",
+       [](const Words& w, Out& o) {
+         if (w.size() != 8) return false;
+         const std::vector<double> x = doubles(w);
+         o.f(compare_propagated_error(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7]));
+         return true;
+       }},
+      {"compare_filter",
+       [](const Words& w, Out& o) {
+         if (w.size() != 8) return false;
+         const std::vector<double> x = doubles(w);
+         o.i(sign_code(compare_quotients_filter({x[0], x[1]}, {x[2], x[3]}, {x[4], x[5]}, {x[6], x[7]})));
+         return true;
+       }},
+      {"compare_compensated",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         o = enclosure_out(compare_quotients_compensated({x[0], x[1], x[2]}, {x[3], x[4], x[5]}, {x[6], x[7], x[8]},
+                                                         {x[9], x[10], x[11]}));
+         return true;
+       }},
+      // expansion.hpp: "k e_1 .. e_k f_1 .." and "b e_1 ..", current and proposed
+      {"exp_sum",
+       [](const Words& w, Out& o) {
+         if (w.empty()) return false;
+         const std::size_t k = w[0];
+         const std::vector<double> x = doubles(w, 1);
+         Expansion<64> e, f;
+         if (!fill(e, x, 0, k) || !fill(f, x, k, x.size() - k)) return false;
+         Expansion<128> h, hp;
+         ExpansionBuilder::sum(e, f, h);
+         proposed::ExpansionBuilder::sum(e, f, hp);
+         expansion_out(o, h);
+         return true;
+       }},
+      {"exp_sum_p",
+       [](const Words& w, Out& o) {
+         if (w.empty()) return false;
+         const std::size_t k = w[0];
+         const std::vector<double> x = doubles(w, 1);
+         Expansion<64> e, f;
+         if (!fill(e, x, 0, k) || !fill(f, x, k, x.size() - k)) return false;
+         Expansion<128> h;
+         proposed::ExpansionBuilder::sum(e, f, h);
+         expansion_out(o, h);
+         return true;
+       }},
+      {"exp_scale",
+       [](const Words& w, Out& o) {
+         if (w.size() < 2) return false;
+         const std::vector<double> x = doubles(w);
+         Expansion<64> e;
+         if (!fill(e, x, 1, x.size() - 1)) return false;
+         Expansion<128> h;
+         ExpansionBuilder builder;
+         builder.scale(e, x[0], h);
+         o.i(builder.exact());
+         expansion_out(o, h);
+         return true;
+       }},
+      {"exp_scale_p",
+       [](const Words& w, Out& o) {
+         if (w.size() < 2) return false;
+         const std::vector<double> x = doubles(w);
+         Expansion<64> e;
+         if (!fill(e, x, 1, x.size() - 1)) return false;
+         Expansion<128> h;
+         proposed::ExpansionBuilder builder;
+         builder.scale(e, x[0], h);
+         o.i(builder.exact());
+         expansion_out(o, h);
+         return true;
+       }},
+      {"exp_sign_top",
+       [](const Words& w, Out& o) {
+         Expansion<64> e;
+         if (!fill(e, doubles(w), 0, w.size())) return false;
+         o.i(sign_code(e.sign()));
+         return true;
+       }},
+      {"exp_sign_p",
+       [](const Words& w, Out& o) {
+         Expansion<64> e;
+         if (!fill(e, doubles(w), 0, w.size())) return false;
+         o.i(sign_code(proposed::expansion_sign(e)));
+         return true;
+       }},
+      // the call sites: "ox oy oz dx dy dz px py pz nx ny nz" (and a second plane for the comparisons)
+      {"build_expansions",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const RayPlaneTerms t = terms_of(x);
+         const ExactExpansions e = ray_plane_expansions(t);
+         const ExactExpansions ep = proposed::build_expansions(t);
+         auto same = [](const auto& a, const auto& b) {
+           if (a.size != b.size) return false;
+           for (std::size_t i = 0; i < a.size; ++i)
+             if (std::bit_cast<std::uint64_t>(a.component[i]) != std::bit_cast<std::uint64_t>(b.component[i])) return false;
+           return true;
+         };
+         if (e.exact && !(ep.exact && same(e.num, ep.num) && same(e.den, ep.den))) ++current_vs_proposed_differences;
+         expansion_out(o, e.num), expansion_out(o, e.den), o.i(e.exact);
+         return true;
+       }},
+      {"build_expansions_p",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const ExactExpansions e = proposed::build_expansions(terms_of(doubles(w)));
+         expansion_out(o, e.num), expansion_out(o, e.den), o.i(e.exact);
+         return true;
+       }},
+      {"compare_expansion",
+       [](const Words& w, Out& o) {
+         if (w.size() != 18) return false;
+         const std::vector<double> x = doubles(w);
+         const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
+         const Sign s = compare_quotients_expansion(ray_plane_expansions(a), ray_plane_expansions(b));
+         const Sign sp = proposed::compare_quotients_expansion(proposed::build_expansions(a), proposed::build_expansions(b));
+         if (is_certain(sp) && sp != s) ++current_vs_proposed_differences;
+         o.i(sign_code(s));
+         return true;
+       }},
+      {"compare_expansion_p",
+       [](const Words& w, Out& o) {
+         if (w.size() != 18) return false;
+         const std::vector<double> x = doubles(w);
+         const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
+         o.i(sign_code(proposed::compare_quotients_expansion(proposed::build_expansions(a), proposed::build_expansions(b))));
+         return true;
+       }},
+      // The one-query forms: den and num as the two lanes of a Lanes2.
+      {"fast_answer_pair",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const FastAnswer a = fast_answer(ray_of(x), plane_of(x, 6));
+         o.f(a.t), o.i(a.behind), o.i(a.certain), o.i(a.relation_by_filter);
+         return true;
+       }},
+      {"fast_relation_pair",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const FastRelationT<double> r = fast_relation(ray_of(x), plane_of(x, 6));
+         o.i(r.behind), o.i(r.certain);
+         return true;
+       }},
+  };
+  return table;
+}
+
+// ---- Input, comparison, report ------------------------------------------------------------------------------
+
+struct Line {
+  std::string name;
+  Words words;
+  std::string text;
+};
+
+bool parse(const std::string& text, Line& line) {
+  std::istringstream in(text);
+  if (!(in >> line.name)) return false;
+  line.words.clear();
+  for (std::string token; in >> token;) line.words.push_back(std::stoull(token));
+  line.text = text;
+  return true;
+}
+
+struct Tally {
+  std::map<std::string, long> checked, mismatched, skipped;
+  int reported = 0;
+};
+
+// Runs every line of INPUTS through the compiled routine and compares with the line of TWIN_OUTPUTS.
+int check(const char* inputs_path, const char* expected_path, Tally& tally) {
+  std::ifstream inputs(inputs_path), expected(expected_path);
+  if (!inputs || !expected) {
+    std::cerr << "cannot read " << inputs_path << " or " << expected_path << '\n';
+    return 2;
+  }
+  std::vector<Line> lines;
+  std::vector<std::string> want;
+  for (std::string text, expect; std::getline(inputs, text);) {
+    Line line;
+    if (!parse(text, line)) continue;
+    if (!std::getline(expected, expect)) {
+      std::cerr << expected_path << " has fewer lines than " << inputs_path << '\n';
+      return 2;
+    }
+    lines.push_back(std::move(line));
+    want.push_back(std::move(expect));
+  }
+
+  auto compare = [&](std::size_t index, const std::string& got_tokens) {
+    const std::string got = lines[index].name + got_tokens;
+    ++tally.checked[lines[index].name];
+    if (got == want[index]) return;
+    ++tally.mismatched[lines[index].name];
+    if (tally.reported++ < 20)
+      std::cerr << "MISMATCH " << inputs_path << ":" << index + 1 << ": " << lines[index].text << "\n  C++:  " << got
+                << "\n  twin: " << want[index] << '\n';
+  };
+
+  for (std::size_t i = 0; i < lines.size();) {
+    const Line& line = lines[i];
+    if (const auto lr = lane_routines().find(line.name); lr != lane_routines().end()) {
+      const LaneRoutine& r = lr->second;
+#if RAYKERNEL_TWIN_LANES == 0
+      if (static_cast<int>(line.words.size()) != r.arity) {
+        std::cerr << "line " << i + 1 << ": wrong arity\n";
+        return 2;
+      }
+      std::vector<double> x(line.words.size());
+      for (std::size_t j = 0; j < x.size(); ++j) x[j] = from_word(line.words[j]);
+      std::vector<Out> out(1);
+      r.scalar(x.data(), out);
+      compare(i, out[0].text);
+      ++i;
+#else
+      // W consecutive lines of the same routine fill the lanes; a shorter tail is padded by repeating its
+      // last line (whose extra outputs are not compared).
+      constexpr int W = RAYKERNEL_TWIN_LANES;
+      std::size_t n = 0;
+      while (n < W && i + n < lines.size() && lines[i + n].name == line.name) ++n;
+      std::vector<LaneV> x(static_cast<std::size_t>(r.arity));
+      for (int k = 0; k < W; ++k) {
+        const Line& l = lines[i + std::min<std::size_t>(static_cast<std::size_t>(k), n - 1)];
+        if (static_cast<int>(l.words.size()) != r.arity) {
+          std::cerr << "line " << i + 1 + static_cast<std::size_t>(k) << ": wrong arity\n";
+          return 2;
+        }
+        for (int j = 0; j < r.arity; ++j)
+          x[static_cast<std::size_t>(j)][k] = from_word(l.words[static_cast<std::size_t>(j)]);
+      }
+      std::vector<Out> out(W);
+      r.lanes(x.data(), out);
+      for (std::size_t k = 0; k < n; ++k) compare(i + k, out[k].text);
+      i += n;
+#endif
+      continue;
+    }
+    if (const auto sr = scalar_routines().find(line.name); sr != scalar_routines().end()) {
+#if RAYKERNEL_TWIN_LANES == 0
+      Out out;
+      if (!sr->second(line.words, out)) {
+        std::cerr << "line " << i + 1 << ": wrong arity for " << line.name << '\n';
+        return 2;
+      }
+      compare(i, out.text);
+#else
+      ++tally.skipped[line.name];
+#endif
+      ++i;
+      continue;
+    }
+    std::cerr << "line " << i + 1 << ": unknown routine " << line.name << '\n';
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3 || argc % 2 == 0) {
+    std::cerr << "usage: raykernel_twin_driver INPUTS TWIN_OUTPUTS [INPUTS TWIN_OUTPUTS ...]\n";
+    return 2;
+  }
+#if RAYKERNEL_TWIN_LANES == 8 && defined(__AVX512F__)
+  __builtin_cpu_init();
+  if (!__builtin_cpu_supports("avx512f")) {
+    std::cout << "SKIPPED: this CPU has no AVX-512 (the -march=x86-64-v4 build cannot run)\n";
+    return 77;
+  }
+#endif
+  Tally tally;
+  for (int k = 1; k + 1 < argc; k += 2)
+    if (const int status = check(argv[k], argv[k + 1], tally); status != 0) return status;
+
+  long total_mismatches = 0;
+  for (const auto& [name, count] : tally.checked) {
+    total_mismatches += tally.mismatched[name];
+    std::cout << name << ": " << count << " inputs, " << tally.mismatched[name] << " mismatches\n";
+  }
+  for (const auto& [name, count] : tally.skipped)
+    std::cout << name << ": " << count << " inputs skipped (not lane-templated)\n";
+  std::cout << "current stage 3 and the proposed one (twins/proposed_stage3.hpp) differ on "
+            << current_vs_proposed_differences << " of these inputs\n";
+  std::cout << (total_mismatches == 0 ? "ok: the compiled routines and the Coq twins agree bit for bit\n"
+                                      : "FAILED: the compiled routines and the Coq twins disagree\n");
+  return total_mismatches == 0 ? 0 : 1;
+}

@@ -1,0 +1,362 @@
+// Inputs of the differential runner: COUNT lines per routine, "routine x1 x2 ..." with every input a 64-bit
+// pattern in unsigned decimal.
+//
+// Two sources, mixed per routine:
+//   * the testkit's hard queries (testkit/include/raykernel/testkit/hard_queries.hpp: near-parallel,
+//     near-coplanar, exact degeneracies, ties, subnormal, huge, t overflow/underflow, ...) and near-tie plane
+//     pairs (plane_pairs.hpp), turned into each routine's arguments the way the cascade forms them (den from
+//     d and n, num from p ⊖ o and n with the TwoDiff low parts, enclosures from stage 2, expansions from
+//     stage 3), so that the certifying branches are exercised;
+//   * raw bit patterns: uniformly random 64-bit words and special values (±0, ±smallest and largest
+//     subnormal, ±smallest normal, ±1, ±largest finite, ±inf, quiet and signalling NaNs with payloads and
+//     both signs, extreme exponents), alone or injected into hard queries.
+// Deterministic in SEED (SplitMix64), which is printed.
+//
+// Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
+#include "certified/compare_quotients.hpp"
+#include "certified/eft.hpp"
+#include "certified/ray_plane_query.hpp"
+
+#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_pairs.hpp>
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using raykernel::testkit::SplitMix64;
+using namespace raykernel;
+using detail::DoubleDouble;
+
+class Source {
+ public:
+  explicit Source(std::uint64_t seed) : rng_(seed) {}
+  std::uint64_t word() { return rng_(); }
+  std::uint64_t below(std::uint64_t n) { return rng_() % n; }
+  bool chance(int one_in) { return below(static_cast<std::uint64_t>(one_in)) == 0; }
+
+  // A raw input: a special value (1 in 4) or a uniformly random word.
+  double raw() {
+    static constexpr std::array<std::uint64_t, 26> special = {
+        0x0000000000000000ULL, 0x8000000000000000ULL,  // ±0
+        0x0000000000000001ULL, 0x8000000000000001ULL,  // ±smallest subnormal
+        0x000fffffffffffffULL, 0x800fffffffffffffULL,  // ±largest subnormal
+        0x0010000000000000ULL, 0x8010000000000000ULL,  // ±smallest normal
+        0x3ff0000000000000ULL, 0xbff0000000000000ULL,  // ±1
+        0x7fefffffffffffffULL, 0xffefffffffffffffULL,  // ±largest finite
+        0x7ff0000000000000ULL, 0xfff0000000000000ULL,  // ±inf
+        0x7ff8000000000000ULL, 0xfff8000000000000ULL,  // quiet NaNs
+        0x7ff0000000000001ULL, 0x7ff4000000000000ULL,  // signalling NaNs
+        0x7ff8dead0000beefULL, 0x7fe0000000000000ULL,  // NaN with payload; 2^1023
+        0x0360000000000000ULL, 0x4340000000000000ULL,  // 2^-969 (TwoProduct boundary); 2^53
+        0x3ca0000000000000ULL, 0x7fdfffffffffffffULL,  // 2^-53; just below 2^1023
+        0x0020000000000000ULL, 0x3fefffffffffffffULL,  // 2^-1021; 1 - 2^-53
+    };
+    if (chance(4)) return std::bit_cast<double>(special[below(special.size())]);
+    if (chance(3)) {  // a random significand at an extreme or a moderate exponent
+      const std::uint64_t exponent = chance(2) ? below(40) + (chance(2) ? 0 : 2007) : 1023 - 60 + below(120);
+      return std::bit_cast<double>((word() & 0x800fffffffffffffULL) | (exponent << 52));
+    }
+    return std::bit_cast<double>(word());
+  }
+
+  testkit::Query query() {
+    const auto kind = testkit::all_query_kinds[below(testkit::all_query_kinds.size())];
+    testkit::Query q = testkit::make_query(kind, [this] { return word(); });
+    if (chance(8)) {  // a special value in one component (invalid input: the cascade must not certify)
+      double* c[12] = {&q.ray.origin.x, &q.ray.origin.y, &q.ray.origin.z, &q.ray.direction.x,
+                       &q.ray.direction.y, &q.ray.direction.z, &q.plane.point.x, &q.plane.point.y,
+                       &q.plane.point.z, &q.plane.normal.x, &q.plane.normal.y, &q.plane.normal.z};
+      *c[below(12)] = raw();
+    }
+    return q;
+  }
+  testkit::PlanePair plane_pair() { return testkit::make_plane_pair_near_tie([this] { return word(); }); }
+
+ private:
+  SplitMix64 rng_;
+};
+
+struct Terms {
+  double o[3], d[3], p[3], n[3], diff[3], diff_lo[3];
+};
+Terms terms(const testkit::Query& q) {
+  Terms t{{q.ray.origin.x, q.ray.origin.y, q.ray.origin.z},
+          {q.ray.direction.x, q.ray.direction.y, q.ray.direction.z},
+          {q.plane.point.x, q.plane.point.y, q.plane.point.z},
+          {q.plane.normal.x, q.plane.normal.y, q.plane.normal.z},
+          {},
+          {}};
+  for (int i = 0; i < 3; ++i) {
+    const DoubleDouble s = detail::two_diff(t.p[i], t.o[i]);
+    t.diff[i] = s.hi;
+    t.diff_lo[i] = s.lo;
+  }
+  return t;
+}
+
+using Args = std::vector<double>;
+
+// The arguments of the dot-product routines from a query: den (a = d, α = 0, b = n) or num (a = p ⊖ o,
+// α = the TwoDiff low part, b = n).
+Args dot3_args(const Terms& t, bool num, bool with_alpha) {
+  Args a;
+  for (int i = 0; i < 3; ++i) a.push_back(num ? t.diff[i] : t.d[i]);
+  if (with_alpha)
+    for (int i = 0; i < 3; ++i) a.push_back(num ? t.diff_lo[i] : 0.0);
+  for (int i = 0; i < 3; ++i) a.push_back(t.n[i]);
+  return a;
+}
+
+Args raw_args(Source& s, int n) {
+  Args a;
+  for (int i = 0; i < n; ++i) a.push_back(s.raw());
+  return a;
+}
+
+detail::Enclosure stage2(const testkit::Query& q, bool num, bool refined) {
+  const detail::RayPlaneTerms t = detail::ray_plane_terms(q.ray, q.plane);
+  if (refined) return num ? detail::num_refined(t) : detail::den_refined(t);
+  return num ? detail::num_compensated(t) : detail::den_compensated(t);
+}
+
+std::vector<double> expansion_components(const testkit::Query& q, bool num) {
+  const detail::ExactExpansions e = detail::ray_plane_expansions(detail::ray_plane_terms(q.ray, q.plane));
+  std::vector<double> c;
+  if (num)
+    c.assign(e.num.component, e.num.component + e.num.size);
+  else
+    c.assign(e.den.component, e.den.component + e.den.size);
+  return c;
+}
+
+// A ray and two planes: a near-tie plane pair (testkit/plane_pairs.hpp), or the ray of one hard query with
+// the planes of it and of another.
+Args pair_args(Source& s) {
+  Args a;
+  auto push3 = [&](const Vec3& v) { a.push_back(v.x), a.push_back(v.y), a.push_back(v.z); };
+  if (s.chance(2)) {
+    const testkit::PlanePair pp = s.plane_pair();
+    push3(pp.ray.origin), push3(pp.ray.direction);
+    for (const Plane& p : pp.planes) push3(p.point), push3(p.normal);
+  } else {
+    const testkit::Query q1 = s.query(), q2 = s.query();
+    push3(q1.ray.origin), push3(q1.ray.direction), push3(q1.plane.point), push3(q1.plane.normal);
+    push3(q2.plane.point), push3(q2.plane.normal);
+  }
+  return a;
+}
+
+testkit::Query query_of(const Args& a, int plane) {
+  const std::size_t at = 6 + 6 * static_cast<std::size_t>(plane);
+  return {{{a[0], a[1], a[2]}, {a[3], a[4], a[5]}}, {{a[at], a[at + 1], a[at + 2]}, {a[at + 3], a[at + 4], a[at + 5]}}};
+}
+
+Args query_args(const testkit::Query& q) {
+  return {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z,    q.ray.direction.x,
+          q.ray.direction.y, q.ray.direction.z, q.plane.point.x,   q.plane.point.y,
+          q.plane.point.z,   q.plane.normal.x,  q.plane.normal.y,  q.plane.normal.z};
+}
+
+// An expansion: the components of a query's num or den expansion, or a raw list.
+std::vector<double> some_expansion(Source& s, std::size_t max_raw) {
+  if (s.chance(3)) {
+    std::vector<double> c;
+    const std::size_t n = 1 + static_cast<std::size_t>(s.below(max_raw));
+    for (std::size_t i = 0; i < n; ++i) c.push_back(s.raw());
+    return c;
+  }
+  return expansion_components(s.query(), s.chance(2));
+}
+
+using Generator = std::function<Args(Source&)>;
+
+const std::map<std::string, Generator>& generators() {
+  static const std::map<std::string, Generator> table = {
+      {"two_sum",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 2);
+         const Terms t = terms(s.query());
+         const int i = static_cast<int>(s.below(3));
+         return s.chance(2) ? Args{t.p[i], -t.o[i]} : Args{t.d[i] * t.n[i], t.diff[i] * t.n[i]};
+       }},
+      {"two_diff",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 2);
+         const Terms t = terms(s.query());
+         const int i = static_cast<int>(s.below(3));
+         return Args{t.p[i], t.o[i]};
+       }},
+      {"fast_two_sum",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 2);
+         const Terms t = terms(s.query());
+         const int i = static_cast<int>(s.below(3));
+         const double a = t.d[i] * t.n[i], b = t.diff[i] * t.n[i];
+         return std::abs(a) >= std::abs(b) ? Args{a, b} : Args{b, a};
+       }},
+      {"two_prod",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 2);
+         const Terms t = terms(s.query());
+         const int i = static_cast<int>(s.below(3));
+         return s.chance(2) ? Args{t.d[i], t.n[i]} : Args{t.diff[i], t.n[i]};
+       }},
+      {"dot3_rounded", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), s.chance(2), false); }},
+      {"filter_den", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
+      {"filter_num", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), true, false); }},
+      {"compensated", [](Source& s) { return s.chance(3) ? raw_args(s, 9) : dot3_args(terms(s.query()), s.chance(2), true); }},
+      {"refined", [](Source& s) { return s.chance(3) ? raw_args(s, 9) : dot3_args(terms(s.query()), s.chance(2), true); }},
+      {"enclosure_sign",
+       [](Source& s) {
+         if (s.chance(4)) return raw_args(s, 3);
+         const detail::Enclosure e = stage2(s.query(), s.chance(2), s.chance(2));
+         if (s.chance(3)) {  // the radius moved to the decision threshold |hi + lo| = 2·radius
+           const double r = std::abs(e.hi + e.lo) / 2;
+           return Args{e.hi, e.lo, s.chance(2) ? r : std::nextafter(r, s.chance(2) ? 0.0 : HUGE_VAL)};
+         }
+         return Args{e.hi, e.lo, e.radius};
+       }},
+      {"filter_enclosure_den", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
+      {"filter_enclosure_num", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), true, false); }},
+      {"propagated",
+       [](Source& s) {
+         if (s.chance(3)) return raw_args(s, 8);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num, detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den, detail::bounds::filter_den_relative);
+           r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
+         }
+         return r;
+       }},
+      {"compare_filter",
+       [](Source& s) {
+         if (s.chance(4)) return raw_args(s, 8);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           const detail::RoundedEnclosure n = detail::filter_enclosure(st.num, detail::bounds::filter_num_relative);
+           const detail::RoundedEnclosure d = detail::filter_enclosure(st.den, detail::bounds::filter_den_relative);
+           r.insert(r.end(), {n.value, n.radius, d.value, d.radius});
+         }
+         return r;
+       }},
+      {"compare_compensated",
+       [](Source& s) {
+         if (s.chance(4)) return raw_args(s, 12);
+         const Args a = pair_args(s);
+         Args r;
+         for (int k = 0; k < 2; ++k) {
+           const detail::RayPlaneTerms st = detail::ray_plane_terms(query_of(a, k).ray, query_of(a, k).plane);
+           for (const detail::Enclosure& e : {detail::num_compensated(st), detail::den_compensated(st)})
+             r.insert(r.end(), {e.hi, e.lo, e.radius});
+         }
+         return r;
+       }},
+      {"exp_sum",
+       [](Source& s) {
+         const std::vector<double> e = some_expansion(s, 8), f = some_expansion(s, 8);
+         Args r{std::bit_cast<double>(static_cast<std::uint64_t>(e.size()))};
+         r.insert(r.end(), e.begin(), e.end());
+         r.insert(r.end(), f.begin(), f.end());
+         return r;
+       }},
+      {"exp_scale",
+       [](Source& s) {
+         const std::vector<double> e = some_expansion(s, 8);
+         Args r{s.chance(3) ? s.raw() : terms(s.query()).n[s.below(3)]};
+         r.insert(r.end(), e.begin(), e.end());
+         return r;
+       }},
+      {"exp_sign_top", [](Source& s) { return some_expansion(s, 12); }},
+      {"build_expansions", [](Source& s) { return query_args(s.query()); }},
+      {"compare_expansion", [](Source& s) { return pair_args(s); }},
+      {"fast_answer", [](Source& s) { return query_args(s.query()); }},
+      {"fast_answer_pair", [](Source& s) { return query_args(s.query()); }},
+      {"fast_relation", [](Source& s) { return query_args(s.query()); }},
+      {"fast_relation_pair", [](Source& s) { return query_args(s.query()); }},
+      {"compensated_exact", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
+      // num's and den's stage-2 enclosures of one query (the operands round_quotient gets), sometimes with a
+      // raw value in one field.
+      {"round_quotient",
+       [](Source& s) {
+         if (s.chance(8)) return raw_args(s, 6);
+         const testkit::Query q = s.query();
+         const detail::Enclosure n = stage2(q, true, false), d = stage2(q, false, false);
+         Args a{n.hi, n.lo, n.radius, d.hi, d.lo, d.radius};
+         if (s.chance(6)) a[s.below(6)] = s.raw();
+         return a;
+       }},
+      // a quotient's bits: raw, or a quotient of two query values.
+      {"half_gap",
+       [](Source& s) {
+         if (s.chance(2)) return raw_args(s, 1);
+         const Terms t = terms(s.query());
+         return Args{(t.diff[0] * t.n[0]) / (t.d[0] * t.n[0])};
+       }},
+      {"tail_enclosure",
+       [](Source& s) {
+         if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));
+         std::vector<double> c = expansion_components(s.query(), s.chance(2));
+         if (c.size() > 32) c.resize(32);
+         return c;
+       }},
+  };
+  return table;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::cerr << "usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]\n";
+    return 2;
+  }
+  const std::uint64_t seed = std::stoull(argv[1]);
+  const long count = std::stol(argv[2]);
+  std::vector<std::string> routines;
+  for (int i = 4; i < argc; ++i) routines.emplace_back(argv[i]);
+  if (routines.empty())
+    for (const auto& [name, _] : generators()) routines.push_back(name);
+  std::ofstream out(argv[3]);
+  if (!out) {
+    std::cerr << "cannot write " << argv[3] << '\n';
+    return 1;
+  }
+  Source source(seed);
+  for (const std::string& name : routines) {
+    // The proposed stage 3 (name_p) runs on the inputs of the current one.
+    const std::string base = name.size() > 2 && name.compare(name.size() - 2, 2, "_p") == 0 ? name.substr(0, name.size() - 2) : name;
+    const auto g = generators().find(base == "exp_sign" ? std::string("exp_sign_top") : base);
+    if (g == generators().end()) {
+      std::cerr << "unknown routine " << name << '\n';
+      return 2;
+    }
+    for (long k = 0; k < count; ++k) {
+      const Args args = g->second(source);
+      out << name;
+      for (double x : args) out << ' ' << std::bit_cast<std::uint64_t>(x);
+      out << '\n';
+    }
+  }
+  out.close();
+  if (!out) {
+    std::cerr << "write failed: " << argv[3] << '\n';
+    return 1;
+  }
+  std::cout << "seed " << seed << ": " << count << " inputs for each of " << routines.size() << " routines\n";
+  return 0;
+}
