@@ -16,12 +16,13 @@ numbers: ``intersect`` (certified), ``relation`` (the relation alone), ``interse
 reference), ``intersect_exact_rational`` (the exact values as Fractions), ``intersect_naive`` (the textbook
 formula / Möller–Trumbore, no guarantee), ``intersect_traced``, ``validate``; ``nearest_hit`` /
 ``nearest_hit_exact`` over a ``PlaneSet``, a list of planes or a ``Mesh`` (``load_mesh(path)``: OBJ, PLY, STL,
-OFF), ``nearest_hit_naive`` over planes; ``round_rational_to_double``.
+OFF), ``nearest_hit_naive`` (the baseline) over either; ``inside`` / ``inside_exact(point, mesh)`` (docs/contract.md
+§7: "inside", "outside" or "on-surface" by the exact winding number); ``round_rational_to_double``.
 
 Vectorized functions take (n, 3) float64 arrays and loop in C++ with the GIL released:
 ``intersect_batch`` / ``relation_batch(origins, directions, points, normals)``,
 ``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)`` and
-``nearest_hit_batch(origins, directions, scene)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
+``nearest_hit_batch(origins, directions, scene)``, ``inside_batch(points, mesh)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
 the row: "query 17: ray direction is the zero vector".
 
 ``raykernel.testing`` checks other code against raykernel (ulps, reports); ``raykernel.testing.hypothesis``
@@ -41,6 +42,8 @@ from ._types import (
     NearestHit,
     NearestHitArrays,
     Plane,
+    PointLocation,
+    PointLocationArrays,
     Ray,
     Relation,
     RelationArrays,
@@ -64,6 +67,9 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     MeshFileError,
     PlaneSet,
     floating_point_environment_is_default,
+    inside,
+    inside_batch,
+    inside_exact,
     intersect,
     intersect_batch,
     intersect_exact,
@@ -102,6 +108,8 @@ __all__ = [
     "NearestHitArrays",
     "Plane",
     "PlaneSet",
+    "PointLocation",
+    "PointLocationArrays",
     "Ray",
     "Relation",
     "RelationArrays",
@@ -118,6 +126,9 @@ __all__ = [
     "TriangleRule",
     "Vec3",
     "floating_point_environment_is_default",
+    "inside",
+    "inside_batch",
+    "inside_exact",
     "intersect",
     "intersect_batch",
     "intersect_exact",

@@ -18,6 +18,8 @@ from ._types import (
     NearestHitArrays,
     Plane,
     PlaneLike,
+    PointLocation,
+    PointLocationArrays,
     Ray,
     RayLike,
     Relation,
@@ -116,7 +118,20 @@ def nearest_hit(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -
 def nearest_hit_exact(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
 @overload
 def nearest_hit_exact(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
-def nearest_hit_naive(ray: RayLike, planes: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit_naive(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
+@overload
+def nearest_hit_naive(ray: RayLike, scene: Mesh) -> Optional[MeshHit]: ...
+def inside(point: Sequence[float], mesh: Mesh) -> PointLocation: ...
+def inside_exact(point: Sequence[float], mesh: Mesh) -> PointLocation: ...
+def inside_batch(
+    points: ArrayLike3,
+    mesh: Mesh,
+    *,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> PointLocationArrays: ...
 def intersect_batch(
     origins: ArrayLike3,
     directions: ArrayLike3,

@@ -180,6 +180,27 @@ _TRIANGLE_LOCATIONS_BY_CODE = tuple(TriangleLocation)
 _TRIANGLE_LOCATION_CODES = {r: k for k, r in enumerate(_TRIANGLE_LOCATIONS_BY_CODE)}
 
 
+class PointLocation(_StrEnum):
+    """Where a point is against a mesh (docs/contract.md §7, ``inside``). ``code`` is the value of
+    ``inside_batch``'s uint8 ``location`` array."""
+
+    OUTSIDE = "outside"  # winding number 0
+    INSIDE = "inside"  # winding number nonzero (outward or inward normals alike)
+    ON_SURFACE = "on-surface"  # on some triangle, boundary included, exactly
+
+    @property
+    def code(self) -> int:
+        return _POINT_LOCATION_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "PointLocation":
+        return _POINT_LOCATIONS_BY_CODE[int(code)]
+
+
+_POINT_LOCATIONS_BY_CODE = tuple(PointLocation)
+_POINT_LOCATION_CODES = {r: k for k, r in enumerate(_POINT_LOCATIONS_BY_CODE)}
+
+
 class Barycentric(NamedTuple):
     """Barycentric coordinates (πa, πb, πc)/den of the point where the line crosses the plane: the weights of
     the vertices a, b, c (they sum to 1 exactly; each is rounded on its own)."""
@@ -290,6 +311,18 @@ class MeshHitArrays(NamedTuple):
 
     def locations(self) -> np.ndarray:
         return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
+
+
+class PointLocationArrays(NamedTuple):
+    """The answers of ``inside_batch``, one row per point: ``location`` (uint8 ``PointLocation.code``,
+    ``INVALID_RELATION_CODE`` (255) for a non-finite point) and ``valid`` (bool)."""
+
+    location: np.ndarray
+    valid: np.ndarray
+
+    def locations(self) -> np.ndarray:
+        """The locations as strings ("outside", "inside", "on-surface"; "invalid")."""
+        return _names(_POINT_LOCATIONS_BY_CODE, self.location)
 
 
 class RelationArrays(NamedTuple):

@@ -1,5 +1,5 @@
-// Meshes from Python (docs/contract.md §7): raykernel.Mesh, load_mesh (the io readers), and the nearest hit of
-// one ray or of arrays of rays through the mesh's BVH (mesh.hpp says why it is built here for now).
+// Meshes from Python (docs/contract.md §7): raykernel.Mesh, load_mesh (the io readers), and the kernel's mesh
+// queries (<raykernel/mesh_queries.hpp>) for one ray or point and over arrays of them, on threads.
 #include "mesh.hpp"
 
 #include "batch_support.hpp"
@@ -8,98 +8,14 @@
 
 #include <raykernel/io/mesh_file.hpp>
 
-#include <gmp.h>
-
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace raykernel::python {
-namespace {
-
-// An exact rational from the kernel's decimal strings, for ordering two exact t.
-class Mpq {
- public:
-  explicit Mpq(const Rational& r) {
-    mpq_init(q_);
-    mpq_set_str(q_, r.str().c_str(), 10);
-    mpq_canonicalize(q_);
-  }
-  ~Mpq() { mpq_clear(q_); }
-  Mpq(const Mpq&) = delete;
-  Mpq& operator=(const Mpq&) = delete;
-  [[nodiscard]] int compare(const Mpq& other) const { return mpq_cmp(q_, other.q_); }
-
- private:
-  mpq_t q_;
-};
-
-// The exact t of a triangle the ray hits (den ≠ 0 there).
-Rational exact_t(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
-  return *intersect_exact_rational(ray, triangle, rule).t;
-}
-
-// Whether the hit (k, t_k) comes before the best so far (best, t_best): smaller exact t, or the same and a
-// smaller index. RN is monotone, so different rounded t order the exact ones; equal rounded t are compared
-// exactly.
-bool before(const Ray& ray, const Mesh& mesh, TriangleRule rule, std::size_t k, double t_k, std::size_t best,
-            double t_best) {
-  if (t_k != t_best) return t_k < t_best;
-  const int order = Mpq(exact_t(ray, mesh.triangle(k), rule)).compare(Mpq(exact_t(ray, mesh.triangle(best), rule)));
-  return order < 0 || (order == 0 && k < best);
-}
-
-// An upper bound of the exact t whose rounding is t: RN(t) is within half an ulp, so the next double up
-// bounds it (inf stays inf).
-double exact_upper_bound(double rounded_t) { return std::nextafter(rounded_t, std::numeric_limits<double>::infinity()); }
-
-}  // namespace
-
-PythonMesh::PythonMesh(Mesh mesh) : mesh_(std::move(mesh)), bvh_(mesh_) {}  // MeshBvh validates the mesh
-
-std::optional<MeshHit> nearest_hit(const Ray& ray, const PythonMesh& prepared, TriangleRule rule) {
-  const Mesh& mesh = prepared.mesh();
-  const TriangleOptions t_only{rule, true, false};  // the winner's coordinates are rounded once, at the end
-  std::optional<std::size_t> best;
-  double best_t = std::numeric_limits<double>::infinity();
-  BvhRayTraversal walk(prepared.bvh(), ray);  // throws invalid_input for an invalid ray
-  double bound = std::numeric_limits<double>::infinity();
-  while (const std::optional<BvhLeaf> leaf = walk.next(bound)) {
-    for (const std::uint32_t k : leaf->triangles) {
-      const TriangleIntersection x = intersect(ray, mesh.triangle(k), t_only);
-      if (x.relation != TriangleRelation::hit) continue;
-      if (!best || before(ray, mesh, rule, k, x.t, *best, best_t)) {
-        best = k;
-        best_t = x.t;
-        bound = exact_upper_bound(best_t);
-      }
-    }
-  }
-  if (!best) return std::nullopt;
-  return MeshHit{*best, intersect(ray, mesh.triangle(*best), {rule, true, true})};
-}
-
-std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh, TriangleRule rule) {
-  if (const std::optional<std::string> reason = validate(mesh)) throw invalid_input(*reason);
-  std::optional<std::size_t> best;
-  std::unique_ptr<Mpq> best_t;
-  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
-    const ExactTriangleIntersection x = intersect_exact_rational(ray, mesh.triangle(k), rule);
-    if (x.intersection.relation != TriangleRelation::hit) continue;
-    auto t = std::make_unique<Mpq>(*x.t);
-    if (!best || t->compare(*best_t) < 0) {  // ascending k: an equal t keeps the smaller index
-      best = k;
-      best_t = std::move(t);
-    }
-  }
-  if (!best) return std::nullopt;
-  return MeshHit{*best, intersect_exact(ray, mesh.triangle(*best), {rule, true, true})};
-}
-
 namespace {
 
 Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
@@ -137,13 +53,32 @@ py::object to_python(const std::optional<MeshHit>& hit) {
 
 }  // namespace
 
-py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, bool exact) {
+namespace {
+
+// The kernel's answer on `path` (the naive path has no rule). Throws invalid_input for an invalid ray.
+std::optional<MeshHit> nearest_on(MeshPath path, const Ray& ray, const PythonMesh& mesh, TriangleRule rule) {
+  switch (path) {
+    case MeshPath::exact: return nearest_hit_exact(ray, mesh.mesh(), rule);
+    case MeshPath::naive: return nearest_hit_naive(ray, mesh.prepared());
+    case MeshPath::certified: break;
+  }
+  return nearest_hit(ray, mesh.prepared(), rule);
+}
+
+MeshPath mesh_path_from(const std::string& name) {
+  const Path path = path_from(name);
+  return path == Path::exact ? MeshPath::exact : path == Path::naive ? MeshPath::naive : MeshPath::certified;
+}
+
+}  // namespace
+
+py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, MeshPath path) {
   const Ray r = ray_from(ray);
   const TriangleRule chosen = rule_or_owned(rule);
   std::optional<MeshHit> hit;
   {
     py::gil_scoped_release release;
-    hit = exact ? nearest_hit_exact(r, mesh.mesh(), chosen) : nearest_hit(r, mesh, chosen);
+    hit = nearest_on(path, r, mesh, chosen);
   }
   return to_python(hit);
 }
@@ -151,7 +86,8 @@ py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle r
 py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle rule,
                                   const std::string& path_name, const std::string& errors,
                                   std::optional<unsigned> threads) {
-  const Path path = path_from(path_name, false);
+  const MeshPath path = mesh_path_from(path_name);
+  if (path == MeshPath::naive && !rule.is_none()) throw py::value_error("rule: the naive path has no rule");
   const ErrorPolicy policy = error_policy_from(errors);
   const TriangleRule chosen = rule_or_owned(rule);
   const ColumnsView o(origins, "origins"), d(directions, "directions");
@@ -172,13 +108,12 @@ py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, con
   {
     py::gil_scoped_release release;
     // A BVH walk is microseconds per ray, an exact scan far more: small grains.
-    parallel_for(n, threads_from(threads), path == Path::exact ? 4 : 256, [&](std::size_t begin, std::size_t end) {
+    parallel_for(n, threads_from(threads), path == MeshPath::exact ? 4 : 256, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
         const Ray ray{o.row(i), d.row(i)};
         valid_out[i] = !validate(ray).has_value();
         std::optional<MeshHit> hit;
-        if (valid_out[i])
-          hit = path == Path::exact ? nearest_hit_exact(ray, mesh.mesh(), chosen) : nearest_hit(ray, mesh, chosen);
+        if (valid_out[i]) hit = nearest_on(path, ray, mesh, chosen);
         triangle_out[i] = hit ? static_cast<std::int64_t>(hit->triangle) : -1;
         t_out[i] = hit ? hit->intersection.t : nan;
         location_out[i] = hit ? static_cast<std::uint8_t>(hit->intersection.location)
@@ -193,12 +128,67 @@ py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, con
   return types().mesh_hit_arrays(triangle, t, location, barycentric, valid);
 }
 
+namespace {
+
+py::object to_python(PointLocation location) { return types().point_location[static_cast<std::size_t>(location)]; }
+
+// Why point `row` cannot be asked about, or nothing: the kernel's inside() throws for a non-finite point; a batch
+// checks first, so that a bad row is named and, with errors="mask", skipped.
+std::optional<std::string> point_problem(const Vec3& p) {
+  if (!std::isfinite(p.x)) return "x is not finite";
+  if (!std::isfinite(p.y)) return "y is not finite";
+  if (!std::isfinite(p.z)) return "z is not finite";
+  return std::nullopt;
+}
+
+py::object inside_py(py::handle point, const PythonMesh& mesh, bool exact) {
+  const Vec3 p = vec3_from(point, "point");
+  PointLocation location{};
+  {
+    py::gil_scoped_release release;
+    location = exact ? inside_exact(p, mesh.mesh()) : inside(p, mesh.prepared());
+  }
+  return to_python(location);
+}
+
+py::object inside_batch_py(py::handle points, const PythonMesh& mesh, const std::string& path_name,
+                           const std::string& errors, std::optional<unsigned> threads) {
+  const bool exact = path_from(path_name, false) == Path::exact;
+  const ErrorPolicy policy = error_policy_from(errors);
+  const ColumnsView p(points, "points");
+  const std::size_t n = p.rows();
+  auto location = new_array<std::uint8_t>(n);
+  auto valid = new_array<bool>(n);
+  const std::span<std::uint8_t> location_out = span_of(location);
+  const std::span<bool> valid_out = span_of(valid);
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    // A BVH walk is microseconds per point, an exact scan microseconds per triangle: small grains.
+    parallel_for(n, threads_from(threads), exact ? 4 : 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const Vec3 point = p.row(i);
+        valid_out[i] = !point_problem(point).has_value();
+        location_out[i] = !valid_out[i] ? invalid_code
+                          : static_cast<std::uint8_t>(exact ? inside_exact(point, mesh.mesh())
+                                                            : inside(point, mesh.prepared()));
+      }
+    });
+    if (const std::optional<std::size_t> i = first_invalid_row(valid_out))
+      error = "point " + std::to_string(*i) + ": " + point_problem(p.row(*i)).value_or("invalid input");
+  }
+  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+  return types().point_location_arrays(location, valid);
+}
+
+}  // namespace
+
 void bind_mesh(py::module_& m) {
   py::register_exception<io::mesh_file_error>(m, "MeshFileError", PyExc_ValueError)
       .attr("__doc__") = "A file that cannot be read as a mesh: a ValueError whose message names the file, the line "
                          "or byte offset and the reason (\"cube.obj:12: face with fewer than 3 vertices\").";
 
-  py::class_<PythonMesh>(m, "Mesh", R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH.
+  py::class_<PythonMesh>(m, "Mesh", R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH built once.
 
 ``Mesh(vertices, triangles)``: an (n, 3) float64 array of vertices, taken exactly, and an (m, 3) integer array
 of vertex indices counted from 0. Nothing is welded, moved or dropped; degenerate triangles are kept (never
@@ -242,7 +232,7 @@ triangle 3: vertex index 12 is out of range (10 vertices)"). ``load_mesh(path)``
             return types().triangle(python::to_python(t.a), python::to_python(t.b), python::to_python(t.c));
           },
           py::arg("index"), "Triangle ``index`` as a ``raykernel.Triangle`` (its vertices in the stored order).")
-      .def_property_readonly("bvh_depth", [](const PythonMesh& s) { return s.bvh().depth(); },
+      .def_property_readonly("bvh_depth", [](const PythonMesh& s) { return s.prepared().bvh().depth(); },
                              "The depth of the mesh's BVH.")
       .def("__repr__", [](const PythonMesh& s) {
         return "Mesh(" + std::to_string(s.mesh().vertices.size()) + " vertices, " +
@@ -266,8 +256,31 @@ read exactly: decimal coordinates correctly rounded, binary ones widened exactly
 first vertex (docs/contract.md §7). Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the
 line or byte offset and the reason. Releases the GIL.)doc");
 
-  // inside(point, mesh) (docs/contract.md §7) goes here when the kernel's inside() (branch mesh2,
-  // <raykernel/mesh_queries.hpp>) is on main: a thin binding like nearest_hit's, scalar and over arrays.
+  m.def(
+      "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },
+      py::arg("point"), py::arg("mesh"),
+      R"doc(Where ``point`` is against ``mesh`` (docs/contract.md §7), exactly: ``PointLocation.ON_SURFACE`` if it
+lies on some triangle (closed: edges and vertices included), else ``INSIDE`` if the exact winding number is
+nonzero (outward or inward normals alike), else ``OUTSIDE``. The winding number is the signed count of the
+owned crossings (docs/contract.md §6) of an axis-aligned ray from the point, found through the mesh's BVH; for a
+closed, consistently oriented mesh it does not depend on the ray, and the answer is ``inside_exact``'s. Raises
+``ValueError`` for a non-finite point ("point x is not finite"). Releases the GIL.)doc");
+
+  m.def(
+      "inside_exact", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, true); },
+      py::arg("point"), py::arg("mesh"),
+      R"doc(The reference ``inside``: every triangle in exact rationals (the on-surface test and the crossings of
+the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. Releases the GIL.)doc");
+
+  m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
+        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        R"doc(``inside`` over an (n, 3) float64 array of points, on threads, with the GIL released.
+
+Returns ``PointLocationArrays(location, valid)``: ``location`` uint8 ``PointLocation.code`` per row
+(``INVALID_RELATION_CODE`` where the point is not finite), ``valid`` bool. ``path``: "certified" (``inside``,
+through the BVH) or "exact" (``inside_exact``). ``errors``: "raise" (default) raises ``ValueError`` naming the
+first bad row, "point 17: y is not finite"; "mask" answers the others and marks it in ``valid``. ``threads``:
+None for all cores, or a count.)doc");
 }
 
 }  // namespace raykernel::python

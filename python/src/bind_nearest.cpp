@@ -126,7 +126,7 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
   m.def(
       "nearest_hit",
       [](py::handle ray, py::handle scene, py::handle rule) {
-        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, false);
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::certified);
         if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
       },
@@ -148,7 +148,7 @@ Raises ``ValueError`` naming the invalid ray or plane.)doc");
   m.def(
       "nearest_hit_exact",
       [](py::handle ray, py::handle scene, py::handle rule) {
-        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, true);
+        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::exact);
         if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         const Ray r = ray_from(ray);
         std::optional<raykernel::PlaneSet> storage;
@@ -166,15 +166,19 @@ BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
 
   m.def(
       "nearest_hit_naive",
-      [](py::handle ray, py::handle planes) {
-        if (py::isinstance<PythonMesh>(planes))
-          throw py::type_error("planes: nearest_hit_naive is for planes (a PlaneSet or a sequence of planes)");
-        return nearest(ray, planes,
+      [](py::handle ray, py::handle scene) {
+        if (py::isinstance<PythonMesh>(scene))
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), py::none(), MeshPath::naive);
+        return nearest(ray, scene,
                        [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit_naive(r, p.planes()); });
       },
-      py::arg("ray"), py::arg("planes"),
-      R"doc(The textbook loop in plain doubles: ``intersect_naive`` per plane, the smallest rounded t wins
-(ties to the smallest index). No validation and no guarantee: the baseline.)doc");
+      py::arg("ray"), py::arg("scene"),
+      R"doc(The textbook loop in plain doubles, the baseline: no guarantee.
+
+Planes: ``intersect_naive`` per plane, the smallest rounded t wins (ties to the smallest index); no validation.
+Mesh: Möller–Trumbore in doubles (``intersect_naive``) on the triangles of the leaves the mesh's BVH returns,
+the smallest computed t wins (ties to the smallest index); ``ValueError`` for an invalid ray. Releases the GIL
+for meshes.)doc");
 }
 
 }  // namespace raykernel::python

@@ -1,6 +1,8 @@
 // Between Python objects and raykernel's C++ types (convert.hpp).
 #include "convert.hpp"
 
+#include <raykernel/mesh_queries.hpp>  // PointLocation
+
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -77,6 +79,7 @@ void load_types() {
   t->triangle_classification_arrays = m.attr("TriangleClassificationArrays");
   t->mesh_hit = m.attr("MeshHit");
   t->mesh_hit_arrays = m.attr("MeshHitArrays");
+  t->point_location_arrays = m.attr("PointLocationArrays");
   // The Python enums list their members in the C++ enums' order, and their codes are those values.
   for (std::size_t k = 0; k < 6; ++k) t->triangle_relation[k] = m.attr("TriangleRelation").attr("from_code")(k);
   for (std::size_t k = 0; k < 9; ++k) t->triangle_location[k] = m.attr("TriangleLocation").attr("from_code")(k);
@@ -87,6 +90,11 @@ void load_types() {
   for (std::size_t k = 0; k < 9; ++k)
     if (t->triangle_location[k].attr("value").cast<std::string>() != to_string(static_cast<TriangleLocation>(k)))
       throw std::logic_error("raykernel._types.TriangleLocation differs from the C++ enum");
+  for (std::size_t k = 0; k < 3; ++k) {
+    t->point_location[k] = m.attr("PointLocation").attr("from_code")(k);
+    if (t->point_location[k].attr("value").cast<std::string>() != to_string(static_cast<PointLocation>(k)))
+      throw std::logic_error("raykernel._types.PointLocation differs from the C++ enum");
+  }
   const py::object relation = m.attr("Relation");
   t->relation = {relation.attr("HIT"), relation.attr("BEHIND"), relation.attr("PARALLEL"), relation.attr("IN_PLANE")};
   const py::object stage = m.attr("Stage");

@@ -41,7 +41,8 @@ struct PythonTypes {
   py::object intersection_arrays, nearest_hit_arrays, relation_arrays;
   py::object barycentric, triangle_intersection, triangle_classification, traced_triangle_intersection,
       exact_triangle_intersection, triangle_intersection_arrays, triangle_classification_arrays;
-  py::object mesh_hit, mesh_hit_arrays;
+  py::object mesh_hit, mesh_hit_arrays, point_location_arrays;
+  std::array<py::object, 3> point_location;
   std::array<py::object, 4> relation;  // indexed by the C++ enum's value
   std::array<py::object, 6> triangle_relation;
   std::array<py::object, 9> triangle_location;

@@ -1,21 +1,14 @@
-// raykernel.Mesh: a triangle mesh (docs/contract.md §7) read from Python or from a file, validated once, with its
-// BVH built once, and the mesh's nearest hit through that BVH.
-//
-// The kernel on main has meshes, their readers and the BVH, but not yet a mesh nearest-hit entry point (issue
-// 15); nearest_hit here is the §7 answer built from the kernel's pieces — the BVH walk, the certified
-// ray–triangle `intersect`, and exact rationals to order two hits whose rounded t are equal. When the kernel
-// gains nearest_hit(Ray, PreparedMesh), nearest_hit() below calls it and nothing in the Python API changes.
-// inside(point, mesh) is on branch mesh2 (PreparedMesh, mesh_queries.hpp), not on main: see the marked place
-// in bind_mesh.cpp.
+// raykernel.Mesh: a triangle mesh (docs/contract.md §7) read from Python or from a file, prepared once (validated,
+// its BVH built: the kernel's PreparedMesh), and the Python forms of the kernel's mesh queries
+// (<raykernel/mesh_queries.hpp>): nearest_hit / nearest_hit_exact / nearest_hit_naive and inside / inside_exact.
+// Every answer is the kernel's; this file and bind_mesh.cpp only convert values and spread arrays over threads.
 #pragma once
 
 #include "convert.hpp"
 
-#include <raykernel/bvh.hpp>
 #include <raykernel/mesh.hpp>
-#include <raykernel/triangle.hpp>
+#include <raykernel/mesh_queries.hpp>
 
-#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -23,33 +16,23 @@ namespace raykernel::python {
 
 class PythonMesh {
  public:
-  // Throws InvalidInput naming the first bad vertex or triangle (validate(const Mesh&)).
-  explicit PythonMesh(Mesh mesh);
+  // Throws invalid_input (ValueError) naming the first bad vertex or triangle (validate(const Mesh&)).
+  explicit PythonMesh(Mesh mesh) : prepared_(std::move(mesh)) {}
 
-  [[nodiscard]] const Mesh& mesh() const noexcept { return mesh_; }
-  [[nodiscard]] const MeshBvh& bvh() const noexcept { return bvh_; }
+  [[nodiscard]] const PreparedMesh& prepared() const noexcept { return prepared_; }
+  [[nodiscard]] const Mesh& mesh() const noexcept { return prepared_.mesh(); }
 
  private:
-  Mesh mesh_;
-  MeshBvh bvh_;
+  PreparedMesh prepared_;
 };
 
-// The nearest hit of docs/contract.md §7: among the triangles the ray hits under `rule` (t ≥ 0), the one with
-// the smallest exact t, ties to the smallest index; its intersection (t and barycentric coordinates rounded
-// as in §6).
-struct MeshHit {
-  std::size_t triangle;
-  TriangleIntersection intersection;
-};
+// Which kernel query answers a mesh nearest hit from Python.
+enum class MeshPath { certified, exact, naive };
 
-// Through the BVH, certified. The ray must be valid (throws InvalidInput otherwise). Thread-safe.
-[[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const PythonMesh& mesh, TriangleRule rule);
-// The reference: every triangle by intersect_exact, the order of t exactly. Slow and obviously right.
-[[nodiscard]] std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh, TriangleRule rule);
-
-// The Python forms (bind_mesh.cpp), called by nearest_hit / nearest_hit_exact / nearest_hit_batch when their
-// scene is a Mesh: a MeshHit NamedTuple or None; MeshHitArrays. `rule` is None (owned) or a rule.
-[[nodiscard]] py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, bool exact);
+// The Python forms (bind_mesh.cpp), called by nearest_hit / nearest_hit_exact / nearest_hit_naive /
+// nearest_hit_batch when their scene is a Mesh: a MeshHit NamedTuple or None; MeshHitArrays. `rule` is None
+// (owned) or a rule; the naive path has none (Möller–Trumbore decides its own edges).
+[[nodiscard]] py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, MeshPath path);
 [[nodiscard]] py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh,
                                                 py::handle rule, const std::string& path, const std::string& errors,
                                                 std::optional<unsigned> threads);

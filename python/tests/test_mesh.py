@@ -1,5 +1,6 @@
-"""Meshes from Python (docs/contract.md §7): Mesh, load_mesh, and the nearest hit through the BVH against the
-brute-force exact answer; hand-derived hits; errors naming the vertex, triangle, file and line."""
+"""Meshes from Python (docs/contract.md §7): Mesh, load_mesh, the nearest hit through the BVH against the
+brute-force exact answer, inside against inside_exact; hand-derived hits and locations; errors naming the vertex,
+triangle, point, file and line."""
 
 import numpy as np
 import pytest
@@ -10,6 +11,7 @@ from raykernel._raykernel import testkit
 from test_arrays import same_bits
 
 L = rk.TriangleLocation
+P = rk.PointLocation
 
 
 def test_hand_derived_hits_on_the_octahedron():
@@ -91,8 +93,13 @@ def test_mesh_from_arrays_and_its_errors():
         rk.Mesh(vertices, [0, 1, 2])
     with pytest.raises(ValueError, match="^rule: only meshes have rules"):
         rk.nearest_hit(((0, 0, 0), (0, 0, 1)), [((0, 0, 1), (0, 0, 1))], rule="closed")
-    with pytest.raises(TypeError, match="^planes: nearest_hit_naive is for planes"):
-        rk.nearest_hit_naive(((0, 0, 0), (0, 0, 1)), mesh)
+    # Möller–Trumbore on this ray is exact (every product and quotient is a small dyadic): t = 1 on triangle 0.
+    naive = rk.nearest_hit_naive(((0.25, 0.25, -1), (0, 0, 1)), mesh)
+    assert naive.triangle == 0 and naive.t == 1.0
+    with pytest.raises(ValueError, match="^rule: the naive path has no rule"):
+        rk.nearest_hit_batch(np.zeros((1, 3)), np.ones((1, 3)), mesh, rule="closed", path="naive")
+    with pytest.raises(ValueError, match="zero"):
+        rk.nearest_hit_naive(((0, 0, 0), (0, 0, 0)), mesh)
 
 
 def test_mesh_batch_invalid_rays_raise_or_are_masked():
@@ -132,5 +139,119 @@ def test_the_gil_is_released_during_a_mesh_batch():
     d = -o
     longest, total = longest_pause_of_this_thread_while(
         lambda: rk.nearest_hit_batch(o, d, mesh, path="exact", threads=1))
+    assert total > 0.05, "the batch was too short to tell"
+    assert longest < total / 4, f"this thread stopped for {longest:.3f} s of a {total:.3f} s batch"
+
+
+def test_mesh_naive_path_is_the_baseline_and_usually_agrees():
+    # No guarantee, so no equality: it answers every ray of a batch, and on rays aimed at the middle of a
+    # icosphere's triangles (far from any edge) it finds the certified triangle.
+    mesh = testkit.make_icosphere(2)
+    rng = np.random.default_rng(11)
+    o = rng.uniform(-1, 1, (200, 3)) * 3
+    d = -o
+    naive = rk.nearest_hit_batch(o, d, mesh, path="naive")
+    certified = rk.nearest_hit_batch(o, d, mesh)
+    assert naive.valid.all() and (naive.triangle >= 0).all()
+    assert (naive.triangle == certified.triangle).mean() > 0.95
+    for i in range(0, 200, 41):
+        one = rk.nearest_hit_naive((o[i], d[i]), mesh)
+        assert one.triangle == naive.triangle[i] and same_bits(one.t, naive.t[i])
+
+
+# ---- inside (docs/contract.md §7) ------------------------------------------------------------------------------
+
+BELOW_HALF = np.nextafter(0.5, 0.0)  # 1/2 − 2^−54
+ABOVE_HALF = np.nextafter(0.5, 1.0)  # 1/2 + 2^−53
+
+
+def octahedron_cases():
+    """The octahedron of testkit is |x| + |y| + |z| ≤ 1 (vertices ±1 on the axes): a point is on its surface iff
+    the exact sum of |coordinates| is 1, inside iff it is below 1. Each expected answer is that sum, by hand."""
+    return [
+        ((0, 0, 0), P.INSIDE),  # the centre: sum 0
+        ((0.2, -0.2, 0.2), P.INSIDE),  # sum 0.6
+        ((5, 0, 0), P.OUTSIDE),  # outside the bounding box
+        ((0.5, 0.5, 0.5), P.OUTSIDE),  # inside the bounding box, sum 1.5
+        ((1, 0, 0), P.ON_SURFACE),  # a vertex (shared by four triangles)
+        ((0, -1, 0), P.ON_SURFACE),  # another vertex
+        ((0.5, 0.5, 0), P.ON_SURFACE),  # the midpoint of the edge from +x to +y
+        ((0.25, 0.25, 0.5), P.ON_SURFACE),  # a face point: 1/4 + 1/4 + 1/2 = 1
+        ((-0.25, 0.25, -0.5), P.ON_SURFACE),  # a face point of another face
+        # One ulp off the face: 1/4 + 1/4 + (1/2 − 2^−54) = 1 − 2^−54 < 1, inside — though the double sum
+        # rounds to exactly 1.0 (ties to even); 1/2 + 2^−53 makes 1 + 2^−53 > 1, outside.
+        ((0.25, 0.25, BELOW_HALF), P.INSIDE),
+        ((0.25, 0.25, ABOVE_HALF), P.OUTSIDE),
+        ((0.5, 0.5, 2.0 ** -1074), P.OUTSIDE),  # the edge midpoint lifted by the smallest subnormal
+    ]
+
+
+@pytest.mark.parametrize("point, expected", octahedron_cases())
+def test_inside_hand_derived_on_the_octahedron(point, expected):
+    octahedron = testkit.make_octahedron()
+    assert rk.inside(point, octahedron) is expected
+    assert rk.inside_exact(point, octahedron) is expected
+    # Inward normals (every triangle reversed): winding number −1 instead of +1, still inside.
+    v, t = octahedron.vertices, octahedron.triangles
+    inverted = rk.Mesh(v, t[:, ::-1])
+    assert rk.inside(point, inverted) is expected and rk.inside_exact(point, inverted) is expected
+
+
+def test_inside_batch_hand_derived_on_the_octahedron():
+    octahedron = testkit.make_octahedron()
+    points = np.array([p for p, _ in octahedron_cases()], dtype=float)
+    expected = [e.code for _, e in octahedron_cases()]
+    for path in ("certified", "exact"):
+        got = rk.inside_batch(points, octahedron, path=path)
+        assert got.location.tolist() == expected and got.valid.all()
+        assert list(got.locations()) == [e.value for _, e in octahedron_cases()]
+
+
+def test_inside_equals_inside_exact_on_testkit_meshes():
+    rng = np.random.default_rng(5)
+    for mesh in (testkit.make_icosphere(2), testkit.make_subdivided_cube(4), testkit.make_octahedron()):
+        # Random points around the mesh, and points on a grid of step 1/8: on the cube's faces, edges and
+        # vertices exactly (its grid lines are multiples of 1/4), on the octahedron's faces, inside and outside.
+        random = rng.uniform(-1.3, 1.3, (300, 3))
+        grid = rng.integers(-10, 11, (300, 3)) / 8.0
+        points = np.vstack([random, grid])
+        got = rk.inside_batch(points, mesh)
+        exact = rk.inside_batch(points, mesh, path="exact")
+        assert (got.location == exact.location).all()
+        counts = np.bincount(got.location, minlength=3)
+        assert counts[P.INSIDE.code] > 0 and counts[P.OUTSIDE.code] > 0
+        for i in range(0, len(points), 29):  # scalar == vectorized, certified == exact
+            assert rk.inside(points[i], mesh).code == got.location[i] == rk.inside_exact(points[i], mesh).code
+    cube_grid = rk.inside_batch(np.array([[1, 0.25, -0.5], [0.75, 1, 1], [1, 1, 1], [0.75, 0.5, 0.25]]),
+                                testkit.make_subdivided_cube(4))
+    # A face point, an edge point, a corner of the cube [−1, 1]^3, and an interior point (all |coordinates| < 1).
+    assert list(cube_grid.locations()) == ["on-surface", "on-surface", "on-surface", "inside"]
+
+
+def test_inside_errors_name_the_point_and_row():
+    mesh = testkit.make_octahedron()
+    with pytest.raises(ValueError, match="^point x is not finite$"):
+        rk.inside((np.nan, 0, 0), mesh)
+    with pytest.raises(ValueError, match="^point z is not finite$"):
+        rk.inside_exact((0, 0, np.inf), mesh)
+    with pytest.raises(ValueError, match="^point: expected a sequence of 3 numbers, got a sequence of 2 items$"):
+        rk.inside((0, 0), mesh)
+    points = np.zeros((5, 3))
+    points[2, 1] = np.nan
+    with pytest.raises(rk.InvalidInput, match="^point 2: y is not finite$"):
+        rk.inside_batch(points, mesh)
+    masked = rk.inside_batch(points, mesh, errors="mask", path="exact")
+    assert masked.valid.tolist() == [True, True, False, True, True]
+    assert masked.location[2] == rk.INVALID_RELATION_CODE and list(masked.locations()) == ["inside"] * 2 + ["invalid"] + ["inside"] * 2
+    with pytest.raises(ValueError, match="^path: expected 'certified' or 'exact'"):
+        rk.inside_batch(points, mesh, path="naive")
+
+
+def test_the_gil_is_released_during_an_inside_batch():
+    from test_arrays import longest_pause_of_this_thread_while
+
+    mesh = testkit.make_icosphere(1)
+    points = np.random.default_rng(4).uniform(-1.2, 1.2, (400, 3))
+    longest, total = longest_pause_of_this_thread_while(lambda: rk.inside_batch(points, mesh, path="exact", threads=1))
     assert total > 0.05, "the batch was too short to tell"
     assert longest < total / 4, f"this thread stopped for {longest:.3f} s of a {total:.3f} s batch"

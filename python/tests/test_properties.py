@@ -201,3 +201,33 @@ def test_every_kind_is_reachable():
     for kind in HARD_TRIANGLE_QUERY_KINDS:
         assert find(hard_triangle_queries([kind]), lambda q: True).kind == kind
     assert {find(hard_queries(), lambda q, k=k: q.kind == k).kind for k in QUERY_KINDS} == set(QUERY_KINDS)
+
+
+OCTAHEDRON = testkit.make_octahedron()  # |x| + |y| + |z| ≤ 1: vertices ±1 on the axes
+
+
+@st.composite
+def points_near_the_octahedron(draw):
+    """A point of the octahedron's surface (dyadic x, y ≥ 0 with x + y ≤ 1, z = 1 − x − y, exact), its signs
+    flipped to any of the 8 faces, and z then moved by up to 3 ulps: on a face, an edge or a vertex, or just
+    inside or outside it, where a double evaluation of |x| + |y| + |z| rounds to 1."""
+    bits = draw(st.integers(0, 30))
+    scale = 2 ** bits
+    x = draw(st.integers(0, scale)) / scale
+    y = draw(st.integers(0, scale - int(x * scale))) / scale
+    z = 1.0 - x - y  # exact: dyadics of at most 31 bits
+    steps = draw(st.integers(-3, 3))
+    for _ in range(abs(steps)):
+        z = math.nextafter(z, math.inf if steps > 0 else -math.inf)
+    signs = draw(st.tuples(*[st.sampled_from([1.0, -1.0])] * 3))
+    return (signs[0] * x, signs[1] * y, signs[2] * z)
+
+
+@given(points_near_the_octahedron())
+def test_inside_equals_the_fraction_oracle_near_the_octahedron(p):
+    total = sum(abs(Fraction(c)) for c in p)  # exact: the octahedron is |x| + |y| + |z| ≤ 1
+    expected = rk.PointLocation.ON_SURFACE if total == 1 else rk.PointLocation.INSIDE if total < 1 else rk.PointLocation.OUTSIDE
+    event(expected.value)
+    assert rk.inside(p, OCTAHEDRON) is expected
+    assert rk.inside_exact(p, OCTAHEDRON) is expected
+    assert rk.inside_batch(np.array([p]), OCTAHEDRON).location[0] == expected.code
