@@ -432,6 +432,12 @@ std::optional<SceneError> load_scene_meshes(Scene& scene, const std::filesystem:
   scene.mesh_first_triangle.clear();
   for (const SceneMeshReference& reference : scene.mesh_files) {
     const std::filesystem::path path = scene_directory / std::filesystem::path(reference.file);
+    // A device or a pipe (/dev/zero, /dev/stdin) could be read without end: a scene's mesh is a regular file.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+        !std::filesystem::is_directory(status))
+      return SceneError{child(reference.pointer, "file"), path.string() + ": not a regular file"};
     Mesh mesh;
     try {
       mesh = io::read_mesh(path);

@@ -907,6 +907,8 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
   const std::string not_a_mesh = load_error(R"([{"file": "demo.json"}, {"file": "octahedron.off"}])");
   EXPECT_EQ(not_a_mesh.rfind("/meshes/0/file: ", 0), 0u) << not_a_mesh;
   EXPECT_NE(not_a_mesh.find("demo.json"), std::string::npos) << not_a_mesh;
+  // A device is never read (/dev/zero would never end).
+  EXPECT_EQ(load_error(R"([{"file": "/dev/zero"}])"), "/meshes/0/file: /dev/zero: not a regular file");
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off"}, {"file": "octahedron.off", "color": [0, 0, 1]}])"), "(valid)");
 }
 
