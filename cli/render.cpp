@@ -10,6 +10,7 @@
 #include "shading.hpp"
 
 #include <raykernel/camera.hpp>
+#include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_hit.hpp>
 
 #include <algorithm>
@@ -27,6 +28,7 @@ struct Pass {
   const Scene& scene;
   const std::vector<Plane>& geometry;
   const PlaneSet& prepared;
+  const PreparedMesh* mesh;  // the scene's meshes in one, or null when it has none
   const Shader& shader;
   unsigned threads;
   const std::function<void(double)>& progress;
@@ -49,16 +51,35 @@ struct Pass {
   }
 };
 
+// A ray's winner as the passes record it: plane k is k, triangle m of the scene's mesh is (number of
+// planes) + m, a miss −1.
+std::int64_t triangle_winner(const Pass& pass, std::uint32_t triangle) noexcept {
+  return static_cast<std::int64_t>(pass.geometry.size()) + triangle;
+}
+
+// Whether the certified mesh hit is nearer than the certified plane hit, exactly (README "raykernel render":
+// a plane wins an exact tie). Both t are the exact t rounded to nearest, and rounding is monotone, so two
+// different rounded t order the exact ones the same way; equal rounded t are settled in exact rationals.
+bool mesh_hit_nearer(const Pass& pass, const Ray& ray, const NearestHit& plane, const MeshHit& mesh) {
+  const double mesh_t = mesh.intersection.t;
+  if (mesh_t != plane.t) return mesh_t < plane.t;
+  const ExactIntersection p = intersect_exact_rational(ray, pass.geometry[plane.plane]);
+  const ExactTriangleIntersection m =
+      intersect_exact_rational(ray, pass.mesh->mesh().triangle(mesh.triangle), TriangleRule::owned);
+  if (!p.t || !m.t) throw invalid_input("render: a hit without an exact t");  // cannot happen: both are hits
+  return compare_exact(*m.t, *p.t) < 0;
+}
+
 // The certified pass: the image, each pixel's slowest stage, each ray's winner (plane index, or −1 for a
 // miss) when `keep_winners`, and the counts of `stats`.
 struct CertifiedPass {
   std::vector<std::uint8_t> pixel_stage;
-  std::vector<std::int32_t> winners;
+  std::vector<std::int64_t> winners;
 };
 
 CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, RenderStats& stats) {
   const std::uint32_t width = pass.width(), height = pass.height(), spp = pass.samples();
-  CertifiedPass out{std::vector<std::uint8_t>(stats.pixels, 0), std::vector<std::int32_t>(keep_winners ? stats.rays : 0)};
+  CertifiedPass out{std::vector<std::uint8_t>(stats.pixels, 0), std::vector<std::int64_t>(keep_winners ? stats.rays : 0)};
   struct RowTally {
     std::uint64_t hits = 0;
     std::array<std::uint64_t, stage_count> rays{}, comparisons{};
@@ -73,14 +94,23 @@ CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, 
     for (std::uint32_t s = 0; s < spp; ++s) {
       const Ray ray = pass.scene.camera.ray(i, j, samples[s]);
       const TracedNearestHit traced = nearest_hit_traced(ray, pass.prepared);
-      sum += pass.shader.shade(ray, traced.hit);
+      std::optional<MeshHit> mesh_hit;
+      if (pass.mesh != nullptr) mesh_hit = nearest_hit(ray, *pass.mesh, TriangleRule::owned);
+      if (mesh_hit && traced.hit && !mesh_hit_nearer(pass, ray, *traced.hit, *mesh_hit)) mesh_hit.reset();
+      std::int64_t winner = -1;
+      if (mesh_hit) {
+        sum += pass.shader.shade_triangle(ray, mesh_hit->triangle, mesh_hit->intersection.t);
+        winner = triangle_winner(pass, mesh_hit->triangle);
+      } else {
+        sum += pass.shader.shade(ray, traced.hit);
+        if (traced.hit) winner = static_cast<std::int64_t>(traced.hit->plane);
+      }
       const Stage stage = slowest_stage(traced);
       slowest = std::max(slowest, stage);
       ++t.rays[static_cast<std::size_t>(stage)];
       for (std::size_t k = 0; k < stage_count; ++k) t.comparisons[k] += traced.comparisons[k];
-      if (traced.hit) ++t.hits;
-      if (keep_winners)
-        out.winners[pass.ray_index(row, i, s)] = traced.hit ? static_cast<std::int32_t>(traced.hit->plane) : -1;
+      if (winner >= 0) ++t.hits;
+      if (keep_winners) out.winners[pass.ray_index(row, i, s)] = winner;
     }
     store(image.pixel(i, row), sum * (1.0 / spp));
     out.pixel_stage[std::size_t{row} * width + i] = static_cast<std::uint8_t>(slowest);
@@ -102,7 +132,7 @@ CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, 
 // winners. Returns, row-major, 1 for each pixel with a ray whose naive answer differs; draws the naive
 // render into `naive_image` when given. It shades every pixel either way, so that its time (the report's
 // "naive loop") is the certified pass's work with the naive nearest hit in place of the certified one.
-std::vector<std::uint8_t> naive_pass(const Pass& pass, const std::vector<std::int32_t>& winners, Image* naive_image,
+std::vector<std::uint8_t> naive_pass(const Pass& pass, const std::vector<std::int64_t>& winners, Image* naive_image,
                                      RenderStats& stats) {
   const std::uint32_t width = pass.width(), height = pass.height(), spp = pass.samples();
   std::vector<std::uint8_t> differs(stats.pixels, 0);
@@ -114,12 +144,19 @@ std::vector<std::uint8_t> naive_pass(const Pass& pass, const std::vector<std::in
     for (std::uint32_t s = 0; s < spp; ++s) {
       const Ray ray = pass.scene.camera.ray(i, j, samples[s]);
       const std::optional<NearestHit> naive = nearest_hit_naive(ray, pass.geometry);
-      const std::int32_t picked = naive ? static_cast<std::int32_t>(naive->plane) : -1;
+      // Möller–Trumbore for the meshes; the smaller computed t wins, a plane on equal t.
+      std::optional<MeshHit> naive_mesh;
+      if (pass.mesh != nullptr) naive_mesh = nearest_hit_naive(ray, *pass.mesh);
+      if (naive_mesh && naive && !(naive_mesh->intersection.t < naive->t)) naive_mesh.reset();
+      const std::int64_t picked = naive_mesh ? triangle_winner(pass, naive_mesh->triangle)
+                                  : naive    ? static_cast<std::int64_t>(naive->plane)
+                                             : -1;
       if (picked != winners[pass.ray_index(row, i, s)]) {
         differs[std::size_t{row} * width + i] = 1;
         ++rays_differ[row];
       }
-      sum += pass.shader.shade(ray, naive);
+      sum += naive_mesh ? pass.shader.shade_triangle(ray, naive_mesh->triangle, naive_mesh->intersection.t)
+                        : pass.shader.shade(ray, naive);
     }
     if (naive_image) store(naive_image->pixel(i, row), sum * (1.0 / spp));
   });
@@ -135,8 +172,11 @@ std::vector<std::uint8_t> naive_pass(const Pass& pass, const std::vector<std::in
 RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   const std::vector<Plane> geometry = scene.geometry();
   const PlaneSet prepared(geometry);  // validated once, coincident planes set aside once
+  std::optional<PreparedMesh> mesh;  // validated once, its BVH built once
+  if (!scene.mesh.triangles.empty()) mesh.emplace(scene.mesh);
   const Shader shader(scene);
-  const Pass pass{scene, geometry, prepared, shader, worker_threads(options.threads), options.progress};
+  const Pass pass{scene,  geometry, prepared, mesh ? &*mesh : nullptr, shader, worker_threads(options.threads),
+                  options.progress};
 
   RenderResult result;
   RenderStats& stats = result.stats;

@@ -68,10 +68,14 @@ Scene file (JSON; unknown fields and keys given twice are errors; examples in sc
    "planes": [{"name": "floor", "point": [x,y,z], "normal": [x,y,z],
                "color": [r,g,b]  or  "checker": {"colors": [[r,g,b], [r,g,b]], "size": s,
                                                  "u_axis": [x,y,z] (optional)}}, ...],
+   "meshes": [{"file": "PATH" (OBJ/PLY/STL/OFF, relative to the scene file's directory),
+               "transform": [16 numbers, row-major; only ±2^k scales and translations, applied exactly],
+               "color": [r,g,b]}, ...],
    "description": "..."}
 Integers may be written as any JSON number with an integer value (1e3). Colours are display
 (sRGB) values in [0, 1]; a plane without a colour gets one from a built-in palette. Planes are
 numbered from 0 in file order; on an exact tie the smaller number wins.
+A plane wins an exact tie with a mesh triangle; among triangles the smaller index (docs/contract.md §7).
 
 Perspective cameras: fov_degrees is the VERTICAL field of view (the horizontal one follows from
 the image's aspect ratio). Rays start on the near plane, at distance near in front of the eye
@@ -275,9 +279,17 @@ int run_render(const std::vector<std::string>& args) {
   } else {
     text = demo_scene_json();
   }
-  const SceneParse parsed = parse_scene(text, overrides);
+  SceneParse parsed = parse_scene(text, overrides);
   if (!parsed.scene) {
     std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
+              << '\n';
+    return exit_usage;
+  }
+  // Mesh files are relative to the scene file's directory (the working directory for standard input).
+  const std::filesystem::path scene_directory =
+      have_scene && scene_path != "-" ? std::filesystem::path(scene_path).parent_path() : std::filesystem::path();
+  if (const std::optional<SceneError> error = load_scene_meshes(*parsed.scene, scene_directory)) {
+    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << error->str()
               << '\n';
     return exit_usage;
   }

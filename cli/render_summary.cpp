@@ -22,7 +22,11 @@ std::string output_name(std::string_view path) { return path == "-" ? "standard 
 std::string render_header(std::string_view scene_name, const Scene& scene, unsigned threads) {
   return "raykernel render: " + printable(scene_name) + ", " + std::to_string(scene.image.width) + "x" +
          std::to_string(scene.image.height) + ", " + count_of(scene.samples_per_pixel, "sample") + " per pixel, " +
-         count_of(scene.planes.size(), "plane") + ", " + count_of(threads, "thread") + "\n";
+         count_of(scene.planes.size(), "plane") + ", " +
+         (scene.mesh_files.empty() ? std::string()
+                                   : count_of(scene.mesh_files.size(), "mesh", "meshes") + " (" +
+                                         count_of(scene.mesh.triangles.size(), "triangle") + "), ") +
+         count_of(threads, "thread") + "\n";
 }
 
 std::string render_statistics(std::string_view output, const RenderStats& s) {

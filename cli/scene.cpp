@@ -6,6 +6,7 @@
 #include "limits.hpp"
 #include "text_format.hpp"
 
+#include <raykernel/io/mesh_file.hpp>
 #include <raykernel/transform.hpp>
 
 #include <algorithm>
@@ -330,10 +331,50 @@ ScenePlane read_plane(const json& v, const std::string& p, std::size_t index) {
   return plane;
 }
 
+// A power of two (positive or negative): multiplying by it is exact unless the product leaves the double
+// range or underflows.
+bool is_power_of_two(double s) {
+  int exponent = 0;
+  return s != 0 && std::isfinite(s) && std::fabs(std::frexp(s, &exponent)) == 0.5;
+}
+
+SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std::size_t index) {
+  expect_object(v, p);
+  only_fields(v, p, {"file", "transform", "color"});
+  SceneMeshReference m;
+  m.pointer = p;
+  const json& file = required_field(v, p, "file");
+  if (!file.is_string() || file.get<std::string>().empty())
+    fail(child(p, "file"), "expected a file name (a non-empty string), found " + describe_type(file));
+  m.file = file.get<std::string>();
+  m.color = scene_defaults::plane_colors[(index + 3) % scene_defaults::plane_colors.size()];
+  if (const json* c = optional_field(v, "color")) m.color = color(*c, child(p, "color"));
+  if (const json* t = optional_field(v, "transform")) {
+    const std::string q = child(p, "transform");
+    if (!t->is_array() || t->size() != 16)
+      fail(q, "expected 16 numbers (a row-major 4x4 matrix), found " +
+                  (t->is_array() ? "an array of " + std::to_string(t->size()) : describe_type(*t)));
+    double a[16];
+    for (std::size_t k = 0; k < 16; ++k) a[k] = number((*t)[k], child(q, k));
+    if (a[12] != 0 || a[13] != 0 || a[14] != 0 || a[15] != 1) fail(q, "the bottom row must be 0 0 0 1 (an affine transform)");
+    for (std::size_t r = 0; r < 3; ++r) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double x = a[4 * r + c];
+        if (r == c ? !is_power_of_two(x) : x != 0)
+          fail(child(q, 4 * r + c), "only scalings by powers of two (±2^k on the diagonal) and translations are "
+                                    "applied exactly to mesh vertices; this matrix would round them");
+      }
+      m.scale[r] = a[5 * r];
+      m.translate[r] = a[4 * r + 3];
+    }
+  }
+  return m;
+}
+
 Scene read_scene(const json& doc, const SceneOverrides& overrides) {
   const std::string root;
   expect_object(doc, root);
-  only_fields(doc, root, {"description", "image", "camera", "background", "fog", "planes"});
+  only_fields(doc, root, {"description", "image", "camera", "background", "fog", "planes", "meshes"});
   Scene scene;
   if (const json* d = optional_field(doc, "description"); d && !d->is_string())
     fail("/description", "expected a string, found " + describe_type(*d));
@@ -349,6 +390,11 @@ Scene read_scene(const json& doc, const SceneOverrides& overrides) {
   const json& planes = required_field(doc, root, "planes");
   if (!planes.is_array()) fail("/planes", "expected an array of planes, found " + describe_type(planes));
   for (std::size_t k = 0; k < planes.size(); ++k) scene.planes.push_back(read_plane(planes[k], child("/planes", k), k));
+  if (const json* meshes = optional_field(doc, "meshes")) {
+    if (!meshes->is_array()) fail("/meshes", "expected an array of meshes, found " + describe_type(*meshes));
+    for (std::size_t k = 0; k < meshes->size(); ++k)
+      scene.mesh_files.push_back(read_mesh_reference((*meshes)[k], child("/meshes", k), k));
+  }
   return scene;
 }
 
@@ -359,6 +405,66 @@ std::vector<Plane> Scene::geometry() const {
   g.reserve(planes.size());
   for (const ScenePlane& p : planes) g.push_back(p.plane);
   return g;
+}
+
+std::size_t Scene::mesh_of_triangle(std::uint32_t triangle) const noexcept {
+  const auto after = std::upper_bound(mesh_first_triangle.begin(), mesh_first_triangle.end(), triangle);
+  return after == mesh_first_triangle.begin() ? 0 : static_cast<std::size_t>(after - mesh_first_triangle.begin() - 1);
+}
+
+// x·scale + translate when it is exact in doubles, else nothing. scale is ±2^k, so the product is exact
+// unless it overflows or underflows; then the division by scale (exact: a power of two scaling back up, or
+// overflowing) does not give x back. The sum is checked by Knuth's TwoSum (its error term is the exact
+// rounding error of the sum in round-to-nearest, the CLI's environment): exact when the error is 0.
+std::optional<double> exact_affine(double x, double scale, double translate) {
+  const double product = x * scale;
+  if (!std::isfinite(product) || product / scale != x) return std::nullopt;
+  const double sum = product + translate;
+  if (!std::isfinite(sum)) return std::nullopt;
+  const double b = sum - product;
+  const double error = (product - (sum - b)) + (translate - b);
+  if (error != 0) return std::nullopt;
+  return sum;
+}
+
+std::optional<SceneError> load_scene_meshes(Scene& scene, const std::filesystem::path& scene_directory) {
+  scene.mesh = Mesh{};
+  scene.mesh_first_triangle.clear();
+  for (const SceneMeshReference& reference : scene.mesh_files) {
+    const std::filesystem::path path = scene_directory / std::filesystem::path(reference.file);
+    // A device or a pipe (/dev/zero, /dev/stdin) could be read without end: a scene's mesh is a regular file.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+        !std::filesystem::is_directory(status))
+      return SceneError{child(reference.pointer, "file"), path.string() + ": not a regular file"};
+    Mesh mesh;
+    try {
+      mesh = io::read_mesh(path);
+    } catch (const std::exception& e) {
+      return SceneError{child(reference.pointer, "file"), e.what()};
+    }
+    const std::uint64_t vertices = scene.mesh.vertices.size(), triangles = scene.mesh.triangles.size();
+    if (vertices + mesh.vertices.size() > std::numeric_limits<std::uint32_t>::max() ||
+        triangles + mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
+      return SceneError{child(reference.pointer, "file"), "the scene's meshes have more than 2^32 - 1 vertices or triangles"};
+    scene.mesh_first_triangle.push_back(static_cast<std::uint32_t>(triangles));
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+      const Vec3& x = mesh.vertices[v];
+      const std::optional<double> a = exact_affine(x.x, reference.scale[0], reference.translate[0]),
+                                  b = exact_affine(x.y, reference.scale[1], reference.translate[1]),
+                                  c = exact_affine(x.z, reference.scale[2], reference.translate[2]);
+      if (!a || !b || !c)
+        return SceneError{child(reference.pointer, "transform"),
+                          "the image of vertex " + std::to_string(v) + " of " + path.string() +
+                              " is not exact in doubles (rounded, overflows or underflows)"};
+      scene.mesh.vertices.push_back({*a, *b, *c});
+    }
+    for (const auto& t : mesh.triangles)
+      scene.mesh.triangles.push_back({t[0] + static_cast<std::uint32_t>(vertices), t[1] + static_cast<std::uint32_t>(vertices),
+                                      t[2] + static_cast<std::uint32_t>(vertices)});
+  }
+  return std::nullopt;
 }
 
 std::string SceneError::str() const { return printable(pointer.empty() ? message : pointer + ": " + message); }

@@ -21,10 +21,12 @@
 #pragma once
 
 #include <raykernel/camera.hpp>
+#include <raykernel/mesh.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,6 +54,21 @@ struct ScenePlane {
   std::optional<Checker> checker;
 };
 
+// A triangle mesh of the scene, as the file names it: "meshes": [{"file": "PATH", "transform": [16 numbers],
+// "color": [r, g, b]}]. PATH is relative to the scene file's directory. The transform (row-major 4×4, optional)
+// is applied to the vertices exactly or not at all: only matrices whose vertex images are exact in doubles
+// are accepted — a diagonal of nonzero powers of two (±2^k: x·2^k is exact unless it leaves the double
+// range or underflows, both checked per vertex) plus a translation (each sum checked exact per vertex),
+// bottom row 0 0 0 1. A rotation or a general scale would round the vertices and move the geometry the
+// kernel answers for exactly, so it is an error.
+struct SceneMeshReference {
+  std::string file;
+  std::string pointer;                      // "/meshes/K", for errors
+  std::array<double, 3> scale{1, 1, 1};     // each ±2^k
+  std::array<double, 3> translate{0, 0, 0};
+  Rgb color;
+};
+
 // The sky: `zenith` straight up (+y), `horizon` at and below the horizon, blended by the ray's elevation.
 struct Background {
   Rgb horizon;
@@ -66,8 +83,14 @@ struct Scene {
   Background background;
   double fog_distance = 0;  // distance at which the fog hides half of a colour; 0: no fog
   std::vector<ScenePlane> planes;
+  std::vector<SceneMeshReference> mesh_files;
+  // Every mesh of mesh_files, transformed, in order, in one Mesh (filled by load_scene_meshes; empty until
+  // then): mesh K's triangles start at mesh_first_triangle[K].
+  Mesh mesh;
+  std::vector<std::uint32_t> mesh_first_triangle;
 
-  [[nodiscard]] std::vector<Plane> geometry() const;  // the planes, in order, for nearest_hit
+  [[nodiscard]] std::vector<Plane> geometry() const;
+  [[nodiscard]] std::size_t mesh_of_triangle(std::uint32_t triangle) const noexcept;  // K  // the planes, in order, for nearest_hit
 };
 
 // What a scene file may leave out. A minimal scene is a camera (eye and target) and planes.
@@ -112,6 +135,13 @@ struct SceneOverrides {
 // target, up not parallel to the view direction) and whose rays are all finite. Unknown fields are errors,
 // so typos are caught; fields left out take the defaults above.
 [[nodiscard]] SceneParse parse_scene(std::string_view json_text, const SceneOverrides& overrides = {});
+
+// Reads the mesh files of `scene.mesh_files` (raykernel::io's exact readers), PATH relative to
+// `scene_directory`, applies each transform exactly and fills scene.mesh. Returns the first error: the
+// mesh's JSON Pointer ("/meshes/1/file") and the reader's reason (naming the file and line or byte), or
+// "/meshes/1/transform" and the vertex whose image is not exact. parse_scene never reads files (the scene
+// fuzzer runs it); this does.
+[[nodiscard]] std::optional<SceneError> load_scene_meshes(Scene& scene, const std::filesystem::path& scene_directory);
 
 // The built-in demo scene (what `raykernel render` draws without a scene file), as JSON text: planes meeting
 // at shallow angles, a far checkered floor seen at grazing angles, and coincident planes, so that both the

@@ -17,6 +17,8 @@
 //     nearest_hit_traced needed only the fast path and otherwise has that stage's colour; its pixel in the
 //     naive-difference image is magenta exactly when nearest_hit_naive picks another plane; a second render on
 //     two threads with legends gives the same image.
+// A scene's "meshes" are parsed and validated (their errors checked as above) but never loaded: parse_scene reads
+// no files and this harness does not call load_scene_meshes, so a fuzzed file name reads nothing.
 #include "fuzz_support.hpp"
 #include "fuzz_text.hpp"
 
@@ -259,7 +261,7 @@ const char* const field_names[] = {"description", "image", "width", "height", "s
                                    "eye", "target", "up", "perspective", "orthographic", "fov_degrees", "near",
                                    "window", "left", "right", "bottom", "top", "background", "horizon", "zenith", "fog",
                                    "distance", "planes", "name", "point", "normal", "color", "checker", "colors",
-                                   "size", "u_axis", "ray_start"};
+                                   "size", "u_axis", "ray_start", "meshes", "file", "transform"};
 
 // Every value of the document, parents before children.
 void collect(json& v, std::vector<json*>& out) {

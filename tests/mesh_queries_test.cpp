@@ -33,6 +33,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -440,6 +441,19 @@ TEST(MeshInside, HandDerivedOctahedron) {
   EXPECT_EQ(winding_number({0, 0, 0}, PreparedMesh(reversed)), -1);
   EXPECT_EQ(winding_number({0, 0, 0}, prepared), 1);
   EXPECT_EQ(inside({0, 0, 0}, PreparedMesh(reversed)), PointLocation::inside);
+}
+
+// compare_exact orders exact rationals, in lowest terms or not, by value: 2/6 = 1/3; 1/3 > 3333333333333333/10^16
+// (the difference is 1/(3·10^16)); a value 1/10^40 above 7 is above 7; the sign is on the numerator.
+TEST(MeshNearest, CompareExactOrdersRationalsByValue) {
+  EXPECT_EQ(compare_exact({"1", "3"}, {"2", "6"}), 0);
+  EXPECT_EQ(compare_exact({"1", "3"}, {"3333333333333333", "10000000000000000"}), 1);
+  EXPECT_EQ(compare_exact({"3333333333333333", "10000000000000000"}, {"1", "3"}), -1);
+  EXPECT_EQ(compare_exact({"70000000000000000000000000000000000000001", "10000000000000000000000000000000000000000"},
+                          {"7", "1"}),
+            1);
+  EXPECT_EQ(compare_exact({"-1", "2"}, {"0", "1"}), -1);
+  EXPECT_THROW((void)compare_exact({"1", "0"}, {"1", "1"}), std::invalid_argument);
 }
 
 }  // namespace

@@ -785,5 +785,152 @@ TEST(RenderCommand, PrintsTheDemoScene) {
   EXPECT_EQ(r.out, std::string(demo_scene_json()));
 }
 
+
+// ---- meshes in scenes ------------------------------------------------------------------------------------
+
+// A scene parsed with overrides and its meshes loaded from scenes/ (as `raykernel render` does for a scene
+// file there).
+Scene parsed_with_meshes(const std::string& text, const SceneOverrides& overrides) {
+  SceneParse s = parse_scene(text, overrides);
+  EXPECT_TRUE(s.scene) << s.error.str();
+  if (!s.scene) return {};
+  const std::optional<SceneError> error = load_scene_meshes(*s.scene, scenes);
+  EXPECT_FALSE(error) << error->str();
+  return *s.scene;
+}
+
+// Bytes within 1 of the hand-computed sRGB values (the colour pipeline's pow may differ in the last bit).
+void expect_pixel(const Image& image, std::uint32_t x, std::uint32_t row, int r, int g, int b) {
+  const std::uint8_t* px = image.pixel(x, row);
+  EXPECT_NEAR(px[0], r, 1) << "pixel (" << x << ", " << row << ")";
+  EXPECT_NEAR(px[1], g, 1) << "pixel (" << x << ", " << row << ")";
+  EXPECT_NEAR(px[2], b, 1) << "pixel (" << x << ", " << row << ")";
+}
+
+// scenes/octahedron.json: the octahedron |x| + |y| + |z − 1| ≤ 2 (octahedron.off scaled by 2, raised by 1) over
+// the floor z = −2, seen down −z by an orthographic camera at z = 10 with the window [−3, 3]². At 5 × 5 with one
+// sample, pixel centres are at x, y ∈ {−2.4, −1.2, 0, 1.2, 2.4} (rows from the top: row 0 is y = 2.4).
+//   - The mesh covers |x| + |y| < 2: pixels (2, 2) (the apex (0, 0, 3): t = 10 − 3 = 7 against the floor's 12),
+//     (1, 2), (3, 2), (2, 1), (2, 3). Every top facet has normal ±(1, 1, 1) up to signs, facing the ray at
+//     cos = 1/√3, so the colour (0.9, 0.3, 0.2) is lit by 0.22 + 0.78/√3 = 0.67033: in linear light
+//     0.9 → 0.7874·0.6703, 0.3 → 0.07324·0.6703, 0.2 → 0.03310·0.6703, in sRGB bytes (192, 63, 41).
+//   - The other pixels see the floor face-on (lit by 1): its colour (0.2, 0.4, 0.8) → bytes (51, 102, 204).
+TEST(RenderMesh, TheOctahedronSceneShowsTheMeshNearerThanTheFloor) {
+  const Scene scene = parsed_with_meshes(read_file(scenes + "/octahedron.json"), {5, 5, 1});
+  ASSERT_EQ(scene.mesh.triangles.size(), 8u);
+  ASSERT_EQ(scene.mesh.vertices.size(), 6u);
+  EXPECT_EQ(scene.mesh.vertices[4].z, 3);   // the apex 1·2 + 1
+  EXPECT_EQ(scene.mesh.vertices[0].x, 2);
+  EXPECT_EQ(scene.mesh.vertices[5].z, -1);
+  RenderOptions options;
+  options.compare_naive = true;
+  const RenderResult r = render_scene(scene, options);
+  for (const auto& [x, row] : {std::pair{2u, 2u}, {1u, 2u}, {3u, 2u}, {2u, 1u}, {2u, 3u}}) expect_pixel(r.image, x, row, 192, 63, 41);
+  for (const auto& [x, row] : {std::pair{0u, 0u}, {1u, 1u}, {3u, 3u}, {4u, 4u}, {0u, 2u}, {4u, 2u}})
+    expect_pixel(r.image, x, row, 51, 102, 204);
+  EXPECT_EQ(r.stats.hit_rays, 25u);  // every ray meets the floor or the mesh
+  // Nothing here is close, except the rays on the axes x = 0 and y = 0 (column 2, row 2): they meet the mesh on
+  // an edge between two facets, or (the centre) at the apex shared by four. The owned rule gives such a ray to
+  // exactly one of them; Möller–Trumbore in doubles (barycentric coordinates 0, computed exactly here) to every
+  // one and keeps the first, which may be another triangle than the owned one. So only pixels on the axes may
+  // differ (and their colour does not: the facets shade alike).
+  EXPECT_LE(r.stats.naive_pixels_differ, 5u);
+  for (std::uint32_t row = 0; row < 5; ++row)
+    for (std::uint32_t x = 0; x < 5; ++x) {
+      if (x == 2 || row == 2) continue;
+      const std::uint8_t* px = r.naive_difference.pixel(x, row);
+      EXPECT_FALSE(px[0] == 255 && px[1] == 0 && px[2] == 255) << "pixel (" << x << ", " << row << ")";
+    }
+}
+
+// The plane x + y + z = 3 holds the octahedron's facet (2, 0, 1), (0, 2, 1), (0, 0, 3) exactly. At 10 × 10 pixel
+// centres are at ±0.3, ±0.9, ...; pixel (6, 3) is (0.9, 0.9), inside that facet (0.9 + 0.9 < 2), where the plane
+// and the facet meet the ray at the same point: the same exact t, a tie that a plane wins (README "raykernel
+// render"). Lowered by 2^-20 (x + y + z = 3 − 2^-20), the plane is behind the facet there and the mesh shows.
+// Elsewhere the plane z = 3 − x − y is at or above the octahedron's top z = 3 − |x| − |y|, so it shows: e.g.
+// pixel (3, 3) at (−0.9, 0.9).
+TEST(RenderMesh, APlaneWinsAnExactTieWithATriangle) {
+  const std::string meshes =
+      R"([{"file": "octahedron.off", "transform": [2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 1, 0, 0, 0, 1], "color": [0.9, 0.3, 0.2]}])";
+  const std::string camera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "up": [0, 1, 0], "orthographic": {"height": 6}})";
+  const auto scene_text = [&](const std::string& point) {
+    return R"({"image": {"width": 10, "height": 10}, "camera": )" + camera + R"(, "planes": [{"point": )" + point +
+           R"(, "normal": [1, 1, 1], "color": [0.2, 0.4, 0.8]}], "meshes": )" + meshes + "}";
+  };
+  // The plane's facing is 1/√3 as the facet's: (0.2, 0.4, 0.8) lit by 0.67033 is, in sRGB bytes, (41, 84, 170).
+  const RenderResult tie = render_scene(parsed_with_meshes(scene_text("[0, 0, 3]"), {}), {});
+  expect_pixel(tie.image, 6, 3, 41, 84, 170);
+  expect_pixel(tie.image, 3, 3, 41, 84, 170);
+  const RenderResult lowered = render_scene(parsed_with_meshes(scene_text("[0, 0, 2.9999990463256836]"), {}), {});
+  expect_pixel(lowered.image, 6, 3, 192, 63, 41);
+  expect_pixel(lowered.image, 3, 3, 41, 84, 170);
+}
+
+TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
+  const std::string camera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "orthographic": {"height": 6}})";
+  const auto load_error = [&](const std::string& meshes) -> std::string {
+    SceneParse s = parse_scene(R"({"camera": )" + camera + R"(, "planes": [], "meshes": )" + meshes + "}");
+    if (!s.scene) return s.error.str();
+    const std::optional<SceneError> e = load_scene_meshes(*s.scene, scenes);
+    return e ? e->str() : "(valid)";
+  };
+  EXPECT_EQ(load_error(R"({"file": "octahedron.off"})"), "/meshes: expected an array of meshes, found an object");
+  EXPECT_EQ(load_error(R"([{"name": "x"}])"), "/meshes/0/name: unknown field (expected one of: file, transform, color)");
+  EXPECT_EQ(load_error(R"([{"transform": []}])"), "/meshes/0/file: missing field");
+  EXPECT_EQ(load_error(R"([{"file": 3}])"), "/meshes/0/file: expected a file name (a non-empty string), found an integer");
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [1, 0, 0]}])"),
+            "/meshes/0/transform: expected 16 numbers (a row-major 4x4 matrix), found an array of 3");
+  // A rotation (about z by 90°: exact here, but not in general) and a scale by 3 would round vertices: refused.
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])")
+                .rfind("/meshes/0/transform/0: only scalings by powers of two", 0),
+            0u);
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [3, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])")
+                .rfind("/meshes/0/transform/0: only scalings by powers of two", 0),
+            0u);
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1]}])"),
+            "/meshes/0/transform: the bottom row must be 0 0 0 1 (an affine transform)");
+  // Translating x by 2^-60: 1 + 2^-60 is not a double, so vertex 0 (1, 0, 0) would be rounded.
+  const std::string inexact = load_error(
+      R"([{"file": "octahedron.off", "transform": [1, 0, 0, 8.673617379884035e-19, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])");
+  EXPECT_EQ(inexact.rfind("/meshes/0/transform: the image of vertex 0 of ", 0), 0u) << inexact;
+  // A scale by 2^-1074 is exact on these coordinates (0 and ±1 become 0 and ±2^-1074, subnormal but exact), but
+  // a scale by 2^1023 plus a translation by 2^1023 takes x = 1 to 2^1024: overflow.
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [4.9406564584124654e-324, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])"),
+            "(valid)");
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [8.98846567431158e307, 0, 0, 8.98846567431158e307, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])")
+                .rfind("/meshes/0/transform: the image of vertex 0 of ", 0),
+            0u);
+  // A file that is not there, or not a mesh: the reader's reason, naming the file.
+  const std::string missing = load_error(R"([{"file": "no-such-mesh.off"}])");
+  EXPECT_EQ(missing.rfind("/meshes/0/file: ", 0), 0u) << missing;
+  EXPECT_NE(missing.find("no-such-mesh.off"), std::string::npos) << missing;
+  const std::string not_a_mesh = load_error(R"([{"file": "demo.json"}, {"file": "octahedron.off"}])");
+  EXPECT_EQ(not_a_mesh.rfind("/meshes/0/file: ", 0), 0u) << not_a_mesh;
+  EXPECT_NE(not_a_mesh.find("demo.json"), std::string::npos) << not_a_mesh;
+  // A device is never read (/dev/zero would never end).
+  EXPECT_EQ(load_error(R"([{"file": "/dev/zero"}])"), "/meshes/0/file: /dev/zero: not a regular file");
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off"}, {"file": "octahedron.off", "color": [0, 0, 1]}])"), "(valid)");
+}
+
+TEST(RenderMesh, TheCommandRendersMeshesAndReportsBadOnesWithExitTwo) {
+  const std::string out = temp_path("octahedron.png");
+  CliRun r = run("render " + scenes + "/octahedron.json --width 8 --height 8 --samples 1 --no-progress -o " + out +
+                 " --compare-naive=" + temp_path("octahedron-naive-diff.png"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("1 plane, 1 mesh (8 triangles)"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  // The mesh file is relative to the scene file's directory, not to the working directory.
+  const std::string dir = temp_path("mesh-scene");
+  std::filesystem::create_directories(dir + "/sub");
+  write_file(dir + "/sub/scene.json",
+             R"({"camera": {"eye": [0, 0, 10], "target": [0, 0, 0]}, "planes": [], "meshes": [{"file": "missing.obj"}]})");
+  r = run("render sub/scene.json --width 4 --height 4 --no-progress -o out.png", "", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err.rfind("raykernel: sub/scene.json: /meshes/0/file: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("sub/missing.obj"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.png"));
+}
+
 }  // namespace
 }  // namespace raykernel::cli

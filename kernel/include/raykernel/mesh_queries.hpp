@@ -70,6 +70,12 @@ struct MeshHit {
 // guarantee. No validation beyond the walk's (throws invalid_input for an invalid ray).
 [[nodiscard]] std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mesh);
 
+// The sign (−1, 0, +1) of x − y for two exact rationals (decimal strings, denominators nonzero), exactly. For
+// ordering the exact t of different surfaces — a plane's (intersect_exact_rational in raykernel.hpp) and a
+// triangle's (triangle.hpp) — when their rounded t are equal, as `raykernel render` does for scenes with planes
+// and meshes. Throws std::invalid_argument on malformed text.
+[[nodiscard]] int compare_exact(const Rational& x, const Rational& y);
+
 // ---- inside ---------------------------------------------------------------------------------------------------
 
 enum class PointLocation : std::uint8_t {

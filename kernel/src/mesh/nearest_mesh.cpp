@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace raykernel {
@@ -104,6 +105,13 @@ std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mes
     }
   }
   return best;
+}
+
+int compare_exact(const Rational& x, const Rational& y) {
+  if (x.denominator.empty() || x.numerator.empty() || y.denominator.empty() || y.numerator.empty() ||
+      x.denominator == "0" || y.denominator == "0")
+    throw std::invalid_argument("compare_exact: malformed rational");
+  return detail::exact::compare_rationals(x, y);
 }
 
 }  // namespace raykernel
