@@ -364,6 +364,13 @@ TEST(MeshFiles, ReadFromDiskNamesTheFile) {
       EXPECT_NE(e.reason().find(reason), std::string::npos) << e.what();
     }
   }
+  try {  // a device is refused before it is read (reading /dev/zero would never end)
+    (void)read_mesh("/dev/zero");
+    ADD_FAILURE() << "/dev/zero: no error";
+  } catch (const mesh_file_error& e) {
+    EXPECT_EQ(e.file(), "/dev/zero");
+    EXPECT_NE(e.reason().find("device"), std::string::npos) << e.what();
+  }
   std::filesystem::remove_all(dir);
 }
 

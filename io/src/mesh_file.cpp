@@ -96,7 +96,12 @@ Mesh read_mesh(const std::filesystem::path& path) {
   const std::string name = path.string();
   const detail::ErrorSink errors(name);
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) errors.whole_file("is a directory");
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status)) errors.whole_file("is a directory");
+  // A device (/dev/zero, a terminal) would be read without end; pipes and regular files are read whole.
+  if (std::filesystem::is_character_file(status) || std::filesystem::is_block_file(status) ||
+      std::filesystem::is_socket(status))
+    errors.whole_file("is a device or socket, not a mesh file");
   const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(name.c_str(), "rb"), &std::fclose);
   if (!file) errors.whole_file(std::string("cannot open: ") + std::strerror(errno));
   std::string bytes;
