@@ -220,11 +220,6 @@ Out enclosure_out(const Enclosure& e) {
   o.f(e.hi), o.f(e.lo), o.f(e.radius);
   return o;
 }
-void dot3_out(Out& o, const Dot3Rounded& r) {
-  for (double q : r.product) o.f(q);
-  o.f(r.value), o.f(r.magnitude);
-}
-void enclosure_out(Out& o, const Enclosure& e) { o.f(e.hi), o.f(e.lo), o.f(e.radius); }
 template <std::size_t N>
 void expansion_out(Out& o, const Expansion<N>& e) {
   o.i(static_cast<long long>(e.size));
