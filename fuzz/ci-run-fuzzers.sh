@@ -4,14 +4,14 @@
 # sanitizer report, leak, timeout or disagreement; prints execs/s and the fraction of executions each
 # certified stage decided. .ci/run calls it after the tests.
 #
-#   fuzz/ci-run-fuzzers.sh                        # CI: 30 s per harness (8 harnesses: about 5 min in all)
+#   fuzz/ci-run-fuzzers.sh                        # CI: 20 s per harness (8 harnesses: about 4 min in all)
 #   FUZZ_SECONDS=3600 fuzz/ci-run-fuzzers.sh      # longer, locally
 #   FUZZ_HARNESSES="classify nearest" fuzz/ci-run-fuzzers.sh
 #
 # The harnesses are those fuzz/CMakeLists.txt registers (the manifest $FUZZ_BUILD_DIR/fuzz/harnesses.txt):
 # classify, triangle, batch, cli, nearest, nearest_cli, scene, mesh_reader.
 #
-# Environment: FUZZ_SECONDS (per harness, default 30: CI's budget is the whole .ci/run in 45 min on 2 cores),
+# Environment: FUZZ_SECONDS (per harness, default 20: CI's budget is the whole .ci/run in 45 min on 2 cores),
 # FUZZ_HARNESSES (default: all in the manifest), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default
 # 2), FUZZ_EXTRA_ARGS (more libFuzzer flags), FUZZ_GCC_BUILD_DIR (default build, the README's build): when it
 # has the replay programs, every input the fuzzers saved is replayed with them too, i.e. through the
@@ -22,7 +22,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-seconds=${FUZZ_SECONDS:-30}
+seconds=${FUZZ_SECONDS:-20}
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 jobs=${FUZZ_BUILD_JOBS:-2}
 case "$build" in /*) ;; *) build="$root/$build" ;; esac
