@@ -227,7 +227,7 @@ TEST(NumberReader, AgreesWithStrtodOnGeneratedStrings) {
     check(s);
   }
   for (const char* special : {"inf", "INF", "infinity", "nan", "NAN", "nan(0x1)", "-inf", "+nan", "0x", ".", "e5", ".e5",
-                              "1e", "0x.p1", "0x1.p", "00x1", "0x0x1", "1_000", "١", "1\t", "1 ", "\t1"})
+                              "1e", "0x1p+-3", "0x1.8p-+3", "1e+-5", "1e--5", "0x1p++3", "1e5e5", "0x1p3p3", "0x.p1", "0x1.p", "00x1", "0x0x1", "1_000", "١", "1\t", "1 ", "\t1"})
     check(special);
   std::printf("number reader: %zu strings agree with strtod\n", checked);
   EXPECT_GT(checked, 150000u);

@@ -69,6 +69,19 @@ bool magnitude_is_large(std::string_view text, char exponent_mark, long digit_we
   return position * digit_weight + exponent > 0;
 }
 
+// strtod's exponent: the mark, at most one sign, then only digits, at least one. (libstdc++ 12's from_chars
+// also takes "0x1p+-3" and reads -3: fuzz_cli found it.)
+bool exponent_well_formed(std::string_view text, bool hex) noexcept {
+  const std::size_t mark = text.find_first_of(hex ? "pP" : "eE");
+  if (mark == std::string_view::npos) return true;
+  std::size_t i = mark + 1;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  if (i == text.size()) return false;
+  for (; i < text.size(); ++i)
+    if (!is_digit(text[i])) return false;
+  return true;
+}
+
 // One number's digits (`text`: without sign, and without the 0x prefix when `hex`), read whole.
 struct DigitsRead {
   bool whole = false;         // the entire text is a number of the form
@@ -166,6 +179,7 @@ NumberParse parse_double(std::string_view token) noexcept {
     }
     return result;
   }
+  if (!exponent_well_formed(rest, hex)) return result;
   const DefaultRounding rounding;
   const DigitsRead read = read_digits(rest, hex);
   if (!read.whole) return result;  // trailing characters (or nothing read)
