@@ -64,6 +64,8 @@ generator=()
 if command -v ninja > /dev/null; then generator=(-G Ninja); fi
 
 # A build type without flags of its own: the optimization and debug flags are ClusterFuzzLite's ($CFLAGS).
+# Embree off: the fuzzers run where only $OUT is copied, and the CLI would link libembree3.so (its watertight
+# baseline), which the runner image does not have.
 cmake -S "$src" -B "$build" "${generator[@]}" \
   -DCMAKE_BUILD_TYPE=ClusterFuzzLite \
   -DCMAKE_C_COMPILER="$CC" -DCMAKE_CXX_COMPILER="$CXX" \
@@ -71,6 +73,7 @@ cmake -S "$src" -B "$build" "${generator[@]}" \
   -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
   -DRAYKERNEL_BUILD_FUZZERS=ON -DRAYKERNEL_FUZZING_ENGINE="$LIB_FUZZING_ENGINE" \
   -DRAYKERNEL_BUILD_CLI=ON -DRAYKERNEL_BUILD_TESTS=OFF -DRAYKERNEL_BUILD_BENCH=OFF -DRAYKERNEL_BUILD_PYTHON=OFF \
+  -DRAYKERNEL_WITH_EMBREE=OFF \
   -DRAYKERNEL_GMP_LIBRARY="$gmp" -DRAYKERNEL_GMPXX_LIBRARY="$gmpxx" -DRAYKERNEL_MPFR_LIBRARY="$mpfr" \
   -DGMP_LIBRARY_RELEASE="$gmp" -DGMP_LIBRARY_DEBUG="$gmp" -DGMPXX_LIBRARIES="$gmpxx" -DMPFR_LIBRARIES="$mpfr" \
   -DPNG_LIBRARY="$png" -DZLIB_LIBRARY="$zlib"
