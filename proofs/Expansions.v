@@ -3,32 +3,30 @@
     Twins, operation by operation (the builder's flag [exact_] is threaded through as a bool):
     [push], [finish] (zero elimination), [note_product_b], [product_b], [scale_gen] (Shewchuk's
     scale_expansion_zeroelim), [merge] and [sum_gen] (fast_expansion_sum_zeroelim with the take_smaller
-    merge), [from_pair], [check_finite], [sign_top] ([Expansion::sign]: the sign of the last component),
-    [build_expansions_gen] (ray_plane_stages.hpp), [multiply_gen] and [compare_quotients_expansion_gen]
-    (compare_quotients.hpp).  [scale_gen] and [sum_gen] take the two-term transformation used where the C++
-    calls [fast_two_sum] as a parameter [fts]: the C++ as it is, [fast_two_sum_b], is what the differential
-    runner checks; the theorems are about [two_sum_b] in its place (below).
+    merge), [from_pair], [check_finite], [expansion_sign_b] ([Expansion::sign]: the checked sign),
+    [build_expansions_gen] (ray_plane_query.hpp's ray_plane_expansions), [multiply_gen] and
+    [compare_quotients_expansion_gen] (compare_quotients.hpp).  [scale_gen] and [sum_gen] take the two-term
+    transformation as a parameter [fts]; the C++ uses TwoSum, [two_sum_b], and so do the names [scale_b],
+    [sum_b], [build_expansions_b], [compare_quotients_expansion_b] that the theorems and the differential
+    runner use.
 
-    What is proved, for every bit pattern of the inputs, with [fts] = [two_sum_b]:
+    What is proved, for every bit pattern of the inputs:
     - [sum_gen_exact], [scale_gen_exact], [multiply_gen_exact]: when every output component is finite (and
       the builder's flag stayed true: every TwoProduct passed the guard of [note_product]), the
       expansions sum exactly: Σh = Σe + Σf, Σh = b·Σe, Σ(e·f) = Σe·Σf;
     - [build_expansions_exact]: when the builder says exact, Σnum and Σden are the exact num = (p − o)·n
       and den = d·n of the query;
-    - [expansion_sign_sound]: the certified sign [expansion_sign_b] (the top component decides when it
+    - [expansion_sign_sound]: the checked sign [expansion_sign_b] (the top component decides when it
       exceeds twice the rounded sum of the others' magnitudes) is the sign of the exact sum, for any list
       of finite doubles, nonoverlapping or not;
     - [certified_signs_expansion_sound], [compare_quotients_expansion_sound]: stage 3 of the relation and of
       the nearest-hit comparison, end to end.
 
-    Why [two_sum] in place of [fast_two_sum], and a checked sign: Dekker's Fast2Sum is exact only when
-    |a| ≥ |b|, which the C++ gets from the invariant of Shewchuk's Theorems 13 and 19 (the expansions are
-    nonoverlapping and sorted by magnitude), and the sign of the last component is the sign of the sum only
-    for nonoverlapping expansions.  Both facts are cited, not proved, in proofs/README.md.  With TwoSum (exact
-    for all doubles) and the checked sign, neither is needed: Shewchuk's theorems only say how often stage 3
-    decides.  On inputs where Fast2Sum is exact the two give the same sum and the same error (the error of a
-    rounded sum is unique), so the change to the C++ (proofs/README.md, "Stage 3") keeps every answer; the
-    differential runner checks both versions. *)
+    Why TwoSum where Shewchuk's algorithms use Fast2Sum, and a checked sign: Dekker's Fast2Sum is exact only
+    when |a| ≥ |b|, which his algorithms get from the invariant of his Theorems 13 and 19 (the expansions
+    are nonoverlapping and sorted by magnitude), and the sign of the last component is the sign of the sum
+    only for nonoverlapping expansions.  With TwoSum (exact for all finite doubles) and the checked sign,
+    neither fact is needed: his theorems only say how often stage 3 decides. *)
 
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -129,14 +127,8 @@ Definition from_pair (p : float * float) : list float := finish (push nil (snd p
 (** [builder.check_finite(e)]. *)
 Definition check_finite (ex : bool) (e : list float) : bool := (ex && forallb fin e)%bool.
 
-(** [Expansion::sign()]: the sign of the last component (zero also for NaN: neither comparison holds). *)
-Definition sign_top (e : list float) : sign :=
-  let top := last e fzero in
-  if flt fzero top then Positive else if flt top fzero then Negative else Zero.
-
-(** The certified sign proposed in its place: the top component decides when it exceeds twice the
-    rounded sum of the magnitudes of the others (then it exceeds their exact sum); a single zero
-    component is the zero expansion.  C++: proofs/README.md, "Stage 3". *)
+(** [Expansion::sign()]: the top component decides when it exceeds twice the rounded sum of the magnitudes
+    of the others (then it exceeds their exact sum); a single zero component is the zero expansion. *)
 Definition lower_magnitude (e : list float) : float :=
   fold_left (fun acc x => fadd acc (fabs x)) (removelast e) fzero.
 
@@ -146,7 +138,7 @@ Definition expansion_sign_b (e : list float) : sign :=
   if flt (fadd a a) (fabs top) then (if flt fzero top then Positive else Negative)
   else if (Nat.eqb (length e) 1 && feq top fzero)%bool then Zero else Uncertain.
 
-(** [build_expansions(q)] (ray_plane_stages.hpp): den = Σ d_i n_i and num = Σ (p_i − o_i) n_i. *)
+(** [ray_plane_expansions(q)] (ray_plane_query.hpp): den = Σ d_i n_i and num = Σ (p_i − o_i) n_i. *)
 Definition build_expansions_gen (fts : float -> float -> float * float)
   (o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 : float) : list float * list float * bool :=
   let pd0 := product_b true d0 n0 in
@@ -169,15 +161,11 @@ Definition compare_quotients_expansion_gen (fts : float -> float -> float * floa
   let delta := sum_gen fts (snd m1) neg in
   if check_finite (check_finite (check_finite (fst m2) (snd m1)) neg) delta then sgn delta else Uncertain.
 
-(** The C++ as it is, and as proposed. *)
-Definition scale_b := scale_gen fast_two_sum_b.
-Definition sum_b := sum_gen fast_two_sum_b.
-Definition build_expansions_b := build_expansions_gen fast_two_sum_b.
-Definition compare_quotients_expansion_b := compare_quotients_expansion_gen fast_two_sum_b sign_top.
-Notation scale_p := (scale_gen two_sum_b).
-Notation sum_p := (sum_gen two_sum_b).
-Notation build_expansions_p := (build_expansions_gen two_sum_b).
-Notation compare_quotients_expansion_p := (compare_quotients_expansion_gen two_sum_b expansion_sign_b).
+(** The C++. *)
+Notation scale_b := (scale_gen two_sum_b).
+Notation sum_b := (sum_gen two_sum_b).
+Notation build_expansions_b := (build_expansions_gen two_sum_b).
+Notation compare_quotients_expansion_b := (compare_quotients_expansion_gen two_sum_b expansion_sign_b).
 
 (** ** Exactness *)
 
@@ -284,8 +272,8 @@ Proof.
 Qed.
 
 (** ExpansionBuilder::sum with TwoSum in place of Fast2Sum: exact whenever the result is finite. *)
-Theorem sum_gen_exact : forall e f, all_fin (sum_p e f) ->
-  all_fin e /\ all_fin f /\ sumR (sum_p e f) = sumR e + sumR f.
+Theorem sum_gen_exact : forall e f, all_fin (sum_b e f) ->
+  all_fin e /\ all_fin f /\ sumR (sum_b e f) = sumR e + sumR f.
 Proof.
   intros e f H. destruct (merge_spec e f) as [Sm Fm].
   assert (G : all_fin (merge e f) /\ sumR (sum_gen two_sum_b e f) = sumR (merge e f)).
@@ -327,8 +315,8 @@ Qed.
 
 (** ExpansionBuilder::scale with TwoSum in place of Fast2Sum: exact when the flag stays true (every
     TwoProduct passed note_product's guard) and the result is finite. *)
-Theorem scale_gen_exact : forall ex e b, fst (scale_p ex e b) = true -> all_fin (snd (scale_p ex e b)) ->
-  ex = true /\ all_fin e /\ (e = nil \/ fin b = true) /\ sumR (snd (scale_p ex e b)) = B2R b * sumR e.
+Theorem scale_gen_exact : forall ex e b, fst (scale_b ex e b) = true -> all_fin (snd (scale_b ex e b)) ->
+  ex = true /\ all_fin e /\ (e = nil \/ fin b = true) /\ sumR (snd (scale_b ex e b)) = B2R b * sumR e.
 Proof.
   intros ex [|e0 rest] b Hx H; unfold scale_gen in *.
   - cbn in *. repeat split; auto; try constructor. unfold sumR. simpl. ring.
@@ -357,7 +345,7 @@ Qed.
 (** The builder's [exact()] after [build_expansions] (with TwoSum in place of Fast2Sum): num and den are
     the exact num = (p − o)·n and den = d·n of the query, whatever the 64-bit patterns of its inputs. *)
 Theorem build_expansions_exact : forall o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2,
-  let '(num, den, ex) := build_expansions_p o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 in
+  let '(num, den, ex) := build_expansions_b o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 in
   ex = true ->
   all_fin num /\ all_fin den /\
   sumR den = B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2 /\
@@ -636,12 +624,12 @@ Proof.
     lia.
 Qed.
 
-(** ** Stage 3 end to end (with the proposed C++: TwoSum for Fast2Sum, the checked sign) *)
+(** ** Stage 3 end to end *)
 
 (** The relation's stage 3 ([certified_signs], intersect_certified.cpp): when the builder says exact, the
     checked signs of the expansions are the exact signs of num and den. *)
 Theorem certified_signs_expansion_sound : forall o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2,
-  let '(num, den, ex) := build_expansions_p o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 in
+  let '(num, den, ex) := build_expansions_b o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 in
   ex = true ->
   certifies (expansion_sign_b num)
     ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2) /\
@@ -649,7 +637,7 @@ Theorem certified_signs_expansion_sound : forall o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n
 Proof.
   intros. pose proof (build_expansions_exact o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2) as X.
   pose proof (length_build_expansions two_sum_b o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2) as L.
-  destruct (build_expansions_p o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2) as [[num den] ex].
+  destruct (build_expansions_b o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2) as [[num den] ex].
   intros Ex. destruct (X Ex) as [Fn [Fd [Sd Sn]]]. destruct L as [Ln Ld].
   rewrite <- Sn, <- Sd. split; apply expansion_sign_sound; auto; lia.
 Qed.
@@ -658,7 +646,7 @@ Qed.
     Δ = Σnum_1·Σden_2 − Σnum_2·Σden_1 (each Σ the exact num or den, [build_expansions_exact]). *)
 Theorem compare_quotients_expansion_sound : forall num1 den1 ex1 num2 den2 ex2,
   (length num1 <= 16)%nat -> (length den1 <= 16)%nat -> (length num2 <= 16)%nat -> (length den2 <= 16)%nat ->
-  certifies (compare_quotients_expansion_p num1 den1 ex1 num2 den2 ex2)
+  certifies (compare_quotients_expansion_b num1 den1 ex1 num2 den2 ex2)
     (sumR num1 * sumR den2 - sumR num2 * sumR den1).
 Proof.
   intros num1 den1 ex1 num2 den2 ex2 L1 L2 L3 L4. unfold compare_quotients_expansion_gen.

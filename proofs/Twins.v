@@ -12,7 +12,7 @@
     that hi and lo are finite (the C++ tests no finiteness since issue 13: that a finite magnitude keeps
     hi and lo finite is argued in proofs/README.md, "Overflow", not yet proved here).
 
-    - eft.hpp: [two_sum_b], [two_diff_b], [fast_two_sum_b], [two_prod_b] ([two_sum_twin], [two_prod_twin]);
+    - eft.hpp: [two_sum_b], [two_diff_b], [two_prod_b] ([two_sum_twin], [two_prod_twin]);
     - dot3_filter.hpp: [dot3_rounded_b], [dot3_filter_lanes_b], [dot3_filter_b] ([dot3_rounded_twin],
       [dot3_filter_lanes_twin]; [den_filter_twin_sound], [num_filter_twin_sound]);
     - dot3_compensated.hpp: [compensated_dot3_b], [compensated_dot3_exact_b] (α = 0),
@@ -148,10 +148,6 @@ Definition two_sum_b (a b : float) : float * float :=
 
 (** [two_diff(a, b)] is [two_sum(a, -b)]. *)
 Definition two_diff_b (a b : float) : float * float := two_sum_b a (fneg b).
-
-(** [fast_two_sum(a, b)]: s = a + b, (s, b − (s − a)). *)
-Definition fast_two_sum_b (a b : float) : float * float :=
-  let s := fadd a b in (s, fsub b (fsub s a)).
 
 (** [two_prod(a, b)]: p = a * b, (p, fma(a, b, −p)). *)
 Definition two_prod_b (a b : float) : float * float :=

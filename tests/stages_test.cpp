@@ -239,7 +239,9 @@ TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
       ASSERT_EQ(scalar.relation_by_filter, paired.relation_by_filter) << testkit::to_string(q);
       const detail::FastRelationT<double> rs = detail::fast_relation(terms), rp = detail::fast_relation(q.ray, q.plane);
       ASSERT_EQ(rs.certain, rp.certain) << testkit::to_string(q);
-      if (rs.certain) ASSERT_EQ(rs.behind, rp.behind) << testkit::to_string(q);
+      if (rs.certain) {
+        ASSERT_EQ(rs.behind, rp.behind) << testkit::to_string(q);
+      }
       if (!scalar.certain) continue;
       ++certified;
       ASSERT_EQ(scalar.behind, paired.behind) << testkit::to_string(q);

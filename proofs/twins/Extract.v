@@ -31,8 +31,6 @@ Definition run_two_sum (x : list Z) : list Z :=
   match x with [a; c] => let r := two_sum_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
 Definition run_two_diff (x : list Z) : list Z :=
   match x with [a; c] => let r := two_diff_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
-Definition run_fast_two_sum (x : list Z) : list Z :=
-  match x with [a; c] => let r := fast_two_sum_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
 Definition run_two_prod (x : list Z) : list Z :=
   match x with [a; c] => let r := two_prod_b (f a) (f c) in [b (fst r); b (snd r)] | _ => [] end.
 
@@ -101,12 +99,9 @@ Definition run_exp_sum_gen fts (x : list Z) : list Z :=
 Definition run_exp_scale_gen fts (x : list Z) : list Z :=
   match x with bb :: e => let r := scale_gen fts true (map f e) (f bb) in bool_code (fst r) :: list_bits (snd r)
   | [] => [] end.
-Definition run_exp_sum := run_exp_sum_gen fast_two_sum_b.
-Definition run_exp_scale := run_exp_scale_gen fast_two_sum_b.
-Definition run_exp_sum_p := run_exp_sum_gen two_sum_b.
-Definition run_exp_scale_p := run_exp_scale_gen two_sum_b.
-Definition run_exp_sign_top (x : list Z) : list Z := [sign_code (sign_top (map f x))].
-Definition run_exp_sign_p (x : list Z) : list Z := [sign_code (expansion_sign_b (map f x))].
+Definition run_exp_sum := run_exp_sum_gen two_sum_b.
+Definition run_exp_scale := run_exp_scale_gen two_sum_b.
+Definition run_exp_sign (x : list Z) : list Z := [sign_code (expansion_sign_b (map f x))].
 
 (** quotient_rounding.hpp: "num.hi num.lo num.radius den.hi den.lo den.radius" → t, certain, and the
     prepared divisor's fields. *)
@@ -140,20 +135,18 @@ Definition run_build_expansions_gen fts (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
     let '(num, den, ex) := ray_plane_expansions_b fts (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) in
     list_bits num ++ list_bits den ++ [bool_code ex] | _ => [] end.
-Definition run_build_expansions := run_build_expansions_gen fast_two_sum_b.
-Definition run_build_expansions_p := run_build_expansions_gen two_sum_b.
+Definition run_build_expansions := run_build_expansions_gen two_sum_b.
 Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz] =>
     let o := v3 ox oy oz in let d := v3 dx dy dz in
     let '(na, da, xa) := ray_plane_expansions_b fts o d (v3 pax pay paz) (v3 nax nay naz) in
     let '(nb, db, xb) := ray_plane_expansions_b fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
     [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
-Definition run_compare_expansion := run_compare_expansion_gen fast_two_sum_b sign_top.
-Definition run_compare_expansion_p := run_compare_expansion_gen two_sum_b expansion_sign_b.
+Definition run_compare_expansion := run_compare_expansion_gen two_sum_b expansion_sign_b.
 
-Extraction "twins.ml" run_two_sum run_two_diff run_fast_two_sum run_two_prod run_dot3_rounded run_filter_den
+Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
-  run_exp_sum run_exp_scale run_exp_sum_p run_exp_scale_p run_exp_sign_top run_exp_sign_p run_round_quotient
+  run_exp_sum run_exp_scale run_exp_sign run_round_quotient
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
-  run_build_expansions run_build_expansions_p run_compare_expansion run_compare_expansion_p.
+  run_build_expansions run_compare_expansion.

@@ -196,14 +196,6 @@ const std::map<std::string, Generator>& generators() {
          const int i = static_cast<int>(s.below(3));
          return Args{t.p[i], t.o[i]};
        }},
-      {"fast_two_sum",
-       [](Source& s) {
-         if (s.chance(2)) return raw_args(s, 2);
-         const Terms t = terms(s.query());
-         const int i = static_cast<int>(s.below(3));
-         const double a = t.d[i] * t.n[i], b = t.diff[i] * t.n[i];
-         return std::abs(a) >= std::abs(b) ? Args{a, b} : Args{b, a};
-       }},
       {"two_prod",
        [](Source& s) {
          if (s.chance(2)) return raw_args(s, 2);
@@ -281,7 +273,7 @@ const std::map<std::string, Generator>& generators() {
          r.insert(r.end(), e.begin(), e.end());
          return r;
        }},
-      {"exp_sign_top", [](Source& s) { return some_expansion(s, 12); }},
+      {"exp_sign", [](Source& s) { return some_expansion(s, 12); }},
       {"build_expansions", [](Source& s) { return query_args(s.query()); }},
       {"compare_expansion", [](Source& s) { return pair_args(s); }},
       {"fast_answer", [](Source& s) { return query_args(s.query()); }},
@@ -338,9 +330,7 @@ int main(int argc, char** argv) {
   }
   Source source(seed);
   for (const std::string& name : routines) {
-    // The proposed stage 3 (name_p) runs on the inputs of the current one.
-    const std::string base = name.size() > 2 && name.compare(name.size() - 2, 2, "_p") == 0 ? name.substr(0, name.size() - 2) : name;
-    const auto g = generators().find(base == "exp_sign" ? std::string("exp_sign_top") : base);
+    const auto g = generators().find(name);
     if (g == generators().end()) {
       std::cerr << "unknown routine " << name << '\n';
       return 2;

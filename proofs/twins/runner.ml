@@ -6,7 +6,6 @@
 let routines : (string * (Z.t list -> Z.t list)) list = [
   ("two_sum", Twins.run_two_sum);
   ("two_diff", Twins.run_two_diff);
-  ("fast_two_sum", Twins.run_fast_two_sum);
   ("two_prod", Twins.run_two_prod);
   ("dot3_rounded", Twins.run_dot3_rounded);
   ("filter_den", Twins.run_filter_den);
@@ -23,10 +22,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("compare_compensated", Twins.run_compare_compensated);
   ("exp_sum", Twins.run_exp_sum);
   ("exp_scale", Twins.run_exp_scale);
-  ("exp_sum_p", Twins.run_exp_sum_p);
-  ("exp_scale_p", Twins.run_exp_scale_p);
-  ("exp_sign_top", Twins.run_exp_sign_top);
-  ("exp_sign_p", Twins.run_exp_sign_p);
+  ("exp_sign", Twins.run_exp_sign);
   ("round_quotient", Twins.run_round_quotient);
   ("half_gap", Twins.run_half_gap);
   ("fast_answer", Twins.run_fast_answer);
@@ -34,9 +30,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("fast_relation", Twins.run_fast_relation);
   ("fast_relation_pair", Twins.run_fast_relation_pair);
   ("build_expansions", Twins.run_build_expansions);
-  ("build_expansions_p", Twins.run_build_expansions_p);
   ("compare_expansion", Twins.run_compare_expansion);
-  ("compare_expansion_p", Twins.run_compare_expansion_p);
 ]
 
 let () =

@@ -117,7 +117,7 @@ void copy_expansion(const Expansion<M>& from, Expansion<K>& to) noexcept {
 }
 
 // partial + e·(f_J + f_{J+1} + ...), by scaling e by each remaining component of f and summing
-// (Shewchuk 1997, §2.8: scale_expansion, Theorem 19, and fast_expansion_sum, Theorem 13).
+// (expansion.hpp's scale and sum).
 template <std::size_t J, std::size_t M, std::size_t N, std::size_t K>
 void accumulate_scaled(ExpansionBuilder& builder, const Expansion<M>& e, const Expansion<N>& f,
                        const Expansion<K>& partial, Expansion<2 * M * N>& product) noexcept {
@@ -150,8 +150,8 @@ void multiply_expansions(ExpansionBuilder& builder, const Expansion<M>& e, const
 // compare_quotients_expansion: the exact sign of Δ = N_1·D_2 − N_2·D_1 from the exact stage-3 expansions
 // of num and den of both queries, or `uncertain` when either input or a product in Δ is not exact (a
 // TwoProduct underflowed, or something overflowed): then the exact stage decides.
-//   Exact by Shewchuk's Theorems 13 and 19 (round to nearest) and Flocq's `mult_error_FLT` for each
-//   TwoProduct the builder checked; the sign of a nonoverlapping expansion is that of its largest component.
+//   Certified by: proofs/Expansions.v, `compare_quotients_expansion_sound` (a certain sign is the sign of
+//   Δ for the exact sums of the inputs; with `build_expansions_exact`, of the exact num and den).
 [[nodiscard]] inline Sign compare_quotients_expansion(const ExactExpansions& first,
                                                       const ExactExpansions& second) noexcept {
   if (!first.exact || !second.exact) return Sign::uncertain;

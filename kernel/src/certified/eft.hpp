@@ -42,12 +42,6 @@ template <class V>
   return two_sum(a, -b);
 }
 
-// Dekker's Fast2Sum: hi + lo == a + b exactly when a == 0 or |a| ≥ |b| (no overflow).
-[[nodiscard]] inline DoubleDouble fast_two_sum(double a, double b) noexcept {
-  const double s = a + b;
-  return {s, b - (s - a)};
-}
-
 // TwoProduct with a fused multiply-add: hi = a ⊗ b and lo = RN(a·b − hi). The pair is exact
 // (hi + lo == a·b) when a·b == 0 or |a·b| ≥ 2^-969 = 2^(emin + 2p − 1) (Flocq `mult_error_FLT`), and no
 // overflow occurs. Otherwise |a·b − hi − lo| ≤ 2^-1075: a·b − hi is then below 2^-1022 and its rounding is

@@ -108,7 +108,7 @@ inline constexpr double refined_absolute = 0x0.0000000000008p-1022;  // 8μ
 // ---------------------------------------------------------------------------------------------------------
 // Stage 3: expansion_tail_enclosure (certified/expansion.hpp)
 //
-// An exact expansion e_1..e_k (Shewchuk) is condensed by one TwoSum pass (Q, r_j) = TwoSum(Q, e_{j+1}),
+// An exact expansion e_1..e_k (expansion.hpp) is condensed by one TwoSum pass (Q, r_j) = TwoSum(Q, e_{j+1}),
 // which keeps its exact sum S = Q + Σ r_j. Then hi = Q, lo = RN-sum of the r_j (left to right), and
 // A = RN-sum of |r_j|. Summing k−1 ≤ 31 terms: |lo − Σ r_j| ≤ γ_30·Σ|r_j| ≤ γ_30(1+u)^30·A < 2^-48·A, so
 //   E = (A ⊗ 2^-48) ⊕ 2μ    (the 2μ covers the underflow of A ⊗ 2^-48, whose error is at most η).
@@ -225,9 +225,9 @@ inline constexpr double compare_absolute = 0x0.0000000000008p-1022;        // U_
 inline constexpr double compare_compensated_relative = 0x1p-101;  // K_c = 32u²
 
 // Stage 3: compare_quotients_expansion computes Δ exactly as an expansion from the stage-3 expansions of
-// num_i and den_i (Shewchuk's scale_expansion and fast_expansion_sum, Theorems 19 and 13): exact whenever
-// the builder reports no underflowing TwoProduct and nothing non-finite. No constant. Stage 4 (exact
-// rationals) decides the rest.
+// num_i and den_i (expansion.hpp; proofs/Expansions.v, `compare_quotients_expansion_sound`): exact whenever
+// the builder reports no underflowing TwoProduct and nothing non-finite, its sign checked. No constant but
+// exact_product_threshold. Stage 4 (exact rationals) decides the rest.
 
 // =========================================================================================================
 // Ray–triangle (kernel/src/triangle/, docs/contract.md §6). Notation as above; in particular a sum or
@@ -315,7 +315,7 @@ inline constexpr double triangle_compensated_relative = 0x1p-99;      // K_π = 
 inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den = 256u²
 
 // Stage 3 (triangle/expansion_value.hpp) computes the five values, the tie-break vectors and N as exact
-// expansions (Shewchuk's Theorems 13 and 19) whenever no TwoProduct underflowed and nothing overflowed: no
-// constant. Stage 4 (exact rationals) decides the rest.
+// expansions (expansion.hpp; proofs/Expansions.v) whenever no TwoProduct underflowed and nothing overflowed:
+// no constant. Stage 4 (exact rationals) decides the rest.
 
 }  // namespace raykernel::detail::bounds

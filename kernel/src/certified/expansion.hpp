@@ -1,16 +1,19 @@
 // Stage 3 of the certified cascade: exact arithmetic on floating-point expansions (Shewchuk, "Adaptive
 // precision floating-point arithmetic and fast robust geometric predicates", DCG 18, 1997).
 //
-// An expansion is an unevaluated sum of doubles, nonoverlapping and sorted by increasing magnitude, so its
-// sign is the sign of its largest component (Shewchuk §2.2) and it is zero only as the single component 0.
-// TwoSum is exact for finite sums, TwoProduct only when the product does not underflow
-// (|a·b| ≥ 2^-969, Flocq `mult_error_FLT`): every product goes through `ExpansionBuilder::product`, which
-// records whether that held. A stage-3 result is used only when `exact()` is true; otherwise the cascade
+// An expansion is an unevaluated sum of doubles whose exact sum is the value it stands for; zero is the single
+// component 0 (zero elimination). TwoSum is exact for finite sums, TwoProduct only when the product does not
+// underflow (|a·b| ≥ 2^-969, Flocq `mult_error_FLT`): every product goes through `ExpansionBuilder::product`,
+// which records whether that held. A stage-3 result is used only when `exact()` is true; otherwise the cascade
 // goes to the exact rational stage. Overflow shows up as a non-finite component and is caught the same way.
 //
-// The routines follow predicates.c (fast_expansion_sum_zeroelim, scale_expansion_zeroelim) with FMA-based
-// TwoProduct in place of Veltkamp splitting; both require round-to-nearest-even, the default mode
-// (Shewchuk's Theorems 13 and 19 then give nonoverlapping, in fact nonadjacent, results).
+// The routines follow Shewchuk's fast_expansion_sum_zeroelim and scale_expansion_zeroelim with two changes
+// that make them provable without his nonoverlapping theorems (proofs/Expansions.v): TwoSum everywhere
+// (where he uses Fast2Sum, whose exactness needs |a| ≥ |b|, an invariant of his Theorems 13 and 19), and a
+// checked sign (his sign of the largest component needs the expansion to be nonoverlapping). On the
+// expansions his algorithms produce, TwoSum returns the same pair as Fast2Sum and the checked sign decides,
+// so the changes cost a few additions and leave stage 3's answers as they were. TwoProduct is FMA-based in
+// place of Veltkamp splitting. Round-to-nearest is required (the default environment, fp_environment.hpp).
 #pragma once
 
 #include "certified/eft.hpp"
@@ -29,10 +32,18 @@ struct Expansion {
   double component[Capacity];  // the first `size` are meaningful (left uninitialized: this is a hot path)
   std::size_t size = 0;        // ≥ 1 once built; the zero expansion is {0}
 
-  // Shewchuk §2.2: the sign of a nonoverlapping expansion is that of its largest (last) component.
+  // The sign of the exact sum, or `uncertain`: the last component decides when its magnitude exceeds twice the
+  // rounded sum of the others' magnitudes (then it exceeds their exact sum); the single component 0 is zero.
+  //   Valid range: finite components (callers check `exact()` first), at most 2^20 of them.
+  //   Certified by: proofs/Expansions.v, `expansion_sign_sound` (any list of finite doubles, nonoverlapping
+  //   or not); `uncertain` sends the caller to the exact stage.
   [[nodiscard]] Sign sign() const noexcept {
+    static_assert(Capacity <= (std::size_t{1} << 20));
     const double top = component[size - 1];
-    return top > 0 ? Sign::positive : (top < 0 ? Sign::negative : Sign::zero);
+    double lower = 0;
+    for (std::size_t i = 0; i + 1 < size; ++i) lower += std::fabs(component[i]);
+    if (lower + lower < std::fabs(top)) return top > 0 ? Sign::positive : Sign::negative;
+    return (size == 1 && top == 0) ? Sign::zero : Sign::uncertain;
   }
 };
 
@@ -54,7 +65,8 @@ class ExpansionBuilder {
 
   [[nodiscard]] bool exact() const noexcept { return exact_; }
 
-  // h = e·b (Shewchuk's scale_expansion_zeroelim, Theorem 19). h has at most 2·|e| components.
+  // h = e·b (Shewchuk's scale_expansion_zeroelim with TwoSum for his Fast2Sum). h has at most 2·|e| components.
+  //   Certified by: proofs/Expansions.v, `scale_gen_exact` (Σh = b·Σe when exact() and h finite).
   template <std::size_t M, std::size_t N>
   void scale(const Expansion<M>& e, double b, Expansion<N>& h) noexcept {
     static_assert(N >= 2 * M);
@@ -66,14 +78,15 @@ class ExpansionBuilder {
       p = product(e.component[i], b);
       const DoubleDouble sum = two_sum(q, p.lo);
       push(h, sum.lo);
-      const DoubleDouble next = fast_two_sum(p.hi, sum.hi);
+      const DoubleDouble next = two_sum(p.hi, sum.hi);
       push(h, next.lo);
       q = next.hi;
     }
     finish(h, q);
   }
 
-  // h = e + f (Shewchuk's fast_expansion_sum_zeroelim, Theorem 13), merging by increasing magnitude.
+  // h = e + f (Shewchuk's fast_expansion_sum_zeroelim with TwoSum for his Fast2Sum), merging by increasing
+  // magnitude. Certified by: proofs/Expansions.v, `sum_gen_exact` (Σh = Σe + Σf when h is finite).
   template <std::size_t M, std::size_t N, std::size_t K>
   static void sum(const Expansion<M>& e, const Expansion<N>& f, Expansion<K>& h) noexcept {
     static_assert(K >= M + N);
@@ -93,8 +106,7 @@ class ExpansionBuilder {
     h.size = 0;
     double q = take_smaller();
     if (ei < e.size || fi < f.size) {
-      // The second component dominates the first in magnitude, so Fast2Sum applies.
-      const DoubleDouble s = fast_two_sum(take_smaller(), q);
+      const DoubleDouble s = two_sum(take_smaller(), q);
       push(h, s.lo);
       q = s.hi;
       while (ei < e.size || fi < f.size) {

@@ -33,8 +33,11 @@ CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
   }
   if (is_certain(den_sign) && is_certain(num_sign)) return {num_sign, den_sign, stage};
 
-  // Stage 3: exact signs, if the expansions are exact; else the exact stage.
-  if (const ExactExpansions& e = query.expansions(); e.exact) return {e.num.sign(), e.den.sign(), Stage::expansion};
+  // Stage 3: exact signs, if the expansions are exact and their signs certain; else the exact stage.
+  if (const ExactExpansions& e = query.expansions(); e.exact) {
+    const Sign num = e.num.sign(), den = e.den.sign();
+    if (is_certain(num) && is_certain(den)) return {num, den, Stage::expansion};
+  }
   const exact::ExactSigns s = exact::ray_plane_signs(query.ray(), query.plane());
   return {sign_from_int(s.num), sign_from_int(s.den), Stage::exact};
 }

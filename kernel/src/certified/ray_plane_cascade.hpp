@@ -67,8 +67,8 @@ struct CertifiedSigns {
 // Stages 1–3 of the relation: the signs of num and den, each stage asked only for the signs the cheaper
 // ones left uncertain, then the exact stage (exact/exact.hpp) when stage 3 is not exact (a TwoProduct
 // underflowed or a value overflowed).
-//   Certified by: proofs/Cascade.v, `cascade_signs_correct` (stages 1 and 2), Shewchuk's Theorems 13 and 19
-//   (stage 3, proofs/README.md "Cited").
+//   Certified by: proofs/Cascade.v, `cascade_signs_correct` (stages 1 and 2); proofs/Expansions.v,
+//   `certified_signs_expansion_sound` (stage 3).
 [[nodiscard]] CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept;
 
 // t = RN(num/den) for num ≠ 0 ≠ den (hit or behind): round_quotient on the stage-2 enclosures, on the

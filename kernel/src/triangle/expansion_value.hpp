@@ -1,14 +1,14 @@
 // Stage 3 of the certified ray–triangle cascade: ray_triangle_formula.hpp evaluated in exact floating-point
-// expansions (Shewchuk 1997), with certified/expansion.hpp's ExpansionBuilder doing the arithmetic. An
+// expansions, with certified/expansion.hpp's ExpansionBuilder doing the arithmetic. An
 // ExpansionValue<N> holds an expansion of capacity N (a compile-time bound on its length, which zero
 // elimination keeps far from reached) and whether it is exact: every TwoProduct was exact (no underflow)
 // and nothing overflowed. Sign decisions use a value only when `exact`; otherwise the exact rational stage
 // decides.
 //
 // The formula multiplies a leaf (d or a difference: at most 2 components) by a cross component, or two
-// leaves: the product scales the longer operand by each component of the shorter (Theorem 19) and sums the
-// scaled expansions (Theorem 13). Capacities: leaf 2, leaf·leaf 8, cross component 16, leaf·cross 64, π and
-// num 192, den 576.
+// leaves: the product scales the longer operand by each component of the shorter and sums the scaled
+// expansions (ExpansionBuilder::scale and ::sum, exact by proofs/Expansions.v). Capacities: leaf 2,
+// leaf·leaf 8, cross component 16, leaf·cross 64, π and num 192, den 576.
 #pragma once
 
 #include "certified/eft.hpp"
@@ -70,7 +70,7 @@ template <std::size_t M, std::size_t N>
 template <std::size_t N>
 [[nodiscard]] ExpansionValue<N> operator-(const ExpansionValue<N>& a) noexcept {
   ExpansionValue<N> r = a;
-  for (std::size_t i = 0; i < a.e.size; ++i) r.e.component[i] = -a.e.component[i];  // exact; still nonoverlapping
+  for (std::size_t i = 0; i < a.e.size; ++i) r.e.component[i] = -a.e.component[i];  // exact
   return r;
 }
 

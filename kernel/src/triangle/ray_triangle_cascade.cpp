@@ -28,7 +28,9 @@
 //   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
 //                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
-//   stage 3 values:      Shewchuk's Theorems 13 and 19 (cited); stage 4: GMP and MPFR.
+//   stage 3 values:      each sum and scale by proofs/Expansions.v, `sum_gen_exact`, `scale_gen_exact`, each
+//                        sign by `expansion_sign_sound`; their composition in expansion_value.hpp is not
+//                        yet a Coq theorem (proofs/README.md, "What remains"); stage 4: GMP and MPFR.
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "triangle/ray_triangle_cascade.hpp"

@@ -212,7 +212,7 @@ struct TriangleNumFilter {
 }
 
 // The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
-// components, or nothing when an expansion was not exact.
+// components, or nothing when an expansion was not exact or its sign not certain.
 [[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,
                                                                                      const Triangle& triangle,
                                                                                      int k) noexcept {
@@ -226,19 +226,21 @@ struct TriangleNumFilter {
   const auto v = cross_terms(dl, edge);
   std::array<int, 3> s{};
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!v[i].exact) return std::nullopt;
-    s[i] = static_cast<int>(v[i].e.sign());
+    const Sign sign = v[i].sign();
+    if (!is_certain(sign)) return std::nullopt;
+    s[i] = static_cast<int>(sign);
   }
   return s;
 }
 
-// Whether N = (b − a) × (c − a) is the zero vector, exactly, or nothing when an expansion was not exact.
+// Whether N = (b − a) × (c − a) is the zero vector, exactly, or nothing when an expansion was not exact or its sign not certain.
 [[nodiscard]] inline std::optional<bool> normal_is_zero_by_expansion(const Triangle& triangle) noexcept {
   const auto n = triangle_normal<ExpansionValue<2>>(triangle, expansion_difference);
   bool zero = true;
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!n[i].exact) return std::nullopt;
-    zero = zero && n[i].e.sign() == Sign::zero;
+    const Sign sign = n[i].sign();
+    if (!is_certain(sign)) return std::nullopt;
+    zero = zero && sign == Sign::zero;
   }
   return zero;
 }
