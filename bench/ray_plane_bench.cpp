@@ -5,6 +5,9 @@
 //                                  naive_soa on random_l2 (the naive formula over arrays, auto-vectorized)
 //   relation/<path>/<workload>     certified (`relation`), batch_certified (`relation_batch`), cgal_epick
 //                                  (CGAL's yes/no do_intersect)
+//   {intersect,relation}/certified_scoped/<workload>
+//                                  the certified calls inside one DefaultFpEnvironment scope (no per-call
+//                                  read and restore of the floating-point environment)
 //   memory/read/random             reading the random workload's arrays once: the floor for streaming
 //   nearest/<path>/<set>           rays against a prepared plane set: naive, certified, exact;
 //                                  demo4/demo64 (the demo camera's rays and planes), random4/random64
@@ -20,6 +23,7 @@
 
 #include <raykernel/batch.hpp>
 #include <raykernel/camera.hpp>
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
@@ -88,6 +92,15 @@ void register_workload(Workload w) {
     rotate_through(s, *queries(), [](const testkit::Query& q) { return intersect_exact(q.ray, q.plane); });
   });
   benchmark::RegisterBenchmark(("relation/certified" + suffix).c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return relation(q.ray, q.plane); });
+  });
+  // The same calls inside one DefaultFpEnvironment scope: the per-call environment check hoisted out.
+  benchmark::RegisterBenchmark(("intersect/certified_scoped" + suffix).c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
+    rotate_through(s, *queries(), [](const testkit::Query& q) { return intersect(q.ray, q.plane); });
+  });
+  benchmark::RegisterBenchmark(("relation/certified_scoped" + suffix).c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
     rotate_through(s, *queries(), [](const testkit::Query& q) { return relation(q.ray, q.plane); });
   });
   // The batch benchmarks run on all threads: they are timed by the wall clock (UseRealTime), not by the

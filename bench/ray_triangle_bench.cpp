@@ -5,6 +5,8 @@
 //               certified   intersect: relation, location, owned flag, t and the three barycentric coordinates
 //                           correctly rounded
 //               relation    the relation-only form (relation, location, owned flag; nothing rounded)
+//               certified_scoped, relation_scoped
+//                           the same inside one DefaultFpEnvironment scope (no per-call environment check)
 //               exact       intersect_exact (GMP rationals, MPFR)
 //               cgal_epick  CGAL Epick do_intersect(Ray_3, Triangle_3): relation's like-for-like baseline
 //               cgal_epeck  CGAL Epeck intersection(Ray_3, Triangle_3), t from the point
@@ -18,6 +20,7 @@
 // Registered at load time: main is ray_plane_bench.cpp's.
 #include "cgal_triangle_baselines.hpp"
 
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/triangle.hpp>
 
@@ -128,6 +131,15 @@ void register_workload(const char* workload, const std::vector<TriangleQuery>& (
     add_stage_counters(s, queries());
   });
   benchmark::RegisterBenchmark(name("relation").c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, queries(), [](const TriangleQuery& q) { return relation(q.ray, q.triangle); });
+  });
+  // The same calls inside one DefaultFpEnvironment scope: the per-call environment check hoisted out.
+  benchmark::RegisterBenchmark(name("certified_scoped").c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
+    rotate_through(s, queries(), [](const TriangleQuery& q) { return intersect(q.ray, q.triangle); });
+  });
+  benchmark::RegisterBenchmark(name("relation_scoped").c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
     rotate_through(s, queries(), [](const TriangleQuery& q) { return relation(q.ray, q.triangle); });
   });
   benchmark::RegisterBenchmark(name("exact").c_str(), [queries](benchmark::State& s) {

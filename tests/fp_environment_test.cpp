@@ -6,6 +6,7 @@
 #include "support/entry_points.hpp"
 #include "support/oracle.hpp"
 
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <gtest/gtest.h>
@@ -145,6 +146,68 @@ TEST(FpEnvironment, StickyFlagsAreKeptExactly) {
   // All six flags already raised by the caller, default control bits: still the default environment, and
   // the flags stay exactly as they were (the library's own inexact results do not clear or add any).
   expect_same_answers_with_mxcsr(0x1F80u | 0x3Fu, "all flags raised");
+}
+
+// ---- DefaultFpEnvironment: the check hoisted out of a loop ----------------------------------------------
+
+// Whatever the thread's environment, a DefaultFpEnvironment scope installs the default one (so every entry
+// point inside answers as in the default environment), nested scopes change nothing, and the end of the
+// outermost scope restores the environment of its start exactly (control bits and flags).
+TEST(FpEnvironment, ScopeInstallsTheDefaultAndRestoresTheCallersExactly) {
+  (void)default_answers();
+  const unsigned saved = _mm_getcsr();
+  const std::pair<unsigned, const char*> cases[] = {
+      {0x1F80u | 0x8040u, "FTZ+DAZ"}, {0x1F80u | 0x4000u, "round upward"}, {0x0000u, "every trap enabled"},
+      {0x1F80u | 0x3Fu, "all flags raised"}, {0x1F80u, "default"}};
+  for (const auto& [mxcsr, mode] : cases) {
+    _mm_setcsr(mxcsr);
+    unsigned inside = 0, nested = 0;
+    test_support::EntryPointAnswers got;
+    {
+      const DefaultFpEnvironment outer;
+      inside = _mm_getcsr();
+      {
+        const DefaultFpEnvironment inner;
+        nested = _mm_getcsr();
+        test_support::environment_compared = 0xFFC0u;  // the calls keep the flags they raise (below)
+        got = answers_here();
+        test_support::environment_compared = ~std::uint64_t{0};
+      }
+      EXPECT_EQ(_mm_getcsr() & 0xFFC0u, 0x1F80u) << mode << ": the inner scope's end changed the control bits";
+    }
+    const unsigned after = _mm_getcsr();
+    _mm_setcsr(saved);
+    EXPECT_EQ(inside & 0xFFC0u, 0x1F80u) << mode << ": the scope did not install the default environment";
+    EXPECT_EQ(nested, inside) << mode << ": a nested scope changed the environment";
+    EXPECT_EQ(after, mxcsr) << mode << ": the environment was not restored exactly";
+    expect_same_answers(got, std::string("inside a DefaultFpEnvironment entered with ") + mode);
+  }
+}
+
+// Inside a scope the entry points skip their own save and restore: the inexact flag a computation raises
+// stays raised until the scope ends (an unscoped call clears it on return), and the scope's end clears it.
+TEST(FpEnvironment, EntryPointsInsideAScopeDoNotSaveAndRestore) {
+  // Hand-derived: d·n = 3, (p − o)·n = 1, t = 1/3 (inexact); the expected value is folded at compile time,
+  // so that no division of the test's own raises the flag.
+  const Ray ray{{0, 0, 0}, {3, 0, 0}};
+  const Plane plane{{1, 0, 0}, {1, 0, 0}};
+  constexpr double third = 1.0 / 3.0;
+  constexpr unsigned inexact = 0x20u;
+  const unsigned saved = _mm_getcsr();
+  _mm_setcsr(0x1F80u);
+  ASSERT_EQ(intersect(ray, plane).t, third);
+  const unsigned unscoped = _mm_getcsr();
+  unsigned scoped = 0;
+  {
+    const DefaultFpEnvironment env;
+    EXPECT_EQ(intersect(ray, plane).t, third);
+    scoped = _mm_getcsr();
+  }
+  const unsigned after = _mm_getcsr();
+  _mm_setcsr(saved);
+  EXPECT_EQ(unscoped & inexact, 0u) << "an unscoped call left its inexact flag raised";
+  EXPECT_EQ(scoped & inexact, inexact) << "inside a scope, the call still restored the flags (no check was skipped)";
+  EXPECT_EQ(after, 0x1F80u) << "the scope's end did not restore the flags";
 }
 #endif
 

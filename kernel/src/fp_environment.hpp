@@ -97,9 +97,15 @@ class FpEnvironmentScope {
 
 #endif
 
-// f() in the default environment, leaving the caller's environment exactly as it found it.
+// How many raykernel::DefaultFpEnvironment scopes are open on this thread (fp_environment.cpp): while one is,
+// the default environment is installed and the caller has promised not to change it.
+extern constinit thread_local int default_environment_scopes;
+
+// f() in the default environment, leaving the caller's environment exactly as it found it; inside a
+// DefaultFpEnvironment scope, just f().
 template <class F>
 [[gnu::always_inline]] inline decltype(auto) in_default_fp_environment(F&& f) {
+  if (default_environment_scopes > 0) return f();
   const FpEnvironmentScope scope;
   return f();
 }
