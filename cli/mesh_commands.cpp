@@ -104,13 +104,7 @@ int run_inside(const std::vector<std::string>& args) {
     const Argument kind = argument_kind(a, options_ended);
     if (kind == Argument::end_of_options) continue;
     if (kind == Argument::operand) {
-      if (have_points) {
-        std::cerr << "raykernel inside: more than one points file (" << quote(points_path, points_path.size()) << ", "
-                  << quote(a, a.size()) << ")\n";
-        return exit_usage;
-      }
-      points_path = a;
-      have_points = true;
+      if (!take_single_operand("inside", "points file", a, points_path, have_points)) return exit_usage;
     } else if (a == "--help" || a == "-h") {
       std::cout << inside_help;
       return finish_standard_output(exit_ok);

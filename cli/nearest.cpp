@@ -166,13 +166,7 @@ int run_nearest(const std::vector<std::string>& args) {
     const Argument kind = argument_kind(a, options_ended);
     if (kind == Argument::end_of_options) continue;
     if (kind == Argument::operand) {
-      if (have_rays) {
-        std::cerr << "raykernel nearest: more than one rays file (" << quote(rays_path, rays_path.size()) << ", "
-                  << quote(a, a.size()) << ")\n";
-        return exit_usage;
-      }
-      rays_path = a;
-      have_rays = true;
+      if (!take_single_operand("nearest", "rays file", a, rays_path, have_rays)) return exit_usage;
     } else if (a == "--help" || a == "-h") {
       std::cout << nearest_help;
       return finish_standard_output(exit_ok);

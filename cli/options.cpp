@@ -38,6 +38,18 @@ Argument argument_kind(const std::string& arg, bool& options_ended) {
   return arg.size() > 1 && arg[0] == '-' ? Argument::option : Argument::operand;
 }
 
+bool take_single_operand(std::string_view command, std::string_view what, const std::string& operand,
+                         std::string& path, bool& given) {
+  if (given) {
+    std::cerr << "raykernel " << command << ": more than one " << what << " (" << quote(path, path.size()) << ", "
+              << quote(operand, operand.size()) << ")\n";
+    return false;
+  }
+  path = operand;
+  given = true;
+  return true;
+}
+
 std::string input_name(const std::string& path) {
   return path.empty() || path == "-" ? "standard input" : "'" + printable(path) + "'";
 }

@@ -48,6 +48,11 @@ template <class Options>
 enum class Argument { end_of_options, option, operand };
 [[nodiscard]] Argument argument_kind(const std::string& arg, bool& options_ended);
 
+// Keeps the one file operand a command takes in `path` and sets `given`; a second operand is a usage error:
+// false after "raykernel COMMAND: more than one WHAT ('FIRST', 'SECOND')" on stderr.
+[[nodiscard]] bool take_single_operand(std::string_view command, std::string_view what, const std::string& operand,
+                                       std::string& path, bool& given);
+
 // How messages name an input: "standard input" for "-" or "", else the path in quotes ('rays.txt').
 [[nodiscard]] std::string input_name(const std::string& path);
 

@@ -180,13 +180,7 @@ int run_render(const std::vector<std::string>& args) {
     const Argument kind = argument_kind(a, options_ended);
     if (kind == Argument::end_of_options) continue;
     if (kind == Argument::operand) {
-      if (have_scene) {
-        std::cerr << "raykernel render: more than one scene file (" << quote(scene_path, scene_path.size()) << ", "
-                  << quote(a, a.size()) << ")\n";
-        return exit_usage;
-      }
-      scene_path = a;
-      have_scene = true;
+      if (!take_single_operand("render", "scene file", a, scene_path, have_scene)) return exit_usage;
     } else if (a == "--help" || a == "-h") {
       std::cout << formatted(render_help, limits::max_image_side, limits::max_samples_per_pixel, limits::max_threads);
       return finish_standard_output(exit_ok);

@@ -153,13 +153,7 @@ int run_triangle(const std::vector<std::string>& args) {
     const Argument kind = argument_kind(a, options_ended);
     if (kind == Argument::end_of_options) continue;
     if (kind == Argument::operand) {
-      if (have_file) {
-        std::cerr << "raykernel triangle: more than one input file (" << quote(file, file.size()) << ", "
-                  << quote(a, a.size()) << ")\n";
-        return exit_usage;
-      }
-      file = a;
-      have_file = true;
+      if (!take_single_operand("triangle", "input file", a, file, have_file)) return exit_usage;
     } else if (a == "--help" || a == "-h") {
       std::cout << triangle_help;
       return finish_standard_output(exit_ok);

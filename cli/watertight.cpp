@@ -240,12 +240,7 @@ int run_watertight(const std::vector<std::string>& args) {
     const Argument kind = argument_kind(a, options_ended);
     if (kind == Argument::end_of_options) continue;
     if (kind == Argument::operand) {
-      if (have_mesh) {
-        std::cerr << "raykernel watertight: more than one mesh file\n";
-        return exit_usage;
-      }
-      mesh_path = a;
-      have_mesh = true;
+      if (!take_single_operand("watertight", "mesh file", a, mesh_path, have_mesh)) return exit_usage;
     } else if (a == "--help" || a == "-h") {
       std::cout << watertight_help;
       return finish_standard_output(exit_ok);

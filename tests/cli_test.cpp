@@ -595,6 +595,20 @@ TEST(Options, DoubleDashEndsTheOptions) {
   EXPECT_EQ(shell("classify -- -q.txt --hex").first, 2);  // "--hex" after "--" is a second file
 }
 
+TEST(Options, EveryCommandRefusesASecondFileOperandNamingBoth) {
+  // Each command takes one file operand; the message names the command, what the operand is, and both files
+  // (neither needs to exist: the arguments are checked before anything is opened).
+  const std::pair<const char*, const char*> commands[] = {
+      {"classify", "input file"}, {"triangle", "input file"}, {"nearest --planes p.txt", "rays file"},
+      {"inside --mesh m.obj", "points file"}, {"render", "scene file"}, {"watertight", "mesh file"}};
+  for (const auto& [command, what] : commands) {
+    const CliRun r = run(std::string(command) + " first.txt second.txt");
+    const std::string name = std::string(command).substr(0, std::string(command).find(' '));
+    EXPECT_EQ(r.status, 2) << command;
+    EXPECT_EQ(r.err, "raykernel " + name + ": more than one " + what + " ('first.txt', 'second.txt')\n") << command;
+  }
+}
+
 TEST(Options, DemoValuesAreCheckedNotClamped) {
   CliRun r = run("demo --per-kind");
   EXPECT_EQ(r.status, 2);
