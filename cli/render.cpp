@@ -11,6 +11,7 @@
 
 #include <raykernel/camera.hpp>
 #include <raykernel/mesh_queries.hpp>
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/nearest_hit.hpp>
 
 #include <algorithm>
@@ -41,10 +42,13 @@ struct Pass {
     return (std::size_t{row} * width() + i) * samples() + s;
   }
   // Runs `pixel_job(row, i, j, samples)` for every pixel, rows in parallel: row `row` of the image is
-  // j = height − 1 − row (j counts from the bottom), `samples` the pixel's sample positions.
+  // j = height − 1 − row (j counts from the bottom), `samples` the pixel's sample positions. Each row runs in
+  // one DefaultFpEnvironment scope: the library's environment check once per row, not once per call (the
+  // render changes no floating-point environment).
   template <class PixelJob>
   void for_each_pixel(PixelJob pixel_job) const {
     for_each_row(height(), threads, progress, [&](std::uint32_t row) {
+      const DefaultFpEnvironment environment;
       const std::uint32_t j = height() - 1 - row;
       for (std::uint32_t i = 0; i < width(); ++i) pixel_job(row, i, j, stratified_samples(samples(), scene.seed, i, j));
     });
