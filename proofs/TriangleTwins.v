@@ -460,6 +460,21 @@ Definition num_stage2_b (o a b c : TVec) : CTermB :=
           (fst cx) (snd cx) (fst cy) (snd cy) (fst cz) (snd cz).
 Definition den_stage2_b (o d a b c : TVec) : CTermB :=
   cterm_add_b (cterm_add_b (pi_stage2_b o d b c) (pi_stage2_b o d c a)) (pi_stage2_b o d a b).
+(** The lanes' [broadcast<Lanes4>(x)] is [V{} + x] (lanes.hpp): +0 ⊕ x, which is x except that −0 becomes +0.
+    [triangle_relation_lanes] broadcasts d, [triangle_compensated_lanes] broadcasts o (for ê_b, ê_c), so their
+    lanes are the values of a query with that vector's −0 components replaced by +0 (the same reals). *)
+Definition bcast (v : TVec) : TVec := TV (fadd fzero (tx v)) (fadd fzero (ty v)) (fadd fzero (tz v)).
+
+(** Lane 3 of [triangle_compensated_lanes]: x = TwoDiff(a, o) with the query's o, y = TwoDiff(b, o'),
+    z = TwoDiff(c, o') with o' = broadcast(o). *)
+Definition num_stage2_lane_b (o a b c : TVec) : CTermB :=
+  let o' := bcast o in
+  let ax := two_diff_b (tx a) (tx o) in let ay := two_diff_b (ty a) (ty o) in let az := two_diff_b (tz a) (tz o) in
+  let bx := two_diff_b (tx b) (tx o') in let by_ := two_diff_b (ty b) (ty o') in let bz := two_diff_b (tz b) (tz o') in
+  let cx := two_diff_b (tx c) (tx o') in let cy := two_diff_b (ty c) (ty o') in let cz := two_diff_b (tz c) (tz o') in
+  cdet3_b (fst ax) (snd ax) (fst ay) (snd ay) (fst az) (snd az) (fst bx) (snd bx) (fst by_) (snd by_) (fst bz) (snd bz)
+          (fst cx) (snd cx) (fst cy) (snd cy) (fst cz) (snd cz).
+
 (** The absolute term of num in stage 2: of the high parts of TwoDiff(a, o). *)
 Definition ehigh (v o : TVec) : TVec :=
   TV (fst (two_diff_b (tx v) (tx o))) (fst (two_diff_b (ty v) (ty o))) (fst (two_diff_b (tz v) (tz o))).

@@ -37,6 +37,10 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("build_expansions_p", Twins.run_build_expansions_p);
   ("compare_expansion", Twins.run_compare_expansion);
   ("compare_expansion_p", Twins.run_compare_expansion_p);
+  ("tri_filter", Twins.run_tri_filter);
+  ("tri_relation_lanes", Twins.run_tri_relation_lanes);
+  ("tri_compensated", Twins.run_tri_compensated);
+  ("tri_compensated_lanes", Twins.run_tri_compensated_lanes);
 ]
 
 let () =
