@@ -727,3 +727,83 @@ Proof.
   unfold e. rewrite (E _ T), cpp_triangle_compensated_den_relative, (proj2 (absolute_bv_twin d FA)).
   apply den_compensated_encloses; apply tvec_R_doubles.
 Qed.
+
+(** ** The lanes of the fast paths ([triangle_relation_lanes], [triangle_compensated_lanes]). *)
+
+Lemma bcast_val : forall x, fin (fadd fzero x) = true -> fin x = true /\ B2R (fadd fzero x) = B2R x.
+Proof.
+  intros x H. destruct (fadd_inv _ _ H) as [_ [Fx V]]. split; [exact Fx|].
+  rewrite V. change (B2R fzero) with 0. rewrite Rplus_0_l. apply RN_binary64, binary64_B2R.
+Qed.
+
+Lemma bcast_twin : forall v, tfin (bcast v) -> tfin v /\ tvec_R (bcast v) = tvec_R v.
+Proof.
+  intros [x y z] [Fx [Fy Fz]]. unfold bcast, tfin, tvec_R in *. cbn [tx ty tz] in *.
+  destruct (bcast_val _ Fx) as [? Ex]. destruct (bcast_val _ Fy) as [? Ey]. destruct (bcast_val _ Fz) as [? Ez].
+  rewrite Ex, Ey, Ez. tsplit; auto.
+Qed.
+
+(** Lanes 0–2 of [triangle_relation_lanes] (d broadcast): a certified sign is the exact sign of π(p, q);
+    lane 3, π(b, c) seen from a, is the instance o := a, (p, q) := (b, c), whose exact value is
+    d·((b − a) × (c − a)), den's. *)
+Corollary pi_lane_filter_twin_sound : forall o d p q : TVec,
+  let s := det3_filter_lanes_b (pi_stage1_b o (bcast d) p q) Cpp.triangle_filter_pi_relative (absolute_bv (bcast d)) in
+  certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
+  (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
+Proof.
+  intros o d p q s. destruct (pi_filter_twin_sound o (bcast d) p q) as [C F]. fold s in C, F.
+  destruct (Z.eq_dec s uncertain_lane) as [U|U].
+  - split; [rewrite U; exact I | intros X; contradiction].
+  - destruct (F U) as [Fo [Fd [Fp Fq]]]. destruct (bcast_twin d Fd) as [Fd' E].
+    rewrite E in C. split; [exact C | intros _; tsplit; assumption].
+Qed.
+
+(** Lanes 0–2 of [triangle_compensated_lanes] (o broadcast): a finite radius encloses π(p, q). *)
+Corollary pi_lane_compensated_twin_sound : forall o d p q : TVec,
+  let e := det3_enclosure_b (pi_stage2_b (bcast o) d p q) Cpp.triangle_compensated_relative (absolute_bv d) in
+  fin (radiusb e) = true ->
+  tfin o /\ tfin d /\ tfin p /\ tfin q /\ encloses (enc_R e) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
+Proof.
+  intros o d p q e H. destruct (pi_compensated_twin_sound (bcast o) d p q H) as [Fo [Fd [Fp [Fq C]]]].
+  destruct (bcast_twin o Fo) as [Fo' E]. rewrite E in C. tsplit; assumption.
+Qed.
+
+(** den = (lane 0 + lane 1) + lane 2 of [triangle_compensated_lanes]. *)
+Corollary den_lane_compensated_twin_sound : forall o d a b c : TVec,
+  let e := det3_enclosure_b (den_stage2_b (bcast o) d a b c) Cpp.triangle_compensated_den_relative (absolute_bv d) in
+  fin (radiusb e) = true ->
+  tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
+  encloses (enc_R e) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros o d a b c e H. destruct (den_compensated_twin_sound (bcast o) d a b c H) as [Fo [Fd [Fa [Fb [Fc C]]]]].
+  destruct (bcast_twin o Fo) as [Fo' E]. rewrite E in C. tsplit; assumption.
+Qed.
+
+Lemma num_stage2_lane_twin : forall o a b c, fin (clb (num_stage2_lane_b o a b c)) = true ->
+  fin (cmb (num_stage2_lane_b o a b c)) = true ->
+  tfin o /\ tfin a /\ tfin b /\ tfin c /\
+  ctw (num_stage2_lane_b o a b c) (num_stage2 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros [ox oy oz] [ax ay az] [bx by_ bz] [cx cy cz] H Hm. unfold num_stage2_lane_b, bcast in *. cbn [tx ty tz] in *.
+  destruct (cdet3_twin _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ H Hm)
+    as [[? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? ?]]]]]]]]]]]]]]]]] T].
+  two_diff_leaves T.
+  repeat match goal with
+  | F : fin (fadd fzero ?x) = true |- _ =>
+      let E := fresh in destruct (bcast_val x F) as [? E]; rewrite E in T; clear F E
+  end.
+  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+Qed.
+
+(** Lane 3 of [triangle_compensated_lanes]: a finite radius encloses num. *)
+Theorem num_lane_compensated_twin_sound : forall o a b c : TVec,
+  let e := det3_enclosure_b (num_stage2_lane_b o a b c) Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
+  fin (radiusb e) = true ->
+  tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros o a b c e H. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
+  destruct (num_stage2_lane_twin o a b c Fl Fm) as [Fo [Fa [Fb [Fc T]]]].
+  tsplit; try assumption.
+  unfold e. rewrite (E _ T), cpp_triangle_compensated_relative, (proj2 (proj2 (ehigh_twin a o FA))).
+  apply num_compensated_encloses; apply tvec_R_doubles.
+Qed.

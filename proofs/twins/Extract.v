@@ -179,15 +179,15 @@ Definition tri_filter (x : list Z) : list Z :=
   | _ => [] end.
 
 (** [triangle_relation_lanes] (lanes πa, πb, πc, and π(b, c) seen from a; d broadcast, [bcast]) with its
-    absolute lanes and the π constant on every lane, then [triangle_num_filter] and num's sign.  (The
-    absolute term is of d itself: |−0| = |+0|.) *)
+    absolute lanes (of the broadcast d) and the π constant on every lane, then [triangle_num_filter] and
+    num's sign. *)
 Definition tri_relation_lanes (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
     let o := tv ox oy oz in let d := tv dx dy dz in let a := tv ax ay az in let bb := tv bx by_ bz in
     let c := tv cx cy cz in
     let d' := bcast d in
     let l := [pi_stage1_b o d' bb c; pi_stage1_b o d' c a; pi_stage1_b o d' a bb; pi_stage1_b a d' bb c] in
-    let ad := absolute_bv d in let num := num_stage1_b o a bb c in let ae := absolute_bv (tsub a o) in
+    let ad := absolute_bv d' in let num := num_stage1_b o a bb c in let ae := absolute_bv (tsub a o) in
     flat_map fterm_bits l ++ [b ad] ++ map (fun t => det3_filter_lanes_b t Cpp.triangle_filter_pi_relative ad) l ++
     fterm_bits num ++ [b ae; det3_filter_lanes_b num Cpp.triangle_filter_num_relative ae]
   | _ => [] end.

@@ -83,7 +83,8 @@ class Source {
   }
   // A hard ray–triangle query (testkit/triangle_queries.hpp: through vertices and edges, ulps beside them,
   // slivers, needles, degenerate, parallel, coplanar, rounding ties, wide, tiny and huge scales), as the 15
-  // inputs "o d a b c"; 1 in 8 with a raw special value in one component, 1 in 16 wholly raw.
+  // inputs "o d a b c"; 1 in 8 with a raw special value in one component, 1 in 8 with the signs of its zeros
+  // flipped, 1 in 16 wholly raw.
   std::vector<double> triangle_query() {
     if (chance(16)) {
       std::vector<double> x;
@@ -97,6 +98,9 @@ class Source {
                              q.triangle.a.z,    q.triangle.b.x,    q.triangle.b.y, q.triangle.b.z,
                              q.triangle.c.x,    q.triangle.c.y,    q.triangle.c.z};
     if (chance(8)) x[below(15)] = raw();
+    if (chance(8))  // every zero component's sign flipped: the lanes' broadcast maps −0 to +0 (TriangleTwins.v, bcast)
+      for (double& c : x)
+        if (c == 0) c = -c;
     return x;
   }
   testkit::PlanePair plane_pair() { return testkit::make_plane_pair_near_tie([this] { return word(); }); }
