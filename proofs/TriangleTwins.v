@@ -19,11 +19,11 @@
     - [det3_twin]: a finite stage-1 magnitude m means every leaf is finite and the twin's value and
       magnitude are the model's ([det3] of TriangleFilter.v); [det3_filter_lanes_twin]: a certain sign
       means m and the absolute term are finite, and the sign is the model's;
-    - [pi_filter_twin_sound], [num_filter_twin_sound], [den_filter_twin_sound]: a sign stage 1 certifies is
+    - [triangle_pi_filter_twin_sound], [triangle_num_filter_twin_sound], [triangle_den_filter_twin_sound]: a sign stage 1 certifies is
       the sign of the exact value (TriangleFilter.v's [pi_filter_sound] etc. for the bits), and every
       input it depends on is finite;
     - [cdet3_twin]: finite low part and magnitude mean a finite stage 2 equal to the model's [cdet3];
-      [pi_compensated_twin_sound], [num_compensated_twin_sound], [den_compensated_twin_sound]: when the
+      [triangle_pi_compensated_twin_sound], [triangle_num_compensated_twin_sound], [triangle_den_compensated_twin_sound]: when the
       enclosure's radius is finite, it encloses the exact value (TriangleCompensated.v's
       [*_compensated_encloses] for the bits; the C++ puts +inf in the radius when h or l is not finite). *)
 
@@ -352,7 +352,7 @@ Qed.
 
 (** End to end, for every 64-bit pattern of o, d, p, q: a sign the stage-1 filter certifies for
     π(p, q) = d·((p − o) × (q − o)) is its exact sign, and then o, d, p, q are finite. *)
-Theorem pi_filter_twin_sound : forall o d p q : TVec,
+Theorem triangle_pi_filter_twin_sound : forall o d p q : TVec,
   let s := det3_filter_lanes_b (pi_stage1_b o d p q) Cpp.triangle_filter_pi_relative (absolute_bv d) in
   certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
@@ -371,7 +371,7 @@ Proof.
 Qed.
 
 (** num = (a − o)·((b − o) × (c − o)), with the absolute term of ê_a. *)
-Theorem num_filter_twin_sound : forall o a b c : TVec,
+Theorem triangle_num_filter_twin_sound : forall o a b c : TVec,
   let s := det3_filter_lanes_b (num_stage1_b o a b c) Cpp.triangle_filter_num_relative (absolute_bv (tsub a o)) in
   certifies (sign_from_Z s) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin a /\ tfin b /\ tfin c).
@@ -392,7 +392,7 @@ Proof.
 Qed.
 
 (** den = (πa ⊕ πb) ⊕ πc: a certified sign is the sign of d·((b − a) × (c − a)) summed as πa + πb + πc. *)
-Theorem den_filter_twin_sound : forall o d a b c : TVec,
+Theorem triangle_den_filter_twin_sound : forall o d a b c : TVec,
   let s := det3_filter_lanes_b (den_stage1_b o d a b c) Cpp.triangle_filter_den_relative (absolute_bv d) in
   certifies (sign_from_Z s) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c).
@@ -689,7 +689,7 @@ Qed.
 
 (** End to end: when the radius stage 2 returns for π(p, q) is finite, the enclosure holds the exact value
     (TriangleCompensated.v's [pi_compensated_encloses] for the bits), and o, d, p, q are finite. *)
-Theorem pi_compensated_twin_sound : forall o d p q : TVec,
+Theorem triangle_pi_compensated_twin_sound : forall o d p q : TVec,
   let e := det3_enclosure_b (pi_stage2_b o d p q) Cpp.triangle_compensated_relative (absolute_bv d) in
   fin (radiusb e) = true ->
   tfin o /\ tfin d /\ tfin p /\ tfin q /\ encloses (enc_R e) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
@@ -702,7 +702,7 @@ Proof.
 Qed.
 
 (** num: with the absolute term of the high parts of TwoDiff(a, o). *)
-Theorem num_compensated_twin_sound : forall o a b c : TVec,
+Theorem triangle_num_compensated_twin_sound : forall o a b c : TVec,
   let e := det3_enclosure_b (num_stage2_b o a b c) Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
   fin (radiusb e) = true ->
   tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
@@ -715,7 +715,7 @@ Proof.
 Qed.
 
 (** den = (πa + πb) + πc in double-doubles, with K_den. *)
-Theorem den_compensated_twin_sound : forall o d a b c : TVec,
+Theorem triangle_den_compensated_twin_sound : forall o d a b c : TVec,
   let e := det3_enclosure_b (den_stage2_b o d a b c) Cpp.triangle_compensated_den_relative (absolute_bv d) in
   fin (radiusb e) = true ->
   tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
@@ -746,12 +746,12 @@ Qed.
 (** Lanes 0–2 of [triangle_relation_lanes] (d broadcast): a certified sign is the exact sign of π(p, q);
     lane 3, π(b, c) seen from a, is the instance o := a, (p, q) := (b, c), whose exact value is
     d·((b − a) × (c − a)), den's. *)
-Corollary pi_lane_filter_twin_sound : forall o d p q : TVec,
+Corollary triangle_pi_lane_filter_twin_sound : forall o d p q : TVec,
   let s := det3_filter_lanes_b (pi_stage1_b o (bcast d) p q) Cpp.triangle_filter_pi_relative (absolute_bv (bcast d)) in
   certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
 Proof.
-  intros o d p q s. destruct (pi_filter_twin_sound o (bcast d) p q) as [C F]. fold s in C, F.
+  intros o d p q s. destruct (triangle_pi_filter_twin_sound o (bcast d) p q) as [C F]. fold s in C, F.
   destruct (Z.eq_dec s uncertain_lane) as [U|U].
   - split; [rewrite U; exact I | intros X; contradiction].
   - destruct (F U) as [Fo [Fd [Fp Fq]]]. destruct (bcast_twin d Fd) as [Fd' E].
@@ -759,23 +759,23 @@ Proof.
 Qed.
 
 (** Lanes 0–2 of [triangle_compensated_lanes] (o broadcast): a finite radius encloses π(p, q). *)
-Corollary pi_lane_compensated_twin_sound : forall o d p q : TVec,
+Corollary triangle_pi_lane_compensated_twin_sound : forall o d p q : TVec,
   let e := det3_enclosure_b (pi_stage2_b (bcast o) d p q) Cpp.triangle_compensated_relative (absolute_bv d) in
   fin (radiusb e) = true ->
   tfin o /\ tfin d /\ tfin p /\ tfin q /\ encloses (enc_R e) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
 Proof.
-  intros o d p q e H. destruct (pi_compensated_twin_sound (bcast o) d p q H) as [Fo [Fd [Fp [Fq C]]]].
+  intros o d p q e H. destruct (triangle_pi_compensated_twin_sound (bcast o) d p q H) as [Fo [Fd [Fp [Fq C]]]].
   destruct (bcast_twin o Fo) as [Fo' E]. rewrite E in C. tsplit; assumption.
 Qed.
 
 (** den = (lane 0 + lane 1) + lane 2 of [triangle_compensated_lanes]. *)
-Corollary den_lane_compensated_twin_sound : forall o d a b c : TVec,
+Corollary triangle_den_lane_compensated_twin_sound : forall o d a b c : TVec,
   let e := det3_enclosure_b (den_stage2_b (bcast o) d a b c) Cpp.triangle_compensated_den_relative (absolute_bv d) in
   fin (radiusb e) = true ->
   tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
   encloses (enc_R e) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)).
 Proof.
-  intros o d a b c e H. destruct (den_compensated_twin_sound (bcast o) d a b c H) as [Fo [Fd [Fa [Fb [Fc C]]]]].
+  intros o d a b c e H. destruct (triangle_den_compensated_twin_sound (bcast o) d a b c H) as [Fo [Fd [Fa [Fb [Fc C]]]]].
   destruct (bcast_twin o Fo) as [Fo' E]. rewrite E in C. tsplit; assumption.
 Qed.
 
@@ -796,7 +796,7 @@ Proof.
 Qed.
 
 (** Lane 3 of [triangle_compensated_lanes]: a finite radius encloses num. *)
-Theorem num_lane_compensated_twin_sound : forall o a b c : TVec,
+Theorem triangle_num_lane_compensated_twin_sound : forall o a b c : TVec,
   let e := det3_enclosure_b (num_stage2_lane_b o a b c) Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
   fin (radiusb e) = true ->
   tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
