@@ -25,7 +25,13 @@
     - [cdet3_twin]: finite low part and magnitude mean a finite stage 2 equal to the model's [cdet3];
       [triangle_pi_compensated_twin_sound], [triangle_num_compensated_twin_sound], [triangle_den_compensated_twin_sound]: when the
       enclosure's radius is finite, it encloses the exact value (TriangleCompensated.v's
-      [*_compensated_encloses] for the bits; the C++ puts +inf in the radius when h or l is not finite). *)
+      [*_compensated_encloses] for the bits; the C++ puts +inf in the radius when h or l is not finite);
+    - the fast paths' lanes ([bcast]: the lanes' broadcast maps −0 to +0): [triangle_pi_lane_filter_twin_sound]
+      ([triangle_relation_lanes]), [triangle_pi_lane_compensated_twin_sound],
+      [triangle_num_lane_compensated_twin_sound], [triangle_den_lane_compensated_twin_sound]
+      ([triangle_compensated_lanes] and den summed from it), and the signs fast_triangle_intersection takes
+      from the stage-1 view of those lanes ([filter_view]: [fview]): [triangle_pi_lane_view_filter_twin_sound],
+      [triangle_num_lane_view_filter_twin_sound], [triangle_den_lane_view_filter_twin_sound]. *)
 
 From Coq Require Import Reals Lra Lia ZArith.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -806,4 +812,190 @@ Proof.
   tsplit; try assumption.
   unfold e. rewrite (E _ T), cpp_triangle_compensated_relative, (proj2 (proj2 (ehigh_twin a o FA))).
   apply num_compensated_encloses; apply tvec_R_doubles.
+Qed.
+
+(** ** The fast path's stage-1 signs, taken from stage 2's high parts ([filter_view]). *)
+
+(** [filter_view(t)] = {t.h, t.m}. *)
+Definition fview (t : CTermB) : FTermB := {| fvb := chb t; fmb := cmb t |}.
+
+(** Stage 2's high parts are stage 1's operations, except that a difference is TwoSum(a.h, −b.h).hi,
+    i.e. a.h ⊕ (−b.h), where stage 1 has a.v ⊖ b.v (the same bits, not the same Flocq term). *)
+Definition term_subn_b (a b : FTermB) : FTermB :=
+  {| fvb := fadd (fvb a) (fneg (fvb b)); fmb := fadd (fmb a) (fmb b) |}.
+Definition det3n_b (x0 x1 x2 y0 y1 y2 z0 z1 z2 : float) : FTermB :=
+  term_add_b (term_add_b (leaf_scale_b x0 (term_subn_b (leaf_mul_b y1 z2) (leaf_mul_b y2 z1)))
+                         (leaf_scale_b x1 (term_subn_b (leaf_mul_b y2 z0) (leaf_mul_b y0 z2))))
+             (leaf_scale_b x2 (term_subn_b (leaf_mul_b y0 z1) (leaf_mul_b y1 z0))).
+
+Lemma cdet3_view : forall xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2,
+  fview (cdet3_b xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2) =
+  det3n_b xh0 xh1 xh2 yh0 yh1 yh2 zh0 zh1 zh2.
+Proof. reflexivity. Qed.
+
+Lemma term_subn_back : forall a b, fin (fmb (term_subn_b a b)) = true -> fin (fmb a) = true /\ fin (fmb b) = true.
+Proof. intros a b H. exact (fadd_fin _ _ H). Qed.
+
+Lemma term_subn_tw : forall a b A B, ftw a A -> ftw b B -> fin (fmb (term_subn_b a b)) = true ->
+  ftw (term_subn_b a b) (term_sub A B).
+Proof.
+  intros a b A B [Fva [Fma [Eva [Ema Da]]]] [Fvb [Fmb [Evb [Emb Db]]]] H. cbn [fmb term_subn_b] in H.
+  pose proof (fadd_val _ _ H) as Vm.
+  assert (Fn : fin (fneg (fvb b)) = true) by (rewrite fneg_fin; exact Fvb).
+  assert (L : Rabs (RN (B2R (fvb a) + B2R (fneg (fvb b)))) <= B2R (fadd (fmb a) (fmb b))).
+  { rewrite Vm, <- RN_abs, fneg_val. apply RN_le. eapply Rle_trans; [apply Rabs_triang|].
+    rewrite Rabs_Ropp. lra. }
+  destruct (fadd_dominated _ _ _ Fva Fn L) as [Fs Vs].
+  unfold ftw, term_subn_b, term_sub. cbn [fvb fmb fv fm]. rewrite Vs in *.
+  repeat split; try assumption.
+  - rewrite fneg_val, Eva, Evb. reflexivity.
+  - now rewrite Vm, Ema, Emb.
+Qed.
+
+Theorem det3n_twin : forall x0 x1 x2 y0 y1 y2 z0 z1 z2,
+  fin (fmb (det3n_b x0 x1 x2 y0 y1 y2 z0 z1 z2)) = true ->
+  (fin x0 = true /\ fin x1 = true /\ fin x2 = true /\ fin y0 = true /\ fin y1 = true /\ fin y2 = true /\
+   fin z0 = true /\ fin z1 = true /\ fin z2 = true) /\
+  ftw (det3n_b x0 x1 x2 y0 y1 y2 z0 z1 z2)
+      (det3 (B2R x0) (B2R x1) (B2R x2) (B2R y0) (B2R y1) (B2R y2) (B2R z0) (B2R z1) (B2R z2)).
+Proof.
+  intros x0 x1 x2 y0 y1 y2 z0 z1 z2 H. unfold det3n_b in *.
+  repeat match goal with
+  | H : fin (fmb (term_subn_b ?a ?b)) = true |- _ =>
+      tryif (have_fin (fmb a)) then fail else destruct (term_subn_back a b H)
+  | _ => progress ftw_back
+  end.
+  split; [tsplit; assumption|]. unfold det3.
+  repeat match goal with
+  | |- ftw (term_add_b _ _) _ => apply term_add_tw
+  | |- ftw (term_subn_b _ _) _ => apply term_subn_tw
+  | |- ftw (leaf_scale_b _ _) _ => apply leaf_scale_tw
+  | |- ftw (leaf_mul_b _ _) _ => apply leaf_mul_tw
+  | |- _ => assumption
+  end.
+Qed.
+
+(** The high parts of the leaves TwoDiff(v, o). *)
+Ltac view_leaves T :=
+  repeat match goal with
+  | F : fin (fst (two_diff_b ?v ?o)) = true |- _ =>
+      let E := fresh in destruct (two_diff_fst_twin v o F) as [? [? E]]; rewrite E in T; clear F E
+  end.
+
+Lemma pi_view_twin : forall o d p q, fin (fmb (fview (pi_stage2_b o d p q))) = true ->
+  tfin o /\ tfin d /\ tfin p /\ tfin q /\
+  ftw (fview (pi_stage2_b o d p q)) (pi_stage1 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
+Proof.
+  intros [ox oy oz] [dx dy dz] [px py pz] [qx qy qz] H. unfold pi_stage2_b in *. cbn [tx ty tz] in *.
+  rewrite cdet3_view in *.
+  destruct (det3n_twin _ _ _ _ _ _ _ _ _ H) as [[? [? [? [? [? [? [? [? ?]]]]]]]] T].
+  view_leaves T.
+  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+Qed.
+
+Lemma num_lane_view_twin : forall o a b c, fin (fmb (fview (num_stage2_lane_b o a b c))) = true ->
+  tfin o /\ tfin a /\ tfin b /\ tfin c /\
+  ftw (fview (num_stage2_lane_b o a b c)) (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros [ox oy oz] [ax ay az] [bx by_ bz] [cx cy cz] H. unfold num_stage2_lane_b, bcast in *. cbn [tx ty tz] in *.
+  rewrite cdet3_view in *.
+  destruct (det3n_twin _ _ _ _ _ _ _ _ _ H) as [[? [? [? [? [? [? [? [? ?]]]]]]]] T].
+  view_leaves T.
+  repeat match goal with
+  | F : fin (fadd fzero ?x) = true |- _ =>
+      let E := fresh in destruct (bcast_val x F) as [? E]; rewrite E in T; clear F E
+  end.
+  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+Qed.
+
+Lemma fview_nonneg : forall t, nonneg (cmb t) -> nonneg (fmb (fview t)).
+Proof. intros t N. exact N. Qed.
+
+Lemma cdet3_b_nonneg : forall xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2,
+  nonneg (fmb (fview (cdet3_b xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2))).
+Proof.
+  intros. rewrite cdet3_view. unfold det3n_b, term_add_b, term_subn_b, leaf_scale_b, leaf_mul_b. cbn [fmb].
+  repeat first [apply fadd_nonneg | apply fmul_nonneg | apply fabs_nonneg].
+Qed.
+
+Lemma pi_view_nonneg : forall o d p q, nonneg (fmb (fview (pi_stage2_b o d p q))).
+Proof. intros. apply cdet3_b_nonneg. Qed.
+Lemma num_lane_view_nonneg : forall o a b c, nonneg (fmb (fview (num_stage2_lane_b o a b c))).
+Proof. intros. apply cdet3_b_nonneg. Qed.
+
+(** Lanes 0–2 of [triangle_compensated_lanes] (o broadcast), their stage-1 view: a sign certified by
+    [det3_filter_lanes(filter_view(lanes), π, A)] is the exact sign of π(p, q). *)
+Theorem triangle_pi_lane_view_filter_twin_sound : forall o d p q : TVec,
+  let s := det3_filter_lanes_b (fview (pi_stage2_b (bcast o) d p q)) Cpp.triangle_filter_pi_relative (absolute_bv d) in
+  certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
+  (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
+Proof.
+  intros o d p q s.
+  destruct cpp_triangle_constants as [_ [_ [_ [_ [FC [NC _]]]]]].
+  destruct (Z.eq_dec s uncertain_lane) as [U|U].
+  - split; [rewrite U; exact I | intros C; contradiction].
+  - destruct (det3_filter_lanes_twin _ (pi_stage1 (tvec_R (bcast o)) (tvec_R d) (tvec_R p) (tvec_R q)) _ _ FC NC
+                (pi_view_nonneg (bcast o) d p q) (absolute_bv_nonneg _)
+                (fun F => proj2 (proj2 (proj2 (proj2 (pi_view_twin (bcast o) d p q F))))) U) as [Fm [FA E]].
+    destruct (pi_view_twin (bcast o) d p q Fm) as [Fo [Fd [Fp [Fq _]]]].
+    destruct (bcast_twin o Fo) as [Fo' Eo].
+    split; [| intros _; tsplit; assumption].
+    unfold s. rewrite E, cpp_triangle_filter_pi_relative, (proj2 (absolute_bv_twin d FA)), <- Eo.
+    apply pi_filter_sound; apply tvec_R_doubles.
+Qed.
+
+(** Lane 3 (num), its stage-1 view with the num constant. *)
+Theorem triangle_num_lane_view_filter_twin_sound : forall o a b c : TVec,
+  let s := det3_filter_lanes_b (fview (num_stage2_lane_b o a b c)) Cpp.triangle_filter_num_relative
+                               (absolute_bv (ehigh a o)) in
+  certifies (sign_from_Z s) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) /\
+  (s <> uncertain_lane -> tfin o /\ tfin a /\ tfin b /\ tfin c).
+Proof.
+  intros o a b c s.
+  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]].
+  destruct (Z.eq_dec s uncertain_lane) as [U|U].
+  - split; [rewrite U; exact I | intros C; contradiction].
+  - destruct (det3_filter_lanes_twin _ (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
+                (num_lane_view_nonneg o a b c) (absolute_bv_nonneg _)
+                (fun F => proj2 (proj2 (proj2 (proj2 (num_lane_view_twin o a b c F))))) U) as [Fm [FA E]].
+    destruct (num_lane_view_twin o a b c Fm) as [Fo [Fa [Fb [Fc _]]]].
+    split; [| intros _; tsplit; assumption].
+    unfold s. rewrite E, cpp_triangle_filter_num_relative, (proj2 (proj2 (ehigh_twin a o FA))).
+    apply num_filter_sound; apply tvec_R_doubles.
+Qed.
+
+(** den = (lane 0 + lane 1) + lane 2, its stage-1 view with the den constant. *)
+Theorem triangle_den_lane_view_filter_twin_sound : forall o d a b c : TVec,
+  let s := det3_filter_lanes_b (fview (den_stage2_b (bcast o) d a b c)) Cpp.triangle_filter_den_relative
+                               (absolute_bv d) in
+  certifies (sign_from_Z s) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) /\
+  (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c).
+Proof.
+  intros o d a b c s.
+  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]]]].
+  assert (V : fview (den_stage2_b (bcast o) d a b c) =
+              term_add_b (term_add_b (fview (pi_stage2_b (bcast o) d b c)) (fview (pi_stage2_b (bcast o) d c a)))
+                         (fview (pi_stage2_b (bcast o) d a b))) by reflexivity.
+  assert (N : nonneg (fmb (fview (den_stage2_b (bcast o) d a b c)))).
+  { rewrite V. apply (fadd_nonneg (fmb (term_add_b _ _)) (fmb (fview (pi_stage2_b (bcast o) d a b))));
+      [apply fadd_nonneg|]; apply pi_view_nonneg. }
+  assert (T : fin (fmb (fview (den_stage2_b (bcast o) d a b c))) = true ->
+              tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
+              ftw (fview (den_stage2_b (bcast o) d a b c))
+                  (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c))).
+  { intros H. rewrite V in *. unfold den_stage1.
+    destruct (term_add_back _ _ H) as [H01 H2]. destruct (term_add_back _ _ H01) as [H0 H1].
+    destruct (pi_view_twin _ _ _ _ H0) as [Fo [Fd [Fb [Fc T0]]]].
+    destruct (pi_view_twin _ _ _ _ H1) as [_ [_ [_ [Fa T1]]]].
+    destruct (pi_view_twin _ _ _ _ H2) as [_ [_ [_ [_ T2]]]].
+    destruct (bcast_twin o Fo) as [Fo' Eo]. rewrite Eo in T0, T1, T2.
+    tsplit; try assumption. ftw_fwd. }
+  destruct (Z.eq_dec s uncertain_lane) as [U|U].
+  - split; [rewrite U; exact I | intros C; contradiction].
+  - destruct (det3_filter_lanes_twin _ (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
+                N (absolute_bv_nonneg _) (fun F => proj2 (proj2 (proj2 (proj2 (proj2 (T F)))))) U) as [Fm [FA E]].
+    destruct (T Fm) as [Fo [Fd [Fa [Fb [Fc _]]]]].
+    split; [| intros _; tsplit; assumption].
+    unfold s. rewrite E, cpp_triangle_filter_den_relative, (proj2 (absolute_bv_twin d FA)).
+    apply den_filter_sound; apply tvec_R_doubles.
 Qed.

@@ -158,8 +158,6 @@ Import TriangleTwins.
 Definition tv (x y z : Z) : TVec := TV (f x) (f y) (f z).
 Definition fterm_bits (t : FTermB) : list Z := [b (fvb t); b (fmb t)].
 Definition cterm_bits (t : CTermB) : list Z := [b (chb t); b (clb t); b (cmb t)].
-(** [filter_view]: the stage-1 view {h, m} of a stage-2 value. *)
-Definition fview (t : CTermB) : FTermB := {| fvb := chb t; fmb := cmb t |}.
 
 (** [triangle_filter_values]: the five values (πa, πb, πc, den, num) with their magnitudes, absolute_d,
     absolute_e, and [det3_filter_lanes] of each with its constant (the full cascade's [det3_filter_sign]).

@@ -21,6 +21,8 @@
 //   proofs/TriangleTwins.v, `triangle_pi_compensated_twin_sound`, `triangle_num_compensated_twin_sound`
 //   proofs/TriangleTwins.v, `triangle_den_compensated_twin_sound`, `triangle_pi_lane_compensated_twin_sound`
 //   proofs/TriangleTwins.v, `triangle_den_lane_compensated_twin_sound`, `triangle_num_lane_compensated_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_pi_lane_view_filter_twin_sound`, `triangle_num_lane_view_filter_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_den_lane_view_filter_twin_sound`
 #pragma once
 
 #include "certified/eft.hpp"

@@ -141,7 +141,7 @@ struct TriangleExpansions {
 // z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing exactly the scalar
 // operations, so the same bits as triangle_compensated_values (tested), the proofs' model of each value, up to
 // the sign of zeros: broadcast (V{} + x) turns a −0 of o here, of d in triangle_relation_lanes, into +0 (the
-// same real; found by the twin runner, modelled as `bcast` in proofs/TriangleTwins.v). den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
+// same real; found by the twin runner, which models it: proofs/README.md, "The twins"). den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
 // d·((b − a) × (c − a)), in lane 3 instead.
 inline constexpr int lane_num = 3;
 
