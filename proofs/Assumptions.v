@@ -13,6 +13,7 @@ From Raykernel Require Import Constants Model Filter Compensated QuotientRoundin
   CompareQuotients Cascade RayBox.
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness.
+From Raykernel Require TriangleTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -227,3 +228,39 @@ Definition twin_results_4 :=
    compensated_den_live).
 Goal True. idtac "@@ filter_live filter_den_live filter_num_live enclosure_sign_live compensated_live compensated_den_live". Abort.
 Print Assumptions twin_results_4.
+
+(** TriangleTwins.v: the ray–triangle stages 1 and 2 (kernel/src/triangle/), tied to TriangleFilter.v and
+    TriangleCompensated.v, and sound end to end *)
+Definition twin_results_triangle :=
+  (TriangleTwins.det3_twin,
+   TriangleTwins.det3_filter_lanes_twin,
+   TriangleTwins.triangle_pi_filter_twin_sound,
+   TriangleTwins.triangle_num_filter_twin_sound,
+   TriangleTwins.triangle_den_filter_twin_sound,
+   TriangleTwins.cdet3_twin,
+   TriangleTwins.det3_enclosure_twin,
+   TriangleTwins.triangle_pi_compensated_twin_sound,
+   TriangleTwins.triangle_num_compensated_twin_sound,
+   TriangleTwins.triangle_den_compensated_twin_sound,
+   TriangleTwins.triangle_pi_lane_filter_twin_sound,
+   TriangleTwins.triangle_pi_lane_compensated_twin_sound,
+   TriangleTwins.triangle_den_lane_compensated_twin_sound,
+   TriangleTwins.triangle_num_lane_compensated_twin_sound,
+   TriangleTwins.det3n_twin,
+   TriangleTwins.triangle_pi_lane_view_filter_twin_sound,
+   TriangleTwins.triangle_num_lane_view_filter_twin_sound,
+   TriangleTwins.triangle_den_lane_view_filter_twin_sound).
+Goal True. idtac "@@ det3_twin det3_filter_lanes_twin triangle_pi_filter_twin_sound triangle_num_filter_twin_sound triangle_den_filter_twin_sound cdet3_twin det3_enclosure_twin triangle_pi_compensated_twin_sound triangle_num_compensated_twin_sound triangle_den_compensated_twin_sound triangle_pi_lane_filter_twin_sound triangle_pi_lane_compensated_twin_sound triangle_den_lane_compensated_twin_sound triangle_num_lane_compensated_twin_sound det3n_twin triangle_pi_lane_view_filter_twin_sound triangle_num_lane_view_filter_twin_sound triangle_den_lane_view_filter_twin_sound". Abort.
+Print Assumptions twin_results_triangle.
+
+(** the compiled triangle constants are the proved ones *)
+Definition twin_results_triangle_constants :=
+  (TriangleTwins.cpp_triangle_absolute_scale,
+   TriangleTwins.cpp_triangle_absolute,
+   TriangleTwins.cpp_triangle_filter_pi_relative,
+   TriangleTwins.cpp_triangle_filter_num_relative,
+   TriangleTwins.cpp_triangle_filter_den_relative,
+   TriangleTwins.cpp_triangle_compensated_relative,
+   TriangleTwins.cpp_triangle_compensated_den_relative).
+Goal True. idtac "@@ cpp_triangle_absolute_scale cpp_triangle_absolute cpp_triangle_filter_pi_relative cpp_triangle_filter_num_relative cpp_triangle_filter_den_relative cpp_triangle_compensated_relative cpp_triangle_compensated_den_relative". Abort.
+Print Assumptions twin_results_triangle_constants.

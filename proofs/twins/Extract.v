@@ -15,6 +15,7 @@
 From Coq Require Import ZArith List.
 From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
   Expansions QueryTwins.
+From Raykernel Require TriangleTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -144,9 +145,90 @@ Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
     [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
 Definition run_compare_expansion := run_compare_expansion_gen two_sum_b expansion_sign_b.
 
+(** Ray–triangle stages 1 and 2 (TriangleTwins.v): queries "ox oy oz dx dy dz ax ay az bx by bz cx cy cz". *)
+Module Tri.
+Import TriangleTwins.
+Definition tv (x y z : Z) : TVec := TV (f x) (f y) (f z).
+Definition fterm_bits (t : FTermB) : list Z := [b (fvb t); b (fmb t)].
+Definition cterm_bits (t : CTermB) : list Z := [b (chb t); b (clb t); b (cmb t)].
+
+(** [triangle_filter_values]: the five values (πa, πb, πc, den, num) with their magnitudes, absolute_d,
+    absolute_e, and [det3_filter_lanes] of each with its constant (the full cascade's [det3_filter_sign]).
+    den is [den_stage1_b], written with the π's computed once. *)
+Definition tri_filter (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := tv ox oy oz in let d := tv dx dy dz in let a := tv ax ay az in let bb := tv bx by_ bz in
+    let c := tv cx cy cz in
+    let pa := pi_stage1_b o d bb c in let pb := pi_stage1_b o d c a in let pc := pi_stage1_b o d a bb in
+    let den := term_add_b (term_add_b pa pb) pc in let num := num_stage1_b o a bb c in
+    let ad := absolute_bv d in let ae := absolute_bv (tsub a o) in
+    fterm_bits pa ++ fterm_bits pb ++ fterm_bits pc ++ fterm_bits den ++ fterm_bits num ++
+    [b ad; b ae;
+     det3_filter_lanes_b pa Cpp.triangle_filter_pi_relative ad; det3_filter_lanes_b pb Cpp.triangle_filter_pi_relative ad;
+     det3_filter_lanes_b pc Cpp.triangle_filter_pi_relative ad; det3_filter_lanes_b den Cpp.triangle_filter_den_relative ad;
+     det3_filter_lanes_b num Cpp.triangle_filter_num_relative ae]
+  | _ => [] end.
+
+(** [triangle_relation_lanes] (lanes πa, πb, πc, and π(b, c) seen from a; d broadcast, [bcast]) with its
+    absolute lanes (of the broadcast d) and the π constant on every lane, then [triangle_num_filter] and
+    num's sign. *)
+Definition tri_relation_lanes (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := tv ox oy oz in let d := tv dx dy dz in let a := tv ax ay az in let bb := tv bx by_ bz in
+    let c := tv cx cy cz in
+    let d' := bcast d in
+    let l := [pi_stage1_b o d' bb c; pi_stage1_b o d' c a; pi_stage1_b o d' a bb; pi_stage1_b a d' bb c] in
+    let ad := absolute_bv d' in let num := num_stage1_b o a bb c in let ae := absolute_bv (tsub a o) in
+    flat_map fterm_bits l ++ [b ad] ++ map (fun t => det3_filter_lanes_b t Cpp.triangle_filter_pi_relative ad) l ++
+    fterm_bits num ++ [b ae; det3_filter_lanes_b num Cpp.triangle_filter_num_relative ae]
+  | _ => [] end.
+
+(** [triangle_compensated_values]: the five values (h, l, m), absolute_d, absolute_e, and each value's
+    [enclosure] (det3_enclosure with its constant). *)
+Definition tri_compensated (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := tv ox oy oz in let d := tv dx dy dz in let a := tv ax ay az in let bb := tv bx by_ bz in
+    let c := tv cx cy cz in
+    let pa := pi_stage2_b o d bb c in let pb := pi_stage2_b o d c a in let pc := pi_stage2_b o d a bb in
+    let den := cterm_add_b (cterm_add_b pa pb) pc in let num := num_stage2_b o a bb c in
+    let ad := absolute_bv d in let ae := absolute_bv (ehigh a o) in
+    let K := Cpp.triangle_compensated_relative in
+    cterm_bits pa ++ cterm_bits pb ++ cterm_bits pc ++ cterm_bits den ++ cterm_bits num ++ [b ad; b ae] ++
+    enc_bits (det3_enclosure_b pa K ad) ++ enc_bits (det3_enclosure_b pb K ad) ++ enc_bits (det3_enclosure_b pc K ad) ++
+    enc_bits (det3_enclosure_b den Cpp.triangle_compensated_den_relative ad) ++ enc_bits (det3_enclosure_b num K ae)
+  | _ => [] end.
+
+(** [triangle_compensated_lanes] (lanes πa, πb, πc, num; o broadcast for ê_b, ê_c, [bcast]) as
+    fast_triangle_intersection uses it: the lanes,
+    their absolute terms, the filter signs of their stage-1 views (constants π, π, π, num), their enclosures
+    (K_π), and den = (lane 0 + lane 1) + lane 2 with its filter sign and enclosure. *)
+Definition tri_compensated_lanes (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := tv ox oy oz in let d := tv dx dy dz in let a := tv ax ay az in let bb := tv bx by_ bz in
+    let c := tv cx cy cz in
+    let ad := absolute_bv d in let ae := absolute_bv (ehigh a o) in let o' := bcast o in
+    let pa := pi_stage2_b o' d bb c in let pb := pi_stage2_b o' d c a in let pc := pi_stage2_b o' d a bb in
+    let l := [(pa, Cpp.triangle_filter_pi_relative, ad); (pb, Cpp.triangle_filter_pi_relative, ad);
+              (pc, Cpp.triangle_filter_pi_relative, ad);
+              (num_stage2_lane_b o a bb c, Cpp.triangle_filter_num_relative, ae)] in
+    let K := Cpp.triangle_compensated_relative in
+    let den := cterm_add_b (cterm_add_b pa pb) pc in
+    flat_map (fun '(t, _, _) => cterm_bits t) l ++ map (fun '(_, _, A) => b A) l ++
+    map (fun '(t, C, A) => det3_filter_lanes_b (fview t) C A) l ++
+    flat_map (fun '(t, _, A) => enc_bits (det3_enclosure_b t K A)) l ++
+    cterm_bits den ++ [det3_filter_lanes_b (fview den) Cpp.triangle_filter_den_relative ad] ++
+    enc_bits (det3_enclosure_b den Cpp.triangle_compensated_den_relative ad)
+  | _ => [] end.
+End Tri.
+Definition run_tri_filter := Tri.tri_filter.
+Definition run_tri_relation_lanes := Tri.tri_relation_lanes.
+Definition run_tri_compensated := Tri.tri_compensated.
+Definition run_tri_compensated_lanes := Tri.tri_compensated_lanes.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
   run_exp_sum run_exp_scale run_exp_sign run_round_quotient
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
-  run_build_expansions run_compare_expansion.
+  run_build_expansions run_compare_expansion
+  run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes.

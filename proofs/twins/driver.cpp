@@ -30,6 +30,8 @@
 #include "certified/lanes.hpp"
 #include "certified/quotient_rounding.hpp"
 #include "certified/ray_plane_query.hpp"
+#include "triangle/det3_stages.hpp"
+#include "triangle/ray_triangle_stages.hpp"
 
 #include <bit>
 #include <cmath>
@@ -368,6 +370,85 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
   return table;
 }
 
+// ---- Ray–triangle stages 1 and 2 (kernel/src/triangle/; twins: proofs/TriangleTwins.v) ---------------------
+// Queries "ox oy oz dx dy dz ax ay az bx by bz cx cy cz". Run in every variant: their Lanes4 code is compiled
+// for the variant's target (SSE2 pairs without -march, AVX2 with x86-64-v3 and v4), the scalar code too.
+
+raykernel::Ray triangle_ray(const std::vector<double>& x) { return {{x[0], x[1], x[2]}, {x[3], x[4], x[5]}}; }
+raykernel::Triangle triangle_of(const std::vector<double>& x) {
+  return {{x[6], x[7], x[8]}, {x[9], x[10], x[11]}, {x[12], x[13], x[14]}};
+}
+template <class V>
+void enclosure_lane_out(Out& o, const EnclosureT<V>& e, int k) {
+  o.f(lane(e.hi, k)), o.f(lane(e.lo, k)), o.f(lane(e.radius, k));
+}
+
+const std::map<std::string, ScalarRoutine>& triangle_routines() {
+  static const std::map<std::string, ScalarRoutine> table = {
+      // triangle_filter_values and the full cascade's stage-1 signs (det3_filter_sign).
+      {"tri_filter",
+       [](const Words& w, Out& o) {
+         if (w.size() != 15) return false;
+         const std::vector<double> x = doubles(w);
+         const TriangleFilterValues f = triangle_filter_values(triangle_ray(x), triangle_of(x));
+         for (const FilterTerm<double>& t : f.value) o.f(t.v), o.f(t.m);
+         o.f(f.absolute_d), o.f(f.absolute_e);
+         for (int v = 0; v < triangle_value_count; ++v)
+           o.i(det3_filter_lanes(f.value[static_cast<std::size_t>(v)], filter_relative(v), f.absolute(v)));
+         return true;
+       }},
+      // fast_relation's stage 1: triangle_relation_lanes with the π constant on every lane, then
+      // triangle_num_filter.
+      {"tri_relation_lanes",
+       [](const Words& w, Out& o) {
+         if (w.size() != 15) return false;
+         const std::vector<double> x = doubles(w);
+         const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(triangle_ray(x), triangle_of(x));
+         for (int k = 0; k < 4; ++k) o.f(s1.lanes.v[k]), o.f(s1.lanes.m[k]);
+         o.f(s1.absolute[0]);
+         const auto sign = det3_filter_lanes(s1.lanes, bounds::triangle_filter_pi_relative, s1.absolute);
+         for (int k = 0; k < 4; ++k) o.i(sign[k]);
+         const TriangleNumFilter num = triangle_num_filter(triangle_ray(x), triangle_of(x));
+         o.f(num.value.v), o.f(num.value.m), o.f(num.absolute);
+         o.i(det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute));
+         return true;
+       }},
+      // triangle_compensated_values and each value's enclosure.
+      {"tri_compensated",
+       [](const Words& w, Out& o) {
+         if (w.size() != 15) return false;
+         const std::vector<double> x = doubles(w);
+         const TriangleCompensatedValues c = triangle_compensated_values(triangle_ray(x), triangle_of(x));
+         for (const CompensatedTerm<double>& t : c.value) o.f(t.h), o.f(t.l), o.f(t.m);
+         o.f(c.absolute_d), o.f(c.absolute_e);
+         for (int v = 0; v < triangle_value_count; ++v) enclosure_lane_out(o, c.enclosure(v), 0);
+         return true;
+       }},
+      // fast_triangle_intersection's stages 1 and 2: triangle_compensated_lanes, the lanes' filter signs and
+      // enclosures, den summed from the lanes with its filter sign and enclosure.
+      {"tri_compensated_lanes",
+       [](const Words& w, Out& o) {
+         if (w.size() != 15) return false;
+         const std::vector<double> x = doubles(w);
+         const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(triangle_ray(x), triangle_of(x));
+         for (int k = 0; k < 4; ++k) o.f(s2.lanes.h[k]), o.f(s2.lanes.l[k]), o.f(s2.lanes.m[k]);
+         for (int k = 0; k < 4; ++k) o.f(s2.absolute[k]);
+         const Lanes4 relative{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
+                               bounds::triangle_filter_pi_relative, bounds::triangle_filter_num_relative};
+         const auto filter = det3_filter_lanes(filter_view(s2.lanes), relative, s2.absolute);
+         for (int k = 0; k < 4; ++k) o.i(filter[k]);
+         const EnclosureT<Lanes4> e = det3_enclosure(s2.lanes, bounds::triangle_compensated_relative, s2.absolute);
+         for (int k = 0; k < 4; ++k) enclosure_lane_out(o, e, k);
+         const CompensatedTerm<double> den = (lane(s2.lanes, 0) + lane(s2.lanes, 1)) + lane(s2.lanes, 2);
+         o.f(den.h), o.f(den.l), o.f(den.m);
+         o.i(det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, s2.absolute[0]));
+         enclosure_lane_out(o, det3_enclosure(den, bounds::triangle_compensated_den_relative, s2.absolute[0]), 0);
+         return true;
+       }},
+  };
+  return table;
+}
+
 // ---- Input, comparison, report ------------------------------------------------------------------------------
 
 struct Line {
@@ -456,6 +537,16 @@ int check(const char* inputs_path, const char* expected_path, Tally& tally) {
       for (std::size_t k = 0; k < n; ++k) compare(i + k, out[k].text);
       i += n;
 #endif
+      continue;
+    }
+    if (const auto tr = triangle_routines().find(line.name); tr != triangle_routines().end()) {
+      Out out;
+      if (!tr->second(line.words, out)) {
+        std::cerr << "line " << i + 1 << ": wrong arity for " << line.name << '\n';
+        return 2;
+      }
+      compare(i, out.text);
+      ++i;
       continue;
     }
     if (const auto sr = scalar_routines().find(line.name); sr != scalar_routines().end()) {

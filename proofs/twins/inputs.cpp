@@ -19,6 +19,7 @@
 
 #include <raykernel/testkit/hard_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
+#include <raykernel/testkit/triangle_queries.hpp>
 
 #include <array>
 #include <bit>
@@ -79,6 +80,28 @@ class Source {
       *c[below(12)] = raw();
     }
     return q;
+  }
+  // A hard ray–triangle query (testkit/triangle_queries.hpp: through vertices and edges, ulps beside them,
+  // slivers, needles, degenerate, parallel, coplanar, rounding ties, wide, tiny and huge scales), as the 15
+  // inputs "o d a b c"; 1 in 8 with a raw special value in one component, 1 in 8 with the signs of its zeros
+  // flipped, 1 in 16 wholly raw.
+  std::vector<double> triangle_query() {
+    if (chance(16)) {
+      std::vector<double> x;
+      for (int i = 0; i < 15; ++i) x.push_back(raw());
+      return x;
+    }
+    const auto kind = testkit::all_triangle_query_kinds[below(testkit::all_triangle_query_kinds.size())];
+    const testkit::TriangleQuery q = testkit::make_triangle_query(kind, [this] { return word(); });
+    std::vector<double> x = {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z, q.ray.direction.x,
+                             q.ray.direction.y, q.ray.direction.z, q.triangle.a.x, q.triangle.a.y,
+                             q.triangle.a.z,    q.triangle.b.x,    q.triangle.b.y, q.triangle.b.z,
+                             q.triangle.c.x,    q.triangle.c.y,    q.triangle.c.z};
+    if (chance(8)) x[below(15)] = raw();
+    if (chance(8))  // every zero component's sign flipped: the lanes' broadcast maps −0 to +0 (TriangleTwins.v, bcast)
+      for (double& c : x)
+        if (c == 0) c = -c;
+    return x;
   }
   testkit::PlanePair plane_pair() { return testkit::make_plane_pair_near_tie([this] { return word(); }); }
 
@@ -299,6 +322,11 @@ const std::map<std::string, Generator>& generators() {
          const Terms t = terms(s.query());
          return Args{(t.diff[0] * t.n[0]) / (t.d[0] * t.n[0])};
        }},
+      // ray–triangle stages 1 and 2 (proofs/TriangleTwins.v)
+      {"tri_filter", [](Source& s) { return s.triangle_query(); }},
+      {"tri_relation_lanes", [](Source& s) { return s.triangle_query(); }},
+      {"tri_compensated", [](Source& s) { return s.triangle_query(); }},
+      {"tri_compensated_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

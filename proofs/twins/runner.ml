@@ -31,6 +31,10 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("fast_relation_pair", Twins.run_fast_relation_pair);
   ("build_expansions", Twins.run_build_expansions);
   ("compare_expansion", Twins.run_compare_expansion);
+  ("tri_filter", Twins.run_tri_filter);
+  ("tri_relation_lanes", Twins.run_tri_relation_lanes);
+  ("tri_compensated", Twins.run_tri_compensated);
+  ("tri_compensated_lanes", Twins.run_tri_compensated_lanes);
 ]
 
 let () =

@@ -12,6 +12,17 @@
 // same permanent), so one stage-2 evaluation serves both stages. Each type is templated on the lane type V
 // (double for one value, Lanes4 for four values at once; lanes.hpp): every lane performs the scalar IEEE
 // operations, which is what proofs/TriangleFilter.v and proofs/TriangleCompensated.v model.
+//
+// Twins: the same operations over IEEE binary64 (every bit pattern, ±0, inf and NaN included), compared bit for
+// bit with this code by the differential runner (routines tri_filter, tri_relation_lanes, tri_compensated,
+// tri_compensated_lanes; proofs/README.md), and tied to the models above:
+//   proofs/TriangleTwins.v, `triangle_pi_filter_twin_sound`, `triangle_num_filter_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_den_filter_twin_sound`, `triangle_pi_lane_filter_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_pi_compensated_twin_sound`, `triangle_num_compensated_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_den_compensated_twin_sound`, `triangle_pi_lane_compensated_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_den_lane_compensated_twin_sound`, `triangle_num_lane_compensated_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_pi_lane_view_filter_twin_sound`, `triangle_num_lane_view_filter_twin_sound`
+//   proofs/TriangleTwins.v, `triangle_den_lane_view_filter_twin_sound`
 #pragma once
 
 #include "certified/eft.hpp"

@@ -139,7 +139,9 @@ struct TriangleExpansions {
 // The three π and num share their structure, so one evaluation of the formula's cross_terms and dot_terms on
 // Lanes4 (lanes.hpp) gives πa, πb, πc and num in lanes 0..3, lane k using the leaves y = e_b, e_c, e_a, e_b and
 // z = e_c, e_a, e_b, e_c and the outer vector x = d, d, d, e_a — each lane performing exactly the scalar
-// operations, so the same bits as triangle_compensated_values (tested), the proofs' model of each value. den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
+// operations, so the same bits as triangle_compensated_values (tested), the proofs' model of each value, up to
+// the sign of zeros: broadcast (V{} + x) turns a −0 of o here, of d in triangle_relation_lanes, into +0 (the
+// same real; found by the twin runner, which models it: proofs/README.md, "The twins"). den = (πa + πb) + πc is summed from the lanes in scalar. The relation-only path puts den itself,
 // d·((b − a) × (c − a)), in lane 3 instead.
 inline constexpr int lane_num = 3;
 
