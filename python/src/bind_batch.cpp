@@ -41,74 +41,109 @@ py::dict stats_to_python(const BatchStats& stats) {
   return d;
 }
 
-py::object intersect_batch_py(py::handle origins, py::handle directions, py::handle points, py::handle normals,
-                              const std::string& path_name, const std::string& errors,
-                              std::optional<unsigned> threads, bool want_stats) {
-  const Path path = path_from(path_name);
-  const ErrorPolicy policy = error_policy_from(errors);
-  ColumnsView o(origins, "origins"), d(directions, "directions");
-  ColumnsView p(points, "points", true), nv(normals, "normals", true);
-  const std::size_t n = o.rows();
-  require_rows(d, "directions", n, "origins");
-  require_rows(p, "points", n, "origins");
-  require_rows(nv, "normals", n, "origins");
-  if (p.single() != nv.single())
-    throw py::value_error("points and normals: give both as (n, 3) arrays, or both as one 3-vector (one plane)");
-  const bool one_plane = p.single();
-  if (want_stats && path != Path::certified) throw py::value_error("stats: only the certified path has stages");
+// The four arrays of a batch of ray–plane queries, checked: n rays, against n planes or against one plane
+// (points and normals both given as one 3-vector).
+struct PlaneQueries {
+  ColumnsView o, d, p, nv;
+  std::size_t n;
+  bool one_plane;
 
-  auto relation = new_array<std::uint8_t>(n);
-  auto t = new_array<double>(n);
-  auto valid = new_array<bool>(n);
-  const std::span<std::uint8_t> relation_out = span_of(relation);
-  const std::span<double> t_out = span_of(t);
-  const std::span<bool> valid_out = span_of(valid);
-  BatchStats stats;
-  std::optional<std::pair<std::size_t, std::string>> first_invalid;
-  {
-    py::gil_scoped_release release;
-    auto query = [&](std::size_t i) { return std::pair{Ray{o.row(i), d.row(i)}, Plane{p.row(i), nv.row(i)}}; };
-    if (path == Path::certified) {
-      const BatchOptions options{threads_from(threads), want_stats ? &stats : nullptr};
-      in_chunks(n, {&o, &d, &p, &nv}, [&](std::size_t begin, std::size_t end) {
-        const std::size_t m = end - begin;
-        const IntersectionBatch out{{reinterpret_cast<Relation*>(relation_out.data()) + begin, m},
-                                    t_out.subspan(begin, m), valid_out.subspan(begin, m)};
-        const RayBatch rays = ray_batch(o, d, begin, end);
-        if (one_plane) {
-          intersect_batch(rays, Plane{p.row(0), nv.row(0)}, out, options);
-        } else {
-          const auto pc = p.columns(begin, end), nc = nv.columns(begin, end);
-          intersect_batch(rays, PlaneBatch{pc[0], pc[1], pc[2], nc[0], nc[1], nc[2]}, out, options);
-        }
-      });
-    } else {
-      parallel_for(n, threads_from(threads), grain_of(path),
-                   [&](std::size_t begin, std::size_t end) {
-                     for (std::size_t i = begin; i < end; ++i) {
-                       const auto [ray, plane] = query(i);
-                       valid_out[i] = !validate(ray, plane).has_value();
-                       if (!valid_out[i]) continue;
-                       const Intersection x = path == Path::exact ? intersect_exact(ray, plane) : intersect_naive(ray, plane);
-                       relation_out[i] = static_cast<std::uint8_t>(x.relation);
-                       t_out[i] = x.t;
-                     }
-                   });
-    }
-    // Invalid rows get a definite answer: no relation, t NaN; the first one's reason for the error.
+  PlaneQueries(py::handle origins, py::handle directions, py::handle points, py::handle normals)
+      : o(origins, "origins"), d(directions, "directions"), p(points, "points", true), nv(normals, "normals", true),
+        n(o.rows()) {
+    require_rows(d, "directions", n, "origins");
+    require_rows(p, "points", n, "origins");
+    require_rows(nv, "normals", n, "origins");
+    if (p.single() != nv.single())
+      throw py::value_error("points and normals: give both as (n, 3) arrays, or both as one 3-vector (one plane)");
+    one_plane = p.single();
+  }
+
+  [[nodiscard]] std::pair<Ray, Plane> query(std::size_t i) const { return {Ray{o.row(i), d.row(i)}, Plane{p.row(i), nv.row(i)}}; }
+
+  // batch(rays, planes, begin, count) over chunks of the queries, `planes` the one Plane or a PlaneBatch.
+  template <class Batch>
+  void certified_chunks(Batch&& batch) {
+    in_chunks(n, {&o, &d, &p, &nv}, [&](std::size_t begin, std::size_t end) {
+      const RayBatch rays = ray_batch(o, d, begin, end);
+      if (one_plane) {
+        batch(rays, Plane{p.row(0), nv.row(0)}, begin, end - begin);
+      } else {
+        const auto pc = p.columns(begin, end), nc = nv.columns(begin, end);
+        batch(rays, PlaneBatch{pc[0], pc[1], pc[2], nc[0], nc[1], nc[2]}, begin, end - begin);
+      }
+    });
+  }
+
+  // answer(i, ray, plane) for every valid row on threads, valid[i] set for each row.
+  template <class Answer>
+  void scalar_rows(std::span<bool> valid, unsigned threads, std::size_t grain, Answer&& answer) const {
+    parallel_for(n, threads, grain, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const auto [ray, plane] = query(i);
+        valid[i] = !validate(ray, plane).has_value();
+        if (valid[i]) answer(i, ray, plane);
+      }
+    });
+  }
+
+  // Gives each invalid row its definite answer (`mark(i)`), and raises ValueError for the first one under
+  // errors="raise" (after the rows are marked: the arrays are never left half written).
+  template <class Mark>
+  void finish_invalid_rows(std::span<const bool> valid, ErrorPolicy policy, Mark&& mark) const {
+    std::optional<std::pair<std::size_t, std::string>> first_invalid;
     for (std::size_t i = 0; i < n; ++i) {
-      if (valid_out[i]) continue;
-      relation_out[i] = invalid_code;
-      t_out[i] = nan;
+      if (valid[i]) continue;
+      mark(i);
       if (!first_invalid) {
         const auto [ray, plane] = query(i);
         first_invalid.emplace(i, validate(ray, plane).value_or("invalid input"));
       }
     }
+    if (first_invalid && policy == ErrorPolicy::raise)
+      throw invalid_input((one_plane ? "ray " : "query ") + std::to_string(first_invalid->first) + ": " +
+                          first_invalid->second);
   }
-  if (first_invalid && policy == ErrorPolicy::raise)
-    throw invalid_input((one_plane ? "ray " : "query ") + std::to_string(first_invalid->first) + ": " +
-                        first_invalid->second);
+};
+
+py::object intersect_batch_py(py::handle origins, py::handle directions, py::handle points, py::handle normals,
+                              const std::string& path_name, const std::string& errors,
+                              std::optional<unsigned> threads, bool want_stats) {
+  const Path path = path_from(path_name);
+  const ErrorPolicy policy = error_policy_from(errors);
+  PlaneQueries q(origins, directions, points, normals);
+  if (want_stats && path != Path::certified) throw py::value_error("stats: only the certified path has stages");
+
+  auto relation = new_array<std::uint8_t>(q.n);
+  auto t = new_array<double>(q.n);
+  auto valid = new_array<bool>(q.n);
+  const std::span<std::uint8_t> relation_out = span_of(relation);
+  const std::span<double> t_out = span_of(t);
+  const std::span<bool> valid_out = span_of(valid);
+  BatchStats stats;
+  {
+    py::gil_scoped_release release;
+    if (path == Path::certified) {
+      const BatchOptions options{threads_from(threads), want_stats ? &stats : nullptr};
+      q.certified_chunks([&](const RayBatch& rays, const auto& planes, std::size_t begin, std::size_t m) {
+        intersect_batch(rays, planes,
+                        IntersectionBatch{{reinterpret_cast<Relation*>(relation_out.data()) + begin, m},
+                                          t_out.subspan(begin, m), valid_out.subspan(begin, m)},
+                        options);
+      });
+    } else {
+      q.scalar_rows(valid_out, threads_from(threads), grain_of(path), [&](std::size_t i, const Ray& ray, const Plane& plane) {
+        const Intersection x = path == Path::exact ? intersect_exact(ray, plane) : intersect_naive(ray, plane);
+        relation_out[i] = static_cast<std::uint8_t>(x.relation);
+        t_out[i] = x.t;
+      });
+    }
+    // Invalid rows get a definite answer: no relation, t NaN.
+    q.finish_invalid_rows(valid_out, policy, [&](std::size_t i) {
+      relation_out[i] = invalid_code;
+      t_out[i] = nan;
+    });
+  }
   return types().intersection_arrays(relation, t, valid, want_stats ? py::object(stats_to_python(stats)) : py::none());
 }
 
@@ -117,68 +152,35 @@ py::object relation_batch_py(py::handle origins, py::handle directions, py::hand
                              bool want_stats) {
   const Path path = path_from(path_name, false);
   const ErrorPolicy policy = error_policy_from(errors);
-  ColumnsView o(origins, "origins"), d(directions, "directions");
-  ColumnsView p(points, "points", true), nv(normals, "normals", true);
-  const std::size_t n = o.rows();
-  require_rows(d, "directions", n, "origins");
-  require_rows(p, "points", n, "origins");
-  require_rows(nv, "normals", n, "origins");
-  if (p.single() != nv.single())
-    throw py::value_error("points and normals: give both as (n, 3) arrays, or both as one 3-vector (one plane)");
-  const bool one_plane = p.single();
+  PlaneQueries q(origins, directions, points, normals);
   if (want_stats && path != Path::certified) throw py::value_error("stats: only the certified path has stages");
 
-  auto relation = new_array<std::uint8_t>(n);
-  auto valid = new_array<bool>(n);
+  auto relation = new_array<std::uint8_t>(q.n);
+  auto valid = new_array<bool>(q.n);
   const std::span<std::uint8_t> relation_out = span_of(relation);
   const std::span<bool> valid_out = span_of(valid);
   BatchStats stats;
-  std::optional<std::pair<std::size_t, std::string>> first_invalid;
   {
     py::gil_scoped_release release;
-    auto query = [&](std::size_t i) { return std::pair{Ray{o.row(i), d.row(i)}, Plane{p.row(i), nv.row(i)}}; };
     if (path == Path::certified) {
       const BatchOptions options{threads_from(threads), want_stats ? &stats : nullptr};
-      in_chunks(n, {&o, &d, &p, &nv}, [&](std::size_t begin, std::size_t end) {
-        const std::size_t m = end - begin;
-        const RelationBatch out{{reinterpret_cast<Relation*>(relation_out.data()) + begin, m},
-                                valid_out.subspan(begin, m)};
-        const RayBatch rays = ray_batch(o, d, begin, end);
-        if (one_plane) {
-          relation_batch(rays, Plane{p.row(0), nv.row(0)}, out, options);
-        } else {
-          const auto pc = p.columns(begin, end), nc = nv.columns(begin, end);
-          relation_batch(rays, PlaneBatch{pc[0], pc[1], pc[2], nc[0], nc[1], nc[2]}, out, options);
-        }
+      q.certified_chunks([&](const RayBatch& rays, const auto& planes, std::size_t begin, std::size_t m) {
+        relation_batch(rays, planes,
+                       RelationBatch{{reinterpret_cast<Relation*>(relation_out.data()) + begin, m},
+                                     valid_out.subspan(begin, m)},
+                       options);
       });
     } else {  // the exact relation: intersect_exact's, per row
-      parallel_for(n, threads_from(threads), exact_grain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          const auto [ray, plane] = query(i);
-          valid_out[i] = !validate(ray, plane).has_value();
-          if (valid_out[i]) relation_out[i] = static_cast<std::uint8_t>(intersect_exact(ray, plane).relation);
-        }
+      q.scalar_rows(valid_out, threads_from(threads), exact_grain, [&](std::size_t i, const Ray& ray, const Plane& plane) {
+        relation_out[i] = static_cast<std::uint8_t>(intersect_exact(ray, plane).relation);
       });
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (valid_out[i]) continue;
-      relation_out[i] = invalid_code;
-      if (!first_invalid) {
-        const auto [ray, plane] = query(i);
-        first_invalid.emplace(i, validate(ray, plane).value_or("invalid input"));
-      }
-    }
+    q.finish_invalid_rows(valid_out, policy, [&](std::size_t i) { relation_out[i] = invalid_code; });
   }
-  if (first_invalid && policy == ErrorPolicy::raise)
-    throw invalid_input((one_plane ? "ray " : "query ") + std::to_string(first_invalid->first) + ": " +
-                        first_invalid->second);
   py::object stats_py = py::none();
   if (want_stats) {
-    py::dict by_stage;
-    for (int k = 0; k < stage_count; ++k)
-      by_stage[to_python(static_cast<Stage>(k)).attr("value")] = stats.relation_stage[static_cast<std::size_t>(k)];
-    py::dict dict;
-    dict["relation"] = by_stage;
+    py::dict dict = stats_to_python(stats);
+    dict.attr("pop")("t");  // a relation has no t
     stats_py = dict;
   }
   return types().relation_arrays(relation, valid, stats_py);
