@@ -5,8 +5,9 @@
 // the cascade only for planes it cannot decide. Per hit, the certified comparison with the best so far
 // (certified/compare_quotients.hpp), starting from the same stage-1 values and escalating stage by stage
 // only when a comparison needs it. t is rounded once, for the winner. From screen_minimum candidate planes
-// on, stage 1 and a filter comparison with the best so far run four (AVX2) or two planes at a time
-// (raycast/nearest_screen.hpp), and only the planes that screen cannot set aside reach the scalar path.
+// on, stage 1 and a filter comparison with the t of one reference plane the ray hits run four (AVX2) or two
+// planes at a time (raycast/nearest_screen.hpp), and only the planes that screen cannot set aside reach the
+// scalar path.
 #include <raykernel/nearest_hit.hpp>
 
 #include "certified/compare_quotients.hpp"
@@ -86,13 +87,18 @@ DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) noexcept {
 namespace {
 
 // The instruction set of the screen (raycast/nearest_screen.hpp), chosen once: AVX2, or portable.
+constexpr nearest_kernel::ScreenFunctions portable_screen{nearest_kernel::portable::reference,
+                                                          nearest_kernel::portable::screen};
+#if defined(RAYKERNEL_NEAREST_AVX2)
+constexpr nearest_kernel::ScreenFunctions avx2_screen{nearest_kernel::avx2::reference, nearest_kernel::avx2::screen};
+#endif
 nearest_kernel::ScreenFunction screen_function() noexcept {
   static const nearest_kernel::ScreenFunction screen = [] {
 #if defined(RAYKERNEL_NEAREST_AVX2)
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("x86-64-v3")) return nearest_kernel::avx2::screen;
+    if (__builtin_cpu_supports("x86-64-v3")) return &avx2_screen;
 #endif
-    return nearest_kernel::portable::screen;
+    return &portable_screen;
   }();
   return screen;
 }
@@ -141,13 +147,13 @@ template <class Tracer>
   // Two slots: the best candidate so far and the one being examined, so neither is ever copied.
   std::optional<HitCandidate> slot[2];
   int best = -1;
-  // One plane given its stage-1 values and signs; true when it becomes the best.
+  // One plane given its stage-1 values and signs, in ascending candidate order.
   auto examine = [&](std::uint32_t k, const Dot3Rounded& den, const Dot3Rounded& num, std::int64_t den_filter,
-                     std::int64_t num_filter) -> bool {
+                     std::int64_t num_filter) {
     const Plane& plane = planes[k];
     const int current = best == 0 ? 1 : 0;
     if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
-      if (signs_say_behind(num_filter, den_filter)) return false;
+      if (signs_say_behind(num_filter, den_filter)) return;
       HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
       c.num_sign = static_cast<Sign>(num_filter);
       c.den_sign = static_cast<Sign>(den_filter);
@@ -156,22 +162,18 @@ template <class Tracer>
       HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
       const CertifiedSigns signs = certified_signs(c.cascade());
       tracer.relation(signs.stage);
-      if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) return false;
+      if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) return;
       c.num_sign = signs.num;
       c.den_sign = signs.den;
       c.relation_stage = signs.stage;
     }
     if (best < 0) {
       best = current;
-      return true;
+      return;
     }
     const DistanceOrder order = compare_hit_distances(*slot[current], *slot[best]);
     tracer.comparison(order.stage);
-    if (order.sign < 0) {  // strictly nearer; a tie keeps the smaller index
-      best = current;
-      return true;
-    }
-    return false;
+    if (order.sign < 0) best = current;  // strictly nearer; a tie keeps the smaller index
   };
   if (screen == nullptr) {
     for (const std::uint32_t k : candidates) {
@@ -184,20 +186,14 @@ template <class Tracer>
     }
   } else {
     const nearest_kernel::PlaneColumns columns = PlaneSetColumns::of(set);
-    nearest_kernel::BestSoFar best_so_far;
+    const nearest_kernel::Reference reference = screen->reference(columns, o, d);
     nearest_kernel::GroupStage1 group;
     for (std::size_t next = 0; next < columns.count;) {
-      next = screen(columns, o, d, best_so_far, next, group);
-      bool changed = false;
+      next = screen->screen(columns, o, d, reference, next, group);
       for (std::uint32_t lanes = group.examine; lanes != 0; lanes &= lanes - 1) {
         const unsigned lane = static_cast<unsigned>(__builtin_ctz(lanes));
-        changed |= examine(candidates[group.first + lane], group.den(lane), group.num(lane), group.den_sign[lane],
-                           group.num_sign[lane]);
-      }
-      if (changed) {
-        const HitCandidate& b = *slot[best];
-        best_so_far = {true, b.num_sign == Sign::zero, filter_enclosure(b.num, bounds::filter_num_relative),
-                       filter_enclosure(b.den, bounds::filter_den_relative), static_cast<std::int64_t>(b.den_sign)};
+        examine(candidates[group.first + lane], group.den(lane), group.num(lane), group.den_sign[lane],
+                group.num_sign[lane]);
       }
     }
     tracer.comparisons(Stage::filter, group.farther);
