@@ -545,7 +545,7 @@ RC_GTEST_PROP(NearestHitProperty, AgreesWithIntersectOnTheWinner, ()) {
 // ---- The screen (raycast/nearest_screen.hpp): every screen and the scalar loop on the same sets ---------
 //
 // nearest_traced_with_screen runs a given screen whatever the set's size (the public entry points use it
-// from 5 candidate planes on): the scalar loop (null), the portable screen (two planes at a time) and the
+// from 8 candidate planes on): the scalar loop (null), the portable screen (two planes at a time) and the
 // screen this CPU gets (AVX2: four at a time). Sizes 0..9 put the decisive planes in every lane and in the
 // tail of a group. Expected answers are derived by hand in the comments, and nearest_hit_exact agrees.
 
@@ -597,7 +597,7 @@ TEST(NearestScreen, TiesAcrossLaneBoundariesGoToTheSmallestIndex) {
   // Ray o = 0, d = (1, 0, 0). Planes k < s: through (7, 0, 0), normal (1, k, 0): num = 7, den = 1, t = 7.
   // Planes k ≥ s: through (5, 0, 0), normal (1, k, 0): t = 5 exactly, all distinct planes (no two normals
   // parallel), so none is set aside and all tie: plane s wins, wherever s and the tied planes fall among
-  // the lanes. Then the same with t = 5 planes only at s and at 8 (the others at t = 7).
+  // the lanes. Then the same with t = 5 planes only at s and at the last index (the others at t = 7).
   const Ray ray{{0, 0, 0}, {1, 0, 0}};
   for (int n = 1; n <= 9; ++n)
     for (int s = 0; s < n; ++s) {

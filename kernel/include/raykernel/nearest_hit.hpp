@@ -78,10 +78,10 @@ class PlaneSet {
 
 // `nearest_hit` plus which stages it needed: the slowest stage that decided a plane's relation, the
 // slowest stage that ordered two t values, how many comparisons each stage decided, and the stage that
-// rounded the winner's t. Every hit after the first counts one comparison: with the best so far, or, for a
-// set of 5 planes or more, for a hit the vectorized filter finds certainly farther than the t of a reference
-// plane the ray hits, that filter comparison. So the total is that of one comparison per hit with the best
-// so far; the stages are those of the comparisons actually made.
+// rounded the winner's t. Every hit after the first counts one comparison: with the best so far, or, in a
+// set of 8 candidate planes or more, for a hit that the vectorized filter finds certainly farther than the
+// t of a reference plane the ray hits, that filter comparison. So the total is that of one comparison per
+// hit with the best so far; the stages are those of the comparisons actually made.
 struct TracedNearestHit {
   std::optional<NearestHit> hit;
   Stage relation_stage = Stage::filter;    // slowest over all planes

@@ -103,8 +103,11 @@ nearest_kernel::ScreenFunction screen_function() noexcept {
   return screen;
 }
 
-// Below this many candidate planes the scalar loop is as fast as the screen (bench/README.md, "nearest").
-constexpr std::size_t screen_minimum = 5;
+// Below this many candidate planes the scalar loop is used: its fixed cost is lower (the screen makes two
+// passes, and recomputes the reference plane's stage 1). Measured (bench/README.md, "nearest"): at 4 planes
+// the screen is slower (demo4 by about 1.4×), from 8 on faster; 5 to 7 were within the noise of a shared
+// machine.
+constexpr std::size_t screen_minimum = 8;
 
 [[nodiscard]] nearest_kernel::ScreenFunction screen_for(const PlaneSet& set) noexcept {
   return set.candidates().size() < screen_minimum ? nullptr : screen_function();
