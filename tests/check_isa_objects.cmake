@@ -1,7 +1,8 @@
 # Fails when an instruction-set-specific object of the batch fast loop (fast_loop_avx2/avx512) or of the BVH
-# walk (bvh_walk_avx2) defines any global symbol besides its entry points
-# raykernel::batch_kernel::<isa>::{pairwise,broadcast}[_relation] and raykernel::mesh_detail::<isa>::{next_leaf,
-# node_entries} (and the exception-handling personality's data reference, which is not code).
+# walk (bvh_walk_avx2) or of nearest_hit's screen (nearest_screen_avx2) defines any global symbol besides its
+# entry points raykernel::batch_kernel::<isa>::{pairwise,broadcast}[_relation], raykernel::mesh_detail::<isa>::
+# {next_leaf,node_entries} and raykernel::nearest_kernel::<isa>::{reference,screen} (and the exception-handling
+# personality's data reference, which is not code).
 set(bad "")
 foreach(object IN LISTS OBJECTS)
   set(allowed "")
@@ -9,6 +10,8 @@ foreach(object IN LISTS OBJECTS)
     set(allowed "raykernel::batch_kernel::${CMAKE_MATCH_1}::(pairwise|broadcast|pairwise_relation|broadcast_relation)\\(")
   elseif(object MATCHES "bvh_walk_(avx2|avx512)\\.cpp\\.o$")
     set(allowed "raykernel::mesh_detail::${CMAKE_MATCH_1}::(next_leaf|node_entries)\\(")
+  elseif(object MATCHES "nearest_screen_(avx2|avx512)\\.cpp\\.o$")
+    set(allowed "raykernel::nearest_kernel::${CMAKE_MATCH_1}::(reference|screen)\\(")
   endif()
   if(allowed)
     execute_process(COMMAND ${NM} -C --defined-only --extern-only ${object} OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
@@ -34,4 +37,4 @@ if(bad)
   list(JOIN bad "\n  " text)
   message(FATAL_ERROR "ISA-specific objects export more than their entry points:\n  ${text}")
 endif()
-message(STATUS "fast_loop_avx2/avx512 and bvh_walk_avx2 objects export only their entry points")
+message(STATUS "fast_loop_avx2/avx512, bvh_walk_avx2 and nearest_screen_avx2 objects export only their entry points")

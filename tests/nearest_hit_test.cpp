@@ -6,6 +6,9 @@
 //  * Each stage of the comparison on its own against exact rationals (like stages_test.cpp): what a
 //    stage certifies must be right, every enclosure must contain the exact Δ = num_a·den_b − num_b·den_a.
 //  * RapidCheck: certified == brute-force exact nearest on generated scenes full of exact and near ties.
+//  * The screen (stage 1 and the filter comparison over several planes at once): every screen and the
+//    scalar loop on hand-derived sets of 0..9 planes (the decisive plane in every lane and in the tail) and
+//    on generated scenes of up to 40 planes.
 #include "support/oracle.hpp"
 #include "support/plane_scenes.hpp"
 
@@ -14,6 +17,7 @@
 #include "certified/ray_plane_cascade.hpp"
 #include "exact/rational_from_double.hpp"
 #include "raycast/nearest_hit_internal.hpp"
+#include "raycast/nearest_screen.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
@@ -535,6 +539,191 @@ RC_GTEST_PROP(NearestHitProperty, AgreesWithIntersectOnTheWinner, ()) {
     const Intersection i = intersect(scene.ray, scene.planes[h->plane]);
     RC_ASSERT(i.relation == Relation::hit);
     RC_ASSERT(same_bits(i.t, h->t));
+  }
+}
+
+// ---- The screen (raycast/nearest_screen.hpp): every screen and the scalar loop on the same sets ---------
+//
+// nearest_traced_with_screen runs a given screen whatever the set's size (the public entry points use it
+// from 8 candidate planes on): the scalar loop (null), the portable screen (two planes at a time) and the
+// screen this CPU gets (AVX2: four at a time). Sizes 0..9 put the decisive planes in every lane and in the
+// tail of a group. Expected answers are derived by hand in the comments, and nearest_hit_exact agrees.
+
+struct NamedScreen {
+  const char* name;
+  nearest_kernel::ScreenFunction screen;
+};
+const nearest_kernel::ScreenFunctions portable_screen{nearest_kernel::portable::reference, nearest_kernel::portable::screen};
+std::vector<NamedScreen> every_screen() {
+  return {{"scalar loop", nullptr}, {"portable screen", &portable_screen}, {"chosen screen", detail::chosen_screen()}};
+}
+
+// Each screen, and the public entry points, give `expected`; so does the exact path.
+void expect_every_path(const Ray& ray, const std::vector<Plane>& planes, const std::optional<NearestHit>& expected,
+                       const std::string& context) {
+  const PlaneSet set(planes);
+  for (const NamedScreen& s : every_screen()) {
+    const TracedNearestHit got = detail::nearest_traced_with_screen(ray, set, s.screen);
+    EXPECT_EQ(got.hit, expected) << s.name << ", " << context;
+  }
+  EXPECT_EQ(nearest_hit(ray, set), expected) << context;
+  EXPECT_EQ(nearest_hit_traced(ray, set).hit, expected) << context;
+  EXPECT_EQ(nearest_hit_exact(ray, planes), expected) << context;
+}
+
+TEST(NearestScreen, TheNearestPlaneInEveryPositionOfZeroToNinePlanes) {
+  // Ray o = 0, d = (1, 0, 0). Plane k ≠ j: x = 10 + k (t = 10 + k; normal ±x alternating: num and den both
+  // change sign, t does not), except every third plane, x = −(10 + k) (behind). Plane j: x = 1, t = 1.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  for (int n = 0; n <= 9; ++n) {
+    auto make = [&](int j) {
+      std::vector<Plane> planes;
+      for (int k = 0; k < n; ++k) {
+        const double normal_x = k % 2 == 0 ? 1.0 : -1.0;
+        const double x = k == j ? 1.0 : (k % 3 == 2 ? -(10.0 + k) : 10.0 + k);
+        planes.push_back({{x, 0, 0}, {normal_x, 0, 0}});
+      }
+      return planes;
+    };
+    // No nearest plane: the nearest of the others is k = 0 (t = 10) when there is one.
+    expect_every_path(ray, make(-1), n == 0 ? std::nullopt : hit(0, 10.0), "n = " + std::to_string(n) + ", j = none");
+    for (int j = 0; j < n; ++j)
+      expect_every_path(ray, make(j), hit(static_cast<std::size_t>(j), 1.0),
+                        "n = " + std::to_string(n) + ", j = " + std::to_string(j));
+  }
+}
+
+TEST(NearestScreen, TiesAcrossLaneBoundariesGoToTheSmallestIndex) {
+  // Ray o = 0, d = (1, 0, 0). Planes k < s: through (7, 0, 0), normal (1, k, 0): num = 7, den = 1, t = 7.
+  // Planes k ≥ s: through (5, 0, 0), normal (1, k, 0): t = 5 exactly, all distinct planes (no two normals
+  // parallel), so none is set aside and all tie: plane s wins, wherever s and the tied planes fall among
+  // the lanes. Then the same with t = 5 planes only at s and at the last index (the others at t = 7).
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  for (int n = 1; n <= 9; ++n)
+    for (int s = 0; s < n; ++s) {
+      std::vector<Plane> planes, sparse;
+      for (int k = 0; k < n; ++k) {
+        const Vec3 normal{1, static_cast<double>(k), 0};
+        planes.push_back({{k < s ? 7.0 : 5.0, 0, 0}, normal});
+        sparse.push_back({{k == s || k == n - 1 ? 5.0 : 7.0, 0, 0}, normal});
+      }
+      const std::string context = "n = " + std::to_string(n) + ", s = " + std::to_string(s);
+      expect_every_path(ray, planes, hit(static_cast<std::size_t>(s), 5.0), context);
+      expect_every_path(ray, sparse, hit(static_cast<std::size_t>(s), 5.0), context + " (sparse)");
+    }
+}
+
+TEST(NearestScreen, PlanesSetAsideKeepTheirIndices) {
+  // Ray o = 0, d = (1, 0, 0). Indices: 0 x = 3 (t = 3), 1 the same plane with normal (2, 0, 0), 2 x = 4,
+  // 3 the same plane with normal (−1, 0, 0), 4 x = 6, 5 x = 8, 6 x = 9, 7 the plane x + y = 2.5 (t = 2.5),
+  // 8 the same plane through (3.5, −1, 0), 9 x = 1.5 (t = 1.5). Planes 1, 3 and 8 are set aside: 7
+  // candidates, the winner is index 9 (the candidates' 7th), t = 1.5.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  std::vector<Plane> planes = {{{3, 0, 0}, {1, 0, 0}},   {{3, 5, 0}, {2, 0, 0}},     {{4, 0, 0}, {1, 0, 0}},
+                               {{4, 1, 1}, {-1, 0, 0}},  {{6, 0, 0}, {1, 0, 0}},     {{8, 0, 0}, {1, 0, 0}},
+                               {{9, 0, 0}, {1, 0, 0}},   {{2.5, 0, 0}, {1, 1, 0}},   {{3.5, -1, 0}, {1, 1, 0}},
+                               {{1.5, 0, 0}, {1, 0, 0}}};
+  EXPECT_EQ(PlaneSet(planes).candidates().size(), 7u);
+  expect_every_path(ray, planes, hit(9, 1.5), "winner after three set-aside planes");
+  // The nearest plane given twice, at 2 and again at 9 (its coincident twin, normal (3, 0, 0)): index 2.
+  planes[2] = {{1.5, 0, 0}, {1, 0, 0}};
+  planes[9] = {{1.5, 7, 7}, {3, 0, 0}};
+  expect_every_path(ray, planes, hit(2, 1.5), "winner with a twin set aside");
+}
+
+TEST(NearestScreen, PlanesStageOneCannotDecideAreExamined) {
+  // Ray o = 0, d = (2^-600, 0, 0). Certain planes: x = (k + 2)·2^-600, normal (1, 0, 0): num = (k + 2)·2^-600,
+  // den = 2^-600, t = k + 2 ≥ 2. Uncertain planes (normal (2^-600, 0, 0): every product underflows, stage 1
+  // sees 0 against its bound 3μ): x = 2^-601 (t = 1/2, the winner, at j), x = −2^-601 (t = −1/2, behind, at
+  // (j + 3) mod n), x = 2^-590 (t = 2^10, at (j + 5) mod n). The winner's relation needs the exact stage.
+  const Ray ray{{0, 0, 0}, {0x1p-600, 0, 0}};
+  for (int n = 1; n <= 9; ++n)
+    for (int j = 0; j < n; ++j) {
+      std::vector<Plane> planes;
+      for (int k = 0; k < n; ++k) {
+        double x = (k + 2) * 0x1p-600, normal_x = 1;
+        if (k == j) {
+          x = 0x1p-601, normal_x = 0x1p-600;
+        } else if (k == (j + 3) % n) {
+          x = -0x1p-601, normal_x = 0x1p-600;
+        } else if (k == (j + 5) % n) {
+          x = 0x1p-590, normal_x = 0x1p-600;
+        }
+        planes.push_back({{x, 0, 0}, {normal_x, 0, 0}});
+      }
+      const std::string context = "n = " + std::to_string(n) + ", j = " + std::to_string(j);
+      expect_every_path(ray, planes, hit(static_cast<std::size_t>(j), 0.5), context);
+      for (const NamedScreen& s : every_screen())
+        EXPECT_EQ(detail::nearest_traced_with_screen(ray, PlaneSet(planes), s.screen).relation_stage, Stage::exact)
+            << s.name << ", " << context;
+    }
+}
+
+TEST(NearestScreen, AnOriginOnAPlaneWinsOverEveryLaterPlane) {
+  // Ray o = 0, d = (1, 0, 0); planes x = 2 + k (t = 2 + k), except plane j through the origin with normal
+  // (1, 1, 0) (num = 0: t = 0, which stage 1 cannot certify) and plane (j + 4) mod n through the origin with
+  // normal (1, 2, 0), another plane tied at t = 0: the smaller of the two indices wins, with t = +0.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  for (int n = 1; n <= 9; ++n)
+    for (int j = 0; j < n; ++j) {
+      std::vector<Plane> planes;
+      const int twin = (j + 4) % n;
+      for (int k = 0; k < n; ++k) {
+        if (k == j) {
+          planes.push_back({{0, 0, 0}, {1, 1, 0}});
+        } else if (k == twin) {
+          planes.push_back({{0, 0, 0}, {1, 2, 0}});
+        } else {
+          planes.push_back({{2.0 + k, 0, 0}, {1, 0, 0}});
+        }
+      }
+      expect_every_path(ray, planes, hit(static_cast<std::size_t>(std::min(j, twin)), 0.0),
+                        "n = " + std::to_string(n) + ", j = " + std::to_string(j));
+    }
+}
+
+TEST(NearestScreen, EveryHitAfterTheFirstCountsOneComparison) {
+  // Ray o = 0, d = (1, 0, 0), nine planes x = 1..9 (all hits, nearest first, then from far to near:
+  // x = 1, 9, 8, ..., 2). Whatever a screen sets aside, the trace counts 8 comparisons, all decided by the
+  // filter (the t differ by at least 1); plane 0 wins.
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  std::vector<Plane> planes = {{{1, 0, 0}, {1, 0, 0}}};
+  for (int x = 9; x >= 2; --x) planes.push_back({{static_cast<double>(x), 0, 0}, {1, 0, 0}});
+  for (const NamedScreen& s : every_screen()) {
+    const TracedNearestHit got = detail::nearest_traced_with_screen(ray, PlaneSet(planes), s.screen);
+    EXPECT_EQ(got.hit, hit(0, 1.0)) << s.name;
+    EXPECT_EQ(got.comparisons[static_cast<std::size_t>(Stage::filter)], 8u) << s.name;
+    EXPECT_EQ(got.comparison_stage, Stage::filter) << s.name;
+  }
+}
+
+RC_GTEST_PROP(NearestScreenProperty, EveryScreenEqualsBruteForceExactOnLargerScenes, ()) {
+  // The generated scenes (exact ties, near ties, coincident twins, duplicates, parallel, behind and hard
+  // planes) with up to 40 planes: several groups per screen, ties and uncertain lanes in any lane. Every
+  // screen and the scalar loop give the brute-force exact answer, and count one comparison per hit
+  // candidate after the first (coincident planes set aside cost none).
+  const test_support::PlaneScene scene = *rc::gen::exec([] {
+    const testkit::BitSource bits = [] {
+      return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
+    };
+    return test_support::make_plane_scene(bits, 40);
+  });
+  const test_support::OracleNearest expected = test_support::brute_force_nearest(scene.ray, scene.planes);
+  const PlaneSet set(scene.planes);
+  std::uint32_t hit_candidates = 0;
+  for (const std::uint32_t k : set.candidates()) {
+    const test_support::ExactTerms e = test_support::exact_terms(scene.ray, scene.planes[k]);
+    hit_candidates += e.den != 0 && e.num * e.den >= 0;
+  }
+  for (const NamedScreen& s : every_screen()) {
+    const TracedNearestHit got = detail::nearest_traced_with_screen(scene.ray, set, s.screen);
+    RC_ASSERT(got.hit.has_value() == expected.plane.has_value());
+    std::uint32_t comparisons = 0;
+    for (std::uint32_t c : got.comparisons) comparisons += c;
+    RC_ASSERT(comparisons == (hit_candidates == 0 ? 0 : hit_candidates - 1));
+    if (!expected.plane) continue;
+    RC_ASSERT(got.hit->plane == *expected.plane);
+    RC_ASSERT(same_bits(got.hit->t, expected.rounded_t()));
   }
 }
 

@@ -84,8 +84,8 @@ MUTATIONS = [
      "for (int j = 1; j < 7; ++j) {",
      "compensated_dot3_refined: the TwoSum chain skips w_2"),
     ("compare_delta_sign", "kernel/src/certified/compare_quotients.hpp",
-     "const double delta = p - q;            // δ = P ⊖ Q",
-     "const double delta = q - p;            // δ = P ⊖ Q",
+     "const L delta = p - q;            // δ = P ⊖ Q",
+     "const L delta = q - p;            // δ = P ⊖ Q",
      "compare_quotients_filter: δ = Q − P"),
     ("swap_constants", "kernel/src/certified/error_bounds.hpp",
      "inline constexpr double filter_den_relative = 0x1.8000000000004p-52;  // (3 + 16u)u\n"

@@ -24,6 +24,9 @@
 #include <vector>
 
 namespace raykernel {
+namespace detail {
+struct PlaneSetColumns;
+}
 
 // The nearest plane hit: its index in the span, and its t (RN of the exact num/den, docs/contract.md §1).
 struct NearestHit {
@@ -49,8 +52,10 @@ class PlaneSet {
   [[nodiscard]] std::span<const std::uint32_t> candidates() const noexcept { return candidates_; }
 
  private:
+  friend struct detail::PlaneSetColumns;
   std::vector<Plane> planes_;
   std::vector<std::uint32_t> candidates_;
+  std::vector<double> columns_;  // the candidates as structure of arrays (kernel/src/raycast/nearest_screen.hpp)
 };
 
 // The certified nearest hit (docs/contract.md §4), or nothing when no plane is hit (no planes, or every
@@ -73,7 +78,10 @@ class PlaneSet {
 
 // `nearest_hit` plus which stages it needed: the slowest stage that decided a plane's relation, the
 // slowest stage that ordered two t values, how many comparisons each stage decided, and the stage that
-// rounded the winner's t.
+// rounded the winner's t. Every hit after the first counts one comparison: with the best so far, or, in a
+// set of 8 candidate planes or more, for a hit that the vectorized filter finds certainly farther than the
+// t of a reference plane the ray hits, that filter comparison. So the total is that of one comparison per
+// hit with the best so far; the stages are those of the comparisons actually made.
 struct TracedNearestHit {
   std::optional<NearestHit> hit;
   Stage relation_stage = Stage::filter;    // slowest over all planes

@@ -29,25 +29,31 @@
 
 namespace raykernel::detail {
 
-// A real V known through one double: |V − value| ≤ radius.
-struct RoundedEnclosure {
-  double value;
-  double radius;
+// A real V known through one double: |V − value| ≤ radius (per lane when L is a lane type: nearest_hit
+// tests four or eight planes' t against the best so far at once, raycast/nearest_screen.hpp).
+template <class L>
+struct RoundedEnclosureT {
+  L value;
+  L radius;
 };
+using RoundedEnclosure = RoundedEnclosureT<double>;
 
 // The stage-1 enclosure of a dot product: value s and the bound (C ⊗ m) ⊕ 3μ that dot3_filter compares s
 // against (the same operations, in the same order). |s − V| ≤ that bound is, for den and for num,
 // proofs/Filter.v's `den_filter_encloses` and `num_filter_encloses` (both by `dot3_filter_bound_encloses`).
-[[nodiscard]] inline RoundedEnclosure filter_enclosure(const Dot3Rounded& r, double relative_constant) noexcept {
+template <class L>
+[[nodiscard]] [[gnu::always_inline]] inline RoundedEnclosureT<L> filter_enclosure(const Dot3RoundedT<L>& r,
+                                                                                  double relative_constant) noexcept {
   return {r.value, dot3_filter_bound(r, relative_constant)};
 }
 
 // R = ((|x_1| ⊗ f_2) ⊕ (e_1 ⊗ (|y_2| ⊕ f_2))) ⊕ ((|x_2| ⊗ f_1) ⊕ (e_2 ⊗ (|y_1| ⊕ f_1))): a computed bound, up
 // to the factor C_p and the absolute term, on the error that the input radii e_i (of N_i ≈ x_i) and f_i
 // (of D_i ≈ y_i) propagate into N_1·D_2 − N_2·D_1 (error_bounds.hpp: R ≥ ρ/(1+u)^4 − 4η/(1+u)^2).
-[[nodiscard]] inline double compare_propagated_error(double x1, double e1, double y1, double f1, double x2, double e2,
-                                                     double y2, double f2) noexcept {
-  return (std::fabs(x1) * f2 + e1 * (std::fabs(y2) + f2)) + (std::fabs(x2) * f1 + e2 * (std::fabs(y1) + f1));
+template <class L>
+[[nodiscard]] [[gnu::always_inline]] inline L compare_propagated_error(L x1, L e1, L y1, L f1, L x2, L e2, L y2,
+                                                                       L f2) noexcept {
+  return (abs(x1) * f2 + e1 * (abs(y2) + f2)) + (abs(x2) * f1 + e2 * (abs(y1) + f1));
 }
 
 // compare_quotients_filter: the sign of Δ = N_1·D_2 − N_2·D_1 from one-double enclosures of the four values.
@@ -57,20 +63,28 @@ struct RoundedEnclosure {
 //   Valid range: all finite inputs with radii ≥ 0; uncertain (never wrong) when anything overflows.
 //   Certified by: proofs/CompareQuotients.v, `compare_quotients_filter_sound`.
 // Cost: 8 mul, 9 add, 6 abs (δ and M: 2 mul, 2 add; R: 4 mul, 5 add; B: 2 mul, 2 add).
+// compare_quotients_filter_lanes gives the sign as an integer (Sign's values) per lane, for one pair
+// (L = double) or for four or eight first quotients against one second (L = Lanes4, Lanes8: each lane is
+// the scalar routine's operations on that lane's values, lanes.hpp). Neither comparison holds when the bound
+// or δ is NaN or infinite (an overflow): uncertain.
+template <class L>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<L> compare_quotients_filter_lanes(
+    const RoundedEnclosureT<L>& n1, const RoundedEnclosureT<L>& d1, const RoundedEnclosureT<L>& n2,
+    const RoundedEnclosureT<L>& d2) noexcept {
+  using namespace bounds;
+  const L p = n1.value * d2.value;  // P = x_1 ⊗ y_2
+  const L q = n2.value * d1.value;  // Q = x_2 ⊗ y_1
+  const L delta = p - q;            // δ = P ⊖ Q
+  const L magnitude = abs(p) + abs(q);
+  const L propagated =
+      compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
+  const L bound = (compare_filter_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
+  return sign_lanes(delta > bound, delta < -bound);
+}
+
 [[nodiscard]] inline Sign compare_quotients_filter(const RoundedEnclosure& n1, const RoundedEnclosure& d1,
                                                    const RoundedEnclosure& n2, const RoundedEnclosure& d2) noexcept {
-  using namespace bounds;
-  const double p = n1.value * d2.value;  // P = x_1 ⊗ y_2
-  const double q = n2.value * d1.value;  // Q = x_2 ⊗ y_1
-  const double delta = p - q;            // δ = P ⊖ Q
-  const double magnitude = std::fabs(p) + std::fabs(q);
-  const double propagated =
-      compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
-  const double bound =
-      (compare_filter_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
-  if (delta > bound) return Sign::positive;
-  if (delta < -bound) return Sign::negative;
-  return Sign::uncertain;  // also when bound or delta is NaN or infinite (an overflow)
+  return static_cast<Sign>(compare_quotients_filter_lanes(n1, d1, n2, d2));
 }
 
 // compare_quotients_compensated: an enclosure of Δ = N_1·D_2 − N_2·D_1 from double-double enclosures of the

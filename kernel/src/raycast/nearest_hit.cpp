@@ -4,7 +4,10 @@
 // Per plane, stage 1 of the relation (the binary64 filter of den and num) in the common case, the rest of
 // the cascade only for planes it cannot decide. Per hit, the certified comparison with the best so far
 // (certified/compare_quotients.hpp), starting from the same stage-1 values and escalating stage by stage
-// only when a comparison needs it. t is rounded once, for the winner.
+// only when a comparison needs it. t is rounded once, for the winner. From screen_minimum candidate planes
+// on, stage 1 and a filter comparison with the t of one reference plane the ray hits run four (AVX2) or two
+// planes at a time (raycast/nearest_screen.hpp), and only the planes that screen cannot set aside reach the
+// scalar path.
 #include <raykernel/nearest_hit.hpp>
 
 #include "certified/compare_quotients.hpp"
@@ -15,10 +18,13 @@
 #include "exact/exact_compare.hpp"
 #include "fp_environment.hpp"
 #include "raycast/nearest_hit_internal.hpp"
+#include "raycast/nearest_screen.hpp"
 #include "ray_plane_formula.hpp"
 #include "validation.hpp"
 
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 
 namespace raykernel {
@@ -35,6 +41,7 @@ void throw_if_invalid(const Ray& ray) {
 struct NoTrace {
   void relation(Stage) noexcept {}
   void comparison(Stage) noexcept {}
+  void comparisons(Stage, std::uint32_t) noexcept {}
 };
 struct Trace {
   TracedNearestHit* out;
@@ -42,6 +49,10 @@ struct Trace {
   void comparison(Stage s) noexcept {
     ++out->comparisons[static_cast<std::size_t>(s)];
     out->comparison_stage = slower(out->comparison_stage, s);
+  }
+  void comparisons(Stage s, std::uint32_t count) noexcept {
+    out->comparisons[static_cast<std::size_t>(s)] += count;
+    if (count != 0) out->comparison_stage = slower(out->comparison_stage, s);
   }
 };
 
@@ -75,27 +86,77 @@ DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) noexcept {
 
 namespace {
 
-// For a valid ray, in the default environment. The multiversioned functions here are noexcept (see
+// The instruction set of the screen (raycast/nearest_screen.hpp), chosen once: AVX2, or portable.
+constexpr nearest_kernel::ScreenFunctions portable_screen{nearest_kernel::portable::reference,
+                                                          nearest_kernel::portable::screen};
+#if defined(RAYKERNEL_NEAREST_AVX2)
+constexpr nearest_kernel::ScreenFunctions avx2_screen{nearest_kernel::avx2::reference, nearest_kernel::avx2::screen};
+#endif
+nearest_kernel::ScreenFunction screen_function() noexcept {
+  static const nearest_kernel::ScreenFunction screen = [] {
+#if defined(RAYKERNEL_NEAREST_AVX2)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("x86-64-v3")) return &avx2_screen;
+#endif
+    return &portable_screen;
+  }();
+  return screen;
+}
+
+// Below this many candidate planes the scalar loop is used: its fixed cost is lower (the screen makes two
+// passes, and recomputes the reference plane's stage 1). Measured (bench/README.md, "nearest"): at 4 planes
+// the screen is slower (demo4 by about 1.4×), from 8 on faster; 5 to 7 were within the noise of a shared
+// machine.
+constexpr std::size_t screen_minimum = 8;
+
+[[nodiscard]] nearest_kernel::ScreenFunction screen_for(const PlaneSet& set) noexcept {
+  return set.candidates().size() < screen_minimum ? nullptr : screen_function();
+}
+
+}  // namespace
+
+// The candidate planes of a set as columns (PlaneSet's friend).
+struct PlaneSetColumns {
+  static void build(PlaneSet& set) {
+    const std::size_t count = set.candidates_.size();
+    const std::size_t stride = (count + nearest_kernel::max_width - 1) / nearest_kernel::max_width * nearest_kernel::max_width;
+    set.columns_.assign(6 * stride, 0.0);
+    for (std::size_t j = 0; j < count; ++j) {
+      const Plane& plane = set.planes_[set.candidates_[j]];
+      const double values[6] = {plane.point.x, plane.point.y, plane.point.z, plane.normal.x, plane.normal.y, plane.normal.z};
+      for (std::size_t c = 0; c < 6; ++c) set.columns_[c * stride + j] = values[c];
+    }
+  }
+  [[nodiscard]] static nearest_kernel::PlaneColumns of(const PlaneSet& set) noexcept {
+    const std::size_t count = set.candidates_.size();
+    return {set.columns_.data(), set.columns_.size() / 6, count};
+  }
+};
+
+namespace {
+
+// For a valid ray, in the default environment, with a screen or (null) the scalar loop. The multiversioned functions here are noexcept (see
 // certified/ray_plane_query.hpp): the ray is validated before.
+//
+// Each candidate plane's stage-1 values come from the screen (four or two planes at a time), or from the
+// scalar loop below; `examine` is the rest for one plane, in ascending candidate order.
 template <class Tracer>
-[[gnu::always_inline]] inline std::optional<NearestHit> nearest_in_default_environment(const Ray& ray, const PlaneSet& set,
-                                                                                       Tracer tracer, Stage& t_stage) noexcept {
+[[gnu::always_inline]] inline std::optional<NearestHit> nearest_in_default_environment(
+    const Ray& ray, const PlaneSet& set, nearest_kernel::ScreenFunction screen, Tracer tracer, Stage& t_stage) noexcept {
   const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const std::span<const Plane> planes = set.planes();
+  const std::span<const std::uint32_t> candidates = set.candidates();
   // Two slots: the best candidate so far and the one being examined, so neither is ever copied.
   std::optional<HitCandidate> slot[2];
   int best = -1;
-  for (const std::uint32_t k : set.candidates()) {
+  // One plane given its stage-1 values and signs, in ascending candidate order.
+  auto examine = [&](std::uint32_t k, const Dot3Rounded& den, const Dot3Rounded& num, std::int64_t den_filter,
+                     std::int64_t num_filter) {
     const Plane& plane = planes[k];
-    const double n[3] = {plane.normal.x, plane.normal.y, plane.normal.z};
-    const double diff[3] = {plane.point.x - o[0], plane.point.y - o[1], plane.point.z - o[2]};
-    const Dot3Rounded den = dot3_rounded(d, n), num = dot3_rounded(diff, n);
-    const std::int64_t den_filter = dot3_filter_lanes(den, bounds::filter_den_relative);
-    const std::int64_t num_filter = dot3_filter_lanes(num, bounds::filter_num_relative);
     const int current = best == 0 ? 1 : 0;
     if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
-      if (signs_say_behind(num_filter, den_filter)) continue;
+      if (signs_say_behind(num_filter, den_filter)) return;
       HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
       c.num_sign = static_cast<Sign>(num_filter);
       c.den_sign = static_cast<Sign>(den_filter);
@@ -104,18 +165,41 @@ template <class Tracer>
       HitCandidate& c = slot[current].emplace(k, ray, plane, den, num);
       const CertifiedSigns signs = certified_signs(c.cascade());
       tracer.relation(signs.stage);
-      if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) continue;
+      if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) return;
       c.num_sign = signs.num;
       c.den_sign = signs.den;
       c.relation_stage = signs.stage;
     }
     if (best < 0) {
       best = current;
-      continue;
+      return;
     }
     const DistanceOrder order = compare_hit_distances(*slot[current], *slot[best]);
     tracer.comparison(order.stage);
     if (order.sign < 0) best = current;  // strictly nearer; a tie keeps the smaller index
+  };
+  if (screen == nullptr) {
+    for (const std::uint32_t k : candidates) {
+      const Plane& plane = planes[k];
+      const double n[3] = {plane.normal.x, plane.normal.y, plane.normal.z};
+      const double diff[3] = {plane.point.x - o[0], plane.point.y - o[1], plane.point.z - o[2]};
+      const Dot3Rounded den = dot3_rounded(d, n), num = dot3_rounded(diff, n);
+      examine(k, den, num, dot3_filter_lanes(den, bounds::filter_den_relative),
+              dot3_filter_lanes(num, bounds::filter_num_relative));
+    }
+  } else {
+    const nearest_kernel::PlaneColumns columns = PlaneSetColumns::of(set);
+    const nearest_kernel::Reference reference = screen->reference(columns, o, d);
+    nearest_kernel::GroupStage1 group;
+    for (std::size_t next = 0; next < columns.count;) {
+      next = screen->screen(columns, o, d, reference, next, group);
+      for (std::uint32_t lanes = group.examine; lanes != 0; lanes &= lanes - 1) {
+        const unsigned lane = static_cast<unsigned>(__builtin_ctz(lanes));
+        examine(candidates[group.first + lane], group.den(lane), group.num(lane), group.den_sign[lane],
+                group.num_sign[lane]);
+      }
+    }
+    tracer.comparisons(Stage::filter, group.farther);
   }
   if (best < 0) return std::nullopt;
 
@@ -137,18 +221,30 @@ template <class Tracer>
 RAYKERNEL_MULTIVERSION
 std::optional<NearestHit> nearest_untraced(const Ray& ray, const PlaneSet& set) noexcept {
   Stage t_stage;
-  return nearest_in_default_environment(ray, set, NoTrace{}, t_stage);
+  return nearest_in_default_environment(ray, set, screen_for(set), NoTrace{}, t_stage);
 }
 
 RAYKERNEL_MULTIVERSION
 TracedNearestHit nearest_traced(const Ray& ray, const PlaneSet& set) noexcept {
   TracedNearestHit trace;
-  trace.hit = nearest_in_default_environment(ray, set, Trace{&trace}, trace.t_stage);
+  trace.hit = nearest_in_default_environment(ray, set, screen_for(set), Trace{&trace}, trace.t_stage);
   if (!trace.hit) trace.t_stage = Stage::filter;
   return trace;
 }
 
 }  // namespace
+
+TracedNearestHit nearest_traced_with_screen(const Ray& ray, const PlaneSet& set, nearest_kernel::ScreenFunction screen) {
+  throw_if_invalid(ray);
+  return in_default_fp_environment([&] {
+    TracedNearestHit trace;
+    trace.hit = nearest_in_default_environment(ray, set, screen, Trace{&trace}, trace.t_stage);
+    if (!trace.hit) trace.t_stage = Stage::filter;
+    return trace;
+  });
+}
+
+nearest_kernel::ScreenFunction chosen_screen() noexcept { return screen_function(); }
 }  // namespace detail
 
 PlaneSet::PlaneSet(std::span<const Plane> planes) : planes_(planes.begin(), planes.end()) {
@@ -156,6 +252,7 @@ PlaneSet::PlaneSet(std::span<const Plane> planes) : planes_(planes.begin(), plan
     if (!detail::is_valid(planes_[k]))
       throw invalid_input("plane " + std::to_string(k) + ": " + *validate(planes_[k]));
   detail::in_default_fp_environment([&] { candidates_ = detail::exact::distinct_planes(planes_); });
+  detail::PlaneSetColumns::build(*this);
 }
 
 std::optional<NearestHit> nearest_hit(const Ray& ray, const PlaneSet& planes) {

@@ -5,7 +5,9 @@
 #include "certified/dot3_filter.hpp"
 #include "certified/ray_plane_cascade.hpp"
 #include "certified/sign.hpp"
+#include "raycast/nearest_screen.hpp"
 
+#include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <cstddef>
@@ -48,5 +50,13 @@ struct DistanceOrder {
 // compare_quotients_compensated, compare_quotients_expansion, and the exact stage
 // (certified/compare_quotients.hpp), each asked only when the cheaper ones cannot decide.
 [[nodiscard]] DistanceOrder compare_hit_distances(HitCandidate& a, HitCandidate& b) noexcept;
+
+// nearest_hit_traced with a given screen (raycast/nearest_screen.hpp; null: the scalar loop) whatever the
+// set's size, so that tests run every screen this CPU can run, and the scalar loop, on the same sets.
+// Throws invalid_input for an invalid ray.
+[[nodiscard]] TracedNearestHit nearest_traced_with_screen(const Ray& ray, const PlaneSet& set,
+                                                          nearest_kernel::ScreenFunction screen);
+// The screen nearest_hit uses on this CPU.
+[[nodiscard]] nearest_kernel::ScreenFunction chosen_screen() noexcept;
 
 }  // namespace raykernel::detail
