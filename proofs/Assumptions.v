@@ -12,7 +12,7 @@
 From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
   CompareQuotients Cascade RayBox.
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
-From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness.
+From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -227,3 +227,11 @@ Definition twin_results_4 :=
    compensated_den_live).
 Goal True. idtac "@@ filter_live filter_den_live filter_num_live enclosure_sign_live compensated_live compensated_den_live". Abort.
 Print Assumptions twin_results_4.
+
+(** QueryTwins.v: the rounding of t and the fast paths, tied to the models *)
+Definition twin_results_5 :=
+  (half_gap_twin,
+   round_quotient_twin,
+   round_quotient_twin_sound).
+Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound". Abort.
+Print Assumptions twin_results_5.
