@@ -232,6 +232,7 @@ Print Assumptions twin_results_4.
 Definition twin_results_5 :=
   (half_gap_twin,
    round_quotient_twin,
-   round_quotient_twin_sound).
-Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound". Abort.
+   round_quotient_twin_sound,
+   fast_relation_twin_correct).
+Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct". Abort.
 Print Assumptions twin_results_5.

@@ -425,3 +425,78 @@ Proof.
     try apply binary64_B2R; auto.
   split; [exact Nz | split; [exact Ft | rewrite Vt; exact T]].
 Qed.
+
+(** ** The twins tied to the models: ray_plane_query.hpp *)
+
+Definition vec_R (v : Vec3B) : vec3 := Vec3 (B2R (vxb v)) (B2R (vyb v)) (B2R (vzb v)).
+Definition vec_fin (v : Vec3B) : Prop := fin (vxb v) = true /\ fin (vyb v) = true /\ fin (vzb v) = true.
+
+(** One side of [fast_relation_from_b]: |s| > B with B = C ⊗ m ⊕ 3μ (non-negative or NaN, so finite
+    when the test passes) means a finite stage 1, equal to the model's, whose enclosure gives V ≠ 0 and
+    the sign of V. *)
+Lemma relation_side_twin : forall a0 a1 a2 b0 b1 b2 C V,
+  fin C = true -> nonneg C ->
+  let r := dot3_rounded_b a0 a1 a2 b0 b1 b2 in
+  (fin a0 = true -> fin a1 = true -> fin a2 = true ->
+   let m := dot3_rounded (B2R a0) (B2R a1) (B2R a2) (B2R b0) (B2R b1) (B2R b2) in
+   Rabs (value m - V) <= filter_bound m (B2R C)) ->
+  flt (fadd (fmul C (magnitudeb r)) Cpp.filter_absolute) (fabs (valueb r)) = true ->
+  fin a0 = true /\ fin a1 = true /\ fin a2 = true /\ fin b0 = true /\ fin b1 = true /\ fin b2 = true /\
+  V <> 0 /\ flt (valueb r) fzero = Rlt_bool V 0.
+Proof.
+  intros a0 a1 a2 b0 b1 b2 C V FC NC r Enc T.
+  assert (NB : nonneg (fadd (fmul C (magnitudeb r)) Cpp.filter_absolute)).
+  { apply fadd_nonneg; [apply fmul_nonneg; [exact NC|] | const_nonneg].
+    subst r. unfold dot3_rounded_b. cbn [magnitudeb].
+    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg. }
+  assert (FB := certifying_bound_finite _ _ NB (or_introl T)).
+  assert (Fm : fin (magnitudeb r) = true).
+  { destruct (fadd_fin _ _ FB) as [F _]. now destruct (fmul_fin _ _ F). }
+  destruct (dot3_rounded_twin a0 a1 a2 b0 b1 b2 Fm) as [F0 [F1 [F2 [G0 [G1 [G2 [_ [_ [_ [Fv E]]]]]]]]]].
+  fold r in Fv, E. specialize (Enc F0 F1 F2). cbv zeta in Enc. rewrite <- E in Enc.
+  assert (VB : B2R (fadd (fmul C (magnitudeb r)) Cpp.filter_absolute) = filter_bound (dot3_R r) (B2R C)).
+  { unfold filter_bound. cbn [dot3_R magnitude]. cpp_fin. to_model. reflexivity. }
+  assert (Ff : fin (fabs (valueb r)) = true) by (now rewrite fabs_fin).
+  rewrite (flt_val _ _ FB Ff), VB, fabs_val in T.
+  destruct (Rlt_bool_spec (filter_bound (dot3_R r) (B2R C)) (Rabs (B2R (valueb r)))) as [T'|_]; [|discriminate].
+  destruct (abs_above_bound _ _ _ Enc T') as [Nz S].
+  repeat split; try assumption.
+  rewrite (flt_val (valueb r) fzero Fv (eq_refl true)). exact S.
+Qed.
+
+(** [fast_relation] (what [relation] and the relation batch run), end to end for every bit pattern of
+    o, d, p, n: when it says certain, every input is finite, [behind ? behind : hit] is the relation of
+    docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0, d ≠ 0 and n ≠ 0 (the twin of Cascade.v's
+    [fast_relation_correct]; no validation before it is needed). *)
+Theorem fast_relation_twin_correct : forall o d p n : Vec3B,
+  snd (fast_relation_b o d p n) = true ->
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
+  (if fst (fast_relation_b o d p n) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
+  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
+  vec_R d <> zero3 /\ vec_R n <> zero3.
+Proof.
+  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz].
+  unfold fast_relation_b, fast_relation_from_b. cbn [fst snd vxb vyb vzb]. intros C.
+  apply andb_prop in C. destruct C as [Cd Cn].
+  destruct cpp_filter_constants as [Fd [Nd [Fn Nn]]].
+  destruct (relation_side_twin dx dy dz nx ny nz Cpp.filter_den_relative
+              (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))) Fd Nd) as
+    [Fdx [Fdy [Fdz [Fnx [Fny [Fnz [Zd Sd]]]]]]].
+  { intros _ _ _. cbv zeta. rewrite cpp_filter_den_relative. apply den_filter_encloses. }
+  { exact Cd. }
+  destruct (relation_side_twin (fsub px ox) (fsub py oy) (fsub pz oz) nx ny nz Cpp.filter_num_relative
+              (ray_num (vec_R (V3 ox oy oz)) (vec_R (V3 px py pz)) (vec_R (V3 nx ny nz))) Fn Nn) as
+    [F0 [F1 [F2 [_ [_ [_ [Zn Sn]]]]]]].
+  { intros F0 F1 F2. cbv zeta. rewrite cpp_filter_num_relative.
+    destruct (fsub_inv _ _ F0) as [_ [_ V0]]. destruct (fsub_inv _ _ F1) as [_ [_ V1]].
+    destruct (fsub_inv _ _ F2) as [_ [_ V2]]. rewrite V0, V1, V2.
+    apply num_filter_encloses; apply binary64_B2R. }
+  { exact Cn. }
+  destruct (fsub_fin _ _ F0) as [Fpx Fox]. destruct (fsub_fin _ _ F1) as [Fpy Foy].
+  destruct (fsub_fin _ _ F2) as [Fpz Foz].
+  destruct (den_nonzero_valid _ _ Zd) as [Vd Vn].
+  unfold vec_fin. cbn [vxb vyb vzb].
+  repeat split; try assumption.
+  rewrite Sd, Sn, (relation_of_nonzero _ _ _ _ Zn Zd).
+  destruct (Rlt_bool _ 0), (Rlt_bool _ 0); reflexivity.
+Qed.
