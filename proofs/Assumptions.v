@@ -233,6 +233,7 @@ Definition twin_results_5 :=
   (half_gap_twin,
    round_quotient_twin,
    round_quotient_twin_sound,
-   fast_relation_twin_correct).
-Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct". Abort.
+   fast_relation_twin_correct,
+   fast_answer_twin_correct).
+Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct". Abort.
 Print Assumptions twin_results_5.

@@ -11,10 +11,13 @@
     - [fast_relation_b], [fast_relation_pair_b]: fast_relation (|s| > B), both forms;
     - [ray_plane_expansions_b]: ray_plane_expansions (stage 3), the C++ as it is.
 
-    These Definitions are checked against the C++ by the runner; their tie to the real-number models
-    (Cascade.v's [fast_answer_correct], [fast_relation_correct]; QuotientRounding.v's [round_quotient_sound])
-    is not yet a theorem about them (proofs/README.md, "What remains"): the stage-1 and stage-2 pieces they
-    call are tied (Twins.v), the composition and the quotient are not. *)
+    These Definitions are checked against the C++ by the runner, and tied to the real-number models at the
+    end of this file: [half_gap_twin] and [round_quotient_twin] (every intermediate of a certified rounding
+    finite and equal to QuotientRounding.v's), [round_quotient_twin_sound] (t = RN(num/den), from
+    [round_quotient_sound]); [fast_relation_twin_correct] and [fast_answer_twin_correct] (the twins of
+    Cascade.v's [fast_relation_correct] and [fast_answer_correct], end to end for every bit pattern of
+    o, d, p, n).  Not tied yet: [fast_answer_pair_b], [fast_relation_pair_b] (the Lanes2 forms) and
+    [ray_plane_expansions_b] (proofs/README.md, "What remains"). *)
 
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -499,4 +502,110 @@ Proof.
   repeat split; try assumption.
   rewrite Sd, Sn, (relation_of_nonzero _ _ _ _ Zn Zd).
   destruct (Rlt_bool _ 0), (Rlt_bool _ 0); reflexivity.
+Qed.
+
+(** [fast_answer_b] as [fast_answer_from_b] of the stage-1 signs and the stage-2 enclosures of Twins.v
+    ([den_compensated_b], [num_compensated_b]; p_i ⊖ o_i is two_diff(p_i, o_i).hi), and the three outputs
+    [fast_answer_from_b] computes. *)
+Lemma fast_answer_b_eq : forall ox oy oz dx dy dz px py pz nx ny nz,
+  fast_answer_b (V3 ox oy oz) (V3 dx dy dz) (V3 px py pz) (V3 nx ny nz) =
+  fast_answer_from_b (dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative)
+    (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy)) (fst (two_diff_b pz oz))
+       nx ny nz) Cpp.filter_num_relative)
+    (den_compensated_b dx dy dz nx ny nz) (num_compensated_b px py pz ox oy oz nx ny nz).
+Proof. intros. unfold fast_answer_b. cbn [vxb vyb vzb]. rewrite !fsub_two_diff_hi. reflexivity. Qed.
+
+Lemma fast_answer_from_b_parts : forall df nf den num,
+  let a := fast_answer_from_b df nf den num in
+  fst (fst (fst a)) = fst (round_quotient_b num (prepare_divisor_b den)) /\
+  snd (fst (fst a)) = Z.ltb (first_certain_lanes_b nf (enclosure_sign_lanes_b num) *
+                             first_certain_lanes_b df (enclosure_sign_lanes_b den))%Z 0 /\
+  snd (fst a) = (certain_lane (first_certain_lanes_b df (enclosure_sign_lanes_b den)) &&
+                 certain_lane (first_certain_lanes_b nf (enclosure_sign_lanes_b num)) &&
+                 snd (round_quotient_b num (prepare_divisor_b den)))%bool.
+Proof. intros. repeat split. Qed.
+
+Lemma first_certain_lanes_b_eq : forall x y, first_certain_lanes_b x y = first_certain_lanes x y.
+Proof. reflexivity. Qed.
+
+Lemma certain_lane_true : forall s, certain_lane s = true -> s <> uncertain_lane.
+Proof. intros s H. unfold certain_lane in H. apply negb_true_iff, Z.eqb_neq in H. exact H. Qed.
+
+(** [fast_answer] (the batch lanes' form: what [intersect] and the intersection batch run), end to end for
+    every bit pattern of o, d, p, n: when it says certain, every input is finite, [behind ? behind : hit]
+    is the relation of docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0, d ≠ 0, n ≠ 0, and t is
+    finite and RN(num/den) (the twin of Cascade.v's [fast_answer_correct]).  The stage-2 enclosures are
+    finite because round_quotient certified them ([round_quotient_twin]), which discharges the
+    "hi and lo finite" hypothesis of the stage-2 twin theorems on this path. *)
+Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
+  let a := fast_answer_b o d p n in
+  snd (fst a) = true ->
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
+  (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
+  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
+  vec_R d <> zero3 /\ vec_R n <> zero3 /\
+  fin (fst (fst (fst a))) = true /\
+  B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+Proof.
+  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
+  rewrite fast_answer_b_eq.
+  destruct (fast_answer_from_b_parts (dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative)
+    (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy)) (fst (two_diff_b pz oz))
+       nx ny nz) Cpp.filter_num_relative)
+    (den_compensated_b dx dy dz nx ny nz) (num_compensated_b px py pz ox oy oz nx ny nz)) as [P1 [P2 P3]].
+  rewrite P1, P2, P3. clear P1 P2 P3.
+  set (den2 := den_compensated_b dx dy dz nx ny nz). set (num2 := num_compensated_b px py pz ox oy oz nx ny nz).
+  set (VD := ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))).
+  set (VN := ray_num (vec_R (V3 ox oy oz)) (vec_R (V3 px py pz)) (vec_R (V3 nx ny nz))).
+  intros C. apply andb_prop in C. destruct C as [C Ct]. apply andb_prop in C. destruct C as [Cd Cn].
+  (* the quotient *)
+  assert (Nden : nonneg (radiusb den2)).
+  { unfold den2, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
+    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg. }
+  assert (Nnum : nonneg (radiusb num2)) by apply compensated_radius_nonneg.
+  destruct (round_quotient_twin num2 den2 Nnum Nden Ct) as [Fnh [Fnl [Fnr [Fdh [Fdl [Fdr _]]]]]].
+  assert (Ed : encloses (enc_R den2) VD).
+  { destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [? [? [? [? [? [? E]]]]]].
+    unfold den2, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R. }
+  assert (En : encloses (enc_R num2) VN /\ vec_fin (V3 px py pz) /\ vec_fin (V3 ox oy oz)).
+  { destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fnr Fnh Fnl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
+    destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
+    destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
+    unfold vec_fin. cbn [vxb vyb vzb]. repeat split; try assumption.
+    unfold num2, num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
+    apply compensated_num_enclosure; apply binary64_B2R. }
+  destruct En as [En [Fp Fo]].
+  destruct (round_quotient_twin_sound num2 den2 VN VD Nnum Nden (fun _ _ _ => En) (fun _ _ _ => Ed) Ct)
+    as [Zd [Ft Vt]].
+  (* the signs *)
+  destruct (den_filter_twin_sound dx dy dz nx ny nz) as [Sdf _].
+  destruct (num_filter_twin_sound px py pz ox oy oz nx ny nz) as [Snf _].
+  destruct (den_compensated_twin_sound dx dy dz nx ny nz Fdh Fdl) as [Sdc _].
+  destruct (num_compensated_twin_sound px py pz ox oy oz nx ny nz Fnh Fnl) as [Snc _].
+  fold den2 in Sdc. fold num2 in Snc.
+  set (sdf := dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative) in *.
+  set (snf := dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy))
+                (fst (two_diff_b pz oz)) nx ny nz) Cpp.filter_num_relative) in *.
+  set (sdc := enclosure_sign_lanes_b den2) in *. set (snc := enclosure_sign_lanes_b num2) in *.
+  assert (L1 : lane_sign sdf) by (unfold sdf, dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L2 : lane_sign snf) by (unfold snf, dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L3 : lane_sign sdc) by (unfold sdc, enclosure_sign_lanes_b; apply sign_lanes_range).
+  assert (L4 : lane_sign snc) by (unfold snc, enclosure_sign_lanes_b; apply sign_lanes_range).
+  clearbody sdf snf sdc snc.
+  change VD with (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))) in Sdc.
+  assert (Sdf' : certifies (sign_from_Z sdf) VD) by exact Sdf.
+  assert (Snf' : certifies (sign_from_Z snf) VN) by exact Snf.
+  clear Sdf Snf.
+  destruct (first_certain_lanes_sound _ _ VD L1 L3 Sdf' Sdc) as [Ld Cd'].
+  destruct (first_certain_lanes_sound _ _ VN L2 L4 Snf' Snc) as [Ln Cn'].
+  rewrite !first_certain_lanes_b_eq in Cd, Cn |- *.
+  destruct (lanes_relation _ _ (vec_R (V3 ox oy oz)) (vec_R (V3 dx dy dz)) (vec_R (V3 px py pz)) (vec_R (V3 nx ny nz))
+              Ln Ld (certain_lane_true _ Cn) (certain_lane_true _ Cd) Cn' Cd') as [Rel [Zn Zd']].
+  destruct (den_nonzero_valid _ _ Zd') as [Vd Vn].
+  assert (Fdn : vec_fin (V3 dx dy dz) /\ vec_fin (V3 nx ny nz)).
+  { destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [X0 [X1 [X2 [X3 [X4 [X5 _]]]]]].
+    exact (conj (conj X0 (conj X1 X2)) (conj X3 (conj X4 X5))). }
+  destruct Fdn as [Fd Fn].
+  exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn (conj Zd' (conj Vd (conj Vn (conj Ft Vt)))))))))).
 Qed.
