@@ -234,6 +234,7 @@ Definition twin_results_5 :=
    round_quotient_twin,
    round_quotient_twin_sound,
    fast_relation_twin_correct,
-   fast_answer_twin_correct).
-Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct". Abort.
+   fast_answer_twin_correct,
+   tiny_product_threshold).
+Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct tiny_product_threshold". Abort.
 Print Assumptions twin_results_5.
