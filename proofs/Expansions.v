@@ -44,8 +44,15 @@ Definition push (h : list float) (x : float) : list float := if feq x fzero then
 Definition finish (h : list float) (q : float) : list float :=
   if (negb (feq q fzero) || Nat.eqb (length h) 0)%bool then h ++ [q] else h.
 
-(** The guard of [note_product]: 2^-968 (written as a literal in expansion.hpp; proofs/literals.txt). *)
-Definition tiny_product : float := of_bits 247697979505377280.  (* 0x1p-968 *)
+(** The guard of [note_product]: the compiled [bounds::exact_product_threshold] (ConstantsCpp.v), which
+    [tiny_product_threshold] proves is Constants.v's [exact_product_threshold] = 2^-968. *)
+Definition tiny_product : float := Cpp.exact_product_threshold.
+
+Lemma tiny_product_threshold : B2R tiny_product = exact_product_threshold.
+Proof.
+  unfold tiny_product, exact_product_threshold. float_value Cpp.exact_product_threshold.
+  replace (-968)%Z with (52 + -1020)%Z by reflexivity. rewrite bpow_plus. reflexivity.
+Qed.
 
 (** [note_product(a, b, p)]: the TwoProduct a·b = p + lo is exact when p == 0 with a zero factor, or
     |p| ≥ 2^-968; and p is finite. *)
