@@ -68,7 +68,8 @@ using QuotientRounding = QuotientRoundingT<double>;
 //   Valid range: |N| ≥ 2^-900, 2^-1000 ≤ |D| ≤ 2^1000, 2^-900 ≤ |q| ≤ largest_finite (checked: otherwise
 //   not certain; NaN and ±inf fail every guard).
 //   Certified by: proofs/QuotientRounding.v, `round_quotient_sound` (the Coq definition computes every
-//   guard and the test, as here, and returns (t, certain); per lane for vectors).
+//   guard and the test, as here, and returns (t, certain); per lane for vectors); on the bits, with
+//   prepare_divisor and half_gap_to_nearer_neighbour, proofs/QueryTwins.v, `round_quotient_twin_sound`.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline QuotientRoundingT<V> round_quotient(const EnclosureT<V>& num,
                                                                                 const DivisorT<V>& den) noexcept {
