@@ -43,6 +43,41 @@ std::optional<NearestHit> hit(std::size_t plane, double t) { return NearestHit{p
 
 // ---- Hand-derived cases ----------------------------------------------------------------------------------
 
+// compare_hit_distances wires each stage-1 value to its own constant: num's enclosure with the num filter's
+// constant, den's with den's (a mutation that gave num den's smaller constant left the differential runner and
+// the other tests silent). Plane A: t = 1 from num = 1 (magnitude 1); plane B: t = 1 + 8ku from num = 2 + 8ku − 1,
+// whose magnitude 3 gives num the widest enclosure; both den = 1. For k = 1..16 the comparison's stage-1
+// margin |δ| = 8ku crosses its bound (about 26u with num's constant, 22u with den's), and the traced comparison
+// must be decided by stage 1 exactly when compare_quotients_filter on the enclosures as specified is certain.
+TEST(NearestHit, TheComparisonUsesEachValuesOwnConstant) {
+  constexpr double u = 0x1p-53;
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const double d[3] = {1, 0, 0};
+  int decided_by_filter = 0;
+  for (int k = 1; k <= 16; ++k) {
+    const Plane a{{1, 0, 0}, {1, 0, 0}};
+    const Plane b{{2 + 8 * k * u, -1, 0}, {1, 1, 0}};  // 2 + 8ku: representable (ulp of 2 is 4u)
+    const std::vector<Plane> planes{a, b};
+    const TracedNearestHit traced = nearest_hit_traced(ray, planes);
+    ASSERT_TRUE(traced.hit.has_value());
+    EXPECT_EQ(traced.hit->plane, 0u) << k;
+    auto enclosures = [&](const Plane& plane) {
+      const double n[3] = {plane.normal.x, plane.normal.y, plane.normal.z};
+      const double diff[3] = {plane.point.x, plane.point.y, plane.point.z};  // p − o with o = 0
+      return std::pair{detail::filter_enclosure(detail::dot3_rounded(diff, n), detail::bounds::filter_num_relative),
+                       detail::filter_enclosure(detail::dot3_rounded(d, n), detail::bounds::filter_den_relative)};
+    };
+    const auto [num_b, den_b] = enclosures(b);
+    const auto [num_a, den_a] = enclosures(a);
+    const bool certain = detail::is_certain(detail::compare_quotients_filter(num_b, den_b, num_a, den_a));
+    decided_by_filter += certain;
+    EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::filter)], certain ? 1u : 0u) << "k = " << k;
+  }
+  // The window is inside the loop: some k decided by stage 1, some not.
+  EXPECT_GT(decided_by_filter, 0);
+  EXPECT_LT(decided_by_filter, 16);
+}
+
 TEST(NearestHit, TheSeedsLoopPicksTheSmallestT) {
   // Ray along +z from the origin. Planes z = 5 (t = 5), z = 3 (t = 3), z = −2 (behind, t = −2),
   // x = 1 (parallel: d·n = 0, num = 1), y = 0 (in-plane: d·n = 0, num = 0).

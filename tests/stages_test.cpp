@@ -159,6 +159,22 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, StagesOnHardQueries, ::testing::ValuesIn(test
                            return name;
                          });
 
+// Each call site passes its own constant (a mutation that filtered num with den's smaller constant left the
+// differential runner and the hard queries silent). Hand-derived window: o = 0, p = (1, −1 + 7u, 0),
+// n = (1, 1, 0) with u = 2^-53 give num's products 1 and −1 + 7u (exact), value s = 7u (Sterbenz) and magnitude
+// m = 2 − 7u. num's bound (4 + 32u)u·m + 3μ ≈ 8u exceeds s, so stage 1 leaves num uncertain and stage 2 decides;
+// den's constant (3 + 16u)u would give ≈ 6u < s and certify it at stage 1. d = (1, 0, 0): den = 1, certain.
+TEST(Stages, NumIsFilteredWithItsOwnConstant) {
+  constexpr double u = 0x1p-53;
+  const Ray ray{{0, 0, 0}, {1, 0, 0}};
+  const Plane plane{{1, -1 + 7 * u, 0}, {1, 1, 0}};
+  const TracedIntersection traced = intersect_traced(ray, plane);
+  EXPECT_EQ(traced.intersection.relation, Relation::hit);
+  EXPECT_EQ(traced.relation_stage, Stage::compensated) << "num's stage-1 bound is not (4 + 32u)u·m + 3μ";
+  // The same window seen by the fast path: not certain at stage 1, so `intersect` answers through stage 2 too.
+  EXPECT_EQ(intersect(ray, plane).t, 7 * u);
+}
+
 TEST(RoundQuotient, HalfGapToNearerNeighbour) {
   // For q in [2^e, 2^(e+1)) the gap to either neighbour is 2^(e−52), half of it 2^(e−53); at q = 2^e the
   // gap below is 2^(e−53), half of it 2^(e−54).
