@@ -115,7 +115,7 @@ MUTATIONS = [
      "compare_hit_distances: num's enclosure with den's constant"),
     ("low_part_dropped", "kernel/src/certified/ray_plane_query.hpp",
      "for (int i = 0; i < 3; ++i) low[i] = two_diff(q.p[i], q.o[i]).lo;",
-     "for (int i = 0; i < 3; ++i) low[i] = 0;",
+     "for (int i = 0; i < 3; ++i) low[i] = V{};",
      "difference_low_parts: num's stage 2 without the TwoDiff low parts"),
     ("sum_first_operand", "kernel/src/certified/expansion.hpp",
      "const DoubleDouble s = two_sum(take_smaller(), q);",
