@@ -12,12 +12,8 @@
 From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
   CompareQuotients Cascade RayBox.
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
-<<<<<<< HEAD
-From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness.
-From Raykernel Require TriangleTwins.
-=======
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
->>>>>>> coqq16
+From Raykernel Require TriangleTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -233,7 +229,6 @@ Definition twin_results_4 :=
 Goal True. idtac "@@ filter_live filter_den_live filter_num_live enclosure_sign_live compensated_live compensated_den_live". Abort.
 Print Assumptions twin_results_4.
 
-<<<<<<< HEAD
 (** TriangleTwins.v: the ray–triangle stages 1 and 2 (kernel/src/triangle/), tied to TriangleFilter.v and
     TriangleCompensated.v, and sound end to end *)
 Definition twin_results_triangle :=
@@ -269,7 +264,7 @@ Definition twin_results_triangle_constants :=
    TriangleTwins.cpp_triangle_compensated_den_relative).
 Goal True. idtac "@@ cpp_triangle_absolute_scale cpp_triangle_absolute cpp_triangle_filter_pi_relative cpp_triangle_filter_num_relative cpp_triangle_filter_den_relative cpp_triangle_compensated_relative cpp_triangle_compensated_den_relative". Abort.
 Print Assumptions twin_results_triangle_constants.
-=======
+
 (** QueryTwins.v: the rounding of t and the fast paths, tied to the models *)
 Definition twin_results_5 :=
   (half_gap_twin,
@@ -280,4 +275,3 @@ Definition twin_results_5 :=
    tiny_product_threshold).
 Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct tiny_product_threshold". Abort.
 Print Assumptions twin_results_5.
->>>>>>> coqq16

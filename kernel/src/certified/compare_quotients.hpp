@@ -79,7 +79,10 @@ template <class L>
   const L propagated =
       compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
   const L bound = (compare_filter_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
-  return sign_lanes(delta > bound, delta < -bound);
+  // Both comparisons can hold only for a negative bound (negative radii, which no stage produces): then
+  // `positive`, as the test δ > B comes first (proofs/CompareTwins.v, `compare_quotients_filter_b`).
+  const auto above = delta > bound;
+  return sign_lanes(above, (delta < -bound) & (above == 0));
 }
 
 [[nodiscard]] inline Sign compare_quotients_filter(const RoundedEnclosure& n1, const RoundedEnclosure& d1,
