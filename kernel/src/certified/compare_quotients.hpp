@@ -80,7 +80,7 @@ template <class L>
       compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
   const L bound = (compare_filter_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
   // Both comparisons can hold only for a negative bound (negative radii, which no stage produces): then
-  // `positive`, as the test δ > B comes first (proofs/CompareTwins.v, `compare_quotients_filter_b`).
+  // positive, as the test δ > B comes first (as in the twin of proofs/CompareTwins.v).
   const auto above = delta > bound;
   return sign_lanes(above, (delta < -bound) & (above == 0));
 }
