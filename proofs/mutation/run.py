@@ -178,6 +178,10 @@ MUTATIONS = [
      "s[i] = static_cast<int>(sign);",
      "s[i] = -static_cast<int>(sign);",
      "tie_break_signs_by_expansion: the owned rule's tie-break signs flipped"),
+    ("tri_drop_rounded_guard", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "const bool rounded = (!options.t || q.certain[lane_num]) &",
+     "const bool rounded = true &",
+     "fast_triangle_intersection: t returned without round_quotient's certainty"),
 ]
 
 
