@@ -222,7 +222,7 @@ TEST(TriangleFilter, FastRelationFiltersNumWithItsOwnConstant) {
   EXPECT_EQ(traced.relation_stage, Stage::compensated) << "fast_relation: num's bound is not 9u·m + A";
 }
 
-TEST(TriangleFilter, FastIntersectionFiltersDenWithItsOwnConstant) {
+TEST(TriangleFilter, CascadeFiltersDenWithItsOwnConstant) {
   // o = (0, 0, 1), d = (0, 0, −1); the triangle in the plane z = 0: a = (−16, −16, 0), b = (1, 1 − 17u, 0),
   // c = (1, 1 + 18u, 0) (u = 2^-53; all doubles). With d = (0, 0, −1) and ê_v = (v_x, v_y, −1), π(p, q) =
   // −(p_x q_y − p_y q_x) and m = |p_x q_y| + |p_y q_x| (the d_x, d_y terms are 0 · …), every product exact:
@@ -232,8 +232,12 @@ TEST(TriangleFilter, FastIntersectionFiltersDenWithItsOwnConstant) {
   // all above π's 8u: certified negative by the filter. den = (πa ⊕ πb) ⊕ πc = −595u, m = 66:
   // |den|/m = 9.015u, so den's 10u·m ≈ 660u leaves it uncertain (stage 2 certifies it: exact, radius ≈ 2^-92),
   // where π's 8u·m ≈ 528u would certify it. num = ê_a·(ê_b × ê_c) = −595u and its m = 66 are den's (the z
-  // components are all −1): |num|/m = 9.015u > 9u, certified. So the intersection is decided with den from
-  // stage 2: hit, t = num/den = 1 (o + 1·d = 0 is on the plane), inside.
+  // components are all −1): |num|/m = 9.015u > 9u, certified. Stage 2 cannot round t or the barycentrics here
+  // (den's radius 256u²·66 is about 28u·|den|, far above the half gap), so the fast path hands the query to the
+  // full cascade, whose den is filtered with filter_relative(value_den): hit, t = num/den = 1 (o + 1·d = 0 is
+  // on the plane), inside, with den's sign from stage 2.
+  // (The same window in fast_triangle_intersection's own den filter is unobservable: whenever stage 2 rounds
+  // t, |den| > 512u·m, which every constant certifies; proofs/README.md, the triangle mutations.)
   constexpr double u = 0x1p-53;
   const Ray ray{{0, 0, 1}, {0, 0, -1}};
   const Triangle triangle{{-16, -16, 0}, {1, 1 - 17 * u, 0}, {1, 1 + 18 * u, 0}};
@@ -241,7 +245,7 @@ TEST(TriangleFilter, FastIntersectionFiltersDenWithItsOwnConstant) {
   EXPECT_EQ(traced.intersection.relation, TriangleRelation::hit);
   EXPECT_EQ(traced.intersection.location, TriangleLocation::inside);
   EXPECT_EQ(traced.intersection.t, 1.0);
-  EXPECT_EQ(traced.relation_stage, Stage::compensated) << "fast_triangle_intersection: den's bound is not 10u·m + A";
+  EXPECT_EQ(traced.relation_stage, Stage::compensated) << "the cascade: den's bound is not 10u·m + A";
 }
 
 }  // namespace
