@@ -237,7 +237,7 @@ TEST(TriangleFilter, CascadeFiltersDenWithItsOwnConstant) {
   // full cascade, whose den is filtered with filter_relative(value_den): hit, t = num/den = 1 (o + 1·d = 0 is
   // on the plane), inside, with den's sign from stage 2.
   // (The same window in fast_triangle_intersection's own den filter is unobservable: whenever stage 2 rounds
-  // t, |den| > 512u·m, which every constant certifies; proofs/README.md, the triangle mutations.)
+  // t, |den| is above about 256u·m, which every constant certifies; proofs/README.md, the triangle mutations.)
   constexpr double u = 0x1p-53;
   const Ray ray{{0, 0, 1}, {0, 0, -1}};
   const Triangle triangle{{-16, -16, 0}, {1, 1 - 17 * u, 0}, {1, 1 + 18 * u, 0}};
