@@ -188,6 +188,12 @@ MUTATIONS = [
      "fast_triangle_intersection: t returned without round_quotient's certainty"),
 ]
 
+# Mutations that change no observable behaviour (argued in proofs/README.md, "Triangle mutations"): reported, not
+# counted as escapes. tri_call_site_den: the fast intersection answers only when stage 2 rounds a quotient over
+# den, which needs |den| above about 256u·m, where 8u and 10u certify alike; tri_drop_guard: a stage-2 low part is
+# finite whenever its high part is.
+UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard"}
+
 
 def run(cmd, cwd, log, timeout=None):
     with open(log, "a") as out:
@@ -316,6 +322,10 @@ def main():
               f"{('caught' + ('' if proofs_built else ' (Coq build)')) if proof_checks else '—'} |")
         if (not runner or runner.startswith("n/a")) and not tests and not proof_checks:
             uncaught.append(name)
+    unobservable = [name for name in uncaught if name in UNOBSERVABLE]
+    if unobservable:
+        print("\nnot caught, argued unobservable (proofs/README.md, the triangle mutations): " + ", ".join(unobservable))
+    uncaught = [name for name in uncaught if name not in UNOBSERVABLE]
     if uncaught:
         print("\nNOT CAUGHT: " + ", ".join(uncaught))
         sys.exit(1)
