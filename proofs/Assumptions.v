@@ -14,6 +14,7 @@ From Raykernel Require Import Constants Model Filter Compensated QuotientRoundin
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
 From Raykernel Require TriangleTwins.
+From Raykernel Require TriangleLiveness.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -275,3 +276,15 @@ Definition twin_results_5 :=
    tiny_product_threshold).
 Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct tiny_product_threshold". Abort.
 Print Assumptions twin_results_5.
+
+(** TriangleLiveness.v: the ray–triangle stages 1 and 2 do certify (inputs of magnitude at most 2^300, |V|
+    above 2^-48·P or 2^-95·P plus absolute terms) *)
+Definition twin_results_triangle_liveness :=
+  (TriangleLiveness.triangle_pi_filter_live,
+   TriangleLiveness.triangle_num_filter_live,
+   TriangleLiveness.triangle_den_filter_live,
+   TriangleLiveness.triangle_pi_compensated_live,
+   TriangleLiveness.triangle_num_compensated_live,
+   TriangleLiveness.triangle_den_compensated_live).
+Goal True. idtac "@@ triangle_pi_filter_live triangle_num_filter_live triangle_den_filter_live triangle_pi_compensated_live triangle_num_compensated_live triangle_den_compensated_live". Abort.
+Print Assumptions twin_results_triangle_liveness.

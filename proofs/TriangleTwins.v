@@ -285,6 +285,22 @@ Proof.
   rewrite fneg_val, (fadd_val _ _ FB), (fmul_val _ _ Fp), Ev, Em. reflexivity.
 Qed.
 
+(** The shape every end-to-end filter theorem below shares: from the twin's tie [Tw] (which also yields the
+    finiteness [Fins] of the inputs) and the model's soundness [S], a certified sign is the exact sign of V,
+    and a certain sign implies [Fins]. *)
+Lemma filter_twin_sound_gen : forall (t : FTermB) (T : FTerm) (C A : float) (V : R) (Fins : Prop),
+  fin C = true -> nonneg C -> nonneg (fmb t) -> nonneg A ->
+  (fin (fmb t) = true -> Fins /\ ftw t T) ->
+  (fin A = true -> Fins -> certifies (sign_from_Z (det3_filter_lanes T (B2R C) (B2R A))) V) ->
+  certifies (sign_from_Z (det3_filter_lanes_b t C A)) V /\ (det3_filter_lanes_b t C A <> uncertain_lane -> Fins).
+Proof.
+  intros t T C A V Fins FC NC Nm NA Tw S.
+  destruct (Z.eq_dec (det3_filter_lanes_b t C A) uncertain_lane) as [U|U].
+  - split; [rewrite U; exact I | intros X; contradiction].
+  - destruct (det3_filter_lanes_twin t T C A FC NC Nm NA (fun F => proj2 (Tw F)) U) as [Fm [FA E]].
+    destruct (Tw Fm) as [Fs _]. split; [rewrite E; exact (S FA Fs) | intros _; exact Fs].
+Qed.
+
 (** ** Stage 1 of a query, end to end. *)
 
 Lemma tsub_twin : forall v o, fin (tx (tsub v o)) = true -> fin (ty (tsub v o)) = true -> fin (tz (tsub v o)) = true ->
@@ -363,16 +379,11 @@ Theorem triangle_pi_filter_twin_sound : forall o d p q : TVec,
   certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
 Proof.
-  intros o d p q s.
-  destruct cpp_triangle_constants as [_ [_ [_ [_ [FC [NC _]]]]]].
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (pi_stage1 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) _ _ FC NC
-                (pi_stage1_b_nonneg o d p q) (absolute_bv_nonneg _)
-                (fun F => proj2 (proj2 (proj2 (proj2 (pi_stage1_twin o d p q F))))) U) as [Fm [FA E]].
-    destruct (pi_stage1_twin o d p q Fm) as [Fo [Fd [Fp [Fq _]]]].
-    split; [| intros _; tsplit; assumption].
-    unfold s. rewrite E, cpp_triangle_filter_pi_relative, (proj2 (absolute_bv_twin d FA)).
+  intros o d p q. cbv zeta. destruct cpp_triangle_constants as [_ [_ [_ [_ [FC [NC _]]]]]].
+  apply (filter_twin_sound_gen _ (pi_stage1 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) _ _ _ _ FC NC
+           (pi_stage1_b_nonneg o d p q) (absolute_bv_nonneg _)).
+  - intros F. destruct (pi_stage1_twin o d p q F) as [? [? [? [? T]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_filter_pi_relative, (proj2 (absolute_bv_twin d FA)).
     apply pi_filter_sound; apply tvec_R_doubles.
 Qed.
 
@@ -382,19 +393,13 @@ Theorem triangle_num_filter_twin_sound : forall o a b c : TVec,
   certifies (sign_from_Z s) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin a /\ tfin b /\ tfin c).
 Proof.
-  intros o a b c s.
-  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]].
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
-                (num_stage1_b_nonneg o a b c) (absolute_bv_nonneg _)
-                (fun F => proj2 (proj2 (proj2 (proj2 (num_stage1_twin o a b c F))))) U) as [Fm [FA E]].
-    destruct (num_stage1_twin o a b c Fm) as [Fo [Fa [Fb [Fc _]]]].
-    split; [| intros _; tsplit; assumption].
-    destruct (absolute_bv_twin _ FA) as [[F1 [F2 F3]] EA].
+  intros o a b c. cbv zeta. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]].
+  apply (filter_twin_sound_gen _ (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ _ _ FC NC
+           (num_stage1_b_nonneg o a b c) (absolute_bv_nonneg _)).
+  - intros F. destruct (num_stage1_twin o a b c F) as [? [? [? [? T]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. destruct (absolute_bv_twin _ FA) as [[F1 [F2 F3]] EA].
     destruct (tsub_twin a o F1 F2 F3) as [_ [_ Ea]].
-    unfold s. rewrite E, cpp_triangle_filter_num_relative, EA, Ea.
-    apply num_filter_sound; apply tvec_R_doubles.
+    rewrite cpp_triangle_filter_num_relative, EA, Ea. apply num_filter_sound; apply tvec_R_doubles.
 Qed.
 
 (** den = (πa ⊕ πb) ⊕ πc: a certified sign is the sign of d·((b − a) × (c − a)) summed as πa + πb + πc. *)
@@ -403,16 +408,11 @@ Theorem triangle_den_filter_twin_sound : forall o d a b c : TVec,
   certifies (sign_from_Z s) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c).
 Proof.
-  intros o d a b c s.
-  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]]]].
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
-                (den_stage1_b_nonneg o d a b c) (absolute_bv_nonneg _)
-                (fun F => proj2 (proj2 (proj2 (proj2 (proj2 (den_stage1_twin o d a b c F)))))) U) as [Fm [FA E]].
-    destruct (den_stage1_twin o d a b c Fm) as [Fo [Fd [Fa [Fb [Fc _]]]]].
-    split; [| intros _; tsplit; assumption].
-    unfold s. rewrite E, cpp_triangle_filter_den_relative, (proj2 (absolute_bv_twin d FA)).
+  intros o d a b c. cbv zeta. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]]]].
+  apply (filter_twin_sound_gen _ (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ _ _ FC NC
+           (den_stage1_b_nonneg o d a b c) (absolute_bv_nonneg _)).
+  - intros F. destruct (den_stage1_twin o d a b c F) as [? [? [? [? [? T]]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_filter_den_relative, (proj2 (absolute_bv_twin d FA)).
     apply den_filter_sound; apply tvec_R_doubles.
 Qed.
 
@@ -930,17 +930,12 @@ Theorem triangle_pi_lane_view_filter_twin_sound : forall o d p q : TVec,
   certifies (sign_from_Z s) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin p /\ tfin q).
 Proof.
-  intros o d p q s.
-  destruct cpp_triangle_constants as [_ [_ [_ [_ [FC [NC _]]]]]].
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (pi_stage1 (tvec_R (bcast o)) (tvec_R d) (tvec_R p) (tvec_R q)) _ _ FC NC
-                (pi_view_nonneg (bcast o) d p q) (absolute_bv_nonneg _)
-                (fun F => proj2 (proj2 (proj2 (proj2 (pi_view_twin (bcast o) d p q F))))) U) as [Fm [FA E]].
-    destruct (pi_view_twin (bcast o) d p q Fm) as [Fo [Fd [Fp [Fq _]]]].
-    destruct (bcast_twin o Fo) as [Fo' Eo].
-    split; [| intros _; tsplit; assumption].
-    unfold s. rewrite E, cpp_triangle_filter_pi_relative, (proj2 (absolute_bv_twin d FA)), <- Eo.
+  intros o d p q. cbv zeta. destruct cpp_triangle_constants as [_ [_ [_ [_ [FC [NC _]]]]]].
+  apply (filter_twin_sound_gen _ (pi_stage1 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) _ _ _ _ FC NC
+           (pi_view_nonneg (bcast o) d p q) (absolute_bv_nonneg _)).
+  - intros F. destruct (pi_view_twin (bcast o) d p q F) as [Fo [? [? [? T]]]].
+    destruct (bcast_twin o Fo) as [? Eo]. rewrite Eo in T. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_filter_pi_relative, (proj2 (absolute_bv_twin d FA)).
     apply pi_filter_sound; apply tvec_R_doubles.
 Qed.
 
@@ -951,16 +946,11 @@ Theorem triangle_num_lane_view_filter_twin_sound : forall o a b c : TVec,
   certifies (sign_from_Z s) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin a /\ tfin b /\ tfin c).
 Proof.
-  intros o a b c s.
-  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]].
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
-                (num_lane_view_nonneg o a b c) (absolute_bv_nonneg _)
-                (fun F => proj2 (proj2 (proj2 (proj2 (num_lane_view_twin o a b c F))))) U) as [Fm [FA E]].
-    destruct (num_lane_view_twin o a b c Fm) as [Fo [Fa [Fb [Fc _]]]].
-    split; [| intros _; tsplit; assumption].
-    unfold s. rewrite E, cpp_triangle_filter_num_relative, (proj2 (proj2 (ehigh_twin a o FA))).
+  intros o a b c. cbv zeta. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]].
+  apply (filter_twin_sound_gen _ (num_stage1 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ _ _ FC NC
+           (num_lane_view_nonneg o a b c) (absolute_bv_nonneg _)).
+  - intros F. destruct (num_lane_view_twin o a b c F) as [? [? [? [? T]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_filter_num_relative, (proj2 (proj2 (ehigh_twin a o FA))).
     apply num_filter_sound; apply tvec_R_doubles.
 Qed.
 
@@ -971,7 +961,7 @@ Theorem triangle_den_lane_view_filter_twin_sound : forall o d a b c : TVec,
   certifies (sign_from_Z s) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) /\
   (s <> uncertain_lane -> tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c).
 Proof.
-  intros o d a b c s.
+  intros o d a b c. cbv zeta.
   destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [FC [NC _]]]]]]]]]].
   assert (V : fview (den_stage2_b (bcast o) d a b c) =
               term_add_b (term_add_b (fview (pi_stage2_b (bcast o) d b c)) (fview (pi_stage2_b (bcast o) d c a)))
@@ -979,23 +969,15 @@ Proof.
   assert (N : nonneg (fmb (fview (den_stage2_b (bcast o) d a b c)))).
   { rewrite V. apply (fadd_nonneg (fmb (term_add_b _ _)) (fmb (fview (pi_stage2_b (bcast o) d a b))));
       [apply fadd_nonneg|]; apply pi_view_nonneg. }
-  assert (T : fin (fmb (fview (den_stage2_b (bcast o) d a b c))) = true ->
-              tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
-              ftw (fview (den_stage2_b (bcast o) d a b c))
-                  (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c))).
-  { intros H. rewrite V in *. unfold den_stage1.
+  apply (filter_twin_sound_gen _ (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ _ _ FC NC
+           N (absolute_bv_nonneg _)).
+  - intros H. rewrite V in *. unfold den_stage1.
     destruct (term_add_back _ _ H) as [H01 H2]. destruct (term_add_back _ _ H01) as [H0 H1].
     destruct (pi_view_twin _ _ _ _ H0) as [Fo [Fd [Fb [Fc T0]]]].
     destruct (pi_view_twin _ _ _ _ H1) as [_ [_ [_ [Fa T1]]]].
     destruct (pi_view_twin _ _ _ _ H2) as [_ [_ [_ [_ T2]]]].
     destruct (bcast_twin o Fo) as [Fo' Eo]. rewrite Eo in T0, T1, T2.
-    tsplit; try assumption. ftw_fwd. }
-  destruct (Z.eq_dec s uncertain_lane) as [U|U].
-  - split; [rewrite U; exact I | intros C; contradiction].
-  - destruct (det3_filter_lanes_twin _ (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) _ _ FC NC
-                N (absolute_bv_nonneg _) (fun F => proj2 (proj2 (proj2 (proj2 (proj2 (T F)))))) U) as [Fm [FA E]].
-    destruct (T Fm) as [Fo [Fd [Fa [Fb [Fc _]]]]].
-    split; [| intros _; tsplit; assumption].
-    unfold s. rewrite E, cpp_triangle_filter_den_relative, (proj2 (absolute_bv_twin d FA)).
+    split; [tsplit; assumption | ftw_fwd].
+  - intros FA _. rewrite cpp_triangle_filter_den_relative, (proj2 (absolute_bv_twin d FA)).
     apply den_filter_sound; apply tvec_R_doubles.
 Qed.

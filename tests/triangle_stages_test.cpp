@@ -9,6 +9,7 @@
 #include "triangle/ray_triangle_stages.hpp"
 
 #include <raykernel/testkit/triangle_queries.hpp>
+#include <raykernel/triangle.hpp>
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>
@@ -195,6 +196,56 @@ TEST(TriangleFilter, SoundOnSubnormalAndHugeInputs) {
   std::printf("extreme exponents: the filter certified %d signs, all right; with a constant absolute term it would "
               "have certified %d wrong ones\n",
               certified, wrong_with_constant_term);
+}
+
+// The fast paths pass each value's own relative constant (error_bounds.hpp: π 8u, num 9u, den 10u) at their
+// call sites in ray_triangle_cascade.cpp, which no twin covers (the runner checks det3_filter_lanes, not who
+// passes which constant). Each case below puts one value's stage-1 ratio |v|/m strictly between a smaller
+// constant and its own, with every product and sum exact, so that the right constant leaves that value to
+// stage 2 (the traced stage is `compensated`) and a smaller one would certify it at the filter. The absolute
+// terms A are below 2^-1000 here and do not move any bound (C ⊗ m ≥ 2^-50 in both cases).
+TEST(TriangleFilter, FastRelationFiltersNumWithItsOwnConstant) {
+  // o = 0, d = (0, 0, 1); a = (1, 0, K + 1), b = (0, 1, K + 1), c = (−1, −1, −2K + 1), on the plane
+  // z = Kx + Ky + 1, K = 2^49 + 2^47 + 2^46 (all coordinates and products below are integers < 2^53: exact).
+  // π(b, c) = d·(b × c) = b_x c_y − b_y c_x = 1, likewise π(c, a) = π(a, b) = 1, each with m = 1: the filter
+  // certifies them (and den, lane 3: d·((b − a) × (c − a)) = 3, m = 3), all positive: inside.
+  // num = a·(b × c): b × c = (−K + 2, −K − 1, 1), so num = (−K + 2) + 0 + (K + 1) = 3, and its permanent
+  // m = |a_x|·(|b_y c_z| + |b_z c_y|) + |a_y|·(…) + |a_z|·(|b_x c_y| + |b_y c_x|) = 3K + 0 + (K + 1) = 4K + 1
+  // = 3096224743817217. num's bound 9u·m ≈ 3.09375 ≥ 3: uncertain, stage 2 decides (num = 3 exactly, radius
+  // ≈ 2^-47). With π's constant the bound would be 8u·m ≈ 2.75 < 3: certified by the filter.
+  constexpr double K = 0x1p49 + 0x1p47 + 0x1p46;
+  const Ray ray{{0, 0, 0}, {0, 0, 1}};
+  const Triangle triangle{{1, 0, K + 1}, {0, 1, K + 1}, {-1, -1, -2 * K + 1}};
+  const TracedTriangleIntersection traced = intersect_traced(ray, triangle, {TriangleRule::owned, false, false});
+  EXPECT_EQ(traced.intersection.relation, TriangleRelation::hit);  // num/den = 3/3 = 1 > 0
+  EXPECT_EQ(traced.intersection.location, TriangleLocation::inside);
+  EXPECT_EQ(traced.relation_stage, Stage::compensated) << "fast_relation: num's bound is not 9u·m + A";
+}
+
+TEST(TriangleFilter, CascadeFiltersDenWithItsOwnConstant) {
+  // o = (0, 0, 1), d = (0, 0, −1); the triangle in the plane z = 0: a = (−16, −16, 0), b = (1, 1 − 17u, 0),
+  // c = (1, 1 + 18u, 0) (u = 2^-53; all doubles). With d = (0, 0, −1) and ê_v = (v_x, v_y, −1), π(p, q) =
+  // −(p_x q_y − p_y q_x) and m = |p_x q_y| + |p_y q_x| (the d_x, d_y terms are 0 · …), every product exact:
+  //   π(b, c) = −((1 + 18u) − (1 − 17u)) = −35u,      m = 2:          |π|/m = 17.5u
+  //   π(c, a) = −(−16 + 16(1 + 18u)) = −288u,         m = 32 + 288u:  |π|/m ≈ 9.0u
+  //   π(a, b) = −(−16(1 − 17u) + 16) = −272u,         m = 32 − 272u:  |π|/m ≈ 8.5u
+  // all above π's 8u: certified negative by the filter. den = (πa ⊕ πb) ⊕ πc = −595u, m = 66:
+  // |den|/m = 9.015u, so den's 10u·m ≈ 660u leaves it uncertain (stage 2 certifies it: exact, radius ≈ 2^-92),
+  // where π's 8u·m ≈ 528u would certify it. num = ê_a·(ê_b × ê_c) = −595u and its m = 66 are den's (the z
+  // components are all −1): |num|/m = 9.015u > 9u, certified. Stage 2 cannot round t or the barycentrics here
+  // (den's radius 256u²·66 is about 28u·|den|, far above the half gap), so the fast path hands the query to the
+  // full cascade, whose den is filtered with filter_relative(value_den): hit, t = num/den = 1 (o + 1·d = 0 is
+  // on the plane), inside, with den's sign from stage 2.
+  // (The same window in fast_triangle_intersection's own den filter is unobservable: whenever stage 2 rounds
+  // t, |den| is above about 256u·m, which every constant certifies; proofs/README.md, the triangle mutations.)
+  constexpr double u = 0x1p-53;
+  const Ray ray{{0, 0, 1}, {0, 0, -1}};
+  const Triangle triangle{{-16, -16, 0}, {1, 1 - 17 * u, 0}, {1, 1 + 18 * u, 0}};
+  const TracedTriangleIntersection traced = intersect_traced(ray, triangle);
+  EXPECT_EQ(traced.intersection.relation, TriangleRelation::hit);
+  EXPECT_EQ(traced.intersection.location, TriangleLocation::inside);
+  EXPECT_EQ(traced.intersection.t, 1.0);
+  EXPECT_EQ(traced.relation_stage, Stage::compensated) << "the cascade: den's bound is not 10u·m + A";
 }
 
 }  // namespace

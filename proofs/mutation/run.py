@@ -141,7 +141,58 @@ MUTATIONS = [
      "return relative_constant * r.magnitude + bounds::filter_absolute;",
      "return relative_constant * r.magnitude + 0x0.0000000000003p-1022;",
      "dot3_filter_bound: bounds::filter_absolute written as a literal (same value)"),
+    # ray–triangle (kernel/src/triangle/)
+    ("tri_absolute_reassociate", "kernel/src/triangle/det3_stages.hpp",
+     "const V s = (abs(x0) + abs(x1)) + abs(x2);",
+     "const V s = abs(x0) + (abs(x1) + abs(x2));",
+     "det3_absolute_term (stage 1, and stage 2's radius): reassociate S = (|x0| + |x1|) + |x2|"),
+    ("tri_low_reassociate", "kernel/src/triangle/det3_stages.hpp",
+     "return {s.hi, (a.l + b.l) + s.lo, a.m + b.m};",
+     "return {s.hi, a.l + (b.l + s.lo), a.m + b.m};",
+     "CompensatedTerm + (stage 2): reassociate the low part (a.l + b.l) + s.lo"),
+    ("tri_swap_constants", "kernel/src/certified/error_bounds.hpp",
+     "inline constexpr double triangle_filter_pi_relative = 0x1p-50;     // 8u\n"
+     "inline constexpr double triangle_filter_num_relative = 0x1.2p-50;  // 9u\n"
+     "inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u",
+     "inline constexpr double triangle_filter_pi_relative = 0x1.4p-50;     // 8u\n"
+     "inline constexpr double triangle_filter_num_relative = 0x1.2p-50;  // 9u\n"
+     "inline constexpr double triangle_filter_den_relative = 0x1p-50;  // 10u",
+     "error_bounds.hpp: swap the triangle's π and den filter constants"),
+    ("tri_call_site_num", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);",
+     "det3_filter_lanes(num.value, bounds::triangle_filter_pi_relative, num.absolute);",
+     "fast_relation: num filtered with π's constant"),
+    ("tri_call_site_den", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, absolute_d);",
+     "det3_filter_lanes(filter_view(den), bounds::triangle_filter_pi_relative, absolute_d);",
+     "fast_triangle_intersection: den filtered with π's constant"),
+    ("tri_call_site_cascade_den", "kernel/src/triangle/ray_triangle_stages.hpp",
+     "return value == value_den   ? bounds::triangle_filter_den_relative",
+     "return value == value_den   ? bounds::triangle_filter_pi_relative",
+     "filter_relative (the full cascade's constants): den filtered with π's constant"),
+    ("tri_drop_guard", "kernel/src/triangle/det3_stages.hpp",
+     "both(abs(t.h) <= bounds::largest_finite, abs(t.l) <= bounds::largest_finite);",
+     "abs(t.h) <= bounds::largest_finite;",
+     "det3_enclosure: drop the guard |l| ≤ largest finite (a finite radius for a non-finite l)"),
+    ("tri_fast_sign_flip", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});",
+     "select(s1.lanes.v < -bound, one, Lanes4{}) - select(s1.lanes.v > bound, one, Lanes4{});",
+     "fast_relation: the inlined ±1.0 sign of each lane flipped"),
+    ("tri_tie_break_sign", "kernel/src/triangle/ray_triangle_stages.hpp",
+     "s[i] = static_cast<int>(sign);",
+     "s[i] = -static_cast<int>(sign);",
+     "tie_break_signs_by_expansion: the owned rule's tie-break signs flipped"),
+    ("tri_drop_rounded_guard", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "const bool rounded = (!options.t || q.certain[lane_num]) &",
+     "const bool rounded = true &",
+     "fast_triangle_intersection: t returned without round_quotient's certainty"),
 ]
+
+# Mutations that change no observable behaviour (argued in proofs/README.md, "Triangle mutations"): reported, not
+# counted as escapes. tri_call_site_den: the fast intersection answers only when stage 2 rounds a quotient over
+# den, which needs |den| above about 256u·m, where 8u and 10u certify alike; tri_drop_guard: a stage-2 low part is
+# finite whenever its high part is.
+UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard"}
 
 
 def run(cmd, cwd, log, timeout=None):
@@ -213,7 +264,10 @@ def main():
         caught = []
         for v in variants:
             files = []
-            for g in (["lanes"] if v.startswith("lanes") else groups):
+            # the lane drivers run the lane-templated routines: group "lanes" and the triangle groups, which
+            # evaluate Lanes4 themselves (proofs/twins/CMakeLists.txt)
+            for g in ([g for g in groups if g == "lanes" or g.startswith("triangles")] if v.startswith("lanes")
+                      else groups):
                 files += [os.path.join(twins_dir, "inputs_" + g + ".txt"), os.path.join(twins_dir, "twins_" + g + ".txt")]
             status = run([os.path.join(twins_dir, "raykernel_twin_driver_" + v)] + files, twins_dir, log)
             if status not in (0, 77):
@@ -268,6 +322,10 @@ def main():
               f"{('caught' + ('' if proofs_built else ' (Coq build)')) if proof_checks else '—'} |")
         if (not runner or runner.startswith("n/a")) and not tests and not proof_checks:
             uncaught.append(name)
+    unobservable = [name for name in uncaught if name in UNOBSERVABLE]
+    if unobservable:
+        print("\nnot caught, argued unobservable (proofs/README.md, the triangle mutations): " + ", ".join(unobservable))
+    uncaught = [name for name in uncaught if name not in UNOBSERVABLE]
     if uncaught:
         print("\nNOT CAUGHT: " + ", ".join(uncaught))
         sys.exit(1)
