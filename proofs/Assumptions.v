@@ -14,6 +14,7 @@ From Raykernel Require Import Constants Model Filter Compensated QuotientRoundin
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
 From Raykernel Require TriangleTwins.
+From Raykernel Require StageTwoFinite.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -275,3 +276,16 @@ Definition twin_results_5 :=
    tiny_product_threshold).
 Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct tiny_product_threshold". Abort.
 Print Assumptions twin_results_5.
+
+(** StageTwoFinite.v: stage 2 for every bit pattern, without the hypothesis "hi and lo finite" *)
+Definition twin_results_stage_two_finite :=
+  (StageTwoFinite.two_sum_b_nan_or_finite,
+   StageTwoFinite.den_compensated_certain_finite,
+   StageTwoFinite.num_compensated_certain_finite,
+   StageTwoFinite.den_compensated_twin_sound_total,
+   StageTwoFinite.num_compensated_twin_sound_total,
+   StageTwoFinite.compare_compensated_certain_finite,
+   StageTwoFinite.compare_compensated_twin_sound_total,
+   StageTwoFinite.hit_order_compensated_twin_sound_total).
+Goal True. idtac "@@ two_sum_b_nan_or_finite den_compensated_certain_finite num_compensated_certain_finite den_compensated_twin_sound_total num_compensated_twin_sound_total compare_compensated_certain_finite compare_compensated_twin_sound_total hit_order_compensated_twin_sound_total". Abort.
+Print Assumptions twin_results_stage_two_finite.
