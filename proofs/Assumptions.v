@@ -15,6 +15,9 @@ From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule Tr
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
 From Raykernel Require TriangleTwins.
 From Raykernel Require TriangleLiveness.
+From Raykernel Require StageTwoFinite.
+From Raykernel Require QueryPairTwins.
+From Raykernel Require NearestTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -288,3 +291,31 @@ Definition twin_results_triangle_liveness :=
    TriangleLiveness.triangle_den_compensated_live).
 Goal True. idtac "@@ triangle_pi_filter_live triangle_num_filter_live triangle_den_filter_live triangle_pi_compensated_live triangle_num_compensated_live triangle_den_compensated_live". Abort.
 Print Assumptions twin_results_triangle_liveness.
+
+(** StageTwoFinite.v: stage 2 for every bit pattern, without the hypothesis "hi and lo finite" *)
+Definition twin_results_stage_two_finite :=
+  (StageTwoFinite.two_sum_b_nan_or_finite,
+   StageTwoFinite.den_compensated_certain_finite,
+   StageTwoFinite.num_compensated_certain_finite,
+   StageTwoFinite.den_compensated_twin_sound_total,
+   StageTwoFinite.num_compensated_twin_sound_total,
+   StageTwoFinite.compare_compensated_certain_finite,
+   StageTwoFinite.compare_compensated_twin_sound_total,
+   StageTwoFinite.hit_order_compensated_twin_sound_total).
+Goal True. idtac "@@ two_sum_b_nan_or_finite den_compensated_certain_finite num_compensated_certain_finite den_compensated_twin_sound_total num_compensated_twin_sound_total compare_compensated_certain_finite compare_compensated_twin_sound_total hit_order_compensated_twin_sound_total". Abort.
+Print Assumptions twin_results_stage_two_finite.
+
+(** QueryPairTwins.v: the Lanes2 one-query forms and stage 3 of ray_plane_query.hpp *)
+Definition twin_results_query_pairs :=
+  (fast_answer_from_twin_correct,
+   QueryPairTwins.fast_relation_pair_twin_correct,
+   QueryPairTwins.fast_answer_pair_twin_correct,
+   QueryPairTwins.ray_plane_expansions_twin_exact).
+Goal True. idtac "@@ fast_answer_from_twin_correct fast_relation_pair_twin_correct fast_answer_pair_twin_correct ray_plane_expansions_twin_exact". Abort.
+Print Assumptions twin_results_query_pairs.
+
+(** NearestTwins.v: the nearest-hit comparison (raycast/nearest_hit.cpp, compare_hit_distances) *)
+Definition twin_results_nearest :=
+  (NearestTwins.compare_hit_distances_twin_correct).
+Goal True. idtac "@@ compare_hit_distances_twin_correct". Abort.
+Print Assumptions twin_results_nearest.

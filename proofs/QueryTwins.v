@@ -531,14 +531,21 @@ Proof. reflexivity. Qed.
 Lemma certain_lane_true : forall s, certain_lane s = true -> s <> uncertain_lane.
 Proof. intros s H. unfold certain_lane in H. apply negb_true_iff, Z.eqb_neq in H. exact H. Qed.
 
-(** [fast_answer] (the batch lanes' form: what [intersect] and the intersection batch run), end to end for
-    every bit pattern of o, d, p, n: when it says certain, every input is finite, [behind ? behind : hit]
-    is the relation of docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0, d ≠ 0, n ≠ 0, and t is
-    finite and RN(num/den) (the twin of Cascade.v's [fast_answer_correct]).  The stage-2 enclosures are
-    finite because round_quotient certified them ([round_quotient_twin]), which discharges the
-    "hi and lo finite" hypothesis of the stage-2 twin theorems on this path. *)
-Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
-  let a := fast_answer_b o d p n in
+(** [fast_answer_from_b] with the stage-1 signs and num's stage-2 enclosure of a query and any enclosure
+    [den2] of den that is non-negative-or-NaN in its radius, encloses den (with d, n finite) once its parts
+    are finite, and whose certain sign is den's: the argument of [fast_answer_twin_correct] below, shared by
+    the Lanes2 form (QueryPairTwins.v, where den2 is computed like num with o = 0). *)
+Lemma fast_answer_from_twin_correct : forall ox oy oz dx dy dz px py pz nx ny nz (den2 : EnclosureB),
+  let VD := ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz)) in
+  nonneg (radiusb den2) ->
+  (fin (hib den2) = true -> fin (lob den2) = true -> fin (radiusb den2) = true ->
+   encloses (enc_R den2) VD /\ vec_fin (V3 dx dy dz) /\ vec_fin (V3 nx ny nz)) ->
+  (fin (hib den2) = true -> fin (lob den2) = true -> certifies (sign_from_Z (enclosure_sign_lanes_b den2)) VD) ->
+  let o := V3 ox oy oz in let d := V3 dx dy dz in let p := V3 px py pz in let n := V3 nx ny nz in
+  let a := fast_answer_from_b (dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative)
+    (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy)) (fst (two_diff_b pz oz))
+       nx ny nz) Cpp.filter_num_relative)
+    den2 (num_compensated_b px py pz ox oy oz nx ny nz) in
   snd (fst a) = true ->
   vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
   (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
@@ -547,27 +554,19 @@ Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
   fin (fst (fst (fst a))) = true /\
   B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
 Proof.
-  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
-  rewrite fast_answer_b_eq.
+  intros ox oy oz dx dy dz px py pz nx ny nz den2 VD Nden HE HS o d p n a. subst o d p n a.
   destruct (fast_answer_from_b_parts (dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative)
     (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy)) (fst (two_diff_b pz oz))
        nx ny nz) Cpp.filter_num_relative)
-    (den_compensated_b dx dy dz nx ny nz) (num_compensated_b px py pz ox oy oz nx ny nz)) as [P1 [P2 P3]].
+    den2 (num_compensated_b px py pz ox oy oz nx ny nz)) as [P1 [P2 P3]].
   rewrite P1, P2, P3. clear P1 P2 P3.
-  set (den2 := den_compensated_b dx dy dz nx ny nz). set (num2 := num_compensated_b px py pz ox oy oz nx ny nz).
-  set (VD := ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))).
+  set (num2 := num_compensated_b px py pz ox oy oz nx ny nz).
   set (VN := ray_num (vec_R (V3 ox oy oz)) (vec_R (V3 px py pz)) (vec_R (V3 nx ny nz))).
   intros C. apply andb_prop in C. destruct C as [C Ct]. apply andb_prop in C. destruct C as [Cd Cn].
   (* the quotient *)
-  assert (Nden : nonneg (radiusb den2)).
-  { unfold den2, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
-    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
-    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg. }
   assert (Nnum : nonneg (radiusb num2)) by apply compensated_radius_nonneg.
   destruct (round_quotient_twin num2 den2 Nnum Nden Ct) as [Fnh [Fnl [Fnr [Fdh [Fdl [Fdr _]]]]]].
-  assert (Ed : encloses (enc_R den2) VD).
-  { destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [? [? [? [? [? [? E]]]]]].
-    unfold den2, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R. }
+  destruct (HE Fdh Fdl Fdr) as [Ed [Fd Fn]].
   assert (En : encloses (enc_R num2) VN /\ vec_fin (V3 px py pz) /\ vec_fin (V3 ox oy oz)).
   { destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fnr Fnh Fnl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
     destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
@@ -581,9 +580,9 @@ Proof.
   (* the signs *)
   destruct (den_filter_twin_sound dx dy dz nx ny nz) as [Sdf _].
   destruct (num_filter_twin_sound px py pz ox oy oz nx ny nz) as [Snf _].
-  destruct (den_compensated_twin_sound dx dy dz nx ny nz Fdh Fdl) as [Sdc _].
+  pose proof (HS Fdh Fdl) as Sdc.
   destruct (num_compensated_twin_sound px py pz ox oy oz nx ny nz Fnh Fnl) as [Snc _].
-  fold den2 in Sdc. fold num2 in Snc.
+  fold num2 in Snc.
   set (sdf := dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative) in *.
   set (snf := dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy))
                 (fst (two_diff_b pz oz)) nx ny nz) Cpp.filter_num_relative) in *.
@@ -603,9 +602,34 @@ Proof.
   destruct (lanes_relation _ _ (vec_R (V3 ox oy oz)) (vec_R (V3 dx dy dz)) (vec_R (V3 px py pz)) (vec_R (V3 nx ny nz))
               Ln Ld (certain_lane_true _ Cn) (certain_lane_true _ Cd) Cn' Cd') as [Rel [Zn Zd']].
   destruct (den_nonzero_valid _ _ Zd') as [Vd Vn].
-  assert (Fdn : vec_fin (V3 dx dy dz) /\ vec_fin (V3 nx ny nz)).
-  { destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [X0 [X1 [X2 [X3 [X4 [X5 _]]]]]].
-    exact (conj (conj X0 (conj X1 X2)) (conj X3 (conj X4 X5))). }
-  destruct Fdn as [Fd Fn].
   exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn (conj Zd' (conj Vd (conj Vn (conj Ft Vt)))))))))).
+Qed.
+
+(** [fast_answer] (the batch lanes' form: what [intersect] and the intersection batch run), end to end for
+    every bit pattern of o, d, p, n: when it says certain, every input is finite, [behind ? behind : hit]
+    is the relation of docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0, d ≠ 0, n ≠ 0, and t is
+    finite and RN(num/den) (the twin of Cascade.v's [fast_answer_correct]).  The stage-2 enclosures are
+    finite because round_quotient certified them ([round_quotient_twin]), which discharges the
+    "hi and lo finite" hypothesis of the stage-2 twin theorems on this path. *)
+Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
+  let a := fast_answer_b o d p n in
+  snd (fst a) = true ->
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
+  (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
+  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
+  vec_R d <> zero3 /\ vec_R n <> zero3 /\
+  fin (fst (fst (fst a))) = true /\
+  B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+Proof.
+  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
+  rewrite fast_answer_b_eq.
+  apply fast_answer_from_twin_correct.
+  - unfold den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
+    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
+  - intros Fdh Fdl Fdr.
+    destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [X0 [X1 [X2 [X3 [X4 [X5 E]]]]]].
+    split; [| exact (conj (conj X0 (conj X1 X2)) (conj X3 (conj X4 X5)))].
+    unfold den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
+  - intros Fdh Fdl. exact (proj1 (den_compensated_twin_sound dx dy dz nx ny nz Fdh Fdl)).
 Qed.

@@ -267,5 +267,31 @@ TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
   EXPECT_GT(certified, queries / 5);  // the easy kinds (about a quarter of these): the comparison is not vacuous
 }
 
+// TwoSum can overflow inside with finite operands and a finite sum (proofs/StageTwoFinite.v,
+// two_sum_b_nan_or_finite): for p = −(2^1022 + 3·2^970) and o = −(2^1024 − 2^971), the largest double,
+// p − o = 3·2^1022 − 5·2^970 is a tie between two doubles 2^971 apart and rounds to the even one,
+// s = 3·2^1022 − 2^972; then s − p = 2^1024 − 2^970 is the tie between the largest double and 2^1024, which
+// rounds to +inf, so the low part is inf − inf = NaN. Stage 2 of num = (p − o)·n must then say uncertain
+// (its lo is NaN), never a sign; the answer comes from a later stage and is still the exact one.
+TEST(Stages, ATwoDiffThatOverflowsInsideLeavesStageTwoUncertain) {
+  const double p = -(0x1p1022 + 0x3p970), o = -0x1.fffffffffffffp1023;
+  const detail::DoubleDouble difference = detail::two_diff(p, o);
+  EXPECT_EQ(difference.hi, 0x3p1022 - 0x1p972);
+  EXPECT_TRUE(std::isnan(difference.lo));
+  // num = p − o > 0 and den = 1: a hit at t = RN(p − o) = difference.hi.
+  const Ray ray{{o, 0, 0}, {1, 0, 0}};
+  const Plane plane{{p, 0, 0}, {1, 0, 0}};
+  const Enclosure num = detail::num_compensated(detail::ray_plane_terms(ray, plane));
+  EXPECT_TRUE(std::isnan(num.lo));
+  EXPECT_EQ(detail::enclosure_sign(num), Sign::uncertain);
+  const TracedIntersection traced = intersect_traced(ray, plane);
+  EXPECT_EQ(traced.intersection.relation, Relation::hit);
+  EXPECT_EQ(traced.intersection.t, difference.hi);
+  EXPECT_GT(traced.t_stage, Stage::compensated);  // round_quotient sees the NaN and says uncertain
+  const Intersection exact = intersect_exact(ray, plane);
+  EXPECT_EQ(exact.relation, Relation::hit);
+  EXPECT_EQ(exact.t, difference.hi);
+}
+
 }  // namespace
 }  // namespace raykernel

@@ -16,6 +16,7 @@ From Coq Require Import ZArith List.
 From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
   Expansions QueryTwins.
 From Raykernel Require TriangleTwins.
+From Raykernel Require NearestTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -145,6 +146,18 @@ Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
     [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
 Definition run_compare_expansion := run_compare_expansion_gen two_sum_b expansion_sign_b.
 
+(** nearest_hit.cpp's [compare_hit_distances] (NearestTwins.v): a ray, two planes and the four signs the
+    candidates carry (num_a, den_a, num_b, den_b, each as the double −1, 0, +1) → order, stage (order 0
+    when the exact stage decides: it is not a twin). *)
+Definition sign_of_word (z : Z) : sign :=
+  if Z.eqb z 4607182418800017408 then Positive else if Z.eqb z 13830554455654793216 then Negative
+  else if Z.eqb z 0 then Zero else Uncertain.
+Definition run_nearest_compare (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; pax; pay; paz; nax; nay; naz; pbx; pby; pbz; nbx; nby; nbz; s1; s2; s3; s4] =>
+    let r := NearestTwins.compare_hit_distances_b (v3 ox oy oz) (v3 dx dy dz) (v3 pax pay paz) (v3 nax nay naz)
+               (v3 pbx pby pbz) (v3 nbx nby nbz) (sign_of_word s1) (sign_of_word s2) (sign_of_word s3) (sign_of_word s4) in
+    [fst r; snd r] | _ => [] end.
+
 (** Ray–triangle stages 1 and 2 (TriangleTwins.v): queries "ox oy oz dx dy dz ax ay az bx by bz cx cy cz". *)
 Module Tri.
 Import TriangleTwins.
@@ -230,5 +243,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
   run_exp_sum run_exp_scale run_exp_sign run_round_quotient
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
-  run_build_expansions run_compare_expansion
+  run_build_expansions run_compare_expansion run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes.

@@ -30,6 +30,7 @@
 #include "certified/lanes.hpp"
 #include "certified/quotient_rounding.hpp"
 #include "certified/ray_plane_query.hpp"
+#include "raycast/nearest_hit_internal.hpp"
 #include "triangle/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
@@ -347,6 +348,31 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          const std::vector<double> x = doubles(w);
          const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
          o.i(sign_code(compare_quotients_expansion(ray_plane_expansions(a), ray_plane_expansions(b))));
+         return true;
+       }},
+      // nearest_hit.cpp's compare_hit_distances on two candidates built as nearest_hit builds them (stage 1
+      // of den and num from d and p − o, the carried signs from the input): order (0 when the exact stage
+      // decides: not a twin) and stage.
+      {"nearest_compare",
+       [](const Words& w, Out& o) {
+         if (w.size() != 22) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray = ray_of(x);
+         const raykernel::Plane pa = plane_of(x, 6), pb = plane_of(x, 12);
+         const double d[3] = {x[3], x[4], x[5]};
+         auto stage1 = [&](const raykernel::Plane& p, bool num) {
+           const double n[3] = {p.normal.x, p.normal.y, p.normal.z};
+           const double diff[3] = {p.point.x - x[0], p.point.y - x[1], p.point.z - x[2]};
+           return num ? dot3_rounded(diff, n) : dot3_rounded(d, n);
+         };
+         HitCandidate a(0, ray, pa, stage1(pa, false), stage1(pa, true));
+         HitCandidate b(1, ray, pb, stage1(pb, false), stage1(pb, true));
+         a.num_sign = static_cast<Sign>(static_cast<int>(x[18]));
+         a.den_sign = static_cast<Sign>(static_cast<int>(x[19]));
+         b.num_sign = static_cast<Sign>(static_cast<int>(x[20]));
+         b.den_sign = static_cast<Sign>(static_cast<int>(x[21]));
+         const DistanceOrder r = compare_hit_distances(a, b);
+         o.i(r.stage == raykernel::Stage::exact ? 0 : r.sign), o.i(static_cast<int>(r.stage));
          return true;
        }},
       // The one-query forms: den and num as the two lanes of a Lanes2.

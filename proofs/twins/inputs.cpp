@@ -15,6 +15,7 @@
 // Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
 #include "certified/compare_quotients.hpp"
 #include "certified/eft.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/ray_plane_query.hpp"
 
 #include <raykernel/testkit/hard_queries.hpp>
@@ -299,6 +300,32 @@ const std::map<std::string, Generator>& generators() {
       {"exp_sign", [](Source& s) { return some_expansion(s, 12); }},
       {"build_expansions", [](Source& s) { return query_args(s.query()); }},
       {"compare_expansion", [](Source& s) { return pair_args(s); }},
+      // nearest_hit.cpp's compare_hit_distances: a near-tie plane pair and the signs of num and den each
+      // candidate carries (the relation's, certified_signs), as doubles −1, 0, +1. Half of the pairs have
+      // the second plane's point scaled by 1 ± j·2^-52 (j < 64, or < 2^20 for 1 in 4 of them), which puts
+      // the order's margin across the stage-1 bounds, so that the filter decides some (and a wrong constant
+      // at its call site changes some decisions); the near ties themselves go to stages 2 and 3.
+      {"nearest_compare",
+       [](Source& s) {
+         testkit::PlanePair pp = s.plane_pair();
+         if (s.chance(2)) {
+           const double j = static_cast<double>(1 + s.below(s.chance(4) ? 1u << 20 : 64u));
+           const double factor = 1 + (s.chance(2) ? j : -j) * 0x1p-52;
+           Vec3& p = pp.planes[1].point;
+           p = {p.x * factor, p.y * factor, p.z * factor};
+         }
+         Args a;
+         auto push3 = [&](const Vec3& v) { a.push_back(v.x), a.push_back(v.y), a.push_back(v.z); };
+         push3(pp.ray.origin), push3(pp.ray.direction);
+         for (const Plane& p : pp.planes) push3(p.point), push3(p.normal);
+         for (const Plane& p : pp.planes) {
+           detail::RayPlaneCascade cascade(pp.ray, p);
+           const detail::CertifiedSigns signs = detail::certified_signs(cascade);
+           a.push_back(static_cast<double>(static_cast<int>(signs.num)));
+           a.push_back(static_cast<double>(static_cast<int>(signs.den)));
+         }
+         return a;
+       }},
       {"fast_answer", [](Source& s) { return query_args(s.query()); }},
       {"fast_answer_pair", [](Source& s) { return query_args(s.query()); }},
       {"fast_relation", [](Source& s) { return query_args(s.query()); }},

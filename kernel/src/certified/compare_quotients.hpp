@@ -116,8 +116,10 @@ template <class L>
   const double magnitude = std::fabs(p.hi) + std::fabs(q.hi);
   const double propagated =
       compare_propagated_error(a1.hi, n1.radius, b1.hi, d1.radius, a2.hi, n2.radius, b2.hi, d2.radius);
-  // No finiteness test: |S| ≤ M and the low parts are below 3u·M, so they are finite whenever M is; a
-  // non-finite input (an enclosure with no information) makes M, R or the radius non-finite.
+  // No finiteness test: |S| ≤ M, and each term of lo is below 2^973 when M is finite, or NaN (a TwoSum
+  // low part of an input's hi and lo can be), which makes hi + lo NaN and enclosure_sign uncertain; a
+  // non-finite input makes M, R or the radius non-finite. So a certain sign implies finite hi and lo:
+  // proofs/StageTwoFinite.v, `compare_compensated_certain_finite`, `compare_compensated_twin_sound_total`.
   return {s.hi, lo, (compare_compensated_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute};
 }
 

@@ -18,9 +18,12 @@ namespace raykernel::detail {
 // p_i ⊖ o_i for num). compensated_dot3_exact is the same for α = 0 (den = d·n, exact inputs): it computes
 // g_i = l_i, which is what RN(0·b_i + l_i) is, without the three FMAs by zero.
 //   Error bound: |V − (hi + lo)| ≤ (2^-101 ⊗ m) ⊕ 2^-1070, m the stage-1 magnitude (error_bounds.hpp).
-//   Valid range: all finite inputs. Overflow needs no test of its own: |hi| ≤ m and |lo| ≤ 5u·m by
-//   monotonicity of rounding, so hi and lo are finite whenever m is, and otherwise the radius is +inf or
-//   NaN ("no information": every decision compares against it and fails).
+//   Valid range: all finite inputs. Overflow needs no test of its own: |hi| ≤ m by monotonicity of
+//   rounding, every term of lo is below 2^973 when m is finite, or NaN (a TwoDiff low part α_i can be: for
+//   p = −(2^1022 + 3·2^970), o = −largest finite, p − o rounds to +inf inside TwoSum), and a NaN lo makes
+//   hi + lo NaN, which no comparison certifies; a non-finite m makes the radius +inf or NaN ("no
+//   information"). So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
+//   proofs/StageTwoFinite.v, `den_compensated_certain_finite`, `num_compensated_certain_finite`.
 //   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`; the α = 0 form computes the same
 //   enclosure bit for bit: proofs/Cascade.v, `compensated_dot3_exact_inputs`.
 template <class V>
