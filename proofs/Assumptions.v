@@ -319,3 +319,18 @@ Definition twin_results_nearest :=
   (NearestTwins.compare_hit_distances_twin_correct).
 Goal True. idtac "@@ compare_hit_distances_twin_correct". Abort.
 Print Assumptions twin_results_nearest.
+
+(** TriangleStage3Twins.v: stage 3 of the triangle (triangle/expansion_value.hpp) is the model's determinant *)
+From Raykernel Require TriangleStage3Twins.
+Goal True. idtac "@@ triangle_expansion_sign_sound". Abort.
+Print Assumptions TriangleStage3Twins.triangle_expansion_sign_sound.
+Definition twin_results_triangle_stage3 :=
+  (TriangleStage3Twins.value_ev_exact,
+   TriangleStage3Twins.length_value_ev).
+Goal True. idtac "@@ value_ev_exact length_value_ev". Abort.
+Print Assumptions twin_results_triangle_stage3.
+
+(** TriangleCascadeTwins.v: the triangle's fast relation (ray_triangle_cascade.cpp) answers as docs/contract.md §6 *)
+From Raykernel Require TriangleCascadeTwins.
+Goal True. idtac "@@ fast_relation_tri_correct". Abort.
+Print Assumptions TriangleCascadeTwins.fast_relation_tri_correct.

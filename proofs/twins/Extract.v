@@ -15,7 +15,7 @@
 From Coq Require Import ZArith List.
 From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
   Expansions QueryTwins.
-From Raykernel Require TriangleTwins.
+From Raykernel Require TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleRule.
 From Raykernel Require NearestTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
@@ -233,6 +233,46 @@ Definition tri_compensated_lanes (x : list Z) : list Z :=
     enc_bits (det3_enclosure_b den Cpp.triangle_compensated_den_relative ad)
   | _ => [] end.
 End Tri.
+
+(** Ray–triangle stage 3 (TriangleStage3Twins.v): "v ox oy oz dx dy dz ax ay az bx by bz cx cy cz", v the
+    determinant's index (0..4: πa, πb, πc, den, num) as an integer word; [value_expansion]'s components,
+    its flag [exact] and its sign ([ExpansionValue::sign]). *)
+Module Tri3.
+Import TriangleTwins TriangleStage3Twins.
+Definition tri_expansion (x : list Z) : list Z :=
+  match x with [v; ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let e := value_ev (Tri.tv ox oy oz) (Tri.tv dx dy dz) (Tri.tv ax ay az) (Tri.tv bx by_ bz) (Tri.tv cx cy cz) v in
+    list_bits (ecomp e) ++ [bool_code (eexact e); sign_code (ev_sign e)]
+  | _ => [] end.
+End Tri3.
+Definition run_tri_expansion := Tri3.tri_expansion.
+
+(** [fast_triangle_relation] (TriangleCascadeTwins.v): queries "o d a b c"; "0" when the fast path does not
+    answer, else "1 relation location owned stage" ([enum class] values; the stage is the filter, 0) and the
+    public [relation]'s "relation location owned", for the owned rule and then the closed one (the fast path
+    answers only where no π is 0, so the rules agree). *)
+Module Tri4.
+Import TriangleTwins TriangleRule TriangleCascadeTwins.
+Definition relation_code (r : tri_relation) : Z :=
+  match r with THit => 0 | TBehind => 1 | TMiss => 2 | TDegenerate => 3 | TParallel => 4 | TCoplanar => 5 end.
+Definition location_code (l : option location) : Z :=
+  match l with
+  | Some Inside => 0 | Some EdgeAB => 1 | Some EdgeBC => 2 | Some EdgeCA => 3 | Some VertexA => 4
+  | Some VertexB => 5 | Some VertexC => 6 | Some Outside => 7 | None => 8
+  end.
+Definition class_code (c : option TClass) : list Z :=
+  match c with
+  | None => [0]
+  | Some k => let a := [relation_code (trel k); location_code (tloc k); bool_code (towned k)] in 1 :: a ++ [0] ++ a
+  end.
+Definition tri_fast_relation (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let c := fast_relation_tri_b (Tri.tv ox oy oz) (Tri.tv dx dy dz) (Tri.tv ax ay az) (Tri.tv bx by_ bz)
+                                 (Tri.tv cx cy cz) in
+    class_code c ++ class_code c
+  | _ => [] end.
+End Tri4.
+Definition run_tri_fast_relation := Tri4.tri_fast_relation.
 Definition run_tri_filter := Tri.tri_filter.
 Definition run_tri_relation_lanes := Tri.tri_relation_lanes.
 Definition run_tri_compensated := Tri.tri_compensated.
@@ -244,4 +284,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_exp_sum run_exp_scale run_exp_sign run_round_quotient
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
   run_build_expansions run_compare_expansion run_nearest_compare
-  run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes.
+  run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
+  run_tri_fast_relation.

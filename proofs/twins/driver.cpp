@@ -33,6 +33,8 @@
 #include "raycast/nearest_hit_internal.hpp"
 #include "triangle/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
+#include "triangle/ray_triangle_cascade.hpp"
+#include <raykernel/triangle.hpp>
 
 #include <bit>
 #include <cmath>
@@ -469,6 +471,38 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
          o.f(den.h), o.f(den.l), o.f(den.m);
          o.i(det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, s2.absolute[0]));
          enclosure_lane_out(o, det3_enclosure(den, bounds::triangle_compensated_den_relative, s2.absolute[0]), 0);
+         return true;
+       }},
+      // Stage 3 (proofs/TriangleStage3Twins.v): value_expansion of determinant v (the first word, an integer
+      // 0..4), its components, exact flag and sign.
+      {"tri_expansion",
+       [](const Words& w, Out& o) {
+         if (w.size() != 16 || w[0] > 4) return false;
+         const std::vector<double> x = doubles(w, 1);
+         const ExpansionValue<192> e = value_expansion(triangle_ray(x), triangle_of(x), static_cast<int>(w[0]));
+         o.i(static_cast<long long>(e.e.size));
+         for (std::size_t k = 0; k < e.e.size; ++k) o.f(e.e.component[k]);
+         o.i(e.exact ? 1 : 0);
+         o.i(static_cast<int>(e.sign()));
+         return true;
+       }},
+      // The relation's fast path (proofs/TriangleCascadeTwins.v): fast_triangle_relation, and when it
+      // answers the public relation(), for the owned rule and the closed one.
+      {"tri_fast_relation",
+       [](const Words& w, Out& o) {
+         if (w.size() != 15) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray = triangle_ray(x);
+         const raykernel::Triangle tri = triangle_of(x);
+         for (const raykernel::TriangleRule rule : {raykernel::TriangleRule::owned, raykernel::TriangleRule::closed}) {
+           const auto c = fast_triangle_relation(ray, tri, rule);
+           o.i(c ? 1 : 0);
+           if (!c) continue;
+           o.i(static_cast<int>(c->classification.relation)), o.i(static_cast<int>(c->classification.location));
+           o.i(c->classification.owned ? 1 : 0), o.i(static_cast<int>(c->stage));
+           const raykernel::TriangleClassification p = raykernel::relation(ray, tri, rule);
+           o.i(static_cast<int>(p.relation)), o.i(static_cast<int>(p.location)), o.i(p.owned ? 1 : 0);
+         }
          return true;
        }},
   };

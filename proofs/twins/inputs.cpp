@@ -354,6 +354,15 @@ const std::map<std::string, Generator>& generators() {
       {"tri_relation_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tri_compensated", [](Source& s) { return s.triangle_query(); }},
       {"tri_compensated_lanes", [](Source& s) { return s.triangle_query(); }},
+      {"tri_fast_relation", [](Source& s) { return s.triangle_query(); }},
+      // stage 3 (proofs/TriangleStage3Twins.v): the determinant's index 0..4 as an integer word, then the query
+      {"tri_expansion",
+       [](Source& s) {
+         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(5)))};
+         const std::vector<double> q = s.triangle_query();
+         a.insert(a.end(), q.begin(), q.end());
+         return a;
+       }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -36,6 +36,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("tri_relation_lanes", Twins.run_tri_relation_lanes);
   ("tri_compensated", Twins.run_tri_compensated);
   ("tri_compensated_lanes", Twins.run_tri_compensated_lanes);
+  ("tri_expansion", Twins.run_tri_expansion);
+  ("tri_fast_relation", Twins.run_tri_fast_relation);
 ]
 
 let () =

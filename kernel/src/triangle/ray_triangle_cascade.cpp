@@ -28,9 +28,10 @@
 //   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
 //                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
-//   stage 3 values:      each sum and scale by proofs/Expansions.v, `sum_gen_exact`, `scale_gen_exact`, each
-//                        sign by `expansion_sign_sound`; their composition in expansion_value.hpp is not
-//                        yet a Coq theorem (proofs/README.md, "What remains"); stage 4: GMP and MPFR.
+//   stage 3 values:      proofs/TriangleStage3Twins.v, `triangle_expansion_sign_sound`, `value_ev_exact`
+//                        (the composition in expansion_value.hpp and ray_triangle_stages.hpp's value_expansion,
+//                        twinned and run against the C++: routine tri_expansion); each sum and scale by
+//                        proofs/Expansions.v, `sum_gen_exact`, `scale_gen_exact`; stage 4: GMP and MPFR.
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "triangle/ray_triangle_cascade.hpp"
@@ -205,15 +206,17 @@ class TriangleCascade {
 
 // The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
 // directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle.
+// Certified by: proofs/TriangleCascadeTwins.v, `fast_relation_tri_correct` (its twin, run against this code
+// and the public relation() by the differential runner, routine tri_fast_relation: every answer is
+// docs/contract.md §6's under both rules).
 [[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(const Ray& ray,
                                                                                       const Triangle& triangle) noexcept {
   const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
-  // det3_filter_lanes's comparisons, its sign per lane as a double ±1 (0: uncertain).
-  const Lanes4 bound = bounds::triangle_filter_pi_relative * s1.lanes.m + s1.absolute;
-  const Lanes4 one = broadcast<Lanes4>(1.0);
-  const Lanes4 sign = select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});
-  const double sa = sign[0], sb = sign[1], sc = sign[2], sden = sign[3];
-  const bool certain = (sa * sb) * (sc * sden) != 0;
+  // The proved stage-1 sign of each lane (the π constant holds for lane 3, see triangle_relation_lanes).
+  const Mask4 sign = det3_filter_lanes(s1.lanes, bounds::triangle_filter_pi_relative, s1.absolute);
+  const std::int64_t sa = sign[0], sb = sign[1], sc = sign[2], sden = sign[3];
+  const bool certain = (sa != uncertain_lane) & (sb != uncertain_lane) & (sc != uncertain_lane) &
+                       (sden != uncertain_lane);
   if (certain) [[likely]] {
     const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
     if (!inside) return TracedTriangleClassification{{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
@@ -221,8 +224,7 @@ class TriangleCascade {
     const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
     if (num_sign != uncertain_lane)
       return TracedTriangleClassification{
-          {static_cast<double>(num_sign) == sden ? TriangleRelation::hit : TriangleRelation::behind,
-           TriangleLocation::inside, true},
+          {num_sign == sden ? TriangleRelation::hit : TriangleRelation::behind, TriangleLocation::inside, true},
           Stage::filter};
   }
   return std::nullopt;
