@@ -14,6 +14,7 @@ From Raykernel Require Import Constants Model Filter Compensated QuotientRoundin
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
 From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
 From Raykernel Require TriangleTwins.
+From Raykernel Require RefinedTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -275,3 +276,14 @@ Definition twin_results_5 :=
    tiny_product_threshold).
 Goal True. idtac "@@ half_gap_twin round_quotient_twin round_quotient_twin_sound fast_relation_twin_correct fast_answer_twin_correct tiny_product_threshold". Abort.
 Print Assumptions twin_results_5.
+
+(** RefinedTwins.v: the second level of stage 2 (compensated_dot3_refined) tied to its twin *)
+Goal True. idtac "@@ compensated_dot3_refined_twin". Abort.
+Print Assumptions RefinedTwins.compensated_dot3_refined_twin.
+Definition twin_results_refined :=
+  (RefinedTwins.den_refined_twin_encloses,
+   RefinedTwins.num_refined_twin_encloses,
+   RefinedTwins.den_refined_twin_sound,
+   RefinedTwins.num_refined_twin_sound).
+Goal True. idtac "@@ den_refined_twin_encloses num_refined_twin_encloses den_refined_twin_sound num_refined_twin_sound". Abort.
+Print Assumptions twin_results_refined.
