@@ -35,6 +35,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("tri_relation_lanes", Twins.run_tri_relation_lanes);
   ("tri_compensated", Twins.run_tri_compensated);
   ("tri_compensated_lanes", Twins.run_tri_compensated_lanes);
+  ("cascade_intersect", Twins.run_cascade_intersect);
+  ("cascade_relation", Twins.run_cascade_relation);
 ]
 
 let () =
