@@ -24,7 +24,7 @@
     stage means. *)
 
 From Coq Require Import Reals Lra Lia ZArith List Bool.
-From Flocq Require Import Core IEEE754.BinarySingleNaN.
+From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model Filter Compensated Classification QuotientRounding Cascade FloatCore
   ConstantsCpp Twins Expansions QueryTwins RefinedTwins.
 Import ListNotations.
@@ -173,3 +173,188 @@ Definition relation_b (o d p n : Vec3B) : cascade_answer :=
             | _ => CDecided (relation_from_signs (sign_to_Z ns) (sign_to_Z ds)) st TNaN
             end
   end.
+
+(** ** What an answer before the exact stage means
+
+    [stage2_finiteness] is the one fact about stage 2 this file takes as a hypothesis, stated plainly: for
+    every bit pattern, a finite radius of a stage-2 enclosure (either level, den or num) comes with a finite
+    hi and lo.  (A finite radius means a finite stage-1 magnitude m, and |hi| ≤ m, |lo| ≤ 5u·m:
+    proofs/README.md, "Overflow"; its Coq proof is another item of "What remains".)  Everything else is
+    proved from the stage twins' theorems. *)
+Definition stage2_finiteness : Prop :=
+  forall d0 d1 d2 n0 n1 n2 p0 p1 p2 o0 o1 o2 : float,
+  (fin (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)) = true ->
+   fin (hib (den_compensated_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_compensated_b d0 d1 d2 n0 n1 n2)) = true) /\
+  (fin (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
+   fin (hib (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
+   fin (lob (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true) /\
+  (fin (radiusb (den_refined_b d0 d1 d2 n0 n1 n2)) = true ->
+   fin (hib (den_refined_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_refined_b d0 d1 d2 n0 n1 n2)) = true) /\
+  (fin (radiusb (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
+   fin (hib (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
+   fin (lob (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true).
+
+(** A certain enclosure sign is the exact sign, given the producer's "finite radius → finite parts". *)
+Lemma enclosure_sign_b_certifies : forall (e : EnclosureB) V, nonneg (radiusb e) ->
+  (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true) ->
+  (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) V) ->
+  certifies (enclosure_sign_b e) V.
+Proof.
+  intros e V N F Enc. unfold enclosure_sign_b.
+  destruct (Z.eq_dec (enclosure_sign_lanes_b e) uncertain_lane) as [U|U]; [rewrite U; exact I|].
+  pose proof (enclosure_sign_radius_finite e N U) as Fr. destruct (F Fr) as [Fh Fl].
+  destruct (stage2_sign_twin e V N Fh Fl (fun Fr' => Enc Fh Fl Fr')) as [C _]. exact C.
+Qed.
+
+Lemma RN_diff_zero : forall a b, binary64 a -> binary64 b -> RN (a - b) = 0 -> a = b.
+Proof.
+  intros a b Ba Bb H.
+  destruct (Rle_or_lt (Rabs (a - b)) (bpow radix2 (53 + -1074))) as [S|L].
+  - assert (F : binary64 (a - b)).
+    { unfold Rminus. apply FLT_format_plus_small; auto with typeclass_instances.
+      now apply binary64_opp. }
+    rewrite RN_binary64 in H by exact F. lra.
+  - assert (P : bpow radix2 (53 + -1074) <= Rabs (RN (a - b))).
+    { rewrite <- RN_abs. rewrite <- (RN_binary64 (bpow radix2 (53 + -1074))) by (apply binary64_bpow; lia).
+      apply RN_le. lra. }
+    rewrite H, Rabs_R0 in P. pose proof (bpow_gt_0 radix2 (53 + -1074)). lra.
+Qed.
+
+Lemma feq_zero_val : forall x, feq x fzero = true -> B2R x = 0.
+Proof. intros x H. exact (proj2 (feq_zero x H)). Qed.
+
+Section Signs.
+Variables o d p n : Vec3B.
+Let VN := ray_num (vec_R o) (vec_R p) (vec_R n).
+Let VD := ray_den (vec_R d) (vec_R n).
+
+Lemma VD_eq : VD = B2R (vxb d) * B2R (vxb n) + B2R (vyb d) * B2R (vyb n) + B2R (vzb d) * B2R (vzb n).
+Proof. reflexivity. Qed.
+Lemma VN_eq : VN = (B2R (vxb p) - B2R (vxb o)) * B2R (vxb n) + (B2R (vyb p) - B2R (vyb o)) * B2R (vyb n) +
+                   (B2R (vzb p) - B2R (vzb o)) * B2R (vzb n).
+Proof. reflexivity. Qed.
+
+Lemma term_zero : forall a b, (feq a fzero || feq b fzero)%bool = true -> B2R a * B2R b = 0.
+Proof.
+  intros a b H. apply orb_true_iff in H. destruct H as [H|H]; rewrite (feq_zero_val _ H); ring.
+Qed.
+
+Lemma den_filter_b_certifies : certifies (den_filter_b d n) VD.
+Proof.
+  unfold den_filter_b, dot3_filter_b, zero_flag.
+  destruct (((feq (vxb d) fzero || feq (vxb n) fzero) && (feq (vyb d) fzero || feq (vyb n) fzero)) &&
+            (feq (vzb d) fzero || feq (vzb n) fzero))%bool eqn:Z.
+  - cbn. apply andb_true_iff in Z. destruct Z as [Z Z2]. apply andb_true_iff in Z. destruct Z as [Z0 Z1].
+    rewrite VD_eq, (term_zero _ _ Z0), (term_zero _ _ Z1), (term_zero _ _ Z2). ring.
+  - rewrite VD_eq. exact (proj1 (den_filter_twin_sound (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))).
+Qed.
+
+Lemma diff_term_zero : forall a c b, (feq (fsub a c) fzero || feq b fzero)%bool = true ->
+  (B2R a - B2R c) * B2R b = 0.
+Proof.
+  intros a c b H. apply orb_true_iff in H. destruct H as [H|H]; [|rewrite (feq_zero_val _ H); ring].
+  destruct (feq_zero _ H) as [F V]. destruct (fsub_inv _ _ F) as [_ [_ E]]. rewrite E in V.
+  rewrite (RN_diff_zero _ _ (binary64_B2R a) (binary64_B2R c) V). ring.
+Qed.
+
+Lemma num_filter_b_certifies : certifies (num_filter_b o p n) VN.
+Proof.
+  unfold num_filter_b, dot3_filter_b, zero_flag.
+  match goal with |- certifies (if ?c then _ else _) _ => destruct c eqn:Z end.
+  - cbn. apply andb_true_iff in Z. destruct Z as [Z Z2]. apply andb_true_iff in Z. destruct Z as [Z0 Z1].
+    rewrite VN_eq, (diff_term_zero _ _ _ Z0), (diff_term_zero _ _ _ Z1), (diff_term_zero _ _ _ Z2). ring.
+  - rewrite VN_eq. unfold num1_b. rewrite !fsub_two_diff_hi.
+    exact (proj1 (num_filter_twin_sound (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n))).
+Qed.
+
+Lemma den2_nonneg : nonneg (radiusb (den2_b d n)).
+Proof.
+  unfold den2_b, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
+  cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+  apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
+Qed.
+
+Lemma den2_encloses : fin (hib (den2_b d n)) = true -> fin (lob (den2_b d n)) = true ->
+  fin (radiusb (den2_b d n)) = true -> encloses (enc_R (den2_b d n)) VD.
+Proof.
+  intros Fh Fl Fr. unfold den2_b in *.
+  destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [? [? [? E]]]]]].
+  unfold den_compensated_b. rewrite E, VD_eq. apply compensated_den_enclosure; apply binary64_B2R.
+Qed.
+
+Lemma num2_encloses : fin (hib (num2_b o p n)) = true -> fin (lob (num2_b o p n)) = true ->
+  fin (radiusb (num2_b o p n)) = true -> encloses (enc_R (num2_b o p n)) VN.
+Proof.
+  intros Fh Fl Fr. unfold num2_b in *.
+  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
+  destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
+  destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
+  unfold num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2, VN_eq.
+  apply compensated_num_enclosure; apply binary64_B2R.
+Qed.
+
+Lemma den2r_encloses : fin (hib (den2r_b d n)) = true -> fin (lob (den2r_b d n)) = true ->
+  fin (radiusb (den2r_b d n)) = true -> encloses (enc_R (den2r_b d n)) VD.
+Proof.
+  intros Fh Fl Fr. rewrite VD_eq.
+  exact (proj2 (proj2 (proj2 (proj2 (proj2 (proj2 (proj2 (den_refined_twin_encloses _ _ _ _ _ _ Fh Fl Fr)))))))).
+Qed.
+
+Lemma num2r_encloses : fin (hib (num2r_b o p n)) = true -> fin (lob (num2r_b o p n)) = true ->
+  fin (radiusb (num2r_b o p n)) = true -> encloses (enc_R (num2r_b o p n)) VN.
+Proof.
+  intros Fh Fl Fr. rewrite VN_eq.
+  destruct (num_refined_twin_encloses _ _ _ _ _ _ _ _ _ Fh Fl Fr) as [_ [_ [_ [_ [_ [_ [_ [_ [_ En]]]]]]]]].
+  exact En.
+Qed.
+
+Hypothesis H2 : stage2_finiteness.
+
+Let H2all := H2 (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n) (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o).
+
+Lemma den_sign2_certifies : certifies (den_sign2_b d n) VD.
+Proof.
+  destruct H2all as [Fd [_ [Fdr _]]].
+  unfold den_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
+  - apply den_filter_b_certifies.
+  - exact (enclosure_sign_b_certifies (den2_b d n) VD den2_nonneg Fd den2_encloses).
+  - exact (enclosure_sign_b_certifies (den2r_b d n) VD (den_refined_radius_nonneg _ _ _ _ _ _) Fdr den2r_encloses).
+Qed.
+
+Lemma num_sign2_certifies : certifies (num_sign2_b o p n) VN.
+Proof.
+  destruct H2all as [_ [Fn [_ Fnr]]].
+  unfold num_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
+  - apply num_filter_b_certifies.
+  - exact (enclosure_sign_b_certifies (num2_b o p n) VN (compensated_radius_nonneg _ _ _ _ _ _ _ _ _) Fn num2_encloses).
+  - exact (enclosure_sign_b_certifies (num2r_b o p n) VN (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) Fnr
+             num2r_encloses).
+Qed.
+
+(** [certified_signs_b]: before the exact stage, both signs are certain and exact. *)
+Theorem certified_signs_twin_sound : forall ns ds st, certified_signs_b o d p n = (ns, ds, st) -> st <> StExact ->
+  ns <> Uncertain /\ ds <> Uncertain /\ certifies ns VN /\ certifies ds VD.
+Proof.
+  intros ns ds st E X. unfold certified_signs_b in E.
+  destruct (is_certain (den_filter_b d n) && is_certain (num_filter_b o p n))%bool eqn:C1.
+  - injection E as <- <- <-. apply andb_true_iff in C1. destruct C1 as [Cd Cn].
+    repeat split; [destruct (num_filter_b o p n); discriminate | destruct (den_filter_b d n); discriminate
+                  | apply num_filter_b_certifies | apply den_filter_b_certifies].
+  - destruct (is_certain (den_sign2_b d n) && is_certain (num_sign2_b o p n))%bool eqn:C2.
+    + injection E as <- <- <-. apply andb_true_iff in C2. destruct C2 as [Cd Cn].
+      repeat split; [destruct (num_sign2_b o p n); discriminate | destruct (den_sign2_b d n); discriminate
+                    | apply num_sign2_certifies | apply den_sign2_certifies].
+    + unfold expansions_b, ray_plane_expansions_b in E.
+      pose proof (certified_signs_expansion_sound (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                    (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as S.
+      destruct (build_expansions_gen two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                  (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
+      destruct (ex && is_certain (expansion_sign_b en) && is_certain (expansion_sign_b ed))%bool eqn:C3.
+      * injection E as <- <- <-. apply andb_true_iff in C3. destruct C3 as [C3 Cd].
+        apply andb_true_iff in C3. destruct C3 as [Ex Cn]. destruct (S Ex) as [Sn Sd].
+        repeat split; [destruct (expansion_sign_b en); discriminate | destruct (expansion_sign_b ed); discriminate
+                      | rewrite VN_eq; exact Sn | rewrite VD_eq; exact Sd].
+      * injection E as _ _ <-. contradiction.
+Qed.
+
+End Signs.
