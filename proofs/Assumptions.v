@@ -287,3 +287,14 @@ Definition twin_results_refined :=
    RefinedTwins.num_refined_twin_sound).
 Goal True. idtac "@@ den_refined_twin_encloses num_refined_twin_encloses den_refined_twin_sound num_refined_twin_sound". Abort.
 Print Assumptions twin_results_refined.
+
+(** CascadeTwins.v: the cascade's control flow (ray_plane_cascade.cpp, validation.cpp) for every bit pattern *)
+From Raykernel Require CascadeTwins.
+Goal True. idtac "@@ cascade_twin_correct". Abort.
+Print Assumptions CascadeTwins.cascade_twin_correct.
+Definition twin_results_cascade :=
+  (CascadeTwins.certified_signs_twin_sound,
+   CascadeTwins.certified_quotient_twin_sound,
+   CascadeTwins.validate_b_none).
+Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
+Print Assumptions twin_results_cascade.

@@ -358,3 +358,171 @@ Proof.
 Qed.
 
 End Signs.
+
+(** ** t: [certified_quotient_b] *)
+
+Lemma tail_loop_b_nonneg : forall rest q lo mag, nonneg mag ->
+  nonneg (let '(_, _, m) := tail_loop_b q lo mag rest in m).
+Proof.
+  induction rest as [|e rest IH]; intros q lo mag N; [exact N|].
+  cbn [tail_loop_b]. apply IH. apply fadd_nonneg; [exact N | apply fabs_nonneg].
+Qed.
+
+Lemma tail_b_nonneg : forall l, nonneg (radiusb (tail_b l)).
+Proof.
+  intros l. assert (G : forall e0 rest, nonneg (radiusb (expansion_tail_enclosure_b e0 rest))).
+  { intros e0 rest. unfold expansion_tail_enclosure_b.
+    pose proof (tail_loop_b_nonneg rest e0 fzero fzero fzero_nonneg) as N.
+    destruct (tail_loop_b e0 fzero fzero rest) as [[q lo] m]. cbn [radiusb].
+    apply fadd_nonneg; [apply fmul_nonneg; [exact N | const_nonneg] | const_nonneg]. }
+  destruct l; apply G.
+Qed.
+
+Lemma tail_b_encloses : forall l, (length l <= 32)%nat ->
+  fin (hib (tail_b l)) = true -> fin (lob (tail_b l)) = true -> fin (radiusb (tail_b l)) = true ->
+  encloses (enc_R (tail_b l)) (sumR l).
+Proof.
+  intros [|e0 rest] L Fh _ Fr; cbn [tail_b] in *.
+  - destruct (expansion_tail_enclosure_twin fzero [] Fh Fr) as [_ [_ E]]. rewrite E.
+    replace (sumR []) with (B2R fzero + sum_list (map B2R [])) by (cbn; ring).
+    apply tail_sum_enclosure; [apply binary64_B2R | constructor | cbn; unfold tail_sum_max_terms; lia].
+  - destruct (expansion_tail_enclosure_twin e0 rest Fh Fr) as [_ [_ E]]. rewrite E.
+    change (sumR (e0 :: rest)) with (B2R e0 + sum_list (map B2R rest)).
+    apply tail_sum_enclosure; [apply binary64_B2R | | rewrite map_length; unfold tail_sum_max_terms; cbn in L; lia].
+    apply Forall_forall. intros x Hx. apply in_map_iff in Hx. destruct Hx as [y [<- _]]. apply binary64_B2R.
+Qed.
+
+Lemma some_pair_fst : forall (A B : Type) (a c : A) (b e : B), Some (a, b) = Some (c, e) -> c = a.
+Proof. intros A B a c b e H. injection H as H1 _. symmetry. exact H1. Qed.
+
+Section Quotient.
+Variables o d p n : Vec3B.
+Let VN := ray_num (vec_R o) (vec_R p) (vec_R n).
+Let VD := ray_den (vec_R d) (vec_R n).
+
+(** A t that [certified_quotient] returns before the exact stage is RN(num/den), den ≠ 0 (no hypothesis:
+    round_quotient's certificate implies finite enclosures, [round_quotient_twin]). *)
+Theorem certified_quotient_twin_sound : forall q ts, certified_quotient_b o d p n = Some (q, ts) ->
+  VD <> 0 /\ fin q = true /\ B2R q = RN (VN / VD).
+Proof.
+  intros q ts. unfold certified_quotient_b.
+  destruct (snd (round_quotient_b (num2_b o p n) (prepare_divisor_b (den2_b d n)))) eqn:C1.
+  - intros E. apply some_pair_fst in E. subst q.
+    exact (round_quotient_twin_sound (num2_b o p n) (den2_b d n) VN VD (compensated_radius_nonneg _ _ _ _ _ _ _ _ _)
+             (den2_nonneg d n) (num2_encloses o p n) (den2_encloses d n) C1).
+  - destruct (snd (round_quotient_b (num2r_b o p n) (prepare_divisor_b (den2r_b d n)))) eqn:C2.
+    + intros E. apply some_pair_fst in E. subst q.
+      exact (round_quotient_twin_sound (num2r_b o p n) (den2r_b d n) VN VD (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _)
+               (den_refined_radius_nonneg _ _ _ _ _ _) (num2r_encloses o p n) (den2r_encloses d n) C2).
+    + unfold expansions_b, ray_plane_expansions_b.
+      pose proof (build_expansions_exact (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                    (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as X.
+      pose proof (length_build_expansions two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                    (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as L.
+      destruct (build_expansions_gen two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                  (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
+      destruct ex; [|discriminate].
+      destruct (X eq_refl) as [_ [_ [Sd Sn]]]. destruct L as [Ln Ld].
+      destruct (snd (round_quotient_b (tail_b en) (prepare_divisor_b (tail_b ed)))) eqn:C3; [|discriminate].
+      intros E. apply some_pair_fst in E. subst q.
+      apply (round_quotient_twin_sound (tail_b en) (tail_b ed) VN VD (tail_b_nonneg _) (tail_b_nonneg _));
+        [ | | exact C3].
+      * intros Fh Fl Fr. unfold VN. rewrite (VN_eq o p n), <- Sn. apply tail_b_encloses; [lia | assumption ..].
+      * intros Fh Fl Fr. unfold VD. rewrite (VD_eq d n), <- Sd. apply tail_b_encloses; [lia | assumption ..].
+Qed.
+
+End Quotient.
+
+(** ** Validation *)
+
+Lemma nonfinite_kind_none : forall x, nonfinite_kind x = None -> fin x = true.
+Proof. intros [s|[|]| |s m e H] K; try reflexivity; discriminate. Qed.
+
+Lemma first_nonfinite_none : forall xs i, first_nonfinite i xs = None -> Forall (fun x => fin x = true) xs.
+Proof.
+  induction xs as [|x xs IH]; intros i H; [constructor|].
+  cbn [first_nonfinite] in H. destruct (nonfinite_kind x) eqn:K; [discriminate|].
+  constructor; [now apply nonfinite_kind_none | exact (IH _ H)].
+Qed.
+
+Lemma zero_float : forall x, fin x = true -> B2R x = 0 -> is_zero_b x = true.
+Proof.
+  intros [s|s| |s m e H] F V; try reflexivity; try discriminate.
+  exfalso. cbn in V. apply eq_0_F2R in V. destruct s; discriminate.
+Qed.
+
+Lemma vec_nonzero : forall v, vec_fin v -> vec_zero_b v = false -> vec_R v <> zero3.
+Proof.
+  intros [x y z] [Fx [Fy Fz]] Z E. unfold vec_R, zero3 in E. cbn [vxb vyb vzb] in *.
+  injection E as Ex Ey Ez. unfold vec_zero_b in Z. cbn [vxb vyb vzb] in Z.
+  rewrite (zero_float _ Fx Ex), (zero_float _ Fy Ey), (zero_float _ Fz Ez) in Z. discriminate.
+Qed.
+
+(** Validation passes exactly when every component is finite and neither d nor n is the zero vector
+    (the "only if" direction; the runner compares the reasons with validation.cpp's). *)
+Theorem validate_b_none : forall o d p n, validate_b o d p n = None ->
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\ vec_R d <> zero3 /\ vec_R n <> zero3.
+Proof.
+  intros o d p n V. unfold validate_b in V.
+  destruct (first_nonfinite 0 (components o d p n)) eqn:F; [discriminate|].
+  apply first_nonfinite_none in F. unfold components in F.
+  repeat (apply Forall_cons_iff in F; destruct F as [? F]).
+  assert (Fo : vec_fin o) by (repeat split; assumption). assert (Fd : vec_fin d) by (repeat split; assumption).
+  assert (Fp : vec_fin p) by (repeat split; assumption). assert (Fn : vec_fin n) by (repeat split; assumption).
+  destruct (vec_zero_b d) eqn:Zd; [discriminate|]. destruct (vec_zero_b n) eqn:Zn; [discriminate|].
+  repeat split; try assumption; now apply vec_nonzero.
+Qed.
+
+(** ** The theorem: [intersect_traced_b]
+
+    For every bit pattern of the twelve inputs: an answer before the exact stage comes from valid input
+    (every component finite, d ≠ 0, n ≠ 0), its relation is docs/contract.md §1's for the exact values
+    ([classify]), and its t is RN(num/den) when a stage rounded it (den ≠ 0), +0 when num = 0 exactly;
+    invalid input is reported by [validate_b]'s code, which the runner compares with the C++'s reason.
+    The one hypothesis is [stage2_finiteness] (above). *)
+Theorem cascade_twin_correct : stage2_finiteness -> forall o d p n : Vec3B,
+  match intersect_traced_b o d p n with
+  | CInvalid c => validate_b o d p n = Some c
+  | CExact => True
+  | CDecided r s t =>
+      s <> StExact /\ vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\ vec_R d <> zero3 /\ vec_R n <> zero3 /\
+      r = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
+      match t with
+      | TRounded q _ => ray_den (vec_R d) (vec_R n) <> 0 /\ fin q = true /\
+          B2R q = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n))
+      | TZero => ray_num (vec_R o) (vec_R p) (vec_R n) = 0
+      | TNaN => r = Parallel \/ r = InPlane
+      | TExact => True
+      end
+  end.
+Proof.
+  intros H2 o d p n. unfold intersect_traced_b.
+  destruct (validate_b o d p n) as [c|] eqn:V; [reflexivity|].
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  unfold intersect_cascade_b.
+  destruct (certified_signs_b o d p n) as [[ns ds] st] eqn:S.
+  pose proof (certified_signs_twin_sound o d p n H2 ns ds st S) as G.
+  destruct st; cbv beta iota zeta; [| | | exact I].
+  all: specialize (G ltac:(discriminate)); destruct G as [Un [Ud [Cn Cd]]];
+    pose proof (certified_relation ns ds (vec_R o) (vec_R d) (vec_R p) (vec_R n) Cn Un Cd Ud) as R;
+    destruct (relation_from_signs (sign_to_Z ns) (sign_to_Z ds)) eqn:Rel; cbv beta iota.
+  Ltac common Fo Fd Fp Fn Zd Zn :=
+    split; [discriminate|]; split; [exact Fo|]; split; [exact Fd|]; split; [exact Fp|]; split; [exact Fn|];
+    split; [exact Zd|]; split; [exact Zn|]; split.
+  (* parallel, in-plane: t is NaN *)
+  all: lazymatch goal with
+       | |- _ /\ _ => common Fo Fd Fp Fn Zd Zn; [exact R | first [left; reflexivity | right; reflexivity]]
+       | |- _ => idtac end.
+  (* hit, behind: num = 0 (t = +0), else certified_quotient *)
+  all: destruct ns; try contradiction; cbv beta iota.
+  all: lazymatch goal with
+       | |- _ /\ _ => common Fo Fd Fp Fn Zd Zn;
+                      [lazymatch type of Rel with
+                       | _ = Behind => exfalso; destruct ds; try contradiction; cbn in Rel; discriminate
+                       | _ => exact R end
+                      | exact Cn]
+       | |- _ => idtac end.
+  all: destruct (certified_quotient_b o d p n) as [[q ts]|] eqn:Q; cbv beta iota.
+  all: common Fo Fd Fp Fn Zd Zn; [exact R | try exact I].
+  all: exact (certified_quotient_twin_sound o d p n q ts Q).
+Qed.
