@@ -18,6 +18,7 @@ From Raykernel Require TriangleLiveness.
 From Raykernel Require StageTwoFinite.
 From Raykernel Require QueryPairTwins.
 From Raykernel Require NearestTwins.
+From Raykernel Require RefinedTwins.
 
 Goal True. idtac "@@ near_bound_sound". Abort.
 Print Assumptions near_bound_sound.
@@ -334,3 +335,25 @@ Print Assumptions twin_results_triangle_stage3.
 From Raykernel Require TriangleCascadeTwins.
 Goal True. idtac "@@ fast_relation_tri_correct". Abort.
 Print Assumptions TriangleCascadeTwins.fast_relation_tri_correct.
+
+(** RefinedTwins.v: the second level of stage 2 (compensated_dot3_refined) tied to its twin *)
+Goal True. idtac "@@ compensated_dot3_refined_twin". Abort.
+Print Assumptions RefinedTwins.compensated_dot3_refined_twin.
+Definition twin_results_refined :=
+  (RefinedTwins.den_refined_twin_encloses,
+   RefinedTwins.num_refined_twin_encloses,
+   RefinedTwins.den_refined_twin_sound,
+   RefinedTwins.num_refined_twin_sound).
+Goal True. idtac "@@ den_refined_twin_encloses num_refined_twin_encloses den_refined_twin_sound num_refined_twin_sound". Abort.
+Print Assumptions twin_results_refined.
+
+(** CascadeTwins.v: the cascade's control flow (ray_plane_cascade.cpp, validation.cpp) for every bit pattern *)
+From Raykernel Require CascadeTwins.
+Goal True. idtac "@@ cascade_twin_correct". Abort.
+Print Assumptions CascadeTwins.cascade_twin_correct.
+Definition twin_results_cascade :=
+  (CascadeTwins.certified_signs_twin_sound,
+   CascadeTwins.certified_quotient_twin_sound,
+   CascadeTwins.validate_b_none).
+Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
+Print Assumptions twin_results_cascade.

@@ -17,7 +17,7 @@
       [dot3_filter_lanes_twin]; [den_filter_twin_sound], [num_filter_twin_sound]);
     - dot3_compensated.hpp: [compensated_dot3_b], [compensated_dot3_exact_b] (α = 0),
       [compensated_dot3_refined_b] ([compensated_dot3_twin], [compensated_dot3_exact_twin]; the refined
-      twin is checked by the runner, its theorem is not restored yet: proofs/README.md, "What remains");
+      twin's theorem is RefinedTwins.v's [compensated_dot3_refined_twin]);
     - enclosure.hpp: [enclosure_sign_lanes_b] ([enclosure_sign_twin]; end to end
       [den_compensated_twin_sound], [num_compensated_twin_sound]);
     - expansion.hpp: [expansion_tail_enclosure_b] ([expansion_tail_enclosure_twin]).

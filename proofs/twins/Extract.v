@@ -17,6 +17,7 @@ From Raykernel Require Import Model Classification CompareQuotients FloatCore Co
   Expansions QueryTwins.
 From Raykernel Require TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleRule.
 From Raykernel Require NearestTwins.
+From Raykernel Require CascadeTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -278,6 +279,48 @@ Definition run_tri_relation_lanes := Tri.tri_relation_lanes.
 Definition run_tri_compensated := Tri.tri_compensated.
 Definition run_tri_compensated_lanes := Tri.tri_compensated_lanes.
 
+(** The cascade's control flow (CascadeTwins.v): [intersect_traced] and [relation] on "o d p n".
+    cascade_intersect: kind (0 invalid, 1 exact stage, 2 decided), the invalid code or the relation, the
+    relation's stage, t's bits and t's stage, then the public [intersect]'s relation and t (the same answer,
+    which its fast path must give too); what the exact stage decides is not the twin's (0, stage 3).
+    cascade_relation: kind, code or relation, stage, and the signs of num and den. *)
+Module Casc.
+Import CascadeTwins.
+From Flocq Require IEEE754.BinarySingleNaN.
+Definition stage_code (s : stage) : Z := match s with StFilter => 0 | StCompensated => 1 | StExpansion => 2 | StExact => 3 end.
+Definition rel_code (r : Classification.relation) : Z :=
+  match r with Classification.Hit => 0 | Classification.Behind => 1 | Classification.Parallel => 2 | Classification.InPlane => 3 end.
+Definition nan_bits : Z := b (IEEE754.BinarySingleNaN.B754_nan).
+Definition cascade_intersect (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    match intersect_traced_b (v3 ox oy oz) (v3 dx dy dz) (v3 px py pz) (v3 nx ny nz) with
+    | CInvalid c => [0; c; 0; 0; 0; 0; 0]
+    | CExact => [1; 0; 3; 0; 3; 0; 0]
+    | CDecided r s t =>
+      let rc := rel_code r in let sc := stage_code s in
+      match t with
+      | TNaN => [2; rc; sc; nan_bits; sc; rc; nan_bits]
+      | TZero => [2; rc; sc; 0; sc; rc; 0]
+      | TRounded q ts => [2; rc; sc; b q; stage_code ts; rc; b q]
+      | TExact => [2; rc; sc; 0; 3; rc; 0]
+      end
+    end
+  | _ => [] end.
+Definition cascade_relation (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
+    let o := v3 ox oy oz in let d := v3 dx dy dz in let p := v3 px py pz in let n := v3 nx ny nz in
+    match relation_b o d p n with
+    | CInvalid c => [0; c; 0; 0; 0]
+    | CExact => [1; 0; 3; 0; 0]
+    | CDecided r s _ =>
+      let '(ns, ds, _) := certified_signs_b o d p n in
+      [2; rel_code r; stage_code s; sign_code ns; sign_code ds]
+    end
+  | _ => [] end.
+End Casc.
+Definition run_cascade_intersect := Casc.cascade_intersect.
+Definition run_cascade_relation := Casc.cascade_relation.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -285,4 +328,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
   run_build_expansions run_compare_expansion run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
-  run_tri_fast_relation.
+  run_tri_fast_relation
+  run_cascade_intersect run_cascade_relation.

@@ -29,6 +29,7 @@
 #include "certified/expansion.hpp"
 #include "certified/lanes.hpp"
 #include "certified/quotient_rounding.hpp"
+#include "certified/ray_plane_cascade.hpp"
 #include "certified/ray_plane_query.hpp"
 #include "raycast/nearest_hit_internal.hpp"
 #include "triangle/det3_stages.hpp"
@@ -246,6 +247,33 @@ RayPlaneTerms terms_of(const std::vector<double>& x, std::size_t plane_at = 6) {
   return ray_plane_terms(ray_of(x), plane_of(x, plane_at));
 }
 
+
+// ---- The cascade's control flow (proofs/CascadeTwins.v) ----------------------------------------------------
+
+// The code of an invalid_input's reason (validation.cpp's wording): 3·i + k for component i of o, d, p, n
+// (k: 0 NaN, 1 +inf, 2 −inf), 36 a zero direction, 37 a zero normal; −1 for any other text.
+long long invalid_code(const std::string& what) {
+  static const char* const vectors[4] = {"ray origin", "ray direction", "plane point", "plane normal"};
+  static const char* const kinds[3] = {"NaN", "+inf", "-inf"};
+  for (int v = 0; v < 4; ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int k = 0; k < 3; ++k)
+        if (what == std::string(vectors[v]) + " " + "xyz"[axis] + " is " + kinds[k]) return 3 * (3 * v + axis) + k;
+  if (what == "ray direction is the zero vector") return 36;
+  if (what == "plane normal is the zero vector") return 37;
+  return -1;
+}
+
+// The public entry point's answer, or the code of the reason it rejected the query.
+template <class F>
+auto public_answer(F call) -> std::pair<decltype(call()), long long> {
+  try {
+    return {call(), -2};
+  } catch (const raykernel::invalid_input& e) {
+    return {{}, invalid_code(e.what())};
+  }
+}
+
 const std::map<std::string, ScalarRoutine>& scalar_routines() {
   static const std::map<std::string, ScalarRoutine> table = {
       {"refined",
@@ -375,6 +403,53 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          b.den_sign = static_cast<Sign>(static_cast<int>(x[21]));
          const DistanceOrder r = compare_hit_distances(a, b);
          o.i(r.stage == raykernel::Stage::exact ? 0 : r.sign), o.i(static_cast<int>(r.stage));
+         return true;
+       }},
+      // The cascade's control flow: intersect_traced (relation, t and the stages that decided them) and the
+      // public intersect (fast path, then the cascade), or the invalid_input both report.
+      {"cascade_intersect",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray = ray_of(x);
+         const raykernel::Plane plane = plane_of(x, 6);
+         const auto [traced, traced_invalid] = public_answer([&] { return raykernel::intersect_traced(ray, plane); });
+         const auto [pub, pub_invalid] = public_answer([&] { return raykernel::intersect(ray, plane); });
+         if (traced_invalid != -2 || pub_invalid != -2) {  // both must reject, for the same reason
+           o.i(0), o.i(traced_invalid == pub_invalid ? traced_invalid : -3), o.i(0), o.i(0), o.i(0), o.i(0), o.i(0);
+           return true;
+         }
+         const int rs = static_cast<int>(traced.relation_stage), ts = static_cast<int>(traced.t_stage);
+         const int rel = static_cast<int>(traced.intersection.relation), pub_rel = static_cast<int>(pub.relation);
+         if (traced.relation_stage == raykernel::Stage::exact) {
+           o.i(1), o.i(0), o.i(3), o.i(0), o.i(3), o.i(0), o.i(0);
+         } else if (traced.t_stage == raykernel::Stage::exact) {
+           o.i(2), o.i(rel), o.i(rs), o.i(0), o.i(3), o.i(pub_rel), o.i(0);
+         } else {
+           o.i(2), o.i(rel), o.i(rs), o.f(traced.intersection.t), o.i(ts), o.i(pub_rel), o.f(pub.t);
+         }
+         return true;
+       }},
+      // relation (fast_relation, then certified_signs) and certified_signs' signs and stage.
+      {"cascade_relation",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray = ray_of(x);
+         const raykernel::Plane plane = plane_of(x, 6);
+         const auto [rel, invalid] = public_answer([&] { return raykernel::relation(ray, plane); });
+         if (invalid != -2) {
+           o.i(0), o.i(invalid), o.i(0), o.i(0), o.i(0);
+           return true;
+         }
+         RayPlaneCascade query(ray, plane);
+         const CertifiedSigns signs = certified_signs(query);
+         if (signs.stage == raykernel::Stage::exact) {
+           o.i(1), o.i(0), o.i(3), o.i(0), o.i(0);
+         } else {
+           o.i(2), o.i(static_cast<int>(rel)), o.i(static_cast<int>(signs.stage)), o.i(static_cast<int>(signs.num)),
+               o.i(static_cast<int>(signs.den));
+         }
          return true;
        }},
       // The one-query forms: den and num as the two lanes of a Lanes2.

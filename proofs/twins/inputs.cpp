@@ -104,6 +104,27 @@ class Source {
         if (c == 0) c = -c;
     return x;
   }
+  // A query whose den and num cancel to about u²·m, where stage 2's first level is uncertain and its second
+  // level decides (no testkit kind aims there): n random; a_0 random, a_1 = −a_0·n_0/n_1 rounded, so that
+  // a_0·n_0 + a_1·n_1 = r is about u·m; a_2 = −r/n_2 rounded, so that the whole sum is about u·|r|. d is such a
+  // vector; p − o another (o = 0 or a power of two, which p − o leaves exact), one of the two sometimes random.
+  testkit::Query refined_zone_query() {
+    auto unit = [this] { return (static_cast<double>(word() >> 11) * 0x1p-53 + 0.5) * (chance(2) ? 1 : -1); };
+    double n[3], d[3], e[3];
+    for (double& c : n) c = unit();
+    auto cancel = [&](double a[3]) {
+      a[0] = unit();
+      a[1] = -(a[0] * n[0]) / n[1];
+      const detail::DoubleDouble p0 = detail::two_prod(a[0], n[0]), p1 = detail::two_prod(a[1], n[1]);
+      const double r = (p0.hi + p1.hi) + (p0.lo + p1.lo);
+      a[2] = -r / n[2];
+    };
+    cancel(d), cancel(e);
+    if (chance(4)) d[below(3)] = unit();
+    else if (chance(4)) e[below(3)] = unit();
+    const double shift = chance(2) ? 0.0 : 0x1p3;
+    return {{{shift, shift, shift}, {d[0], d[1], d[2]}}, {{e[0] + shift, e[1] + shift, e[2] + shift}, {n[0], n[1], n[2]}}};
+  }
   testkit::PlanePair plane_pair() { return testkit::make_plane_pair_near_tie([this] { return word(); }); }
 
  private:
@@ -330,6 +351,17 @@ const std::map<std::string, Generator>& generators() {
       {"fast_answer_pair", [](Source& s) { return query_args(s.query()); }},
       {"fast_relation", [](Source& s) { return query_args(s.query()); }},
       {"fast_relation_pair", [](Source& s) { return query_args(s.query()); }},
+      // the cascade's control flow (CascadeTwins.v): hard queries (their degenerate kinds reach stage 3 and the
+      // exact stage), 1 in 8 with a special value in one component (query()), 1 in 16 wholly raw, 1 in 4 in the
+      // second level's zone (refined_zone_query)
+      {"cascade_intersect",
+       [](Source& s) {
+         return s.chance(16) ? raw_args(s, 12) : query_args(s.chance(4) ? s.refined_zone_query() : s.query());
+       }},
+      {"cascade_relation",
+       [](Source& s) {
+         return s.chance(16) ? raw_args(s, 12) : query_args(s.chance(4) ? s.refined_zone_query() : s.query());
+       }},
       {"compensated_exact", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
       // num's and den's stage-2 enclosures of one query (the operands round_quotient gets), sometimes with a
       // raw value in one field.
