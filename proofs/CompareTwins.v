@@ -5,8 +5,8 @@
       ([compare_quotients_filter_twin]);
     - [compare_quotients_compensated_b] ([compare_quotients_compensated_twin]);
     - end to end, for every bit pattern of a ray and two planes, as nearest_hit.cpp's
-      [compare_hit_distances] calls them on the stages of [RayPlaneStages]:
-      [hit_order_filter_twin_sound] (stage 1) and [hit_order_compensated_twin_sound] (stage 2): a
+      [compare_hit_distances] calls them: StageTwoFinite.v's [hit_order_compensated_twin_sound_total]
+      (stage 2) and NearestTwins.v's [compare_hit_distances_twin_correct] (the whole comparison): a
       certain sign is the sign of Δ = num_a·den_b − num_b·den_a of the exact values. *)
 
 From Coq Require Import Reals Lra Lia ZArith List.

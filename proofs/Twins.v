@@ -9,8 +9,9 @@
     inputs, so the soundness theorems of Filter.v and Compensated.v apply to the twin's outputs.  The
     corollaries [*_twin_sound] state the result end to end, for every bit pattern of every input: what
     the C++ certifies is true of the exact values — for stage 1 with no hypothesis; for stage 2 given
-    that hi and lo are finite (the C++ tests no finiteness since issue 13: that a finite magnitude keeps
-    hi and lo finite is argued in proofs/README.md, "Overflow", not yet proved here).
+    that hi and lo are finite (the C++ tests no finiteness since issue 13), a hypothesis that
+    StageTwoFinite.v discharges: a certain stage-2 sign implies finite hi and lo, for every bit pattern
+    ([den_compensated_twin_sound_total], [num_compensated_twin_sound_total]).
 
     - eft.hpp: [two_sum_b], [two_diff_b], [two_prod_b] ([two_sum_twin], [two_prod_twin]);
     - dot3_filter.hpp: [dot3_rounded_b], [dot3_filter_lanes_b], [dot3_filter_b] ([dot3_rounded_twin],
@@ -490,9 +491,9 @@ Lemma dot3_fields : forall a0 a1 a2 b0 b1 b2,
 Proof. intros a0 a1 a2 b0 b1 b2 r m E. rewrite <- E. repeat split. Qed.
 
 (** A finite hi, lo and radius mean a finite computation equal to the model's: every operation flows into
-    one of them.  (The C++ tests no finiteness: a finite magnitude m bounds |hi| ≤ m and |lo| ≤ 5u·m when α
-    is a TwoDiff low part, which proofs/README.md, "Overflow", argues and these theorems take as the
-    hypotheses on hi and lo.) *)
+    one of them.  (The C++ tests no finiteness: these theorems take finite hi and lo as hypotheses, and
+    StageTwoFinite.v proves them whenever the enclosure's sign is certain — not whenever m is finite: a
+    TwoDiff low part can be NaN with finite inputs and a finite difference.) *)
 Theorem compensated_dot3_twin : forall a0 a1 a2 al0 al1 al2 b0 b1 b2,
   let e := compensated_dot3_b a0 a1 a2 al0 al1 al2 b0 b1 b2 (dot3_rounded_b a0 a1 a2 b0 b1 b2) in
   fin (radiusb e) = true -> fin (hib e) = true -> fin (lob e) = true ->
