@@ -27,6 +27,7 @@ From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model Filter Compensated Classification QuotientRounding Cascade FloatCore
   ConstantsCpp Twins Expansions QueryTwins RefinedTwins.
+From Raykernel Require StageTwoFinite.
 Import ListNotations.
 Open Scope R_scope.
 
@@ -176,33 +177,29 @@ Definition relation_b (o d p n : Vec3B) : cascade_answer :=
 
 (** ** What an answer before the exact stage means
 
-    [stage2_finiteness] is the one fact about stage 2 this file takes as a hypothesis, stated plainly: for
-    every bit pattern, a finite radius of a stage-2 enclosure (either level, den or num) comes with a finite
-    hi and lo.  (A finite radius means a finite stage-1 magnitude m, and |hi| ≤ m, |lo| ≤ 5u·m:
-    proofs/README.md, "Overflow"; its Coq proof is another item of "What remains".)  Everything else is
-    proved from the stage twins' theorems. *)
-Definition stage2_finiteness : Prop :=
-  forall d0 d1 d2 n0 n1 n2 p0 p1 p2 o0 o1 o2 : float,
-  (fin (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)) = true ->
-   fin (hib (den_compensated_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_compensated_b d0 d1 d2 n0 n1 n2)) = true) /\
-  (fin (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
-   fin (hib (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
-   fin (lob (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true) /\
-  (fin (radiusb (den_refined_b d0 d1 d2 n0 n1 n2)) = true ->
-   fin (hib (den_refined_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_refined_b d0 d1 d2 n0 n1 n2)) = true) /\
-  (fin (radiusb (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
-   fin (hib (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
-   fin (lob (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true).
+    A stage-2 sign is used only when it is certain, and a certain sign needs finite hi and lo (with them,
+    a finite radius and the twin theorems give the enclosure).  For the first level that is proved for
+    every bit pattern (StageTwoFinite.v, [den_compensated_certain_finite], [num_compensated_certain_finite]);
+    [refined_finiteness] states the same for the second level (den_refined_b, num_refined_b).  (The
+    stronger "a finite radius comes with finite hi and lo" is false for the first level of num: a TwoDiff
+    low part can be NaN while m is finite; StageTwoFinite.v.) *)
+Definition refined_finiteness : Prop :=
+  (forall d0 d1 d2 n0 n1 n2 : float,
+   let e := den_refined_b d0 d1 d2 n0 n1 n2 in
+   enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true) /\
+  (forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
+   let e := num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2 in
+   enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true).
 
-(** A certain enclosure sign is the exact sign, given the producer's "finite radius → finite parts". *)
+(** A certain enclosure sign is the exact sign, given the producer's "certain sign → finite parts". *)
 Lemma enclosure_sign_b_certifies : forall (e : EnclosureB) V, nonneg (radiusb e) ->
-  (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true) ->
+  (enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true) ->
   (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) V) ->
   certifies (enclosure_sign_b e) V.
 Proof.
   intros e V N F Enc. unfold enclosure_sign_b.
   destruct (Z.eq_dec (enclosure_sign_lanes_b e) uncertain_lane) as [U|U]; [rewrite U; exact I|].
-  pose proof (enclosure_sign_radius_finite e N U) as Fr. destruct (F Fr) as [Fh Fl].
+  destruct (F U) as [Fh Fl].
   destruct (stage2_sign_twin e V N Fh Fl (fun Fr' => Enc Fh Fl Fr')) as [C _]. exact C.
 Qed.
 
@@ -308,13 +305,12 @@ Proof.
   exact En.
 Qed.
 
-Hypothesis H2 : stage2_finiteness.
-
-Let H2all := H2 (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n) (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o).
+Hypothesis H2 : refined_finiteness.
 
 Lemma den_sign2_certifies : certifies (den_sign2_b d n) VD.
 Proof.
-  destruct H2all as [Fd [_ [Fdr _]]].
+  pose proof (StageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fd.
+  pose proof (proj1 H2 (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fdr.
   unfold den_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply den_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (den2_b d n) VD den2_nonneg Fd den2_encloses).
@@ -323,7 +319,9 @@ Qed.
 
 Lemma num_sign2_certifies : certifies (num_sign2_b o p n) VN.
 Proof.
-  destruct H2all as [_ [Fn [_ Fnr]]].
+  pose proof (StageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fn.
+  pose proof (proj2 H2 (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n)) as Fnr.
   unfold num_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply num_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (num2_b o p n) VN (compensated_radius_nonneg _ _ _ _ _ _ _ _ _) Fn num2_encloses).
@@ -479,8 +477,8 @@ Qed.
     (every component finite, d ≠ 0, n ≠ 0), its relation is docs/contract.md §1's for the exact values
     ([classify]), and its t is RN(num/den) when a stage rounded it (den ≠ 0), +0 when num = 0 exactly;
     invalid input is reported by [validate_b]'s code, which the runner compares with the C++'s reason.
-    The one hypothesis is [stage2_finiteness] (above). *)
-Theorem cascade_twin_correct : stage2_finiteness -> forall o d p n : Vec3B,
+    The one hypothesis is [refined_finiteness] (above). *)
+Theorem cascade_twin_correct : refined_finiteness -> forall o d p n : Vec3B,
   match intersect_traced_b o d p n with
   | CInvalid c => validate_b o d p n = Some c
   | CExact => True
