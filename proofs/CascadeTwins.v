@@ -27,7 +27,7 @@ From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model Filter Compensated Classification QuotientRounding Cascade FloatCore
   ConstantsCpp Twins Expansions QueryTwins RefinedTwins.
-From Raykernel Require StageTwoFinite.
+From Raykernel Require StageTwoFinite RefinedFinite.
 Import ListNotations.
 Open Scope R_scope.
 
@@ -178,18 +178,11 @@ Definition relation_b (o d p n : Vec3B) : cascade_answer :=
 (** ** What an answer before the exact stage means
 
     A stage-2 sign is used only when it is certain, and a certain sign needs finite hi and lo (with them,
-    a finite radius and the twin theorems give the enclosure).  For the first level that is proved for
-    every bit pattern (StageTwoFinite.v, [den_compensated_certain_finite], [num_compensated_certain_finite]);
-    [refined_finiteness] states the same for the second level (den_refined_b, num_refined_b).  (The
-    stronger "a finite radius comes with finite hi and lo" is false for the first level of num: a TwoDiff
-    low part can be NaN while m is finite; StageTwoFinite.v.) *)
-Definition refined_finiteness : Prop :=
-  (forall d0 d1 d2 n0 n1 n2 : float,
-   let e := den_refined_b d0 d1 d2 n0 n1 n2 in
-   enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true) /\
-  (forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
-   let e := num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2 in
-   enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true).
+    a finite radius and the twin theorems give the enclosure).  That is proved for every bit pattern, for
+    both levels: StageTwoFinite.v ([den_compensated_certain_finite], [num_compensated_certain_finite]) and
+    RefinedFinite.v ([den_refined_certain_finite], [num_refined_certain_finite]).  (The stronger "a finite
+    radius comes with finite hi and lo" is false for the first level of num: a TwoDiff low part can be NaN
+    while m, hence the radius, is finite; StageTwoFinite.v.) *)
 
 (** A certain enclosure sign is the exact sign, given the producer's "certain sign → finite parts". *)
 Lemma enclosure_sign_b_certifies : forall (e : EnclosureB) V, nonneg (radiusb e) ->
@@ -305,12 +298,10 @@ Proof.
   exact En.
 Qed.
 
-Hypothesis H2 : refined_finiteness.
-
 Lemma den_sign2_certifies : certifies (den_sign2_b d n) VD.
 Proof.
   pose proof (StageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fd.
-  pose proof (proj1 H2 (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fdr.
+  pose proof (RefinedFinite.den_refined_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fdr.
   unfold den_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply den_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (den2_b d n) VD den2_nonneg Fd den2_encloses).
@@ -321,7 +312,8 @@ Lemma num_sign2_certifies : certifies (num_sign2_b o p n) VN.
 Proof.
   pose proof (StageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
                 (vxb n) (vyb n) (vzb n)) as Fn.
-  pose proof (proj2 H2 (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n)) as Fnr.
+  pose proof (RefinedFinite.num_refined_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fnr.
   unfold num_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply num_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (num2_b o p n) VN (compensated_radius_nonneg _ _ _ _ _ _ _ _ _) Fn num2_encloses).
@@ -477,8 +469,8 @@ Qed.
     (every component finite, d ≠ 0, n ≠ 0), its relation is docs/contract.md §1's for the exact values
     ([classify]), and its t is RN(num/den) when a stage rounded it (den ≠ 0), +0 when num = 0 exactly;
     invalid input is reported by [validate_b]'s code, which the runner compares with the C++'s reason.
-    The one hypothesis is [refined_finiteness] (above). *)
-Theorem cascade_twin_correct : refined_finiteness -> forall o d p n : Vec3B,
+    No hypothesis: a certain stage-2 sign comes with finite hi and lo for every bit pattern (above). *)
+Theorem cascade_twin_correct : forall o d p n : Vec3B,
   match intersect_traced_b o d p n with
   | CInvalid c => validate_b o d p n = Some c
   | CExact => True
@@ -494,12 +486,12 @@ Theorem cascade_twin_correct : refined_finiteness -> forall o d p n : Vec3B,
       end
   end.
 Proof.
-  intros H2 o d p n. unfold intersect_traced_b.
+  intros o d p n. unfold intersect_traced_b.
   destruct (validate_b o d p n) as [c|] eqn:V; [reflexivity|].
   destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
   unfold intersect_cascade_b.
   destruct (certified_signs_b o d p n) as [[ns ds] st] eqn:S.
-  pose proof (certified_signs_twin_sound o d p n H2 ns ds st S) as G.
+  pose proof (certified_signs_twin_sound o d p n ns ds st S) as G.
   destruct st; cbv beta iota zeta; [| | | exact I].
   all: specialize (G ltac:(discriminate)); destruct G as [Un [Ud [Cn Cd]]];
     pose proof (certified_relation ns ds (vec_R o) (vec_R d) (vec_R p) (vec_R n) Cn Un Cd Ud) as R;
