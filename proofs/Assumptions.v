@@ -357,3 +357,14 @@ Definition twin_results_cascade :=
    CascadeTwins.validate_b_none).
 Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
 Print Assumptions twin_results_cascade.
+
+(** RefinedFinite.v: the second level of stage 2, a certain sign implies finite hi and lo (every bit pattern) *)
+From Raykernel Require RefinedFinite.
+Definition twin_results_refined_finite :=
+  (RefinedFinite.refined_radius_finite_parts,
+   RefinedFinite.den_refined_certain_finite,
+   RefinedFinite.num_refined_certain_finite,
+   RefinedFinite.den_refined_twin_sound_total,
+   RefinedFinite.num_refined_twin_sound_total).
+Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
+Print Assumptions twin_results_refined_finite.

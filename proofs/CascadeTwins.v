@@ -27,6 +27,7 @@ From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model Filter Compensated Classification QuotientRounding Cascade FloatCore
   ConstantsCpp Twins Expansions QueryTwins RefinedTwins.
+From Raykernel Require StageTwoFinite RefinedFinite.
 Import ListNotations.
 Open Scope R_scope.
 
@@ -176,33 +177,22 @@ Definition relation_b (o d p n : Vec3B) : cascade_answer :=
 
 (** ** What an answer before the exact stage means
 
-    [stage2_finiteness] is the one fact about stage 2 this file takes as a hypothesis, stated plainly: for
-    every bit pattern, a finite radius of a stage-2 enclosure (either level, den or num) comes with a finite
-    hi and lo.  (A finite radius means a finite stage-1 magnitude m, and |hi| ≤ m, |lo| ≤ 5u·m:
-    proofs/README.md, "Overflow"; its Coq proof is another item of "What remains".)  Everything else is
-    proved from the stage twins' theorems. *)
-Definition stage2_finiteness : Prop :=
-  forall d0 d1 d2 n0 n1 n2 p0 p1 p2 o0 o1 o2 : float,
-  (fin (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)) = true ->
-   fin (hib (den_compensated_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_compensated_b d0 d1 d2 n0 n1 n2)) = true) /\
-  (fin (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
-   fin (hib (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
-   fin (lob (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true) /\
-  (fin (radiusb (den_refined_b d0 d1 d2 n0 n1 n2)) = true ->
-   fin (hib (den_refined_b d0 d1 d2 n0 n1 n2)) = true /\ fin (lob (den_refined_b d0 d1 d2 n0 n1 n2)) = true) /\
-  (fin (radiusb (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true ->
-   fin (hib (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true /\
-   fin (lob (num_refined_b p0 p1 p2 o0 o1 o2 n0 n1 n2)) = true).
+    A stage-2 sign is used only when it is certain, and a certain sign needs finite hi and lo (with them,
+    a finite radius and the twin theorems give the enclosure).  That is proved for every bit pattern, for
+    both levels: StageTwoFinite.v ([den_compensated_certain_finite], [num_compensated_certain_finite]) and
+    RefinedFinite.v ([den_refined_certain_finite], [num_refined_certain_finite]).  (The stronger "a finite
+    radius comes with finite hi and lo" is false for the first level of num: a TwoDiff low part can be NaN
+    while m, hence the radius, is finite; StageTwoFinite.v.) *)
 
-(** A certain enclosure sign is the exact sign, given the producer's "finite radius → finite parts". *)
+(** A certain enclosure sign is the exact sign, given the producer's "certain sign → finite parts". *)
 Lemma enclosure_sign_b_certifies : forall (e : EnclosureB) V, nonneg (radiusb e) ->
-  (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true) ->
+  (enclosure_sign_lanes_b e <> uncertain_lane -> fin (hib e) = true /\ fin (lob e) = true) ->
   (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) V) ->
   certifies (enclosure_sign_b e) V.
 Proof.
   intros e V N F Enc. unfold enclosure_sign_b.
   destruct (Z.eq_dec (enclosure_sign_lanes_b e) uncertain_lane) as [U|U]; [rewrite U; exact I|].
-  pose proof (enclosure_sign_radius_finite e N U) as Fr. destruct (F Fr) as [Fh Fl].
+  destruct (F U) as [Fh Fl].
   destruct (stage2_sign_twin e V N Fh Fl (fun Fr' => Enc Fh Fl Fr')) as [C _]. exact C.
 Qed.
 
@@ -308,13 +298,10 @@ Proof.
   exact En.
 Qed.
 
-Hypothesis H2 : stage2_finiteness.
-
-Let H2all := H2 (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n) (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o).
-
 Lemma den_sign2_certifies : certifies (den_sign2_b d n) VD.
 Proof.
-  destruct H2all as [Fd [_ [Fdr _]]].
+  pose proof (StageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fd.
+  pose proof (RefinedFinite.den_refined_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fdr.
   unfold den_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply den_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (den2_b d n) VD den2_nonneg Fd den2_encloses).
@@ -323,7 +310,10 @@ Qed.
 
 Lemma num_sign2_certifies : certifies (num_sign2_b o p n) VN.
 Proof.
-  destruct H2all as [_ [Fn [_ Fnr]]].
+  pose proof (StageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fn.
+  pose proof (RefinedFinite.num_refined_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fnr.
   unfold num_sign2_b. apply first_certain_sound; [apply first_certain_sound|].
   - apply num_filter_b_certifies.
   - exact (enclosure_sign_b_certifies (num2_b o p n) VN (compensated_radius_nonneg _ _ _ _ _ _ _ _ _) Fn num2_encloses).
@@ -479,8 +469,8 @@ Qed.
     (every component finite, d ≠ 0, n ≠ 0), its relation is docs/contract.md §1's for the exact values
     ([classify]), and its t is RN(num/den) when a stage rounded it (den ≠ 0), +0 when num = 0 exactly;
     invalid input is reported by [validate_b]'s code, which the runner compares with the C++'s reason.
-    The one hypothesis is [stage2_finiteness] (above). *)
-Theorem cascade_twin_correct : stage2_finiteness -> forall o d p n : Vec3B,
+    No hypothesis: a certain stage-2 sign comes with finite hi and lo for every bit pattern (above). *)
+Theorem cascade_twin_correct : forall o d p n : Vec3B,
   match intersect_traced_b o d p n with
   | CInvalid c => validate_b o d p n = Some c
   | CExact => True
@@ -496,12 +486,12 @@ Theorem cascade_twin_correct : stage2_finiteness -> forall o d p n : Vec3B,
       end
   end.
 Proof.
-  intros H2 o d p n. unfold intersect_traced_b.
+  intros o d p n. unfold intersect_traced_b.
   destruct (validate_b o d p n) as [c|] eqn:V; [reflexivity|].
   destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
   unfold intersect_cascade_b.
   destruct (certified_signs_b o d p n) as [[ns ds] st] eqn:S.
-  pose proof (certified_signs_twin_sound o d p n H2 ns ds st S) as G.
+  pose proof (certified_signs_twin_sound o d p n ns ds st S) as G.
   destruct st; cbv beta iota zeta; [| | | exact I].
   all: specialize (G ltac:(discriminate)); destruct G as [Un [Ud [Cn Cd]]];
     pose proof (certified_relation ns ds (vec_R o) (vec_R d) (vec_R p) (vec_R n) Cn Un Cd Ud) as R;

@@ -204,8 +204,8 @@ Proof.
 Qed.
 
 (** End to end, for every bit pattern: the sign the second level certifies is the exact sign, given hi and
-    lo finite (the hypothesis of the first level's [den/num_compensated_twin_sound]; proofs/README.md,
-    "What remains"). *)
+    lo finite (the hypothesis of the first level's [den/num_compensated_twin_sound]; RefinedFinite.v
+    discharges it: [den_refined_twin_sound_total], [num_refined_twin_sound_total]). *)
 Theorem den_refined_twin_sound : forall d0 d1 d2 n0 n1 n2 : float,
   let e := den_refined_b d0 d1 d2 n0 n1 n2 in
   fin (hib e) = true -> fin (lob e) = true ->

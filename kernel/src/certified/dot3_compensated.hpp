@@ -82,7 +82,10 @@ template <class V>
   for (int i = 0; i < 3; ++i) tail += second_order[i];
   const DoubleDouble x = two_sum(s3.hi, sigma);
   const double lo = x.lo + tail;
-  // As for the first level, hi and lo are finite whenever m is, and otherwise the radius is not finite.
+  // No overflow test: the radius contains 2^-52 ⊗ |lo|, so a finite radius means a finite lo (a NaN α_i,
+  // which a TwoDiff low part can be, makes lo and the radius NaN), and a finite x.lo means a finite
+  // x.hi. So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
+  // proofs/RefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
   return {x.hi, lo,
           (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
               bounds::refined_absolute};
