@@ -145,19 +145,22 @@ Proof. intros. now apply fbnd_two_sum. Qed.
 (** Concrete integer inequalities, decided by computation (faster than lia on hundreds of goals). *)
 Ltac zle := apply Z.leb_le; vm_compute; reflexivity.
 
-Ltac fbnd_tac :=
+(** [fbnd_gen side]: [side] proves the integer side conditions (zle on concrete exponents, lia on
+    symbolic ones: TriangleLiveness.v). *)
+Ltac fbnd_gen side :=
   lazymatch goal with
-  | |- fbnd _ (fst (two_sum_b _ _)) => eapply fbnd_two_sum_fst; [fbnd_tac | fbnd_tac | zle | zle | zle]
-  | |- fbnd _ (snd (two_sum_b _ _)) => eapply fbnd_two_sum_snd; [fbnd_tac | fbnd_tac | zle | zle | zle]
-  | |- fbnd _ (fadd _ _) => eapply fbnd_add; [fbnd_tac | fbnd_tac | zle | zle | zle]
-  | |- fbnd _ (fsub _ _) => eapply fbnd_sub; [fbnd_tac | fbnd_tac | zle | zle | zle]
-  | |- fbnd _ (fmul _ _) => eapply fbnd_mul; [fbnd_tac | fbnd_tac | zle | zle | zle]
-  | |- fbnd _ (ffma _ _ _) => eapply fbnd_fma; [fbnd_tac | fbnd_tac | fbnd_tac | zle | zle | zle | zle]
-  | |- fbnd _ (fabs _) => apply fbnd_abs; fbnd_tac
-  | |- fbnd _ (fneg _) => apply fbnd_neg; fbnd_tac
+  | |- fbnd _ (fst (two_sum_b _ _)) => eapply fbnd_two_sum_fst; [fbnd_gen side | fbnd_gen side | side | side | side]
+  | |- fbnd _ (snd (two_sum_b _ _)) => eapply fbnd_two_sum_snd; [fbnd_gen side | fbnd_gen side | side | side | side]
+  | |- fbnd _ (fadd _ _) => eapply fbnd_add; [fbnd_gen side | fbnd_gen side | side | side | side]
+  | |- fbnd _ (fsub _ _) => eapply fbnd_sub; [fbnd_gen side | fbnd_gen side | side | side | side]
+  | |- fbnd _ (fmul _ _) => eapply fbnd_mul; [fbnd_gen side | fbnd_gen side | side | side | side]
+  | |- fbnd _ (ffma _ _ _) => eapply fbnd_fma; [fbnd_gen side | fbnd_gen side | fbnd_gen side | side | side | side | side]
+  | |- fbnd _ (fabs _) => apply fbnd_abs; fbnd_gen side
+  | |- fbnd _ (fneg _) => apply fbnd_neg; fbnd_gen side
   | |- fbnd _ fzero => exact fbnd_zero
   | |- fbnd _ ?c => first [eassumption | (is_const c; const_bound c)]
   end.
+Ltac fbnd_tac := fbnd_gen ltac:(idtac; zle).
 
 (** ** Upper bounds of the computed error bounds *)
 

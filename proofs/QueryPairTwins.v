@@ -74,13 +74,7 @@ Proof. intros. change (B2R fzero) with 0. unfold ray_den, dot, vec_R. cbn. ring.
     [fast_answer_twin_correct], for every bit pattern of o, d, p, n. *)
 Theorem fast_answer_pair_twin_correct : forall o d p n : Vec3B,
   let a := fast_answer_pair_b o d p n in
-  snd (fst a) = true ->
-  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
-  (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
-  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
-  vec_R d <> zero3 /\ vec_R n <> zero3 /\
-  fin (fst (fst (fst a))) = true /\
-  B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+  snd (fst a) = true -> fast_answer_means o d p n (fst (fst (fst a))) (snd (fst (fst a))).
 Proof.
   intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
   rewrite fast_answer_pair_b_eq.

@@ -531,6 +531,18 @@ Proof. reflexivity. Qed.
 Lemma certain_lane_true : forall s, certain_lane s = true -> s <> uncertain_lane.
 Proof. intros s H. unfold certain_lane in H. apply negb_true_iff, Z.eqb_neq in H. exact H. Qed.
 
+(** What a certain fast answer (t, behind) of the query o, d, p, n means: every input is finite,
+    [behind ? behind : hit] is the relation of docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0,
+    d ≠ 0, n ≠ 0, and t is finite and RN(num/den).  The conclusion of every fast-answer theorem below
+    and of QueryPairTwins.v. *)
+Definition fast_answer_means (o d p n : Vec3B) (t : float) (behind : bool) : Prop :=
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
+  (if behind then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
+  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
+  vec_R d <> zero3 /\ vec_R n <> zero3 /\
+  fin t = true /\
+  B2R t = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+
 (** [fast_answer_from_b] with the stage-1 signs and num's stage-2 enclosure of a query and any enclosure
     [den2] of den that is non-negative-or-NaN in its radius, encloses den (with d, n finite) once its parts
     are finite, and whose certain sign is den's: the argument of [fast_answer_twin_correct] below, shared by
@@ -546,13 +558,7 @@ Lemma fast_answer_from_twin_correct : forall ox oy oz dx dy dz px py pz nx ny nz
     (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b px ox)) (fst (two_diff_b py oy)) (fst (two_diff_b pz oz))
        nx ny nz) Cpp.filter_num_relative)
     den2 (num_compensated_b px py pz ox oy oz nx ny nz) in
-  snd (fst a) = true ->
-  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
-  (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
-  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
-  vec_R d <> zero3 /\ vec_R n <> zero3 /\
-  fin (fst (fst (fst a))) = true /\
-  B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+  snd (fst a) = true -> fast_answer_means o d p n (fst (fst (fst a))) (snd (fst (fst a))).
 Proof.
   intros ox oy oz dx dy dz px py pz nx ny nz den2 VD Nden HE HS o d p n a. subst o d p n a.
   destruct (fast_answer_from_b_parts (dot3_filter_lanes_b (dot3_rounded_b dx dy dz nx ny nz) Cpp.filter_den_relative)
@@ -613,13 +619,7 @@ Qed.
     "hi and lo finite" hypothesis of the stage-2 twin theorems on this path. *)
 Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
   let a := fast_answer_b o d p n in
-  snd (fst a) = true ->
-  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\
-  (if snd (fst (fst a)) then Behind else Hit) = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n) /\
-  ray_num (vec_R o) (vec_R p) (vec_R n) <> 0 /\ ray_den (vec_R d) (vec_R n) <> 0 /\
-  vec_R d <> zero3 /\ vec_R n <> zero3 /\
-  fin (fst (fst (fst a))) = true /\
-  B2R (fst (fst (fst a))) = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)).
+  snd (fst a) = true -> fast_answer_means o d p n (fst (fst (fst a))) (snd (fst (fst a))).
 Proof.
   intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
   rewrite fast_answer_b_eq.

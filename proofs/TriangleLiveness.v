@@ -397,18 +397,7 @@ Definition cbnd (k : Z) (t : CTermB) : Prop := fbnd k (chb t) /\ fbnd k (clb t) 
 (** lia, after Z.max x x = x (lia alone fails on some nested maxima of equal arguments). *)
 Ltac zlia := repeat rewrite Z.max_id; lia.
 
-Ltac fbnd_tac_l :=
-  lazymatch goal with
-  | |- fbnd _ (fst (two_sum_b _ _)) => eapply fbnd_two_sum_fst; [fbnd_tac_l | fbnd_tac_l | lia | lia | lia]
-  | |- fbnd _ (snd (two_sum_b _ _)) => eapply fbnd_two_sum_snd; [fbnd_tac_l | fbnd_tac_l | lia | lia | lia]
-  | |- fbnd _ (fadd _ _) => eapply fbnd_add; [fbnd_tac_l | fbnd_tac_l | lia | lia | lia]
-  | |- fbnd _ (fsub _ _) => eapply fbnd_sub; [fbnd_tac_l | fbnd_tac_l | lia | lia | lia]
-  | |- fbnd _ (fmul _ _) => eapply fbnd_mul; [fbnd_tac_l | fbnd_tac_l | lia | lia | lia]
-  | |- fbnd _ (ffma _ _ _) => eapply fbnd_fma; [fbnd_tac_l | fbnd_tac_l | fbnd_tac_l | lia | lia | lia | lia]
-  | |- fbnd _ (fabs _) => apply fbnd_abs; fbnd_tac_l
-  | |- fbnd _ (fneg _) => apply fbnd_neg; fbnd_tac_l
-  | |- fbnd _ ?c => eassumption
-  end.
+Ltac fbnd_tac_l := fbnd_gen ltac:(idtac; lia).
 
 Lemma cleaf_mul_bnd : forall k yh yl zh zl, (0 <= k)%Z -> (2 * k + 3 <= 1023)%Z ->
   fbnd k yh -> fbnd k yl -> fbnd k zh -> fbnd k zl -> cbnd (2 * k + 3) (cleaf_mul_b yh yl zh zl).
