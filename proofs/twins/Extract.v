@@ -16,6 +16,7 @@ From Coq Require Import ZArith List.
 From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
   Expansions QueryTwins.
 From Raykernel Require TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleRule.
+From Raykernel Require TriangleIntersectTwins.
 From Raykernel Require NearestTwins.
 From Raykernel Require CascadeTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
@@ -274,6 +275,33 @@ Definition tri_fast_relation (x : list Z) : list Z :=
   | _ => [] end.
 End Tri4.
 Definition run_tri_fast_relation := Tri4.tri_fast_relation.
+
+(** [fast_triangle_intersection] (TriangleIntersectTwins.v): "mode o d a b c", mode = t + 2 · barycentric (the
+    options asked, 0..3, an integer word).  For the owned rule and then the closed one: "0" when the fast path
+    does not answer, else "1", the answer (relation, location, owned, t, ua, ub, uc, relation stage, rounding
+    stage), the public [intersect_traced]'s (the same fields) and the public [intersect]'s (relation,
+    location, owned, t, ua, ub, uc): the fast path does not read the rule, and the public entry points return
+    its answer. *)
+Module Tri5.
+Import TriangleTwins TriangleRule TriangleCascadeTwins TriangleIntersectTwins.
+Definition answer_code (r : option TAnswerB) : list Z :=
+  match r with
+  | None => [0]
+  | Some k =>
+    let c := tab_class k in
+    let i := [Tri4.relation_code (trel c); Tri4.location_code (tloc c); bool_code (towned c);
+              b (tab_t k); b (tab_ua k); b (tab_ub k); b (tab_uc k)] in
+    let s := [tab_relation_stage k; tab_rounding_stage k] in
+    1 :: i ++ s ++ i ++ s ++ i
+  end.
+Definition tri_fast_intersect (x : list Z) : list Z :=
+  match x with [mode; ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let r := fast_intersection_tri_b (Z.odd mode) (Z.odd (Z.div2 mode)) (Tri.tv ox oy oz) (Tri.tv dx dy dz)
+                                     (Tri.tv ax ay az) (Tri.tv bx by_ bz) (Tri.tv cx cy cz) in
+    answer_code r ++ answer_code r
+  | _ => [] end.
+End Tri5.
+Definition run_tri_fast_intersect := Tri5.tri_fast_intersect.
 Definition run_tri_filter := Tri.tri_filter.
 Definition run_tri_relation_lanes := Tri.tri_relation_lanes.
 Definition run_tri_compensated := Tri.tri_compensated.
@@ -328,5 +356,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
   run_build_expansions run_compare_expansion run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
-  run_tri_fast_relation
+  run_tri_fast_relation run_tri_fast_intersect
   run_cascade_intersect run_cascade_relation.

@@ -580,6 +580,34 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
          }
          return true;
        }},
+      // The intersection's fast path (proofs/TriangleIntersectTwins.v): the options from the first word
+      // (t + 2 · barycentric), fast_triangle_intersection and, when it answers, the public intersect_traced
+      // and intersect, for the owned rule and the closed one.
+      {"tri_fast_intersect",
+       [](const Words& w, Out& o) {
+         if (w.size() != 16 || w[0] > 3) return false;
+         const std::vector<double> x = doubles(w, 1);
+         const raykernel::Ray ray = triangle_ray(x);
+         const raykernel::Triangle tri = triangle_of(x);
+         auto intersection_out = [&o](const raykernel::TriangleIntersection& r) {
+           o.i(static_cast<int>(r.relation)), o.i(static_cast<int>(r.location)), o.i(r.owned ? 1 : 0);
+           o.f(r.t), o.f(r.barycentric[0]), o.f(r.barycentric[1]), o.f(r.barycentric[2]);
+         };
+         auto traced_out = [&](const raykernel::TracedTriangleIntersection& r) {
+           intersection_out(r.intersection);
+           o.i(static_cast<int>(r.relation_stage)), o.i(static_cast<int>(r.rounding_stage));
+         };
+         for (const raykernel::TriangleRule rule : {raykernel::TriangleRule::owned, raykernel::TriangleRule::closed}) {
+           const raykernel::TriangleOptions options{rule, (w[0] & 1) != 0, (w[0] & 2) != 0};
+           const auto a = fast_triangle_intersection(ray, tri, options);
+           o.i(a ? 1 : 0);
+           if (!a) continue;
+           traced_out(*a);
+           traced_out(raykernel::intersect_traced(ray, tri, options));
+           intersection_out(raykernel::intersect(ray, tri, options));
+         }
+         return true;
+       }},
   };
   return table;
 }

@@ -395,6 +395,15 @@ const std::map<std::string, Generator>& generators() {
          a.insert(a.end(), q.begin(), q.end());
          return a;
        }},
+      // fast_triangle_intersection (proofs/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric
+      // (0..3) as an integer word, then the query
+      {"tri_fast_intersect",
+       [](Source& s) {
+         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(4)))};
+         const std::vector<double> q = s.triangle_query();
+         a.insert(a.end(), q.begin(), q.end());
+         return a;
+       }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));
