@@ -368,3 +368,25 @@ Definition twin_results_refined_finite :=
    RefinedFinite.num_refined_twin_sound_total).
 Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
 Print Assumptions twin_results_refined_finite.
+
+(** TriangleLaneLiveness.v: the triangle fast paths' lanes ([triangle_relation_lanes], [triangle_compensated_lanes],
+    [filter_view]) decide as the scalar stages 1 and 2 (every bit pattern), hence certify on TriangleLiveness.v's
+    classes *)
+From Raykernel Require TriangleLaneLiveness.
+Definition twin_results_triangle_lane_liveness :=
+  (TriangleLaneLiveness.triangle_pi_relation_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_num_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_den_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_num_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_den_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_relation_lane_live,
+   TriangleLaneLiveness.triangle_pi_compensated_lane_live,
+   TriangleLaneLiveness.triangle_num_compensated_lane_live,
+   TriangleLaneLiveness.triangle_den_compensated_lane_live,
+   TriangleLaneLiveness.triangle_pi_view_lane_live,
+   TriangleLaneLiveness.triangle_num_view_lane_live,
+   TriangleLaneLiveness.triangle_den_view_lane_live).
+Goal True. idtac "@@ triangle_pi_relation_lane_is_scalar triangle_pi_compensated_lane_is_scalar triangle_num_compensated_lane_is_scalar triangle_den_compensated_lane_is_scalar triangle_pi_view_lane_is_scalar triangle_num_view_lane_is_scalar triangle_den_view_lane_is_scalar triangle_pi_relation_lane_live triangle_pi_compensated_lane_live triangle_num_compensated_lane_live triangle_den_compensated_lane_live triangle_pi_view_lane_live triangle_num_view_lane_live triangle_den_view_lane_live". Abort.
+Print Assumptions twin_results_triangle_lane_liveness.
