@@ -343,8 +343,8 @@ Proof.
   unfold fast_intersection_drop_guard_b, fast_intersection_mut_b.
   destruct (negb want_t && negb want_u)%bool; [reflexivity|]. cbv zeta.
   apply fast_intersection_core_congr;
-    first [ match goal with |- ?x = ?x => reflexivity end
-          | exact Sa | exact Sb | exact Sc | exact Sn | exact Sd
-          | etransitivity; [apply Qa | apply Dd] | etransitivity; [apply Qb | apply Dd]
-          | etransitivity; [apply Qc | apply Dd] | etransitivity; [apply Qn | apply Dd] ].
+    [ match goal with |- ?x = ?x => reflexivity end
+    | exact Sa | exact Sb | exact Sc | exact Sn | exact Sd
+    | etransitivity; [apply Qa | apply Dd] | etransitivity; [apply Qb | apply Dd]
+    | etransitivity; [apply Qc | apply Dd] | etransitivity; [apply Qn | apply Dd] ].
 Qed.
