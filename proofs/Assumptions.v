@@ -368,3 +368,36 @@ Definition twin_results_refined_finite :=
    RefinedFinite.num_refined_twin_sound_total).
 Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
 Print Assumptions twin_results_refined_finite.
+
+(** TriangleLaneLiveness.v: the triangle fast paths' lanes ([triangle_relation_lanes], [triangle_compensated_lanes],
+    [filter_view]) decide as the scalar stages 1 and 2 (every bit pattern), hence certify on TriangleLiveness.v's
+    classes *)
+From Raykernel Require TriangleLaneLiveness.
+Definition twin_results_triangle_lane_liveness :=
+  (TriangleLaneLiveness.triangle_pi_relation_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_num_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_den_compensated_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_num_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_den_view_lane_is_scalar,
+   TriangleLaneLiveness.triangle_pi_relation_lane_live,
+   TriangleLaneLiveness.triangle_pi_compensated_lane_live,
+   TriangleLaneLiveness.triangle_num_compensated_lane_live,
+   TriangleLaneLiveness.triangle_den_compensated_lane_live,
+   TriangleLaneLiveness.triangle_pi_view_lane_live,
+   TriangleLaneLiveness.triangle_num_view_lane_live,
+   TriangleLaneLiveness.triangle_den_view_lane_live).
+Goal True. idtac "@@ triangle_pi_relation_lane_is_scalar triangle_pi_compensated_lane_is_scalar triangle_num_compensated_lane_is_scalar triangle_den_compensated_lane_is_scalar triangle_pi_view_lane_is_scalar triangle_num_view_lane_is_scalar triangle_den_view_lane_is_scalar triangle_pi_relation_lane_live triangle_pi_compensated_lane_live triangle_num_compensated_lane_live triangle_den_compensated_lane_live triangle_pi_view_lane_live triangle_num_view_lane_live triangle_den_view_lane_live". Abort.
+Print Assumptions twin_results_triangle_lane_liveness.
+
+(** TriangleMutations.v: the mutations tri_call_site_den and tri_drop_guard on the twin of fast_triangle_intersection
+    (the mutated twin answers as the twin, outside the cases stated) *)
+From Raykernel Require TriangleMutations.
+Definition twin_results_triangle_mutations :=
+  (TriangleMutations.den_filter_constant_monotone,
+   TriangleMutations.tri_call_site_den_same_unless_between,
+   TriangleMutations.drop_guard_consumers_agree,
+   TriangleMutations.tri_drop_guard_same_unless_infinite_low).
+Goal True. idtac "@@ den_filter_constant_monotone tri_call_site_den_same_unless_between drop_guard_consumers_agree tri_drop_guard_same_unless_infinite_low". Abort.
+Print Assumptions twin_results_triangle_mutations.

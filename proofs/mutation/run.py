@@ -188,10 +188,12 @@ MUTATIONS = [
      "fast_triangle_intersection: t returned without round_quotient's certainty"),
 ]
 
-# Mutations that change no observable behaviour (argued in proofs/README.md, "Triangle mutations"): reported, not
-# counted as escapes. tri_call_site_den: the fast intersection answers only when stage 2 rounds a quotient over
-# den, which needs |den| above about 256u·m, where 8u and 10u certify alike; tri_drop_guard: a stage-2 low part is
-# finite whenever its high part is.
+# Mutations that change no observable behaviour (proofs/README.md, "Triangle mutations"): reported, not counted as
+# escapes. Proved on the twin of fast_triangle_intersection in proofs/TriangleMutations.v except one case each
+# (argued in the README): tri_call_site_den, `tri_call_site_den_same_unless_between` (the mutated twin answers as
+# the twin unless den's view lies between the 8u and 10u bounds, where stage 2 cannot round a quotient over den);
+# tri_drop_guard, `tri_drop_guard_same_unless_infinite_low` (the same unless a stage-2 term has a finite h, an
+# infinite l and a finite magnitude, which |l| <= a few u*m excludes).
 UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard"}
 
 
