@@ -368,3 +368,18 @@ Definition twin_results_refined_finite :=
    RefinedFinite.num_refined_twin_sound_total).
 Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
 Print Assumptions twin_results_refined_finite.
+
+(** TriangleCascadeFlowCorrect.v: the ray–triangle cascade's control flow (ray_triangle_cascade.cpp,
+    TriangleCascade), its answers before the exact stage, for every bit pattern *)
+From Raykernel Require TriangleCascadeFlowCorrect.
+Goal True. idtac "@@ tc_classify_b_correct". Abort.
+Print Assumptions TriangleCascadeFlowCorrect.tc_classify_b_correct.
+Definition twin_results_triangle_flow :=
+  (TriangleCascadeFlowCorrect.tc_sign_b_correct,
+   TriangleCascadeFlowCorrect.tc_tie_break_b_correct,
+   TriangleCascadeFlowCorrect.tc_normal_b_correct,
+   TriangleCascadeFlowCorrect.tc_relation_b_correct,
+   TriangleCascadeFlowCorrect.tc_intersect_b_class_correct,
+   TriangleCascadeFlowCorrect.det3_enclosure_certain_finite).
+Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite". Abort.
+Print Assumptions twin_results_triangle_flow.
