@@ -380,6 +380,9 @@ Definition twin_results_triangle_flow :=
    TriangleCascadeFlowCorrect.tc_normal_b_correct,
    TriangleCascadeFlowCorrect.tc_relation_b_correct,
    TriangleCascadeFlowCorrect.tc_intersect_b_class_correct,
-   TriangleCascadeFlowCorrect.det3_enclosure_certain_finite).
-Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite". Abort.
+   TriangleCascadeFlowCorrect.det3_enclosure_certain_finite,
+   TriangleCascadeFlowCorrect.tc_zero_quotient_correct,
+   TriangleCascadeFlowCorrect.tc_expansion_enclosure_ok,
+   TriangleCascadeFlowCorrect.tc_stage3_quotient_correct).
+Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct". Abort.
 Print Assumptions twin_results_triangle_flow.

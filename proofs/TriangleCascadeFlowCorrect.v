@@ -13,7 +13,11 @@
     - [tc_classify_b_correct]: when [classify] answers (no [needs_exact_]), its classification is
       docs/contract.md §6's ([contract_class], TriangleCascadeTwins.v) for the exact values under the rule;
     - [tc_relation_b_correct]: the same for [triangle_relation_cascade]'s answer before the exact stage, and
-      [tc_intersect_b_class_correct] for [triangle_intersection_cascade]'s classification.
+      [tc_intersect_b_class_correct] for [triangle_intersection_cascade]'s classification;
+    - of the quotients: [tc_zero_quotient_correct] (an exactly zero numerator's +0 is RN(0/den)) and
+      [tc_stage3_quotient_correct] (stage 3's [round_quotient] on the tail enclosures, over den's tail
+      enclosure or stage 2's: when certain, den ≠ 0 and the value is RN(value/den)).  Stage 2's rounding over
+      the broadcast divisor ([shared_divisor_b]) is not proved here (proofs/README.md, "What remains").
     Lemmas of the same kind as TriangleIntersectTheorem.v's (another file, written in parallel) carry
     other names here ([tcf_*]). *)
 
@@ -428,4 +432,59 @@ Proof.
   | |- (let '(_, _) := ?p in _) = _ -> _ => destruct p
   | |- TCDecided _ _ _ _ _ _ _ = TCDecided _ _ _ _ _ _ _ -> _ => let H := fresh in intros H; injection H; intros; subst; exact C
   end.
+Qed.
+
+(** ** The quotients' parts that are proved: a zero numerator, and stage 3 *)
+
+(** An exactly zero numerator gives +0, which is RN(0/den). *)
+Lemma tc_zero_quotient_correct : forall x y, sign_of x = 0%Z -> B2R fzero = RN (x / y).
+Proof.
+  intros x y Z0. apply sign_of_zero_iff in Z0. subst x. unfold Rdiv. rewrite Rmult_0_l, RN_0. reflexivity.
+Qed.
+
+Lemma tc_enclosure2_nonneg : forall o d a b c v, nonneg (radiusb (tc_enclosure2_b o d a b c v)).
+Proof.
+  intros o d a b c v. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [NK [_ NKd]]]]]]]]]]]]].
+  unfold tc_enclosure2_b. apply det3_enclosure_nonneg; [| apply tcf_value2_nonneg |].
+  - unfold tc_compensated_relative. destruct (Z.eqb v 3); assumption.
+  - unfold tc_absolute2_b. destruct (Z.eqb v 4); apply absolute_bv_nonneg.
+Qed.
+
+(** [expansion_enclosure(v)]: when it exists, it encloses the model's value. *)
+Lemma tc_expansion_enclosure_ok : forall o d a b c v e, tc_expansion_enclosure_b o d a b c v = Some e ->
+  nonneg (radiusb e) /\
+  (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) (value_model o d a b c v)).
+Proof.
+  intros o d a b c v e. unfold tc_expansion_enclosure_b. cbv zeta.
+  destruct (eexact (value_ev o d a b c v) &&
+            Z.leb (Z.of_nat (length (ecomp (value_ev o d a b c v)))) Cpp.tail_sum_max_terms)%bool eqn:C;
+    [|discriminate].
+  intros H. injection H. intros <-. apply andb_prop in C. destruct C as [X L]. apply Z.leb_le in L.
+  unfold Cpp.tail_sum_max_terms in L.
+  split; [apply CascadeTwins.tail_b_nonneg|]. intros Fh Fl Fr.
+  rewrite <- (proj2 (value_ev_exact o d a b c v X)). apply CascadeTwins.tail_b_encloses; [lia | assumption ..].
+Qed.
+
+(** Stage 3's rounding of quotient v (t: v = 4; u_k: v = k) over den's divisor (its tail enclosure, or stage
+    2's enclosure when den's expansion is not usable): when certain, den ≠ 0 and the value is RN(value/den). *)
+Theorem tc_stage3_quotient_correct : forall o d a b c v n,
+  tc_expansion_enclosure_b o d a b c v = Some n ->
+  let dd := match tc_expansion_enclosure_b o d a b c 3 with Some e => e | None => tc_enclosure2_b o d a b c 3 end in
+  snd (round_quotient_b n (prepare_divisor_b dd)) = true ->
+  den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) <> 0 /\
+  fin (fst (round_quotient_b n (prepare_divisor_b dd))) = true /\
+  B2R (fst (round_quotient_b n (prepare_divisor_b dd))) =
+    RN (value_model o d a b c v / den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros o d a b c v n En dd C. rewrite <- value_model_3.
+  destruct (tc_expansion_enclosure_ok o d a b c v n En) as [Nn Encn].
+  assert (Dd : nonneg (radiusb dd) /\
+               (fin (hib dd) = true -> fin (lob dd) = true -> fin (radiusb dd) = true ->
+                encloses (enc_R dd) (value_model o d a b c 3))).
+  { unfold dd. destruct (tc_expansion_enclosure_b o d a b c 3) as [e|] eqn:Ed.
+    - exact (tc_expansion_enclosure_ok o d a b c 3 e Ed).
+    - split; [apply tc_enclosure2_nonneg|]. intros _ _ F.
+      apply tc_enclosure2_encloses; [unfold tc_index; lia | exact F]. }
+  destruct Dd as [Nd Encd].
+  exact (round_quotient_twin_sound n dd _ _ Nn Nd Encn Encd C).
 Qed.
