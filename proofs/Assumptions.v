@@ -401,3 +401,20 @@ Definition twin_results_triangle_mutations :=
    TriangleMutations.tri_drop_guard_same_unless_infinite_low).
 Goal True. idtac "@@ den_filter_constant_monotone tri_call_site_den_same_unless_between drop_guard_consumers_agree tri_drop_guard_same_unless_infinite_low". Abort.
 Print Assumptions twin_results_triangle_mutations.
+(** TriangleCascadeFlowCorrect.v: the ray–triangle cascade's control flow (ray_triangle_cascade.cpp,
+    TriangleCascade), its answers before the exact stage, for every bit pattern *)
+From Raykernel Require TriangleCascadeFlowCorrect.
+Goal True. idtac "@@ tc_classify_b_correct". Abort.
+Print Assumptions TriangleCascadeFlowCorrect.tc_classify_b_correct.
+Definition twin_results_triangle_flow :=
+  (TriangleCascadeFlowCorrect.tc_sign_b_correct,
+   TriangleCascadeFlowCorrect.tc_tie_break_b_correct,
+   TriangleCascadeFlowCorrect.tc_normal_b_correct,
+   TriangleCascadeFlowCorrect.tc_relation_b_correct,
+   TriangleCascadeFlowCorrect.tc_intersect_b_class_correct,
+   TriangleCascadeFlowCorrect.det3_enclosure_certain_finite,
+   TriangleCascadeFlowCorrect.tc_zero_quotient_correct,
+   TriangleCascadeFlowCorrect.tc_expansion_enclosure_ok,
+   TriangleCascadeFlowCorrect.tc_stage3_quotient_correct).
+Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct". Abort.
+Print Assumptions twin_results_triangle_flow.

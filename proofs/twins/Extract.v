@@ -19,6 +19,7 @@ From Raykernel Require TriangleTwins TriangleStage3Twins TriangleCascadeTwins Tr
 From Raykernel Require TriangleIntersectTwins.
 From Raykernel Require NearestTwins.
 From Raykernel Require CascadeTwins.
+From Raykernel Require TriangleCascadeFlowTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -349,6 +350,69 @@ End Casc.
 Definition run_cascade_intersect := Casc.cascade_intersect.
 Definition run_cascade_relation := Casc.cascade_relation.
 
+(** The ray–triangle cascade's control flow (TriangleCascadeFlowTwins.v).  An answer is coded as: 0 (the
+    input is invalid: the public entry points throw invalid_input, the cascade is not run), 1 (the exact stage
+    decided the classification: no answer from the twin), or 2, relation, location, owned, the relation's
+    stage, the rounding's stage and the bits of t, ua, ub, uc (0 for all four when the rounding stage is the
+    exact one, whose values the twin does not compute).
+    tri_cascade_intersect: "mode o d a b c" (mode = t + 2 · barycentric + 4 · closed, an integer word 0..7):
+    [triangle_intersection_cascade]'s answer and the public [intersect_traced]'s (the fast path's answer
+    when its twin answers, else the cascade's).
+    tri_cascade_relation: "mode o d a b c" (mode = 1 for the closed rule, 0 for the owned one):
+    [triangle_relation_cascade]'s answer (relation, location, owned, stage) and the public [relation]'s (relation, location, owned: the fast path's when its
+    twin answers, else the cascade's; 1 when that is the exact stage's). *)
+Module TriFlow.
+Import TriangleTwins TriangleCascadeTwins TriangleIntersectTwins TriangleCascadeFlowTwins.
+Definition qbits (q : qval) : Z := match q with QNaN => Casc.nan_bits | QVal x => b x | QExact => 0 end.
+Definition answer_code (r : tc_answer) : list Z :=
+  match r with
+  | TCExact => [1]
+  | TCDecided cl rs t ua ub uc ts =>
+    [2; Tri4.relation_code (trel cl); Tri4.location_code (tloc cl); bool_code (towned cl);
+     Casc.stage_code rs; Casc.stage_code ts] ++
+    (match ts with StExact => [0; 0; 0; 0] | _ => [qbits t; qbits ua; qbits ub; qbits uc] end)
+  end.
+Definition stage_of_code (z : Z) : stage :=
+  if Z.eqb z 0 then StFilter else if Z.eqb z 1 then StCompensated else if Z.eqb z 2 then StExpansion else StExact.
+Definition tri_cascade_intersect (x : list Z) : list Z :=
+  match x with [mode; ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := Tri.tv ox oy oz in let d := Tri.tv dx dy dz in let a := Tri.tv ax ay az in
+    let bb := Tri.tv bx by_ bz in let c := Tri.tv cx cy cz in
+    let wt := Z.odd mode in let wu := Z.odd (Z.div2 mode) in let rule := negb (Z.odd (Z.div2 (Z.div2 mode))) in
+    if tri_valid_b o d a bb c then
+      let cascade := tc_intersect_b wt wu rule o d a bb c in
+      let public := match fast_intersection_tri_b wt wu o d a bb c with
+                    | Some k => TCDecided (tab_class k) (stage_of_code (tab_relation_stage k)) (QVal (tab_t k))
+                                  (QVal (tab_ua k)) (QVal (tab_ub k)) (QVal (tab_uc k))
+                                  (stage_of_code (tab_rounding_stage k))
+                    | None => cascade
+                    end in
+      answer_code cascade ++ answer_code public
+    else [0; 0]
+  | _ => [] end.
+Definition tri_cascade_relation (x : list Z) : list Z :=
+  match x with [mode; ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
+    let o := Tri.tv ox oy oz in let d := Tri.tv dx dy dz in let a := Tri.tv ax ay az in
+    let bb := Tri.tv bx by_ bz in let c := Tri.tv cx cy cz in
+    let rule := negb (Z.odd mode) in
+    let code (r : tc_answer) := match r with
+      | TCExact => [1]
+      | TCDecided cl rs _ _ _ _ _ =>
+        [2; Tri4.relation_code (trel cl); Tri4.location_code (tloc cl); bool_code (towned cl); Casc.stage_code rs]
+      end in
+    if tri_valid_b o d a bb c then
+      let cascade := tc_relation_b rule o d a bb c in
+      let public := match fast_relation_tri_b o d a bb c with
+                    | Some k => TCDecided k StFilter QNaN QNaN QNaN QNaN StFilter
+                    | None => cascade end in
+      let public_code := match code public with 2 :: r => 2 :: firstn 3 r | other => other end in
+      code cascade ++ public_code
+    else [0; 0]
+  | _ => [] end.
+End TriFlow.
+Definition run_tri_cascade_intersect := TriFlow.tri_cascade_intersect.
+Definition run_tri_cascade_relation := TriFlow.tri_cascade_relation.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -357,4 +421,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_build_expansions run_compare_expansion run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
   run_tri_fast_relation run_tri_fast_intersect
-  run_cascade_intersect run_cascade_relation.
+  run_cascade_intersect run_cascade_relation
+  run_tri_cascade_intersect run_tri_cascade_relation.

@@ -35,6 +35,7 @@
 #include "triangle/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
+#include "validation.hpp"
 #include <raykernel/triangle.hpp>
 
 #include <bit>
@@ -606,6 +607,66 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            traced_out(raykernel::intersect_traced(ray, tri, options));
            intersection_out(raykernel::intersect(ray, tri, options));
          }
+         return true;
+       }},
+      // The full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options and the rule from the
+      // first word (t + 2 · barycentric + 4 · closed), triangle_intersection_cascade and the public
+      // intersect_traced; "0 0" for invalid input (then the public entry point must throw); an answer as "1"
+      // (the classification is the exact stage's) or "2 relation location owned relation_stage rounding_stage t
+      // ua ub uc" (four 0 when the rounding stage is the exact one).
+      {"tri_cascade_intersect",
+       [](const Words& w, Out& o) {
+         if (w.size() != 16 || w[0] > 7) return false;
+         const std::vector<double> x = doubles(w, 1);
+         const raykernel::Ray ray = triangle_ray(x);
+         const raykernel::Triangle tri = triangle_of(x);
+         auto traced_out = [&o](const raykernel::TracedTriangleIntersection& r) {
+           if (r.relation_stage == raykernel::Stage::exact) return o.i(1);
+           const raykernel::TriangleIntersection& i = r.intersection;
+           o.i(2), o.i(static_cast<int>(i.relation)), o.i(static_cast<int>(i.location)), o.i(i.owned ? 1 : 0);
+           o.i(static_cast<int>(r.relation_stage)), o.i(static_cast<int>(r.rounding_stage));
+           if (r.rounding_stage == raykernel::Stage::exact) return o.i(0), o.i(0), o.i(0), o.i(0);
+           o.f(i.t), o.f(i.barycentric[0]), o.f(i.barycentric[1]), o.f(i.barycentric[2]);
+         };
+         const raykernel::TriangleRule rule = (w[0] & 4) != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
+         const raykernel::TriangleOptions options{rule, (w[0] & 1) != 0, (w[0] & 2) != 0};
+         const auto [pub, invalid] = public_answer([&] { return raykernel::intersect_traced(ray, tri, options); });
+         if (!(is_valid(ray) & is_valid(tri))) {
+           o.i(0), o.i(invalid != -2 ? 0 : 9);
+           return true;
+         }
+         traced_out(triangle_intersection_cascade(ray, tri, options));
+         if (invalid != -2) o.i(9);
+         else traced_out(pub);
+         return true;
+       }},
+      // The rule from the first word (1: closed); triangle_relation_cascade ("1", or "2 relation location owned
+      // stage") and the public relation ("2 relation location owned", or "1" when it is the exact stage's: the
+      // fast path did not answer and the cascade's stage is the exact one).
+      {"tri_cascade_relation",
+       [](const Words& w, Out& o) {
+         if (w.size() != 16 || w[0] > 1) return false;
+         const std::vector<double> x = doubles(w, 1);
+         const raykernel::Ray ray = triangle_ray(x);
+         const raykernel::Triangle tri = triangle_of(x);
+         const raykernel::TriangleRule rule = w[0] != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
+         const auto [pub, invalid] = public_answer([&] { return raykernel::relation(ray, tri, rule); });
+         if (!(is_valid(ray) & is_valid(tri))) {
+           o.i(0), o.i(invalid != -2 ? 0 : 9);
+           return true;
+         }
+         const TracedTriangleClassification c = triangle_relation_cascade(ray, tri, rule);
+         if (c.stage == raykernel::Stage::exact)
+           o.i(1);
+         else
+           o.i(2), o.i(static_cast<int>(c.classification.relation)), o.i(static_cast<int>(c.classification.location)),
+               o.i(c.classification.owned ? 1 : 0), o.i(static_cast<int>(c.stage));
+         if (invalid != -2)
+           o.i(9);
+         else if (!fast_triangle_relation(ray, tri, rule) && c.stage == raykernel::Stage::exact)
+           o.i(1);
+         else
+           o.i(2), o.i(static_cast<int>(pub.relation)), o.i(static_cast<int>(pub.location)), o.i(pub.owned ? 1 : 0);
          return true;
        }},
   };

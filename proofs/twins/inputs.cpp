@@ -404,6 +404,24 @@ const std::map<std::string, Generator>& generators() {
          a.insert(a.end(), q.begin(), q.end());
          return a;
        }},
+      // the full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options asked and the rule
+      // (t + 2 · barycentric + 4 · closed; for the relation 1 · closed) as an integer word, then a hard query
+      // (ties through vertices and edges, where the owned rule's tie-break decides; degenerate, parallel,
+      // coplanar; raw patterns)
+      {"tri_cascade_intersect",
+       [](Source& s) {
+         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(8)))};
+         const std::vector<double> q = s.triangle_query();
+         a.insert(a.end(), q.begin(), q.end());
+         return a;
+       }},
+      {"tri_cascade_relation",
+       [](Source& s) {
+         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(2)))};
+         const std::vector<double> q = s.triangle_query();
+         a.insert(a.end(), q.begin(), q.end());
+         return a;
+       }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -41,6 +41,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("tri_fast_intersect", Twins.run_tri_fast_intersect);
   ("cascade_intersect", Twins.run_cascade_intersect);
   ("cascade_relation", Twins.run_cascade_relation);
+  ("tri_cascade_intersect", Twins.run_tri_cascade_intersect);
+  ("tri_cascade_relation", Twins.run_tri_cascade_relation);
 ]
 
 let () =

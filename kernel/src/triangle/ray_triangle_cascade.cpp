@@ -26,6 +26,9 @@
 //                        proofs/TriangleCompensated.v, `stage2_filter_view`
 //   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
+//   the full cascade:    proofs/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`, `tc_stage3_quotient_correct`
+//                        (TriangleCascade's control flow twinned in TriangleCascadeFlowTwins.v and run against this
+//                        code by the differential runner, routines tri_cascade_intersect, tri_cascade_relation)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
 //                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
 //   stage 3 values:      proofs/TriangleStage3Twins.v, `triangle_expansion_sign_sound`, `value_ev_exact`
