@@ -516,3 +516,65 @@ Proof.
   all: common Fo Fd Fp Fn Zd Zn; [exact R | try exact I].
   all: exact (certified_quotient_twin_sound o d p n q ts Q).
 Qed.
+
+(** ** Validation, the other direction: valid input is never rejected, invalid input always gets a code *)
+
+Lemma first_nonfinite_fin : forall xs i, Forall (fun x => fin x = true) xs -> first_nonfinite i xs = None.
+Proof.
+  induction xs as [|x xs IH]; intros i F; [reflexivity|].
+  apply Forall_cons_iff in F. destruct F as [Fx F]. cbn [first_nonfinite].
+  destruct x as [s|s| |s m e B]; try discriminate; exact (IH _ F).
+Qed.
+
+Lemma vec_zero_b_R : forall v, vec_zero_b v = true -> vec_R v = zero3.
+Proof.
+  intros [[s0| | |] [s1| | |] [s2| | |]]; unfold vec_zero_b; cbn [vxb vyb vzb is_zero_b andb]; try discriminate.
+  intros _. reflexivity.
+Qed.
+
+(** Every component finite, d ≠ 0 and n ≠ 0: validation passes (the converse of [validate_b_none]). *)
+Theorem validate_b_valid : forall o d p n : Vec3B,
+  vec_fin o -> vec_fin d -> vec_fin p -> vec_fin n -> vec_R d <> zero3 -> vec_R n <> zero3 ->
+  validate_b o d p n = None.
+Proof.
+  intros o d p n [? [? ?]] [? [? ?]] [? [? ?]] [? [? ?]] Zd Zn. unfold validate_b.
+  rewrite first_nonfinite_fin by (unfold components; repeat constructor; assumption).
+  destruct (vec_zero_b d) eqn:D; [exfalso; exact (Zd (vec_zero_b_R d D))|].
+  destruct (vec_zero_b n) eqn:N; [exfalso; exact (Zn (vec_zero_b_R n N))|]. reflexivity.
+Qed.
+
+(** Invalid input — a non-finite component (NaN, ±inf), d = 0 or n = 0 — always gets a code. *)
+Theorem validate_b_some : forall o d p n : Vec3B,
+  ~ vec_fin o \/ ~ vec_fin d \/ ~ vec_fin p \/ ~ vec_fin n \/ vec_R d = zero3 \/ vec_R n = zero3 ->
+  exists c, validate_b o d p n = Some c.
+Proof.
+  intros o d p n H. destruct (validate_b o d p n) as [c|] eqn:V; [now exists c|].
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]]. exfalso. tauto.
+Qed.
+
+(** ** The theorem: [relation_b] ([relation] past its fast path)
+
+    For every bit pattern of the twelve inputs: an answer before the exact stage comes from valid input
+    (every component finite, d ≠ 0, n ≠ 0), carries no t, and its relation is docs/contract.md §1's for the
+    exact values: [classify] = [relation_from_signs] of the exact signs of num and den, whose meaning is
+    Classification.v's [relation_correct]; invalid input is reported by [validate_b]'s code.  No hypothesis
+    (as [cascade_twin_correct]). *)
+Theorem relation_twin_correct : forall o d p n : Vec3B,
+  match relation_b o d p n with
+  | CInvalid c => validate_b o d p n = Some c
+  | CExact => True
+  | CDecided r s t =>
+      s <> StExact /\ t = TNaN /\ vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\ vec_R d <> zero3 /\
+      vec_R n <> zero3 /\ r = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n)
+  end.
+Proof.
+  intros o d p n. unfold relation_b.
+  destruct (validate_b o d p n) as [c|] eqn:V; [reflexivity|].
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  destruct (certified_signs_b o d p n) as [[ns ds] st] eqn:S.
+  pose proof (certified_signs_twin_sound o d p n ns ds st S) as G.
+  destruct st; cbv beta iota; [| | | exact I].
+  all: destruct (G ltac:(discriminate)) as [Un [Ud [Cn Cd]]];
+    split; [discriminate|]; split; [reflexivity|]; do 6 (split; [assumption|]);
+    exact (certified_relation ns ds (vec_R o) (vec_R d) (vec_R p) (vec_R n) Cn Un Cd Ud).
+Qed.
