@@ -357,6 +357,16 @@ Definition twin_results_cascade :=
    CascadeTwins.validate_b_none).
 Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
 Print Assumptions twin_results_cascade.
+(** CascadeTwins.v: [relation] past its fast path, and validation's other direction *)
+Goal True. idtac "@@ relation_twin_correct". Abort.
+Print Assumptions CascadeTwins.relation_twin_correct.
+Definition twin_results_validate := (CascadeTwins.validate_b_valid, CascadeTwins.validate_b_some).
+Goal True. idtac "@@ validate_b_valid validate_b_some". Abort.
+Print Assumptions twin_results_validate.
+Definition twin_results_stage2_agrees :=
+  (CascadeTwins.den_stage2_agrees_with_filter, CascadeTwins.num_stage2_agrees_with_filter).
+Goal True. idtac "@@ den_stage2_agrees_with_filter num_stage2_agrees_with_filter". Abort.
+Print Assumptions twin_results_stage2_agrees.
 
 (** RefinedFinite.v: the second level of stage 2, a certain sign implies finite hi and lo (every bit pattern) *)
 From Raykernel Require RefinedFinite.

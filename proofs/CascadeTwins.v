@@ -258,11 +258,7 @@ Proof.
 Qed.
 
 Lemma den2_nonneg : nonneg (radiusb (den2_b d n)).
-Proof.
-  unfold den2_b, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
-  cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
-  apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
-Qed.
+Proof. apply den_radius_nonneg. Qed.
 
 Lemma den2_encloses : fin (hib (den2_b d n)) = true -> fin (lob (den2_b d n)) = true ->
   fin (radiusb (den2_b d n)) = true -> encloses (enc_R (den2_b d n)) VD.
@@ -515,4 +511,113 @@ Proof.
   all: destruct (certified_quotient_b o d p n) as [[q ts]|] eqn:Q; cbv beta iota.
   all: common Fo Fd Fp Fn Zd Zn; [exact R | try exact I].
   all: exact (certified_quotient_twin_sound o d p n q ts Q).
+Qed.
+
+(** ** Validation, the other direction: valid input is never rejected, invalid input always gets a code *)
+
+Lemma first_nonfinite_fin : forall xs i, Forall (fun x => fin x = true) xs -> first_nonfinite i xs = None.
+Proof.
+  induction xs as [|x xs IH]; intros i F; [reflexivity|].
+  apply Forall_cons_iff in F. destruct F as [Fx F]. cbn [first_nonfinite].
+  destruct x as [s|s| |s m e B]; try discriminate; exact (IH _ F).
+Qed.
+
+Lemma vec_zero_b_R : forall v, vec_zero_b v = true -> vec_R v = zero3.
+Proof.
+  intros [[s0| | |] [s1| | |] [s2| | |]]; unfold vec_zero_b; cbn [vxb vyb vzb is_zero_b andb]; try discriminate.
+  intros _. reflexivity.
+Qed.
+
+(** Every component finite, d ≠ 0 and n ≠ 0: validation passes (the converse of [validate_b_none]). *)
+Theorem validate_b_valid : forall o d p n : Vec3B,
+  vec_fin o -> vec_fin d -> vec_fin p -> vec_fin n -> vec_R d <> zero3 -> vec_R n <> zero3 ->
+  validate_b o d p n = None.
+Proof.
+  intros o d p n [? [? ?]] [? [? ?]] [? [? ?]] [? [? ?]] Zd Zn. unfold validate_b.
+  rewrite first_nonfinite_fin by (unfold components; repeat constructor; assumption).
+  destruct (vec_zero_b d) eqn:D; [exfalso; exact (Zd (vec_zero_b_R d D))|].
+  destruct (vec_zero_b n) eqn:N; [exfalso; exact (Zn (vec_zero_b_R n N))|]. reflexivity.
+Qed.
+
+(** Invalid input — a non-finite component (NaN, ±inf), d = 0 or n = 0 — always gets a code. *)
+Theorem validate_b_some : forall o d p n : Vec3B,
+  ~ vec_fin o \/ ~ vec_fin d \/ ~ vec_fin p \/ ~ vec_fin n \/ vec_R d = zero3 \/ vec_R n = zero3 ->
+  exists c, validate_b o d p n = Some c.
+Proof.
+  intros o d p n H. destruct (validate_b o d p n) as [c|] eqn:V; [now exists c|].
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]]. exfalso. tauto.
+Qed.
+
+(** ** The theorem: [relation_b] ([relation] past its fast path)
+
+    For every bit pattern of the twelve inputs: an answer before the exact stage comes from valid input
+    (every component finite, d ≠ 0, n ≠ 0), carries no t, and its relation is docs/contract.md §1's for the
+    exact values: [classify] = [relation_from_signs] of the exact signs of num and den, whose meaning is
+    Classification.v's [relation_correct]; invalid input is reported by [validate_b]'s code.  No hypothesis
+    (as [cascade_twin_correct]). *)
+Theorem relation_twin_correct : forall o d p n : Vec3B,
+  match relation_b o d p n with
+  | CInvalid c => validate_b o d p n = Some c
+  | CExact => True
+  | CDecided r s t =>
+      s <> StExact /\ t = TNaN /\ vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\ vec_R d <> zero3 /\
+      vec_R n <> zero3 /\ r = classify (vec_R o) (vec_R d) (vec_R p) (vec_R n)
+  end.
+Proof.
+  intros o d p n. unfold relation_b.
+  destruct (validate_b o d p n) as [c|] eqn:V; [reflexivity|].
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  destruct (certified_signs_b o d p n) as [[ns ds] st] eqn:S.
+  pose proof (certified_signs_twin_sound o d p n ns ds st S) as G.
+  destruct st; cbv beta iota; [| | | exact I].
+  all: destruct (G ltac:(discriminate)) as [Un [Ud [Cn Cd]]];
+    split; [discriminate|]; split; [reflexivity|]; do 6 (split; [assumption|]);
+    exact (certified_relation ns ds (vec_R o) (vec_R d) (vec_R p) (vec_R n) Cn Un Cd Ud).
+Qed.
+
+(** ** A mutation that cannot be observed: stage 2 never contradicts a certain filter
+
+    [certified_signs] keeps a certain stage-1 sign and asks stage 2 only for the open ones.  Overwriting a
+    certain stage-1 sign by a stage-2 sign whenever the latter is certain (either level, den or num) changes
+    nothing: both are sound for the same exact value, and two certain sound signs of one real are equal.
+    (Overwriting it by an uncertain stage-2 sign would change the answer; that a certain filter implies a
+    certain first level is not proved: proofs/README.md, "What remains".) *)
+Lemma certain_signs_agree : forall s1 s2 x, certifies s1 x -> s1 <> Uncertain -> certifies s2 x ->
+  s2 <> Uncertain -> s1 = s2.
+Proof. intros [| | |] [| | |] x C1 U1 C2 U2; cbn in *; try reflexivity; try congruence; lra. Qed.
+
+Lemma is_certain_not_uncertain : forall s, is_certain s = true -> s <> Uncertain.
+Proof. intros [| | |] C; discriminate. Qed.
+
+Theorem den_stage2_agrees_with_filter : forall d n : Vec3B,
+  is_certain (den_filter_b d n) = true ->
+  (is_certain (enclosure_sign_b (den2_b d n)) = true -> enclosure_sign_b (den2_b d n) = den_filter_b d n) /\
+  (is_certain (enclosure_sign_b (den2r_b d n)) = true -> enclosure_sign_b (den2r_b d n) = den_filter_b d n).
+Proof.
+  intros d n C1. pose proof (den_filter_b_certifies d n) as S1.
+  pose proof (StageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fd.
+  pose proof (RefinedFinite.den_refined_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Fdr.
+  split; intros C2; (eapply certain_signs_agree; [| apply is_certain_not_uncertain; exact C2 | exact S1
+                                                 | apply is_certain_not_uncertain; exact C1]).
+  - exact (enclosure_sign_b_certifies (den2_b d n) _ (den2_nonneg d n) Fd (den2_encloses d n)).
+  - exact (enclosure_sign_b_certifies (den2r_b d n) _ (den_refined_radius_nonneg _ _ _ _ _ _) Fdr
+             (den2r_encloses d n)).
+Qed.
+
+Theorem num_stage2_agrees_with_filter : forall o p n : Vec3B,
+  is_certain (num_filter_b o p n) = true ->
+  (is_certain (enclosure_sign_b (num2_b o p n)) = true -> enclosure_sign_b (num2_b o p n) = num_filter_b o p n) /\
+  (is_certain (enclosure_sign_b (num2r_b o p n)) = true -> enclosure_sign_b (num2r_b o p n) = num_filter_b o p n).
+Proof.
+  intros o p n C1. pose proof (num_filter_b_certifies o p n) as S1.
+  pose proof (StageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fn.
+  pose proof (RefinedFinite.num_refined_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Fnr.
+  split; intros C2; (eapply certain_signs_agree; [| apply is_certain_not_uncertain; exact C2 | exact S1
+                                                 | apply is_certain_not_uncertain; exact C1]).
+  - exact (enclosure_sign_b_certifies (num2_b o p n) _ (compensated_radius_nonneg _ _ _ _ _ _ _ _ _) Fn
+             (num2_encloses o p n)).
+  - exact (enclosure_sign_b_certifies (num2r_b o p n) _ (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) Fnr
+             (num2r_encloses o p n)).
 Qed.

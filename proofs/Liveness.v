@@ -208,18 +208,23 @@ Lemma sign_lanes_one_true : forall a b, (a = true /\ b = false) \/ (a = false /\
   sign_lanes a b <> uncertain_lane.
 Proof. intros a b [[-> ->]|[-> ->]]; cbv; discriminate. Qed.
 
-(** In the model: the filter is certain when |V| exceeds twice its bound. *)
-Lemma dot3_filter_live_model : forall r C V, Rabs (value r - V) <= filter_bound r C ->
-  2 * filter_bound r C < Rabs V -> dot3_filter_lanes r C <> uncertain_lane.
+(** The decision of a filter, [sign_lanes (B < v) (v < −B)], is certain when v is within B of V and
+    |V| exceeds 2B: the shape the ray–plane filter (below) and the triangle filter (TriangleLiveness.v) share. *)
+Lemma sign_lanes_live : forall v B V, Rabs (v - V) <= B -> 2 * B < Rabs V ->
+  sign_lanes (Rlt_bool B v) (Rlt_bool v (- B)) <> uncertain_lane.
 Proof.
-  intros r C V E L. unfold dot3_filter_lanes. fold (filter_bound r C).
-  set (B := filter_bound r C) in *. apply Rabs_le_inv in E.
+  intros v B V E L. apply Rabs_le_inv in E.
   destruct (Rle_or_lt 0 V) as [P|N].
   - rewrite Rabs_pos_eq in L by exact P. apply sign_lanes_one_true. left.
     split; [apply Rlt_bool_true | apply Rlt_bool_false]; lra.
   - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
     split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
 Qed.
+
+(** In the model: the filter is certain when |V| exceeds twice its bound. *)
+Lemma dot3_filter_live_model : forall r C V, Rabs (value r - V) <= filter_bound r C ->
+  2 * filter_bound r C < Rabs V -> dot3_filter_lanes r C <> uncertain_lane.
+Proof. intros r C V. exact (sign_lanes_live (value r) (filter_bound r C) V). Qed.
 
 Lemma filter_bound_upper : forall a0 a1 a2 b0 b1 b2 C, 0 <= C -> C <= 5 * u ->
   let S := Rabs (a0 * b0) + Rabs (a1 * b1) + Rabs (a2 * b2) in

@@ -70,26 +70,36 @@ Lemma den_as_num_value : forall dx dy dz nx ny nz,
   ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz)).
 Proof. intros. change (B2R fzero) with 0. unfold ray_den, dot, vec_R. cbn. ring. Qed.
 
+(** den as num with o = 0 (the Lanes2 form's den), what [fast_answer_from_twin_correct] asks of it. *)
+Lemma den_pair_encloses_fin : forall dx dy dz nx ny nz,
+  let e := num_compensated_b dx dy dz fzero fzero fzero nx ny nz in
+  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
+  encloses (enc_R e) (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))) /\ vec_fin (V3 dx dy dz) /\
+  vec_fin (V3 nx ny nz).
+Proof.
+  intros dx dy dz nx ny nz e Fh Fl Fr.
+  pose proof (num_compensated_encloses_b dx dy dz fzero fzero fzero nx ny nz Fh Fl Fr) as E.
+  rewrite den_as_num_value in E. split; [exact E|].
+  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? _]]]]]]]]].
+  destruct (two_diff_b_parts _ _ A0) as [? _]. destruct (two_diff_b_parts _ _ A1) as [? _].
+  destruct (two_diff_b_parts _ _ A2) as [? _].
+  unfold vec_fin. cbn [vxb vyb vzb]. repeat split; assumption.
+Qed.
+
+Lemma den_pair_certifies : forall dx dy dz nx ny nz,
+  let e := num_compensated_b dx dy dz fzero fzero fzero nx ny nz in fin (hib e) = true -> fin (lob e) = true ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e)) (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))).
+Proof.
+  intros dx dy dz nx ny nz e Fh Fl. rewrite <- den_as_num_value.
+  exact (proj1 (num_compensated_twin_sound dx dy dz fzero fzero fzero nx ny nz Fh Fl)).
+Qed.
+
 (** [fast_answer(o, d, p, n)] (the Lanes2 form, what [intersect] runs for one query): the conclusions of
     [fast_answer_twin_correct], for every bit pattern of o, d, p, n. *)
 Theorem fast_answer_pair_twin_correct : forall o d p n : Vec3B,
   let a := fast_answer_pair_b o d p n in
   snd (fst a) = true -> fast_answer_means o d p n (fst (fst (fst a))) (snd (fst (fst a))).
-Proof.
-  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
-  rewrite fast_answer_pair_b_eq.
-  apply fast_answer_from_twin_correct.
-  - apply num_radius_nonneg.
-  - intros Fh Fl Fr.
-    pose proof (num_compensated_encloses_b dx dy dz fzero fzero fzero nx ny nz Fh Fl Fr) as E.
-    rewrite den_as_num_value in E. split; [exact E|].
-    destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? _]]]]]]]]].
-    destruct (two_diff_b_parts _ _ A0) as [? _]. destruct (two_diff_b_parts _ _ A1) as [? _].
-    destruct (two_diff_b_parts _ _ A2) as [? _].
-    unfold vec_fin. cbn [vxb vyb vzb]. repeat split; assumption.
-  - intros Fh Fl. rewrite <- den_as_num_value.
-    exact (proj1 (num_compensated_twin_sound dx dy dz fzero fzero fzero nx ny nz Fh Fl)).
-Qed.
+Proof. fast_answer_from_intro fast_answer_pair_b_eq num_radius_nonneg den_pair_encloses_fin den_pair_certifies. Qed.
 
 (** Stage 3: [ray_plane_expansions] (TwoSum throughout), exact when its flag says so. *)
 Theorem ray_plane_expansions_twin_exact : forall o d p n : Vec3B,

@@ -611,6 +611,32 @@ Proof.
   exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn (conj Zd' (conj Vd (conj Vn (conj Ft Vt)))))))))).
 Qed.
 
+(** The opening of [fast_answer_twin_correct] and of QueryPairTwins.v's [fast_answer_pair_twin_correct]:
+    the query's form as a [fast_answer_from_b] (its equation [eq_lemma]), then [fast_answer_from_twin_correct],
+    given the three facts it asks of den's first level: [nonneg] (its radius), [encl] (a finite enclosure
+    holds den, d and n finite), [sound] (its certified sign). *)
+Ltac fast_answer_from_intro eq_lemma nonneg encl sound :=
+  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a; subst a;
+  rewrite eq_lemma; apply fast_answer_from_twin_correct; [apply nonneg | apply encl | apply sound].
+
+(** den's first level, what [fast_answer_from_twin_correct] asks of it on the batch lanes' path. *)
+Lemma den_compensated_encloses_fin : forall dx dy dz nx ny nz,
+  let e := den_compensated_b dx dy dz nx ny nz in
+  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
+  encloses (enc_R e) (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))) /\ vec_fin (V3 dx dy dz) /\
+  vec_fin (V3 nx ny nz).
+Proof.
+  intros dx dy dz nx ny nz e Fdh Fdl Fdr.
+  destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [X0 [X1 [X2 [X3 [X4 [X5 _]]]]]].
+  split; [exact (den_compensated_encloses_b dx dy dz nx ny nz Fdh Fdl Fdr) |].
+  exact (conj (conj X0 (conj X1 X2)) (conj X3 (conj X4 X5))).
+Qed.
+
+Lemma den_compensated_certifies : forall dx dy dz nx ny nz,
+  let e := den_compensated_b dx dy dz nx ny nz in fin (hib e) = true -> fin (lob e) = true ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e)) (ray_den (vec_R (V3 dx dy dz)) (vec_R (V3 nx ny nz))).
+Proof. intros dx dy dz nx ny nz e Fdh Fdl. exact (proj1 (den_compensated_twin_sound dx dy dz nx ny nz Fdh Fdl)). Qed.
+
 (** [fast_answer] (the batch lanes' form: what [intersect] and the intersection batch run), end to end for
     every bit pattern of o, d, p, n: when it says certain, every input is finite, [behind ? behind : hit]
     is the relation of docs/contract.md §1 for the exact values, num ≠ 0, den ≠ 0, d ≠ 0, n ≠ 0, and t is
@@ -621,15 +647,5 @@ Theorem fast_answer_twin_correct : forall o d p n : Vec3B,
   let a := fast_answer_b o d p n in
   snd (fst a) = true -> fast_answer_means o d p n (fst (fst (fst a))) (snd (fst (fst a))).
 Proof.
-  intros [ox oy oz] [dx dy dz] [px py pz] [nx ny nz] a. subst a.
-  rewrite fast_answer_b_eq.
-  apply fast_answer_from_twin_correct.
-  - unfold den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
-    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
-    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
-  - intros Fdh Fdl Fdr.
-    destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fdr Fdh Fdl) as [X0 [X1 [X2 [X3 [X4 [X5 E]]]]]].
-    split; [| exact (conj (conj X0 (conj X1 X2)) (conj X3 (conj X4 X5)))].
-    unfold den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
-  - intros Fdh Fdl. exact (proj1 (den_compensated_twin_sound dx dy dz nx ny nz Fdh Fdl)).
+  fast_answer_from_intro fast_answer_b_eq den_radius_nonneg den_compensated_encloses_fin den_compensated_certifies.
 Qed.

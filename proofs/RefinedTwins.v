@@ -212,9 +212,8 @@ Theorem den_refined_twin_sound : forall d0 d1 d2 n0 n1 n2 : float,
   certifies (sign_from_Z (enclosure_sign_lanes_b e)) (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) /\
   (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros d0 d1 d2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption.
-  - apply den_refined_radius_nonneg.
-  - intros Fr. now destruct (den_refined_twin_encloses d0 d1 d2 n0 n1 n2 Fh Fl Fr) as [_ [_ [_ [_ [_ [_ [_ En]]]]]]].
+  intros. apply stage2_twin_sound_gen; [apply den_refined_radius_nonneg | intros Fh Fl Fr | assumption ..].
+  now destruct (den_refined_twin_encloses d0 d1 d2 n0 n1 n2 Fh Fl Fr) as [_ [_ [_ [_ [_ [_ [_ En]]]]]]].
 Qed.
 
 Theorem num_refined_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
@@ -224,8 +223,7 @@ Theorem num_refined_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
     ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2) /\
   (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros p0 p1 p2 o0 o1 o2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption.
-  - apply num_refined_radius_nonneg.
-  - intros Fr. now destruct (num_refined_twin_encloses p0 p1 p2 o0 o1 o2 n0 n1 n2 Fh Fl Fr)
-      as [_ [_ [_ [_ [_ [_ [_ [_ [_ En]]]]]]]]].
+  intros. apply stage2_twin_sound_gen; [apply num_refined_radius_nonneg | intros Fh Fl Fr | assumption ..].
+  now destruct (num_refined_twin_encloses p0 p1 p2 o0 o1 o2 n0 n1 n2 Fh Fl Fr)
+    as [_ [_ [_ [_ [_ [_ [_ [_ [_ En]]]]]]]]].
 Qed.

@@ -295,22 +295,24 @@ Definition nf (k : Z) (x : float) : Prop := is_nan x = true \/ fbnd k x.
 Lemma nf_mono : forall k j x, (k <= j)%Z -> nf k x -> nf j x.
 Proof. intros k j x L [N|B]; [now left | right; now apply (fbnd_mono k)]. Qed.
 
+(** A sum or a difference: NaN in, NaN out; finite arguments below 2^k give a result below 2^(k+1). *)
+Lemma nf_binop : forall (op : float -> float -> float) k x y,
+  (forall a b, is_nan a = true -> is_nan (op a b) = true) -> (forall a b, is_nan b = true -> is_nan (op a b) = true) ->
+  (fbnd k x -> fbnd k y -> fbnd (k + 1) (op x y)) -> nf k x -> nf k y -> nf (k + 1) (op x y).
+Proof.
+  intros op k x y NL NR B [Nx|Bx] [Ny|By]; [left; now apply NL .. | left; now apply NR | right; now apply B].
+Qed.
+
 Lemma nf_add : forall k x y, nf k x -> nf k y -> (0 <= k)%Z -> (k + 1 <= 1023)%Z -> nf (k + 1) (fadd x y).
 Proof.
-  intros k x y [Nx|Bx] [Ny|By] K L.
-  - left. now apply fadd_nan_l.
-  - left. now apply fadd_nan_l.
-  - left. now apply fadd_nan_r.
-  - right. replace (k + 1)%Z with (Z.max k k + 1)%Z by lia. apply fbnd_add; auto; lia.
+  intros k x y X Y K L. apply nf_binop; [exact fadd_nan_l | exact fadd_nan_r | | exact X | exact Y].
+  intros Bx By. replace (k + 1)%Z with (Z.max k k + 1)%Z by lia. apply fbnd_add; auto; lia.
 Qed.
 
 Lemma nf_sub : forall k x y, nf k x -> nf k y -> (0 <= k)%Z -> (k + 1 <= 1023)%Z -> nf (k + 1) (fsub x y).
 Proof.
-  intros k x y [Nx|Bx] [Ny|By] K L.
-  - left. now apply fsub_nan_l.
-  - left. now apply fsub_nan_l.
-  - left. now apply fsub_nan_r.
-  - right. replace (k + 1)%Z with (Z.max k k + 1)%Z by lia. apply fbnd_sub; auto; lia.
+  intros k x y X Y K L. apply nf_binop; [exact fsub_nan_l | exact fsub_nan_r | | exact X | exact Y].
+  intros Bx By. replace (k + 1)%Z with (Z.max k k + 1)%Z by lia. apply fbnd_sub; auto; lia.
 Qed.
 
 Lemma nf_not_nan : forall k x, nf k x -> is_nan x = false -> fin x = true.
@@ -478,13 +480,6 @@ Proof.
     + now apply small_nf.
 Qed.
 
-Lemma den_radius_nonneg : forall d0 d1 d2 n0 n1 n2, nonneg (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)).
-Proof.
-  intros. unfold den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
-  cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
-  apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
-Qed.
-
 Lemma radius_magnitude : forall g0 g1 g2 r, fin (radiusb (compensated_from_low_parts_b g0 g1 g2 r)) = true ->
   fin (magnitudeb r) = true.
 Proof.
@@ -505,10 +500,6 @@ Proof.
   destruct (dot3_rounded_twin d0 d1 d2 n0 n1 n2 Fm) as [_ [_ [_ [_ [_ [_ [Fq0 [Fq1 [Fq2 _]]]]]]]]].
   apply from_low_parts_finite; try assumption; right; apply (fbnd_mono 972); try lia; apply fma_residual_fbnd; assumption.
 Qed.
-
-Lemma num_radius_nonneg : forall p0 p1 p2 o0 o1 o2 n0 n1 n2,
-  nonneg (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)).
-Proof. intros. unfold num_compensated_b. apply compensated_radius_nonneg. Qed.
 
 Lemma two_diff_small_low : forall p o n, fin (fmul (fst (two_diff_b p o)) n) = true ->
   small_low (fst (two_diff_b p o)) (snd (two_diff_b p o)).
@@ -580,29 +571,6 @@ Proof.
 Qed.
 
 (** A finite stage-2 enclosure of den or num encloses the exact value (Twins.v's theorems, restated). *)
-Lemma den_compensated_encloses_b : forall d0 d1 d2 n0 n1 n2,
-  let e := den_compensated_b d0 d1 d2 n0 n1 n2 in
-  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
-  encloses (enc_R e) (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2).
-Proof.
-  intros d0 d1 d2 n0 n1 n2 e Fh Fl Fr.
-  destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [? [? [? E]]]]]].
-  unfold e, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
-Qed.
-
-Lemma num_compensated_encloses_b : forall p0 p1 p2 o0 o1 o2 n0 n1 n2,
-  let e := num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2 in
-  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
-  encloses (enc_R e) ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2).
-Proof.
-  intros p0 p1 p2 o0 o1 o2 n0 n1 n2 e Fh Fl Fr.
-  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
-  destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
-  destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
-  unfold e, num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
-  apply compensated_num_enclosure; apply binary64_B2R.
-Qed.
-
 (** ** compare_quotients_compensated (compare_quotients.hpp) *)
 
 Lemma compare_radius_nonneg : forall n1 d1 n2 d2,

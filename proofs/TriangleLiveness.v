@@ -55,19 +55,17 @@ Proof.
   pose proof (RN_err (y * z)). pose proof (Rabs_triang_inv (RN (y * z)) (y * z)). lra.
 Qed.
 
-Lemma term_sub_m : forall a b, mag (fm a) -> mag (fm b) ->
-  mag (fm (term_sub a b)) /\ fm (term_sub a b) <= (1 + u) * (fm a + fm b).
-Proof.
-  intros a b [Ba Pa] [Bb Pb]. unfold term_sub. cbn [fm].
-  split; [split; [apply binary64_RN | apply RN_nonneg; lra] | apply RN_sum_upper; [exact Ba | exact Bb | lra]].
-Qed.
-
 Lemma term_add_m : forall a b, mag (fm a) -> mag (fm b) ->
   mag (fm (term_add a b)) /\ fm (term_add a b) <= (1 + u) * (fm a + fm b).
 Proof.
   intros a b [Ba Pa] [Bb Pb]. unfold term_add. cbn [fm].
   split; [split; [apply binary64_RN | apply RN_nonneg; lra] | apply RN_sum_upper; [exact Ba | exact Bb | lra]].
 Qed.
+
+(** A difference has a sum's magnitude m = RN(m_a + m_b). *)
+Lemma term_sub_m : forall a b, mag (fm a) -> mag (fm b) ->
+  mag (fm (term_sub a b)) /\ fm (term_sub a b) <= (1 + u) * (fm a + fm b).
+Proof. intros a b. exact (term_add_m a b). Qed.
 
 Lemma leaf_scale_m : forall x c, mag (fm c) ->
   mag (fm (leaf_scale x c)) /\ fm (leaf_scale x c) <= (1 + u) * (Rabs x * fm c) + eta.
@@ -255,15 +253,7 @@ Qed.
 (** In the model: certain when |V| exceeds twice the bound. *)
 Lemma det3_filter_live_model : forall t C A V, Rabs (fv t - V) <= det3_bound t C A ->
   2 * det3_bound t C A < Rabs V -> det3_filter_lanes t C A <> uncertain_lane.
-Proof.
-  intros t C A V E L. unfold det3_filter_lanes. cbv zeta.
-  set (B := det3_bound t C A) in *. apply Rabs_le_inv in E.
-  destruct (Rle_or_lt 0 V) as [P|N].
-  - rewrite Rabs_pos_eq in L by exact P. apply sign_lanes_one_true. left.
-    split; [apply Rlt_bool_true | apply Rlt_bool_false]; lra.
-  - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
-    split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
-Qed.
+Proof. intros t C A V. exact (sign_lanes_live (fv t) (det3_bound t C A) V). Qed.
 
 (** The twin computes the model's decision when its bound is finite. *)
 Lemma det3_filter_lanes_b_model : forall t T C A, fin (fadd (fmul C (fmb t)) A) = true -> ftw t T ->
@@ -399,33 +389,35 @@ Ltac zlia := repeat rewrite Z.max_id; lia.
 
 Ltac fbnd_tac_l := fbnd_gen ltac:(idtac; lia).
 
+(** Each part of a leaf or a sum: [fbnd_tac_l] on the operation, then the exponent's slack. *)
+Ltac cbnd_tac := split; [|split]; (eapply fbnd_le; [fbnd_tac_l | zlia]).
+
 Lemma cleaf_mul_bnd : forall k yh yl zh zl, (0 <= k)%Z -> (2 * k + 3 <= 1023)%Z ->
   fbnd k yh -> fbnd k yl -> fbnd k zh -> fbnd k zl -> cbnd (2 * k + 3) (cleaf_mul_b yh yl zh zl).
-Proof.
-  intros. unfold cbnd, cleaf_mul_b, product_low_part_b. cbn [chb clb cmb].
-  split; [|split]; (eapply fbnd_le; [fbnd_tac_l | zlia]).
-Qed.
+Proof. intros. unfold cbnd, cleaf_mul_b, product_low_part_b. cbn [chb clb cmb]. cbnd_tac. Qed.
 
 Lemma cleaf_scale_bnd : forall j k xh xl c, (0 <= j)%Z -> (0 <= k)%Z -> (j + k + 3 <= 1023)%Z ->
   fbnd j xh -> fbnd j xl -> cbnd k c -> cbnd (j + k + 3) (cleaf_scale_b xh xl c).
 Proof.
   intros j k xh xl c Hj Hk H X L [Ch [Cl Cm]]. unfold cbnd, cleaf_scale_b, product_low_part_b. cbn [chb clb cmb].
-  split; [|split]; (eapply fbnd_le; [fbnd_tac_l | zlia]).
+  cbnd_tac.
+Qed.
+
+(** A sum and a difference of two terms: one proof, the difference being the sum of a negated high part. *)
+Lemma cterm_add_sub_bnd : forall k a b, (0 <= k)%Z -> (k + 6 <= 1023)%Z -> cbnd k a -> cbnd k b ->
+  cbnd (k + 6) (cterm_add_b a b) /\ cbnd (k + 6) (cterm_sub_b a b).
+Proof.
+  intros k a b Hk H [Ah [Al Am]] [Bh [Bl Bm]]. unfold cbnd, cterm_add_b, cterm_sub_b. cbn [chb clb cmb].
+  split; cbnd_tac.
 Qed.
 
 Lemma cterm_add_bnd : forall k a b, (0 <= k)%Z -> (k + 6 <= 1023)%Z -> cbnd k a -> cbnd k b ->
   cbnd (k + 6) (cterm_add_b a b).
-Proof.
-  intros k a b Hk H [Ah [Al Am]] [Bh [Bl Bm]]. unfold cbnd, cterm_add_b. cbn [chb clb cmb].
-  split; [|split]; (eapply fbnd_le; [fbnd_tac_l | zlia]).
-Qed.
+Proof. intros. now apply cterm_add_sub_bnd. Qed.
 
 Lemma cterm_sub_bnd : forall k a b, (0 <= k)%Z -> (k + 6 <= 1023)%Z -> cbnd k a -> cbnd k b ->
   cbnd (k + 6) (cterm_sub_b a b).
-Proof.
-  intros k a b Hk H [Ah [Al Am]] [Bh [Bl Bm]]. unfold cbnd, cterm_sub_b. cbn [chb clb cmb].
-  split; [|split]; (eapply fbnd_le; [fbnd_tac_l | zlia]).
-Qed.
+Proof. intros. now apply cterm_add_sub_bnd. Qed.
 
 Lemma cdet3_bnd : forall j xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2,
   (0 <= j)%Z -> (3 * j + 24 <= 1023)%Z ->
@@ -471,27 +463,32 @@ Ltac leaves_305 :=
       end
   end.
 
+(** A stage-2 determinant of TwoDiff leaves of inputs of magnitude at most 2^300 (and of d's zero low
+    parts): each leaf is bounded by 2^305, hence the determinant by 2^939. *)
+Ltac stage2_bnd_tac :=
+  cbn [tx ty tz] in *; cbv zeta;
+  repeat match goal with
+  | |- context [two_diff_b ?v ?o] =>
+      lazymatch goal with
+      | _ : fbnd 305 (fst (two_diff_b v o)) |- _ => fail
+      | |- _ => destruct (two_diff_bnd v o ltac:(assumption) ltac:(assumption))
+      end
+  end;
+  replace 939%Z with (3 * 305 + 24)%Z by reflexivity;
+  apply cdet3_bnd; try lia; first [assumption | apply fbnd_305; assumption | exact fbnd_zero_305].
+
 Lemma pi_stage2_bnd : forall o d p q, tbnd 300 o -> tbnd 300 d -> tbnd 300 p -> tbnd 300 q ->
   cbnd 939 (pi_stage2_b o d p q).
 Proof.
   intros [ox oy oz] [dx dy dz] [px py pz] [qx qy qz] [O0 [O1 O2]] [D0 [D1 D2]] [P0 [P1 P2]] [Q0 [Q1 Q2]].
-  unfold pi_stage2_b. cbn [tx ty tz] in *. cbv zeta.
-  destruct (two_diff_bnd px ox P0 O0). destruct (two_diff_bnd py oy P1 O1). destruct (two_diff_bnd pz oz P2 O2).
-  destruct (two_diff_bnd qx ox Q0 O0). destruct (two_diff_bnd qy oy Q1 O1). destruct (two_diff_bnd qz oz Q2 O2).
-  replace 939%Z with (3 * 305 + 24)%Z by reflexivity.
-  apply cdet3_bnd; try lia; first [assumption | apply fbnd_305; assumption | exact fbnd_zero_305].
+  unfold pi_stage2_b. stage2_bnd_tac.
 Qed.
 
 Lemma num_stage2_bnd : forall o a b c, tbnd 300 o -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
   cbnd 939 (num_stage2_b o a b c).
 Proof.
   intros [ox oy oz] [ax ay az] [bx by_ bz] [cx cy cz] [O0 [O1 O2]] [A0 [A1 A2]] [B0 [B1 B2]] [C0 [C1 C2]].
-  unfold num_stage2_b. cbn [tx ty tz] in *. cbv zeta.
-  destruct (two_diff_bnd ax ox A0 O0). destruct (two_diff_bnd ay oy A1 O1). destruct (two_diff_bnd az oz A2 O2).
-  destruct (two_diff_bnd bx ox B0 O0). destruct (two_diff_bnd by_ oy B1 O1). destruct (two_diff_bnd bz oz B2 O2).
-  destruct (two_diff_bnd cx ox C0 O0). destruct (two_diff_bnd cy oy C1 O1). destruct (two_diff_bnd cz oz C2 O2).
-  replace 939%Z with (3 * 305 + 24)%Z by reflexivity.
-  apply cdet3_bnd; try lia; assumption.
+  unfold num_stage2_b. stage2_bnd_tac.
 Qed.
 
 Lemma den_stage2_bnd : forall o d a b c, tbnd 300 o -> tbnd 300 d -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->

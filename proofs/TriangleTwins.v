@@ -348,15 +348,17 @@ Proof.
   rewrite Ea, Eb, Ec in T. tsplit; assumption.
 Qed.
 
+(** den = (πa + πb) + πc from the ties of its three π terms (stage 1 and stage 2 alike). *)
+Ltac pi_sum_leaves T0 T1 T2 :=
+  destruct T0 as [? [? [? [? ?]]]]; destruct T1 as [_ [_ [_ [? ?]]]]; destruct T2 as [_ [_ [_ [_ ?]]]].
+
 Lemma den_stage1_twin : forall o d a b c, fin (fmb (den_stage1_b o d a b c)) = true ->
   tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
   ftw (den_stage1_b o d a b c) (den_stage1 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)).
 Proof.
   intros o d a b c H. unfold den_stage1_b, den_stage1 in *.
   destruct (term_add_back _ _ H) as [H01 H2]. destruct (term_add_back _ _ H01) as [H0 H1].
-  destruct (pi_stage1_twin _ _ _ _ H0) as [Fo [Fd [Fb [Fc T0]]]].
-  destruct (pi_stage1_twin _ _ _ _ H1) as [_ [_ [_ [Fa T1]]]].
-  destruct (pi_stage1_twin _ _ _ _ H2) as [_ [_ [_ [_ T2]]]].
+  pi_sum_leaves (pi_stage1_twin _ _ _ _ H0) (pi_stage1_twin _ _ _ _ H1) (pi_stage1_twin _ _ _ _ H2).
   tsplit; try assumption. ftw_fwd.
 Qed.
 
@@ -525,50 +527,40 @@ Proof.
   repeat split; try assumption; unfold fma; to_model; rewrite ?Eh, ?El, ?Em; reflexivity.
 Qed.
 
+(** A sum or a difference of two terms (the difference adds −b.h and subtracts the low parts): one proof. *)
+Ltac cterm_back_tac :=
+  intros a b H Hm; cbn [clb cmb cterm_add_b cterm_sub_b] in H, Hm; fin_down;
+  destruct (two_sum_b_inv _ _ ltac:(eassumption)) as [? [F _]]; rewrite ?fneg_fin in F; repeat split; assumption.
+
+Ltac cterm_tw_tac low_inv :=
+  intros a b A B [Fha [Fla [Fma [Eha [Ela Ema]]]]] [Fhb [Flb [Fmb [Ehb [Elb Emb]]]]] H Hm;
+  cbn [clb cmb cterm_add_b cterm_sub_b] in H, Hm;
+  destruct (fadd_inv _ _ H) as [H1 [Hs Vl]];
+  destruct (low_inv _ _ H1) as [_ [_ Vl1]];
+  destruct (two_sum_b_inv _ _ Hs) as [_ [_ [Fs [Es1 Es2]]]];
+  unfold ctw, cterm_add_b, cterm_add, cterm_sub_b, cterm_sub; cbn [chb clb cmb ch cl cm];
+  rewrite ?fneg_val in Es1, Es2;
+  repeat split; try assumption;
+  [ now rewrite Es1, Eha, Ehb | now rewrite Vl, Vl1, Es2, Eha, Ehb, Ela, Elb
+  | now rewrite (fadd_val _ _ Hm), Ema, Emb ].
+
 Lemma cterm_add_back : forall a b, fin (clb (cterm_add_b a b)) = true -> fin (cmb (cterm_add_b a b)) = true ->
   fin (chb a) = true /\ fin (clb a) = true /\ fin (cmb a) = true /\
   fin (chb b) = true /\ fin (clb b) = true /\ fin (cmb b) = true.
-Proof.
-  intros a b H Hm. cbn [clb cmb cterm_add_b] in H, Hm. fin_down.
-  destruct (two_sum_b_inv _ _ ltac:(eassumption)) as [? [? _]]. repeat split; assumption.
-Qed.
+Proof. cterm_back_tac. Qed.
 
 Lemma cterm_sub_back : forall a b, fin (clb (cterm_sub_b a b)) = true -> fin (cmb (cterm_sub_b a b)) = true ->
   fin (chb a) = true /\ fin (clb a) = true /\ fin (cmb a) = true /\
   fin (chb b) = true /\ fin (clb b) = true /\ fin (cmb b) = true.
-Proof.
-  intros a b H Hm. cbn [clb cmb cterm_sub_b] in H, Hm. fin_down.
-  destruct (two_sum_b_inv _ _ ltac:(eassumption)) as [? [F _]]. rewrite fneg_fin in F. repeat split; assumption.
-Qed.
+Proof. cterm_back_tac. Qed.
 
 Lemma cterm_add_tw : forall a b A B, ctw a A -> ctw b B -> fin (clb (cterm_add_b a b)) = true ->
   fin (cmb (cterm_add_b a b)) = true -> ctw (cterm_add_b a b) (cterm_add A B).
-Proof.
-  intros a b A B [Fha [Fla [Fma [Eha [Ela Ema]]]]] [Fhb [Flb [Fmb [Ehb [Elb Emb]]]]] H Hm.
-  cbn [clb cmb cterm_add_b] in H, Hm.
-  destruct (fadd_inv _ _ H) as [H1 [Hs Vl]]. destruct (fadd_inv _ _ H1) as [_ [_ Vl1]].
-  destruct (two_sum_b_inv _ _ Hs) as [_ [_ [Fs [Es1 Es2]]]].
-  unfold ctw, cterm_add_b, cterm_add. cbn [chb clb cmb ch cl cm].
-  repeat split; try assumption.
-  - now rewrite Es1, Eha, Ehb.
-  - now rewrite Vl, Vl1, Es2, Eha, Ehb, Ela, Elb.
-  - now rewrite (fadd_val _ _ Hm), Ema, Emb.
-Qed.
+Proof. cterm_tw_tac fadd_inv. Qed.
 
 Lemma cterm_sub_tw : forall a b A B, ctw a A -> ctw b B -> fin (clb (cterm_sub_b a b)) = true ->
   fin (cmb (cterm_sub_b a b)) = true -> ctw (cterm_sub_b a b) (cterm_sub A B).
-Proof.
-  intros a b A B [Fha [Fla [Fma [Eha [Ela Ema]]]]] [Fhb [Flb [Fmb [Ehb [Elb Emb]]]]] H Hm.
-  cbn [clb cmb cterm_sub_b] in H, Hm.
-  destruct (fadd_inv _ _ H) as [H1 [Hs Vl]]. destruct (fsub_inv _ _ H1) as [_ [_ Vl1]].
-  destruct (two_sum_b_inv _ _ Hs) as [_ [_ [Fs [Es1 Es2]]]].
-  unfold ctw, cterm_sub_b, cterm_sub. cbn [chb clb cmb ch cl cm].
-  rewrite fneg_val in Es1, Es2.
-  repeat split; try assumption.
-  - now rewrite Es1, Eha, Ehb.
-  - now rewrite Vl, Vl1, Es2, Eha, Ehb, Ela, Elb.
-  - now rewrite (fadd_val _ _ Hm), Ema, Emb.
-Qed.
+Proof. cterm_tw_tac fsub_inv. Qed.
 
 Ltac ctw_back :=
   repeat match goal with
@@ -651,6 +643,13 @@ Proof.
   repeat split; try assumption. unfold tvec_R, rsub. cbn [tx ty tz vx vy vz]. now rewrite E1, E2, E3.
 Qed.
 
+(** The broadcast lane x ↦ +0 ⊕ x: x itself when finite. *)
+Lemma bcast_val : forall x, fin (fadd fzero x) = true -> fin x = true /\ B2R (fadd fzero x) = B2R x.
+Proof.
+  intros x H. destruct (fadd_inv _ _ H) as [_ [Fx V]]. split; [exact Fx|].
+  rewrite V. change (B2R fzero) with 0. rewrite Rplus_0_l. apply RN_binary64, binary64_B2R.
+Qed.
+
 Ltac two_diff_leaves H :=
   repeat match type of H with
   | context [B2R (snd (two_diff_b ?v ?o))] =>
@@ -659,24 +658,32 @@ Ltac two_diff_leaves H :=
       destruct (two_diff_twin v o F) as [? [? [E1 E2]]]; rewrite E1, E2 in H; clear F E1 E2
   end.
 
+(** A stage-2 determinant [cdet3_b] of TwoDiff leaves (and broadcast lanes) whose low part and magnitude are
+    finite: its inputs are finite and it is the model's stage 2 (the shape of [pi_stage2_twin],
+    [num_stage2_twin], [num_stage2_lane_twin]). *)
+Ltac stage2_leaves H Hm :=
+  let T := fresh "T" in
+  destruct (cdet3_twin _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ H Hm)
+    as [[? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? ?]]]]]]]]]]]]]]]]] T];
+  two_diff_leaves T; try change (B2R fzero) with 0 in T;
+  repeat match goal with
+  | F : fin (fadd fzero ?x) = true |- _ =>
+      let E := fresh in destruct (bcast_val x F) as [? E]; rewrite E in T; clear F E
+  end;
+  unfold tfin; cbn [tx ty tz]; tsplit; try assumption.
+
 Lemma pi_stage2_twin : forall o d p q, fin (clb (pi_stage2_b o d p q)) = true -> fin (cmb (pi_stage2_b o d p q)) = true ->
   tfin o /\ tfin d /\ tfin p /\ tfin q /\ ctw (pi_stage2_b o d p q) (pi_stage2 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
 Proof.
   intros [ox oy oz] [dx dy dz] [px py pz] [qx qy qz] H Hm. unfold pi_stage2_b in *. cbn [tx ty tz] in *.
-  destruct (cdet3_twin _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ H Hm)
-    as [[? [_ [? [_ [? [_ [? [? [? [? [? [? [? [? [? [? [? ?]]]]]]]]]]]]]]]]] T].
-  two_diff_leaves T. change (B2R fzero) with 0 in T.
-  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+  stage2_leaves H Hm.
 Qed.
 
 Lemma num_stage2_twin : forall o a b c, fin (clb (num_stage2_b o a b c)) = true -> fin (cmb (num_stage2_b o a b c)) = true ->
   tfin o /\ tfin a /\ tfin b /\ tfin c /\ ctw (num_stage2_b o a b c) (num_stage2 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
 Proof.
   intros [ox oy oz] [ax ay az] [bx by_ bz] [cx cy cz] H Hm. unfold num_stage2_b in *. cbn [tx ty tz] in *.
-  destruct (cdet3_twin _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ H Hm)
-    as [[? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? ?]]]]]]]]]]]]]]]]] T].
-  two_diff_leaves T.
-  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+  stage2_leaves H Hm.
 Qed.
 
 Lemma den_stage2_twin : forall o d a b c, fin (clb (den_stage2_b o d a b c)) = true ->
@@ -687,10 +694,21 @@ Proof.
   intros o d a b c H Hm. unfold den_stage2_b, den_stage2 in *.
   destruct (cterm_add_back _ _ H Hm) as [_ [H01 [Hm01 [_ [H2 Hm2]]]]].
   destruct (cterm_add_back _ _ H01 Hm01) as [_ [H0 [Hm0 [_ [H1 Hm1]]]]].
-  destruct (pi_stage2_twin _ _ _ _ H0 Hm0) as [Fo [Fd [Fb [Fc T0]]]].
-  destruct (pi_stage2_twin _ _ _ _ H1 Hm1) as [_ [_ [_ [Fa T1]]]].
-  destruct (pi_stage2_twin _ _ _ _ H2 Hm2) as [_ [_ [_ [_ T2]]]].
+  pi_sum_leaves (pi_stage2_twin _ _ _ _ H0 Hm0) (pi_stage2_twin _ _ _ _ H1 Hm1) (pi_stage2_twin _ _ _ _ H2 Hm2).
   tsplit; try assumption. ctw_fwd.
+Qed.
+
+(** The shape every end-to-end stage-2 theorem below shares: from a finite radius, the twin's tie [Tw] of
+    the determinant (which also yields the finiteness [Fins] of the inputs) and the model's enclosure [S],
+    the enclosure holds X and [Fins] holds (as [filter_twin_sound_gen] for stage 1). *)
+Lemma compensated_twin_sound_gen : forall (t : CTermB) (K A : float), fin (radiusb (det3_enclosure_b t K A)) = true ->
+  forall (T : CTerm) (X : R) (Fins : Prop),
+  (fin (clb t) = true -> fin (cmb t) = true -> Fins /\ ctw t T) ->
+  (fin A = true -> Fins -> encloses (TriangleCompensated.det3_enclosure T (B2R K) (B2R A)) X) ->
+  Fins /\ encloses (enc_R (det3_enclosure_b t K A)) X.
+Proof.
+  intros t K A H T X Fins Tw S. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
+  destruct (Tw Fl Fm) as [Fs Tt]. split; [exact Fs|]. rewrite (E _ Tt). exact (S FA Fs).
 Qed.
 
 (** End to end: when the radius stage 2 returns for π(p, q) is finite, the enclosure holds the exact value
@@ -700,11 +718,31 @@ Theorem triangle_pi_compensated_twin_sound : forall o d p q : TVec,
   fin (radiusb e) = true ->
   tfin o /\ tfin d /\ tfin p /\ tfin q /\ encloses (enc_R e) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)).
 Proof.
-  intros o d p q e H. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
-  destruct (pi_stage2_twin o d p q Fl Fm) as [Fo [Fd [Fp [Fq T]]]].
-  tsplit; try assumption.
-  unfold e. rewrite (E _ T), cpp_triangle_compensated_relative, (proj2 (absolute_bv_twin d FA)).
-  apply pi_compensated_encloses; apply tvec_R_doubles.
+  intros o d p q e H.
+  destruct (compensated_twin_sound_gen _ _ _ H (pi_stage2 (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q))
+              (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) (tfin o /\ tfin d /\ tfin p /\ tfin q))
+    as [[? [? [? ?]]] ?]; [| | tsplit; assumption].
+  - intros Fl Fm. destruct (pi_stage2_twin o d p q Fl Fm) as [? [? [? [? T]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_compensated_relative, (proj2 (absolute_bv_twin d FA)).
+    apply pi_compensated_encloses; apply tvec_R_doubles.
+Qed.
+
+(** num's two stage-2 forms (the query's and lane 3 of the lanes) differ only in how the determinant is
+    computed: one proof from the tie [Tw] of either. *)
+Lemma num_compensated_twin_gen : forall (t : CTermB) (o a b c : TVec),
+  (fin (clb t) = true -> fin (cmb t) = true ->
+   tfin o /\ tfin a /\ tfin b /\ tfin c /\ ctw t (num_stage2 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c))) ->
+  let e := det3_enclosure_b t Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
+  fin (radiusb e) = true ->
+  tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
+Proof.
+  intros t o a b c Tw e H.
+  destruct (compensated_twin_sound_gen _ _ _ H (num_stage2 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c))
+              (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) (tfin o /\ tfin a /\ tfin b /\ tfin c))
+    as [[? [? [? ?]]] ?]; [| | tsplit; assumption].
+  - intros Fl Fm. destruct (Tw Fl Fm) as [? [? [? [? T]]]]. split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_compensated_relative, (proj2 (proj2 (ehigh_twin a o FA))).
+    apply num_compensated_encloses; apply tvec_R_doubles.
 Qed.
 
 (** num: with the absolute term of the high parts of TwoDiff(a, o). *)
@@ -712,13 +750,7 @@ Theorem triangle_num_compensated_twin_sound : forall o a b c : TVec,
   let e := det3_enclosure_b (num_stage2_b o a b c) Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
   fin (radiusb e) = true ->
   tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
-Proof.
-  intros o a b c e H. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
-  destruct (num_stage2_twin o a b c Fl Fm) as [Fo [Fa [Fb [Fc T]]]].
-  tsplit; try assumption.
-  unfold e. rewrite (E _ T), cpp_triangle_compensated_relative, (proj2 (proj2 (ehigh_twin a o FA))).
-  apply num_compensated_encloses; apply tvec_R_doubles.
-Qed.
+Proof. intros o a b c. exact (num_compensated_twin_gen _ o a b c (num_stage2_twin o a b c)). Qed.
 
 (** den = (πa + πb) + πc in double-doubles, with K_den. *)
 Theorem triangle_den_compensated_twin_sound : forall o d a b c : TVec,
@@ -727,20 +759,18 @@ Theorem triangle_den_compensated_twin_sound : forall o d a b c : TVec,
   tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
   encloses (enc_R e) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)).
 Proof.
-  intros o d a b c e H. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
-  destruct (den_stage2_twin o d a b c Fl Fm) as [Fo [Fd [Fa [Fb [Fc T]]]]].
-  tsplit; try assumption.
-  unfold e. rewrite (E _ T), cpp_triangle_compensated_den_relative, (proj2 (absolute_bv_twin d FA)).
-  apply den_compensated_encloses; apply tvec_R_doubles.
+  intros o d a b c e H.
+  destruct (compensated_twin_sound_gen _ _ _ H (den_stage2 (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c))
+              (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c))
+              (tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c))
+    as [[? [? [? [? ?]]]] ?]; [| | tsplit; assumption].
+  - intros Fl Fm. destruct (den_stage2_twin o d a b c Fl Fm) as [? [? [? [? [? T]]]]].
+    split; [tsplit; assumption | exact T].
+  - intros FA _. rewrite cpp_triangle_compensated_den_relative, (proj2 (absolute_bv_twin d FA)).
+    apply den_compensated_encloses; apply tvec_R_doubles.
 Qed.
 
 (** ** The lanes of the fast paths ([triangle_relation_lanes], [triangle_compensated_lanes]). *)
-
-Lemma bcast_val : forall x, fin (fadd fzero x) = true -> fin x = true /\ B2R (fadd fzero x) = B2R x.
-Proof.
-  intros x H. destruct (fadd_inv _ _ H) as [_ [Fx V]]. split; [exact Fx|].
-  rewrite V. change (B2R fzero) with 0. rewrite Rplus_0_l. apply RN_binary64, binary64_B2R.
-Qed.
 
 Lemma bcast_twin : forall v, tfin (bcast v) -> tfin v /\ tvec_R (bcast v) = tvec_R v.
 Proof.
@@ -791,14 +821,7 @@ Lemma num_stage2_lane_twin : forall o a b c, fin (clb (num_stage2_lane_b o a b c
   ctw (num_stage2_lane_b o a b c) (num_stage2 (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
 Proof.
   intros [ox oy oz] [ax ay az] [bx by_ bz] [cx cy cz] H Hm. unfold num_stage2_lane_b, bcast in *. cbn [tx ty tz] in *.
-  destruct (cdet3_twin _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ H Hm)
-    as [[? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? [? ?]]]]]]]]]]]]]]]]] T].
-  two_diff_leaves T.
-  repeat match goal with
-  | F : fin (fadd fzero ?x) = true |- _ =>
-      let E := fresh in destruct (bcast_val x F) as [? E]; rewrite E in T; clear F E
-  end.
-  unfold tfin. cbn [tx ty tz]. tsplit; try assumption.
+  stage2_leaves H Hm.
 Qed.
 
 (** Lane 3 of [triangle_compensated_lanes]: a finite radius encloses num. *)
@@ -806,13 +829,7 @@ Theorem triangle_num_lane_compensated_twin_sound : forall o a b c : TVec,
   let e := det3_enclosure_b (num_stage2_lane_b o a b c) Cpp.triangle_compensated_relative (absolute_bv (ehigh a o)) in
   fin (radiusb e) = true ->
   tfin o /\ tfin a /\ tfin b /\ tfin c /\ encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)).
-Proof.
-  intros o a b c e H. destruct (det3_enclosure_twin _ _ _ H) as [_ [Fl [Fm [FA E]]]].
-  destruct (num_stage2_lane_twin o a b c Fl Fm) as [Fo [Fa [Fb [Fc T]]]].
-  tsplit; try assumption.
-  unfold e. rewrite (E _ T), cpp_triangle_compensated_relative, (proj2 (proj2 (ehigh_twin a o FA))).
-  apply num_compensated_encloses; apply tvec_R_doubles.
-Qed.
+Proof. intros o a b c. exact (num_compensated_twin_gen _ o a b c (num_stage2_lane_twin o a b c)). Qed.
 
 (** ** The fast path's stage-1 signs, taken from stage 2's high parts ([filter_view]). *)
 

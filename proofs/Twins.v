@@ -661,18 +661,56 @@ Proof.
   rewrite fneg_fin in Fo. rewrite fneg_val in E1, E2. repeat split; assumption.
 Qed.
 
+Lemma den_radius_nonneg : forall d0 d1 d2 n0 n1 n2, nonneg (radiusb (den_compensated_b d0 d1 d2 n0 n1 n2)).
+Proof.
+  intros. unfold den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
+  cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
+  apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
+Qed.
+
+Lemma num_radius_nonneg : forall p0 p1 p2 o0 o1 o2 n0 n1 n2,
+  nonneg (radiusb (num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2)).
+Proof. intros. unfold num_compensated_b. apply compensated_radius_nonneg. Qed.
+
+Lemma den_compensated_encloses_b : forall d0 d1 d2 n0 n1 n2,
+  let e := den_compensated_b d0 d1 d2 n0 n1 n2 in
+  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
+  encloses (enc_R e) (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2).
+Proof.
+  intros d0 d1 d2 n0 n1 n2 e Fh Fl Fr.
+  destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [? [? [? E]]]]]].
+  unfold e, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
+Qed.
+
+Lemma num_compensated_encloses_b : forall p0 p1 p2 o0 o1 o2 n0 n1 n2,
+  let e := num_compensated_b p0 p1 p2 o0 o1 o2 n0 n1 n2 in
+  fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true ->
+  encloses (enc_R e) ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2).
+Proof.
+  intros p0 p1 p2 o0 o1 o2 n0 n1 n2 e Fh Fl Fr.
+  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
+  destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
+  destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
+  unfold e, num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
+  apply compensated_num_enclosure; apply binary64_B2R.
+Qed.
+
+(** Every end-to-end stage-2 theorem (first level here, second level in RefinedTwins.v) has this shape:
+    the radius is non-negative or NaN, and a finite computation encloses V. *)
+Lemma stage2_twin_sound_gen : forall (e : EnclosureB) (V : R), nonneg (radiusb e) ->
+  (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) V) ->
+  fin (hib e) = true -> fin (lob e) = true ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e)) V /\
+  (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
+Proof. intros e V N H Fh Fl. exact (stage2_sign_twin e V N Fh Fl (H Fh Fl)). Qed.
+
 Theorem den_compensated_twin_sound : forall d0 d1 d2 n0 n1 n2 : float,
   let e := den_compensated_b d0 d1 d2 n0 n1 n2 in
   fin (hib e) = true -> fin (lob e) = true ->
   certifies (sign_from_Z (enclosure_sign_lanes_b e)) (B2R d0 * B2R n0 + B2R d1 * B2R n1 + B2R d2 * B2R n2) /\
   (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros d0 d1 d2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption.
-  - unfold e, den_compensated_b, compensated_dot3_exact_b, compensated_from_low_parts_b, dot3_rounded_b.
-    cbv zeta. cbn [radiusb magnitudeb]. apply fadd_nonneg; [apply fmul_nonneg|]; try const_nonneg.
-    apply fadd_nonneg; [apply fadd_nonneg|]; apply fabs_nonneg.
-  - intros Fr. destruct (compensated_dot3_exact_twin _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [? [? [? E]]]]]].
-    unfold e, den_compensated_b. rewrite E. apply compensated_den_enclosure; apply binary64_B2R.
+  intros. apply stage2_twin_sound_gen; [apply den_radius_nonneg | apply den_compensated_encloses_b | assumption ..].
 Qed.
 
 Theorem num_compensated_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
@@ -682,13 +720,7 @@ Theorem num_compensated_twin_sound : forall p0 p1 p2 o0 o1 o2 n0 n1 n2 : float,
     ((B2R p0 - B2R o0) * B2R n0 + (B2R p1 - B2R o1) * B2R n1 + (B2R p2 - B2R o2) * B2R n2) /\
   (enclosure_sign_lanes_b e <> uncertain_lane -> fin (radiusb e) = true).
 Proof.
-  intros p0 p1 p2 o0 o1 o2 n0 n1 n2 e Fh Fl. apply stage2_sign_twin; try assumption; [apply compensated_radius_nonneg|].
-  intros Fr.
-  destruct (compensated_dot3_twin _ _ _ _ _ _ _ _ _ Fr Fh Fl) as [? [? [? [A0 [A1 [A2 [? [? [? [_ [_ E]]]]]]]]]]].
-  destruct (two_diff_b_parts _ _ A0) as [? [? [X0 Y0]]]. destruct (two_diff_b_parts _ _ A1) as [? [? [X1 Y1]]].
-  destruct (two_diff_b_parts _ _ A2) as [? [? [X2 Y2]]].
-  unfold e, num_compensated_b. cbv zeta. rewrite E, X0, X1, X2, Y0, Y1, Y2.
-  apply compensated_num_enclosure; apply binary64_B2R.
+  intros. apply stage2_twin_sound_gen; [apply num_radius_nonneg | apply num_compensated_encloses_b | assumption ..].
 Qed.
 
 
