@@ -186,6 +186,32 @@ MUTATIONS = [
      "const bool rounded = (!options.t || q.certain[lane_num]) &",
      "const bool rounded = true &",
      "fast_triangle_intersection: t returned without round_quotient's certainty"),
+    # the full cascade's control flow (TriangleCascade, triangle_intersection_cascade): the runner's triangles5
+    # (tri_cascade_intersect) and triangles6 (tri_cascade_relation), which every variant runs
+    ("tri_cascade_tie_break_edge", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "[&](int k) { return tie_break(k); }",
+     "[&](int k) { return tie_break((k + 1) % 3); }",
+     "TriangleCascade::classify: the owned rule's tie-break asks edge (k + 1) mod 3"),
+    ("tri_cascade_normal_negated", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "[&] { return normal_is_zero(); }",
+     "[&] { return !normal_is_zero(); }",
+     "TriangleCascade::classify: normal_is_zero negated"),
+    ("tri_cascade_zero_numerator", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "certain[k] = !asked[k] || numerator_sign[k] == 0;",
+     "certain[k] = !asked[k];",
+     "triangle_intersection_cascade: the zero-numerator guard dropped (an exactly zero numerator rounded, not +0)"),
+    ("tri_cascade_stage3_divisor", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "const Divisor divisor = prepare_divisor(den ? *den : s2.enclosure(value_den));",
+     "const Divisor divisor = prepare_divisor(s2.enclosure(value_den));",
+     "triangle_intersection_cascade: stage 3's divisor always from stage 2's den enclosure"),
+    ("tri_cascade_stage_not_raised", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "      stage_ = later(stage_, Stage::compensated);\n      s = enclosure_sign(compensated().enclosure(v));",
+     "      s = enclosure_sign(compensated().enclosure(v));",
+     "TriangleCascade::sign: stage 2 deciding a sign does not raise the stage to compensated"),
+    ("tri_cascade_stage3_certain", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "certain[k] = e.certain;",
+     "certain[k] = true;",
+     "triangle_intersection_cascade: stage 3's rounding taken as certain"),
 ]
 
 # Mutations that change no observable behaviour (proofs/README.md, "Triangle mutations"): reported, not counted as
