@@ -368,3 +368,17 @@ Definition twin_results_refined_finite :=
    RefinedFinite.num_refined_twin_sound_total).
 Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
 Print Assumptions twin_results_refined_finite.
+
+(** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
+    fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)
+From Raykernel Require TriangleIntersectTheorem.
+Goal True. idtac "@@ fast_intersection_tri_correct". Abort.
+Print Assumptions TriangleIntersectTheorem.fast_intersection_tri_correct.
+Definition twin_results_triangle_intersection :=
+  (TriangleIntersectTheorem.round_quotient_shared_sound,
+   TriangleIntersectTheorem.decide_nonzero_contract,
+   TriangleIntersectTheorem.pi_lane_sign,
+   TriangleIntersectTheorem.num_lane_sign,
+   TriangleIntersectTheorem.den_lane_sign).
+Goal True. idtac "@@ round_quotient_shared_sound decide_nonzero_contract pi_lane_sign num_lane_sign den_lane_sign". Abort.
+Print Assumptions twin_results_triangle_intersection.
