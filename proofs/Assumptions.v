@@ -428,3 +428,16 @@ Definition twin_results_triangle_flow :=
    TriangleCascadeFlowCorrect.tc_stage3_quotient_correct).
 Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct". Abort.
 Print Assumptions twin_results_triangle_flow.
+(** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
+    fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)
+From Raykernel Require TriangleIntersectTheorem.
+Goal True. idtac "@@ fast_intersection_tri_correct". Abort.
+Print Assumptions TriangleIntersectTheorem.fast_intersection_tri_correct.
+Definition twin_results_triangle_intersection :=
+  (TriangleIntersectTheorem.round_quotient_shared_sound,
+   TriangleIntersectTheorem.decide_nonzero_contract,
+   TriangleIntersectTheorem.pi_lane_sign,
+   TriangleIntersectTheorem.num_lane_sign,
+   TriangleIntersectTheorem.den_lane_sign).
+Goal True. idtac "@@ round_quotient_shared_sound decide_nonzero_contract pi_lane_sign num_lane_sign den_lane_sign". Abort.
+Print Assumptions twin_results_triangle_intersection.

@@ -14,7 +14,8 @@
     The differential runner (routine [tri_fast_intersect], group triangles3) compares the twin with the
     compiled [fast_triangle_intersection] and, when it answers, the public [intersect_traced] and [intersect],
     for both rules and every combination of the options t and barycentric.  The theorem that an answer of
-    this twin is §6's with t = RN(num/den) is not proved yet (proofs/README.md, "What remains"). *)
+    this twin is §6's with t = RN(num/den) and the barycentrics RN(π_k/den) is
+    [fast_intersection_tri_correct] (TriangleIntersectTheorem.v). *)
 
 From Coq Require Import ZArith Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.

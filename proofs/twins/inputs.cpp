@@ -24,6 +24,7 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -102,6 +103,31 @@ class Source {
     if (chance(8))  // every zero component's sign flipped: the lanes' broadcast maps −0 to +0 (TriangleTwins.v, bcast)
       for (double& c : x)
         if (c == 0) c = -c;
+    return x;
+  }
+  // A ray–triangle query whose origin is just off the plane above a point well inside the triangle, at a
+  // distance about 2^-44..2^-73 of the triangle's size: num = det(a − o, b − o, c − o) is then below its
+  // stage-1 filter bound (about 8u·m) but within stage 2's reach, while πa, πb, πc and den stay clear of
+  // theirs; d random (the line crosses the plane near o, inside).
+  std::vector<double> near_plane_triangle_query() {
+    auto unit = [this] { return static_cast<double>(word() >> 11) * 0x1p-52 - 1.0; };  // in [−1, 1)
+    double v[9];
+    for (double& c : v) c = unit();
+    double w[3];
+    for (double& c : w) c = 0.1 + 0.9 * std::abs(unit());
+    const double total = w[0] + w[1] + w[2];
+    const double e1[3] = {v[3] - v[0], v[4] - v[1], v[5] - v[2]};
+    const double e2[3] = {v[6] - v[0], v[7] - v[1], v[8] - v[2]};
+    const double normal[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                              e1[0] * e2[1] - e1[1] * e2[0]};
+    const double offset = std::ldexp(chance(2) ? 1.0 : -1.0, -44 - static_cast<int>(below(30)));
+    std::vector<double> x(15);
+    for (int i = 0; i < 3; ++i) {
+      const double inside = (w[0] * v[i] + w[1] * v[3 + i] + w[2] * v[6 + i]) / total;
+      x[i] = inside + normal[i] * offset;
+      x[3 + i] = unit();
+    }
+    for (int i = 0; i < 9; ++i) x[6 + i] = v[i];
     return x;
   }
   // A query whose den and num cancel to about u²·m, where stage 2's first level is uncertain and its second
@@ -397,8 +423,16 @@ const std::map<std::string, Generator>& generators() {
        }},
       // fast_triangle_intersection (proofs/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric
       // (0..3) as an integer word, then the query
+      // (1 in 4: an origin just off the triangle's plane above an inside point, the barycentrics asked, so that
+      // num's filter is uncertain and its stage 2 certain: the stage label depends on num's filter term)
       {"tri_fast_intersect",
        [](Source& s) {
+         if (s.chance(4)) {
+           Args a{std::bit_cast<double>(static_cast<std::uint64_t>(2 + s.below(2)))};
+           const std::vector<double> q = s.near_plane_triangle_query();
+           a.insert(a.end(), q.begin(), q.end());
+           return a;
+         }
          Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(4)))};
          const std::vector<double> q = s.triangle_query();
          a.insert(a.end(), q.begin(), q.end());

@@ -334,6 +334,10 @@ namespace {
 // that passes a 256-bit vector (Lanes4) by value from a target_clones("fma") clone to a function without
 // that target ("changes the ABI"), even an always_inline one; from this always_inline function, which the
 // clones inline, no such call is made across targets. Everything it calls is always_inline too.
+// Certified by: proofs/TriangleIntersectTheorem.v, `fast_intersection_tri_correct` (its twin, run against this
+// code and the public intersect_traced() and intersect() by the differential runner, routine
+// tri_fast_intersect: every answer is docs/contract.md §6's under both rules, t = RN(num/den), each
+// barycentric RN(π_k/den)).
 [[gnu::always_inline]] inline std::optional<TracedTriangleIntersection> fast_triangle_intersection_body(
     const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept {
   if (!options.t && !options.barycentric) {
