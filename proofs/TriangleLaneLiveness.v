@@ -387,41 +387,23 @@ Corollary triangle_pi_relation_lane_live : forall o d p q : TVec,
 Proof. intros. rewrite triangle_pi_relation_lane_is_scalar. apply triangle_pi_filter_live; assumption. Qed.
 
 (** [triangle_compensated_lanes], lanes 0–2. *)
-Corollary triangle_pi_compensated_lane_live : forall o d p q : TVec,
-  tbnd 300 o -> tbnd 300 d -> tbnd 300 p -> tbnd 300 q ->
-  bpow radix2 (-95) * perm3v (tvec_R d) (rsub (tvec_R p) (tvec_R o)) (rsub (tvec_R q) (tvec_R o)) +
-    bpow radix2 (-1067) * sumabs (tvec_R d) + bpow radix2 (-1066) <
-    Rabs (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (pi_stage2_b (bcast o) d p q) Cpp.triangle_compensated_relative
-                                           (absolute_bv d)) <> uncertain_lane.
+Corollary triangle_pi_compensated_lane_live : pi_compensated_live_for (fun o => pi_stage2_b (bcast o)).
 Proof.
-  intros. rewrite (proj2 (triangle_pi_compensated_lane_is_scalar _ _ _ _ _ _)).
+  intros o **. cbv beta. rewrite (proj2 (triangle_pi_compensated_lane_is_scalar _ _ _ _ _ _)).
   apply triangle_pi_compensated_live; assumption.
 Qed.
 
 (** Lane 3 (num). *)
-Corollary triangle_num_compensated_lane_live : forall o a b c : TVec,
-  tbnd 300 o -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
-  bpow radix2 (-95) * perm3v (rsub (tvec_R a) (tvec_R o)) (rsub (tvec_R b) (tvec_R o)) (rsub (tvec_R c) (tvec_R o)) +
-    bpow radix2 (-1067) * sumabs (rsub (tvec_R a) (tvec_R o)) + bpow radix2 (-1066) <
-    Rabs (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (num_stage2_lane_b o a b c) Cpp.triangle_compensated_relative
-                                           (absolute_bv (ehigh a o))) <> uncertain_lane.
+Corollary triangle_num_compensated_lane_live : num_compensated_live_for num_stage2_lane_b.
 Proof.
-  intros. rewrite (proj2 (triangle_num_compensated_lane_is_scalar _ _ _ _ _ _)).
+  intros o **. rewrite (proj2 (triangle_num_compensated_lane_is_scalar _ _ _ _ _ _)).
   apply triangle_num_compensated_live; assumption.
 Qed.
 
 (** den from the lanes. *)
-Corollary triangle_den_compensated_lane_live : forall o d a b c : TVec,
-  tbnd 300 o -> tbnd 300 d -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
-  bpow radix2 (-95) * den_perm (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) +
-    bpow radix2 (-1067) * sumabs (tvec_R d) + bpow radix2 (-1066) <
-    Rabs (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (den_stage2_b (bcast o) d a b c) Cpp.triangle_compensated_den_relative
-                                           (absolute_bv d)) <> uncertain_lane.
+Corollary triangle_den_compensated_lane_live : den_compensated_live_for (fun o => den_stage2_b (bcast o)).
 Proof.
-  intros. rewrite (proj2 (triangle_den_compensated_lane_is_scalar _ _ _ _ _ _ _)).
+  intros o **. cbv beta. rewrite (proj2 (triangle_den_compensated_lane_is_scalar _ _ _ _ _ _ _)).
   apply triangle_den_compensated_live; assumption.
 Qed.
 

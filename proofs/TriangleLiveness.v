@@ -535,14 +535,34 @@ Proof.
   rewrite ER. exact L.
 Qed.
 
-(** π(p, q): stage 2 with K_π is certain when |π| > 2^-95·P + 2^-1067·Σ|d_i| + 2^-1066. *)
-Theorem triangle_pi_compensated_live : forall o d p q : TVec,
+(** Stage 2's liveness statements, each over the function [s] that forms the twin's terms from the query: the
+    scalar twins here ([pi_stage2_b], [num_stage2_b], [den_stage2_b]), the lane forms in TriangleLaneLiveness.v,
+    which so state the same property. *)
+Definition pi_compensated_live_for (s : TVec -> TVec -> TVec -> TVec -> CTermB) : Prop := forall o d p q : TVec,
   tbnd 300 o -> tbnd 300 d -> tbnd 300 p -> tbnd 300 q ->
   bpow radix2 (-95) * perm3v (tvec_R d) (rsub (tvec_R p) (tvec_R o)) (rsub (tvec_R q) (tvec_R o)) +
     bpow radix2 (-1067) * sumabs (tvec_R d) + bpow radix2 (-1066) <
     Rabs (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (pi_stage2_b o d p q) Cpp.triangle_compensated_relative (absolute_bv d))
+  enclosure_sign_lanes_b (det3_enclosure_b (s o d p q) Cpp.triangle_compensated_relative (absolute_bv d))
     <> uncertain_lane.
+Definition num_compensated_live_for (s : TVec -> TVec -> TVec -> TVec -> CTermB) : Prop := forall o a b c : TVec,
+  tbnd 300 o -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
+  bpow radix2 (-95) * perm3v (rsub (tvec_R a) (tvec_R o)) (rsub (tvec_R b) (tvec_R o)) (rsub (tvec_R c) (tvec_R o)) +
+    bpow radix2 (-1067) * sumabs (rsub (tvec_R a) (tvec_R o)) + bpow radix2 (-1066) <
+    Rabs (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) ->
+  enclosure_sign_lanes_b (det3_enclosure_b (s o a b c) Cpp.triangle_compensated_relative
+                                           (absolute_bv (ehigh a o))) <> uncertain_lane.
+Definition den_compensated_live_for (s : TVec -> TVec -> TVec -> TVec -> TVec -> CTermB) : Prop :=
+  forall o d a b c : TVec,
+  tbnd 300 o -> tbnd 300 d -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
+  bpow radix2 (-95) * den_perm (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) +
+    bpow radix2 (-1067) * sumabs (tvec_R d) + bpow radix2 (-1066) <
+    Rabs (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) ->
+  enclosure_sign_lanes_b (det3_enclosure_b (s o d a b c) Cpp.triangle_compensated_den_relative
+                                           (absolute_bv d)) <> uncertain_lane.
+
+(** π(p, q): stage 2 with K_π is certain when |π| > 2^-95·P + 2^-1067·Σ|d_i| + 2^-1066. *)
+Theorem triangle_pi_compensated_live : pi_compensated_live_for pi_stage2_b.
 Proof.
   intros o d p q O D P Q L.
   assert (BA : fbnd 310 (absolute_bv d)).
@@ -565,13 +585,7 @@ Proof.
 Qed.
 
 (** num: with K_num = K_π and the absolute term of the high parts of TwoDiff(a, o). *)
-Theorem triangle_num_compensated_live : forall o a b c : TVec,
-  tbnd 300 o -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
-  bpow radix2 (-95) * perm3v (rsub (tvec_R a) (tvec_R o)) (rsub (tvec_R b) (tvec_R o)) (rsub (tvec_R c) (tvec_R o)) +
-    bpow radix2 (-1067) * sumabs (rsub (tvec_R a) (tvec_R o)) + bpow radix2 (-1066) <
-    Rabs (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (num_stage2_b o a b c) Cpp.triangle_compensated_relative
-                                           (absolute_bv (ehigh a o))) <> uncertain_lane.
+Theorem triangle_num_compensated_live : num_compensated_live_for num_stage2_b.
 Proof.
   intros o a b c O A B C L.
   assert (BA : fbnd 310 (absolute_bv (ehigh a o))).
@@ -597,13 +611,7 @@ Proof.
 Qed.
 
 (** den = (πa + πb) + πc in double-doubles, with K_den. *)
-Theorem triangle_den_compensated_live : forall o d a b c : TVec,
-  tbnd 300 o -> tbnd 300 d -> tbnd 300 a -> tbnd 300 b -> tbnd 300 c ->
-  bpow radix2 (-95) * den_perm (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) +
-    bpow radix2 (-1067) * sumabs (tvec_R d) + bpow radix2 (-1066) <
-    Rabs (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)) ->
-  enclosure_sign_lanes_b (det3_enclosure_b (den_stage2_b o d a b c) Cpp.triangle_compensated_den_relative
-                                           (absolute_bv d)) <> uncertain_lane.
+Theorem triangle_den_compensated_live : den_compensated_live_for den_stage2_b.
 Proof.
   intros o d a b c O D A B C L.
   assert (BA : fbnd 310 (absolute_bv d)).

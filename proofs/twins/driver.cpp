@@ -487,54 +487,65 @@ void enclosure_lane_out(Out& o, const EnclosureT<V>& e, int k) {
   o.f(lane(e.hi, k)), o.f(lane(e.lo, k)), o.f(lane(e.radius, k));
 }
 
+// A triangle routine from its body on the parsed query: body(ray, triangle, out), or, with a leading integer
+// word (options, rule or index) at most max_word, body(word, ray, triangle, out). Any other arity or a
+// larger word is a wrong input line (false).
+template <class Body>
+ScalarRoutine triangle_routine(Body body) {
+  return [body](const Words& w, Out& o) {
+    if (w.size() != 15) return false;
+    const std::vector<double> x = doubles(w);
+    body(triangle_ray(x), triangle_of(x), o);
+    return true;
+  };
+}
+template <class Body>
+ScalarRoutine triangle_routine(std::uint64_t max_word, Body body) {
+  return [max_word, body](const Words& w, Out& o) {
+    if (w.size() != 16 || w[0] > max_word) return false;
+    const std::vector<double> x = doubles(w, 1);
+    body(w[0], triangle_ray(x), triangle_of(x), o);
+    return true;
+  };
+}
+
 const std::map<std::string, ScalarRoutine>& triangle_routines() {
   static const std::map<std::string, ScalarRoutine> table = {
       // triangle_filter_values and the full cascade's stage-1 signs (det3_filter_sign).
       {"tri_filter",
-       [](const Words& w, Out& o) {
-         if (w.size() != 15) return false;
-         const std::vector<double> x = doubles(w);
-         const TriangleFilterValues f = triangle_filter_values(triangle_ray(x), triangle_of(x));
+       triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const TriangleFilterValues f = triangle_filter_values(ray, tri);
          for (const FilterTerm<double>& t : f.value) o.f(t.v), o.f(t.m);
          o.f(f.absolute_d), o.f(f.absolute_e);
          for (int v = 0; v < triangle_value_count; ++v)
            o.i(det3_filter_lanes(f.value[static_cast<std::size_t>(v)], filter_relative(v), f.absolute(v)));
-         return true;
-       }},
+       })},
       // fast_relation's stage 1: triangle_relation_lanes with the π constant on every lane, then
       // triangle_num_filter.
       {"tri_relation_lanes",
-       [](const Words& w, Out& o) {
-         if (w.size() != 15) return false;
-         const std::vector<double> x = doubles(w);
-         const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(triangle_ray(x), triangle_of(x));
+       triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, tri);
          for (int k = 0; k < 4; ++k) o.f(s1.lanes.v[k]), o.f(s1.lanes.m[k]);
          o.f(s1.absolute[0]);
          const auto sign = det3_filter_lanes(s1.lanes, bounds::triangle_filter_pi_relative, s1.absolute);
          for (int k = 0; k < 4; ++k) o.i(sign[k]);
-         const TriangleNumFilter num = triangle_num_filter(triangle_ray(x), triangle_of(x));
+         const TriangleNumFilter num = triangle_num_filter(ray, tri);
          o.f(num.value.v), o.f(num.value.m), o.f(num.absolute);
          o.i(det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute));
-         return true;
-       }},
+       })},
       // triangle_compensated_values and each value's enclosure.
       {"tri_compensated",
-       [](const Words& w, Out& o) {
-         if (w.size() != 15) return false;
-         const std::vector<double> x = doubles(w);
-         const TriangleCompensatedValues c = triangle_compensated_values(triangle_ray(x), triangle_of(x));
+       triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const TriangleCompensatedValues c = triangle_compensated_values(ray, tri);
          for (const CompensatedTerm<double>& t : c.value) o.f(t.h), o.f(t.l), o.f(t.m);
          o.f(c.absolute_d), o.f(c.absolute_e);
          for (int v = 0; v < triangle_value_count; ++v) enclosure_lane_out(o, c.enclosure(v), 0);
-         return true;
-       }},
+       })},
       // fast_triangle_intersection's stages 1 and 2: triangle_compensated_lanes, the lanes' filter signs and
       // enclosures, den summed from the lanes with its filter sign and enclosure.
       {"tri_compensated_lanes",
-       [](const Words& w, Out& o) {
-         if (w.size() != 15) return false;
-         const std::vector<double> x = doubles(w);
-         const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(triangle_ray(x), triangle_of(x));
+       triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, tri);
          for (int k = 0; k < 4; ++k) o.f(s2.lanes.h[k]), o.f(s2.lanes.l[k]), o.f(s2.lanes.m[k]);
          for (int k = 0; k < 4; ++k) o.f(s2.absolute[k]);
          const Lanes4 relative{bounds::triangle_filter_pi_relative, bounds::triangle_filter_pi_relative,
@@ -547,29 +558,21 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
          o.f(den.h), o.f(den.l), o.f(den.m);
          o.i(det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, s2.absolute[0]));
          enclosure_lane_out(o, det3_enclosure(den, bounds::triangle_compensated_den_relative, s2.absolute[0]), 0);
-         return true;
-       }},
+       })},
       // Stage 3 (proofs/TriangleStage3Twins.v): value_expansion of determinant v (the first word, an integer
       // 0..4), its components, exact flag and sign.
       {"tri_expansion",
-       [](const Words& w, Out& o) {
-         if (w.size() != 16 || w[0] > 4) return false;
-         const std::vector<double> x = doubles(w, 1);
-         const ExpansionValue<192> e = value_expansion(triangle_ray(x), triangle_of(x), static_cast<int>(w[0]));
+       triangle_routine(4, [](std::uint64_t word, const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const ExpansionValue<192> e = value_expansion(ray, tri, static_cast<int>(word));
          o.i(static_cast<long long>(e.e.size));
          for (std::size_t k = 0; k < e.e.size; ++k) o.f(e.e.component[k]);
          o.i(e.exact ? 1 : 0);
          o.i(static_cast<int>(e.sign()));
-         return true;
-       }},
+       })},
       // The relation's fast path (proofs/TriangleCascadeTwins.v): fast_triangle_relation, and when it
       // answers the public relation(), for the owned rule and the closed one.
       {"tri_fast_relation",
-       [](const Words& w, Out& o) {
-         if (w.size() != 15) return false;
-         const std::vector<double> x = doubles(w);
-         const raykernel::Ray ray = triangle_ray(x);
-         const raykernel::Triangle tri = triangle_of(x);
+       triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
          for (const raykernel::TriangleRule rule : {raykernel::TriangleRule::owned, raykernel::TriangleRule::closed}) {
            const auto c = fast_triangle_relation(ray, tri, rule);
            o.i(c ? 1 : 0);
@@ -579,17 +582,12 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            const raykernel::TriangleClassification p = raykernel::relation(ray, tri, rule);
            o.i(static_cast<int>(p.relation)), o.i(static_cast<int>(p.location)), o.i(p.owned ? 1 : 0);
          }
-         return true;
-       }},
+       })},
       // The intersection's fast path (proofs/TriangleIntersectTwins.v): the options from the first word
       // (t + 2 · barycentric), fast_triangle_intersection and, when it answers, the public intersect_traced
       // and intersect, for the owned rule and the closed one.
       {"tri_fast_intersect",
-       [](const Words& w, Out& o) {
-         if (w.size() != 16 || w[0] > 3) return false;
-         const std::vector<double> x = doubles(w, 1);
-         const raykernel::Ray ray = triangle_ray(x);
-         const raykernel::Triangle tri = triangle_of(x);
+       triangle_routine(3, [](std::uint64_t word, const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
          auto intersection_out = [&o](const raykernel::TriangleIntersection& r) {
            o.i(static_cast<int>(r.relation)), o.i(static_cast<int>(r.location)), o.i(r.owned ? 1 : 0);
            o.f(r.t), o.f(r.barycentric[0]), o.f(r.barycentric[1]), o.f(r.barycentric[2]);
@@ -599,7 +597,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            o.i(static_cast<int>(r.relation_stage)), o.i(static_cast<int>(r.rounding_stage));
          };
          for (const raykernel::TriangleRule rule : {raykernel::TriangleRule::owned, raykernel::TriangleRule::closed}) {
-           const raykernel::TriangleOptions options{rule, (w[0] & 1) != 0, (w[0] & 2) != 0};
+           const raykernel::TriangleOptions options{rule, (word & 1) != 0, (word & 2) != 0};
            const auto a = fast_triangle_intersection(ray, tri, options);
            o.i(a ? 1 : 0);
            if (!a) continue;
@@ -607,19 +605,14 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            traced_out(raykernel::intersect_traced(ray, tri, options));
            intersection_out(raykernel::intersect(ray, tri, options));
          }
-         return true;
-       }},
+       })},
       // The full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options and the rule from the
       // first word (t + 2 · barycentric + 4 · closed), triangle_intersection_cascade and the public
       // intersect_traced; "0 0" for invalid input (then the public entry point must throw); an answer as "1"
       // (the classification is the exact stage's) or "2 relation location owned relation_stage rounding_stage t
       // ua ub uc" (four 0 when the rounding stage is the exact one).
       {"tri_cascade_intersect",
-       [](const Words& w, Out& o) {
-         if (w.size() != 16 || w[0] > 7) return false;
-         const std::vector<double> x = doubles(w, 1);
-         const raykernel::Ray ray = triangle_ray(x);
-         const raykernel::Triangle tri = triangle_of(x);
+       triangle_routine(7, [](std::uint64_t word, const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
          auto traced_out = [&o](const raykernel::TracedTriangleIntersection& r) {
            if (r.relation_stage == raykernel::Stage::exact) return o.i(1);
            const raykernel::TriangleIntersection& i = r.intersection;
@@ -628,32 +621,27 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            if (r.rounding_stage == raykernel::Stage::exact) return o.i(0), o.i(0), o.i(0), o.i(0);
            o.f(i.t), o.f(i.barycentric[0]), o.f(i.barycentric[1]), o.f(i.barycentric[2]);
          };
-         const raykernel::TriangleRule rule = (w[0] & 4) != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
-         const raykernel::TriangleOptions options{rule, (w[0] & 1) != 0, (w[0] & 2) != 0};
+         const raykernel::TriangleRule rule = (word & 4) != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
+         const raykernel::TriangleOptions options{rule, (word & 1) != 0, (word & 2) != 0};
          const auto [pub, invalid] = public_answer([&] { return raykernel::intersect_traced(ray, tri, options); });
          if (!(is_valid(ray) & is_valid(tri))) {
            o.i(0), o.i(invalid != -2 ? 0 : 9);
-           return true;
+           return;
          }
          traced_out(triangle_intersection_cascade(ray, tri, options));
          if (invalid != -2) o.i(9);
          else traced_out(pub);
-         return true;
-       }},
+       })},
       // The rule from the first word (1: closed); triangle_relation_cascade ("1", or "2 relation location owned
       // stage") and the public relation ("2 relation location owned", or "1" when it is the exact stage's: the
       // fast path did not answer and the cascade's stage is the exact one).
       {"tri_cascade_relation",
-       [](const Words& w, Out& o) {
-         if (w.size() != 16 || w[0] > 1) return false;
-         const std::vector<double> x = doubles(w, 1);
-         const raykernel::Ray ray = triangle_ray(x);
-         const raykernel::Triangle tri = triangle_of(x);
-         const raykernel::TriangleRule rule = w[0] != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
+       triangle_routine(1, [](std::uint64_t word, const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
+         const raykernel::TriangleRule rule = word != 0 ? raykernel::TriangleRule::closed : raykernel::TriangleRule::owned;
          const auto [pub, invalid] = public_answer([&] { return raykernel::relation(ray, tri, rule); });
          if (!(is_valid(ray) & is_valid(tri))) {
            o.i(0), o.i(invalid != -2 ? 0 : 9);
-           return true;
+           return;
          }
          const TracedTriangleClassification c = triangle_relation_cascade(ray, tri, rule);
          if (c.stage == raykernel::Stage::exact)
@@ -667,8 +655,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            o.i(1);
          else
            o.i(2), o.i(static_cast<int>(pub.relation)), o.i(static_cast<int>(pub.location)), o.i(pub.owned ? 1 : 0);
-         return true;
-       }},
+       })},
   };
   return table;
 }

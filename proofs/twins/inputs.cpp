@@ -249,6 +249,15 @@ std::vector<double> some_expansion(Source& s, std::size_t max_raw) {
   return expansion_components(s.query(), s.chance(2));
 }
 
+// A leading integer word (the options, the rule or a determinant's index, as its bit pattern), then a
+// ray–triangle query. The word is an argument, so it is drawn before the query (the order the seed fixes).
+Args word_then(std::uint64_t word, const std::vector<double>& query) {
+  Args a{std::bit_cast<double>(word)};
+  a.insert(a.end(), query.begin(), query.end());
+  return a;
+}
+Args word_then_triangle_query(Source& s, std::uint64_t word) { return word_then(word, s.triangle_query()); }
+
 using Generator = std::function<Args(Source&)>;
 
 const std::map<std::string, Generator>& generators() {
@@ -414,13 +423,7 @@ const std::map<std::string, Generator>& generators() {
       {"tri_compensated_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tri_fast_relation", [](Source& s) { return s.triangle_query(); }},
       // stage 3 (proofs/TriangleStage3Twins.v): the determinant's index 0..4 as an integer word, then the query
-      {"tri_expansion",
-       [](Source& s) {
-         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(5)))};
-         const std::vector<double> q = s.triangle_query();
-         a.insert(a.end(), q.begin(), q.end());
-         return a;
-       }},
+      {"tri_expansion", [](Source& s) { return word_then_triangle_query(s, s.below(5)); }},
       // fast_triangle_intersection (proofs/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric
       // (0..3) as an integer word, then the query
       // (1 in 4: an origin just off the triangle's plane above an inside point, the barycentrics asked, so that
@@ -428,34 +431,17 @@ const std::map<std::string, Generator>& generators() {
       {"tri_fast_intersect",
        [](Source& s) {
          if (s.chance(4)) {
-           Args a{std::bit_cast<double>(static_cast<std::uint64_t>(2 + s.below(2)))};
-           const std::vector<double> q = s.near_plane_triangle_query();
-           a.insert(a.end(), q.begin(), q.end());
-           return a;
+           const std::uint64_t options = 2 + s.below(2);
+           return word_then(options, s.near_plane_triangle_query());
          }
-         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(4)))};
-         const std::vector<double> q = s.triangle_query();
-         a.insert(a.end(), q.begin(), q.end());
-         return a;
+         return word_then_triangle_query(s, s.below(4));
        }},
       // the full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options asked and the rule
       // (t + 2 · barycentric + 4 · closed; for the relation 1 · closed) as an integer word, then a hard query
       // (ties through vertices and edges, where the owned rule's tie-break decides; degenerate, parallel,
       // coplanar; raw patterns)
-      {"tri_cascade_intersect",
-       [](Source& s) {
-         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(8)))};
-         const std::vector<double> q = s.triangle_query();
-         a.insert(a.end(), q.begin(), q.end());
-         return a;
-       }},
-      {"tri_cascade_relation",
-       [](Source& s) {
-         Args a{std::bit_cast<double>(static_cast<std::uint64_t>(s.below(2)))};
-         const std::vector<double> q = s.triangle_query();
-         a.insert(a.end(), q.begin(), q.end());
-         return a;
-       }},
+      {"tri_cascade_intersect", [](Source& s) { return word_then_triangle_query(s, s.below(8)); }},
+      {"tri_cascade_relation", [](Source& s) { return word_then_triangle_query(s, s.below(2)); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));
