@@ -113,3 +113,165 @@ Proof.
   intros x. right. split; [reflexivity|]. change (B2R fzero) with 0. rewrite Rabs_R0.
   apply Rmult_le_pos; [left; apply u_pos | apply Rabs_pos].
 Qed.
+
+(** ** A relative bound on the cross differences' low parts *)
+
+Lemma RN_up : forall x, Rabs (RN x) <= 2 * Rabs x + eta.
+Proof.
+  intros x. pose proof (RN_err x). pose proof (Rabs_close' x (RN x) _ ltac:(rewrite Rabs_minus_sym; eassumption)).
+  pose proof u_small. pose proof u_pos. pose proof (Rabs_pos x).
+  assert (u * Rabs x <= / 2 * Rabs x) by (apply Rmult_le_compat_r; lra). lra.
+Qed.
+
+Lemma RN_down : forall x, Rabs x <= 2 * Rabs (RN x) + eta.
+Proof.
+  intros x. pose proof (RN_err_round x). pose proof (Rabs_close' (RN x) x _ H).
+  pose proof u_small. pose proof u_pos. pose proof (Rabs_pos (RN x)).
+  assert (u * Rabs (RN x) <= / 2 * Rabs (RN x)) by (apply Rmult_le_compat_r; lra). lra.
+Qed.
+
+Lemma small_low_product : forall x xl y, fin xl = true -> Rabs (B2R xl) <= u * Rabs (B2R x) ->
+  Rabs (B2R xl * B2R y) <= u * Rabs (B2R x * B2R y).
+Proof.
+  intros x xl y _ L. rewrite !Rabs_mult. pose proof (Rabs_pos (B2R y)).
+  rewrite <- Rmult_assoc. apply Rmult_le_compat_r; assumption.
+Qed.
+
+Definition rel_low (lam kap : R) (l m : float) : Prop :=
+  is_nan l = true \/ (fin l = true /\ Rabs (B2R l) <= lam * Rabs (B2R m) + kap).
+
+(** A leaf product: |l| ≤ 32u·|p| + 32η. *)
+Theorem cleaf_mul_low_rel : forall yh yl zh zl, fin (fmul yh zh) = true -> small_low yh yl -> small_low zh zl ->
+  rel_low (32 * u) (32 * eta) (clb (cleaf_mul_b yh yl zh zl)) (fmul yh zh).
+Proof.
+  intros yh yl zh zl F Sy Sz.
+  pose proof (cleaf_mul_low_nf yh yl zh zl F Sy Sz) as NF.
+  change (clb (cleaf_mul_b yh yl zh zl)) with
+    (ffma yh zl (ffma yl zh (ffma yh zh (fneg (fmul yh zh))))) in *.
+  destruct (fmul_inv yh zh F) as [Fy [Fz Vp]].
+  destruct NF as [N|[Fl _]]; [now left | right; split; [exact Fl|]].
+  destruct (ffma_fin _ _ _ Fl) as [_ [Fzl FY]]. destruct (ffma_fin _ _ _ FY) as [Fyl [_ Fr]].
+  destruct Sy as [Ny|[_ Ly]]; [destruct yl; discriminate|].
+  destruct Sz as [Nz|[_ Lz]]; [destruct zl; discriminate|].
+  rewrite (ffma_val _ _ _ Fl), (ffma_val _ _ _ FY), (ffma_val _ _ _ Fr), fneg_val, Vp.
+  set (P := B2R yh * B2R zh).
+  pose proof (small_low_product yh yl zh Fyl Ly) as B1. fold P in B1.
+  pose proof (small_low_product zh zl yh Fzl Lz) as B2. rewrite (Rmult_comm (B2R zh)) in B2. fold P in B2.
+  rewrite (Rmult_comm (B2R zl)) in B2.
+  pose proof (RN_err P) as E0. pose proof (RN_down P) as D.
+  pose proof (RN_up (P + - RN P)) as R0. replace (P + - RN P) with (- (RN P - P)) in R0 by ring.
+  rewrite Rabs_Ropp in R0.
+  pose proof (RN_up (B2R yl * B2R zh + RN (P + - RN P))) as R1.
+  pose proof (Rabs_triang (B2R yl * B2R zh) (RN (P + - RN P))) as T1.
+  pose proof (RN_up (B2R yh * B2R zl + RN (B2R yl * B2R zh + RN (P + - RN P)))) as R2.
+  pose proof (Rabs_triang (B2R yh * B2R zl) (RN (B2R yl * B2R zh + RN (P + - RN P)))) as T2.
+  replace (P + - RN P) with (- (RN P - P)) in * by ring.
+  pose proof u_pos. pose proof eta_pos. pose proof u_small.
+  assert (U : u * Rabs P <= u * (2 * Rabs (RN P) + eta)) by (apply Rmult_le_compat_l; lra).
+  assert (u * eta <= eta) by (rewrite <- (Rmult_1_l eta) at 2; apply Rmult_le_compat_r; lra).
+  assert (0 <= u * Rabs (RN P)) by (apply Rmult_le_pos; [lra | apply Rabs_pos]). lra.
+Qed.
+
+Lemma bpow_971_mul : forall k, (0 <= k)%Z -> bpow radix2 (971 + k) = bpow radix2 k * bpow radix2 971.
+Proof. intros k _. rewrite bpow_plus. ring. Qed.
+
+(** A difference of two terms whose magnitudes are |h| (the leaf products): |l| ≤ 512u·|m| + 512η. *)
+Theorem cterm_sub_low_rel : forall a b,
+  fin (chb (cterm_sub_b a b)) = true -> fin (cmb (cterm_sub_b a b)) = true ->
+  B2R (cmb a) = Rabs (B2R (chb a)) -> B2R (cmb b) = Rabs (B2R (chb b)) ->
+  rel_low (32 * u) (32 * eta) (clb a) (chb a) -> rel_low (32 * u) (32 * eta) (clb b) (chb b) ->
+  rel_low (512 * u) (512 * eta) (clb (cterm_sub_b a b)) (cmb (cterm_sub_b a b)).
+Proof.
+  intros a b Fh Fm Ma Mb La Lb. unfold rel_low in La, Lb |- *. pose proof (cterm_sub_hi_fin a b Fh) as [Fa Fb].
+  change (clb (cterm_sub_b a b)) with (fadd (fsub (clb a) (clb b)) (snd (two_sum_b (chb a) (fneg (chb b))))).
+  change (cmb (cterm_sub_b a b)) with (fadd (cmb a) (cmb b)) in *.
+  change (chb (cterm_sub_b a b)) with (fst (two_sum_b (chb a) (fneg (chb b)))) in Fh.
+  rewrite two_sum_b_fst_eq in Fh.
+  destruct La as [Na|[Fla Ba]]; [left; apply StageTwoFinite.fadd_nan_l, fsub_nan_l; exact Na|].
+  destruct Lb as [Nb|[Flb Bb]]; [left; apply StageTwoFinite.fadd_nan_l, fsub_nan_r; exact Nb|].
+  destruct (two_sum_lo_small (chb a) (fneg (chb b)) Fa ltac:(now rewrite fneg_fin) Fh) as [No|[Flo Bo]];
+    [left; apply StageTwoFinite.fadd_nan_r; exact No|].
+  set (lo := snd (two_sum_b (chb a) (fneg (chb b)))) in *. clearbody lo.
+  rewrite (fadd_val _ _ Fh), fneg_val in Bo. rewrite (fadd_val _ _ Fm), Ma, Mb.
+  set (pa := B2R (chb a)) in *. set (pb := B2R (chb b)) in *.
+  pose proof (B2R_lt_overflow (chb a)) as Oa. pose proof (B2R_lt_overflow (chb b)) as Ob. fold pa pb in Oa, Ob.
+  pose proof u_pos. pose proof eta_pos. pose proof u_small. pose proof eta_small. pose proof u_bpow_1024.
+  pose proof (bpow_gt_0 radix2 971).
+  assert (Ua : u * Rabs pa <= bpow radix2 971) by (rewrite <- u_bpow_1024; apply Rmult_le_compat_l; lra).
+  assert (Ub : u * Rabs pb <= bpow radix2 971) by (rewrite <- u_bpow_1024; apply Rmult_le_compat_l; lra).
+  assert (E978 : bpow radix2 978 = 128 * bpow radix2 971).
+  { change 978%Z with (971 + 7)%Z. rewrite bpow_971_mul by lia. reflexivity. }
+  (* l_a − l_b *)
+  assert (D1 : Rabs (B2R (clb a) - B2R (clb b)) <= bpow radix2 978).
+  { unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp. lra. }
+  destruct (fbnd_of_RN 978 _ ltac:(lia) D1) as [L1 _].
+  destruct (fsub_fwd _ _ Fla Flb L1) as [Fs Vs].
+  (* the TwoSum low part *)
+  pose proof (RN_up (pa + - pb)) as R1.
+  assert (T1 : Rabs (pa + - pb) <= Rabs pa + Rabs pb) by (eapply Rle_trans; [apply Rabs_triang | rewrite Rabs_Ropp; lra]).
+  assert (Uo : u * Rabs (RN (pa + - pb)) <= u * (2 * (Rabs pa + Rabs pb) + eta)) by (apply Rmult_le_compat_l; lra).
+  assert (ue : u * eta <= eta) by (rewrite <- (Rmult_1_l eta) at 2; apply Rmult_le_compat_r; lra).
+  pose proof (RN_up (B2R (clb a) - B2R (clb b))) as R2.
+  assert (D2 : Rabs (B2R (fsub (clb a) (clb b)) + B2R lo) <= bpow radix2 978 * 4).
+  { rewrite Vs. eapply Rle_trans; [apply Rabs_triang|]. lra. }
+  assert (E980 : bpow radix2 978 * 4 = bpow radix2 980).
+  { change 980%Z with (978 + 2)%Z. rewrite bpow_plus. reflexivity. }
+  rewrite E980 in D2. destruct (fbnd_of_RN 980 _ ltac:(lia) D2) as [L2 _].
+  destruct (fadd_fwd _ _ Fs Flo L2) as [Fl Vl]. right. split; [exact Fl|]. rewrite Vl.
+  pose proof (RN_up (B2R (fsub (clb a) (clb b)) + B2R lo)) as R3.
+  pose proof (Rabs_triang (B2R (fsub (clb a) (clb b))) (B2R lo)) as T3. rewrite Vs in R3, T3.
+  pose proof (RN_down (Rabs pa + Rabs pb)) as R4.
+  rewrite (Rabs_pos_eq (Rabs pa + Rabs pb)) in R4 by (pose proof (Rabs_pos pa); pose proof (Rabs_pos pb); lra).
+  assert (U4 : u * (Rabs pa + Rabs pb) <= u * (2 * Rabs (RN (Rabs pa + Rabs pb)) + eta)) by (apply Rmult_le_compat_l; lra).
+  assert (T2 : Rabs (B2R (clb a) - B2R (clb b)) <= Rabs (B2R (clb a)) + Rabs (B2R (clb b)))
+    by (unfold Rminus; eapply Rle_trans; [apply Rabs_triang | rewrite Rabs_Ropp; lra]).
+  assert (0 <= u * Rabs (RN (Rabs pa + Rabs pb))) by (apply Rmult_le_pos; [lra | apply Rabs_pos]).
+  rewrite Vs. lra.
+Qed.
+
+(** fma(x, y, z) with |x·y| ≤ 2^k and z NaN or below 2^j, j ≤ k: NaN or below 2^(k+1). *)
+Lemma ffma_nf_gen : forall k j x y z, (j <= k)%Z -> (-1074 <= j)%Z -> (k + 1 <= 1023)%Z -> fin x = true ->
+  (is_nan y = true \/ (fin y = true /\ Rabs (B2R x * B2R y) <= bpow radix2 k)) ->
+  nf j z -> nf (k + 1) (ffma x y z).
+Proof.
+  intros k j x y z Hjk Hj Hk Fx [Ny|[Fy B1]] [Nz|[Fz Bz]]; [left; now apply ffma_nan_2 .. | left; now apply ffma_nan_3 | right].
+  assert (B3 : Rabs (B2R x * B2R y + B2R z) <= bpow radix2 (k + 1)).
+  { eapply Rle_trans; [apply Rabs_triang|]. rewrite bpow_plus. change (bpow radix2 1) with 2.
+    pose proof (bpow_le radix2 j k Hjk). lra. }
+  destruct (fbnd_of_RN (k + 1) _ ltac:(lia) B3) as [L3 R3].
+  destruct (ffma_fwd _ _ _ Fx Fy Fz L3) as [Ff Vf]. split; [exact Ff | now rewrite Vf].
+Qed.
+
+(** A scaled cross difference x·c: with x.h ⊗ c.h and |x.h| ⊗ c.m finite and c's low part within
+    512u·|c.m| + 512η, the low part is NaN or below 2^983. *)
+Theorem cleaf_scale_low_nf_rel : forall xh xl c, fin (fmul xh (chb c)) = true ->
+  fin (fmul (fabs xh) (cmb c)) = true -> small_low xh xl -> rel_low (512 * u) (512 * eta) (clb c) (cmb c) ->
+  nf 983 (clb (cleaf_scale_b xh xl c)).
+Proof.
+  intros xh xl c F Fm Sx Rc. change (clb (cleaf_scale_b xh xl c)) with
+    (ffma xh (clb c) (ffma xl (chb c) (ffma xh (chb c) (fneg (fmul xh (chb c)))))).
+  destruct (fmul_inv xh (chb c) F) as [Fx [Fc _]].
+  replace 983%Z with (982 + 1)%Z by lia.
+  apply (ffma_nf_gen 982 973); try lia; [exact Fx | | apply low_term_nf; assumption].
+  destruct Rc as [N|[Fl Bl]]; [now left | right; split; [exact Fl|]].
+  destruct (fmul_inv _ _ Fm) as [_ [_ Vm]]. rewrite fabs_val in Vm.
+  pose proof (B2R_lt_overflow (fmul (fabs xh) (cmb c))) as O. rewrite Vm in O.
+  pose proof (RN_down (Rabs (B2R xh) * B2R (cmb c))) as D. rewrite Rabs_mult, Rabs_Rabsolu in D.
+  pose proof (B2R_lt_overflow xh) as Ox.
+  pose proof u_pos. pose proof eta_pos. pose proof eta_small. pose proof u_bpow_1024.
+  pose proof (Rabs_pos (B2R xh)). pose proof (Rabs_pos (B2R (cmb c))).
+  rewrite Rabs_mult.
+  assert (P1 : Rabs (B2R xh) * Rabs (B2R (clb c)) <= Rabs (B2R xh) * (512 * u * Rabs (B2R (cmb c)) + 512 * eta))
+    by (apply Rmult_le_compat_l; assumption).
+  assert (P2 : u * (Rabs (B2R xh) * Rabs (B2R (cmb c))) <= u * (2 * bpow radix2 1024 + eta))
+    by (apply Rmult_le_compat_l; lra).
+  assert (P3 : eta * Rabs (B2R xh) <= eta * bpow radix2 1024) by (apply Rmult_le_compat_l; lra).
+  assert (P4 : eta * bpow radix2 1024 <= 1) by (unfold eta; rewrite <- bpow_plus; change 1 with (bpow radix2 0); apply bpow_le; lia).
+  assert (E982 : bpow radix2 982 = 2048 * bpow radix2 971).
+  { change 982%Z with (971 + 11)%Z. rewrite bpow_971_mul by lia. reflexivity. }
+  assert (u * eta <= eta) by (rewrite <- (Rmult_1_l eta) at 2; apply Rmult_le_compat_r; pose proof u_small; lra).
+  pose proof (bpow_ge_0 radix2 971).
+  assert (1024 <= bpow radix2 971).
+  { change 1024 with (bpow radix2 10). apply bpow_le; lia. }
+  lra.
+Qed.
