@@ -1,28 +1,29 @@
-(** * tri_drop_guard: stage 2's low parts of the ray–triangle cascade, for every bit pattern (partial).
+(** * tri_drop_guard for every bit pattern: stage 2's low parts of the ray–triangle cascade.
 
-    TriangleMutations.v proves [tri_drop_guard_same_unless_infinite_low]: the twin of
-    fast_triangle_intersection with det3_enclosure's guard |l| ≤ largest finite dropped answers as the twin
-    whenever the five stage-2 terms satisfy [no_infinite_low] (never a finite h with l = ±inf and a finite
-    radius).  This file proves, for every 64-bit pattern, the steps of that invariant that need no relative
-    bound (the approach of StageTwoFinite.v: "NaN, or finite and below 2^k", [nf]):
+    TriangleMutations.v proves [tri_drop_guard_same_unless_infinite_low]: the twin of fast_triangle_intersection
+    with det3_enclosure's guard |l| ≤ largest finite dropped (kernel/src/triangle/det3_stages.hpp, mutation
+    [tri_drop_guard] of proofs/mutation/run.py) answers as the twin whenever the five stage-2 terms satisfy
+    [no_infinite_low] (never a finite h with l = ±inf and a finite radius).  This file proves [no_infinite_low]
+    for the stage-2 terms as TriangleTwins.v computes them, for every 64-bit pattern of every input, and so
+    [tri_drop_guard_same]: the mutated twin equals the twin, unconditionally.
 
-    - [nan_or_finite_low_no_infinite_low]: a low part that is NaN or finite satisfies [no_infinite_low];
-    - [cleaf_mul_low_nf]: a leaf product y·z with y.h ⊗ z.h finite (and leaves whose low parts are NaN or
-      |l| ≤ u|h|, as TwoDiff's are: [two_diff_small_low]) has a low part NaN or below 2^974;
-    - [cterm_add_low_nf], [cterm_sub_low_nf]: a sum or difference with a finite high part of terms whose low
-      parts are NaN or below 2^k has a low part NaN or below 2^(k+2) (k ≥ 970);
-    - [cleaf_scale_low_nf]: x·c with x.h ⊗ c.h finite has a low part NaN or below 2^975 when c's low part is
-      NaN or |x.h · c.l| ≤ 2^972 (in the reals).
-
-    Not proved here (proofs/README.md, "What remains"): the hypothesis of [cleaf_scale_low_nf] for the cross
-    differences c = y_j z_k − y_k z_j of the stage-2 terms — it needs a relative bound |c.l| ≤ λ·c.m + κ
-    (with |x.h|·c.m < 2^1025 from a finite magnitude x.h ⊗ c.m), not an absolute one — and hence
-    [no_infinite_low] for πa, πb, πc, num, den and the unconditional [tri_drop_guard_same]. *)
+    The invariant (StageTwoFinite.v's approach, [nf k x]: x is NaN, or finite with |x| ≤ 2^k): wherever h and m
+    are finite, l is NaN or below 2^987 (2^991 for den).  Step by step:
+    - [cleaf_mul_low_rel]: a leaf product y·z with y.h ⊗ z.h finite, leaves whose low parts are NaN or
+      |l| ≤ u|h| ([leaf_ok]: d with l = 0, TwoDiff's (ê, err), [two_diff_leaf_ok]): l NaN or |l| ≤ 32u|p| + 32η;
+    - [cterm_sub_low_rel]: the cross difference c = y_j z_k − y_k z_j: l NaN or |l| ≤ 512u·|c.m| + 512η (a
+      relative bound: the outer product multiplies it by |x.h|, up to 2^1024);
+    - [cleaf_scale_low_nf_rel]: x·c with x.h ⊗ c.h and |x.h| ⊗ c.m finite: l NaN or below 2^983 (u·|x.h|·c.m
+      < 2^972);
+    - [cterm_add_low_nf], [cterm_sub_low_nf]: a sum with a finite high part adds at most 2 to the exponent;
+    - [cdet3_low_nf]: any determinant of [leaf_ok] leaves; [pi_no_infinite_low], [num_lane_no_infinite_low],
+      [den_no_infinite_low] (through [no_infinite_low_of_nf]: a finite radius needs a finite m);
+    - [tri_drop_guard_same]. *)
 
 From Coq Require Import Reals Lra Lia ZArith Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Constants Model Classification FloatCore ConstantsCpp Twins Liveness StageTwoFinite
-  TriangleTwins TriangleMutations.
+  TriangleTwins TriangleIntersectTwins TriangleMutations.
 Open Scope R_scope.
 
 (** ** From "NaN or finite" to [no_infinite_low] *)
@@ -274,4 +275,114 @@ Proof.
   assert (1024 <= bpow radix2 971).
   { change 1024 with (bpow radix2 10). apply bpow_le; lia. }
   lra.
+Qed.
+
+(** ** The determinant: every low part NaN or below 2^987 when h and m are finite *)
+
+Definition leaf_ok (h l : float) : Prop := fin h = true -> small_low h l.
+
+Lemma zero_leaf_ok : forall x, leaf_ok x fzero.
+Proof. intros x _. apply zero_small_low. Qed.
+
+Lemma two_diff_leaf_ok : forall v o, leaf_ok (fst (two_diff_b v o)) (snd (two_diff_b v o)).
+Proof.
+  intros v o Fa. unfold two_diff_b in *. rewrite two_sum_b_fst_eq in Fa |- *. destruct (fadd_fin _ _ Fa) as [Fp Fo].
+  exact (two_sum_lo_small v (fneg o) Fp Fo Fa).
+Qed.
+
+Lemma cross_low_rel : forall yh yl zh zl yh' yl' zh' zl', leaf_ok yh yl -> leaf_ok zh zl -> leaf_ok yh' yl' ->
+  leaf_ok zh' zl' ->
+  let c := cterm_sub_b (cleaf_mul_b yh yl zh zl) (cleaf_mul_b yh' yl' zh' zl') in
+  fin (chb c) = true -> fin (cmb c) = true -> rel_low (512 * u) (512 * eta) (clb c) (cmb c).
+Proof.
+  intros yh yl zh zl yh' yl' zh' zl' Oy Oz Oy' Oz' c Fh Fm.
+  destruct (cterm_sub_hi_fin _ _ Fh) as [F1 F2]. cbn [chb cleaf_mul_b] in F1, F2.
+  destruct (fmul_fin _ _ F1) as [Fy Fz]. destruct (fmul_fin _ _ F2) as [Fy' Fz'].
+  apply cterm_sub_low_rel; try assumption; try (apply fabs_val);
+    apply cleaf_mul_low_rel; auto.
+Qed.
+
+Lemma scale_low_nf : forall xh xl yh yl zh zl yh' yl' zh' zl', leaf_ok xh xl -> leaf_ok yh yl -> leaf_ok zh zl ->
+  leaf_ok yh' yl' -> leaf_ok zh' zl' ->
+  let s := cleaf_scale_b xh xl (cterm_sub_b (cleaf_mul_b yh yl zh zl) (cleaf_mul_b yh' yl' zh' zl')) in
+  fin (chb s) = true -> fin (cmb s) = true -> nf 983 (clb s).
+Proof.
+  intros xh xl yh yl zh zl yh' yl' zh' zl' Ox Oy Oz Oy' Oz' s Fh Fm.
+  change (fin (fmul xh (chb (cterm_sub_b (cleaf_mul_b yh yl zh zl) (cleaf_mul_b yh' yl' zh' zl')))) = true) in Fh.
+  change (fin (fmul (fabs xh) (cmb (cterm_sub_b (cleaf_mul_b yh yl zh zl) (cleaf_mul_b yh' yl' zh' zl')))) = true) in Fm.
+  destruct (fmul_fin _ _ Fh) as [Fx Fc]. destruct (fmul_fin _ _ Fm) as [_ Fcm].
+  apply cleaf_scale_low_nf_rel; try assumption; [apply Ox; exact Fx|].
+  apply cross_low_rel; assumption.
+Qed.
+
+Lemma cterm_add_fin : forall a b, fin (chb (cterm_add_b a b)) = true -> fin (cmb (cterm_add_b a b)) = true ->
+  fin (chb a) = true /\ fin (cmb a) = true /\ fin (chb b) = true /\ fin (cmb b) = true.
+Proof.
+  intros a b Fh Fm. destruct (cterm_add_hi_fin a b Fh) as [Ha Hb]. destruct (fadd_fin _ _ Fm) as [Ma Mb]. auto.
+Qed.
+
+Theorem cdet3_low_nf : forall xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2,
+  leaf_ok xh0 xl0 -> leaf_ok xh1 xl1 -> leaf_ok xh2 xl2 -> leaf_ok yh0 yl0 -> leaf_ok yh1 yl1 -> leaf_ok yh2 yl2 ->
+  leaf_ok zh0 zl0 -> leaf_ok zh1 zl1 -> leaf_ok zh2 zl2 ->
+  let t := cdet3_b xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2 in
+  fin (chb t) = true -> fin (cmb t) = true -> nf 987 (clb t).
+Proof.
+  intros xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2 X0 X1 X2 Y0 Y1 Y2 Z0 Z1 Z2 t Fh Fm.
+  unfold t, cdet3_b in *.
+  destruct (cterm_add_fin _ _ Fh Fm) as [H01 [M01 [H2 M2]]].
+  destruct (cterm_add_fin _ _ H01 M01) as [H0 [M0 [H1 M1]]].
+  replace 987%Z with (985 + 2)%Z by lia. apply cterm_add_low_nf; try lia; try assumption.
+  - replace 985%Z with (983 + 2)%Z by lia. apply cterm_add_low_nf; try lia; try assumption;
+      apply scale_low_nf; assumption.
+  - apply (nf_mono 983); [lia|]. apply scale_low_nf; assumption.
+Qed.
+
+(** ** [no_infinite_low] for the five stage-2 terms *)
+
+Lemma no_infinite_low_of_nf : forall t K A k, (k <= 1023)%Z ->
+  (fin (chb t) = true -> fin (cmb t) = true -> nf k (clb t)) -> no_infinite_low t K A.
+Proof.
+  intros t K A k _ H Fh Fl Nl. destruct (fin (fadd (fmul K (cmb t)) A)) eqn:Fr; [|reflexivity].
+  destruct (fadd_fin _ _ Fr) as [Fp _]. destruct (fmul_fin _ _ Fp) as [_ Fm].
+  destruct (H Fh Fm) as [N|[F _]]; congruence.
+Qed.
+
+Lemma pi_low_nf : forall o d p q, fin (chb (pi_stage2_b o d p q)) = true -> fin (cmb (pi_stage2_b o d p q)) = true ->
+  nf 987 (clb (pi_stage2_b o d p q)).
+Proof.
+  intros o d p q. unfold pi_stage2_b. apply cdet3_low_nf; first [apply zero_leaf_ok | apply two_diff_leaf_ok].
+Qed.
+
+Lemma num_lane_low_nf : forall o a b c, fin (chb (num_stage2_lane_b o a b c)) = true ->
+  fin (cmb (num_stage2_lane_b o a b c)) = true -> nf 987 (clb (num_stage2_lane_b o a b c)).
+Proof.
+  intros o a b c. unfold num_stage2_lane_b. apply cdet3_low_nf; apply two_diff_leaf_ok.
+Qed.
+
+Theorem pi_no_infinite_low : forall o d p q K A, no_infinite_low (pi_stage2_b o d p q) K A.
+Proof. intros. apply (no_infinite_low_of_nf _ _ _ 987); [lia | apply pi_low_nf]. Qed.
+
+Theorem num_lane_no_infinite_low : forall o a b c K A, no_infinite_low (num_stage2_lane_b o a b c) K A.
+Proof. intros. apply (no_infinite_low_of_nf _ _ _ 987); [lia | apply num_lane_low_nf]. Qed.
+
+Theorem den_no_infinite_low : forall o d a b c K A,
+  no_infinite_low (cterm_add_b (cterm_add_b (pi_stage2_b o d b c) (pi_stage2_b o d c a)) (pi_stage2_b o d a b)) K A.
+Proof.
+  intros. apply (no_infinite_low_of_nf _ _ _ 991); [lia|]. intros Fh Fm.
+  destruct (cterm_add_fin _ _ Fh Fm) as [H01 [M01 [H2 M2]]].
+  destruct (cterm_add_fin _ _ H01 M01) as [H0 [M0 [H1 M1]]].
+  replace 991%Z with (989 + 2)%Z by lia. apply cterm_add_low_nf; try lia; try assumption.
+  - replace 989%Z with (987 + 2)%Z by lia. apply cterm_add_low_nf; try lia; try assumption; apply pi_low_nf; assumption.
+  - apply (nf_mono 987); [lia|]. apply pi_low_nf; assumption.
+Qed.
+
+(** ** The mutation: the mutated twin equals the twin for every bit pattern *)
+
+Theorem tri_drop_guard_same : forall want_t want_u (o d a b c : TVec),
+  fast_intersection_drop_guard_b want_t want_u o d a b c = fast_intersection_tri_b want_t want_u o d a b c.
+Proof.
+  intros want_t want_u o d a b c. apply tri_drop_guard_same_unless_infinite_low;
+    [ exact (pi_no_infinite_low _ _ _ _ _ _) | exact (pi_no_infinite_low _ _ _ _ _ _)
+    | exact (pi_no_infinite_low _ _ _ _ _ _) | exact (num_lane_no_infinite_low _ _ _ _ _ _)
+    | exact (den_no_infinite_low _ _ _ _ _ _ _) ].
 Qed.
