@@ -411,6 +411,17 @@ Definition twin_results_triangle_mutations :=
    TriangleMutations.tri_drop_guard_same_unless_infinite_low).
 Goal True. idtac "@@ den_filter_constant_monotone tri_call_site_den_same_unless_between drop_guard_consumers_agree tri_drop_guard_same_unless_infinite_low". Abort.
 Print Assumptions twin_results_triangle_mutations.
+(** TriangleStageTwoFinite.v: tri_drop_guard for every bit pattern (stage 2's low parts NaN or finite where h and m
+    are finite, hence no_infinite_low for the five stage-2 terms) *)
+From Raykernel Require TriangleStageTwoFinite.
+Definition twin_results_triangle_drop_guard :=
+  (TriangleStageTwoFinite.cdet3_low_nf,
+   TriangleStageTwoFinite.pi_no_infinite_low,
+   TriangleStageTwoFinite.num_lane_no_infinite_low,
+   TriangleStageTwoFinite.den_no_infinite_low,
+   TriangleStageTwoFinite.tri_drop_guard_same).
+Goal True. idtac "@@ cdet3_low_nf pi_no_infinite_low num_lane_no_infinite_low den_no_infinite_low tri_drop_guard_same". Abort.
+Print Assumptions twin_results_triangle_drop_guard.
 (** TriangleCascadeFlowCorrect.v: the ray–triangle cascade's control flow (ray_triangle_cascade.cpp,
     TriangleCascade), its answers before the exact stage, for every bit pattern *)
 From Raykernel Require TriangleCascadeFlowCorrect.
