@@ -437,8 +437,9 @@ Print Assumptions TriangleCascadeQuotients.tc_intersect_b_correct.
 Definition twin_results_triangle_cascade_quotients :=
   (TriangleCascadeQuotients.tc_stage2_quotient_correct,
    TriangleCascadeQuotients.tc_quot_tail_correct,
-   TriangleCascadeQuotients.tc_intersect_b_eq).
-Goal True. idtac "@@ tc_stage2_quotient_correct tc_quot_tail_correct tc_intersect_b_eq". Abort.
+   TriangleCascadeQuotients.tc_intersect_b_eq,
+   TriangleCascadeQuotients.tc_intersect_b_unasked).
+Goal True. idtac "@@ tc_stage2_quotient_correct tc_quot_tail_correct tc_intersect_b_eq tc_intersect_b_unasked". Abort.
 Print Assumptions twin_results_triangle_cascade_quotients.
 (** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
     fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)

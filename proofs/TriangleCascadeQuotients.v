@@ -17,7 +17,8 @@
       to the exact stage) is finite and RN(num/den), RN(πa/den), RN(πb/den), RN(πc/den) with
       πa = π(b, c), πb = π(c, a), πc = π(a, b) — the quotient part of TriangleIntersectTheorem.v's
       [intersection_means] for the fast path (which also has den ≠ 0 and finite inputs: the cascade's twin
-      is stated for every bit pattern, its callers pass valid inputs only). *)
+      is stated for every bit pattern, its callers pass valid inputs only);
+    - [tc_intersect_b_unasked]: a quotient not asked is NaN in every answer. *)
 
 From Coq Require Import Reals Lra Lia ZArith Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -265,4 +266,52 @@ Proof.
               (tc_r3_correct o d a b c 4) (tc_r3_correct o d a b c 0)
               (tc_r3_correct o d a b c 1) (tc_r3_correct o d a b c 2) E) as [_ R].
   exact R.
+Qed.
+
+(** ** A quotient not asked is NaN *)
+
+Lemma tc_certain_qstep : forall x q, fst x = true -> qstep x q = x.
+Proof. intros [c v] q F. cbn [fst] in F. subst c. reflexivity. Qed.
+
+Lemma tc_certain_qs3 : forall x p, fst x = true -> tc_qs3 x p = x.
+Proof. intros [c v] p F. cbn [fst] in F. subst c. reflexivity. Qed.
+
+Lemma tc_quot_tail_nan : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts',
+  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 = TCDecided cl' rs' t ua ub uc ts' ->
+  (fst x0 = true /\ snd x0 = QNaN -> t = QNaN) /\ (fst x1 = true /\ snd x1 = QNaN -> ua = QNaN) /\
+  (fst x2 = true /\ snd x2 = QNaN -> ub = QNaN) /\ (fst x3 = true /\ snd x3 = QNaN -> uc = QNaN).
+Proof.
+  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts'.
+  unfold tc_quot_tail, tc_quot_tail2, tc_quot_tail3.
+  destruct (tc_all x0 x1 x2 x3).
+  { intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [_ S]; exact S. }
+  destruct (tc_all (qstep x0 q0) (qstep x1 q1) (qstep x2 q2) (qstep x3 q3)).
+  { intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [F S]; rewrite tc_certain_qstep; assumption. }
+  destruct (tc_all _ _ _ _).
+  - intros E. injection E as _ _ <- <- <- <- _.
+    tsplit; intros [F S]; rewrite tc_certain_qs3, tc_certain_qstep; try rewrite tc_certain_qstep; assumption.
+  - intros E. injection E as _ _ <- <- <- <- _.
+    tsplit; intros [F S]; rewrite tc_certain_qs3, tc_certain_qstep; try rewrite tc_certain_qstep; try assumption;
+      unfold qfinal; rewrite F; exact S.
+Qed.
+
+(** [triangle_intersection_cascade] through its twin: a quotient not asked is NaN, in every answer. *)
+Theorem tc_intersect_b_unasked : forall want_t want_u owned_rule o d a b c cl rs t ua ub uc ts,
+  tc_intersect_b want_t want_u owned_rule o d a b c = TCDecided cl rs t ua ub uc ts ->
+  (want_t = false -> t = QNaN) /\ (want_u = false -> ua = QNaN /\ ub = QNaN /\ uc = QNaN).
+Proof.
+  intros wt wu rule o d a b c cl rs t ua ub uc ts. rewrite tc_intersect_b_eq.
+  destruct (tc_classify_b o d a b c rule) as [cl0 f0]. destruct (tf_exact f0); [intros E; discriminate E|].
+  destruct (_ || _)%bool.
+  { intros E. injection E as _ _ <- <- <- <- _. split; intros _; tsplit; reflexivity. }
+  destruct (if wt then tc_sign_b o d a b c 4 f0 else (0%Z, f0)) as [n0 f1].
+  destruct (if wu then tc_sign_b o d a b c 0 f1 else (0%Z, f1)) as [n1 f2].
+  destruct (if wu then tc_sign_b o d a b c 1 f2 else (0%Z, f2)) as [n2 f3].
+  destruct (if wu then tc_sign_b o d a b c 2 f3 else (0%Z, f3)) as [n3 f4].
+  destruct (tf_exact f4).
+  { intros E. injection E as _ _ <- <- <- <- _. split; intros ->; tsplit; reflexivity. }
+  intros E. destruct (tc_quot_tail_nan _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ E) as [T0 [T1 [T2 T3]]].
+  split.
+  - intros ->. apply T0. split; reflexivity.
+  - intros ->. tsplit; [apply T1 | apply T2 | apply T3]; split; reflexivity.
 Qed.
