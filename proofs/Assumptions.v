@@ -439,6 +439,19 @@ Definition twin_results_triangle_flow :=
    TriangleCascadeFlowCorrect.tc_stage3_quotient_correct).
 Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct". Abort.
 Print Assumptions twin_results_triangle_flow.
+(** TriangleCascadeQuotients.v: the ray–triangle cascade's whole answer before the exact stage
+    (ray_triangle_cascade.cpp, triangle_intersection_cascade): §6's classification, t = RN(num/den),
+    barycentrics RN(π_k/den), for every bit pattern *)
+From Raykernel Require TriangleCascadeQuotients.
+Goal True. idtac "@@ tc_intersect_b_correct". Abort.
+Print Assumptions TriangleCascadeQuotients.tc_intersect_b_correct.
+Definition twin_results_triangle_cascade_quotients :=
+  (TriangleCascadeQuotients.tc_stage2_quotient_correct,
+   TriangleCascadeQuotients.tc_quot_tail_correct,
+   TriangleCascadeQuotients.tc_intersect_b_eq,
+   TriangleCascadeQuotients.tc_intersect_b_unasked).
+Goal True. idtac "@@ tc_stage2_quotient_correct tc_quot_tail_correct tc_intersect_b_eq tc_intersect_b_unasked". Abort.
+Print Assumptions twin_results_triangle_cascade_quotients.
 (** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
     fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)
 From Raykernel Require TriangleIntersectTheorem.

@@ -17,7 +17,8 @@
     - of the quotients: [tc_zero_quotient_correct] (an exactly zero numerator's +0 is RN(0/den)) and
       [tc_stage3_quotient_correct] (stage 3's [round_quotient] on the tail enclosures, over den's tail
       enclosure or stage 2's: when certain, den ≠ 0 and the value is RN(value/den)).  Stage 2's rounding over
-      the broadcast divisor ([shared_divisor_b]) is not proved here (proofs/README.md, "What remains").
+      the broadcast divisor ([shared_divisor_b]) and the whole answer are proved in
+      TriangleCascadeQuotients.v ([tc_intersect_b_correct]).
     Lemmas of the same kind as TriangleIntersectTheorem.v's (another file, written in parallel) carry
     other names here ([tcf_*]). *)
 

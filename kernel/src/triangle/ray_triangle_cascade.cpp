@@ -27,6 +27,8 @@
 //   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
 //   the full cascade:    proofs/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`, `tc_stage3_quotient_correct`
+//                        proofs/TriangleCascadeQuotients.v, `tc_intersect_b_correct` (classification and every
+//                        quotient of triangle_intersection_cascade's answer before the exact stage)
 //                        (TriangleCascade's control flow twinned in TriangleCascadeFlowTwins.v and run against this
 //                        code by the differential runner, routines tri_cascade_intersect, tri_cascade_relation)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
