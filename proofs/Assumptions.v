@@ -465,3 +465,14 @@ Definition twin_results_triangle_intersection :=
    TriangleIntersectTheorem.den_lane_sign).
 Goal True. idtac "@@ round_quotient_shared_sound decide_nonzero_contract pi_lane_sign num_lane_sign den_lane_sign". Abort.
 Print Assumptions twin_results_triangle_intersection.
+(** TriangleDenCertain.v (with QuotientDivisorBound.v): a quotient certified over den's divisor implies den's
+    stage-1 filter sign certain; the mutation tri_call_site_den changes no answer of fast_triangle_intersection *)
+From Raykernel Require QuotientDivisorBound TriangleDenCertain.
+Goal True. idtac "@@ tri_call_site_den_same". Abort.
+Print Assumptions TriangleDenCertain.tri_call_site_den_same.
+Definition twin_results_den_certain :=
+  (QuotientDivisorBound.round_quotient_certain_divisor,
+   TriangleDenCertain.den_filter_margin,
+   TriangleDenCertain.den_quotient_filter_certain).
+Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
+Print Assumptions twin_results_den_certain.

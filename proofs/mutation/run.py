@@ -215,11 +215,12 @@ MUTATIONS = [
 ]
 
 # Mutations that change no observable behaviour (proofs/README.md, "Triangle mutations"): reported, not counted as
-# escapes. Proved on the twin of fast_triangle_intersection in proofs/TriangleMutations.v except one case each
-# (argued in the README): tri_call_site_den, `tri_call_site_den_same_unless_between` (the mutated twin answers as
-# the twin unless den's view lies between the 8u and 10u bounds, where stage 2 cannot round a quotient over den);
-# tri_drop_guard, `tri_drop_guard_same_unless_infinite_low` (the same unless a stage-2 term has a finite h, an
-# infinite l and a finite magnitude, which |l| <= a few u*m excludes).
+# escapes. Proved on the twin of fast_triangle_intersection: tri_call_site_den for every bit pattern,
+# `tri_call_site_den_same` (proofs/TriangleDenCertain.v: outside the window between the 8u and 10u bounds by
+# TriangleMutations.v's `tri_call_site_den_same_unless_between`; inside it neither twin answers, since a quotient
+# certified over den's divisor makes den's 10u filter certain, `den_quotient_filter_certain`);
+# tri_drop_guard for every bit pattern, `tri_drop_guard_same` (proofs/TriangleStageTwoFinite.v: the mutated twin
+# equals the twin, stage 2's low parts being NaN or bounded wherever h and m are finite).
 UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard"}
 
 
@@ -352,7 +353,7 @@ def main():
             uncaught.append(name)
     unobservable = [name for name in uncaught if name in UNOBSERVABLE]
     if unobservable:
-        print("\nnot caught, argued unobservable (proofs/README.md, the triangle mutations): " + ", ".join(unobservable))
+        print("\nnot caught, proved unobservable (proofs/README.md, the triangle mutations): " + ", ".join(unobservable))
     uncaught = [name for name in uncaught if name not in UNOBSERVABLE]
     if uncaught:
         print("\nNOT CAUGHT: " + ", ".join(uncaught))
