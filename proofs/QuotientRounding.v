@@ -377,6 +377,96 @@ Proof.
   repeat split; [exact X | rewrite u_val in *; nra | rewrite u_val in *; nra].
 Qed.
 
+(** The certifying test, read back (used by [round_quotient_sound] and QuotientDivisorBound.v's
+    [round_quotient_certain_divisor]): with q0 the first quotient, q the candidate, w its Fast2Sum tail,
+    D the divisor's high part and Dlo its low part (D + Dlo = s, the divisor's double-double), a passed test
+    RN((x ⊕ y)·(1 + 2^-45)) < RN(h·|D|) bounds the real left side Z by h·|D|; hence E_d ≤ u·|D| and any
+    den within E_d of s has |den| ≥ (1 − 2u)|D|. *)
+Lemma quotient_test_certifies : forall (En Ed q0 q w D Dlo s den : R),
+  binary64 En -> binary64 w -> 0 <= En -> Rabs (den - s) <= Ed -> D + Dlo = s -> Rabs Dlo <= u * Rabs D ->
+  0 < Rabs D -> 0 < Rabs q0 * Rabs D -> eta * Rabs D <= / 2 ^ 170 * (Rabs q0 * Rabs D) ->
+  eta <= / 2 ^ 170 * (Rabs q0 * Rabs D) -> Q900 <= Rabs q -> Rabs q <= (1 + 7 * u) * Rabs q0 ->
+  let h := half_gap q in
+  let x := RN (RN (RN (Rabs q0 * Ed) + En) * (1 + / 512)) in
+  let y := RN (RN (RN (Rabs q0 * (32 * (u * u))) + Rabs w) * Rabs D) in
+  RN (RN (x + y) * (1 + / 35184372088832)) < RN (h * Rabs D) ->
+  (1 + / 512) * (En + Rabs q0 * Ed) + 32 * (u * u) * (Rabs q0 * Rabs D) + Rabs w * Rabs D < h * Rabs D /\
+  Ed <= u * Rabs D /\ (1 - 2 * u) * Rabs D <= Rabs den.
+Proof.
+  intros En Ed q0 q w D Dlo s den BEn Bw PEn Hd XD LD DP AP Eta_aD Eta_A Gq Hq1 h x y Test.
+  set (xb := RN (Rabs q0 * Ed)) in *. set (xs := RN (xb + En)) in *.
+  set (yb := RN (Rabs q0 * (32 * (u * u)))) in *. set (ys := RN (yb + Rabs w)) in *.
+  set (xy := RN (x + y)) in *.
+  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof Q900_normal as QN.
+  assert (PEd : 0 <= Ed) by (eapply Rle_trans; [apply Rabs_pos | exact Hd]).
+  set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
+  destruct (half_gap_bounds q) as [Ph _]. fold h in Ph.
+  assert (Hh : h <= u * Rabs q) by (apply half_gap_le_u; lra).
+  set (B := aq * Ed).
+  assert (PB : 0 <= B) by (unfold B; apply Rmult_le_pos; [apply Rabs_pos | lra]).
+  assert (Exb : Rabs (xb - B) <= u * B + eta).
+  { pose proof (RN_err B) as E. rewrite (Rabs_nonneg_eq B PB) in E. exact E. }
+  assert (Pxb : 0 <= xb) by (apply RN_nonneg; exact PB).
+  assert (Exs : Rabs (xs - (xb + En)) <= u * (xb + En)).
+  { pose proof (RN_plus_err xb En ltac:(apply binary64_RN) BEn) as E.
+    rewrite (Rabs_nonneg_eq (xb + En)) in E by lra. exact E. }
+  assert (Pxs : 0 <= xs) by (apply RN_nonneg; lra).
+  assert (Ex : Rabs (x - xs * (1 + / 512)) <= u * (xs * (1 + / 512)) + eta).
+  { pose proof (RN_err (xs * (1 + / 512))) as E.
+    rewrite (Rabs_nonneg_eq (xs * (1 + / 512))) in E by (apply Rmult_le_pos; lra). exact E. }
+  assert (Paq : 0 <= aq) by apply Rabs_pos.
+  assert (Pyb0 : 0 <= aq * (32 * (u * u))) by (rewrite u_val; apply Rmult_le_pos; lra).
+  assert (Eyb : Rabs (yb - aq * (32 * (u * u))) <= u * (aq * (32 * (u * u))) + eta).
+  { pose proof (RN_err (aq * (32 * (u * u)))) as E. rewrite (Rabs_nonneg_eq _ Pyb0) in E. exact E. }
+  assert (Pyb : 0 <= yb) by (apply RN_nonneg; exact Pyb0).
+  pose proof (Rabs_pos w) as Pw.
+  assert (Eys : Rabs (ys - (yb + Rabs w)) <= u * (yb + Rabs w)).
+  { pose proof (RN_plus_err yb (Rabs w) ltac:(apply binary64_RN) (binary64_abs w Bw)) as E.
+    rewrite (Rabs_nonneg_eq (yb + Rabs w)) in E by lra. exact E. }
+  assert (Pys : 0 <= ys) by (apply RN_nonneg; lra).
+  assert (Ey : Rabs (y - ys * aD) <= u * (ys * aD) + eta).
+  { pose proof (RN_err (ys * aD)) as E. rewrite (Rabs_nonneg_eq (ys * aD)) in E by (apply Rmult_le_pos; lra). exact E. }
+  assert (Fys : (1 - u) * (yb + Rabs w) * aD <= ys * aD).
+  { apply Rmult_le_compat_r; [lra|]. apply Rabs_bounds in Eys. lra. }
+  assert (Fyb : ((1 - u) * (aq * (32 * (u * u))) - eta) * aD <= yb * aD).
+  { apply Rmult_le_compat_r; [lra|]. apply Rabs_bounds in Eyb. lra. }
+  assert (Px : 0 <= x) by (apply RN_nonneg, Rmult_le_pos; lra).
+  assert (Py : 0 <= y) by (apply RN_nonneg, Rmult_le_pos; lra).
+  assert (Exy : Rabs (xy - (x + y)) <= u * (x + y)).
+  { pose proof (RN_plus_err x y ltac:(apply binary64_RN) ltac:(apply binary64_RN)) as E.
+    rewrite (Rabs_nonneg_eq (x + y)) in E by lra. exact E. }
+  assert (Pxy : 0 <= xy) by (apply RN_nonneg; lra).
+  assert (EL : Rabs (RN (xy * (1 + / 35184372088832)) - xy * (1 + / 35184372088832)) <=
+               u * (xy * (1 + / 35184372088832)) + eta).
+  { pose proof (RN_err (xy * (1 + / 35184372088832))) as E.
+    rewrite (Rabs_nonneg_eq (xy * (1 + / 35184372088832))) in E by (apply Rmult_le_pos; lra). exact E. }
+  assert (ER : Rabs (RN (h * aD) - h * aD) <= u * (h * aD) + eta).
+  { pose proof (RN_err (h * aD)) as E. rewrite (Rabs_nonneg_eq (h * aD)) in E by (apply Rmult_le_pos; lra). exact E. }
+  set (Z := (1 + / 512) * (En + B) + 32 * (u * u) * (aq * aD) + Rabs w * aD).
+  assert (PwD : 0 <= Rabs w * aD) by (apply Rmult_le_pos; lra).
+  assert (Eta_aD' : eta * aD <= / 2 ^ 170 * (aq * aD)) by exact Eta_aD.
+  assert (TZ : Z < h * aD).
+  { apply Rabs_bounds in Exb. apply Rabs_bounds in Exs. apply Rabs_bounds in Ex.
+    apply Rabs_bounds in Eyb. apply Rabs_bounds in Eys. apply Rabs_bounds in Ey.
+    apply Rabs_bounds in Exy. apply Rabs_bounds in EL. apply Rabs_bounds in ER.
+    unfold Z. rewrite u_val in *. simpl in *. lra. }
+  assert (HhD : h * aD <= u * Rabs q * aD) by (apply Rmult_le_compat_r; lra).
+  assert (HqD : Rabs q * aD <= (1 + 7 * u) * (aq * aD)).
+  { rewrite <- Rmult_assoc. apply Rmult_le_compat_r; lra. }
+  assert (EdD : Ed <= u * aD).
+  { assert (aq * ((1 + / 512) * Ed) < aq * (u * (1 + 7 * u) * aD)).
+    { unfold Z, B in TZ, HqD. rewrite u_val in *. lra. }
+    assert (aqP : 0 < aq) by (apply Rmult_lt_reg_r with aD; [exact DP | rewrite Rmult_0_l; exact AP]).
+    apply Rmult_lt_reg_l in H; [|exact aqP]. rewrite u_val in *. lra. }
+  assert (Hden : (1 - 2 * u) * aD <= Rabs den).
+  { assert (aD <= Rabs den + Rabs (den - s) + Rabs Dlo).
+    { unfold aD. replace D with (den - (den - s) - Dlo) by lra.
+      unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp.
+      pose proof (Rabs_triang den (- (den + - s))). rewrite Rabs_Ropp in *. lra. }
+    lra. }
+  split; [exact TZ | split; assumption].
+Qed.
+
 (** ** Main theorem: whenever round_quotient says certain, den ≠ 0 and t = RN(num/den). *)
 Theorem round_quotient_sound : forall (n d : Enclosure) (num den : R),
   binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
@@ -432,79 +522,17 @@ Proof.
     [|discriminate].
   intros _.
   (* constants and signs *)
-  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof Q900_pos as HQ.
-  pose proof Q900_normal as QN.
+  pose proof u_pos as Hu. pose proof eta_pos as He.
   assert (PEn : 0 <= En) by (eapply Rle_trans; [apply Rabs_pos | exact Hn]).
   assert (PEd : 0 <= Ed) by (eapply Rle_trans; [apply Rabs_pos | exact Hd]).
+  (* the test bounds Z below h |D|, hence |den| ≥ (1 − 2u)|D| *)
+  destruct (quotient_test_certifies En Ed q0 q w D Dlo (hi dd + lo dd) den BEn Bw PEn Hd XD LD DP AP
+              Eta_aD Eta_A Gq Hq1 Test) as [TZ [_ Hden]].
+  fold h in TZ.
   set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
-  (* the half gap of q *)
-  destruct (half_gap_bounds q) as [Ph _]. fold h in Ph.
-  assert (Hh : h <= u * Rabs q) by (apply half_gap_le_u; lra).
-  (* the rounded test, term by term *)
-  set (B := aq * Ed).
+  set (B := aq * Ed) in *.
   assert (PB : 0 <= B) by (unfold B; apply Rmult_le_pos; [apply Rabs_pos | lra]).
-  assert (Exb : Rabs (xb - B) <= u * B + eta).
-  { pose proof (RN_err B) as E. rewrite (Rabs_nonneg_eq B PB) in E. exact E. }
-  assert (Pxb : 0 <= xb) by (apply RN_nonneg; exact PB).
-  assert (Exs : Rabs (xs - (xb + En)) <= u * (xb + En)).
-  { pose proof (RN_plus_err xb En ltac:(apply binary64_RN) BEn) as E.
-    rewrite (Rabs_nonneg_eq (xb + En)) in E by lra. exact E. }
-  assert (Pxs : 0 <= xs) by (apply RN_nonneg; lra).
-  assert (Ex : Rabs (x - xs * (1 + / 512)) <= u * (xs * (1 + / 512)) + eta).
-  { pose proof (RN_err (xs * (1 + / 512))) as E.
-    rewrite (Rabs_nonneg_eq (xs * (1 + / 512))) in E by (apply Rmult_le_pos; lra). exact E. }
-  assert (Paq : 0 <= aq) by apply Rabs_pos.
-  assert (Pyb0 : 0 <= aq * (32 * (u * u))) by (rewrite u_val; apply Rmult_le_pos; lra).
-  assert (Eyb : Rabs (yb - aq * (32 * (u * u))) <= u * (aq * (32 * (u * u))) + eta).
-  { pose proof (RN_err (aq * (32 * (u * u)))) as E. rewrite (Rabs_nonneg_eq _ Pyb0) in E. exact E. }
-  assert (Pyb : 0 <= yb) by (apply RN_nonneg; exact Pyb0).
-  pose proof (Rabs_pos w) as Pw.
-  assert (Eys : Rabs (ys - (yb + Rabs w)) <= u * (yb + Rabs w)).
-  { pose proof (RN_plus_err yb (Rabs w) ltac:(apply binary64_RN) (binary64_abs w Bw)) as E.
-    rewrite (Rabs_nonneg_eq (yb + Rabs w)) in E by lra. exact E. }
-  assert (Pys : 0 <= ys) by (apply RN_nonneg; lra).
-  assert (Ey : Rabs (y - ys * aD) <= u * (ys * aD) + eta).
-  { pose proof (RN_err (ys * aD)) as E. rewrite (Rabs_nonneg_eq (ys * aD)) in E by (apply Rmult_le_pos; lra). exact E. }
-  assert (Fys : (1 - u) * (yb + Rabs w) * aD <= ys * aD).
-  { apply Rmult_le_compat_r; [lra|]. apply Rabs_bounds in Eys. lra. }
-  assert (Fyb : ((1 - u) * (aq * (32 * (u * u))) - eta) * aD <= yb * aD).
-  { apply Rmult_le_compat_r; [lra|]. apply Rabs_bounds in Eyb. lra. }
-  assert (Px : 0 <= x) by (apply RN_nonneg, Rmult_le_pos; lra).
-  assert (Py : 0 <= y) by (apply RN_nonneg, Rmult_le_pos; lra).
-  assert (Exy : Rabs (xy - (x + y)) <= u * (x + y)).
-  { pose proof (RN_plus_err x y ltac:(apply binary64_RN) ltac:(apply binary64_RN)) as E.
-    rewrite (Rabs_nonneg_eq (x + y)) in E by lra. exact E. }
-  assert (Pxy : 0 <= xy) by (apply RN_nonneg; lra).
-  assert (EL : Rabs (RN (xy * (1 + / 35184372088832)) - xy * (1 + / 35184372088832)) <=
-               u * (xy * (1 + / 35184372088832)) + eta).
-  { pose proof (RN_err (xy * (1 + / 35184372088832))) as E.
-    rewrite (Rabs_nonneg_eq (xy * (1 + / 35184372088832))) in E by (apply Rmult_le_pos; lra). exact E. }
-  assert (ER : Rabs (RN (h * aD) - h * aD) <= u * (h * aD) + eta).
-  { pose proof (RN_err (h * aD)) as E. rewrite (Rabs_nonneg_eq (h * aD)) in E by (apply Rmult_le_pos; lra). exact E. }
-  (* the test implies Z < h |D| *)
-  set (Z := (1 + / 512) * (En + B) + 32 * (u * u) * (aq * aD) + Rabs w * aD).
-  assert (PwD : 0 <= Rabs w * aD) by (apply Rmult_le_pos; lra).
-  assert (Eta_aD' : eta * aD <= / 2 ^ 170 * (aq * aD)) by exact Eta_aD.
-  assert (TZ : Z < h * aD).
-  { apply Rabs_bounds in Exb. apply Rabs_bounds in Exs. apply Rabs_bounds in Ex.
-    apply Rabs_bounds in Eyb. apply Rabs_bounds in Eys. apply Rabs_bounds in Ey.
-    apply Rabs_bounds in Exy. apply Rabs_bounds in EL. apply Rabs_bounds in ER.
-    unfold Z. rewrite u_val in *. simpl in *. lra. }
-  (* hence Ed ≤ u |D|, and den ≠ 0 with |den| ≥ (1 − 2u)|D| *)
-  assert (HhD : h * aD <= u * Rabs q * aD) by (apply Rmult_le_compat_r; lra).
-  assert (HqD : Rabs q * aD <= (1 + 7 * u) * (aq * aD)).
-  { rewrite <- Rmult_assoc. apply Rmult_le_compat_r; lra. }
-  assert (EdD : Ed <= u * aD).
-  { assert (aq * ((1 + / 512) * Ed) < aq * (u * (1 + 7 * u) * aD)).
-    { unfold Z, B in TZ, HqD. rewrite u_val in *. lra. }
-    assert (aqP : 0 < aq) by (apply Rmult_lt_reg_r with aD; [exact DP | rewrite Rmult_0_l; exact AP]).
-    apply Rmult_lt_reg_l in H; [|exact aqP]. rewrite u_val in *. lra. }
-  assert (Hden : (1 - 2 * u) * aD <= Rabs den).
-  { assert (aD <= Rabs den + Rabs (den - (hi dd + lo dd)) + Rabs Dlo).
-    { unfold aD. replace D with (den - (den - (hi dd + lo dd)) - Dlo) by lra.
-      unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp.
-      pose proof (Rabs_triang den (- (den + - (hi dd + lo dd)))). rewrite Rabs_Ropp in *. lra. }
-    fold Ed in Hd. lra. }
+  set (Z := (1 + / 512) * (En + B) + 32 * (u * u) * (aq * aD) + Rabs w * aD) in *.
   assert (den_nz : den <> 0).
   { intros Z0. rewrite Z0, Rabs_R0 in Hden. rewrite u_val in Hden. lra. }
   split; [exact den_nz|].
