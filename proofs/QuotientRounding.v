@@ -467,6 +467,59 @@ Proof.
   split; [exact TZ | split; assumption].
 Qed.
 
+(** The opening that [round_quotient_sound] and QuotientDivisorBound.v's [round_quotient_certain_divisor]
+    share: with the numerator [nh + nl ± En] and the divisor [dd] introduced, [Sd] the divisor's
+    [prepare_divisor_spec] and [H] the hypothesis that [round_quotient] certifies (unfolded), it passes the
+    guards, names every intermediate of round_quotient (N, Nlo, D, Dlo, R, Ed, q0, rr, c, q, w, h, x, y, xy)
+    with their facts ([quotient_residuals], [quotient_candidate]) and leaves the passed test as [Test]. *)
+Ltac open_certified_quotient nh nl En dd dv Bnh Bnl Sd H :=
+  pose proof (two_sum_exact nh nl Bnh Bnl) as XN;
+  destruct (two_sum_lo_bound nh nl Bnh Bnl) as [_ LN];
+  pose proof (binary64_two_sum_hi nh nl) as BN;
+  pose proof (binary64_two_sum_lo nh nl) as BNlo;
+  set (N := fst (two_sum nh nl)) in *;
+  set (Nlo := snd (two_sum nh nl)) in *;
+  revert H;
+  destruct (Rle_bool_spec Q900 (Rabs N)) as [GN|GN]; [|discriminate];
+  destruct (div_in_range dv) eqn:Gd; [|discriminate];
+  destruct (Sd Gd) as [BD [BDlo [XD [LD [ED [[GD1 GD2] RD]]]]]];
+  rewrite ED;
+  clear Sd ED;
+  set (D := div_hi dv) in *;
+  set (Dlo := div_lo dv) in *;
+  set (R := div_reciprocal dv) in *;
+  set (Ed := radius dd) in *;
+  assert (DP : 0 < Rabs D) by (eapply Rlt_le_trans; [apply bpow_gt_0 | exact GD1]);
+  assert (Dnz : D <> 0) by (intros Z; rewrite Z, Rabs_R0 in DP; lra);
+  set (q0 := RN (N * R));
+  set (rr := RN (fma (- q0) D N + fma (- q0) Dlo Nlo));
+  set (c := RN (rr * R));
+  set (q := RN (q0 + c));
+  destruct (Rle_bool_spec Q900 (Rabs q)) as [Gq|Gq]; [|discriminate];
+  destruct (Rle_bool_spec (Rabs q) largest_finite) as [_|_]; [|discriminate];
+  cbn [andb];
+  rewrite quotient_enclosure_factor_val, quotient_relative_val, quotient_test_factor_val;
+  destruct (quotient_residuals N Nlo D Dlo R BN BNlo BD BDlo LN LD GN Dnz RD Gq)
+      as [AP [Eta_aD [Eta_A [RR [Ec [Hc HcD]]]]]];
+  fold q0 rr c in AP, Eta_aD, Eta_A, RR, Ec, Hc, HcD;
+  destruct (quotient_candidate q0 c ltac:(apply binary64_RN) ltac:(apply binary64_RN) Hc)
+      as [X [Hq1 Hq2]];
+  fold q in X, Hq1, Hq2;
+  set (w := RN (c - RN (q - q0))) in *;
+  assert (Bq : binary64 q) by apply binary64_RN;
+  assert (Bw : binary64 w) by apply binary64_RN;
+  set (h := half_gap q);
+  set (xb := RN (Rabs q0 * Ed));
+  set (xs := RN (xb + En));
+  set (x := RN (xs * (1 + / 512)));
+  set (yb := RN (Rabs q0 * (32 * (u * u))));
+  set (ys := RN (yb + Rabs w));
+  set (y := RN (ys * Rabs D));
+  set (xy := RN (x + y));
+  destruct (Rlt_bool_spec (RN (xy * (1 + / 35184372088832))) (RN (h * Rabs D))) as [Test|Test];
+      [|discriminate];
+  intros _.
+
 (** ** Main theorem: whenever round_quotient says certain, den ≠ 0 and t = RN(num/den). *)
 Theorem round_quotient_sound : forall (n d : Enclosure) (num den : R),
   binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
@@ -480,47 +533,7 @@ Proof.
   pose proof (prepare_divisor_spec dd Bdh Bdl) as Sd.
   set (dv := prepare_divisor dd) in *.
   unfold round_quotient in H |- *. cbn [hi lo radius qr_t qr_certain] in H |- *.
-  (* the numerator's TwoSum *)
-  pose proof (two_sum_exact nh nl Bnh Bnl) as XN.
-  destruct (two_sum_lo_bound nh nl Bnh Bnl) as [_ LN].
-  pose proof (binary64_two_sum_hi nh nl) as BN. pose proof (binary64_two_sum_lo nh nl) as BNlo.
-  set (N := fst (two_sum nh nl)) in *. set (Nlo := snd (two_sum nh nl)) in *.
-  (* the guards *)
-  revert H.
-  destruct (Rle_bool_spec Q900 (Rabs N)) as [GN|GN]; [|discriminate].
-  destruct (div_in_range dv) eqn:Gd; [|discriminate].
-  destruct (Sd Gd) as [BD [BDlo [XD [LD [ED [[GD1 GD2] RD]]]]]].
-  rewrite ED. clear Sd ED.
-  set (D := div_hi dv) in *. set (Dlo := div_lo dv) in *. set (R := div_reciprocal dv) in *.
-  set (Ed := radius dd) in *.
-  assert (DP : 0 < Rabs D) by (eapply Rlt_le_trans; [apply bpow_gt_0 | exact GD1]).
-  assert (Dnz : D <> 0) by (intros Z; rewrite Z, Rabs_R0 in DP; lra).
-  set (q0 := RN (N * R)).
-  set (rr := RN (fma (- q0) D N + fma (- q0) Dlo Nlo)).
-  set (c := RN (rr * R)).
-  set (q := RN (q0 + c)).
-  destruct (Rle_bool_spec Q900 (Rabs q)) as [Gq|Gq]; [|discriminate].
-  destruct (Rle_bool_spec (Rabs q) largest_finite) as [_|_]; [|discriminate].
-  cbn [andb].
-  rewrite quotient_enclosure_factor_val, quotient_relative_val, quotient_test_factor_val.
-  destruct (quotient_residuals N Nlo D Dlo R BN BNlo BD BDlo LN LD GN Dnz RD Gq)
-    as [AP [Eta_aD [Eta_A [RR [Ec [Hc HcD]]]]]].
-  fold q0 rr c in AP, Eta_aD, Eta_A, RR, Ec, Hc, HcD.
-  destruct (quotient_candidate q0 c ltac:(apply binary64_RN) ltac:(apply binary64_RN) Hc)
-    as [X [Hq1 Hq2]].
-  fold q in X, Hq1, Hq2.
-  set (w := RN (c - RN (q - q0))) in *.
-  assert (Bq : binary64 q) by apply binary64_RN. assert (Bw : binary64 w) by apply binary64_RN.
-  set (h := half_gap q).
-  (* the test *)
-  set (xb := RN (Rabs q0 * Ed)). set (xs := RN (xb + En)).
-  set (x := RN (xs * (1 + / 512))).
-  set (yb := RN (Rabs q0 * (32 * (u * u)))). set (ys := RN (yb + Rabs w)).
-  set (y := RN (ys * Rabs D)).
-  set (xy := RN (x + y)).
-  destruct (Rlt_bool_spec (RN (xy * (1 + / 35184372088832))) (RN (h * Rabs D))) as [Test|Test];
-    [|discriminate].
-  intros _.
+  open_certified_quotient nh nl En dd dv Bnh Bnl Sd H.
   (* constants and signs *)
   pose proof u_pos as Hu. pose proof eta_pos as He.
   assert (PEn : 0 <= En) by (eapply Rle_trans; [apply Rabs_pos | exact Hn]).
