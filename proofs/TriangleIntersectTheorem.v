@@ -297,35 +297,8 @@ Lemma decide_nonzero_contract : forall O D A B C sn cl,
                    (sign_of (den_value O D A B C)) sn = Some cl ->
   contract_class true O D A B C cl /\ contract_class false O D A B C cl.
 Proof.
-  intros O D A B C sn cl Na Nb Nc Nd Hn.
-  assert (Sd : Z.eqb (sign_of (den_value O D A B C)) 0 = false).
-  { apply Z.eqb_neq. intros E. apply sign_of_zero_iff in E. contradiction. }
-  unfold contract_class. cbv zeta. rewrite Sd.
-  rewrite (owned_sign_of_nonzero _ _ _ _ Na), (owned_sign_of_nonzero _ _ _ _ Nb), (owned_sign_of_nonzero _ _ _ _ Nc).
-  pose proof (sign_pm _ Na) as Ra. pose proof (sign_pm _ Nb) as Rb. pose proof (sign_pm _ Nc) as Rc.
-  pose proof (sign_pm _ Nd) as Rd.
-  set (sa := sign_of (edge_value O D B C)) in *. set (sb := sign_of (edge_value O D C A)) in *.
-  set (sc := sign_of (edge_value O D A B)) in *. set (sden := sign_of (den_value O D A B C)) in *.
-  unfold decide_nonzero_b. destruct (Z.eqb sa sden && Z.eqb sb sden && Z.eqb sc sden)%bool eqn:I.
-  - (* inside *)
-    unfold certain_lane in Hn.
-    destruct (Z.eqb_spec sn uncertain_lane) as [Un|Un]; [intros H; discriminate H|].
-    intros H. injection H as <-.
-    destruct (Hn eq_refl) as [En Nn]. rewrite En. pose proof (sign_pm _ Nn) as Rn.
-    set (snv := sign_of (num_value O A B C)) in *.
-    apply andb_prop in I. destruct I as [I I3]. apply andb_prop in I. destruct I as [I1 I2].
-    apply Z.eqb_eq in I1, I2, I3. rewrite I1, I2, I3.
-    assert (L : triangle_location sden sden sden sden = Inside)
-      by (unfold triangle_location; destruct Rd as [-> | ->]; reflexivity).
-    rewrite L. rewrite Z.eqb_refl. cbn [negb andb trel tloc towned].
-    destruct Rd as [Ed' | Ed']; destruct Rn as [En' | En']; rewrite Ed', En'; cbn; repeat split; reflexivity.
-  - (* outside *)
-    intros H. injection H as <-.
-    assert (L : triangle_location sa sb sc sden = Outside).
-    { unfold triangle_location.
-      destruct Ra as [-> | ->]; destruct Rb as [-> | ->]; destruct Rc as [-> | ->]; destruct Rd as [-> | ->];
-        cbn in I |- *; first [reflexivity | discriminate]. }
-    rewrite L. cbn [negb andb trel tloc towned]. repeat split; reflexivity.
+  intros O D A B C sn cl Na Nb Nc Nd Hn. apply (decided_class_contract O D A B C sn cl Na Nb Nc Nd).
+  intros Un. apply Hn. unfold certain_lane. rewrite (proj2 (Z.eqb_neq _ _) Un). reflexivity.
 Qed.
 
 (** ** The quotients *)
