@@ -377,70 +377,31 @@ Proof.
   repeat split; [exact X | rewrite u_val in *; nra | rewrite u_val in *; nra].
 Qed.
 
-(** ** Main theorem: whenever round_quotient says certain, den ≠ 0 and t = RN(num/den). *)
-Theorem round_quotient_sound : forall (n d : Enclosure) (num den : R),
-  binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
-  binary64 (hi d) -> binary64 (lo d) -> binary64 (radius d) ->
-  encloses n num -> encloses d den ->
-  qr_certain (round_quotient n (prepare_divisor d)) = true ->
-  den <> 0 /\ qr_t (round_quotient n (prepare_divisor d)) = RN (num / den).
+(** The certifying test, read back (used by [round_quotient_sound] and QuotientDivisorBound.v's
+    [round_quotient_certain_divisor]): with q0 the first quotient, q the candidate, w its Fast2Sum tail,
+    D the divisor's high part and Dlo its low part (D + Dlo = s, the divisor's double-double), a passed test
+    RN((x ⊕ y)·(1 + 2^-45)) < RN(h·|D|) bounds the real left side Z by h·|D|; hence E_d ≤ u·|D| and any
+    den within E_d of s has |den| ≥ (1 − 2u)|D|. *)
+Lemma quotient_test_certifies : forall (En Ed q0 q w D Dlo s den : R),
+  binary64 En -> binary64 w -> 0 <= En -> Rabs (den - s) <= Ed -> D + Dlo = s -> Rabs Dlo <= u * Rabs D ->
+  0 < Rabs D -> 0 < Rabs q0 * Rabs D -> eta * Rabs D <= / 2 ^ 170 * (Rabs q0 * Rabs D) ->
+  eta <= / 2 ^ 170 * (Rabs q0 * Rabs D) -> Q900 <= Rabs q -> Rabs q <= (1 + 7 * u) * Rabs q0 ->
+  let h := half_gap q in
+  let x := RN (RN (RN (Rabs q0 * Ed) + En) * (1 + / 512)) in
+  let y := RN (RN (RN (Rabs q0 * (32 * (u * u))) + Rabs w) * Rabs D) in
+  RN (RN (x + y) * (1 + / 35184372088832)) < RN (h * Rabs D) ->
+  (1 + / 512) * (En + Rabs q0 * Ed) + 32 * (u * u) * (Rabs q0 * Rabs D) + Rabs w * Rabs D < h * Rabs D /\
+  Ed <= u * Rabs D /\ (1 - 2 * u) * Rabs D <= Rabs den.
 Proof.
-  intros [nh nl En] dd num den Bnh Bnl BEn Bdh Bdl BEd Hn Hd H.
-  unfold encloses in Hn, Hd. cbn [hi lo radius] in *.
-  pose proof (prepare_divisor_spec dd Bdh Bdl) as Sd.
-  set (dv := prepare_divisor dd) in *.
-  unfold round_quotient in H |- *. cbn [hi lo radius qr_t qr_certain] in H |- *.
-  (* the numerator's TwoSum *)
-  pose proof (two_sum_exact nh nl Bnh Bnl) as XN.
-  destruct (two_sum_lo_bound nh nl Bnh Bnl) as [_ LN].
-  pose proof (binary64_two_sum_hi nh nl) as BN. pose proof (binary64_two_sum_lo nh nl) as BNlo.
-  set (N := fst (two_sum nh nl)) in *. set (Nlo := snd (two_sum nh nl)) in *.
-  (* the guards *)
-  revert H.
-  destruct (Rle_bool_spec Q900 (Rabs N)) as [GN|GN]; [|discriminate].
-  destruct (div_in_range dv) eqn:Gd; [|discriminate].
-  destruct (Sd Gd) as [BD [BDlo [XD [LD [ED [[GD1 GD2] RD]]]]]].
-  rewrite ED. clear Sd ED.
-  set (D := div_hi dv) in *. set (Dlo := div_lo dv) in *. set (R := div_reciprocal dv) in *.
-  set (Ed := radius dd) in *.
-  assert (DP : 0 < Rabs D) by (eapply Rlt_le_trans; [apply bpow_gt_0 | exact GD1]).
-  assert (Dnz : D <> 0) by (intros Z; rewrite Z, Rabs_R0 in DP; lra).
-  set (q0 := RN (N * R)).
-  set (rr := RN (fma (- q0) D N + fma (- q0) Dlo Nlo)).
-  set (c := RN (rr * R)).
-  set (q := RN (q0 + c)).
-  destruct (Rle_bool_spec Q900 (Rabs q)) as [Gq|Gq]; [|discriminate].
-  destruct (Rle_bool_spec (Rabs q) largest_finite) as [_|_]; [|discriminate].
-  cbn [andb].
-  rewrite quotient_enclosure_factor_val, quotient_relative_val, quotient_test_factor_val.
-  destruct (quotient_residuals N Nlo D Dlo R BN BNlo BD BDlo LN LD GN Dnz RD Gq)
-    as [AP [Eta_aD [Eta_A [RR [Ec [Hc HcD]]]]]].
-  fold q0 rr c in AP, Eta_aD, Eta_A, RR, Ec, Hc, HcD.
-  destruct (quotient_candidate q0 c ltac:(apply binary64_RN) ltac:(apply binary64_RN) Hc)
-    as [X [Hq1 Hq2]].
-  fold q in X, Hq1, Hq2.
-  set (w := RN (c - RN (q - q0))) in *.
-  assert (Bq : binary64 q) by apply binary64_RN. assert (Bw : binary64 w) by apply binary64_RN.
-  set (h := half_gap q).
-  (* the test *)
-  set (xb := RN (Rabs q0 * Ed)). set (xs := RN (xb + En)).
-  set (x := RN (xs * (1 + / 512))).
-  set (yb := RN (Rabs q0 * (32 * (u * u)))). set (ys := RN (yb + Rabs w)).
-  set (y := RN (ys * Rabs D)).
-  set (xy := RN (x + y)).
-  destruct (Rlt_bool_spec (RN (xy * (1 + / 35184372088832))) (RN (h * Rabs D))) as [Test|Test];
-    [|discriminate].
-  intros _.
-  (* constants and signs *)
-  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof Q900_pos as HQ.
-  pose proof Q900_normal as QN.
-  assert (PEn : 0 <= En) by (eapply Rle_trans; [apply Rabs_pos | exact Hn]).
+  intros En Ed q0 q w D Dlo s den BEn Bw PEn Hd XD LD DP AP Eta_aD Eta_A Gq Hq1 h x y Test.
+  set (xb := RN (Rabs q0 * Ed)) in *. set (xs := RN (xb + En)) in *.
+  set (yb := RN (Rabs q0 * (32 * (u * u)))) in *. set (ys := RN (yb + Rabs w)) in *.
+  set (xy := RN (x + y)) in *.
+  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof Q900_normal as QN.
   assert (PEd : 0 <= Ed) by (eapply Rle_trans; [apply Rabs_pos | exact Hd]).
   set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
-  (* the half gap of q *)
   destruct (half_gap_bounds q) as [Ph _]. fold h in Ph.
   assert (Hh : h <= u * Rabs q) by (apply half_gap_le_u; lra).
-  (* the rounded test, term by term *)
   set (B := aq * Ed).
   assert (PB : 0 <= B) by (unfold B; apply Rmult_le_pos; [apply Rabs_pos | lra]).
   assert (Exb : Rabs (xb - B) <= u * B + eta).
@@ -481,7 +442,6 @@ Proof.
     rewrite (Rabs_nonneg_eq (xy * (1 + / 35184372088832))) in E by (apply Rmult_le_pos; lra). exact E. }
   assert (ER : Rabs (RN (h * aD) - h * aD) <= u * (h * aD) + eta).
   { pose proof (RN_err (h * aD)) as E. rewrite (Rabs_nonneg_eq (h * aD)) in E by (apply Rmult_le_pos; lra). exact E. }
-  (* the test implies Z < h |D| *)
   set (Z := (1 + / 512) * (En + B) + 32 * (u * u) * (aq * aD) + Rabs w * aD).
   assert (PwD : 0 <= Rabs w * aD) by (apply Rmult_le_pos; lra).
   assert (Eta_aD' : eta * aD <= / 2 ^ 170 * (aq * aD)) by exact Eta_aD.
@@ -490,7 +450,6 @@ Proof.
     apply Rabs_bounds in Eyb. apply Rabs_bounds in Eys. apply Rabs_bounds in Ey.
     apply Rabs_bounds in Exy. apply Rabs_bounds in EL. apply Rabs_bounds in ER.
     unfold Z. rewrite u_val in *. simpl in *. lra. }
-  (* hence Ed ≤ u |D|, and den ≠ 0 with |den| ≥ (1 − 2u)|D| *)
   assert (HhD : h * aD <= u * Rabs q * aD) by (apply Rmult_le_compat_r; lra).
   assert (HqD : Rabs q * aD <= (1 + 7 * u) * (aq * aD)).
   { rewrite <- Rmult_assoc. apply Rmult_le_compat_r; lra. }
@@ -500,11 +459,93 @@ Proof.
     assert (aqP : 0 < aq) by (apply Rmult_lt_reg_r with aD; [exact DP | rewrite Rmult_0_l; exact AP]).
     apply Rmult_lt_reg_l in H; [|exact aqP]. rewrite u_val in *. lra. }
   assert (Hden : (1 - 2 * u) * aD <= Rabs den).
-  { assert (aD <= Rabs den + Rabs (den - (hi dd + lo dd)) + Rabs Dlo).
-    { unfold aD. replace D with (den - (den - (hi dd + lo dd)) - Dlo) by lra.
+  { assert (aD <= Rabs den + Rabs (den - s) + Rabs Dlo).
+    { unfold aD. replace D with (den - (den - s) - Dlo) by lra.
       unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp.
-      pose proof (Rabs_triang den (- (den + - (hi dd + lo dd)))). rewrite Rabs_Ropp in *. lra. }
-    fold Ed in Hd. lra. }
+      pose proof (Rabs_triang den (- (den + - s))). rewrite Rabs_Ropp in *. lra. }
+    lra. }
+  split; [exact TZ | split; assumption].
+Qed.
+
+(** The opening that [round_quotient_sound] and QuotientDivisorBound.v's [round_quotient_certain_divisor]
+    share: with the numerator [nh + nl ± En] and the divisor [dd] introduced, [Sd] the divisor's
+    [prepare_divisor_spec] and [H] the hypothesis that [round_quotient] certifies (unfolded), it passes the
+    guards, names every intermediate of round_quotient (N, Nlo, D, Dlo, R, Ed, q0, rr, c, q, w, h, x, y, xy)
+    with their facts ([quotient_residuals], [quotient_candidate]) and leaves the passed test as [Test]. *)
+Ltac open_certified_quotient nh nl En dd dv Bnh Bnl Sd H :=
+  pose proof (two_sum_exact nh nl Bnh Bnl) as XN;
+  destruct (two_sum_lo_bound nh nl Bnh Bnl) as [_ LN];
+  pose proof (binary64_two_sum_hi nh nl) as BN;
+  pose proof (binary64_two_sum_lo nh nl) as BNlo;
+  set (N := fst (two_sum nh nl)) in *;
+  set (Nlo := snd (two_sum nh nl)) in *;
+  revert H;
+  destruct (Rle_bool_spec Q900 (Rabs N)) as [GN|GN]; [|discriminate];
+  destruct (div_in_range dv) eqn:Gd; [|discriminate];
+  destruct (Sd Gd) as [BD [BDlo [XD [LD [ED [[GD1 GD2] RD]]]]]];
+  rewrite ED;
+  clear Sd ED;
+  set (D := div_hi dv) in *;
+  set (Dlo := div_lo dv) in *;
+  set (R := div_reciprocal dv) in *;
+  set (Ed := radius dd) in *;
+  assert (DP : 0 < Rabs D) by (eapply Rlt_le_trans; [apply bpow_gt_0 | exact GD1]);
+  assert (Dnz : D <> 0) by (intros Z; rewrite Z, Rabs_R0 in DP; lra);
+  set (q0 := RN (N * R));
+  set (rr := RN (fma (- q0) D N + fma (- q0) Dlo Nlo));
+  set (c := RN (rr * R));
+  set (q := RN (q0 + c));
+  destruct (Rle_bool_spec Q900 (Rabs q)) as [Gq|Gq]; [|discriminate];
+  destruct (Rle_bool_spec (Rabs q) largest_finite) as [_|_]; [|discriminate];
+  cbn [andb];
+  rewrite quotient_enclosure_factor_val, quotient_relative_val, quotient_test_factor_val;
+  destruct (quotient_residuals N Nlo D Dlo R BN BNlo BD BDlo LN LD GN Dnz RD Gq)
+      as [AP [Eta_aD [Eta_A [RR [Ec [Hc HcD]]]]]];
+  fold q0 rr c in AP, Eta_aD, Eta_A, RR, Ec, Hc, HcD;
+  destruct (quotient_candidate q0 c ltac:(apply binary64_RN) ltac:(apply binary64_RN) Hc)
+      as [X [Hq1 Hq2]];
+  fold q in X, Hq1, Hq2;
+  set (w := RN (c - RN (q - q0))) in *;
+  assert (Bq : binary64 q) by apply binary64_RN;
+  assert (Bw : binary64 w) by apply binary64_RN;
+  set (h := half_gap q);
+  set (xb := RN (Rabs q0 * Ed));
+  set (xs := RN (xb + En));
+  set (x := RN (xs * (1 + / 512)));
+  set (yb := RN (Rabs q0 * (32 * (u * u))));
+  set (ys := RN (yb + Rabs w));
+  set (y := RN (ys * Rabs D));
+  set (xy := RN (x + y));
+  destruct (Rlt_bool_spec (RN (xy * (1 + / 35184372088832))) (RN (h * Rabs D))) as [Test|Test];
+      [|discriminate];
+  intros _.
+
+(** ** Main theorem: whenever round_quotient says certain, den ≠ 0 and t = RN(num/den). *)
+Theorem round_quotient_sound : forall (n d : Enclosure) (num den : R),
+  binary64 (hi n) -> binary64 (lo n) -> binary64 (radius n) ->
+  binary64 (hi d) -> binary64 (lo d) -> binary64 (radius d) ->
+  encloses n num -> encloses d den ->
+  qr_certain (round_quotient n (prepare_divisor d)) = true ->
+  den <> 0 /\ qr_t (round_quotient n (prepare_divisor d)) = RN (num / den).
+Proof.
+  intros [nh nl En] dd num den Bnh Bnl BEn Bdh Bdl BEd Hn Hd H.
+  unfold encloses in Hn, Hd. cbn [hi lo radius] in *.
+  pose proof (prepare_divisor_spec dd Bdh Bdl) as Sd.
+  set (dv := prepare_divisor dd) in *.
+  unfold round_quotient in H |- *. cbn [hi lo radius qr_t qr_certain] in H |- *.
+  open_certified_quotient nh nl En dd dv Bnh Bnl Sd H.
+  (* constants and signs *)
+  pose proof u_pos as Hu. pose proof eta_pos as He.
+  assert (PEn : 0 <= En) by (eapply Rle_trans; [apply Rabs_pos | exact Hn]).
+  assert (PEd : 0 <= Ed) by (eapply Rle_trans; [apply Rabs_pos | exact Hd]).
+  (* the test bounds Z below h |D|, hence |den| ≥ (1 − 2u)|D| *)
+  destruct (quotient_test_certifies En Ed q0 q w D Dlo (hi dd + lo dd) den BEn Bw PEn Hd XD LD DP AP
+              Eta_aD Eta_A Gq Hq1 Test) as [TZ [_ Hden]].
+  fold h in TZ.
+  set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
+  set (B := aq * Ed) in *.
+  assert (PB : 0 <= B) by (unfold B; apply Rmult_le_pos; [apply Rabs_pos | lra]).
+  set (Z := (1 + / 512) * (En + B) + 32 * (u * u) * (aq * aD) + Rabs w * aD) in *.
   assert (den_nz : den <> 0).
   { intros Z0. rewrite Z0, Rabs_R0 in Hden. rewrite u_val in Hden. lra. }
   split; [exact den_nz|].

@@ -100,6 +100,49 @@ Proof.
   intros x N. destruct (sign_of_range x) as [E|[E|E]]; auto. apply sign_of_zero_iff in E. contradiction.
 Qed.
 
+(** The classification by the exact, nonzero signs (shared by [fast_relation_tri_correct] and
+    TriangleIntersectTheorem.v's [decide_nonzero_contract]): deciding inside/outside from the edge signs
+    against den's, with a num sign that is exact when certain, gives §6's class under both rules. *)
+Lemma decided_class_contract : forall O D A B C sn cl,
+  edge_value O D B C <> 0 -> edge_value O D C A <> 0 -> edge_value O D A B <> 0 -> den_value O D A B C <> 0 ->
+  (sn <> uncertain_lane -> sn = sign_of (num_value O A B C) /\ num_value O A B C <> 0) ->
+  (let sa := sign_of (edge_value O D B C) in let sb := sign_of (edge_value O D C A) in
+   let sc := sign_of (edge_value O D A B) in let sden := sign_of (den_value O D A B C) in
+   if (Z.eqb sa sden && Z.eqb sb sden && Z.eqb sc sden)%bool then
+     if Z.eqb sn uncertain_lane then None else Some (TC (if Z.eqb sn sden then THit else TBehind) (Some Inside) true)
+   else Some (TC TMiss (Some Outside) false)) = Some cl ->
+  contract_class true O D A B C cl /\ contract_class false O D A B C cl.
+Proof.
+  intros O D A B C sn cl Na Nb Nc Nd Hn. cbv zeta.
+  assert (Sd : Z.eqb (sign_of (den_value O D A B C)) 0 = false).
+  { apply Z.eqb_neq. intros E. apply sign_of_zero_iff in E. contradiction. }
+  unfold contract_class. cbv zeta. rewrite Sd.
+  rewrite (owned_sign_of_nonzero _ _ _ _ Na), (owned_sign_of_nonzero _ _ _ _ Nb), (owned_sign_of_nonzero _ _ _ _ Nc).
+  pose proof (sign_pm _ Na) as Ra. pose proof (sign_pm _ Nb) as Rb. pose proof (sign_pm _ Nc) as Rc.
+  pose proof (sign_pm _ Nd) as Rd.
+  set (sa := sign_of (edge_value O D B C)) in *. set (sb := sign_of (edge_value O D C A)) in *.
+  set (sc := sign_of (edge_value O D A B)) in *. set (sden := sign_of (den_value O D A B C)) in *.
+  destruct (Z.eqb sa sden && Z.eqb sb sden && Z.eqb sc sden)%bool eqn:I.
+  - (* inside *)
+    destruct (Z.eqb_spec sn uncertain_lane) as [Un|Un]; [intros H; discriminate H|].
+    intros H. injection H as <-.
+    destruct (Hn Un) as [En Nn]. rewrite En. pose proof (sign_pm _ Nn) as Rn.
+    set (snv := sign_of (num_value O A B C)) in *.
+    apply andb_prop in I. destruct I as [I I3]. apply andb_prop in I. destruct I as [I1 I2].
+    apply Z.eqb_eq in I1, I2, I3. rewrite I1, I2, I3.
+    assert (L : triangle_location sden sden sden sden = Inside)
+      by (unfold triangle_location; destruct Rd as [-> | ->]; reflexivity).
+    rewrite L. rewrite Z.eqb_refl. cbn [negb andb trel tloc towned].
+    destruct Rd as [Ed' | Ed']; destruct Rn as [En' | En']; rewrite Ed', En'; cbn; repeat split; reflexivity.
+  - (* outside *)
+    intros H. injection H as <-.
+    assert (L : triangle_location sa sb sc sden = Outside).
+    { unfold triangle_location.
+      destruct Ra as [-> | ->]; destruct Rb as [-> | ->]; destruct Rc as [-> | ->]; destruct Rd as [-> | ->];
+        cbn in I |- *; first [reflexivity | discriminate]. }
+    rewrite L. cbn [negb andb trel tloc towned]. repeat split; reflexivity.
+Qed.
+
 (** [fast_relation]: an answer of the twin is §6's, under both rules, for every bit pattern of the inputs
     (which are then finite). *)
 Theorem fast_relation_tri_correct : forall o d a b c cl, fast_relation_tri_b o d a b c = Some cl ->
@@ -129,39 +172,10 @@ Proof.
   set (O := tvec_R o) in *. set (D := tvec_R d) in *. set (Av := tvec_R a) in *. set (B := tvec_R b) in *.
   set (C := tvec_R c) in *.
   do 5 (split; [assumption|]). cbv zeta. split; [exact Nd|].
-  assert (Sd : Z.eqb (sign_of (den_value O D Av B C)) 0 = false).
-  { apply Z.eqb_neq. intros E. apply sign_of_zero_iff in E. contradiction. }
-  unfold contract_class. cbv zeta. rewrite Sd.
-  rewrite (owned_sign_of_nonzero _ _ _ _ Na), (owned_sign_of_nonzero _ _ _ _ Nb), (owned_sign_of_nonzero _ _ _ _ Nc).
-  pose proof (sign_pm _ Na) as Ra. pose proof (sign_pm _ Nb) as Rb. pose proof (sign_pm _ Nc) as Rc.
-  pose proof (sign_pm _ Nd) as Rd.
-  set (sa := sign_of (edge_value O D B C)) in *. set (sb := sign_of (edge_value O D C Av)) in *.
-  set (sc := sign_of (edge_value O D Av B)) in *. set (sden := sign_of (den_value O D Av B C)) in *.
-  remember (det3_filter_lanes_b (num_stage1_b o a b c) Cpp.triangle_filter_num_relative (absolute_bv (tsub a o)))
-    as sn0 eqn:Esn.
-  revert H. destruct (Z.eqb sa sden && Z.eqb sb sden && Z.eqb sc sden)%bool eqn:I.
-  - (* inside *)
-    destruct (Z.eqb_spec sn0 uncertain_lane) as [Un|Un]; [intros H; discriminate H|].
-    intros H. apply (f_equal (fun x => match x with Some y => y | None => cl end)) in H.
-    cbv beta iota in H. subst cl.
-    destruct (triangle_num_filter_twin_sound o a b c) as [Cn _]. rewrite <- Esn in Cn.
-    assert (Ln : lane_sign sn0) by (rewrite Esn; apply det3_filter_lanes_b_range).
-    destruct (lane_sign_exact _ _ Ln Un Cn) as [En [_ Nn]].
-    change (tvec_R o) with O in En, Nn. change (tvec_R a) with Av in En, Nn. change (tvec_R b) with B in En, Nn.
-    change (tvec_R c) with C in En, Nn. rewrite En. pose proof (sign_pm _ Nn) as Rn.
-    set (sn := sign_of (num_value O Av B C)) in *.
-    apply andb_prop in I. destruct I as [I I3]. apply andb_prop in I. destruct I as [I1 I2].
-    apply Z.eqb_eq in I1, I2, I3. rewrite I1, I2, I3.
-    assert (L : triangle_location sden sden sden sden = Inside)
-      by (unfold triangle_location; destruct Rd as [-> | ->]; reflexivity).
-    rewrite L. rewrite Z.eqb_refl. cbn [negb andb trel tloc towned].
-    destruct Rd as [Ed' | Ed']; destruct Rn as [En' | En']; rewrite Ed', En'; cbn; repeat split; reflexivity.
-  - (* outside *)
-    intros H. apply (f_equal (fun x => match x with Some y => y | None => cl end)) in H.
-    cbv beta iota in H. subst cl.
-    assert (L : triangle_location sa sb sc sden = Outside).
-    { unfold triangle_location.
-      destruct Ra as [-> | ->]; destruct Rb as [-> | ->]; destruct Rc as [-> | ->]; destruct Rd as [-> | ->];
-        cbn in I |- *; first [reflexivity | discriminate]. }
-    rewrite L. cbn [negb andb trel tloc towned]. repeat split; reflexivity.
+  revert H. apply (decided_class_contract O D Av B C
+    (det3_filter_lanes_b (num_stage1_b o a b c) Cpp.triangle_filter_num_relative (absolute_bv (tsub a o))) cl
+    Na Nb Nc Nd).
+  intros Un. destruct (triangle_num_filter_twin_sound o a b c) as [Cn _].
+  destruct (lane_sign_exact _ _ (det3_filter_lanes_b_range _ _ _) Un Cn) as [En [_ Nn]].
+  exact (conj En Nn).
 Qed.

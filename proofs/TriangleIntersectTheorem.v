@@ -181,16 +181,39 @@ Definition num_lane_enc (o a b c : TVec) : EnclosureB :=
 Definition den_lane_enc (o d a b c : TVec) : EnclosureB :=
   det3_enclosure_b (den_stage2_b (bcast o) d a b c) Cpp.triangle_compensated_den_relative (absolute_bv d).
 
+(** The shape of the stage-2 lane enclosures' facts ([pi_lane_enc_facts], [num_lane_enc_facts],
+    [den_lane_enc_facts]): a [det3_enclosure] of non-negative parts has a non-negative radius, and a finite
+    radius gives finite parts plus what the twin's soundness gives ([Fins], the enclosed value V). *)
+Lemma det3_lane_enc_facts : forall t K A (Fins : Prop) (V : R),
+  nonneg (cmb t) -> nonneg K -> nonneg A ->
+  (fin (radiusb (det3_enclosure_b t K A)) = true -> Fins /\ encloses (enc_R (det3_enclosure_b t K A)) V) ->
+  let e := det3_enclosure_b t K A in
+  nonneg (radiusb e) /\
+  (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true /\ Fins /\ encloses (enc_R e) V).
+Proof.
+  intros t K A Fins V Nm NK NA S e. split; [apply det3_enclosure_nonneg; assumption|].
+  intros Fr. destruct (det3_enclosure_twin _ _ _ Fr) as [Fh [Fl _]]. destruct (S Fr) as [F E].
+  tsplit; assumption.
+Qed.
+
+Lemma and_assoc4 : forall A B C D E : Prop, A /\ B /\ C /\ D /\ E -> (A /\ B /\ C /\ D) /\ E.
+Proof. tauto. Qed.
+Lemma and_assoc5 : forall A B C D E F : Prop, A /\ B /\ C /\ D /\ E /\ F -> (A /\ B /\ C /\ D /\ E) /\ F.
+Proof. tauto. Qed.
+
+Lemma compensated_relatives_nonneg :
+  nonneg Cpp.triangle_compensated_relative /\ nonneg Cpp.triangle_compensated_den_relative.
+Proof.
+  destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [NK ND]]]]]]]]]]]]. split; assumption.
+Qed.
+
 Lemma pi_lane_enc_facts : forall o d p q, let e := pi_lane_enc o d p q in
   nonneg (radiusb e) /\
   (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true /\ (tfin o /\ tfin d /\ tfin p /\ tfin q) /\
                              encloses (enc_R e) (edge_value (tvec_R o) (tvec_R d) (tvec_R p) (tvec_R q))).
 Proof.
-  intros o d p q e. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [NK _]]]]]]]]]]]].
-  split; [apply det3_enclosure_nonneg; [apply pi_view_nonneg | exact NK | apply absolute_bv_nonneg]|].
-  intros Fr. destruct (det3_enclosure_twin _ _ _ Fr) as [Fh [Fl _]].
-  destruct (triangle_pi_lane_compensated_twin_sound o d p q Fr) as [Fo [Fd [Fp [Fq E]]]].
-  tsplit; assumption.
+  intros o d p q. apply det3_lane_enc_facts; [apply pi_view_nonneg | apply compensated_relatives_nonneg |
+    apply absolute_bv_nonneg | intros Fr; exact (and_assoc4 _ _ _ _ _ (triangle_pi_lane_compensated_twin_sound o d p q Fr))].
 Qed.
 
 Lemma num_lane_enc_facts : forall o a b c, let e := num_lane_enc o a b c in
@@ -198,11 +221,8 @@ Lemma num_lane_enc_facts : forall o a b c, let e := num_lane_enc o a b c in
   (fin (radiusb e) = true -> fin (hib e) = true /\ fin (lob e) = true /\ (tfin o /\ tfin a /\ tfin b /\ tfin c) /\
                              encloses (enc_R e) (num_value (tvec_R o) (tvec_R a) (tvec_R b) (tvec_R c))).
 Proof.
-  intros o a b c e. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [NK _]]]]]]]]]]]].
-  split; [apply det3_enclosure_nonneg; [apply num_lane_view_nonneg | exact NK | apply absolute_bv_nonneg]|].
-  intros Fr. destruct (det3_enclosure_twin _ _ _ Fr) as [Fh [Fl _]].
-  destruct (triangle_num_lane_compensated_twin_sound o a b c Fr) as [Fo [Fa [Fb [Fc E]]]].
-  tsplit; assumption.
+  intros o a b c. apply det3_lane_enc_facts; [apply num_lane_view_nonneg | apply compensated_relatives_nonneg |
+    apply absolute_bv_nonneg | intros Fr; exact (and_assoc4 _ _ _ _ _ (triangle_num_lane_compensated_twin_sound o a b c Fr))].
 Qed.
 
 Lemma den_lane_cmb_nonneg : forall o d a b c, nonneg (cmb (den_stage2_b o d a b c)).
@@ -217,11 +237,8 @@ Lemma den_lane_enc_facts : forall o d a b c, let e := den_lane_enc o d a b c in
                              (tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c) /\
                              encloses (enc_R e) (den_value (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c))).
 Proof.
-  intros o d a b c e. destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ NK]]]]]]]]]]]]].
-  split; [apply det3_enclosure_nonneg; [apply den_lane_cmb_nonneg | exact NK | apply absolute_bv_nonneg]|].
-  intros Fr. destruct (det3_enclosure_twin _ _ _ Fr) as [Fh [Fl _]].
-  destruct (triangle_den_lane_compensated_twin_sound o d a b c Fr) as [Fo [Fd [Fa [Fb [Fc E]]]]].
-  tsplit; assumption.
+  intros o d a b c. apply det3_lane_enc_facts; [apply den_lane_cmb_nonneg | apply compensated_relatives_nonneg |
+    apply absolute_bv_nonneg | intros Fr; exact (and_assoc5 _ _ _ _ _ _ (triangle_den_lane_compensated_twin_sound o d a b c Fr))].
 Qed.
 
 (** Lanes 0–2 of the fast intersection (o broadcast): a certain sign is the exact sign of π(p, q), nonzero. *)
@@ -280,35 +297,8 @@ Lemma decide_nonzero_contract : forall O D A B C sn cl,
                    (sign_of (den_value O D A B C)) sn = Some cl ->
   contract_class true O D A B C cl /\ contract_class false O D A B C cl.
 Proof.
-  intros O D A B C sn cl Na Nb Nc Nd Hn.
-  assert (Sd : Z.eqb (sign_of (den_value O D A B C)) 0 = false).
-  { apply Z.eqb_neq. intros E. apply sign_of_zero_iff in E. contradiction. }
-  unfold contract_class. cbv zeta. rewrite Sd.
-  rewrite (owned_sign_of_nonzero _ _ _ _ Na), (owned_sign_of_nonzero _ _ _ _ Nb), (owned_sign_of_nonzero _ _ _ _ Nc).
-  pose proof (sign_pm _ Na) as Ra. pose proof (sign_pm _ Nb) as Rb. pose proof (sign_pm _ Nc) as Rc.
-  pose proof (sign_pm _ Nd) as Rd.
-  set (sa := sign_of (edge_value O D B C)) in *. set (sb := sign_of (edge_value O D C A)) in *.
-  set (sc := sign_of (edge_value O D A B)) in *. set (sden := sign_of (den_value O D A B C)) in *.
-  unfold decide_nonzero_b. destruct (Z.eqb sa sden && Z.eqb sb sden && Z.eqb sc sden)%bool eqn:I.
-  - (* inside *)
-    unfold certain_lane in Hn.
-    destruct (Z.eqb_spec sn uncertain_lane) as [Un|Un]; [intros H; discriminate H|].
-    intros H. injection H as <-.
-    destruct (Hn eq_refl) as [En Nn]. rewrite En. pose proof (sign_pm _ Nn) as Rn.
-    set (snv := sign_of (num_value O A B C)) in *.
-    apply andb_prop in I. destruct I as [I I3]. apply andb_prop in I. destruct I as [I1 I2].
-    apply Z.eqb_eq in I1, I2, I3. rewrite I1, I2, I3.
-    assert (L : triangle_location sden sden sden sden = Inside)
-      by (unfold triangle_location; destruct Rd as [-> | ->]; reflexivity).
-    rewrite L. rewrite Z.eqb_refl. cbn [negb andb trel tloc towned].
-    destruct Rd as [Ed' | Ed']; destruct Rn as [En' | En']; rewrite Ed', En'; cbn; repeat split; reflexivity.
-  - (* outside *)
-    intros H. injection H as <-.
-    assert (L : triangle_location sa sb sc sden = Outside).
-    { unfold triangle_location.
-      destruct Ra as [-> | ->]; destruct Rb as [-> | ->]; destruct Rc as [-> | ->]; destruct Rd as [-> | ->];
-        cbn in I |- *; first [reflexivity | discriminate]. }
-    rewrite L. cbn [negb andb trel tloc towned]. repeat split; reflexivity.
+  intros O D A B C sn cl Na Nb Nc Nd Hn. apply (decided_class_contract O D A B C sn cl Na Nb Nc Nd).
+  intros Un. apply Hn. unfold certain_lane. rewrite (proj2 (Z.eqb_neq _ _) Un). reflexivity.
 Qed.
 
 (** ** The quotients *)
