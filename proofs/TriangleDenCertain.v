@@ -72,7 +72,8 @@ Lemma den_lane_enc_radius : forall o d a b c, fin (radiusb (den_lane_enc o d a b
   B2R (radiusb (den_lane_enc o d a b c)) =
     RN (RN (B2R Cpp.triangle_compensated_den_relative * B2R (cmb t)) + B2R (absolute_bv d)).
 Proof.
-  intros o d a b c F t. unfold den_lane_enc, det3_enclosure_b in *. fold t in F |- *. cbn [radiusb] in F |- *.
+  intros o d a b c F. cbv zeta. unfold den_lane_enc in *. revert F.
+  generalize (den_stage2_b (bcast o) d a b c) as t. intros t F. unfold det3_enclosure_b in *. cbn [radiusb] in F |- *.
   rewrite !fle_largest_finite in F |- *.
   destruct (fin (chb t)) eqn:Fh; [|discriminate]. destruct (fin (clb t)) eqn:Fl; [|discriminate].
   cbn [andb] in F |- *. destruct (fadd_fin _ _ F) as [Fp FA]. destruct (fmul_fin _ _ Fp) as [_ Fm].
@@ -94,8 +95,8 @@ Theorem den_quotient_filter_certain : forall (num : EnclosureB) o d a b c,
     <> uncertain_lane.
 Proof.
   intros num o d a b c Nn C.
-  set (ed := den_lane_enc o d a b c) in *.
-  destruct (den_lane_enc_facts o d a b c) as [Nd Ed]. fold ed in Nd, Ed.
+  destruct (den_lane_enc_facts o d a b c) as [Nd Ed].
+  remember (den_lane_enc o d a b c) as ed eqn:Eed in *.
   rewrite (proj2 (shared_divisor_zr num ed)) in C.
   destruct (round_quotient_twin num ed Nn Nd C) as [Fnh [Fnl [Fnr [Fdh [Fdl [Fdr [_ [_ Cm]]]]]]]].
   destruct (Ed Fdr) as [_ [_ [_ Enc]]].
@@ -104,14 +105,14 @@ Proof.
               (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
               (nonneg_fin_R _ Nn Fnr) Enc Cm) as [RD [[GD1 GD2] HV]].
   set (Dm := Rabs (fst (two_sum (hi (enc_R ed)) (lo (enc_R ed))))) in *.
-  destruct (den_lane_enc_radius o d a b c Fdr) as [Fh [Fm [FA Er]]].
-  set (t := den_stage2_b (bcast o) d a b c) in *.
-  change (radius (enc_R ed)) with (B2R (radiusb ed)) in RD. fold ed in Er. rewrite Er in RD.
+  destruct (den_lane_enc_radius o d a b c ltac:(rewrite <- Eed; exact Fdr)) as [Fh [Fm [FA Er]]].
   destruct (den_view_twin o d a b c Fm) as [[Fo [Fd [Fa [Fb Fc]]]] [Fv [_ [Ev [Em _]]]]].
-  fold t in Fv, Ev, Em.
+  (* [remember], not [set]: a let-bound t makes the kernel compare t with its unfolded body (minutes at Qed) *)
+  remember (den_stage2_b (bcast o) d a b c) as t eqn:Et in *.
+  change (radius (enc_R ed)) with (B2R (radiusb ed)) in RD. rewrite <- Eed in Er. rewrite Er in RD.
   destruct cpp_triangle_constants as [_ [_ [_ [_ [_ [_ [_ [_ [FC [NC [_ [_ [_ NK]]]]]]]]]]]]].
   assert (PA : 0 <= B2R (absolute_bv d)) by (apply nonneg_fin_R; [apply absolute_bv_nonneg | exact FA]).
-  assert (Pm : 0 <= B2R (cmb t)) by (apply nonneg_fin_R; [apply den_lane_cmb_nonneg | exact Fm]).
+  assert (Pm : 0 <= B2R (cmb t)) by (apply nonneg_fin_R; [rewrite Et; apply den_lane_cmb_nonneg | exact Fm]).
   assert (Encl := den_filter_encloses (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c)
                     (tvec_R_doubles o) (tvec_R_doubles d) (tvec_R_doubles a) (tvec_R_doubles b) (tvec_R_doubles c)).
   fold V in Encl. unfold det3_bound in Encl.
@@ -196,7 +197,9 @@ Proof.
   destruct (Z.eq_dec (det3_filter_lanes_b (fview (den_stage2_b (bcast o) d a b c)) Cpp.triangle_filter_den_relative
                         (absolute_bv d)) uncertain_lane) as [U|U].
   2:{ apply tri_call_site_den_same_unless_between. left. exact U. }
-  rewrite <- fast_intersection_mut_original. unfold fast_intersection_call_site_den_b.
+  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative want_t want_u o d a b c);
+    [| apply fast_intersection_mut_original].
+  unfold fast_intersection_call_site_den_b.
   destruct (negb want_t && negb want_u)%bool eqn:W.
   - unfold fast_intersection_mut_b. rewrite W. reflexivity.
   - rewrite !mut_none_den_uncertain by assumption. reflexivity.
