@@ -58,15 +58,20 @@ Lemma tcf_cdet3_nonneg : forall xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 
   nonneg (cmb (cdet3_b xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2)).
 Proof. intros. exact (cdet3_b_nonneg xh0 xl0 xh1 xl1 xh2 xl2 yh0 yl0 yh1 yl1 yh2 yl2 zh0 zl0 zh1 zl1 zh2 zl2). Qed.
 
+Lemma tcf_pi2_nonneg : forall o d p q, nonneg (cmb (pi_stage2_b o d p q)).
+Proof. intros. unfold pi_stage2_b. apply tcf_cdet3_nonneg. Qed.
+Lemma tcf_num2_nonneg : forall o a b c, nonneg (cmb (num_stage2_b o a b c)).
+Proof. intros. unfold num_stage2_b. apply tcf_cdet3_nonneg. Qed.
+
 Lemma tcf_value2_nonneg : forall o d a b c v, nonneg (cmb (tc_value2_b o d a b c v)).
 Proof.
   intros. unfold tc_value2_b.
-  destruct (Z.eqb v 0); [apply tcf_cdet3_nonneg|]. destruct (Z.eqb v 1); [apply tcf_cdet3_nonneg|].
-  destruct (Z.eqb v 2); [apply tcf_cdet3_nonneg|].
-  destruct (Z.eqb v 3); [|apply tcf_cdet3_nonneg].
+  destruct (Z.eqb v 0); [apply tcf_pi2_nonneg|]. destruct (Z.eqb v 1); [apply tcf_pi2_nonneg|].
+  destruct (Z.eqb v 2); [apply tcf_pi2_nonneg|].
+  destruct (Z.eqb v 3); [|apply tcf_num2_nonneg].
   unfold den_stage2_b. change (nonneg (fadd (fadd (cmb (pi_stage2_b o d b c)) (cmb (pi_stage2_b o d c a)))
                                                (cmb (pi_stage2_b o d a b)))).
-  apply fadd_nonneg; [apply fadd_nonneg|]; unfold pi_stage2_b; apply tcf_cdet3_nonneg.
+  apply fadd_nonneg; [apply fadd_nonneg|]; apply tcf_pi2_nonneg.
 Qed.
 
 (** The determinants' indices 0..4 (πa, πb, πc, den, num): the only ones the cascade asks for. *)
@@ -419,20 +424,35 @@ Proof.
 Qed.
 
 (** [triangle_intersection_cascade]: the classification of an answer before the exact stage is §6's. *)
+(** The class an answer of [tc_intersect_b] carries: every [TCDecided] is built with the classification's [cl].
+    Walked once over the definition's tree ([answer_class_if], [answer_class_pair]), not case by case. *)
+Definition answer_class_is (x : tc_answer) (cl : TClass) : Prop :=
+  match x with TCDecided c _ _ _ _ _ _ => c = cl | TCExact => True end.
+Lemma answer_class_if : forall (b : bool) x y cl,
+  answer_class_is x cl -> answer_class_is y cl -> answer_class_is (if b then x else y) cl.
+Proof. intros [|] x y cl X Y; assumption. Qed.
+Lemma answer_class_pair : forall {A B : Type} (p : A * B) (k : A -> B -> tc_answer) cl,
+  (forall a b, answer_class_is (k a b) cl) -> answer_class_is (let '(a, b) := p in k a b) cl.
+Proof. intros A B [a b] k cl K. apply K. Qed.
+
 Theorem tc_intersect_b_class_correct : forall want_t want_u owned_rule o d a b c cl rs t ua ub uc ts,
   tc_intersect_b want_t want_u owned_rule o d a b c = TCDecided cl rs t ua ub uc ts ->
   contract_class owned_rule (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) cl.
 Proof.
-  intros wt wu rule o d a b c cl rs t ua ub uc ts. unfold tc_intersect_b.
+  intros wt wu rule o d a b c cl rs t ua ub uc ts H.
   pose proof (tc_classify_b_correct o d a b c rule) as C.
-  destruct (tc_classify_b o d a b c rule) as [cl' f] eqn:E. cbn [fst snd] in C.
-  destruct (tf_exact f) eqn:X; [discriminate|]. specialize (C eq_refl).
-  intros H. revert H.
-  repeat match goal with
-  | |- (if ?b then _ else _) = _ -> _ => destruct b
-  | |- (let '(_, _) := ?p in _) = _ -> _ => destruct p
-  | |- TCDecided _ _ _ _ _ _ _ = TCDecided _ _ _ _ _ _ _ -> _ => let H := fresh in intros H; injection H; intros; subst; exact C
-  end.
+  assert (A : answer_class_is (tc_intersect_b wt wu rule o d a b c) (fst (tc_classify_b o d a b c rule))).
+  { unfold tc_intersect_b. destruct (tc_classify_b o d a b c rule) as [cl' f]. cbn [fst].
+    cbv zeta.
+    repeat match goal with
+    | |- answer_class_is (if _ then _ else _) _ => apply answer_class_if
+    | |- answer_class_is (let '(_, _) := _ in _) _ => apply answer_class_pair; intros ? ?
+    | |- answer_class_is (TCDecided _ _ _ _ _ _ _) _ => reflexivity
+    | |- answer_class_is TCExact _ => exact I
+    end. }
+  rewrite H in A. cbn [answer_class_is] in A. subst cl.
+  destruct (tc_classify_b o d a b c rule) as [cl' f] eqn:E. cbn [fst snd] in C |- *.
+  apply C. revert H. unfold tc_intersect_b. rewrite E. destruct (tf_exact f); [discriminate | reflexivity].
 Qed.
 
 (** ** The quotients' parts that are proved: a zero numerator, and stage 3 *)
