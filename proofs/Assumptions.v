@@ -470,6 +470,8 @@ Print Assumptions twin_results_triangle_intersection.
 From Raykernel Require QuotientDivisorBound TriangleDenCertain.
 Goal True. idtac "@@ tri_call_site_den_same". Abort.
 Print Assumptions TriangleDenCertain.tri_call_site_den_same.
+Goal True. idtac "@@ tri_by_filter_den_same". Abort.
+Print Assumptions TriangleDenCertain.tri_by_filter_den_same.
 Definition twin_results_den_certain :=
   (QuotientDivisorBound.round_quotient_certain_divisor,
    TriangleDenCertain.den_filter_margin,

@@ -7,7 +7,10 @@
     - [den_quotient_filter_certain]: whenever [round_quotient_b num (shared_divisor_b ed)] certifies (ed den's
       stage-2 enclosure, [den_lane_enc]), den's stage-1 filter sign with den's own constant is certain.  Through
       QueryTwins.v's [round_quotient_twin] and QuotientDivisorBound.v's [round_quotient_certain_divisor]
-      (E_d ≤ u·|D|), TriangleFilter.v's [den_filter_encloses] (|h − den| ≤ B) and the margin above. *)
+      (E_d ≤ u·|D|), TriangleFilter.v's [den_filter_encloses] (|h − den| ≤ B) and the margin above;
+    - its consequences for two mutations of run.py, each mutated twin equal to the twin for every bit pattern:
+      [tri_call_site_den_same] (den filtered with π's constant) and [tri_by_filter_den_same] (the stage label
+      [by_filter] not reading den's filter sign). *)
 
 From Coq Require Import Reals Lra ZArith Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -155,11 +158,11 @@ Qed.
 
 (** ** tri_call_site_den: the mutated twin answers as the twin for every bit pattern *)
 
-Lemma core_none_uncertified : forall want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn,
+Lemma core_none_uncertified : forall den_in_filter want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn,
   (negb want_t && negb want_u)%bool = false -> snd qa = false -> snd qn = false ->
-  fast_intersection_core want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn = None.
+  fast_intersection_core den_in_filter want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn = None.
 Proof.
-  intros want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn W Qa Qn. unfold fast_intersection_core. cbv zeta.
+  intros den_in_filter want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn W Qa Qn. unfold fast_intersection_core. cbv zeta.
   rewrite Qa, Qn. destruct want_t, want_u; try discriminate W; cbn [negb orb andb];
     repeat match goal with
     | |- (if ?b then _ else _) = None => destruct b
@@ -169,13 +172,13 @@ Qed.
 
 (** With den's stage-1 sign uncertain under den's constant, no quotient is certified over den's divisor, so the
     twin with any den constant answers nothing (with t or the barycentrics asked). *)
-Lemma mut_none_den_uncertain : forall C want_t want_u o d a b c,
+Lemma mut_none_den_uncertain : forall C f want_t want_u o d a b c,
   (negb want_t && negb want_u)%bool = false ->
   det3_filter_lanes_b (fview (den_stage2_b (bcast o) d a b c)) Cpp.triangle_filter_den_relative (absolute_bv d)
     = uncertain_lane ->
-  fast_intersection_mut_b det3_enclosure_b C want_t want_u o d a b c = None.
+  fast_intersection_mut_b det3_enclosure_b C f want_t want_u o d a b c = None.
 Proof.
-  intros C want_t want_u o d a b c W U.
+  intros C f want_t want_u o d a b c W U.
   assert (NQ : forall num, nonneg (radiusb num) ->
                 snd (round_quotient_b num (shared_divisor_b (den_lane_enc o d a b c))) = false).
   { intros num N. apply not_true_is_false. intros S. exact (den_quotient_filter_certain num o d a b c N S U). }
@@ -197,10 +200,44 @@ Proof.
   destruct (Z.eq_dec (det3_filter_lanes_b (fview (den_stage2_b (bcast o) d a b c)) Cpp.triangle_filter_den_relative
                         (absolute_bv d)) uncertain_lane) as [U|U].
   2:{ apply tri_call_site_den_same_unless_between. left. exact U. }
-  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative want_t want_u o d a b c);
+  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative true want_t want_u o d a b c);
     [| apply fast_intersection_mut_original].
   unfold fast_intersection_call_site_den_b.
   destruct (negb want_t && negb want_u)%bool eqn:W.
   - unfold fast_intersection_mut_b. rewrite W. reflexivity.
   - rewrite !mut_none_den_uncertain by assumption. reflexivity.
+Qed.
+
+(** ** tri_by_filter_den: [by_filter] without den's filter sign *)
+
+(** [fast_triangle_intersection] whose stage label [by_filter] does not read den's stage-1 filter sign (mutation
+    [tri_by_filter_den] of proofs/mutation/run.py). *)
+Definition fast_intersection_by_filter_den_b :=
+  fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative false.
+
+Lemma core_den_in_filter_certain : forall want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn,
+  certain_lane fd = true ->
+  fast_intersection_core false want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn =
+  fast_intersection_core true want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn.
+Proof. intros until qn. intros D. unfold fast_intersection_core. rewrite D. reflexivity. Qed.
+
+(** The mutated twin answers as [fast_intersection_tri_b], for every 64-bit pattern of o, d, a, b, c and every option
+    set: where den's filter sign is certain [by_filter] reads the same; where it is uncertain neither answers
+    (with t or the barycentrics asked, an answer needs a quotient certified over den's divisor, which makes den's
+    filter sign certain: [den_quotient_filter_certain] through [mut_none_den_uncertain]; with neither asked the
+    relation's fast path answers, which has no [by_filter]). *)
+Theorem tri_by_filter_den_same : forall want_t want_u (o d a b c : TVec),
+  fast_intersection_by_filter_den_b want_t want_u o d a b c = fast_intersection_tri_b want_t want_u o d a b c.
+Proof.
+  intros want_t want_u o d a b c.
+  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative true want_t want_u o d a b c);
+    [| apply fast_intersection_mut_original].
+  unfold fast_intersection_by_filter_den_b.
+  destruct (negb want_t && negb want_u)%bool eqn:W.
+  - unfold fast_intersection_mut_b. rewrite W. reflexivity.
+  - destruct (Z.eq_dec (det3_filter_lanes_b (fview (den_stage2_b (bcast o) d a b c))
+                          Cpp.triangle_filter_den_relative (absolute_bv d)) uncertain_lane) as [U|U].
+    + rewrite !mut_none_den_uncertain by assumption. reflexivity.
+    + unfold fast_intersection_mut_b. rewrite W. cbv zeta. apply core_den_in_filter_certain.
+      unfold certain_lane. apply negb_true_iff. apply Z.eqb_neq. exact U.
 Qed.

@@ -1,9 +1,11 @@
 (** * The two triangle mutations the mutation check reports as unobservable (proofs/mutation/run.py's
     [UNOBSERVABLE]), on the twin of fast_triangle_intersection (TriangleIntersectTwins.v).
 
-    [fast_intersection_mut_b enc Cden] is [fast_intersection_tri_b] (TriangleIntersectTwins.v) with the
-    enclosure routine [enc] and den's stage-1 constant [Cden] as parameters ([fast_intersection_mut_original]:
-    with [det3_enclosure_b] and den's constant it is the twin, by [reflexivity]).  The mutated twins:
+    [fast_intersection_mut_b enc Cden den_in_filter] is [fast_intersection_tri_b] (TriangleIntersectTwins.v) with
+    the enclosure routine [enc], den's stage-1 constant [Cden] and whether the stage label [by_filter] reads den's
+    filter sign as parameters ([fast_intersection_mut_original]: with [det3_enclosure_b], den's constant and
+    [true] it is the twin, by [reflexivity]).  The mutated twins (the third, [by_filter] without den's sign, is
+    TriangleDenCertain.v's [fast_intersection_by_filter_den_b]):
     - [fast_intersection_call_site_den_b] (mutation [tri_call_site_den]): den filtered with π's constant;
     - [fast_intersection_drop_guard_b] (mutation [tri_drop_guard]): [det3_enclosure_noguard_b], the radius
       kept finite when only |h| ≤ largest finite holds.
@@ -31,7 +33,7 @@ From Raykernel Require Import Constants Model Classification FloatCore Constants
 
 (** The part after the stage-2 lanes, from the signs and quotients it reads: the five filter signs, the five
     enclosure signs, the four quotients. *)
-Definition fast_intersection_core (want_t want_u : bool) (fa fb fc fn fd ga gb gc gn gd : Z)
+Definition fast_intersection_core (den_in_filter want_t want_u : bool) (fa fb fc fn fd ga gb gc gn gd : Z)
     (qa qb qc qn : float * bool) : option TAnswerB :=
   let sa := first_certain_lanes_b fa ga in let sb := first_certain_lanes_b fb gb in
   let sc := first_certain_lanes_b fc gc in let sn := first_certain_lanes_b fn gn in
@@ -42,23 +44,23 @@ Definition fast_intersection_core (want_t want_u : bool) (fa fb fc fn fd ga gb g
   | Some cl =>
     if (want_t && negb (certain_lane sn))%bool then None else
     if negb ((negb want_t || snd qn) && (negb want_u || (snd qa && snd qb && snd qc)))%bool then None else
-    let by_filter := (certain_lane fa && certain_lane fb && certain_lane fc && certain_lane fd &&
-                      (is_outside (tloc cl) || certain_lane fn))%bool in
+    let by_filter := (certain_lane fa && certain_lane fb && certain_lane fc &&
+                      (negb den_in_filter || certain_lane fd) && (is_outside (tloc cl) || certain_lane fn))%bool in
     Some (TAB cl (if want_t then fst qn else fnan) (if want_u then fst qa else fnan)
               (if want_u then fst qb else fnan) (if want_u then fst qc else fnan)
               (if by_filter then 0 else 1) 1)
   end.
 
-Lemma fast_intersection_core_congr : forall want_t want_u fa fb fc fn fd fd' ga gb gc gn gd ga' gb' gc' gn' gd'
+Lemma fast_intersection_core_congr : forall den_in_filter want_t want_u fa fb fc fn fd fd' ga gb gc gn gd ga' gb' gc' gn' gd'
     qa qb qc qn qa' qb' qc' qn',
   fd = fd' -> ga = ga' -> gb = gb' -> gc = gc' -> gn = gn' -> gd = gd' -> qa = qa' -> qb = qb' -> qc = qc' ->
   qn = qn' ->
-  fast_intersection_core want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn =
-  fast_intersection_core want_t want_u fa fb fc fn fd' ga' gb' gc' gn' gd' qa' qb' qc' qn'.
+  fast_intersection_core den_in_filter want_t want_u fa fb fc fn fd ga gb gc gn gd qa qb qc qn =
+  fast_intersection_core den_in_filter want_t want_u fa fb fc fn fd' ga' gb' gc' gn' gd' qa' qb' qc' qn'.
 Proof. intros. subst. reflexivity. Qed.
 
 Definition fast_intersection_mut_b (enc : CTermB -> float -> float -> EnclosureB) (Cden : float)
-    (want_t want_u : bool) (o d a b c : TVec) : option TAnswerB :=
+    (den_in_filter want_t want_u : bool) (o d a b c : TVec) : option TAnswerB :=
   if (negb want_t && negb want_u)%bool then
     match fast_relation_tri_b o d a b c with
     | Some cl => Some (TAB cl fnan fnan fnan fnan 0 0)
@@ -74,7 +76,7 @@ Definition fast_intersection_mut_b (enc : CTermB -> float -> float -> EnclosureB
     let den := cterm_add_b (cterm_add_b pa pb) pc in
     let ed := enc den Cpp.triangle_compensated_den_relative ad in
     let dv := shared_divisor_b ed in
-    fast_intersection_core want_t want_u
+    fast_intersection_core den_in_filter want_t want_u
       (det3_filter_lanes_b (fview pa) Cpi ad) (det3_filter_lanes_b (fview pb) Cpi ad)
       (det3_filter_lanes_b (fview pc) Cpi ad) (det3_filter_lanes_b (fview pn) Cpp.triangle_filter_num_relative ae)
       (det3_filter_lanes_b (fview den) Cden ad)
@@ -83,7 +85,7 @@ Definition fast_intersection_mut_b (enc : CTermB -> float -> float -> EnclosureB
       (round_quotient_b ea dv) (round_quotient_b eb dv) (round_quotient_b ec dv) (round_quotient_b en dv).
 
 Lemma fast_intersection_mut_original : forall want_t want_u o d a b c,
-  fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative want_t want_u o d a b c =
+  fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative true want_t want_u o d a b c =
   fast_intersection_tri_b want_t want_u o d a b c.
 Proof. reflexivity. Qed.
 
@@ -91,7 +93,7 @@ Proof. reflexivity. Qed.
 
 Open Scope R_scope.
 
-Definition fast_intersection_call_site_den_b := fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_pi_relative.
+Definition fast_intersection_call_site_den_b := fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_pi_relative true.
 
 Lemma nonneg_fin_pos : forall x, nonneg x -> fin x = true -> 0 <= B2R x.
 Proof.
@@ -169,7 +171,7 @@ Proof.
       - exact U. }
     destruct (Z.eq_dec fd uncertain_lane) as [V|V]; [| exact (M V)].
     destruct H as [U | U]; [contradiction | transitivity uncertain_lane; [exact U | symmetry; exact V]]. }
-  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative want_t want_u o d a b c);
+  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative true want_t want_u o d a b c);
     [| apply fast_intersection_mut_original].
   unfold fast_intersection_call_site_den_b, fast_intersection_mut_b.
   destruct (negb want_t && negb want_u)%bool; [reflexivity|]. cbv zeta.
@@ -183,7 +185,7 @@ Definition det3_enclosure_noguard_b (t : CTermB) (K A : float) : EnclosureB :=
   let finite := fle (fabs (chb t)) largest_finite_f in
   {| hib := chb t; lob := clb t; radiusb := if finite then radius else finf |}.
 
-Definition fast_intersection_drop_guard_b := fast_intersection_mut_b det3_enclosure_noguard_b Cpp.triangle_filter_den_relative.
+Definition fast_intersection_drop_guard_b := fast_intersection_mut_b det3_enclosure_noguard_b Cpp.triangle_filter_den_relative true.
 
 (** The case the guard would matter for and the consumers do not absorb: h finite, l = ±inf, finite radius. *)
 Definition no_infinite_low (t : CTermB) (K A : float) : Prop :=
@@ -338,7 +340,7 @@ Proof.
   destruct (drop_guard_consumers_agree pc K ad NK (pi_view_nonneg _ _ _ _) NA Pc) as [Sc [Qc _]].
   destruct (drop_guard_consumers_agree pn K ae NK (num_lane_view_nonneg _ _ _ _) NE Pn) as [Sn [Qn _]].
   destruct (drop_guard_consumers_agree _ _ ad NKd (den_view_nonneg o d a b c) NA Pd) as [Sd [_ Dd]].
-  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative want_t want_u o d a b c);
+  transitivity (fast_intersection_mut_b det3_enclosure_b Cpp.triangle_filter_den_relative true want_t want_u o d a b c);
     [| apply fast_intersection_mut_original].
   unfold fast_intersection_drop_guard_b, fast_intersection_mut_b.
   destruct (negb want_t && negb want_u)%bool; [reflexivity|]. cbv zeta.

@@ -174,6 +174,10 @@ MUTATIONS = [
      "both(abs(t.h) <= bounds::largest_finite, abs(t.l) <= bounds::largest_finite);",
      "abs(t.h) <= bounds::largest_finite;",
      "det3_enclosure: drop the guard |l| ≤ largest finite (a finite radius for a non-finite l)"),
+    ("tri_by_filter_den", "kernel/src/triangle/ray_triangle_cascade.cpp",
+     "(filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &",
+     "(filter[2] != uncertain_lane) &",
+     "fast_triangle_intersection: the stage label by_filter does not read den's filter sign"),
     ("tri_fast_sign_flip", "kernel/src/triangle/ray_triangle_cascade.cpp",
      "select(s1.lanes.v > bound, one, Lanes4{}) - select(s1.lanes.v < -bound, one, Lanes4{});",
      "select(s1.lanes.v < -bound, one, Lanes4{}) - select(s1.lanes.v > bound, one, Lanes4{});",
@@ -220,8 +224,10 @@ MUTATIONS = [
 # TriangleMutations.v's `tri_call_site_den_same_unless_between`; inside it neither twin answers, since a quotient
 # certified over den's divisor makes den's 10u filter certain, `den_quotient_filter_certain`);
 # tri_drop_guard for every bit pattern, `tri_drop_guard_same` (proofs/TriangleStageTwoFinite.v: the mutated twin
-# equals the twin, stage 2's low parts being NaN or bounded wherever h and m are finite).
-UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard"}
+# equals the twin, stage 2's low parts being NaN or bounded wherever h and m are finite); tri_by_filter_den for every
+# bit pattern, `tri_by_filter_den_same` (proofs/TriangleDenCertain.v: an answer with t or a barycentric needs a
+# quotient certified over den's divisor, which makes den's filter sign certain, so by_filter reads the same).
+UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard", "tri_by_filter_den"}
 
 
 def run(cmd, cwd, log, timeout=None):
