@@ -478,3 +478,19 @@ Definition twin_results_den_certain :=
    TriangleDenCertain.den_quotient_filter_certain).
 Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
 Print Assumptions twin_results_den_certain.
+(** CompareLiveness.v: stage 1 of the nearest-hit comparison (compare_quotients_filter, as
+    compare_hit_distances calls it) certifies whenever |x_1·y_2 − x_2·y_1| > c_1·S + c_2·ρ + c_3; not
+    vacuous (an example certified by computation) and neither c_1 nor c_2 can be halved *)
+From Raykernel Require CompareLiveness.
+Goal True. idtac "@@ compare_filter_live compare_filter_live_exact compare_hit_distances_stage1_live". Abort.
+Definition liveness_results_compare :=
+  (CompareLiveness.compare_filter_live,
+   CompareLiveness.compare_filter_live_exact,
+   CompareLiveness.compare_hit_distances_stage1_live).
+Print Assumptions liveness_results_compare.
+Goal True. idtac "@@ compare_filter_live_example compare_filter_half_c1_fails compare_filter_half_c2_fails". Abort.
+Definition liveness_sharpness_compare :=
+  (CompareLiveness.compare_filter_live_example,
+   CompareLiveness.compare_filter_half_c1_fails,
+   CompareLiveness.compare_filter_half_c2_fails).
+Print Assumptions liveness_sharpness_compare.
