@@ -476,3 +476,20 @@ Definition twin_results_den_certain :=
    TriangleDenCertain.den_quotient_filter_certain).
 Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
 Print Assumptions twin_results_den_certain.
+(** RefinedLiveness.v: the second level of stage 2 certifies on a stated class; the class is not vacuous
+    and its constant is within a factor 1.2 of the best *)
+From Raykernel Require RefinedLiveness.
+Goal True. idtac "@@ refined_live". Abort.
+Print Assumptions RefinedLiveness.refined_live.
+Goal True. idtac "@@ refined_den_live". Abort.
+Print Assumptions RefinedLiveness.refined_den_live.
+Goal True. idtac "@@ refined_num_live". Abort.
+Print Assumptions RefinedLiveness.refined_num_live.
+Definition twin_results_refined_liveness :=
+  (RefinedLiveness.refined_radius_upper,
+   RefinedLiveness.enclosure_sign_live3,
+   RefinedLiveness.refined_den_live_witness,
+   RefinedLiveness.refined_num_live_witness,
+   RefinedLiveness.refined_den_live_half_false).
+Goal True. idtac "@@ refined_radius_upper enclosure_sign_live3 refined_den_live_witness refined_num_live_witness refined_den_live_half_false". Abort.
+Print Assumptions twin_results_refined_liveness.
