@@ -494,3 +494,20 @@ Definition liveness_sharpness_compare :=
    CompareLiveness.compare_filter_half_c1_fails,
    CompareLiveness.compare_filter_half_c2_fails).
 Print Assumptions liveness_sharpness_compare.
+(** RefinedLiveness.v: the second level of stage 2 certifies on a stated class; the class is not vacuous
+    and its constant is within a factor 1.2 of the best *)
+From Raykernel Require RefinedLiveness.
+Goal True. idtac "@@ refined_live". Abort.
+Print Assumptions RefinedLiveness.refined_live.
+Goal True. idtac "@@ refined_den_live". Abort.
+Print Assumptions RefinedLiveness.refined_den_live.
+Goal True. idtac "@@ refined_num_live". Abort.
+Print Assumptions RefinedLiveness.refined_num_live.
+Definition twin_results_refined_liveness :=
+  (RefinedLiveness.refined_radius_upper,
+   RefinedLiveness.enclosure_sign_live3,
+   RefinedLiveness.refined_den_live_witness,
+   RefinedLiveness.refined_num_live_witness,
+   RefinedLiveness.refined_den_live_half_false).
+Goal True. idtac "@@ refined_radius_upper enclosure_sign_live3 refined_den_live_witness refined_num_live_witness refined_den_live_half_false". Abort.
+Print Assumptions twin_results_refined_liveness.
