@@ -476,3 +476,15 @@ Definition twin_results_den_certain :=
    TriangleDenCertain.den_quotient_filter_certain).
 Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
 Print Assumptions twin_results_den_certain.
+(** QuotientLiveness.v: the quotient rounding (quotient_rounding.hpp, prepare_divisor and round_quotient)
+    certifies, with t = RN(X/Y), when X/Y is far enough from the points RN(X/Y) ± half_gap(RN(X/Y)) (liveness) *)
+From Raykernel Require QuotientLiveness.
+Goal True. idtac "@@ round_quotient_live". Abort.
+Print Assumptions QuotientLiveness.round_quotient_live.
+Definition twin_results_quotient_liveness :=
+  (QuotientLiveness.round_quotient_live_exact,
+   QuotientLiveness.quotient_residuals_q0,
+   QuotientLiveness.round_quotient_b_third,
+   QuotientLiveness.near_midpoint_threshold).
+Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold". Abort.
+Print Assumptions twin_results_quotient_liveness.
