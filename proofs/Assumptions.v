@@ -485,6 +485,7 @@ Definition twin_results_quotient_liveness :=
   (QuotientLiveness.round_quotient_live_exact,
    QuotientLiveness.quotient_residuals_q0,
    QuotientLiveness.round_quotient_b_third,
-   QuotientLiveness.near_midpoint_threshold).
-Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold". Abort.
+   QuotientLiveness.near_midpoint_threshold,
+   QuotientLiveness.third_radius_threshold).
+Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold third_radius_threshold". Abort.
 Print Assumptions twin_results_quotient_liveness.

@@ -416,3 +416,16 @@ Lemma near_midpoint_threshold :
   map near_midpoint_certified (256 :: 288 :: 290 :: 512 :: 513 :: 1024 :: nil)%Z =
   (false :: false :: true :: true :: true :: true :: nil).
 Proof. vm_compute. reflexivity. Qed.
+
+(** The radii: 1/3 (X = 1, Y = 3) is 2^-55/3 from the point RN(1/3) + 2^-55, so [round_quotient_live] covers
+    E_n < (1 + 2^-8)^-1·(2^-55 − 2^-97) and E_d < 3·(that); the twin certifies with E_n = 2^-57 and not with
+    E_n = 2^-55, with E_d = 2^-55 and not with E_d = 2^-53 (bits 2^-57 = 4350477240039899136,
+    2^-55 = 4359484439294640128, 2^-53 = 4368491638549381120). *)
+Lemma third_radius_threshold :
+  map (fun r => snd (round_quotient_b (live_enc 4607182418800017408 0 r)
+                                      (prepare_divisor_b (live_enc 4613937818241073152 0 0))))
+      (4350477240039899136 :: 4359484439294640128 :: nil)%Z = (true :: false :: nil) /\
+  map (fun r => snd (round_quotient_b (live_enc 4607182418800017408 0 0)
+                                      (prepare_divisor_b (live_enc 4613937818241073152 0 r))))
+      (4359484439294640128 :: 4368491638549381120 :: nil)%Z = (true :: false :: nil).
+Proof. split; vm_compute; reflexivity. Qed.
