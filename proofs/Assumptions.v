@@ -511,3 +511,16 @@ Definition twin_results_refined_liveness :=
    RefinedLiveness.refined_den_live_half_false).
 Goal True. idtac "@@ refined_radius_upper enclosure_sign_live3 refined_den_live_witness refined_num_live_witness refined_den_live_half_false". Abort.
 Print Assumptions twin_results_refined_liveness.
+(** QuotientLiveness.v: the quotient rounding (quotient_rounding.hpp, prepare_divisor and round_quotient)
+    certifies, with t = RN(X/Y), when X/Y is far enough from the points RN(X/Y) ± half_gap(RN(X/Y)) (liveness) *)
+From Raykernel Require QuotientLiveness.
+Goal True. idtac "@@ round_quotient_live". Abort.
+Print Assumptions QuotientLiveness.round_quotient_live.
+Definition twin_results_quotient_liveness :=
+  (QuotientLiveness.round_quotient_live_exact,
+   QuotientLiveness.quotient_residuals_q0,
+   QuotientLiveness.round_quotient_b_third,
+   QuotientLiveness.near_midpoint_threshold,
+   QuotientLiveness.third_radius_threshold).
+Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold third_radius_threshold". Abort.
+Print Assumptions twin_results_quotient_liveness.
