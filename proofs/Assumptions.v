@@ -476,3 +476,14 @@ Definition twin_results_den_certain :=
    TriangleDenCertain.den_quotient_filter_certain).
 Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
 Print Assumptions twin_results_den_certain.
+(** Stage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
+    stage 3 when the expansions have one component each; a concrete input where stages 1 and 2 do not *)
+From Raykernel Require Stage3Liveness.
+Definition twin_results_stage3_liveness :=
+  (Stage3Liveness.expansion_sign_single_certain,
+   Stage3Liveness.expansion_sign_single_exact,
+   Stage3Liveness.certified_signs_single_live,
+   Stage3Liveness.relation_single_live,
+   Stage3Liveness.stage3_plane_live_example).
+Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example". Abort.
+Print Assumptions twin_results_stage3_liveness.
