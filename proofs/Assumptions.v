@@ -484,6 +484,10 @@ Definition twin_results_stage3_liveness :=
    Stage3Liveness.expansion_sign_single_exact,
    Stage3Liveness.certified_signs_single_live,
    Stage3Liveness.relation_single_live,
-   Stage3Liveness.stage3_plane_live_example).
-Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example". Abort.
+   Stage3Liveness.stage3_plane_live_example,
+   Stage3Liveness.build_expansions_single,
+   Stage3Liveness.expansions_int_single,
+   Stage3Liveness.stage3_int_live,
+   Stage3Liveness.relation_int_live).
+Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example build_expansions_single expansions_int_single stage3_int_live relation_int_live". Abort.
 Print Assumptions twin_results_stage3_liveness.
