@@ -524,3 +524,18 @@ Definition twin_results_quotient_liveness :=
    QuotientLiveness.third_radius_threshold).
 Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold third_radius_threshold". Abort.
 Print Assumptions twin_results_quotient_liveness.
+(** Stage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
+    stage 3 when the expansions have one component each; a concrete input where stages 1 and 2 do not *)
+From Raykernel Require Stage3Liveness.
+Definition twin_results_stage3_liveness :=
+  (Stage3Liveness.expansion_sign_single_certain,
+   Stage3Liveness.expansion_sign_single_exact,
+   Stage3Liveness.certified_signs_single_live,
+   Stage3Liveness.relation_single_live,
+   Stage3Liveness.stage3_plane_live_example,
+   Stage3Liveness.build_expansions_single,
+   Stage3Liveness.expansions_int_single,
+   Stage3Liveness.stage3_int_live,
+   Stage3Liveness.relation_int_live).
+Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example build_expansions_single expansions_int_single stage3_int_live relation_int_live". Abort.
+Print Assumptions twin_results_stage3_liveness.
