@@ -506,3 +506,8 @@ Definition twin_results_stage3_liveness :=
    Stage3Liveness.relation_int_live).
 Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example build_expansions_single expansions_int_single stage3_int_live relation_int_live". Abort.
 Print Assumptions twin_results_stage3_liveness.
+(** CompareLiveness2.v: the radius of stage 2 of nearest_hit's comparison (compare_quotients_compensated) from
+    above, over the model: the first half of stage 2's liveness *)
+From Raykernel Require CompareLiveness2.
+Goal True. idtac "@@ compare_compensated_radius_upper". Abort.
+Print Assumptions CompareLiveness2.compare_compensated_radius_upper.
