@@ -46,96 +46,13 @@ Lemma quotient_residuals_q0 : forall N n D d R,
   Rabs c <= 5 * u * Rabs q0 /\
   Rabs (c * d) <= 5 * (u * u) * A.
 Proof.
-  intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD q0 Gq0 rr c A.
-  pose proof Q900_pos as HQ. pose proof eta_Q900 as EQ. pose proof u_pos as Hu. pose proof eta_pos as He.
-  set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
-  assert (DP : 0 < aD) by (apply Rabs_pos_lt; exact Dnz).
-  assert (Paq : 0 <= aq) by apply Rabs_pos.
-  assert (RDb : Rabs (R * D) <= 1 + u) by (pose proof (Rabs_close _ _ _ RD); rewrite Rabs_R1 in *; lra).
-  (* q0 = RN(N R) *)
-  assert (E0D : Rabs (q0 * D - N * R * D) <= u * A + eta * aD).
-  { pose proof (RN_err_round (N * R)) as E. fold q0 in E. fold aq in E.
-    replace (q0 * D - N * R * D) with ((q0 - N * R) * D) by ring.
-    rewrite Rabs_mult. fold aD. unfold A.
-    replace (u * (aq * aD) + eta * aD) with ((u * aq + eta) * aD) by ring.
-    apply Rmult_le_compat_r; lra. }
-  assert (ENRD : Rabs (N * R * D - N) <= u * Rabs N).
-  { replace (N * R * D - N) with (N * (R * D - 1)) by ring. rewrite Rabs_mult.
-    rewrite Rmult_comm. apply Rmult_le_compat_r; [apply Rabs_pos | exact RD]. }
-  assert (Aq : Rabs (q0 * D) = A) by (unfold A, aq, aD; apply Rabs_mult).
-  set (rho1 := N - q0 * D).
-  assert (HN : Rabs N <= A + Rabs rho1).
-  { replace N with (q0 * D + rho1) by (unfold rho1; ring). rewrite <- Aq. apply Rabs_triang. }
-  assert (R1 : Rabs rho1 <= u * Rabs N + (u * A + eta * aD)).
-  { unfold rho1. replace (N - q0 * D) with (- (N * R * D - N) - (q0 * D - N * R * D)) by ring.
-    unfold Rminus at 1. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp, Rabs_Ropp. lra. }
-  set (rho2 := n - q0 * d).
-  assert (QD : Rabs (q0 * d) <= u * A).
-  { rewrite Rabs_mult. fold aq. unfold A.
-    replace (u * (aq * aD)) with (aq * (u * aD)) by ring.
-    apply Rmult_le_compat_l; [lra | exact Ld]. }
-  assert (R2 : Rabs rho2 <= u * Rabs N + u * A).
-  { unfold rho2. unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp. lra. }
-  (* the two FMAs and their sum *)
-  assert (Er1 : Rabs (fma (- q0) D N - rho1) <= u * Rabs rho1 + eta).
-  { unfold fma. replace (- q0 * D + N) with rho1 by (unfold rho1; ring). apply RN_err. }
-  assert (Er2 : Rabs (fma (- q0) d n - rho2) <= u * Rabs rho2 + eta).
-  { unfold fma. replace (- q0 * d + n) with rho2 by (unfold rho2; ring). apply RN_err. }
-  set (r1 := fma (- q0) D N) in *. set (r2 := fma (- q0) d n) in *.
-  pose proof (RN_plus_err r1 r2 ltac:(apply binary64_RN) ltac:(apply binary64_RN)) as Err. fold rr in Err.
-  assert (T12 : Rabs (r1 + r2) <= Rabs r1 + Rabs r2) by apply Rabs_triang.
-  assert (Hr1 : Rabs r1 <= Rabs rho1 + (u * Rabs rho1 + eta)) by (apply Rabs_close; exact Er1).
-  assert (Hr2 : Rabs r2 <= Rabs rho2 + (u * Rabs rho2 + eta)) by (apply Rabs_close; exact Er2).
-  assert (Hrr : Rabs rr <= Rabs (r1 + r2) + u * Rabs (r1 + r2)) by (apply Rabs_close; exact Err).
-  assert (Tr : Rabs (rho1 + rho2 - rr) <= Rabs (r1 - rho1) + Rabs (r2 - rho2) + Rabs (rr - (r1 + r2))).
-  { replace (rho1 + rho2 - rr) with (- (r1 - rho1) + - (r2 - rho2) + - (rr - (r1 + r2))) by ring.
-    eapply Rle_trans; [apply Rabs_triang|].
-    pose proof (Rabs_triang (- (r1 - rho1)) (- (r2 - rho2))). rewrite !Rabs_Ropp in *. lra. }
-  (* c = RN(rr R) *)
-  assert (EcD : Rabs (c * D - rr * R * D) <= u * (1 + u) * Rabs rr + eta * aD).
-  { pose proof (RN_err (rr * R)) as E. fold c in E.
-    replace (c * D - rr * R * D) with ((c - rr * R) * D) by ring.
-    rewrite Rabs_mult. fold aD.
-    apply Rle_trans with ((u * Rabs (rr * R) + eta) * aD); [apply Rmult_le_compat_r; lra|].
-    replace ((u * Rabs (rr * R) + eta) * aD) with (u * (Rabs rr * Rabs (R * D)) + eta * aD)
-      by (unfold aD; rewrite !Rabs_mult; ring).
-    assert (Rabs rr * Rabs (R * D) <= Rabs rr * (1 + u)) by (apply Rmult_le_compat_l; [apply Rabs_pos | exact RDb]).
-    apply Rplus_le_compat_r. replace (u * (1 + u) * Rabs rr) with (u * (Rabs rr * (1 + u))) by ring.
-    apply Rmult_le_compat_l; lra. }
-  assert (ErrRD : Rabs (rr * R * D - rr) <= u * Rabs rr).
-  { replace (rr * R * D - rr) with (rr * (R * D - 1)) by ring. rewrite Rabs_mult.
-    rewrite Rmult_comm. apply Rmult_le_compat_r; [apply Rabs_pos | exact RD]. }
-  assert (EC : Rabs (c * D - rr) <= u * (1 + u) * Rabs rr + eta * aD + u * Rabs rr).
-  { replace (c * D - rr) with ((c * D - rr * R * D) + (rr * R * D - rr)) by ring.
-    eapply Rle_trans; [apply Rabs_triang|]. lra. }
-  assert (cD : Rabs c * aD <= Rabs rr + (u * (1 + u) * Rabs rr + eta * aD + u * Rabs rr)).
-  { unfold aD. rewrite <- Rabs_mult. apply Rabs_close. exact EC. }
-  assert (HqD : Q900 * aD <= 2 * A).
-  { unfold A. fold aq aD. rewrite <- Rmult_assoc. apply Rmult_le_compat_r; lra. }
-  assert (EtaN : eta <= / 2 ^ 175 * Rabs N) by (rewrite EQ; lra).
-  assert (EtaD : eta * aD = / 2 ^ 175 * (Q900 * aD)) by (rewrite EQ; ring).
-  assert (QDP : 0 < Q900 * aD) by (apply Rmult_lt_0_compat; lra).
-  pose proof (Rabs_pos rho1) as P1. pose proof (Rabs_pos rho2) as P2. pose proof (Rabs_pos (r1 + r2)) as P3.
-  pose proof (Rabs_pos r1) as P4. pose proof (Rabs_pos r2) as P5. pose proof (Rabs_pos rr) as P6.
-  pose proof (Rabs_pos c) as P7.
-  assert (Ccd : Rabs (c * d) <= u * (Rabs c * aD)).
-  { rewrite Rabs_mult. replace (u * (Rabs c * aD)) with (Rabs c * (u * aD)) by ring.
-    apply Rmult_le_compat_l; [lra | exact Ld]. }
-  set (E1 := eta * aD) in *. set (QD0 := Q900 * aD) in *. set (cD0 := Rabs c * aD) in *.
-  assert (cD0_def : cD0 = Rabs c * aD) by reflexivity.
-  clearbody E1 QD0 cD0.
-  rewrite u_val in *.
-  assert (AP : 0 < A) by (simpl in *; lra).
-  assert (S1 : E1 <= / 2 ^ 170 * A) by (simpl in *; lra).
-  assert (S0 : eta <= / 2 ^ 170 * A) by (simpl in *; lra).
-  assert (Brr : Rabs rr <= 401 / 100 * / 9007199254740992 * A).
-  { clear -Hr1 Hr2 T12 Hrr HN R1 R2 S0 S1 AP He Hu P1 P2 P3 P4 P5 P6. simpl in *. lra. }
-  assert (Bc : cD0 <= 41 / 10 * / 9007199254740992 * A) by (simpl in *; lra).
-  repeat split; try assumption.
-  - simpl in *. lra.
-  - simpl in *. lra.
-  - apply Rmult_le_reg_r with aD; [exact DP|]. rewrite <- cD0_def. unfold A in Bc, AP. lra.
-  - simpl in *. lra.
+  intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD.
+  pose proof (quotient_residuals_gen N n D d R BN Bn BD Bd Ln Ld GN Dnz RD) as G. cbv zeta in G |- *.
+  intros Gq0. apply G.
+  revert Gq0. generalize (RN (N * R)) (RN (RN (fma (- RN (N * R)) D N + fma (- RN (N * R)) d n) * R)).
+  intros q0 c Gq0. pose proof (Rabs_pos D) as PD. pose proof (Rabs_pos c) as PC.
+  assert (Q900 * Rabs D <= 2 * Rabs q0 * Rabs D) by (apply Rmult_le_compat_r; lra).
+  pose proof (Rmult_le_pos _ _ PC PD). lra.
 Qed.
 
 Lemma RN_up : forall x, 0 <= x -> RN x <= (1 + u) * x + eta.

@@ -238,14 +238,17 @@ Qed.
     the guard |q| ≥ 2^-900 (with |N| ≥ 2^-900) makes η and η·|D| at most 2^-170·A; the computed residual
     rr is within 9u²A of ρ_1 + ρ_2 = (N − q0 D) + (n − q0 d); c·D is within 9u²A of rr; |c| ≤ 5u|q0|
     (so the Fast2Sum is exact) and |c·d| ≤ 5u²A.  R is any real with |R·D − 1| ≤ u. *)
-Lemma quotient_residuals : forall N n D d R,
+(** [quotient_residuals_gen] is stated with the guard Q900·|D| ≤ 2(|q0| + |c|)·|D|, which both callers' guards
+    imply: |q| ≥ 2^-900 for the candidate q = RN(q0 + c) ([quotient_residuals], here) and |q0| ≥ 2^-901
+    (QuotientLiveness.v's [quotient_residuals_q0]). *)
+Lemma quotient_residuals_gen : forall N n D d R,
   binary64 N -> binary64 n -> binary64 D -> binary64 d ->
   Rabs n <= u * Rabs N -> Rabs d <= u * Rabs D ->
   Q900 <= Rabs N -> D <> 0 -> Rabs (R * D - 1) <= u ->
   let q0 := RN (N * R) in
   let rr := RN (fma (- q0) D N + fma (- q0) d n) in
   let c := RN (rr * R) in
-  Q900 <= Rabs (RN (q0 + c)) ->
+  Q900 * Rabs D <= 2 * (Rabs q0 * Rabs D + Rabs c * Rabs D) ->
   let A := Rabs q0 * Rabs D in
   0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
   Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
@@ -317,16 +320,7 @@ Proof.
     eapply Rle_trans; [apply Rabs_triang|]. lra. }
   assert (cD : Rabs c * aD <= Rabs rr + (u * (1 + u) * Rabs rr + eta * aD + u * Rabs rr)).
   { unfold aD. rewrite <- Rabs_mult. apply Rabs_close. exact EC. }
-  (* the candidate q = RN(q0 + c) *)
-  assert (Eq : Rabs (RN (q0 + c) - (q0 + c)) <= u * Rabs (q0 + c))
-    by (apply RN_plus_err; apply binary64_RN).
-  assert (Hq : Rabs (RN (q0 + c)) <= (1 + u) * (aq + Rabs c)).
-  { pose proof (Rabs_close _ _ _ Eq) as H1. pose proof (Rabs_triang q0 c) as H2. fold aq in H2.
-    pose proof (Rabs_pos (q0 + c)). rewrite u_val in *. lra. }
-  assert (HqD : Q900 * aD <= (1 + u) * (A + Rabs c * aD)).
-  { apply Rle_trans with (Rabs (RN (q0 + c)) * aD); [apply Rmult_le_compat_r; lra|].
-    unfold A. replace ((1 + u) * (aq * aD + Rabs c * aD)) with ((1 + u) * (aq + Rabs c) * aD) by ring.
-    apply Rmult_le_compat_r; lra. }
+  assert (HqD : Q900 * aD <= 2 * (A + Rabs c * aD)) by (unfold A; exact Gq).
   assert (EtaN : eta <= / 2 ^ 175 * Rabs N) by (rewrite EQ; lra).
   assert (EtaD : eta * aD = / 2 ^ 175 * (Q900 * aD)) by (rewrite EQ; ring).
   assert (QDP : 0 < Q900 * aD) by (apply Rmult_lt_0_compat; lra).
@@ -351,6 +345,37 @@ Proof.
   - simpl in *. lra.
   - apply Rmult_le_reg_r with aD; [exact DP|]. rewrite <- cD0_def. unfold A in Bc, AP. lra.
   - simpl in *. lra.
+Qed.
+
+Lemma quotient_residuals : forall N n D d R,
+  binary64 N -> binary64 n -> binary64 D -> binary64 d ->
+  Rabs n <= u * Rabs N -> Rabs d <= u * Rabs D ->
+  Q900 <= Rabs N -> D <> 0 -> Rabs (R * D - 1) <= u ->
+  let q0 := RN (N * R) in
+  let rr := RN (fma (- q0) D N + fma (- q0) d n) in
+  let c := RN (rr * R) in
+  Q900 <= Rabs (RN (q0 + c)) ->
+  let A := Rabs q0 * Rabs D in
+  0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
+  Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
+  Rabs (c * D - rr) <= 9 * (u * u) * A /\
+  Rabs c <= 5 * u * Rabs q0 /\
+  Rabs (c * d) <= 5 * (u * u) * A.
+Proof.
+  intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD.
+  pose proof (quotient_residuals_gen N n D d R BN Bn BD Bd Ln Ld GN Dnz RD) as G. cbv zeta in G |- *.
+  intros Gq. apply G.
+  (* the candidate q = RN(q0 + c): |q| ≤ (1 + u)(|q0| + |c|) *)
+  pose proof (binary64_RN (N * R)) as Bq0.
+  pose proof (binary64_RN (RN (fma (- RN (N * R)) D N + fma (- RN (N * R)) d n) * R)) as Bc.
+  revert Gq Bq0 Bc. generalize (RN (N * R)) (RN (RN (fma (- RN (N * R)) D N + fma (- RN (N * R)) d n) * R)).
+  intros q0 c Gq' Bq0 Bc. pose proof u_pos as Hu. pose proof (Rabs_pos D) as PD.
+  pose proof (RN_plus_err q0 c Bq0 Bc) as Eq.
+  pose proof (Rabs_close _ _ _ Eq) as H1. pose proof (Rabs_triang q0 c) as H2. pose proof (Rabs_pos (q0 + c)).
+  assert (Hq : Rabs (RN (q0 + c)) <= 2 * (Rabs q0 + Rabs c)) by (rewrite u_val in *; lra).
+  apply Rle_trans with (Rabs (RN (q0 + c)) * Rabs D); [apply Rmult_le_compat_r; lra|].
+  replace (2 * (Rabs q0 * Rabs D + Rabs c * Rabs D)) with (2 * (Rabs q0 + Rabs c) * Rabs D) by ring.
+  apply Rmult_le_compat_r; lra.
 Qed.
 
 (** The candidate q = q0 ⊕ c and w = c ⊖ (q ⊖ q0) (Fast2Sum, Flocq [Fast2Sum_correct], exact since
