@@ -511,3 +511,24 @@ Print Assumptions twin_results_stage3_liveness.
 From Raykernel Require CompareLiveness2.
 Goal True. idtac "@@ compare_compensated_radius_upper". Abort.
 Print Assumptions CompareLiveness2.compare_compensated_radius_upper.
+(** TriangleStage3Liveness.v: the ray–triangle stage 3 (value_ev, ev_sign; tc_sign_b in the cascade) certifies on
+    integer inputs of magnitude ≤ 2^15; the twin cascades decide before the exact stage there; rays through an
+    edge and a vertex where stages 1 and 2 do not; k = 17 gives a two-component expansion *)
+From Raykernel Require TriangleStage3Liveness.
+Definition twin_results_triangle_stage3_liveness :=
+  (TriangleStage3Liveness.value_ev_int_single,
+   TriangleStage3Liveness.value_ev_int_certain,
+   TriangleStage3Liveness.tie_vector_int_certain,
+   TriangleStage3Liveness.normal_vector_int_certain,
+   TriangleStage3Liveness.tc_sign_int_live,
+   TriangleStage3Liveness.tc_classify_int_live,
+   TriangleStage3Liveness.tc_relation_int_live,
+   TriangleStage3Liveness.tc_intersect_int_live,
+   TriangleStage3Liveness.tri_stage3_live_edge,
+   TriangleStage3Liveness.tri_stage3_live_vertex).
+Definition twin_results_triangle_stage3_liveness_2 :=
+  (TriangleStage3Liveness.live_inputs_in_class,
+   TriangleStage3Liveness.tri_stage3_k17_two_components).
+Goal True. idtac "@@ value_ev_int_single value_ev_int_certain tie_vector_int_certain normal_vector_int_certain tc_sign_int_live tc_classify_int_live tc_relation_int_live tc_intersect_int_live tri_stage3_live_edge tri_stage3_live_vertex live_inputs_in_class tri_stage3_k17_two_components". Abort.
+Print Assumptions twin_results_triangle_stage3_liveness.
+Print Assumptions twin_results_triangle_stage3_liveness_2.
