@@ -511,3 +511,17 @@ Print Assumptions twin_results_stage3_liveness.
 From Raykernel Require CompareLiveness2.
 Goal True. idtac "@@ compare_compensated_radius_upper". Abort.
 Print Assumptions CompareLiveness2.compare_compensated_radius_upper.
+(** CompareStage3Liveness.v: stage 3 of nearest_hit's comparison (compare_quotients_expansion) certifies on
+    integer queries (components of magnitude ≤ 2^11, or ≤ 2^24 with cross products ≤ 2^51), so
+    compare_hit_distances decides before the exact stage; an exact tie only stage 3 of the three certifies *)
+From Raykernel Require CompareStage3Liveness.
+Definition twin_results_compare_stage3_liveness :=
+  (CompareStage3Liveness.compare_quotients_expansion_single,
+   CompareStage3Liveness.compare_stage3_int_live_gen,
+   CompareStage3Liveness.compare_stage3_int_live,
+   CompareStage3Liveness.compare_hit_distances_int_live,
+   CompareStage3Liveness.compare_hit_distances_int_correct,
+   CompareStage3Liveness.compare_stage3_tie_example,
+   CompareStage3Liveness.compare_stage3_tie_in_class).
+Goal True. idtac "@@ compare_quotients_expansion_single compare_stage3_int_live_gen compare_stage3_int_live compare_hit_distances_int_live compare_hit_distances_int_correct compare_stage3_tie_example compare_stage3_tie_in_class". Abort.
+Print Assumptions twin_results_compare_stage3_liveness.
