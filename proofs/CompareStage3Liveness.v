@@ -21,12 +21,20 @@
     - [compare_stage3_tie_example]: non-vacuity, by [vm_compute] on the twins: an exact tie (t_a = t_b = 2
       from different planes, Δ = 0) on which stages 1 and 2 are uncertain (only an exact stage can certify
       Δ = 0) and stage 3 answers Zero, so [compare_hit_distances_b] returns (0, stage 2 = expansion);
-      [compare_stage3_tie_in_class] shows the input is in the class of [compare_stage3_int_live].
+      [compare_stage3_tie_in_class] shows the input is in the class of [compare_stage3_int_live];
+    - beyond one-component products, the exact ties: [compare_quotients_expansion_int_tie],
+      [compare_stage3_int_tie], [compare_hit_distances_int_tie_live]: every component an integer of magnitude
+      ≤ 2^24 and N_a·D_b = N_b·D_a: the products (up to 2^104) are [lo, hi] with hi = RN(P), lo = P − hi
+      ([two_prod_int], [multiply_int]), equal on a tie, the merge pairs lo with −lo and hi with −hi
+      ([merge_two]), every TwoSum of Δ's sum has a representable sum and a zero low part ([two_sum_repr],
+      [sum_pairs4]), so Δ's expansion is the single zero and the stage answers Zero; witness
+      [compare_stage3_tie2_example] (a tie near 2^72 whose products have two components, stages 1 and 2
+      uncertain) and [compare_stage3_tie2_in_class].
 
-    Beyond one component: the checked sign is certain when 2·(rounded Σ|lower components|) < |top|.  A
-    nonoverlapping expansion can fail that (top = 2^m, a lower part just below 2^m in magnitude), so
-    "exact integer products" alone do not give certainty for multi-component expansions; that class is
-    not covered here (proofs/README.md, "What remains"). *)
+    Not covered: Δ ≠ 0 with multi-component products.  The checked sign is certain when 2·(rounded
+    Σ|lower components|) < |top|, which a nonoverlapping expansion can fail (top = 2^m, a lower part just
+    below 2^m in magnitude), so "exact integer products" alone do not give certainty there (proofs/README.md,
+    "What remains"). *)
 
 From Coq Require Import Reals ZArith List Lia Lra Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -284,9 +292,9 @@ Proof. vm_compute. repeat split; reflexivity. Qed.
 
 (** The tie is in the class of [compare_stage3_int_live] (so the theorem is not vacuous there, and the
     class holds inputs on which only stage 3 of the three twin stages certifies). *)
-Lemma fint_int : forall z, (Z.abs z <= 2 ^ 11)%Z -> int_le 11 (fint z).
+Lemma fint_int : forall k z, (0 <= k <= 52)%Z -> (Z.abs z <= 2 ^ k)%Z -> int_le k (fint z).
 Proof.
-  intros z B. unfold fint.
+  intros k z K B. unfold fint.
   pose proof (@binary_normalize_correct 53 1024 eq_refl binary64_prec_lt_emax mode_NE z 0 false) as H.
   assert (S : small (IZR z)) by (apply small_int; apply Z.le_trans with (1 := B); apply Z.pow_le_mono_r; lia).
   destruct (small_fmt _ S) as [G L].
@@ -299,4 +307,306 @@ Qed.
 Theorem compare_stage3_tie_in_class :
   vec_int_le 11 tie_o /\ vec_int_le 11 tie_d /\ vec_int_le 11 tie_pa /\ vec_int_le 11 tie_na /\
   vec_int_le 11 tie_pb /\ vec_int_le 11 tie_nb.
+Proof. repeat split; cbn [vxb vyb vzb]; apply fint_int; cbn; lia. Qed.
+
+(** ** Exact ties on integer queries up to 2^24: stage 3 answers Zero
+
+    Here the products N_a·D_b and N_b·D_a need two components: TwoProduct of integers gives hi = RN(P) and
+    lo = P − hi, an integer, so each product expansion is [lo, hi] (or [hi] when lo = 0).  On a tie the two
+    products are equal reals, so their components are equal values; the merge pairs lo with −lo and hi with
+    −hi, and every TwoSum of Δ's sum is exact with a zero low part: Δ's expansion is the single zero. *)
+
+(** A real that a finite double can hold. *)
+Definition repr (r : R) : Prop := binary64 r /\ Rabs r < bpow radix2 1024.
+
+Lemma repr_B2R : forall x, repr (B2R x).
+Proof. intros x. split; [apply binary64_B2R | apply B2R_lt_overflow]. Qed.
+
+Lemma repr_eq : forall r s, repr r -> s = r -> repr s.
+Proof. intros r s H ->. exact H. Qed.
+
+Lemma repr_0 : repr 0.
+Proof. split; [apply binary64_0 | rewrite Rabs_R0; apply bpow_gt_0]. Qed.
+
+Lemma fadd_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x + B2R y) ->
+  fin (fadd x y) = true /\ B2R (fadd x y) = B2R x + B2R y.
+Proof.
+  intros x y Fx Fy [G L]. destruct (fadd_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
+  split; [exact F|]. now rewrite V, RN_binary64.
+Qed.
+
+Lemma fsub_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x - B2R y) ->
+  fin (fsub x y) = true /\ B2R (fsub x y) = B2R x - B2R y.
+Proof.
+  intros x y Fx Fy [G L]. destruct (fsub_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
+  split; [exact F|]. now rewrite V, RN_binary64.
+Qed.
+
+(** TwoSum whose sum a + b is a double: the sum is exact and the low part is 0 (every intermediate is
+    a + b, a, b or 0). *)
+Lemma two_sum_repr : forall a b, fin a = true -> fin b = true -> repr (B2R a + B2R b) ->
+  fin (fst (two_sum_b a b)) = true /\ B2R (fst (two_sum_b a b)) = B2R a + B2R b /\
+  fin (snd (two_sum_b a b)) = true /\ B2R (snd (two_sum_b a b)) = 0.
+Proof.
+  intros a b Fa Fb S. unfold two_sum_b; cbn [fst snd].
+  destruct (fadd_repr a b Fa Fb S) as [F1 V1].
+  destruct (fsub_repr (fadd a b) a F1 Fa) as [F2 V2]; [rewrite V1; apply (repr_eq _ _ (repr_B2R b)); ring|].
+  destruct (fsub_repr (fadd a b) (fsub (fadd a b) a) F1 F2) as [F3 V3];
+    [rewrite V2, V1; apply (repr_eq _ _ (repr_B2R a)); ring|].
+  destruct (fsub_repr b (fsub (fadd a b) a) Fb F2) as [F4 V4]; [rewrite V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  destruct (fsub_repr a (fsub (fadd a b) (fsub (fadd a b) a)) Fa F3) as [F5 V5];
+    [rewrite V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  destruct (fadd_repr _ _ F5 F4) as [F6 V6]; [rewrite V5, V4, V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  repeat split; auto. rewrite V6, V5, V4, V3, V2, V1. ring.
+Qed.
+
+Lemma eta_le_u : eta <= u.
+Proof. rewrite u_val. unfold eta. replace (/ 9007199254740992) with (bpow radix2 (-53)) by reflexivity.
+  apply bpow_le. lia. Qed.
+
+(** TwoProduct of two integer doubles ≤ 2^52 with a nonzero product: the guard of [note_product] holds, both
+    parts are finite, hi + lo is the product, hi ≠ 0 and |lo| < |hi|. *)
+Lemma two_prod_int : forall a b za zb, fin a = true -> fin b = true -> B2R a = IZR za -> B2R b = IZR zb ->
+  (Z.abs za <= 2 ^ 52)%Z -> (Z.abs zb <= 2 ^ 52)%Z -> (za * zb <> 0)%Z ->
+  note_product_b a b (fst (two_prod_b a b)) = true /\ fin (fst (two_prod_b a b)) = true /\
+  fin (snd (two_prod_b a b)) = true /\
+  B2R (fst (two_prod_b a b)) + B2R (snd (two_prod_b a b)) = B2R a * B2R b /\
+  B2R (fst (two_prod_b a b)) <> 0 /\ Rabs (B2R (snd (two_prod_b a b))) < Rabs (B2R (fst (two_prod_b a b))).
+Proof.
+  intros a b za zb Fa Fb Va Vb Ba Bb NZ.
+  assert (P1 : 1 <= Rabs (B2R a * B2R b)).
+  { rewrite Va, Vb, <- mult_IZR, <- abs_IZR. apply IZR_le. lia. }
+  assert (P2 : Rabs (B2R a * B2R b) <= bpow radix2 104).
+  { rewrite Va, Vb, <- mult_IZR, <- abs_IZR. change (bpow radix2 104) with (IZR (2 ^ 104)). apply IZR_le.
+    rewrite Z.abs_mul. change (2 ^ 104)%Z with (2 ^ 52 * 2 ^ 52)%Z. apply Z.mul_le_mono_nonneg; lia. }
+  assert (H1 : 1 <= Rabs (RN (B2R a * B2R b))).
+  { rewrite <- RN_abs. rewrite <- (RN_binary64 1) by (apply (binary64_bpow 0); lia). now apply RN_le. }
+  assert (H2 : Rabs (RN (B2R a * B2R b)) <= bpow radix2 104).
+  { rewrite <- RN_abs. rewrite <- (RN_binary64 (bpow radix2 104)) by (apply binary64_bpow; lia). now apply RN_le. }
+  assert (L104 : bpow radix2 104 < bpow radix2 1024) by (apply bpow_lt; lia).
+  destruct (fmul_fwd a b Fa Fb ltac:(lra)) as [Fh Vh].
+  assert (Ex : RN (B2R a * B2R b + - RN (B2R a * B2R b)) = B2R a * B2R b - RN (B2R a * B2R b)).
+  { pose proof (two_prod_exact (B2R a) (B2R b) (binary64_B2R a) (binary64_B2R b)) as T.
+    unfold two_prod, fma in T; cbn [fst snd] in T.
+    assert (bpow radix2 (-969) <= Rabs (B2R a * B2R b)).
+    { apply Rle_trans with 1; [apply (bpow_le radix2 (-969) 0); lia | exact P1]. }
+    specialize (T ltac:(intros; assumption)). lra. }
+  pose proof (RN_err (B2R a * B2R b)) as Err. pose proof u_pos. pose proof eta_le_u. pose proof eta_pos.
+  assert (Uv : u <= / 4) by (rewrite u_val; lra).
+  assert (Fn : fin (fneg (fmul a b)) = true) by now rewrite fneg_fin.
+  destruct (ffma_fwd a b (fneg (fmul a b)) Fa Fb Fn) as [Fl Vl].
+  { rewrite fneg_val, Vh, Ex. rewrite Rabs_minus_sym. eapply Rle_lt_trans; [exact Err|].
+    apply Rle_lt_trans with (bpow radix2 104); [|exact L104]. nra. }
+  rewrite fneg_val, Vh, Ex in Vl.
+  change (fst (two_prod_b a b)) with (fmul a b). change (snd (two_prod_b a b)) with (ffma a b (fneg (fmul a b))).
+  assert (Nh : B2R (fmul a b) <> 0) by (intros Z; rewrite Vh in Z; rewrite Z, Rabs_R0 in H1; lra).
+  split; [|split; [exact Fh | split; [exact Fl | split; [rewrite Vl, Vh; ring | split; [exact Nh |]]]]].
+  - unfold note_product_b. rewrite Fh, Bool.andb_true_r.
+    rewrite (feq_val _ fzero Fh eq_refl). destruct (Req_bool_spec (B2R (fmul a b)) (B2R fzero)) as [E|E];
+      [change (B2R fzero) with 0 in E; contradiction|].
+    assert (F0 : fin tiny_product = true) by reflexivity.
+    rewrite (fle_val _ _ F0) by now rewrite fabs_fin. apply Rle_bool_true.
+    rewrite fabs_val, tiny_product_threshold, Vh. unfold exact_product_threshold.
+    apply Rle_trans with 1; [apply (bpow_le radix2 (-968) 0); lia | exact H1].
+  - rewrite Vl, Vh. rewrite Rabs_minus_sym.
+    assert (Rabs (B2R a * B2R b) <= Rabs (RN (B2R a * B2R b)) + Rabs (RN (B2R a * B2R b) - B2R a * B2R b)).
+    { replace (B2R a * B2R b) with (RN (B2R a * B2R b) - (RN (B2R a * B2R b) - B2R a * B2R b)) at 1 by ring.
+      apply Rabs_triang_inv2 || (eapply Rle_trans; [apply Rabs_triang|]; rewrite Rabs_Ropp; lra). }
+    nra.
+Qed.
+
+(** [multiply_expansions] of [x] by [y], integers with a nonzero product: [lo, hi], or [hi] when lo = 0. *)
+Lemma multiply_int : forall ex x y zx zy, fin x = true -> fin y = true -> B2R x = IZR zx -> B2R y = IZR zy ->
+  (Z.abs zx <= 2 ^ 52)%Z -> (Z.abs zy <= 2 ^ 52)%Z -> (zx * zy <> 0)%Z ->
+  exists h l, multiply_gen two_sum_b ex [x] [y] = (ex, if Req_bool (B2R l) 0 then [h] else [l; h]) /\
+    fin h = true /\ fin l = true /\ B2R h = RN (B2R x * B2R y) /\ B2R l = B2R x * B2R y - RN (B2R x * B2R y) /\
+    B2R h <> 0 /\ Rabs (B2R l) < Rabs (B2R h).
+Proof.
+  intros ex x y zx zy Fx Fy Vx Vy Bx By NZ.
+  destruct (two_prod_int x y zx zy Fx Fy Vx Vy Bx By NZ) as [N [Fh [Fl [S [Nh L]]]]].
+  assert (Vh : B2R (fst (two_prod_b x y)) = RN (B2R x * B2R y)) by (apply fmul_val; exact Fh).
+  exists (fst (two_prod_b x y)), (snd (two_prod_b x y)). rewrite multiply_one.
+  split; [|repeat split; auto; lra].
+  unfold scale_gen, product_b. cbn [fst snd scale_loop]. rewrite N, Bool.andb_true_r.
+  unfold push. rewrite (feq_val _ fzero Fl eq_refl). change (B2R fzero) with 0.
+  destruct (Req_bool (B2R (snd (two_prod_b x y))) 0).
+  - now rewrite finish_nil.
+  - unfold finish. rewrite (feq_val _ fzero Fh eq_refl). change (B2R fzero) with 0.
+    destruct (Req_bool_spec (B2R (fst (two_prod_b x y))) 0) as [E|E]; [contradiction | reflexivity].
+Qed.
+
+(** The merge ([take_smaller]) of [l, h] and [−l, −h] (as values), |l| < |h|: the two l's first, then the
+    two h's. *)
+Lemma take_lower1 : forall h l', fin h = true -> fin l' = true -> Rabs (B2R l') < Rabs (B2R h) ->
+  Bool.eqb (flt h l') (flt (fneg h) l') = false.
+Proof.
+  intros h l' Fh Fl L. rewrite !flt_val by (rewrite ?fneg_fin; assumption). rewrite fneg_val.
+  destruct (Rlt_bool_spec (B2R h) (B2R l')); destruct (Rlt_bool_spec (- B2R h) (B2R l')); try reflexivity;
+    exfalso; revert L; unfold Rabs; destruct (Rcase_abs (B2R l')); destruct (Rcase_abs (B2R h)); lra.
+Qed.
+
+Lemma take_lower2 : forall l h', fin l = true -> fin h' = true -> Rabs (B2R l) < Rabs (B2R h') ->
+  Bool.eqb (flt l h') (flt (fneg l) h') = true.
+Proof.
+  intros l h' Fl Fh L. rewrite !flt_val by (rewrite ?fneg_fin; assumption). rewrite fneg_val.
+  destruct (Rlt_bool_spec (B2R l) (B2R h')); destruct (Rlt_bool_spec (- B2R l) (B2R h')); try reflexivity;
+    exfalso; revert L; unfold Rabs; destruct (Rcase_abs (B2R l)); destruct (Rcase_abs (B2R h')); lra.
+Qed.
+
+Lemma merge_one : forall a b, merge [a] [b] = [a; b] \/ merge [a] [b] = [b; a].
+Proof. intros a b. cbn [merge]. destruct (Bool.eqb _ _); auto. Qed.
+
+Lemma merge_two : forall l h l' h', fin l = true -> fin h = true -> fin l' = true -> fin h' = true ->
+  Rabs (B2R l) < Rabs (B2R h) -> Rabs (B2R l') = Rabs (B2R l) -> Rabs (B2R h') = Rabs (B2R h) ->
+  exists a b c d, merge [l; h] [l'; h'] = [a; b; c; d] /\
+    ((a = l /\ b = l') \/ (a = l' /\ b = l)) /\ ((c = h /\ d = h') \/ (c = h' /\ d = h)).
+Proof.
+  intros l h l' h' Fl Fh Fl' Fh' L El Eh. cbn [merge].
+  destruct (Bool.eqb (flt l l') (flt (fneg l) l')).
+  - rewrite (take_lower1 h l' Fh Fl') by lra.
+    destruct (Bool.eqb (flt h h') (flt (fneg h) h')); eexists _, _, _, _; split; try reflexivity; tauto.
+  - rewrite (take_lower2 l h' Fl Fh') by lra.
+    destruct (Bool.eqb (flt h h') (flt (fneg h) h')); eexists _, _, _, _; split; try reflexivity; tauto.
+Qed.
+
+(** Δ's sum when its merge is pairs of opposite values: every TwoSum is exact with a zero low part. *)
+Lemma sum_pairs2 : forall e f a b, merge e f = [a; b] -> fin a = true -> fin b = true -> B2R a + B2R b = 0 ->
+  exists q, sum_gen two_sum_b e f = [q] /\ fin q = true /\ B2R q = 0.
+Proof.
+  intros e f a b M Fa Fb S. unfold sum_gen. rewrite M. cbn [sum_loop].
+  destruct (two_sum_repr b a Fb Fa) as [F1 [V1 [F2 V2]]]; [apply (repr_eq _ _ repr_0); lra|].
+  rewrite push_zero by assumption. rewrite finish_nil. exists (fst (two_sum_b b a)). repeat split; auto. lra.
+Qed.
+
+Lemma sum_pairs4 : forall e f a b c d, merge e f = [a; b; c; d] -> fin a = true -> fin b = true ->
+  fin c = true -> fin d = true -> B2R a + B2R b = 0 -> B2R c + B2R d = 0 ->
+  exists q, sum_gen two_sum_b e f = [q] /\ fin q = true /\ B2R q = 0.
+Proof.
+  intros e f a b c d M Fa Fb Fc Fd S1 S2. unfold sum_gen. rewrite M. cbn [sum_loop].
+  destruct (two_sum_repr b a Fb Fa) as [F1 [V1 [F2 V2]]]; [apply (repr_eq _ _ repr_0); lra|].
+  destruct (two_sum_repr _ c F1 Fc) as [F3 [V3 [F4 V4]]]; [apply (repr_eq _ _ (repr_B2R c)); lra|].
+  destruct (two_sum_repr _ d F3 Fd) as [F5 [V5 [F6 V6]]]; [apply (repr_eq _ _ repr_0); lra|].
+  rewrite (push_zero [] _ F2 V2), (push_zero [] _ F4 V4), (push_zero [] _ F6 V6), finish_nil.
+  eexists. repeat split; [exact F5 | lra].
+Qed.
+
+(** An exact tie N_1·D_2 = N_2·D_1 of one-component integer expansions (each ≤ 2^52, products up to 2^104):
+    [compare_quotients_expansion] answers Zero. *)
+Theorem compare_quotients_expansion_int_tie : forall x1 y1 x2 y2 zx1 zy1 zx2 zy2,
+  fin x1 = true -> fin y1 = true -> fin x2 = true -> fin y2 = true ->
+  B2R x1 = IZR zx1 -> B2R y1 = IZR zy1 -> B2R x2 = IZR zx2 -> B2R y2 = IZR zy2 ->
+  (Z.abs zx1 <= 2 ^ 52)%Z -> (Z.abs zy1 <= 2 ^ 52)%Z -> (Z.abs zx2 <= 2 ^ 52)%Z -> (Z.abs zy2 <= 2 ^ 52)%Z ->
+  (zx1 * zy2 = zx2 * zy1)%Z ->
+  compare_quotients_expansion_b [x1] [y1] true [x2] [y2] true = Zero.
+Proof.
+  intros x1 y1 x2 y2 zx1 zy1 zx2 zy2 F1 G1 F2 G2 V1 W1 V2 W2 B1 C1 B2 C2 T.
+  destruct (Z.eq_dec (zx1 * zy2) 0) as [Z0|NZ].
+  - destruct (compare_quotients_expansion_single x1 y1 x2 y2 zx1 zy1 zx2 zy2 F1 G1 F2 G2 V1 W1 V2 W2 B1 B2
+                ltac:(rewrite Z0; lia) ltac:(rewrite <- T, Z0; lia)) as [U C].
+    rewrite V1, V2, W1, W2, <- !mult_IZR, <- T, Rminus_diag_eq in C by reflexivity.
+    destruct (compare_quotients_expansion_b _ _ _ _ _ _); cbn in C; try lra; congruence.
+  - assert (P : B2R x1 * B2R y2 = B2R x2 * B2R y1) by (rewrite V1, V2, W1, W2, <- !mult_IZR; now rewrite T).
+    destruct (multiply_int true x1 y2 zx1 zy2 F1 G2 V1 W2 B1 C2 NZ) as [h1 [l1 [M1 [Fh1 [Fl1 [Vh1 [Vl1 [Nh1 L1]]]]]]]].
+    destruct (multiply_int true x2 y1 zx2 zy1 F2 G1 V2 W1 B2 C1 ltac:(rewrite <- T; exact NZ))
+      as [h2 [l2 [M2 [Fh2 [Fl2 [Vh2 [Vl2 [Nh2 L2]]]]]]]].
+    assert (Eh : B2R h2 = B2R h1) by (rewrite Vh1, Vh2, P; reflexivity).
+    assert (El : B2R l2 = B2R l1) by (rewrite Vl1, Vl2, P; reflexivity).
+    unfold compare_quotients_expansion_gen. cbn [andb negb]. rewrite M1. cbn [fst snd]. rewrite M2. cbn [fst snd].
+    rewrite El. destruct (Req_bool (B2R l1) 0).
+    + cbn [map].
+      assert (Fn : fin (fneg h2) = true) by now rewrite fneg_fin.
+      assert (S : B2R h1 + B2R (fneg h2) = 0) by (rewrite fneg_val, Eh; ring).
+      destruct (merge_one h1 (fneg h2)) as [M|M];
+        [destruct (sum_pairs2 _ _ _ _ M Fh1 Fn S) as [q [Eq [Fq Vq]]]
+        |destruct (sum_pairs2 _ _ _ _ M Fn Fh1 ltac:(lra)) as [q [Eq [Fq Vq]]]];
+      rewrite Eq; unfold check_finite; cbn [forallb andb]; rewrite Fh1, Fn, Fq; cbn [andb];
+      destruct (expansion_sign_single_exact q Fq) as [U C]; rewrite Vq in C;
+      destruct (expansion_sign_b [q]); cbn in C; try lra; congruence.
+    + cbn [map].
+      assert (Fn1 : fin (fneg l2) = true) by now rewrite fneg_fin.
+      assert (Fn2 : fin (fneg h2) = true) by now rewrite fneg_fin.
+      destruct (merge_two l1 h1 (fneg l2) (fneg h2) Fl1 Fh1 Fn1 Fn2 L1
+                  ltac:(rewrite fneg_val, Rabs_Ropp, El; reflexivity)
+                  ltac:(rewrite fneg_val, Rabs_Ropp, Eh; reflexivity)) as [a [b [c [d [M [AB CD]]]]]].
+      assert (Sab : B2R a + B2R b = 0) by (destruct AB as [[-> ->]|[-> ->]]; rewrite fneg_val, El; ring).
+      assert (Scd : B2R c + B2R d = 0) by (destruct CD as [[-> ->]|[-> ->]]; rewrite fneg_val, Eh; ring).
+      assert (Fa : fin a = true) by (destruct AB as [[-> ->]|[-> ->]]; assumption).
+      assert (Fb : fin b = true) by (destruct AB as [[-> ->]|[-> ->]]; assumption).
+      assert (Fc : fin c = true) by (destruct CD as [[-> ->]|[-> ->]]; assumption).
+      assert (Fd : fin d = true) by (destruct CD as [[-> ->]|[-> ->]]; assumption).
+      destruct (sum_pairs4 _ _ _ _ _ _ M Fa Fb Fc Fd Sab Scd) as [q [Eq [Fq Vq]]].
+      rewrite Eq. unfold check_finite. cbn [forallb andb]. rewrite Fl1, Fh1, Fn1, Fn2, Fq. cbn [andb].
+      destruct (expansion_sign_single_exact q Fq) as [U C]. rewrite Vq in C.
+      destruct (expansion_sign_b [q]); cbn in C; try lra; congruence.
+Qed.
+
+(** Two queries (same o, d) with every component an integer of magnitude ≤ 2^24 and an exact tie
+    N_a·D_b = N_b·D_a: stage 3 of the comparison answers Zero (the products need not be one double). *)
+Theorem compare_stage3_int_tie : forall o d pa na pb nb,
+  vec_int_le 24 o -> vec_int_le 24 d -> vec_int_le 24 pa -> vec_int_le 24 na -> vec_int_le 24 pb ->
+  vec_int_le 24 nb ->
+  ray_num (vec_R o) (vec_R pa) (vec_R na) * ray_den (vec_R d) (vec_R nb) =
+  ray_num (vec_R o) (vec_R pb) (vec_R nb) * ray_den (vec_R d) (vec_R na) ->
+  let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b o d pa na in
+  let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b o d pb nb in
+  compare_quotients_expansion_b xna xda xa xnb xdb xb = Zero.
+Proof.
+  intros o d pa na pb nb Io Id Ipa Ina Ipb Inb T.
+  destruct (query_expansions_int o d pa na Io Id Ipa Ina) as [x1 [y1 [zx1 [zy1 [E1 [F1 [G1 [V1 [W1 [N1 [D1 [B1 C1]]]]]]]]]]]].
+  destruct (query_expansions_int o d pb nb Io Id Ipb Inb) as [x2 [y2 [zx2 [zy2 [E2 [F2 [G2 [V2 [W2 [N2 [D2 [B2 C2]]]]]]]]]]]].
+  rewrite E1, E2. rewrite N1, N2, D1, D2, <- !mult_IZR in T. apply eq_IZR in T.
+  exact (compare_quotients_expansion_int_tie x1 y1 x2 y2 zx1 zy1 zx2 zy2 F1 G1 F2 G2 V1 W1 V2 W2 B1 C1 B2 C2 T).
+Qed.
+
+(** Hence nearest_hit's comparison decides every such tie before the exact stage. *)
+Theorem compare_hit_distances_int_tie_live : forall (o d pa na pb nb : Vec3B) (nsa dsa nsb dsb : sign),
+  vec_int_le 24 o -> vec_int_le 24 d -> vec_int_le 24 pa -> vec_int_le 24 na -> vec_int_le 24 pb ->
+  vec_int_le 24 nb ->
+  ray_num (vec_R o) (vec_R pa) (vec_R na) * ray_den (vec_R d) (vec_R nb) =
+  ray_num (vec_R o) (vec_R pb) (vec_R nb) * ray_den (vec_R d) (vec_R na) ->
+  snd (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) <> 3%Z.
+Proof.
+  intros o d pa na pb nb nsa dsa nsb dsb Io Id Ipa Ina Ipb Inb T.
+  pose proof (compare_stage3_int_tie o d pa na pb nb Io Id Ipa Ina Ipb Inb T) as L.
+  unfold compare_hit_distances_b.
+  destruct (ray_plane_expansions_b two_sum_b o d pa na) as [[xna xda] xa].
+  destruct (ray_plane_expansions_b two_sum_b o d pb nb) as [[xnb xdb] xb].
+  cbv zeta.
+  destruct (_ || _)%bool; [cbn [snd]; discriminate|].
+  destruct (is_certain_b (compare_quotients_filter_b _ _ _ _)); [cbn [snd]; discriminate|].
+  destruct (is_certain_b (sign_from_Z _)); [cbn [snd]; discriminate|].
+  rewrite L. cbn [is_certain_b snd]. discriminate.
+Qed.
+
+(** Non-vacuity beyond one-component products: o = 0, d = (1,0,0), plane a: p = (2^24 − 1, 0, 0),
+    n = (2^24 − 3, 0, 0); plane b: p = (2^24 − 1, 7, 0), n = (2^24 − 5, 0, 0).  t_a = t_b = 2^24 − 1, and
+    N_a·D_b = (2^24 − 1)(2^24 − 3)(2^24 − 5), an odd number near 2^72, is not a double: the product
+    expansions have two components.  Stages 1 and 2 are uncertain, stage 3 answers Zero. *)
+Definition tie2_o := V3 (fint 0) (fint 0) (fint 0).
+Definition tie2_d := V3 (fint 1) (fint 0) (fint 0).
+Definition tie2_pa := V3 (fint 16777215) (fint 0) (fint 0).
+Definition tie2_na := V3 (fint 16777213) (fint 0) (fint 0).
+Definition tie2_pb := V3 (fint 16777215) (fint 7) (fint 0).
+Definition tie2_nb := V3 (fint 16777211) (fint 0) (fint 0).
+
+Theorem compare_stage3_tie2_example :
+  compare_quotients_filter_b
+    (filter_enclosure_b (stage1_num_b tie2_o tie2_pa tie2_na) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b tie2_d tie2_na) Cpp.filter_den_relative)
+    (filter_enclosure_b (stage1_num_b tie2_o tie2_pb tie2_nb) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b tie2_d tie2_nb) Cpp.filter_den_relative) = Uncertain /\
+  sign_from_Z (enclosure_sign_lanes_b
+    (compare_quotients_compensated_b (stage2_num_b tie2_o tie2_pa tie2_na) (stage2_den_b tie2_d tie2_na)
+                                     (stage2_num_b tie2_o tie2_pb tie2_nb) (stage2_den_b tie2_d tie2_nb))) = Uncertain /\
+  (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pa tie2_na in
+   let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pb tie2_nb in
+   (length (snd (multiply_gen two_sum_b true xna xdb)), length (snd (multiply_gen two_sum_b true xnb xda)),
+    compare_quotients_expansion_b xna xda xa xnb xdb xb)) = (2%nat, 2%nat, Zero) /\
+  compare_hit_distances_b tie2_o tie2_d tie2_pa tie2_na tie2_pb tie2_nb Positive Positive Positive Positive
+    = (0%Z, 2%Z).
+Proof. vm_compute. repeat split; reflexivity. Qed.
+
+Theorem compare_stage3_tie2_in_class :
+  vec_int_le 24 tie2_o /\ vec_int_le 24 tie2_d /\ vec_int_le 24 tie2_pa /\ vec_int_le 24 tie2_na /\
+  vec_int_le 24 tie2_pb /\ vec_int_le 24 tie2_nb.
 Proof. repeat split; cbn [vxb vyb vzb]; apply fint_int; cbn; lia. Qed.
