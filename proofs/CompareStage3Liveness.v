@@ -31,10 +31,11 @@
       [compare_stage3_tie2_example] (a tie near 2^72 whose products have two components, stages 1 and 2
       uncertain) and [compare_stage3_tie2_in_class].
 
-    Not covered: Δ ≠ 0 with multi-component products.  The checked sign is certain when 2·(rounded
-    Σ|lower components|) < |top|, which a nonoverlapping expansion can fail (top = 2^m, a lower part just
-    below 2^m in magnitude), so "exact integer products" alone do not give certainty there (proofs/README.md,
-    "What remains"). *)
+    Not covered, and not true in general: Δ ≠ 0 with multi-component products.  The checked sign is certain
+    when 2·(rounded Σ|lower components|) < |top|, which a nonoverlapping expansion can fail (top = 2^m, a
+    lower part of magnitude 2^(m−1)): [compare_stage3_uncertain_example] is such an input with components
+    below 2^24 ([compare_stage3_uncertain_in_class]), Δ = 2^14 and Δ's expansion [−2^14, 2^15]; stage 2
+    decides it (proofs/README.md, "What remains"). *)
 
 From Coq Require Import Reals ZArith List Lia Lra Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -609,4 +610,37 @@ Proof. vm_compute. repeat split; reflexivity. Qed.
 Theorem compare_stage3_tie2_in_class :
   vec_int_le 24 tie2_o /\ vec_int_le 24 tie2_d /\ vec_int_le 24 tie2_pa /\ vec_int_le 24 tie2_na /\
   vec_int_le 24 tie2_pb /\ vec_int_le 24 tie2_nb.
+Proof. repeat split; cbn [vxb vyb vzb]; apply fint_int; cbn; lia. Qed.
+
+(** Why ties: with two-component products stage 3 alone need not certify Δ ≠ 0.  o = 0, d = (1,0,0), plane a:
+    p = (4599108, 11152844, 0), n = (11499133, 1, 0); plane b: p = (4599108, 5173596, 0), n = (5334233, 1, 0)
+    (every component an integer below 2^24).  N_a·D_b = H + 2^13 and N_b·D_a = H − 2^13 for H an odd multiple
+    of 2^15 = ulp(H) in [2^67, 2^68): both products round to H, their low parts are ±2^13, and the sum
+    of Δ's expansion rounds H + 2^14 (a midpoint) to the even neighbour H + 2^15, leaving [−2^14, 2^15]: exact
+    (Δ = 2^14) but 2·2^14 < 2^15 fails, so the checked sign is uncertain (found by search: it needs the
+    midpoint).  Stage 1 is uncertain and stage 2 decides (order 1, t_a > t_b): [compare_hit_distances_b]
+    returns at stage 1 (compensated). *)
+Definition unc_o := V3 (fint 0) (fint 0) (fint 0).
+Definition unc_d := V3 (fint 1) (fint 0) (fint 0).
+Definition unc_pa := V3 (fint 4599108) (fint 11152844) (fint 0).
+Definition unc_na := V3 (fint 11499133) (fint 1) (fint 0).
+Definition unc_pb := V3 (fint 4599108) (fint 5173596) (fint 0).
+Definition unc_nb := V3 (fint 5334233) (fint 1) (fint 0).
+
+Theorem compare_stage3_uncertain_example :
+  compare_quotients_filter_b
+    (filter_enclosure_b (stage1_num_b unc_o unc_pa unc_na) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b unc_d unc_na) Cpp.filter_den_relative)
+    (filter_enclosure_b (stage1_num_b unc_o unc_pb unc_nb) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b unc_d unc_nb) Cpp.filter_den_relative) = Uncertain /\
+  (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b unc_o unc_d unc_pa unc_na in
+   let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b unc_o unc_d unc_pb unc_nb in
+   (xa, xb, compare_quotients_expansion_b xna xda xa xnb xdb xb)) = (true, true, Uncertain) /\
+  compare_hit_distances_b unc_o unc_d unc_pa unc_na unc_pb unc_nb Positive Positive Positive Positive
+    = (1%Z, 1%Z).
+Proof. vm_compute. repeat split; reflexivity. Qed.
+
+Theorem compare_stage3_uncertain_in_class :
+  vec_int_le 24 unc_o /\ vec_int_le 24 unc_d /\ vec_int_le 24 unc_pa /\ vec_int_le 24 unc_na /\
+  vec_int_le 24 unc_pb /\ vec_int_le 24 unc_nb.
 Proof. repeat split; cbn [vxb vyb vzb]; apply fint_int; cbn; lia. Qed.
