@@ -579,6 +579,26 @@ Proof.
   rewrite L. cbn [is_certain_b snd]. discriminate.
 Qed.
 
+(** ... and, for two hits with certain carried signs, its order is sign(t_a − t_b) = 0. *)
+Theorem compare_hit_distances_int_tie_correct : forall (o d pa na pb nb : Vec3B) (nsa dsa nsb dsb : sign),
+  vec_int_le 24 o -> vec_int_le 24 d -> vec_int_le 24 pa -> vec_int_le 24 na -> vec_int_le 24 pb ->
+  vec_int_le 24 nb ->
+  let Na := ray_num (vec_R o) (vec_R pa) (vec_R na) in let Da := ray_den (vec_R d) (vec_R na) in
+  let Nb := ray_num (vec_R o) (vec_R pb) (vec_R nb) in let Db := ray_den (vec_R d) (vec_R nb) in
+  Na * Db = Nb * Da ->
+  certifies nsa Na -> nsa <> Uncertain -> certifies dsa Da -> dsa <> Uncertain -> Da <> 0 -> 0 <= Na / Da ->
+  certifies nsb Nb -> nsb <> Uncertain -> certifies dsb Db -> dsb <> Uncertain -> Db <> 0 -> 0 <= Nb / Db ->
+  snd (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) <> 3%Z /\
+  fst (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) = sign_of (Na / Da - Nb / Db).
+Proof.
+  intros o d pa na pb nb nsa dsa nsb dsb Io Id Ipa Ina Ipb Inb Na Da Nb Db T.
+  intros Cna Una Cda Uda Zda Pa Cnb Unb Cdb Udb Zdb Pb.
+  pose proof (compare_hit_distances_int_tie_live o d pa na pb nb nsa dsa nsb dsb Io Id Ipa Ina Ipb Inb T) as L.
+  split; [exact L|].
+  exact (compare_hit_distances_twin_correct o d pa na pb nb nsa dsa nsb dsb
+           Cna Una Cda Uda Zda Pa Cnb Unb Cdb Udb Zdb Pb L).
+Qed.
+
 (** Non-vacuity beyond one-component products: o = 0, d = (1,0,0), plane a: p = (2^24 − 1, 0, 0),
     n = (2^24 − 3, 0, 0); plane b: p = (2^24 − 1, 7, 0), n = (2^24 − 5, 0, 0).  t_a = t_b = 2^24 − 1, and
     N_a·D_b = (2^24 − 1)(2^24 − 3)(2^24 − 5), an odd number near 2^72, is not a double: the product
