@@ -26,8 +26,8 @@
       [compare_stage3_int_tie], [compare_hit_distances_int_tie_live]: every component an integer of magnitude
       ≤ 2^24 and N_a·D_b = N_b·D_a: the products (up to 2^104) are [lo, hi] with hi = RN(P), lo = P − hi
       ([two_prod_int], [multiply_int]), equal on a tie, the merge pairs lo with −lo and hi with −hi
-      ([merge_two]), every TwoSum of Δ's sum has a representable sum and a zero low part ([two_sum_repr],
-      [sum_pairs4]), so Δ's expansion is the single zero and the stage answers Zero; witness
+      ([merge_two]), every TwoSum of Δ's sum has a representable sum and a zero low part (Stage3Liveness.v's
+      [two_sum_repr], generalised there from its [two_sum_small]; [sum_pairs4]), so Δ's expansion is the single zero and the stage answers Zero; witness
       [compare_stage3_tie2_example] (a tie near 2^72 whose products have two components, stages 1 and 2
       uncertain) and [compare_stage3_tie2_in_class].
 
@@ -316,50 +316,6 @@ Proof. repeat split; cbn [vxb vyb vzb]; apply fint_int; cbn; lia. Qed.
     lo = P − hi, an integer, so each product expansion is [lo, hi] (or [hi] when lo = 0).  On a tie the two
     products are equal reals, so their components are equal values; the merge pairs lo with −lo and hi with
     −hi, and every TwoSum of Δ's sum is exact with a zero low part: Δ's expansion is the single zero. *)
-
-(** A real that a finite double can hold. *)
-Definition repr (r : R) : Prop := binary64 r /\ Rabs r < bpow radix2 1024.
-
-Lemma repr_B2R : forall x, repr (B2R x).
-Proof. intros x. split; [apply binary64_B2R | apply B2R_lt_overflow]. Qed.
-
-Lemma repr_eq : forall r s, repr r -> s = r -> repr s.
-Proof. intros r s H ->. exact H. Qed.
-
-Lemma repr_0 : repr 0.
-Proof. split; [apply binary64_0 | rewrite Rabs_R0; apply bpow_gt_0]. Qed.
-
-Lemma fadd_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x + B2R y) ->
-  fin (fadd x y) = true /\ B2R (fadd x y) = B2R x + B2R y.
-Proof.
-  intros x y Fx Fy [G L]. destruct (fadd_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
-  split; [exact F|]. now rewrite V, RN_binary64.
-Qed.
-
-Lemma fsub_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x - B2R y) ->
-  fin (fsub x y) = true /\ B2R (fsub x y) = B2R x - B2R y.
-Proof.
-  intros x y Fx Fy [G L]. destruct (fsub_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
-  split; [exact F|]. now rewrite V, RN_binary64.
-Qed.
-
-(** TwoSum whose sum a + b is a double: the sum is exact and the low part is 0 (every intermediate is
-    a + b, a, b or 0). *)
-Lemma two_sum_repr : forall a b, fin a = true -> fin b = true -> repr (B2R a + B2R b) ->
-  fin (fst (two_sum_b a b)) = true /\ B2R (fst (two_sum_b a b)) = B2R a + B2R b /\
-  fin (snd (two_sum_b a b)) = true /\ B2R (snd (two_sum_b a b)) = 0.
-Proof.
-  intros a b Fa Fb S. unfold two_sum_b; cbn [fst snd].
-  destruct (fadd_repr a b Fa Fb S) as [F1 V1].
-  destruct (fsub_repr (fadd a b) a F1 Fa) as [F2 V2]; [rewrite V1; apply (repr_eq _ _ (repr_B2R b)); ring|].
-  destruct (fsub_repr (fadd a b) (fsub (fadd a b) a) F1 F2) as [F3 V3];
-    [rewrite V2, V1; apply (repr_eq _ _ (repr_B2R a)); ring|].
-  destruct (fsub_repr b (fsub (fadd a b) a) Fb F2) as [F4 V4]; [rewrite V2, V1; apply (repr_eq _ _ repr_0); ring|].
-  destruct (fsub_repr a (fsub (fadd a b) (fsub (fadd a b) a)) Fa F3) as [F5 V5];
-    [rewrite V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
-  destruct (fadd_repr _ _ F5 F4) as [F6 V6]; [rewrite V5, V4, V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
-  repeat split; auto. rewrite V6, V5, V4, V3, V2, V1. ring.
-Qed.
 
 Lemma eta_le_u : eta <= u.
 Proof. rewrite u_val. unfold eta. replace (/ 9007199254740992) with (bpow radix2 (-53)) by reflexivity.
