@@ -532,3 +532,26 @@ Definition twin_results_triangle_stage3_liveness_2 :=
 Goal True. idtac "@@ value_ev_int_single value_ev_int_certain tie_vector_int_certain normal_vector_int_certain tc_sign_int_live tc_classify_int_live tc_relation_int_live tc_intersect_int_live tri_stage3_live_edge tri_stage3_live_vertex live_inputs_in_class tri_stage3_k17_two_components". Abort.
 Print Assumptions twin_results_triangle_stage3_liveness.
 Print Assumptions twin_results_triangle_stage3_liveness_2.
+(** CompareStage3Liveness.v: stage 3 of nearest_hit's comparison (compare_quotients_expansion) certifies on
+    integer queries (components of magnitude ≤ 2^11, or ≤ 2^24 with cross products ≤ 2^51, or ≤ 2^24 on
+    exact ties), so compare_hit_distances decides before the exact stage; ties only stage 3 of the three
+    certifies *)
+From Raykernel Require CompareStage3Liveness.
+Definition twin_results_compare_stage3_liveness :=
+  (CompareStage3Liveness.compare_quotients_expansion_single,
+   CompareStage3Liveness.compare_stage3_int_live_gen,
+   CompareStage3Liveness.compare_stage3_int_live,
+   CompareStage3Liveness.compare_hit_distances_int_live,
+   CompareStage3Liveness.compare_hit_distances_int_correct,
+   CompareStage3Liveness.compare_stage3_tie_example,
+   CompareStage3Liveness.compare_stage3_tie_in_class,
+   CompareStage3Liveness.compare_quotients_expansion_int_tie,
+   CompareStage3Liveness.compare_stage3_int_tie,
+   CompareStage3Liveness.compare_hit_distances_int_tie_live,
+   CompareStage3Liveness.compare_hit_distances_int_tie_correct,
+   CompareStage3Liveness.compare_stage3_tie2_example,
+   CompareStage3Liveness.compare_stage3_tie2_in_class,
+   CompareStage3Liveness.compare_stage3_uncertain_example,
+   CompareStage3Liveness.compare_stage3_uncertain_in_class).
+Goal True. idtac "@@ compare_quotients_expansion_single compare_stage3_int_live_gen compare_stage3_int_live compare_hit_distances_int_live compare_hit_distances_int_correct compare_stage3_tie_example compare_stage3_tie_in_class compare_quotients_expansion_int_tie compare_stage3_int_tie compare_hit_distances_int_tie_live compare_hit_distances_int_tie_correct compare_stage3_tie2_example compare_stage3_tie2_in_class compare_stage3_uncertain_example compare_stage3_uncertain_in_class". Abort.
+Print Assumptions twin_results_compare_stage3_liveness.

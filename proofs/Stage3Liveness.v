@@ -96,19 +96,42 @@ Qed.
 Lemma small_0 : small 0.
 Proof. exists 0%Z. split; [reflexivity | lia]. Qed.
 
-Lemma fadd_exact : forall x y, fin x = true -> fin y = true -> small (B2R x + B2R y) ->
+(** A real that a finite double can hold; a small one is one. *)
+Definition repr (r : R) : Prop := binary64 r /\ Rabs r < bpow radix2 1024.
+
+Lemma small_repr : forall r, small r -> repr r.
+Proof. exact small_fmt. Qed.
+
+Lemma repr_B2R : forall x, repr (B2R x).
+Proof. intros x. split; [apply binary64_B2R | apply B2R_lt_overflow]. Qed.
+
+Lemma repr_eq : forall r s, repr r -> s = r -> repr s.
+Proof. intros r s H ->. exact H. Qed.
+
+Lemma repr_0 : repr 0.
+Proof. split; [apply binary64_0 | rewrite Rabs_R0; apply bpow_gt_0]. Qed.
+
+Lemma fadd_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x + B2R y) ->
   fin (fadd x y) = true /\ B2R (fadd x y) = B2R x + B2R y.
 Proof.
-  intros x y Fx Fy S. destruct (small_fmt _ S) as [G L].
-  destruct (fadd_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|]. split; [exact F|]. now rewrite V, RN_binary64.
+  intros x y Fx Fy [G L]. destruct (fadd_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
+  split; [exact F|]. now rewrite V, RN_binary64.
 Qed.
+
+Lemma fsub_repr : forall x y, fin x = true -> fin y = true -> repr (B2R x - B2R y) ->
+  fin (fsub x y) = true /\ B2R (fsub x y) = B2R x - B2R y.
+Proof.
+  intros x y Fx Fy [G L]. destruct (fsub_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|].
+  split; [exact F|]. now rewrite V, RN_binary64.
+Qed.
+
+Lemma fadd_exact : forall x y, fin x = true -> fin y = true -> small (B2R x + B2R y) ->
+  fin (fadd x y) = true /\ B2R (fadd x y) = B2R x + B2R y.
+Proof. intros x y Fx Fy S. exact (fadd_repr x y Fx Fy (small_repr _ S)). Qed.
 
 Lemma fsub_exact : forall x y, fin x = true -> fin y = true -> small (B2R x - B2R y) ->
   fin (fsub x y) = true /\ B2R (fsub x y) = B2R x - B2R y.
-Proof.
-  intros x y Fx Fy S. destruct (small_fmt _ S) as [G L].
-  destruct (fsub_fwd x y Fx Fy) as [F V]; [now rewrite RN_binary64|]. split; [exact F|]. now rewrite V, RN_binary64.
-Qed.
+Proof. intros x y Fx Fy S. exact (fsub_repr x y Fx Fy (small_repr _ S)). Qed.
 
 Lemma fmul_exact : forall x y, fin x = true -> fin y = true -> small (B2R x * B2R y) ->
   fin (fmul x y) = true /\ B2R (fmul x y) = B2R x * B2R y.
@@ -127,23 +150,30 @@ Qed.
 Lemma small_eq : forall r s, small r -> s = r -> small s.
 Proof. intros r s H ->. exact H. Qed.
 
+(** TwoSum whose sum a + b is a double: the sum is exact and the low part is 0 (every intermediate is
+    a + b, a, b or 0). *)
+Lemma two_sum_repr : forall a b, fin a = true -> fin b = true -> repr (B2R a + B2R b) ->
+  fin (fst (two_sum_b a b)) = true /\ B2R (fst (two_sum_b a b)) = B2R a + B2R b /\
+  fin (snd (two_sum_b a b)) = true /\ B2R (snd (two_sum_b a b)) = 0.
+Proof.
+  intros a b Fa Fb S. unfold two_sum_b; cbn [fst snd].
+  destruct (fadd_repr a b Fa Fb S) as [F1 V1].
+  destruct (fsub_repr (fadd a b) a F1 Fa) as [F2 V2]; [rewrite V1; apply (repr_eq _ _ (repr_B2R b)); ring|].
+  destruct (fsub_repr (fadd a b) (fsub (fadd a b) a) F1 F2) as [F3 V3];
+    [rewrite V2, V1; apply (repr_eq _ _ (repr_B2R a)); ring|].
+  destruct (fsub_repr b (fsub (fadd a b) a) Fb F2) as [F4 V4]; [rewrite V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  destruct (fsub_repr a (fsub (fadd a b) (fsub (fadd a b) a)) Fa F3) as [F5 V5];
+    [rewrite V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  destruct (fadd_repr _ _ F5 F4) as [F6 V6]; [rewrite V5, V4, V3, V2, V1; apply (repr_eq _ _ repr_0); ring|].
+  repeat split; auto. rewrite V6, V5, V4, V3, V2, V1. ring.
+Qed.
+
 (** TwoSum of small integers whose sum is small: the sum is exact, the low part is zero. *)
 Lemma two_sum_small : forall a b, fin a = true -> fin b = true -> small (B2R a) -> small (B2R b) ->
   small (B2R a + B2R b) ->
   fin (fst (two_sum_b a b)) = true /\ B2R (fst (two_sum_b a b)) = B2R a + B2R b /\
   fin (snd (two_sum_b a b)) = true /\ B2R (snd (two_sum_b a b)) = 0.
-Proof.
-  intros a b Fa Fb Sa Sb S. unfold two_sum_b; cbn [fst snd].
-  destruct (fadd_exact a b Fa Fb S) as [F1 V1].
-  destruct (fsub_exact (fadd a b) a F1 Fa) as [F2 V2]; [rewrite V1; apply (small_eq _ _ Sb); ring|].
-  destruct (fsub_exact (fadd a b) (fsub (fadd a b) a) F1 F2) as [F3 V3];
-    [rewrite V2, V1; apply (small_eq _ _ Sa); ring|].
-  destruct (fsub_exact b (fsub (fadd a b) a) Fb F2) as [F4 V4]; [rewrite V2, V1; apply (small_eq _ _ small_0); ring|].
-  destruct (fsub_exact a (fsub (fadd a b) (fsub (fadd a b) a)) Fa F3) as [F5 V5];
-    [rewrite V3, V2, V1; apply (small_eq _ _ small_0); ring|].
-  destruct (fadd_exact _ _ F5 F4) as [F6 V6]; [rewrite V5, V4, V3, V2, V1; apply (small_eq _ _ small_0); ring|].
-  repeat split; auto. rewrite V6, V5, V4, V3, V2, V1. ring.
-Qed.
+Proof. intros a b Fa Fb _ _ S. exact (two_sum_repr a b Fa Fb (small_repr _ S)). Qed.
 
 Lemma small_opp : forall r, small r -> small (- r).
 Proof. intros r [z [-> B]]. exists (- z)%Z. split; [now rewrite opp_IZR | lia]. Qed.
