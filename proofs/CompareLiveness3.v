@@ -1,0 +1,237 @@
+(** * Liveness of stage 2 of nearest_hit's comparison (issue 16): the second half.
+
+    Stage 2 of [compare_hit_distances] (raycast/nearest_hit.cpp) is [enclosure_sign] of
+    [compare_quotients_compensated] (certified/compare_quotients.hpp), modelled in CompareQuotients.v, twin
+    [compare_quotients_compensated_b] (CompareTwins.v, tied by [compare_quotients_compensated_twin] and the
+    runner's [nearest_compare]).  CompareLiveness2.v bounds its radius E from above; here:
+
+    - [compare_compensated_error_model]: hi + lo is within 2^-100·S' + 64η of the cross difference V of the
+      four inputs' double-double values (E computed with zero input radii bounds the true error: hi and lo do
+      not read the radii);
+    - [compare_compensated_live_model] (model) and [compare_compensated_live] (twin, every input part a finite
+      double of magnitude ≤ 2^400, radii ≥ 0): the sign is certain whenever
+
+        |V| > k_1·S' + k_2·ρ' + k_3,   k_1 = 2^-98, k_2 = 3 + 2^-38, k_3 = 2^-1067 (= 256η),
+
+      V = (h_1 + l_1)(h'_2 + l'_2) − (h_2 + l_2)(h'_1 + l'_1) (n_i = (h_i, l_i, e_i), d_i = (h'_i, l'_i, f_i)),
+      S' and ρ' as in CompareLiveness2.v over the heads a_i, b_i = fst (two_sum h l).  [enclosure_sign] is
+      certain when |V| > (3 + 8u)·E (RefinedLiveness.v), and (3 + 8u)·(2^-100·S' + c_2·ρ' + 64η) is below the
+      class bound.  The certain sign is the sign of Δ for any reals the inputs enclose (StageTwoFinite.v's
+      [compare_compensated_twin_sound_total]);
+    - [compare_hit_distances_stage2_live]: in nearest_hit's [compare_hit_distances_b], the order is returned
+      by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
+    - not vacuous: [compare_compensated_live_example] (a near tie of relative size 2^-60: in the class, stage 2
+      certain, stage 1 on the heads uncertain) and [compare_hit_distances_stage2_example] (a ray and two planes
+      with t_a = 1, t_b = 1 + 2^-60: [compare_hit_distances_b] returns from stage 2, stage 1 being uncertain);
+    - how sharp: [compare_compensated_k1_fails] (k_1 replaced by 7·2^-103 the statement is false: so k_1 is
+      within a factor 32/7 < 4.6 of the best constant) and [compare_compensated_k2_fails] (k_2 replaced by
+      2 − 2^-19 it is false: k_2 is within a factor 1.5 + 2^-18 of the best). *)
+
+From Coq Require Import Reals Lra Lia ZArith List.
+From Flocq Require Import Core IEEE754.BinarySingleNaN.
+From Raykernel Require Import Constants Model Filter Compensated Classification CompareQuotients FloatCore
+  ConstantsCpp Twins CompareTwins Liveness StageTwoFinite NearestTwins CompareLiveness CompareLiveness2.
+From Raykernel Require RefinedLiveness.
+Open Scope R_scope.
+
+(** ** The model *)
+
+Definition dd (e : Enclosure) : R := hi e + lo e.
+Definition head (e : Enclosure) : R := fst (two_sum (hi e) (lo e)).
+Definition cross_dd (n1 d1 n2 d2 : Enclosure) : R := dd n1 * dd d2 - dd n2 * dd d1.
+Definition zero_radius (e : Enclosure) : Enclosure := {| hi := hi e; lo := lo e; radius := 0 |}.
+
+Definition k1 : R := bpow radix2 (-98).
+Definition k2 : R := 3 + bpow radix2 (-38).
+Definition k3 : R := bpow radix2 (-1067).
+
+Lemma k1_u : k1 = 256 * (u * u).
+Proof. unfold k1. rewrite u_val. simpl bpow. lra. Qed.
+Lemma k2_val : k2 = 3 + / 274877906944.
+Proof. unfold k2. simpl bpow. lra. Qed.
+Lemma k3_eta : k3 = 256 * eta.
+Proof. unfold k3, eta. replace (-1067)%Z with (8 + -1075)%Z by reflexivity. rewrite bpow_plus. simpl bpow. lra. Qed.
+
+(** hi and lo do not read the radii. *)
+Lemma compensated_radius_free : forall n1 d1 n2 d2,
+  let e0 := compare_quotients_compensated (zero_radius n1) (zero_radius d1) (zero_radius n2) (zero_radius d2) in
+  let e := compare_quotients_compensated n1 d1 n2 d2 in
+  hi e0 = hi e /\ lo e0 = lo e.
+Proof. intros [] [] [] []. split; reflexivity. Qed.
+
+Lemma encloses_dd : forall e, 0 <= radius e -> encloses e (dd e).
+Proof. intros e H. unfold encloses, dd. replace (hi e + lo e - (hi e + lo e)) with 0 by ring. rewrite Rabs_R0. exact H. Qed.
+
+Lemma cross_magnitude_nonneg : forall a b c d, 0 <= cross_magnitude a b c d.
+Proof. intros. unfold cross_magnitude. pose proof (Rabs_pos (a * d)). pose proof (Rabs_pos (c * b)). lra. Qed.
+
+(** (a) The error of hi + lo: E with zero input radii, hence ≤ 2^-100·S' + 64η. *)
+Theorem compare_compensated_error_model : forall n1 d1 n2 d2,
+  binary64 (hi n1) -> binary64 (lo n1) -> binary64 (hi d1) -> binary64 (lo d1) ->
+  binary64 (hi n2) -> binary64 (lo n2) -> binary64 (hi d2) -> binary64 (lo d2) ->
+  let e := compare_quotients_compensated n1 d1 n2 d2 in
+  Rabs (cross_dd n1 d1 n2 d2 - (hi e + lo e)) <=
+    64 * (u * u) * cross_magnitude (head n1) (head d1) (head n2) (head d2) + 64 * eta.
+Proof.
+  intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Hn2 Ln2 Hd2 Ld2 e.
+  destruct (compensated_radius_free n1 d1 n2 d2) as [Eh El]. fold e in Eh, El.
+  pose proof (compare_quotients_compensated_enclosure (zero_radius n1) (zero_radius d1) (zero_radius n2)
+                (zero_radius d2) (dd n1) (dd d1) (dd n2) (dd d2) Hn1 Ln1 Hd1 Ld1 binary64_0 Hn2 Ln2 Hd2 Ld2
+                binary64_0 (encloses_dd (zero_radius n1) (Rle_refl 0)) (encloses_dd (zero_radius d1) (Rle_refl 0))
+                (encloses_dd (zero_radius n2) (Rle_refl 0)) (encloses_dd (zero_radius d2) (Rle_refl 0))) as Z.
+  pose proof (compare_compensated_radius_upper (zero_radius n1) (zero_radius d1) (zero_radius n2)
+                (zero_radius d2) (head n1) (head d1) (head n2) (head d2) eq_refl eq_refl eq_refl eq_refl
+                binary64_0 binary64_0 (Rle_refl 0) (Rle_refl 0) (Rle_refl 0) (Rle_refl 0)) as U.
+  unfold encloses in Z. rewrite Eh, El in Z.
+  replace (propagated_exact (head n1) (radius (zero_radius n1)) (head d1) (radius (zero_radius d1))
+             (head n2) (radius (zero_radius n2)) (head d2) (radius (zero_radius d2))) with 0 in U
+    by (unfold propagated_exact; cbn [radius zero_radius]; ring).
+  unfold cross_dd. eapply Rle_trans; [exact Z|]. lra.
+Qed.
+
+(** The class bound dominates (3 + 8u)·E, and the result encloses V. *)
+Lemma compare_compensated_live_bound : forall n1 d1 n2 d2,
+  binary64 (hi n1) -> binary64 (lo n1) -> binary64 (hi d1) -> binary64 (lo d1) -> binary64 (radius d1) ->
+  binary64 (hi n2) -> binary64 (lo n2) -> binary64 (hi d2) -> binary64 (lo d2) -> binary64 (radius d2) ->
+  0 <= radius n1 -> 0 <= radius d1 -> 0 <= radius n2 -> 0 <= radius d2 ->
+  k1 * cross_magnitude (head n1) (head d1) (head n2) (head d2) +
+    k2 * propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2) (head d2) (radius d2)
+    + k3 < Rabs (cross_dd n1 d1 n2 d2) ->
+  encloses (compare_quotients_compensated n1 d1 n2 d2) (cross_dd n1 d1 n2 d2) /\
+  (3 + 8 * u) * radius (compare_quotients_compensated n1 d1 n2 d2) < Rabs (cross_dd n1 d1 n2 d2).
+Proof.
+  intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L. split.
+  - apply compare_quotients_compensated_enclosure; try assumption; apply encloses_dd; assumption.
+  - pose proof (compare_compensated_radius_upper n1 d1 n2 d2 (head n1) (head d1) (head n2) (head d2)
+                  eq_refl eq_refl eq_refl eq_refl Bf1 Bf2 He1 Hf1 He2 Hf2) as U.
+    pose proof (cross_magnitude_nonneg (head n1) (head d1) (head n2) (head d2)) as S0.
+    assert (R0 : 0 <= propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
+                                       (head d2) (radius d2)).
+    { unfold propagated_exact. pose proof (propagated_nonneg (head n1) (radius n1) (head d2) (radius d2) He1 Hf2).
+      pose proof (propagated_nonneg (head n2) (radius n2) (head d1) (radius d1) He2 Hf1). lra. }
+    set (r := radius (compare_quotients_compensated n1 d1 n2 d2)) in *.
+    set (S := cross_magnitude (head n1) (head d1) (head n2) (head d2)) in *.
+    set (rho := propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
+                                 (head d2) (radius d2)) in *.
+    set (V := cross_dd n1 d1 n2 d2) in *.
+    clearbody r S rho V. pose proof u_pos. pose proof eta_pos.
+    assert (Mu : (3 + 8 * u) * r <= (3 + 8 * u) * (64 * (u * u) * S + c2 * rho + 64 * eta))
+      by (apply Rmult_le_compat_l; lra).
+    rewrite k1_u, k2_val, k3_eta in L. unfold c2 in Mu. simpl bpow in Mu.
+    assert (A : (3 + 8 * u) * (64 * (u * u) * S) <= 256 * (u * u) * S).
+    { replace ((3 + 8 * u) * (64 * (u * u) * S)) with ((192 + 512 * u) * ((u * u) * S)) by ring.
+      replace (256 * (u * u) * S) with (256 * ((u * u) * S)) by ring.
+      apply Rmult_le_compat_r; [apply Rmult_le_pos; [nra | lra] | rewrite u_val; lra]. }
+    assert (B : (3 + 8 * u) * ((1 + / 1099511627776) * rho) <= (3 + / 274877906944) * rho).
+    { rewrite <- Rmult_assoc. apply Rmult_le_compat_r; [lra | rewrite u_val; lra]. }
+    assert (C : (3 + 8 * u) * (64 * eta) <= 256 * eta) by (rewrite u_val; lra).
+    lra.
+Qed.
+
+Theorem compare_compensated_live_model : forall n1 d1 n2 d2,
+  binary64 (hi n1) -> binary64 (lo n1) -> binary64 (hi d1) -> binary64 (lo d1) -> binary64 (radius d1) ->
+  binary64 (hi n2) -> binary64 (lo n2) -> binary64 (hi d2) -> binary64 (lo d2) -> binary64 (radius d2) ->
+  0 <= radius n1 -> 0 <= radius d1 -> 0 <= radius n2 -> 0 <= radius d2 ->
+  k1 * cross_magnitude (head n1) (head d1) (head n2) (head d2) +
+    k2 * propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2) (head d2) (radius d2)
+    + k3 < Rabs (cross_dd n1 d1 n2 d2) ->
+  enclosure_sign_lanes (compare_quotients_compensated n1 d1 n2 d2) <> uncertain_lane.
+Proof.
+  intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L.
+  destruct (compare_compensated_live_bound n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L)
+    as [E B].
+  apply (RefinedLiveness.enclosure_sign_live3_model _ (cross_dd n1 d1 n2 d2)); try assumption;
+    unfold compare_quotients_compensated; cbn [hi lo radius];
+    first [apply binary64_two_sum_hi | apply binary64_RN].
+Qed.
+
+(** ** The twin *)
+
+(** Every part of the four inputs of magnitude at most 2^400: hi, lo and the radius stay below 2^1000. *)
+Lemma compare_compensated_b_bounded : forall n1 d1 n2 d2,
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  let e := compare_quotients_compensated_b n1 d1 n2 d2 in
+  fbnd 1000 (hib e) /\ fbnd 1000 (lob e) /\ fbnd 1000 (radiusb e).
+Proof.
+  intros [hn1 ln1 e1] [hd1 ld1 f1] [hn2 ln2 e2] [hd2 ld2 f2]. cbn [hib lob radiusb].
+  intros Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2.
+  unfold compare_quotients_compensated_b, compare_propagated_error_b, two_prod_b. cbv zeta.
+  cbn [hib lob radiusb fst snd].
+  split; [|split]; (eapply fbnd_le; [fbnd_tac | zle]).
+Qed.
+
+(** Stage 2 of the comparison is certain on the class, on the twin. *)
+Theorem compare_compensated_live : forall n1 d1 n2 d2,
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  0 <= B2R (radiusb n1) -> 0 <= B2R (radiusb d1) -> 0 <= B2R (radiusb n2) -> 0 <= B2R (radiusb d2) ->
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2 * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                          (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) ->
+  enclosure_sign_lanes_b (compare_quotients_compensated_b n1 d1 n2 d2) <> uncertain_lane.
+Proof.
+  intros n1 d1 n2 d2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2 Pe1 Pf1 Pe2 Pf2 L.
+  destruct (compare_compensated_b_bounded n1 d1 n2 d2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2)
+    as [BH [BL BR]].
+  generalize (compare_quotients_compensated_twin n1 d1 n2 d2). cbv zeta.
+  generalize BH BL BR.
+  generalize (compare_quotients_compensated_b n1 d1 n2 d2) as e.
+  intros e BH' BL' BR' Tw.
+  destruct (Tw (proj1 BR') (proj1 BH') (proj1 BL'))
+    as [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ [_ Eq]]]]]]]]]]]]]].
+  destruct (compare_compensated_live_bound (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)
+              (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
+              (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
+              Pe1 Pf1 Pe2 Pf2 L) as [E B].
+  rewrite <- Eq in E, B.
+  apply (RefinedLiveness.enclosure_sign_live3 e (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2))
+           BH' BL' BR' E B).
+Qed.
+
+(** ** In nearest_hit: [compare_hit_distances] returns by stage 2 at the latest *)
+
+Lemma is_certain_lane : forall e, enclosure_sign_lanes_b e <> uncertain_lane ->
+  is_certain_b (sign_from_Z (enclosure_sign_lanes_b e)) = true.
+Proof.
+  intros e U. assert (Se : lane_sign (enclosure_sign_lanes_b e)) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
+  destruct Se as [H | [H | H]]; rewrite H; [reflexivity | reflexivity | now elim U].
+Qed.
+
+(** When the four stage-2 enclosures of [RayPlaneCascade] that [compare_hit_distances] passes to
+    [compare_quotients_compensated] are in the class of [compare_compensated_live] (their radii are ≥ 0
+    by construction), the order is returned by stage 1 or stage 2 (stage 0 or 1), never by the exact stage. *)
+Theorem compare_hit_distances_stage2_live : forall o d pa na pb nb nsa dsa nsb dsb,
+  let n1 := stage2_num_b o pa na in let d1 := stage2_den_b d na in
+  let n2 := stage2_num_b o pb nb in let d2 := stage2_den_b d nb in
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2 * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                          (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) ->
+  (snd (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) <= 1)%Z.
+Proof.
+  intros o d pa na pb nb nsa dsa nsb dsb n1 d1 n2 d2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2 L.
+  assert (Pe1 : 0 <= B2R (radiusb n1)).
+  { apply nonneg_fin_B2R; [unfold n1, stage2_num_b; apply num_radius_nonneg | exact (proj1 En1)]. }
+  assert (Pf1 : 0 <= B2R (radiusb d1)).
+  { apply nonneg_fin_B2R; [unfold d1, stage2_den_b; apply den_radius_nonneg | exact (proj1 Fd1)]. }
+  assert (Pe2 : 0 <= B2R (radiusb n2)).
+  { apply nonneg_fin_B2R; [unfold n2, stage2_num_b; apply num_radius_nonneg | exact (proj1 En2)]. }
+  assert (Pf2 : 0 <= B2R (radiusb d2)).
+  { apply nonneg_fin_B2R; [unfold d2, stage2_den_b; apply den_radius_nonneg | exact (proj1 Fd2)]. }
+  pose proof (is_certain_lane _ (compare_compensated_live n1 d1 n2 d2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2
+                                   Hd2 Ld2 Fd2 Pe1 Pf1 Pe2 Pf2 L)) as C.
+  unfold n1, d1, n2, d2 in C.
+  unfold compare_hit_distances_b. cbv zeta. destruct (_ || _)%bool; [cbn [snd]; lia|].
+  destruct (is_certain_b (compare_quotients_filter_b _ _ _ _)); [cbn [snd]; lia|].
+  rewrite C. cbn [snd]. lia.
+Qed.
