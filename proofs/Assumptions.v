@@ -512,13 +512,18 @@ From Raykernel Require CompareLiveness2.
 Goal True. idtac "@@ compare_compensated_radius_upper". Abort.
 Print Assumptions CompareLiveness2.compare_compensated_radius_upper.
 (** CompareLiveness3.v: the second half of the liveness of stage 2 of nearest_hit's comparison: the error of
-    hi + lo (model), the class on which the twin of compare_quotients_compensated is certain, and
-    compare_hit_distances returning by stage 2 at the latest on it *)
+    hi + lo (model), the class on which the twin of compare_quotients_compensated is certain,
+    compare_hit_distances returning by stage 2 at the latest on it, computed witnesses and the sharpness
+    of the class's constants *)
 From Raykernel Require CompareLiveness3.
 Definition twin_results_compare_liveness3 :=
   (CompareLiveness3.compare_compensated_error_model,
    CompareLiveness3.compare_compensated_live_model,
    CompareLiveness3.compare_compensated_live,
-   CompareLiveness3.compare_hit_distances_stage2_live).
-Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live". Abort.
+   CompareLiveness3.compare_hit_distances_stage2_live,
+   CompareLiveness3.compare_compensated_live_example,
+   CompareLiveness3.compare_hit_distances_stage2_example,
+   CompareLiveness3.compare_compensated_k1_fails,
+   CompareLiveness3.compare_compensated_k2_fails).
+Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails". Abort.
 Print Assumptions twin_results_compare_liveness3.

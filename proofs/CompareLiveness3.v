@@ -30,7 +30,7 @@
 From Coq Require Import Reals Lra Lia ZArith List.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Constants Model Filter Compensated Classification CompareQuotients FloatCore
-  ConstantsCpp Twins CompareTwins Liveness StageTwoFinite NearestTwins CompareLiveness CompareLiveness2.
+  ConstantsCpp Twins CompareTwins Liveness QueryTwins StageTwoFinite NearestTwins CompareLiveness CompareLiveness2.
 From Raykernel Require RefinedLiveness.
 Open Scope R_scope.
 
@@ -234,4 +234,161 @@ Proof.
   unfold compare_hit_distances_b. cbv zeta. destruct (_ || _)%bool; [cbn [snd]; lia|].
   destruct (is_certain_b (compare_quotients_filter_b _ _ _ _)); [cbn [snd]; lia|].
   rewrite C. cbn [snd]. lia.
+Qed.
+
+(** ** Not vacuous, and how sharp *)
+
+Definition w_one : float := RefinedLiveness.f_one.                                       (* 1 *)
+Definition w_zero : float := f_zero.                                                     (* +0 *)
+Definition w_2m60 : float := RefinedLiveness.f_2m60.                                     (* 2^-60 *)
+Definition w_m15 : float := @B754_finite 53 1024 true 8444249301319680 (-152) eq_refl.  (* −15·2^-103 *)
+Definition w_half : float := @B754_finite 53 1024 false 4503599627370496 (-53) eq_refl. (* 1/2 *)
+
+Lemma w_one_val : B2R w_one = 1.
+Proof. exact RefinedLiveness.f_one_val. Qed.
+Lemma w_zero_val : B2R w_zero = 0.
+Proof. reflexivity. Qed.
+Lemma w_2m60_val : B2R w_2m60 = bpow radix2 (-60).
+Proof. exact RefinedLiveness.f_2m60_val. Qed.
+Lemma w_m15_val : B2R w_m15 = - (15 * bpow radix2 (-103)).
+Proof.
+  change (B2R w_m15) with (IZR (-8444249301319680) * bpow radix2 (-152)).
+  replace (IZR (-8444249301319680)) with (- (15 * bpow radix2 49)) by (simpl bpow; lra).
+  replace (-103)%Z with (49 + -152)%Z by reflexivity. rewrite bpow_plus. ring.
+Qed.
+Lemma w_half_val : B2R w_half = / 2.
+Proof.
+  change (B2R w_half) with (IZR 4503599627370496 * bpow radix2 (-53)).
+  change (IZR 4503599627370496) with (bpow radix2 52). rewrite <- bpow_plus. simpl bpow. lra.
+Qed.
+
+Definition wenc (h l r : float) : EnclosureB := {| hib := h; lob := l; radiusb := r |}.
+
+(** The head of a computed enclosure, through the twin's sum: its mantissa and exponent, checked by
+    [vm_compute] (comparing the floats themselves would normalise Flocq's proof terms). *)
+Lemma head_const : forall x c, fin (fadd (hib x) (lob x)) = true ->
+  mant (fadd (hib x) (lob x)) = mant c -> expo (fadd (hib x) (lob x)) = expo c -> head (enc_R x) = B2R c.
+Proof.
+  intros x c F M E. unfold head, enc_R, two_sum. cbv zeta. cbn [fst hi lo].
+  rewrite <- fadd_val by exact F. rewrite !B2R_mant_expo, M, E. reflexivity.
+Qed.
+
+Lemma head_one_zero : head (enc_R (wenc w_one w_zero w_zero)) = 1.
+Proof. rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]. Qed.
+Lemma head_one_2m60 : head (enc_R (wenc w_one w_2m60 w_zero)) = 1.
+Proof. rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]. Qed.
+Lemma head_one_m15 : head (enc_R (wenc w_one w_m15 w_zero)) = 1.
+Proof. rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]. Qed.
+Lemma head_zero : head (enc_R (wenc w_zero w_zero w_zero)) = 0.
+Proof. rewrite (head_const _ w_zero); [exact w_zero_val | vm_compute; reflexivity ..]. Qed.
+Lemma head_one_half : head (enc_R (wenc w_one w_zero w_half)) = 1.
+Proof. rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]. Qed.
+
+Lemma k3_small : k3 <= u * (u * u).
+Proof.
+  unfold k3. apply Rle_trans with (bpow radix2 (-159)); [apply bpow_le; lia|].
+  rewrite u_val. simpl bpow. lra.
+Qed.
+
+Ltac w_vals := rewrite ?w_one_val, ?w_zero_val, ?w_2m60_val, ?w_m15_val, ?w_half_val.
+
+Ltac w_class :=
+  rewrite ?head_one_zero, ?head_one_2m60, ?head_one_m15, ?head_zero, ?head_one_half;
+  unfold cross_dd, dd, cross_magnitude, propagated_exact; cbn [enc_R hi lo radius hib lob radiusb wenc];
+  w_vals; rewrite ?k1_u, ?k2_val; pose proof k3_small; pose proof u_pos;
+  rewrite ?Rmult_1_l, ?Rmult_1_r, ?Rmult_0_l, ?Rmult_0_r, ?Rplus_0_r, ?Rplus_0_l, ?Rminus_0_r, ?Rabs_R0, ?Rabs_R1;
+  rewrite ?Rabs_R0, ?Rabs_R1.
+
+(** A near tie, t_1 − t_2 of relative size 2^-60 (n_1 = d_1 = d_2 = (1, 0, 0), n_2 = (1, 2^-60, 0)): in the class
+    of [compare_compensated_live] (|V| = 2^-60 > 2^-98·2 + 2^-1067), stage 2 is certain (negative), and stage 1
+    on the heads (the one-double enclosures (1, 0)) is uncertain. *)
+Example compare_compensated_live_example :
+  let n1 := wenc w_one w_zero w_zero in let d1 := wenc w_one w_zero w_zero in
+  let n2 := wenc w_one w_2m60 w_zero in let d2 := wenc w_one w_zero w_zero in
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2 * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                          (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) /\
+  enclosure_sign_lanes_b (compare_quotients_compensated_b n1 d1 n2 d2) = (-1)%Z /\
+  compare_quotients_filter_b (renc w_one w_zero) (renc w_one w_zero) (renc w_one w_zero) (renc w_one w_zero)
+    = Uncertain.
+Proof.
+  intros n1 d1 n2 d2. split; [| split; vm_compute; reflexivity].
+  unfold n1, d1, n2, d2. w_class.
+  match goal with |- _ < Rabs ?V => replace V with (- bpow radix2 (-60)) by ring end.
+  rewrite Rabs_Ropp, Rabs_pos_eq by apply bpow_ge_0.
+  rewrite u_val in *. simpl bpow. lra.
+Qed.
+
+(** In nearest_hit: the ray o = 0, d = (1, 0, 0) and the planes p_a = n_a = (1, 0, 0) (t_a = 1) and
+    p_b = (1, 2^-60, 0), n_b = (1, 1, 0) (t_b = 1 + 2^-60): stage 1's num_b rounds to 1, so it is uncertain;
+    [compare_hit_distances_b] returns from stage 2 (stage 1) with the order −1 (a first), both ways round. *)
+Example compare_hit_distances_stage2_example :
+  let o := V3 w_zero w_zero w_zero in let d := V3 w_one w_zero w_zero in
+  let pa := V3 w_one w_zero w_zero in let na := V3 w_one w_zero w_zero in
+  let pb := V3 w_one w_2m60 w_zero in let nb := V3 w_one w_one w_zero in
+  compare_quotients_filter_b
+    (filter_enclosure_b (stage1_num_b o pa na) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b d na) Cpp.filter_den_relative)
+    (filter_enclosure_b (stage1_num_b o pb nb) Cpp.filter_num_relative)
+    (filter_enclosure_b (stage1_den_b d nb) Cpp.filter_den_relative) = Uncertain /\
+  compare_hit_distances_b o d pa na pb nb Positive Positive Positive Positive = ((-1)%Z, 1%Z) /\
+  compare_hit_distances_b o d pb nb pa na Positive Positive Positive Positive = (1%Z, 1%Z).
+Proof. vm_compute. repeat split; reflexivity. Qed.
+
+Lemma w_fbnd : forall x, fin x = true -> Rabs (B2R x) <= 1 -> fbnd 400 x.
+Proof. exact RefinedLiveness.fbnd_small. Qed.
+
+Ltac w_small := apply w_fbnd; [vm_compute; reflexivity | w_vals;
+  first [rewrite Rabs_R0; lra | rewrite Rabs_R1; lra | rewrite Rabs_pos_eq; lra |
+         rewrite Rabs_Ropp, Rabs_pos_eq; [| pose proof (bpow_ge_0 radix2 (-103)); lra];
+         simpl bpow; lra]].
+
+(** k_1 cannot be replaced by 7·2^-103 (= 2^-98·7/32): n_1 = d_1 = d_2 = (1, 0, 0), n_2 = (1, −15·2^-103, 0) give
+    V = 15·2^-103 > 7·2^-103·S' + k_3 (S' = 2), and stage 2 is uncertain on them (hi ⊕ lo = 15·2^-103 while
+    E ⊕ E = 2·(2^-101 ⊗ 2) = 2^-99 = 16·2^-103).  So k_1 is within a factor 32/7 < 4.6 of the best constant. *)
+Theorem compare_compensated_k1_fails : ~ (forall n1 d1 n2 d2,
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  0 <= B2R (radiusb n1) -> 0 <= B2R (radiusb d1) -> 0 <= B2R (radiusb n2) -> 0 <= B2R (radiusb d2) ->
+  7 * bpow radix2 (-103) * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2 * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                          (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) ->
+  enclosure_sign_lanes_b (compare_quotients_compensated_b n1 d1 n2 d2) <> uncertain_lane).
+Proof.
+  intros H. apply (H (wenc w_one w_zero w_zero) (wenc w_one w_zero w_zero) (wenc w_one w_m15 w_zero)
+                    (wenc w_one w_zero w_zero)); cbn [hib lob radiusb wenc];
+    try w_small; try (rewrite w_zero_val; lra).
+  - w_class.
+    match goal with |- _ < Rabs ?V => replace V with (15 * bpow radix2 (-103)) by ring end.
+    rewrite Rabs_pos_eq by (pose proof (bpow_ge_0 radix2 (-103)); lra).
+    rewrite u_val in *. simpl bpow. lra.
+  - vm_compute. reflexivity.
+Qed.
+
+(** k_2 cannot be replaced by 2 − 2^-19: n_1 = (1, 0, 0), d_1 = n_2 = (0, 0, 0), d_2 = (1, 0, 1/2) give V = 1,
+    S' = 1, ρ' = 1/2, so V > 2^-98 + (2 − 2^-19)/2 + k_3, and stage 2 is uncertain (E ⊕ E ≈ 2·C_p·R > 1).
+    So k_2 is within a factor (3 + 2^-38)/(2 − 2^-19) < 1.5 + 2^-18 of the best constant. *)
+Theorem compare_compensated_k2_fails : ~ (forall n1 d1 n2 d2,
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  0 <= B2R (radiusb n1) -> 0 <= B2R (radiusb d1) -> 0 <= B2R (radiusb n2) -> 0 <= B2R (radiusb d2) ->
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    (2 - bpow radix2 (-19)) *
+      propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                       (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) ->
+  enclosure_sign_lanes_b (compare_quotients_compensated_b n1 d1 n2 d2) <> uncertain_lane).
+Proof.
+  intros H. apply (H (wenc w_one w_zero w_zero) (wenc w_zero w_zero w_zero) (wenc w_zero w_zero w_zero)
+                    (wenc w_one w_zero w_half)); cbn [hib lob radiusb wenc];
+    try w_small; try (rewrite ?w_zero_val, ?w_half_val; lra).
+  - w_class. match goal with |- _ < Rabs ?V => replace V with 1 by ring end. rewrite Rabs_R1.
+    rewrite u_val in *. simpl bpow. lra.
+  - vm_compute. reflexivity.
 Qed.
