@@ -11,12 +11,13 @@
     - [compare_compensated_live_model] (model) and [compare_compensated_live] (twin, every input part a finite
       double of magnitude ≤ 2^400, radii ≥ 0): the sign is certain whenever
 
-        |V| > k_1·S' + k_2·ρ' + k_3,   k_1 = 2^-98, k_2 = 3 + 2^-38, k_3 = 2^-1067 (= 256η),
+        |V| > k_1·S' + k_2·ρ' + k_3,   k_1 = 13·2^-102, k_2 = 2 + 2^-38, k_3 = 2^-1067 (= 256η),
 
       V = (h_1 + l_1)(h'_2 + l'_2) − (h_2 + l_2)(h'_1 + l'_1) (n_i = (h_i, l_i, e_i), d_i = (h'_i, l'_i, f_i)),
       S' and ρ' as in CompareLiveness2.v over the heads a_i, b_i = fst (two_sum h l).  [enclosure_sign] is
-      certain when |V| > (3 + 8u)·E (RefinedLiveness.v), and (3 + 8u)·(2^-100·S' + c_2·ρ' + 64η) is below the
-      class bound.  The certain sign is the sign of Δ for any reals the inputs enclose (StageTwoFinite.v's
+      certain when |V| > (1 + 4u)·(err + 2E) for any err ≥ |V − (hi + lo)| ([enclosure_sign_live_err], the form
+      of RefinedLiveness.v's [enclosure_sign_live3] with the error apart from E), and
+      (1 + 4u)·(3·2^-100·S' + 2c_2·ρ' + 192η) is below the class bound.  The certain sign is the sign of Δ for any reals the inputs enclose (StageTwoFinite.v's
       [compare_compensated_twin_sound_total]);
     - [compare_hit_distances_stage2_live]: in nearest_hit's [compare_hit_distances_b], the order is returned
       by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
@@ -24,8 +25,8 @@
       certain, stage 1 on the heads uncertain) and [compare_hit_distances_stage2_example] (a ray and two planes
       with t_a = 1, t_b = 1 + 2^-60: [compare_hit_distances_b] returns from stage 2, stage 1 being uncertain);
     - how sharp: [compare_compensated_k1_fails] (k_1 replaced by 7·2^-103 the statement is false: so k_1 is
-      within a factor 32/7 < 4.6 of the best constant) and [compare_compensated_k2_fails] (k_2 replaced by
-      2 − 2^-19 it is false: k_2 is within a factor 1.5 + 2^-18 of the best). *)
+      within a factor 26/7 < 3.8 of the best constant) and [compare_compensated_k2_fails] (k_2 replaced by
+      2 − 2^-19 it is false: k_2 is within a factor 1 + 2^-19 of the best). *)
 
 From Coq Require Import Reals Lra Lia ZArith List.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -41,13 +42,13 @@ Definition head (e : Enclosure) : R := fst (two_sum (hi e) (lo e)).
 Definition cross_dd (n1 d1 n2 d2 : Enclosure) : R := dd n1 * dd d2 - dd n2 * dd d1.
 Definition zero_radius (e : Enclosure) : Enclosure := {| hi := hi e; lo := lo e; radius := 0 |}.
 
-Definition k1 : R := bpow radix2 (-98).
-Definition k2 : R := 3 + bpow radix2 (-38).
+Definition k1 : R := 13 * bpow radix2 (-102).
+Definition k2 : R := 2 + bpow radix2 (-38).
 Definition k3 : R := bpow radix2 (-1067).
 
-Lemma k1_u : k1 = 256 * (u * u).
+Lemma k1_u : k1 = 208 * (u * u).
 Proof. unfold k1. rewrite u_val. simpl bpow. lra. Qed.
-Lemma k2_val : k2 = 3 + / 274877906944.
+Lemma k2_val : k2 = 2 + / 274877906944.
 Proof. unfold k2. simpl bpow. lra. Qed.
 Lemma k3_eta : k3 = 256 * eta.
 Proof. unfold k3, eta. replace (-1067)%Z with (8 + -1075)%Z by reflexivity. rewrite bpow_plus. simpl bpow. lra. Qed.
@@ -89,7 +90,42 @@ Proof.
   unfold cross_dd. eapply Rle_trans; [exact Z|]. lra.
 Qed.
 
-(** The class bound dominates (3 + 8u)·E, and the result encloses V. *)
+(** [enclosure_sign] is certain when |V| > (1 + 4u)·(err + 2·radius) for any err bounding |V − (hi + lo)|
+    (v = hi ⊕ lo ≥ (1 − u)(hi + lo), radius ⊕ radius ≤ 2(1 + u)·radius): RefinedLiveness.v's
+    [enclosure_sign_live3_model] with the error apart from the radius. *)
+Lemma enclosure_sign_live_err_model : forall e V err, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
+  0 <= radius e -> Rabs (V - (hi e + lo e)) <= err -> (1 + 4 * u) * (err + 2 * radius e) < Rabs V ->
+  enclosure_sign_lanes e <> uncertain_lane.
+Proof.
+  intros [h l r] V err Bh Bl Br Pr E L. cbn [hi lo radius] in *.
+  unfold enclosure_sign_lanes. cbn [hi lo radius].
+  assert (P0 : 0 <= err) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
+  pose proof u_pos. rewrite u_val in *.
+  pose proof (RN_plus_err h l Bh Bl) as Ev. rewrite u_val in Ev.
+  pose proof (RN_sum_upper r r Br Br ltac:(lra)) as Et. rewrite u_val in Et.
+  pose proof (RN_nonneg (r + r) ltac:(lra)) as Pt.
+  apply Rabs_le_inv in E. apply Rabs_le_inv in Ev.
+  destruct (Rle_or_lt 0 V) as [P|N].
+  - rewrite Rabs_pos_eq in L by exact P. apply sign_lanes_one_true. left.
+    assert (0 <= h + l) by lra. rewrite Rabs_pos_eq in Ev by lra.
+    split; [apply Rlt_bool_true | apply Rlt_bool_false]; lra.
+  - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
+    assert (h + l < 0) by lra. rewrite Rabs_left in Ev by lra.
+    split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
+Qed.
+
+Lemma enclosure_sign_live_err : forall e V err, fbnd 1000 (hib e) -> fbnd 1000 (lob e) -> fbnd 1000 (radiusb e) ->
+  0 <= B2R (radiusb e) -> Rabs (V - (B2R (hib e) + B2R (lob e))) <= err ->
+  (1 + 4 * u) * (err + 2 * B2R (radiusb e)) < Rabs V -> enclosure_sign_lanes_b e <> uncertain_lane.
+Proof.
+  intros e V err Hh Hl Hr P E L.
+  rewrite enclosure_sign_b_model.
+  - apply (enclosure_sign_live_err_model (enc_R e) V err); try apply binary64_B2R; assumption.
+  - destruct (fbnd_add _ _ _ _ Hh Hl ltac:(lia) ltac:(lia) ltac:(lia)) as [F _]. exact F.
+  - destruct (fbnd_add _ _ _ _ Hr Hr ltac:(lia) ltac:(lia) ltac:(lia)) as [F _]. exact F.
+Qed.
+
+(** The class bound dominates (1 + 4u)·(err + 2E), err = 2^-100·S' + 64η. *)
 Lemma compare_compensated_live_bound : forall n1 d1 n2 d2,
   binary64 (hi n1) -> binary64 (lo n1) -> binary64 (hi d1) -> binary64 (lo d1) -> binary64 (radius d1) ->
   binary64 (hi n2) -> binary64 (lo n2) -> binary64 (hi d2) -> binary64 (lo d2) -> binary64 (radius d2) ->
@@ -97,35 +133,45 @@ Lemma compare_compensated_live_bound : forall n1 d1 n2 d2,
   k1 * cross_magnitude (head n1) (head d1) (head n2) (head d2) +
     k2 * propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2) (head d2) (radius d2)
     + k3 < Rabs (cross_dd n1 d1 n2 d2) ->
-  encloses (compare_quotients_compensated n1 d1 n2 d2) (cross_dd n1 d1 n2 d2) /\
-  (3 + 8 * u) * radius (compare_quotients_compensated n1 d1 n2 d2) < Rabs (cross_dd n1 d1 n2 d2).
+  let e := compare_quotients_compensated n1 d1 n2 d2 in
+  0 <= radius e /\
+  Rabs (cross_dd n1 d1 n2 d2 - (hi e + lo e)) <=
+    64 * (u * u) * cross_magnitude (head n1) (head d1) (head n2) (head d2) + 64 * eta /\
+  (1 + 4 * u) * ((64 * (u * u) * cross_magnitude (head n1) (head d1) (head n2) (head d2) + 64 * eta) +
+                 2 * radius e) < Rabs (cross_dd n1 d1 n2 d2).
 Proof.
-  intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L. split.
-  - apply compare_quotients_compensated_enclosure; try assumption; apply encloses_dd; assumption.
-  - pose proof (compare_compensated_radius_upper n1 d1 n2 d2 (head n1) (head d1) (head n2) (head d2)
-                  eq_refl eq_refl eq_refl eq_refl Bf1 Bf2 He1 Hf1 He2 Hf2) as U.
-    pose proof (cross_magnitude_nonneg (head n1) (head d1) (head n2) (head d2)) as S0.
-    assert (R0 : 0 <= propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
-                                       (head d2) (radius d2)).
-    { unfold propagated_exact. pose proof (propagated_nonneg (head n1) (radius n1) (head d2) (radius d2) He1 Hf2).
-      pose proof (propagated_nonneg (head n2) (radius n2) (head d1) (radius d1) He2 Hf1). lra. }
-    set (r := radius (compare_quotients_compensated n1 d1 n2 d2)) in *.
-    set (S := cross_magnitude (head n1) (head d1) (head n2) (head d2)) in *.
-    set (rho := propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
-                                 (head d2) (radius d2)) in *.
-    set (V := cross_dd n1 d1 n2 d2) in *.
-    clearbody r S rho V. pose proof u_pos. pose proof eta_pos.
-    assert (Mu : (3 + 8 * u) * r <= (3 + 8 * u) * (64 * (u * u) * S + c2 * rho + 64 * eta))
-      by (apply Rmult_le_compat_l; lra).
-    rewrite k1_u, k2_val, k3_eta in L. unfold c2 in Mu. simpl bpow in Mu.
-    assert (A : (3 + 8 * u) * (64 * (u * u) * S) <= 256 * (u * u) * S).
-    { replace ((3 + 8 * u) * (64 * (u * u) * S)) with ((192 + 512 * u) * ((u * u) * S)) by ring.
-      replace (256 * (u * u) * S) with (256 * ((u * u) * S)) by ring.
-      apply Rmult_le_compat_r; [apply Rmult_le_pos; [nra | lra] | rewrite u_val; lra]. }
-    assert (B : (3 + 8 * u) * ((1 + / 1099511627776) * rho) <= (3 + / 274877906944) * rho).
-    { rewrite <- Rmult_assoc. apply Rmult_le_compat_r; [lra | rewrite u_val; lra]. }
-    assert (C : (3 + 8 * u) * (64 * eta) <= 256 * eta) by (rewrite u_val; lra).
-    lra.
+  intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L e.
+  assert (Enc : encloses e (cross_dd n1 d1 n2 d2)).
+  { apply compare_quotients_compensated_enclosure; try assumption; apply encloses_dd; assumption. }
+  split; [eapply Rle_trans; [apply Rabs_pos | exact Enc]|].
+  split; [exact (compare_compensated_error_model n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Hn2 Ln2 Hd2 Ld2)|].
+  pose proof (compare_compensated_radius_upper n1 d1 n2 d2 (head n1) (head d1) (head n2) (head d2)
+                eq_refl eq_refl eq_refl eq_refl Bf1 Bf2 He1 Hf1 He2 Hf2) as U. fold e in U.
+  pose proof (cross_magnitude_nonneg (head n1) (head d1) (head n2) (head d2)) as S0.
+  assert (R0 : 0 <= propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
+                                     (head d2) (radius d2)).
+  { unfold propagated_exact. pose proof (propagated_nonneg (head n1) (radius n1) (head d2) (radius d2) He1 Hf2).
+    pose proof (propagated_nonneg (head n2) (radius n2) (head d1) (radius d1) He2 Hf1). lra. }
+  set (r := radius e) in *.
+  set (S := cross_magnitude (head n1) (head d1) (head n2) (head d2)) in *.
+  set (rho := propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
+                               (head d2) (radius d2)) in *.
+  set (V := cross_dd n1 d1 n2 d2) in *.
+  clearbody r S rho V. pose proof u_pos. pose proof eta_pos.
+  assert (Mu : (1 + 4 * u) * (64 * (u * u) * S + 64 * eta + 2 * r) <=
+               (1 + 4 * u) * (64 * (u * u) * S + 64 * eta + 2 * (64 * (u * u) * S + c2 * rho + 64 * eta)))
+    by (apply Rmult_le_compat_l; lra).
+  rewrite k1_u, k2_val, k3_eta in L. unfold c2 in Mu. simpl bpow in Mu.
+  assert (A : (1 + 4 * u) * (192 * (u * u) * S) <= 208 * (u * u) * S).
+  { replace ((1 + 4 * u) * (192 * (u * u) * S)) with ((192 + 768 * u) * ((u * u) * S)) by ring.
+    replace (208 * (u * u) * S) with (208 * ((u * u) * S)) by ring.
+    apply Rmult_le_compat_r; [apply Rmult_le_pos; [nra | lra] | rewrite u_val; lra]. }
+  assert (B : (1 + 4 * u) * (2 * ((1 + / 1099511627776) * rho)) <= (2 + / 274877906944) * rho).
+  { replace ((1 + 4 * u) * (2 * ((1 + / 1099511627776) * rho))) with
+      (((1 + 4 * u) * (2 * (1 + / 1099511627776))) * rho) by ring.
+    apply Rmult_le_compat_r; [lra | rewrite u_val; lra]. }
+  assert (C : (1 + 4 * u) * (192 * eta) <= 256 * eta) by (rewrite u_val; lra).
+  lra.
 Qed.
 
 Theorem compare_compensated_live_model : forall n1 d1 n2 d2,
@@ -139,8 +185,9 @@ Theorem compare_compensated_live_model : forall n1 d1 n2 d2,
 Proof.
   intros n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L.
   destruct (compare_compensated_live_bound n1 d1 n2 d2 Hn1 Ln1 Hd1 Ld1 Bf1 Hn2 Ln2 Hd2 Ld2 Bf2 He1 Hf1 He2 Hf2 L)
-    as [E B].
-  apply (RefinedLiveness.enclosure_sign_live3_model _ (cross_dd n1 d1 n2 d2)); try assumption;
+    as [P [E B]].
+  apply (enclosure_sign_live_err_model _ (cross_dd n1 d1 n2 d2)
+           (64 * (u * u) * cross_magnitude (head n1) (head d1) (head n2) (head d2) + 64 * eta)); try assumption;
     unfold compare_quotients_compensated; cbn [hi lo radius];
     first [apply binary64_two_sum_hi | apply binary64_RN].
 Qed.
@@ -188,10 +235,9 @@ Proof.
   destruct (compare_compensated_live_bound (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)
               (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
               (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
-              Pe1 Pf1 Pe2 Pf2 L) as [E B].
-  rewrite <- Eq in E, B.
-  apply (RefinedLiveness.enclosure_sign_live3 e (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2))
-           BH' BL' BR' E B).
+              Pe1 Pf1 Pe2 Pf2 L) as [P [E B]].
+  rewrite <- Eq in P, E, B. cbn [enc_R hi lo radius] in P, E, B.
+  exact (enclosure_sign_live_err e (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)) _ BH' BL' BR' P E B).
 Qed.
 
 (** ** In nearest_hit: [compare_hit_distances] returns by stage 2 at the latest *)
@@ -300,7 +346,7 @@ Ltac w_class :=
   rewrite ?Rabs_R0, ?Rabs_R1.
 
 (** A near tie, t_1 − t_2 of relative size 2^-60 (n_1 = d_1 = d_2 = (1, 0, 0), n_2 = (1, 2^-60, 0)): in the class
-    of [compare_compensated_live] (|V| = 2^-60 > 2^-98·2 + 2^-1067), stage 2 is certain (negative), and stage 1
+    of [compare_compensated_live] (|V| = 2^-60 > 13·2^-102·2 + 2^-1067), stage 2 is certain (negative), and stage 1
     on the heads (the one-double enclosures (1, 0)) is uncertain. *)
 Example compare_compensated_live_example :
   let n1 := wenc w_one w_zero w_zero in let d1 := wenc w_one w_zero w_zero in
@@ -344,9 +390,9 @@ Ltac w_small := apply w_fbnd; [vm_compute; reflexivity | w_vals;
          rewrite Rabs_Ropp, Rabs_pos_eq; [| pose proof (bpow_ge_0 radix2 (-103)); lra];
          simpl bpow; lra]].
 
-(** k_1 cannot be replaced by 7·2^-103 (= 2^-98·7/32): n_1 = d_1 = d_2 = (1, 0, 0), n_2 = (1, −15·2^-103, 0) give
+(** k_1 cannot be replaced by 7·2^-103 (= k_1·7/26): n_1 = d_1 = d_2 = (1, 0, 0), n_2 = (1, −15·2^-103, 0) give
     V = 15·2^-103 > 7·2^-103·S' + k_3 (S' = 2), and stage 2 is uncertain on them (hi ⊕ lo = 15·2^-103 while
-    E ⊕ E = 2·(2^-101 ⊗ 2) = 2^-99 = 16·2^-103).  So k_1 is within a factor 32/7 < 4.6 of the best constant. *)
+    E ⊕ E = 2·(2^-101 ⊗ 2) = 2^-99 = 16·2^-103).  So k_1 is within a factor 26/7 < 3.8 of the best constant. *)
 Theorem compare_compensated_k1_fails : ~ (forall n1 d1 n2 d2,
   fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
   fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
@@ -370,8 +416,8 @@ Proof.
 Qed.
 
 (** k_2 cannot be replaced by 2 − 2^-19: n_1 = (1, 0, 0), d_1 = n_2 = (0, 0, 0), d_2 = (1, 0, 1/2) give V = 1,
-    S' = 1, ρ' = 1/2, so V > 2^-98 + (2 − 2^-19)/2 + k_3, and stage 2 is uncertain (E ⊕ E ≈ 2·C_p·R > 1).
-    So k_2 is within a factor (3 + 2^-38)/(2 − 2^-19) < 1.5 + 2^-18 of the best constant. *)
+    S' = 1, ρ' = 1/2, so V > k_1 + (2 − 2^-19)/2 + k_3, and stage 2 is uncertain (E ⊕ E ≈ 2·C_p·R > 1).
+    So k_2 is within a factor (2 + 2^-38)/(2 − 2^-19) < 1 + 2^-19 of the best constant. *)
 Theorem compare_compensated_k2_fails : ~ (forall n1 d1 n2 d2,
   fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
   fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
