@@ -524,6 +524,7 @@ Definition twin_results_compare_liveness3 :=
    CompareLiveness3.compare_compensated_live_example,
    CompareLiveness3.compare_hit_distances_stage2_example,
    CompareLiveness3.compare_compensated_k1_fails,
-   CompareLiveness3.compare_compensated_k2_fails).
-Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails". Abort.
+   CompareLiveness3.compare_compensated_k2_fails,
+   CompareLiveness3.compare_hit_distances_stage2_example_in_class).
+Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails compare_hit_distances_stage2_example_in_class". Abort.
 Print Assumptions twin_results_compare_liveness3.

@@ -23,7 +23,8 @@
       by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
     - not vacuous: [compare_compensated_live_example] (a near tie of relative size 2^-60: in the class, stage 2
       certain, stage 1 on the heads uncertain) and [compare_hit_distances_stage2_example] (a ray and two planes
-      with t_a = 1, t_b = 1 + 2^-60: [compare_hit_distances_b] returns from stage 2, stage 1 being uncertain);
+      with t_a = 1, t_b = 1 + 2^-60: [compare_hit_distances_b] returns from stage 2, stage 1 being uncertain;
+      [compare_hit_distances_stage2_example_in_class]: its stage-2 enclosures are in the class);
     - how sharp: [compare_compensated_k1_fails] (k_1 replaced by 7·2^-103 the statement is false: so k_1 is
       within a factor 26/7 < 3.8 of the best constant) and [compare_compensated_k2_fails] (k_2 replaced by
       2 − 2^-19 it is false: k_2 is within a factor 1 + 2^-19 of the best). *)
@@ -437,4 +438,82 @@ Proof.
   - w_class. match goal with |- _ < Rabs ?V => replace V with 1 by ring end. rewrite Rabs_R1.
     rewrite u_val in *. simpl bpow. lra.
   - vm_compute. reflexivity.
+Qed.
+
+(** The ray and planes of [compare_hit_distances_stage2_example] are in the class of
+    [compare_hit_distances_stage2_live]: their stage-2 enclosures (hi, lo, radius) are (1, 0, 2^-101) for
+    num_a, den_a, den_b and (1, 2^-60, 2^-101) for num_b (mantissas and exponents by [vm_compute]), so
+    S' = 2, ρ' = 4·2^-101 + 2·2^-202 and |V| = 2^-60. *)
+Definition wo : Vec3B := V3 w_zero w_zero w_zero.
+Definition wd : Vec3B := V3 w_one w_zero w_zero.
+Definition wpa : Vec3B := V3 w_one w_zero w_zero.
+Definition wna : Vec3B := V3 w_one w_zero w_zero.
+Definition wpb : Vec3B := V3 w_one w_2m60 w_zero.
+Definition wnb : Vec3B := V3 w_one w_one w_zero.
+
+Lemma float_val : forall x m e, mant x = m -> expo x = e -> B2R x = IZR m * bpow radix2 e.
+Proof. intros x m e M E. rewrite B2R_mant_expo, M, E. reflexivity. Qed.
+
+Lemma val_one : IZR 4503599627370496 * bpow radix2 (-52) = 1.
+Proof. change (IZR 4503599627370496) with (bpow radix2 52). rewrite <- bpow_plus. reflexivity. Qed.
+Lemma val_2m60 : IZR 4503599627370496 * bpow radix2 (-112) = bpow radix2 (-60).
+Proof. change (IZR 4503599627370496) with (bpow radix2 52). rewrite <- bpow_plus. reflexivity. Qed.
+Lemma val_2m101 : IZR 4503599627370496 * bpow radix2 (-153) = bpow radix2 (-101).
+Proof. change (IZR 4503599627370496) with (bpow radix2 52). rewrite <- bpow_plus. reflexivity. Qed.
+Lemma val_zero : IZR 0 * bpow radix2 0 = 0.
+Proof. ring. Qed.
+
+Ltac wfield v := rewrite (float_val _ _ _ eq_refl eq_refl); apply v.
+Ltac w_disj := first [left; assumption | right; left; assumption | right; right; left; assumption |
+                      right; right; right; assumption].
+
+Example compare_hit_distances_stage2_example_in_class :
+  let n1 := stage2_num_b wo wpa wna in let d1 := stage2_den_b wd wna in
+  let n2 := stage2_num_b wo wpb wnb in let d2 := stage2_den_b wd wnb in
+  (fbnd 400 (hib n1) /\ fbnd 400 (lob n1) /\ fbnd 400 (radiusb n1) /\
+   fbnd 400 (hib d1) /\ fbnd 400 (lob d1) /\ fbnd 400 (radiusb d1) /\
+   fbnd 400 (hib n2) /\ fbnd 400 (lob n2) /\ fbnd 400 (radiusb n2) /\
+   fbnd 400 (hib d2) /\ fbnd 400 (lob d2) /\ fbnd 400 (radiusb d2)) /\
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2 * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                          (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (cross_dd (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2)).
+Proof.
+  intros n1 d1 n2 d2.
+  assert (Hn1 : B2R (hib n1) = 1) by wfield val_one.
+  assert (Ln1 : B2R (lob n1) = 0) by wfield val_zero.
+  assert (En1 : B2R (radiusb n1) = bpow radix2 (-101)) by wfield val_2m101.
+  assert (Hd1 : B2R (hib d1) = 1) by wfield val_one.
+  assert (Ld1 : B2R (lob d1) = 0) by wfield val_zero.
+  assert (Fd1 : B2R (radiusb d1) = bpow radix2 (-101)) by wfield val_2m101.
+  assert (Hn2 : B2R (hib n2) = 1) by wfield val_one.
+  assert (Ln2 : B2R (lob n2) = bpow radix2 (-60)) by wfield val_2m60.
+  assert (En2 : B2R (radiusb n2) = bpow radix2 (-101)) by wfield val_2m101.
+  assert (Hd2 : B2R (hib d2) = 1) by wfield val_one.
+  assert (Ld2 : B2R (lob d2) = 0) by wfield val_zero.
+  assert (Fd2 : B2R (radiusb d2) = bpow radix2 (-101)) by wfield val_2m101.
+  assert (A1 : head (enc_R n1) = 1) by (rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]).
+  assert (A2 : head (enc_R d1) = 1) by (rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]).
+  assert (A3 : head (enc_R n2) = 1) by (rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]).
+  assert (A4 : head (enc_R d2) = 1) by (rewrite (head_const _ w_one); [exact w_one_val | vm_compute; reflexivity ..]).
+  pose proof (bpow_gt_0 radix2 (-101)) as P101. pose proof (bpow_gt_0 radix2 (-60)) as P60.
+  assert (B101 : bpow radix2 (-101) <= 1) by (simpl bpow; lra).
+  assert (B60 : bpow radix2 (-60) <= 1) by (simpl bpow; lra).
+  assert (Fb : forall x, fin x = true -> B2R x = 0 \/ B2R x = 1 \/ B2R x = bpow radix2 (-101) \/
+                         B2R x = bpow radix2 (-60) -> fbnd 400 x).
+  { intros x F V. apply w_fbnd; [exact F|].
+    destruct V as [V | [V | [V | V]]]; rewrite V; [rewrite Rabs_R0 | rewrite Rabs_R1 |
+      rewrite Rabs_pos_eq | rewrite Rabs_pos_eq]; lra. }
+  split.
+  { do 11 (split; [apply Fb; [vm_compute; reflexivity | w_disj] |]).
+    apply Fb; [vm_compute; reflexivity | w_disj]. }
+  unfold cross_dd, dd, cross_magnitude, propagated_exact. rewrite A1, A2, A3, A4.
+  unfold enc_R. cbn [hi lo]. rewrite Hn1, Ln1, Hd1, Ld1, Hn2, Ln2, Hd2, Ld2, En1, Fd1, En2, Fd2.
+  match goal with |- _ < Rabs ?V => replace V with (- bpow radix2 (-60)) by ring end.
+  rewrite Rabs_Ropp, (Rabs_pos_eq (bpow radix2 (-60))) by lra.
+  rewrite ?Rmult_1_l, ?Rabs_R1, k1_u, k2_val. pose proof k3_small. pose proof u_pos.
+  clear Fb. rewrite u_val in *. simpl bpow in *.
+  repeat match goal with |- context [Z.pow_pos 2 ?p] =>
+    let v := eval vm_compute in (Z.pow_pos 2 p) in change (Z.pow_pos 2 p) with v end.
+  lra.
 Qed.
