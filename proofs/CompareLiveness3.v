@@ -18,7 +18,8 @@
       certain when |V| > (1 + 4u)·(err + 2E) for any err ≥ |V − (hi + lo)| ([enclosure_sign_live_err], the form
       of RefinedLiveness.v's [enclosure_sign_live3] with the error apart from E), and
       (1 + 4u)·(3·2^-100·S' + 2c_2·ρ' + 192η) is below the class bound.  The certain sign is the sign of Δ for any reals the inputs enclose (StageTwoFinite.v's
-      [compare_compensated_twin_sound_total]);
+      [compare_compensated_twin_sound_total]); [compare_compensated_live_exact]: the same class for the exact
+      cross difference |N_1·D_2 − N_2·D_1| of any reals the inputs enclose, with 3 + 2^-37 in place of k_2;
     - [compare_hit_distances_stage2_live]: in nearest_hit's [compare_hit_distances_b], the order is returned
       by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
     - not vacuous: [compare_compensated_live_example] (a near tie of relative size 2^-60: in the class, stage 2
@@ -516,4 +517,77 @@ Proof.
   repeat match goal with |- context [Z.pow_pos 2 ?p] =>
     let v := eval vm_compute in (Z.pow_pos 2 p) in change (Z.pow_pos 2 p) with v end.
   lra.
+Qed.
+
+(** ** In the words of the exact values *)
+
+(** The cross difference of any reals the four enclosures enclose is within (1 + u)·ρ' of V. *)
+Lemma cross_dd_close : forall n1 d1 n2 d2 N1 D1 N2 D2,
+  binary64 (hi n1) -> binary64 (lo n1) -> binary64 (hi d1) -> binary64 (lo d1) ->
+  binary64 (hi n2) -> binary64 (lo n2) -> binary64 (hi d2) -> binary64 (lo d2) ->
+  encloses n1 N1 -> encloses d1 D1 -> encloses n2 N2 -> encloses d2 D2 ->
+  Rabs (N1 * D2 - N2 * D1 - cross_dd n1 d1 n2 d2) <=
+    (1 + u) * propagated_exact (head n1) (radius n1) (head d1) (radius d1) (head n2) (radius n2)
+                               (head d2) (radius d2).
+Proof.
+  intros n1 d1 n2 d2 N1 D1 N2 D2 Hn1 Ln1 Hd1 Ld1 Hn2 Ln2 Hd2 Ld2 E1 F1 E2 F2.
+  assert (Norm : forall e V, binary64 (hi e) -> binary64 (lo e) -> encloses e V ->
+            Rabs (snd (two_sum (hi e) (lo e))) <= u * Rabs (head e) /\
+            Rabs (head e + snd (two_sum (hi e) (lo e)) - V) <= radius e /\
+            head e + snd (two_sum (hi e) (lo e)) = dd e).
+  { intros e V Bh Bl HV. unfold head, dd. pose proof (two_sum_exact (hi e) (lo e) Bh Bl) as X.
+    split; [apply (two_sum_lo_bound (hi e) (lo e) Bh Bl)|].
+    rewrite X, Rabs_minus_sym. split; [exact HV | reflexivity]. }
+  destruct (Norm n1 N1 Hn1 Ln1 E1) as [La1 [Ea1 Xa1]]. destruct (Norm d1 D1 Hd1 Ld1 F1) as [Lb1 [Eb1 Xb1]].
+  destruct (Norm n2 N2 Hn2 Ln2 E2) as [La2 [Ea2 Xa2]]. destruct (Norm d2 D2 Hd2 Ld2 F2) as [Lb2 [Eb2 Xb2]].
+  pose proof (input_error_dd N1 D2 _ _ _ _ _ _ La1 Lb2 Ea1 Eb2) as I1.
+  pose proof (input_error_dd N2 D1 _ _ _ _ _ _ La2 Lb1 Ea2 Eb1) as I2.
+  rewrite Xa1, Xb2 in I1. rewrite Xa2, Xb1 in I2.
+  unfold cross_dd, propagated_exact.
+  replace (N1 * D2 - N2 * D1 - (dd n1 * dd d2 - dd n2 * dd d1))
+    with ((N1 * D2 - dd n1 * dd d2) - (N2 * D1 - dd n2 * dd d1)) by ring.
+  unfold Rminus at 1. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp. lra.
+Qed.
+
+Definition k2_exact : R := 3 + bpow radix2 (-37).
+
+(** For any reals N_i, D_i the four stage-2 enclosures enclose (num and den of the two planes along the ray),
+    stage 2 is certain whenever the exact cross difference |N_1·D_2 − N_2·D_1| exceeds k_1·S' + (3 + 2^-37)·ρ' + k_3
+    (k_2 + 1 + u ≤ 3 + 2^-37: the input error adds (1 + u)·ρ'). *)
+Corollary compare_compensated_live_exact : forall n1 d1 n2 d2 N1 D1 N2 D2,
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  encloses (enc_R n1) N1 -> encloses (enc_R d1) D1 -> encloses (enc_R n2) N2 -> encloses (enc_R d2) D2 ->
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2_exact * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                                (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (N1 * D2 - N2 * D1) ->
+  enclosure_sign_lanes_b (compare_quotients_compensated_b n1 d1 n2 d2) <> uncertain_lane.
+Proof.
+  intros n1 d1 n2 d2 N1 D1 N2 D2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2 E1 F1 E2 F2 L.
+  assert (P : forall e V, encloses e V -> 0 <= radius e) by
+    (intros e V H; eapply Rle_trans; [apply Rabs_pos | exact H]).
+  pose proof (P _ _ E1) as Pe1. pose proof (P _ _ F1) as Pf1. pose proof (P _ _ E2) as Pe2. pose proof (P _ _ F2) as Pf2.
+  cbn [enc_R radius] in Pe1, Pf1, Pe2, Pf2.
+  apply compare_compensated_live; try assumption.
+  pose proof (cross_dd_close (enc_R n1) (enc_R d1) (enc_R n2) (enc_R d2) N1 D1 N2 D2
+                (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
+                (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) E1 F1 E2 F2) as C.
+  cbn [enc_R radius] in C.
+  assert (R0 : 0 <= propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                                     (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2))).
+  { unfold propagated_exact.
+    pose proof (propagated_nonneg (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d2)) (B2R (radiusb d2)) Pe1 Pf2).
+    pose proof (propagated_nonneg (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d1)) (B2R (radiusb d1)) Pe2 Pf1).
+    lra. }
+  set (rho := propagated_exact _ _ _ _ _ _ _ _) in *.
+  set (S := cross_magnitude _ _ _ _) in *.
+  set (V := cross_dd _ _ _ _) in *.
+  set (X := N1 * D2 - N2 * D1) in *.
+  clearbody rho S V X.
+  assert (T : Rabs X <= Rabs V + (1 + u) * rho).
+  { replace X with (V + (X - V)) by ring. eapply Rle_trans; [apply Rabs_triang|]. lra. }
+  unfold k2_exact in L. rewrite k2_val. pose proof u_pos. rewrite u_val in *. simpl bpow in L. lra.
 Qed.
