@@ -529,3 +529,7 @@ Definition twin_results_compare_liveness3 :=
    CompareLiveness3.compare_compensated_live_exact).
 Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails compare_hit_distances_stage2_example_in_class compare_compensated_live_exact". Abort.
 Print Assumptions twin_results_compare_liveness3.
+Definition twin_results_compare_liveness3_exact :=
+  (CompareLiveness3.compare_hit_distances_stage2_live_exact, CompareLiveness3.cross_dd_close).
+Goal True. idtac "@@ compare_hit_distances_stage2_live_exact cross_dd_close". Abort.
+Print Assumptions twin_results_compare_liveness3_exact.

@@ -22,6 +22,8 @@
       cross difference |N_1·D_2 − N_2·D_1| of any reals the inputs enclose, with 3 + 2^-37 in place of k_2;
     - [compare_hit_distances_stage2_live]: in nearest_hit's [compare_hit_distances_b], the order is returned
       by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
+      [compare_hit_distances_stage2_live_exact]: the same with the exact Δ = num_a·den_b − num_b·den_a of the ray
+      and the planes;
     - not vacuous: [compare_compensated_live_example] (a near tie of relative size 2^-60: in the class, stage 2
       certain, stage 1 on the heads uncertain) and [compare_hit_distances_stage2_example] (a ray and two planes
       with t_a = 1, t_b = 1 + 2^-60: [compare_hit_distances_b] returns from stage 2, stage 1 being uncertain;
@@ -590,4 +592,39 @@ Proof.
   assert (T : Rabs X <= Rabs V + (1 + u) * rho).
   { replace X with (V + (X - V)) by ring. eapply Rle_trans; [apply Rabs_triang|]. lra. }
   unfold k2_exact in L. rewrite k2_val. pose proof u_pos. rewrite u_val in *. simpl bpow in L. lra.
+Qed.
+
+(** In nearest_hit, with the exact values: when the four stage-2 enclosures are finite of magnitude ≤ 2^400
+    and the exact Δ = num_a·den_b − num_b·den_a of the ray and the two planes exceeds k_1·S' + (3 + 2^-37)·ρ'
+    + k_3 (S', ρ' of the enclosures), [compare_hit_distances_b] returns by stage 2 at the latest. *)
+Corollary compare_hit_distances_stage2_live_exact : forall o d pa na pb nb nsa dsa nsb dsb,
+  let n1 := stage2_num_b o pa na in let d1 := stage2_den_b d na in
+  let n2 := stage2_num_b o pb nb in let d2 := stage2_den_b d nb in
+  fbnd 400 (hib n1) -> fbnd 400 (lob n1) -> fbnd 400 (radiusb n1) ->
+  fbnd 400 (hib d1) -> fbnd 400 (lob d1) -> fbnd 400 (radiusb d1) ->
+  fbnd 400 (hib n2) -> fbnd 400 (lob n2) -> fbnd 400 (radiusb n2) ->
+  fbnd 400 (hib d2) -> fbnd 400 (lob d2) -> fbnd 400 (radiusb d2) ->
+  k1 * cross_magnitude (head (enc_R n1)) (head (enc_R d1)) (head (enc_R n2)) (head (enc_R d2)) +
+    k2_exact * propagated_exact (head (enc_R n1)) (B2R (radiusb n1)) (head (enc_R d1)) (B2R (radiusb d1))
+                                (head (enc_R n2)) (B2R (radiusb n2)) (head (enc_R d2)) (B2R (radiusb d2)) + k3 <
+    Rabs (ray_num (vec_R o) (vec_R pa) (vec_R na) * ray_den (vec_R d) (vec_R nb) -
+          ray_num (vec_R o) (vec_R pb) (vec_R nb) * ray_den (vec_R d) (vec_R na)) ->
+  (snd (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) <= 1)%Z.
+Proof.
+  intros o d pa na pb nb nsa dsa nsb dsb n1 d1 n2 d2 Hn1 Ln1 En1 Hd1 Ld1 Fd1 Hn2 Ln2 En2 Hd2 Ld2 Fd2 L.
+  rewrite !ray_num_bits, !ray_den_bits in L.
+  pose proof (num_compensated_encloses_b (vxb pa) (vyb pa) (vzb pa) (vxb o) (vyb o) (vzb o) (vxb na) (vyb na)
+                (vzb na) (proj1 Hn1) (proj1 Ln1) (proj1 En1)) as E1.
+  pose proof (den_compensated_encloses_b (vxb d) (vyb d) (vzb d) (vxb na) (vyb na) (vzb na)
+                (proj1 Hd1) (proj1 Ld1) (proj1 Fd1)) as F1.
+  pose proof (num_compensated_encloses_b (vxb pb) (vyb pb) (vzb pb) (vxb o) (vyb o) (vzb o) (vxb nb) (vyb nb)
+                (vzb nb) (proj1 Hn2) (proj1 Ln2) (proj1 En2)) as E2.
+  pose proof (den_compensated_encloses_b (vxb d) (vyb d) (vzb d) (vxb nb) (vyb nb) (vzb nb)
+                (proj1 Hd2) (proj1 Ld2) (proj1 Fd2)) as F2.
+  pose proof (is_certain_lane _ (compare_compensated_live_exact n1 d1 n2 d2 _ _ _ _ Hn1 Ln1 En1 Hd1 Ld1 Fd1
+                                   Hn2 Ln2 En2 Hd2 Ld2 Fd2 E1 F1 E2 F2 L)) as C.
+  unfold n1, d1, n2, d2 in C.
+  unfold compare_hit_distances_b. cbv zeta. destruct (_ || _)%bool; [cbn [snd]; lia|].
+  destruct (is_certain_b (compare_quotients_filter_b _ _ _ _)); [cbn [snd]; lia|].
+  rewrite C. cbn [snd]. lia.
 Qed.
