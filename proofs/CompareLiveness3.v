@@ -17,8 +17,8 @@
       S' and ρ' as in CompareLiveness2.v over the heads a_i, b_i = fst (two_sum h l).  [enclosure_sign] is
       certain when |V| > (1 + 4u)·(err + 2E) for any err ≥ |V − (hi + lo)| ([enclosure_sign_live_err], the form
       of RefinedLiveness.v's [enclosure_sign_live3] with the error apart from E), and
-      (1 + 4u)·(3·2^-100·S' + 2c_2·ρ' + 192η) is below the class bound.  The certain sign is the sign of Δ for any reals the inputs enclose (StageTwoFinite.v's
-      [compare_compensated_twin_sound_total]); [compare_compensated_live_exact]: the same class for the exact
+      (1 + 4u)·(3·2^-100·S' + 2c_2·ρ' + 192η) is below the class bound.  The certain sign is the sign of Δ
+      for any reals the inputs enclose (StageTwoFinite.v's [compare_compensated_twin_sound_total]); [compare_compensated_live_exact]: the same class for the exact
       cross difference |N_1·D_2 − N_2·D_1| of any reals the inputs enclose, with 3 + 2^-37 in place of k_2;
     - [compare_hit_distances_stage2_live]: in nearest_hit's [compare_hit_distances_b], the order is returned
       by stage 1 or stage 2 (stage ≤ 1) when the four stage-2 enclosures are in the class;
