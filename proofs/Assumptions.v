@@ -555,3 +555,25 @@ Definition twin_results_compare_stage3_liveness :=
    CompareStage3Liveness.compare_stage3_uncertain_in_class).
 Goal True. idtac "@@ compare_quotients_expansion_single compare_stage3_int_live_gen compare_stage3_int_live compare_hit_distances_int_live compare_hit_distances_int_correct compare_stage3_tie_example compare_stage3_tie_in_class compare_quotients_expansion_int_tie compare_stage3_int_tie compare_hit_distances_int_tie_live compare_hit_distances_int_tie_correct compare_stage3_tie2_example compare_stage3_tie2_in_class compare_stage3_uncertain_example compare_stage3_uncertain_in_class". Abort.
 Print Assumptions twin_results_compare_stage3_liveness.
+(** CompareLiveness3.v: the second half of the liveness of stage 2 of nearest_hit's comparison: the error of
+    hi + lo (model), the class on which the twin of compare_quotients_compensated is certain,
+    compare_hit_distances returning by stage 2 at the latest on it, computed witnesses and the sharpness
+    of the class's constants *)
+From Raykernel Require CompareLiveness3.
+Definition twin_results_compare_liveness3 :=
+  (CompareLiveness3.compare_compensated_error_model,
+   CompareLiveness3.compare_compensated_live_model,
+   CompareLiveness3.compare_compensated_live,
+   CompareLiveness3.compare_hit_distances_stage2_live,
+   CompareLiveness3.compare_compensated_live_example,
+   CompareLiveness3.compare_hit_distances_stage2_example,
+   CompareLiveness3.compare_compensated_k1_fails,
+   CompareLiveness3.compare_compensated_k2_fails,
+   CompareLiveness3.compare_hit_distances_stage2_example_in_class,
+   CompareLiveness3.compare_compensated_live_exact).
+Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails compare_hit_distances_stage2_example_in_class compare_compensated_live_exact". Abort.
+Print Assumptions twin_results_compare_liveness3.
+Definition twin_results_compare_liveness3_exact :=
+  (CompareLiveness3.compare_hit_distances_stage2_live_exact, CompareLiveness3.cross_dd_close).
+Goal True. idtac "@@ compare_hit_distances_stage2_live_exact cross_dd_close". Abort.
+Print Assumptions twin_results_compare_liveness3_exact.

@@ -10,9 +10,8 @@
 
     S' = |a_1·b_2| + |a_2·b_1| and ρ' = |a_1|·f_2 + e_1·(|b_2| + f_2) + |a_2|·f_1 + e_2·(|b_1| + f_1), where
     a_i, b_i are the renormalized heads (fst (two_sum hi lo)) of the four inputs, c_2 = 1 + 2^-40
-    (CompareLiveness.v).  What this file does not prove (proofs/README.md, "What remains"): the twin-level
-    theorem (forward finiteness of the two_prod/fma chain on inputs ≤ 2^k, the computed hi close to the exact
-    cross difference) and a computed witness. *)
+    (CompareLiveness.v).  The second half (the error of hi + lo, the twin-level theorem
+    [compare_compensated_live], witnesses and sharpness) is CompareLiveness3.v. *)
 
 From Coq Require Import Reals Lra Lia ZArith.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
