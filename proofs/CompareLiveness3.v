@@ -96,26 +96,16 @@ Qed.
 
 (** [enclosure_sign] is certain when |V| > (1 + 4u)·(err + 2·radius) for any err bounding |V − (hi + lo)|
     (v = hi ⊕ lo ≥ (1 − u)(hi + lo), radius ⊕ radius ≤ 2(1 + u)·radius): RefinedLiveness.v's
-    [enclosure_sign_live3_model] with the error apart from the radius. *)
+    [enclosure_sign_live3_model] with the error apart from the radius; an instance of Liveness.v's
+    [enclosure_sign_live_gen_model]. *)
 Lemma enclosure_sign_live_err_model : forall e V err, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
   0 <= radius e -> Rabs (V - (hi e + lo e)) <= err -> (1 + 4 * u) * (err + 2 * radius e) < Rabs V ->
   enclosure_sign_lanes e <> uncertain_lane.
 Proof.
-  intros [h l r] V err Bh Bl Br Pr E L. cbn [hi lo radius] in *.
-  unfold enclosure_sign_lanes. cbn [hi lo radius].
+  intros e V err Bh Bl Br Pr E L.
+  apply (enclosure_sign_live_gen_model e V err Bh Bl Br Pr E).
   assert (P0 : 0 <= err) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
-  pose proof u_pos. rewrite u_val in *.
-  pose proof (RN_plus_err h l Bh Bl) as Ev. rewrite u_val in Ev.
-  pose proof (RN_sum_upper r r Br Br ltac:(lra)) as Et. rewrite u_val in Et.
-  pose proof (RN_nonneg (r + r) ltac:(lra)) as Pt.
-  apply Rabs_le_inv in E. apply Rabs_le_inv in Ev.
-  destruct (Rle_or_lt 0 V) as [P|N].
-  - rewrite Rabs_pos_eq in L by exact P. apply sign_lanes_one_true. left.
-    assert (0 <= h + l) by lra. rewrite Rabs_pos_eq in Ev by lra.
-    split; [apply Rlt_bool_true | apply Rlt_bool_false]; lra.
-  - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
-    assert (h + l < 0) by lra. rewrite Rabs_left in Ev by lra.
-    split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
+  pose proof u_pos. rewrite u_val in *. lra.
 Qed.
 
 Lemma enclosure_sign_live_err : forall e V err, fbnd 1000 (hib e) -> fbnd 1000 (lob e) -> fbnd 1000 (radiusb e) ->

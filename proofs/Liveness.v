@@ -321,13 +321,15 @@ Qed.
 
 (** ** enclosure_sign *)
 
-(** In the model: certain when |V| > 4·radius, for any enclosure of V by doubles. *)
-Lemma enclosure_sign_live_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
-  encloses e V -> 4 * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
+(** The one proof that [enclosure_sign] certifies: for any err bounding |V − (hi + lo)|, certain when
+    2(1 + u)·radius < (1 − u)·(|V| − err) (v = hi ⊕ lo ≥ (1 − u)(hi + lo), radius ⊕ radius ≤ 2(1 + u)·radius).
+    The classes below and RefinedLiveness.v's, CompareLiveness3.v's are instances. *)
+Lemma enclosure_sign_live_gen_model : forall e V err, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
+  0 <= radius e -> Rabs (V - (hi e + lo e)) <= err -> 2 * (1 + u) * radius e < (1 - u) * (Rabs V - err) ->
+  enclosure_sign_lanes e <> uncertain_lane.
 Proof.
-  intros [h l r] V Bh Bl Br E L. unfold encloses in E. cbn [hi lo radius] in *.
+  intros [h l r] V err Bh Bl Br Pr E L. cbn [hi lo radius] in *.
   unfold enclosure_sign_lanes. cbn [hi lo radius].
-  assert (Pr : 0 <= r) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
   pose proof u_pos. rewrite u_val in *.
   pose proof (RN_plus_err h l Bh Bl) as Ev. rewrite u_val in Ev.
   pose proof (RN_sum_upper r r Br Br ltac:(lra)) as Et. rewrite u_val in Et.
@@ -340,6 +342,16 @@ Proof.
   - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
     assert (h + l < 0) by lra. rewrite Rabs_left in Ev by lra.
     split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
+Qed.
+
+(** In the model: certain when |V| > 4·radius, for any enclosure of V by doubles. *)
+Lemma enclosure_sign_live_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
+  encloses e V -> 4 * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
+Proof.
+  intros e V Bh Bl Br E L. unfold encloses in E.
+  assert (Pr : 0 <= radius e) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
+  apply (enclosure_sign_live_gen_model e V (radius e) Bh Bl Br Pr E).
+  pose proof u_pos. rewrite u_val in *. lra.
 Qed.
 
 (** The twin of enclosure_sign computes the model's decision when nothing overflows. *)

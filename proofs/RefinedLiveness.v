@@ -221,26 +221,15 @@ Qed.
 
 (** ** enclosure_sign: certain when |V| > (3 + 8u)·radius *)
 
-(** In the model, for any enclosure of V by doubles (sharper than Liveness.v's 4·radius: v = hi ⊕ lo is
-    within radius + u|v| of V, and the test compares v with radius ⊕ radius ≤ 2(1 + u)·radius). *)
+(** In the model, for any enclosure of V by doubles (sharper than Liveness.v's 4·radius; an instance of
+    Liveness.v's [enclosure_sign_live_gen_model] with err = radius). *)
 Lemma enclosure_sign_live3_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
   encloses e V -> (3 + 8 * u) * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
 Proof.
-  intros [h l r] V Bh Bl Br E L. unfold encloses in E. cbn [hi lo radius] in *.
-  unfold enclosure_sign_lanes. cbn [hi lo radius].
-  assert (Pr : 0 <= r) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
-  pose proof u_pos. rewrite u_val in *.
-  pose proof (RN_plus_err h l Bh Bl) as Ev. rewrite u_val in Ev.
-  pose proof (RN_sum_upper r r Br Br ltac:(lra)) as Et. rewrite u_val in Et.
-  pose proof (RN_nonneg (r + r) ltac:(lra)) as Pt.
-  apply Rabs_le_inv in E. apply Rabs_le_inv in Ev.
-  destruct (Rle_or_lt 0 V) as [P|N].
-  - rewrite Rabs_pos_eq in L by exact P. apply sign_lanes_one_true. left.
-    assert (0 <= h + l) by lra. rewrite Rabs_pos_eq in Ev by lra.
-    split; [apply Rlt_bool_true | apply Rlt_bool_false]; lra.
-  - rewrite Rabs_left in L by exact N. apply sign_lanes_one_true. right.
-    assert (h + l < 0) by lra. rewrite Rabs_left in Ev by lra.
-    split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
+  intros e V Bh Bl Br E L. unfold encloses in E.
+  assert (Pr : 0 <= radius e) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
+  apply (enclosure_sign_live_gen_model e V (radius e) Bh Bl Br Pr E).
+  pose proof u_pos. rewrite u_val in *. lra.
 Qed.
 
 Lemma enclosure_sign_live3 : forall e V, fbnd 1000 (hib e) -> fbnd 1000 (lob e) -> fbnd 1000 (radiusb e) ->
