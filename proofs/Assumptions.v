@@ -491,6 +491,23 @@ Definition twin_results_quotient_liveness :=
    QuotientLiveness.third_radius_threshold).
 Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold third_radius_threshold". Abort.
 Print Assumptions twin_results_quotient_liveness.
+(** QuotientLivenessTwin.v: the same liveness over the twin (QueryTwins.v's prepare_divisor_b, round_quotient_b,
+    runner-tied): finite parts of magnitude <= 2^1000 in round_quotient_live's class certify, t = RN(X/Y) finite;
+    the twin computes the model's rounding forwards on bounded inputs; the computed examples are in the class *)
+From Raykernel Require QuotientLivenessTwin.
+Goal True. idtac "@@ round_quotient_live_b". Abort.
+Print Assumptions QuotientLivenessTwin.round_quotient_live_b.
+Definition twin_results_quotient_liveness_twin :=
+  (QuotientLivenessTwin.round_quotient_live_exact_b,
+   QuotientLivenessTwin.round_quotient_b_fwd,
+   QuotientLivenessTwin.prepare_divisor_b_fwd,
+   QuotientLivenessTwin.rq_model_bounds,
+   QuotientLivenessTwin.round_quotient_b_third_live,
+   QuotientLivenessTwin.round_quotient_b_near_midpoint_live,
+   QuotientLivenessTwin.fast_answer_from_live_b,
+   FloatCore.fdiv_fwd).
+Goal True. idtac "@@ round_quotient_live_exact_b round_quotient_b_fwd prepare_divisor_b_fwd rq_model_bounds round_quotient_b_third_live round_quotient_b_near_midpoint_live fast_answer_from_live_b fdiv_fwd". Abort.
+Print Assumptions twin_results_quotient_liveness_twin.
 (** Stage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
     stage 3 when the expansions have one component each; a concrete input where stages 1 and 2 do not *)
 From Raykernel Require Stage3Liveness.

@@ -15,8 +15,8 @@
     - comparisons: [flt] and [fle] on finite operands are the real comparisons; a certifying comparison
       against a bound that is "non-negative or NaN" ([nonneg]) implies the bound is finite
       ([certifying_bound_finite]);
-    - forward: finite operands whose model result is below 2^1024 give a finite result ([fadd_fwd] ...),
-      used by the liveness theorems.
+    - forward: finite operands whose model result is below 2^1024 give a finite result ([fadd_fwd] ...,
+      [fdiv_fwd] with a non-zero divisor), used by the liveness theorems.
 
     Nothing here assumes anything about the inputs: a twin theorem states what a certain answer implies,
     for every 64-bit pattern of every input. *)
@@ -277,6 +277,17 @@ Lemma ffma_fwd : forall x y z, fin x = true -> fin y = true -> fin z = true ->
 Proof.
   intros x y z Fx Fy Fz L. pose proof (Bfma_correct 53 1024 _ _ mode_NE x y z Fx Fy Fz) as C. cbv zeta in C.
   rewrite Rlt_bool_true in C by exact L. destruct C as [V [F _]]. split; assumption.
+Qed.
+
+(** Division: [Bdiv_correct] read forwards (a non-zero divisor, hence finite or infinite; the result is
+    finite only when RN(x/y) is below 2^1024). *)
+Lemma fdiv_fwd : forall x y, fin x = true -> B2R y <> 0 ->
+  Rabs (RN (B2R x / B2R y)) < bpow radix2 1024 ->
+  fin (fdiv x y) = true /\ B2R (fdiv x y) = RN (B2R x / B2R y).
+Proof.
+  intros x y Fx Nz L. pose proof (Bdiv_correct 53 1024 _ _ mode_NE x y Nz) as C.
+  rewrite Rlt_bool_true in C by exact L. destruct C as [V [F _]]. unfold fin in *.
+  rewrite Fx in F. split; assumption.
 Qed.
 
 Lemma fadd_dominated : forall x y z, fin x = true -> fin y = true ->

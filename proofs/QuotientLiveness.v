@@ -17,7 +17,8 @@
     2^-97|Q| of those points.  Both are stated over QuotientRounding.v's [round_quotient]/[prepare_divisor];
     the end of this file runs the twin [round_quotient_b] on concrete enclosures by computation
     ([round_quotient_b_third], [near_midpoint_threshold]: not vacuous, and the constant within a factor 1.8
-    of the test's own threshold).
+    of the test's own threshold); QuotientLivenessTwin.v states both theorems over the twin
+    ([round_quotient_live_b], [round_quotient_live_exact_b]).
 
     The proof reads [round_quotient_sound]'s derivation forwards: the residual analysis
     ([quotient_residuals_q0], the same as QuotientRounding.v's [quotient_residuals] with the guard on q0
