@@ -358,7 +358,8 @@ Definition run_cascade_relation := Casc.cascade_relation.
     exact one, whose values the twin does not compute).
     tri_cascade_intersect: "mode o d a b c" (mode = t + 2 · barycentric + 4 · closed, an integer word 0..7):
     [triangle_intersection_cascade]'s answer and the public [intersect_traced]'s (the fast path's answer
-    when its twin answers, else the cascade's).
+    when its twin answers, else the cascade's: TriangleIntersectPublic.v's [tri_public_intersect_b], the
+    subject of [intersect_public_correct]).
     tri_cascade_relation: "mode o d a b c" (mode = 1 for the closed rule, 0 for the owned one):
     [triangle_relation_cascade]'s answer (relation, location, owned, stage) and the public [relation]'s (relation, location, owned: the fast path's when its
     twin answers, else the cascade's; 1 when that is the exact stage's). *)
