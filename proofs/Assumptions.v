@@ -418,6 +418,20 @@ Definition twin_results_triangle_cascade_quotients :=
    TriangleCascadeQuotients.tc_intersect_b_unasked).
 Goal True. idtac "@@ tc_stage2_quotient_correct tc_quot_tail_correct tc_intersect_b_eq tc_intersect_b_unasked". Abort.
 Print Assumptions twin_results_triangle_cascade_quotients.
+(** TriangleIntersectPublic.v: the public intersect_traced (triangle_api.cpp: the fast path, else the cascade)
+    on valid inputs: finite inputs, docs/contract.md §6's class, den ≠ 0 when located, each asked quotient
+    with a value RN(·/den) with den ≠ 0; and the cascade's answer with den ≠ 0 *)
+From Raykernel Require TriangleIntersectPublic.
+Goal True. idtac "@@ intersect_public_correct". Abort.
+Print Assumptions TriangleIntersectPublic.intersect_public_correct.
+Definition twin_results_triangle_intersect_public :=
+  (TriangleIntersectPublic.tc_intersect_b_den_nonzero,
+   TriangleIntersectPublic.tc_intersect_b_means,
+   TriangleIntersectPublic.contract_class_den,
+   TriangleIntersectPublic.tc_intersect_b_unlocated_nan,
+   TriangleIntersectPublic.fast_intersection_tri_unasked).
+Goal True. idtac "@@ tc_intersect_b_den_nonzero tc_intersect_b_means contract_class_den tc_intersect_b_unlocated_nan fast_intersection_tri_unasked". Abort.
+Print Assumptions twin_results_triangle_intersect_public.
 (** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
     fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)
 From Raykernel Require TriangleIntersectTheorem.

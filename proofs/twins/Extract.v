@@ -20,6 +20,7 @@ From Raykernel Require TriangleIntersectTwins.
 From Raykernel Require NearestTwins.
 From Raykernel Require CascadeTwins.
 From Raykernel Require TriangleCascadeFlowTwins.
+From Raykernel Require TriangleIntersectPublic.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -357,7 +358,8 @@ Definition run_cascade_relation := Casc.cascade_relation.
     exact one, whose values the twin does not compute).
     tri_cascade_intersect: "mode o d a b c" (mode = t + 2 · barycentric + 4 · closed, an integer word 0..7):
     [triangle_intersection_cascade]'s answer and the public [intersect_traced]'s (the fast path's answer
-    when its twin answers, else the cascade's).
+    when its twin answers, else the cascade's: TriangleIntersectPublic.v's [tri_public_intersect_b], the
+    subject of [intersect_public_correct]).
     tri_cascade_relation: "mode o d a b c" (mode = 1 for the closed rule, 0 for the owned one):
     [triangle_relation_cascade]'s answer (relation, location, owned, stage) and the public [relation]'s (relation, location, owned: the fast path's when its
     twin answers, else the cascade's; 1 when that is the exact stage's). *)
@@ -372,8 +374,6 @@ Definition answer_code (r : tc_answer) : list Z :=
      Casc.stage_code rs; Casc.stage_code ts] ++
     (match ts with StExact => [0; 0; 0; 0] | _ => [qbits t; qbits ua; qbits ub; qbits uc] end)
   end.
-Definition stage_of_code (z : Z) : stage :=
-  if Z.eqb z 0 then StFilter else if Z.eqb z 1 then StCompensated else if Z.eqb z 2 then StExpansion else StExact.
 Definition tri_cascade_intersect (x : list Z) : list Z :=
   match x with [mode; ox; oy; oz; dx; dy; dz; ax; ay; az; bx; by_; bz; cx; cy; cz] =>
     let o := Tri.tv ox oy oz in let d := Tri.tv dx dy dz in let a := Tri.tv ax ay az in
@@ -381,12 +381,9 @@ Definition tri_cascade_intersect (x : list Z) : list Z :=
     let wt := Z.odd mode in let wu := Z.odd (Z.div2 mode) in let rule := negb (Z.odd (Z.div2 (Z.div2 mode))) in
     if tri_valid_b o d a bb c then
       let cascade := tc_intersect_b wt wu rule o d a bb c in
-      let public := match fast_intersection_tri_b wt wu o d a bb c with
-                    | Some k => TCDecided (tab_class k) (stage_of_code (tab_relation_stage k)) (QVal (tab_t k))
-                                  (QVal (tab_ua k)) (QVal (tab_ub k)) (QVal (tab_uc k))
-                                  (stage_of_code (tab_rounding_stage k))
-                    | None => cascade
-                    end in
+      (* TriangleIntersectPublic.v's [tri_public_intersect_b] (of [intersect_public_correct]), sharing the
+         cascade's answer computed above. *)
+      let public := TriangleIntersectPublic.tri_public_of (fast_intersection_tri_b wt wu o d a bb c) cascade in
       answer_code cascade ++ answer_code public
     else [0; 0]
   | _ => [] end.

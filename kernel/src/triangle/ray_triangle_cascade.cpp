@@ -29,6 +29,8 @@
 //   the full cascade:    proofs/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`, `tc_stage3_quotient_correct`
 //                        proofs/TriangleCascadeQuotients.v, `tc_intersect_b_correct` (classification and every
 //                        quotient of triangle_intersection_cascade's answer before the exact stage)
+//                        proofs/TriangleIntersectPublic.v, `tc_intersect_b_den_nonzero` (a quotient with a value
+//                        comes with den ≠ 0)
 //                        (TriangleCascade's control flow twinned in TriangleCascadeFlowTwins.v and run against this
 //                        code by the differential runner, routines tri_cascade_intersect, tri_cascade_relation)
 //   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`

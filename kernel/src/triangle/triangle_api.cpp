@@ -27,6 +27,10 @@ void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
 
 // The certified answer: the fast path (multiversioned, noexcept), then — outside it, since validation
 // throws — the full cascade for valid input. In the default environment (the callers install it).
+// Certified by: proofs/TriangleIntersectPublic.v, `intersect_public_correct` (certified's choice on valid
+// input, through the twins of both paths: an answer before the exact stage has finite inputs, §6's class,
+// den ≠ 0 when located, and each asked quotient RN(·/den) with den ≠ 0; run against this code by the
+// differential runner, routine tri_cascade_intersect).
 detail::TracedTriangleClassification certified_relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
   if (const auto c = detail::fast_triangle_relation(ray, triangle, rule)) [[likely]]
     return *c;
