@@ -265,6 +265,23 @@ Qed.
 
 (** ** Non-vacuity: an exact tie, decided by stage 3 *)
 
+(** The comparison's three twin stages on a ray (o, d) and two planes (pa, na), (pb, nb), and the comparison
+    itself: (stage 1's sign, stage 2's sign, (the two queries' exact flags, stage 3's sign),
+    [compare_hit_distances_b] for two hits).  The examples below state its value. *)
+Definition compare_stages_b (o d pa na pb nb : Vec3B) :=
+  (compare_quotients_filter_b
+     (filter_enclosure_b (stage1_num_b o pa na) Cpp.filter_num_relative)
+     (filter_enclosure_b (stage1_den_b d na) Cpp.filter_den_relative)
+     (filter_enclosure_b (stage1_num_b o pb nb) Cpp.filter_num_relative)
+     (filter_enclosure_b (stage1_den_b d nb) Cpp.filter_den_relative),
+   sign_from_Z (enclosure_sign_lanes_b
+     (compare_quotients_compensated_b (stage2_num_b o pa na) (stage2_den_b d na)
+                                      (stage2_num_b o pb nb) (stage2_den_b d nb))),
+   (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b o d pa na in
+    let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b o d pb nb in
+    (xa, xb, compare_quotients_expansion_b xna xda xa xnb xdb xb)),
+   compare_hit_distances_b o d pa na pb nb Positive Positive Positive Positive).
+
 (** o = (0,0,0), d = (1,0,0); plane a: p = (2,0,0), n = (1,0,0): N_a = 2, D_a = 1, t_a = 2; plane b:
     p = (2,5,0), n = (3,0,0): N_b = 6, D_b = 3, t_b = 2.  Δ = 2·3 − 6·1 = 0: stage 1's δ = 0 lies inside its
     positive bound and stage 2's enclosure of Δ is 0 ± a positive radius, so both are uncertain; the
@@ -277,34 +294,11 @@ Definition tie_pb := V3 (fint 2) (fint 5) (fint 0).
 Definition tie_nb := V3 (fint 3) (fint 0) (fint 0).
 
 Theorem compare_stage3_tie_example :
-  compare_quotients_filter_b
-    (filter_enclosure_b (stage1_num_b tie_o tie_pa tie_na) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b tie_d tie_na) Cpp.filter_den_relative)
-    (filter_enclosure_b (stage1_num_b tie_o tie_pb tie_nb) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b tie_d tie_nb) Cpp.filter_den_relative) = Uncertain /\
-  sign_from_Z (enclosure_sign_lanes_b
-    (compare_quotients_compensated_b (stage2_num_b tie_o tie_pa tie_na) (stage2_den_b tie_d tie_na)
-                                     (stage2_num_b tie_o tie_pb tie_nb) (stage2_den_b tie_d tie_nb))) = Uncertain /\
-  (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b tie_o tie_d tie_pa tie_na in
-   let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b tie_o tie_d tie_pb tie_nb in
-   compare_quotients_expansion_b xna xda xa xnb xdb xb) = Zero /\
-  compare_hit_distances_b tie_o tie_d tie_pa tie_na tie_pb tie_nb Positive Positive Positive Positive = (0%Z, 2%Z).
+  compare_stages_b tie_o tie_d tie_pa tie_na tie_pb tie_nb = (Uncertain, Uncertain, (true, true, Zero), (0%Z, 2%Z)).
 Proof. vm_compute. repeat split; reflexivity. Qed.
 
 (** The tie is in the class of [compare_stage3_int_live] (so the theorem is not vacuous there, and the
     class holds inputs on which only stage 3 of the three twin stages certifies). *)
-Lemma fint_int : forall k z, (0 <= k <= 52)%Z -> (Z.abs z <= 2 ^ k)%Z -> int_le k (fint z).
-Proof.
-  intros k z K B. unfold fint.
-  pose proof (@binary_normalize_correct 53 1024 eq_refl binary64_prec_lt_emax mode_NE z 0 false) as H.
-  assert (S : small (IZR z)) by (apply small_int; apply Z.le_trans with (1 := B); apply Z.pow_le_mono_r; lia).
-  destruct (small_fmt _ S) as [G L].
-  cbv zeta in H. replace (F2R (Float radix2 z 0)) with (IZR z) in H by (unfold F2R; simpl; ring).
-  change (round radix2 (SpecFloat.fexp 53 1024) (round_mode mode_NE) (IZR z)) with (RN (IZR z)) in H.
-  rewrite (RN_binary64 _ G) in H. rewrite Rlt_bool_true in H by exact L.
-  destruct H as [V [F _]]. split; [exact F|]. exists z. split; [exact V | exact B].
-Qed.
-
 Theorem compare_stage3_tie_in_class :
   vec_int_le 11 tie_o /\ vec_int_le 11 tie_d /\ vec_int_le 11 tie_pa /\ vec_int_le 11 tie_na /\
   vec_int_le 11 tie_pb /\ vec_int_le 11 tie_nb.
@@ -567,20 +561,11 @@ Definition tie2_pb := V3 (fint 16777215) (fint 7) (fint 0).
 Definition tie2_nb := V3 (fint 16777211) (fint 0) (fint 0).
 
 Theorem compare_stage3_tie2_example :
-  compare_quotients_filter_b
-    (filter_enclosure_b (stage1_num_b tie2_o tie2_pa tie2_na) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b tie2_d tie2_na) Cpp.filter_den_relative)
-    (filter_enclosure_b (stage1_num_b tie2_o tie2_pb tie2_nb) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b tie2_d tie2_nb) Cpp.filter_den_relative) = Uncertain /\
-  sign_from_Z (enclosure_sign_lanes_b
-    (compare_quotients_compensated_b (stage2_num_b tie2_o tie2_pa tie2_na) (stage2_den_b tie2_d tie2_na)
-                                     (stage2_num_b tie2_o tie2_pb tie2_nb) (stage2_den_b tie2_d tie2_nb))) = Uncertain /\
-  (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pa tie2_na in
-   let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pb tie2_nb in
-   (length (snd (multiply_gen two_sum_b true xna xdb)), length (snd (multiply_gen two_sum_b true xnb xda)),
-    compare_quotients_expansion_b xna xda xa xnb xdb xb)) = (2%nat, 2%nat, Zero) /\
-  compare_hit_distances_b tie2_o tie2_d tie2_pa tie2_na tie2_pb tie2_nb Positive Positive Positive Positive
-    = (0%Z, 2%Z).
+  compare_stages_b tie2_o tie2_d tie2_pa tie2_na tie2_pb tie2_nb = (Uncertain, Uncertain, (true, true, Zero), (0%Z, 2%Z)) /\
+  (let '(xna, xda, _) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pa tie2_na in
+   let '(xnb, xdb, _) := ray_plane_expansions_b two_sum_b tie2_o tie2_d tie2_pb tie2_nb in
+   (length (snd (multiply_gen two_sum_b true xna xdb)), length (snd (multiply_gen two_sum_b true xnb xda))))
+    = (2%nat, 2%nat).
 Proof. vm_compute. repeat split; reflexivity. Qed.
 
 Theorem compare_stage3_tie2_in_class :
@@ -604,16 +589,7 @@ Definition unc_pb := V3 (fint 4599108) (fint 5173596) (fint 0).
 Definition unc_nb := V3 (fint 5334233) (fint 1) (fint 0).
 
 Theorem compare_stage3_uncertain_example :
-  compare_quotients_filter_b
-    (filter_enclosure_b (stage1_num_b unc_o unc_pa unc_na) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b unc_d unc_na) Cpp.filter_den_relative)
-    (filter_enclosure_b (stage1_num_b unc_o unc_pb unc_nb) Cpp.filter_num_relative)
-    (filter_enclosure_b (stage1_den_b unc_d unc_nb) Cpp.filter_den_relative) = Uncertain /\
-  (let '(xna, xda, xa) := ray_plane_expansions_b two_sum_b unc_o unc_d unc_pa unc_na in
-   let '(xnb, xdb, xb) := ray_plane_expansions_b two_sum_b unc_o unc_d unc_pb unc_nb in
-   (xa, xb, compare_quotients_expansion_b xna xda xa xnb xdb xb)) = (true, true, Uncertain) /\
-  compare_hit_distances_b unc_o unc_d unc_pa unc_na unc_pb unc_nb Positive Positive Positive Positive
-    = (1%Z, 1%Z).
+  compare_stages_b unc_o unc_d unc_pa unc_na unc_pb unc_nb = (Uncertain, Positive, (true, true, Uncertain), (1%Z, 1%Z)).
 Proof. vm_compute. repeat split; reflexivity. Qed.
 
 Theorem compare_stage3_uncertain_in_class :

@@ -344,13 +344,23 @@ Proof.
     split; [apply Rlt_bool_false | apply Rlt_bool_true]; lra.
 Qed.
 
-(** In the model: certain when |V| > 4·radius, for any enclosure of V by doubles. *)
-Lemma enclosure_sign_live_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
-  encloses e V -> 4 * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
+(** In the model: certain when |V| > (3 + 8u)·radius, for any enclosure of V by doubles ([enclosure_sign_live_gen_model]
+    with err = radius). *)
+Lemma enclosure_sign_live_encl_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
+  encloses e V -> (3 + 8 * u) * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
 Proof.
   intros e V Bh Bl Br E L. unfold encloses in E.
   assert (Pr : 0 <= radius e) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
   apply (enclosure_sign_live_gen_model e V (radius e) Bh Bl Br Pr E).
+  pose proof u_pos. rewrite u_val in *. lra.
+Qed.
+
+(** In the model: certain when |V| > 4·radius. *)
+Lemma enclosure_sign_live_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
+  encloses e V -> 4 * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
+Proof.
+  intros e V Bh Bl Br E L. apply (enclosure_sign_live_encl_model e V Bh Bl Br E).
+  assert (Pr : 0 <= radius e) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
   pose proof u_pos. rewrite u_val in *. lra.
 Qed.
 

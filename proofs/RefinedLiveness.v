@@ -221,16 +221,11 @@ Qed.
 
 (** ** enclosure_sign: certain when |V| > (3 + 8u)·radius *)
 
-(** In the model, for any enclosure of V by doubles (sharper than Liveness.v's 4·radius; an instance of
-    Liveness.v's [enclosure_sign_live_gen_model] with err = radius). *)
+(** In the model, for any enclosure of V by doubles (sharper than Liveness.v's 4·radius): Liveness.v's
+    [enclosure_sign_live_encl_model]. *)
 Lemma enclosure_sign_live3_model : forall e V, binary64 (hi e) -> binary64 (lo e) -> binary64 (radius e) ->
   encloses e V -> (3 + 8 * u) * radius e < Rabs V -> enclosure_sign_lanes e <> uncertain_lane.
-Proof.
-  intros e V Bh Bl Br E L. unfold encloses in E.
-  assert (Pr : 0 <= radius e) by (eapply Rle_trans; [apply Rabs_pos | exact E]).
-  apply (enclosure_sign_live_gen_model e V (radius e) Bh Bl Br Pr E).
-  pose proof u_pos. rewrite u_val in *. lra.
-Qed.
+Proof. exact enclosure_sign_live_encl_model. Qed.
 
 Lemma enclosure_sign_live3 : forall e V, fbnd 1000 (hib e) -> fbnd 1000 (lob e) -> fbnd 1000 (radiusb e) ->
   encloses (enc_R e) V -> (3 + 8 * u) * B2R (radiusb e) < Rabs V -> enclosure_sign_lanes_b e <> uncertain_lane.

@@ -398,6 +398,27 @@ Qed.
 
 (** The concrete input: small integers as doubles. *)
 Definition fint (z : Z) : float := @binary_normalize 53 1024 eq_refl _ mode_NE z 0 false.
+
+(** [fint z] is the double z, for |z| ≤ 2^52. *)
+Lemma fint_value : forall z, (Z.abs z <= 2 ^ 52)%Z -> fin (fint z) = true /\ B2R (fint z) = IZR z.
+Proof.
+  intros z B. destruct (small_fmt _ (small_int z B)) as [G L].
+  unfold fint, fin. match goal with |- context [@binary_normalize ?p ?e ?h1 ?h2 ?m z 0 false] =>
+    pose proof (binary_normalize_correct p e h1 h2 m z 0 false) as C end. cbv zeta in C.
+  replace (F2R {| Fnum := z; Fexp := 0 |}) with (IZR z) in C by (unfold F2R; simpl; ring).
+  assert (R : round radix2 (SpecFloat.fexp 53 1024) (round_mode mode_NE) (IZR z) = IZR z)
+    by exact (RN_binary64 _ G).
+  rewrite R, Rlt_bool_true in C by exact L. destruct C as [V [F _]]. split; [exact F | exact V].
+Qed.
+
+(** The same as the class's [int_le k]. *)
+Lemma fint_int : forall k z, (0 <= k <= 52)%Z -> (Z.abs z <= 2 ^ k)%Z -> int_le k (fint z).
+Proof.
+  intros k z K B.
+  assert (B52 : (Z.abs z <= 2 ^ 52)%Z) by (apply Z.le_trans with (1 := B); apply Z.pow_le_mono_r; lia).
+  destruct (fint_value z B52) as [F V]. split; [exact F|]. exists z. split; [exact V | exact B].
+Qed.
+
 Definition live_o := V3 (fint 0) (fint 0) (fint 0).
 Definition live_d := V3 (fint 1) (fint 1) (fint 0).
 Definition live_p := V3 (fint 1) (fint 0) (fint 0).

@@ -389,28 +389,13 @@ End IntClass.
 
 (** ** Not vacuous: rays through an edge and through a vertex *)
 
-(** [fint z] (Stage3Liveness.v: the double of the integer z) is finite and exactly z when |z| ≤ 2^52. *)
-Lemma fint_int : forall z, (Z.abs z <= 2 ^ 52)%Z -> fin (fint z) = true /\ B2R (fint z) = IZR z.
-Proof.
-  intros z B. destruct (small_fmt _ (small_int z B)) as [G L].
-  unfold fint, fin. match goal with |- context [@binary_normalize ?p ?e ?h1 ?h2 ?m z 0 false] =>
-    pose proof (binary_normalize_correct p e h1 h2 m z 0 false) as C end. cbv zeta in C.
-  replace (F2R {| Fnum := z; Fexp := 0 |}) with (IZR z) in C by (unfold F2R; simpl; ring).
-  assert (R : round radix2 (SpecFloat.fexp 53 1024) (round_mode mode_NE) (IZR z) = IZR z)
-    by exact (RN_binary64 _ G).
-  rewrite R, Rlt_bool_true in C by exact L. destruct C as [V [F _]]. split; [exact F | exact V].
-Qed.
-
 Definition tvi (x y z : Z) : TVec := TV (fint x) (fint y) (fint z).
 
 Lemma tvi_int : forall k x y z, (0 <= k <= 52)%Z -> (Z.abs x <= 2 ^ k)%Z -> (Z.abs y <= 2 ^ k)%Z ->
   (Z.abs z <= 2 ^ k)%Z -> tvec_int_le k (tvi x y z).
 Proof.
-  intros k x y z K X Y Z. assert (P : (2 ^ k <= 2 ^ 52)%Z) by (apply Z.pow_le_mono_r; lia).
-  unfold tvec_int_le, tvi, int_le; cbn [tx ty tz].
-  destruct (fint_int x ltac:(lia)) as [Fx Vx]. destruct (fint_int y ltac:(lia)) as [Fy Vy].
-  destruct (fint_int z ltac:(lia)) as [Fz Vz].
-  split; [|split]; (split; [assumption | eexists; split; [eassumption | assumption]]).
+  intros k x y z K X Y Z. unfold tvec_int_le, tvi; cbn [tx ty tz].
+  refine (conj _ (conj _ _)); apply fint_int; assumption.
 Qed.
 
 (** The triangle a = (0,0,0), b = (2,0,0), c = (0,2,0) in z = 0; the ray d = (0,0,−1) from (1,0,1) meets it
@@ -428,12 +413,15 @@ Lemma live_inputs_in_class :
   tvec_int_le 15 live_edge_o /\ tvec_int_le 15 live_vertex_o.
 Proof. repeat split; apply tvi_int; lia. Qed.
 
+(** Value v's three twin stages (v: 0, 1, 2 πa, πb, πc; 3 den; 4 num, as [value_ev]): stage 1's lanes,
+    stage 2's sign, stage 3's checked sign. *)
+Definition tri_stages_b (o d a b c : TVec) (k : Z) :=
+  (tc_filter_b o d a b c k, CascadeTwins.enclosure_sign_b (tc_enclosure2_b o d a b c k), ev_sign (value_ev o d a b c k)).
+
 (** Stage 1 and stage 2 leave the zero π uncertain, stage 3 certifies it Zero; the relation cascade decides
     (a hit on the edge ab, owned by the tie-break) at [StExpansion], under both rules. *)
 Theorem tri_stage3_live_edge :
-  tc_filter_b live_edge_o live_td live_ta live_tb live_tc 2 = uncertain_lane /\
-  CascadeTwins.enclosure_sign_b (tc_enclosure2_b live_edge_o live_td live_ta live_tb live_tc 2) = Uncertain /\
-  ev_sign (value_ev live_edge_o live_td live_ta live_tb live_tc 2) = Zero /\
+  tri_stages_b live_edge_o live_td live_ta live_tb live_tc 2 = (uncertain_lane, Uncertain, Zero) /\
   tc_relation_b true live_edge_o live_td live_ta live_tb live_tc =
     TCDecided (TC THit (Some EdgeAB) true) StExpansion QNaN QNaN QNaN QNaN StExpansion /\
   tc_relation_b false live_edge_o live_td live_ta live_tb live_tc =
@@ -441,12 +429,8 @@ Theorem tri_stage3_live_edge :
 Proof. vm_compute. repeat split; reflexivity. Qed.
 
 Theorem tri_stage3_live_vertex :
-  tc_filter_b live_vertex_o live_td live_ta live_tb live_tc 1 = uncertain_lane /\
-  CascadeTwins.enclosure_sign_b (tc_enclosure2_b live_vertex_o live_td live_ta live_tb live_tc 1) = Uncertain /\
-  ev_sign (value_ev live_vertex_o live_td live_ta live_tb live_tc 1) = Zero /\
-  tc_filter_b live_vertex_o live_td live_ta live_tb live_tc 2 = uncertain_lane /\
-  CascadeTwins.enclosure_sign_b (tc_enclosure2_b live_vertex_o live_td live_ta live_tb live_tc 2) = Uncertain /\
-  ev_sign (value_ev live_vertex_o live_td live_ta live_tb live_tc 2) = Zero /\
+  tri_stages_b live_vertex_o live_td live_ta live_tb live_tc 1 = (uncertain_lane, Uncertain, Zero) /\
+  tri_stages_b live_vertex_o live_td live_ta live_tb live_tc 2 = (uncertain_lane, Uncertain, Zero) /\
   tc_relation_b true live_vertex_o live_td live_ta live_tb live_tc =
     TCDecided (TC THit (Some VertexA) true) StExpansion QNaN QNaN QNaN QNaN StExpansion /\
   tc_relation_b false live_vertex_o live_td live_ta live_tb live_tc =
