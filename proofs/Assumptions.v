@@ -540,6 +540,8 @@ Definition twin_results_compare_liveness4 :=
   (CompareLiveness4.compare_hit_distances_stage2_live_inputs,
    CompareLiveness4.stage2_num_facts,
    CompareLiveness4.stage2_den_facts,
-   CompareLiveness4.compare_hit_distances_stage2_inputs_example_in_class).
-Goal True. idtac "@@ compare_hit_distances_stage2_live_inputs stage2_num_facts stage2_den_facts compare_hit_distances_stage2_inputs_example_in_class". Abort.
+   CompareLiveness4.compare_hit_distances_stage2_inputs_example_in_class,
+   CompareLiveness4.compare_hit_distances_stage2_live_inputs_simple,
+   CompareLiveness4.compare_hit_distances_stage2_inputs_simple_example).
+Goal True. idtac "@@ compare_hit_distances_stage2_live_inputs stage2_num_facts stage2_den_facts compare_hit_distances_stage2_inputs_example_in_class compare_hit_distances_stage2_live_inputs_simple compare_hit_distances_stage2_inputs_simple_example". Abort.
 Print Assumptions twin_results_compare_liveness4.

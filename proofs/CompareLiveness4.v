@@ -18,7 +18,15 @@
         k_1·(H(P_a)·H(D_b) + H(P_b)·H(D_a))
           + k_2'·(H(P_a)·R(D_b) + R(P_a)·(H(D_b) + R(D_b)) + H(P_b)·R(D_a) + R(P_b)·(H(D_a) + R(D_a))) + k_3
 
-      (k_1, k_2' = 3 + 2^-37, k_3 of CompareLiveness3.v), a bound of size ≈ 9.25·2^-100·(P_a·D_b + P_b·D_a). *)
+      (k_1, k_2' = 3 + 2^-37, k_3 of CompareLiveness3.v), a bound of size ≈ 9.25·2^-100·(P_a·D_b + P_b·D_a);
+    - [compare_hit_distances_stage2_live_inputs_simple]: the simpler class |Δ| > 2^-96·(P_a·D_b + P_b·D_a) + 2^-600
+      ([pnum_le], [pden_le]: P, D ≤ 2^363; [products_upper]: the products of heads and radii are their leading
+      terms plus at most 2^-690);
+    - not vacuous: [compare_hit_distances_stage2_inputs_example_in_class],
+      [compare_hit_distances_stage2_inputs_simple_example]: the ray and planes of CompareLiveness3.v's
+      [compare_hit_distances_stage2_example] (t_a = 1, t_b = 1 + 2^-60, stage 1 uncertain, stage 2 decides) are in
+      both classes.  The bound is in the magnitudes P, D, not in |num|, |den|: it is loose by P/|num| when num's
+      dot product cancels. *)
 
 From Coq Require Import Reals Lra Lia ZArith.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -302,4 +310,135 @@ Proof.
   unfold cross_magnitude, propagated_exact in M. rewrite !Rabs_mult, !(Rabs_pos_eq (head_of _)) in M by assumption.
   eapply Rle_lt_trans; [exact M|].
   pose proof k3_small. pose proof u_pos. unfold k2_exact. rewrite k1_u. rewrite u_val in *. simpl bpow in *. lra.
+Qed.
+
+(** ** A simpler form: |Δ| > 2^-96·(P_a·D_b + P_b·D_a) + 2^-600 *)
+
+Lemma fbnd_abs_le : forall k x, fbnd k x -> Rabs (B2R x) <= bpow radix2 k.
+Proof. intros k x [_ H]. exact H. Qed.
+
+Lemma pnum_le : forall o p n, vbnd 180 o -> vbnd 180 p -> vbnd 180 n -> 0 <= pnum o p n <= bpow radix2 363.
+Proof.
+  intros o p n [O0 [O1 O2]] [P0 [P1 P2]] [N0 [N1 N2]]. unfold pnum.
+  assert (T : forall a b c, fbnd 180 a -> fbnd 180 b -> fbnd 180 c ->
+            0 <= Rabs ((B2R a - B2R b) * B2R c) <= bpow radix2 361).
+  { intros a b c A B C. apply fbnd_abs_le in A, B, C. split; [apply Rabs_pos|]. rewrite Rabs_mult.
+    pose proof (Rabs_triang (B2R a) (- B2R b)). rewrite Rabs_Ropp in *.
+    assert (E : 2 * bpow radix2 180 * bpow radix2 180 = bpow radix2 361).
+    { change 2 with (bpow radix2 1). rewrite Rmult_assoc, <- !bpow_plus. reflexivity. }
+    rewrite <- E.
+    apply Rmult_le_compat; try apply Rabs_pos; [unfold Rminus; lra | exact C]. }
+  pose proof (T _ _ _ P0 O0 N0). pose proof (T _ _ _ P1 O1 N1). pose proof (T _ _ _ P2 O2 N2).
+  assert (E : 4 * bpow radix2 361 = bpow radix2 363) by (change 4 with (bpow radix2 2); rewrite <- bpow_plus; reflexivity).
+  rewrite <- E.
+  pose proof (bpow_ge_0 radix2 361). lra.
+Qed.
+
+Lemma pden_le : forall d n, vbnd 180 d -> vbnd 180 n -> 0 <= pden d n <= bpow radix2 363.
+Proof.
+  intros d n [D0 [D1 D2]] [N0 [N1 N2]]. unfold pden.
+  assert (T : forall a c, fbnd 180 a -> fbnd 180 c -> 0 <= Rabs (B2R a * B2R c) <= bpow radix2 360).
+  { intros a c A C. apply fbnd_abs_le in A, C. split; [apply Rabs_pos|]. rewrite Rabs_mult.
+    replace (bpow radix2 360) with (bpow radix2 180 * bpow radix2 180) by (rewrite <- bpow_plus; reflexivity).
+    apply Rmult_le_compat; try apply Rabs_pos; assumption. }
+  pose proof (T _ _ D0 N0). pose proof (T _ _ D1 N1). pose proof (T _ _ D2 N2).
+  assert (E : 8 * bpow radix2 360 = bpow radix2 363) by (change 8 with (bpow radix2 3); rewrite <- bpow_plus; reflexivity).
+  rewrite <- E.
+  pose proof (bpow_ge_0 radix2 360). lra.
+Qed.
+
+(** With M = 2^363 bounding P and Q, t = 2^-1061 bounding the absolute parts: the products of heads and radii
+    are their leading terms plus at most 2^-690. *)
+Lemma products_upper : forall P Q, 0 <= P <= bpow radix2 363 -> 0 <= Q <= bpow radix2 363 ->
+  head_of P * head_of Q <= (1 + bpow radix2 (-50)) * (P * Q) + bpow radix2 (-690) /\
+  head_of P * rad_of Q <= (bpow radix2 (-100) + bpow radix2 (-150)) * (P * Q) + bpow radix2 (-690) /\
+  rad_of P * head_of Q <= (bpow radix2 (-100) + bpow radix2 (-150)) * (P * Q) + bpow radix2 (-690) /\
+  rad_of P * rad_of Q <= bpow radix2 (-199) * (P * Q) + bpow radix2 (-690).
+Proof.
+  intros P Q [P0 P1] [Q0 Q1]. unfold head_of, rad_of.
+  set (M := bpow radix2 363) in *. set (t := bpow radix2 (-1061)).
+  assert (Et : bpow radix2 (-1062) = t / 2) by
+    (unfold t; replace (-1061)%Z with (1 + -1062)%Z by reflexivity; rewrite bpow_plus; simpl (bpow radix2 1); lra).
+  rewrite Et.
+  assert (Tp : 0 < t) by apply bpow_gt_0.
+  assert (TM : t * M <= bpow radix2 (-696)) by (unfold t, M; rewrite <- bpow_plus; apply bpow_le; lia).
+  assert (TT : t * t <= bpow radix2 (-696)).
+  { unfold t. rewrite <- bpow_plus. apply bpow_le. lia. }
+  assert (E690 : bpow radix2 (-690) = 64 * bpow radix2 (-696)).
+  { replace (-690)%Z with (6 + -696)%Z by reflexivity. rewrite bpow_plus. simpl (bpow radix2 6). lra. }
+  rewrite E690.
+  assert (tP : t * P <= bpow radix2 (-696)) by (eapply Rle_trans; [apply Rmult_le_compat_l; [lra | exact P1] | exact TM]).
+  assert (tQ : t * Q <= bpow radix2 (-696)) by (eapply Rle_trans; [apply Rmult_le_compat_l; [lra | exact Q1] | exact TM]).
+  assert (PQ : 0 <= P * Q) by (apply Rmult_le_pos; assumption).
+  assert (tP0 : 0 <= t * P) by nra. assert (tQ0 : 0 <= t * Q) by nra.
+  simpl (bpow radix2 (-52)). simpl (bpow radix2 (-50)). simpl (bpow radix2 (-150)). simpl (bpow radix2 (-100)).
+  simpl (bpow radix2 (-152)). simpl (bpow radix2 (-199)).
+  pose proof (bpow_gt_0 radix2 (-696)).
+  repeat split; match goal with |- ?l <= ?r =>
+    let L := fresh in assert (L : l = l) by reflexivity; ring_simplify end; nra.
+Qed.
+
+(** Stage 2 of nearest_hit's comparison decides (the twin returns by stage 2 at the latest) for a ray and two
+    planes of coordinates at most 2^180 whenever |num_a·den_b − num_b·den_a| > 2^-96·(P_a·D_b + P_b·D_a) + 2^-600
+    (the coefficient of [compare_hit_distances_stage2_live_inputs]'s bound is ≈ 9.25·2^-100 < 2^-96). *)
+Corollary compare_hit_distances_stage2_live_inputs_simple : forall o d pa na pb nb nsa dsa nsb dsb,
+  vbnd 180 o -> vbnd 180 d -> vbnd 180 pa -> vbnd 180 na -> vbnd 180 pb -> vbnd 180 nb ->
+  bpow radix2 (-96) * (pnum o pa na * pden d nb + pnum o pb nb * pden d na) + bpow radix2 (-600) <
+    Rabs (ray_num (vec_R o) (vec_R pa) (vec_R na) * ray_den (vec_R d) (vec_R nb) -
+          ray_num (vec_R o) (vec_R pb) (vec_R nb) * ray_den (vec_R d) (vec_R na)) ->
+  (snd (compare_hit_distances_b o d pa na pb nb nsa dsa nsb dsb) <= 1)%Z.
+Proof.
+  intros o d pa na pb nb nsa dsa nsb dsb Bo Bd Bpa Bna Bpb Bnb L.
+  apply compare_hit_distances_stage2_live_inputs; try assumption.
+  pose proof (pnum_le o pa na Bo Bpa Bna) as Ia. pose proof (pden_le d na Bd Bna) as Ja.
+  pose proof (pnum_le o pb nb Bo Bpb Bnb) as Ib. pose proof (pden_le d nb Bd Bnb) as Jb.
+  cbv zeta. eapply Rle_lt_trans; [| exact L].
+  destruct (products_upper _ _ Ia Jb) as [X1 [X2 [X3 X4]]].
+  destruct (products_upper _ _ Ib Ja) as [Y1 [Y2 [Y3 Y4]]].
+  set (x := pnum o pa na * pden d nb) in *. set (y := pnum o pb nb * pden d na) in *.
+  assert (x0 : 0 <= x) by (apply Rmult_le_pos; lra). assert (y0 : 0 <= y) by (apply Rmult_le_pos; lra).
+  set (Ha := head_of (pnum o pa na)) in *. set (Ra := rad_of (pnum o pa na)) in *.
+  set (Hb := head_of (pnum o pb nb)) in *. set (Rb := rad_of (pnum o pb nb)) in *.
+  set (Hda := head_of (pden d na)) in *. set (Rda := rad_of (pden d na)) in *.
+  set (Hdb := head_of (pden d nb)) in *. set (Rdb := rad_of (pden d nb)) in *.
+  assert (S : Ha * Hdb + Hb * Hda <= (1 + bpow radix2 (-50)) * (x + y) + 2 * bpow radix2 (-690)).
+  { lra. }
+  assert (Q : Ha * Rdb + Ra * (Hdb + Rdb) + (Hb * Rda + Rb * (Hda + Rda)) <=
+              (2 * (bpow radix2 (-100) + bpow radix2 (-150)) + bpow radix2 (-199)) * (x + y) + 6 * bpow radix2 (-690)).
+  { replace (Ra * (Hdb + Rdb)) with (Ra * Hdb + Ra * Rdb) by ring.
+    replace (Rb * (Hda + Rda)) with (Rb * Hda + Rb * Rda) by ring. lra. }
+  assert (K1 : 0 <= k1) by (unfold k1; pose proof (bpow_ge_0 radix2 (-102)); lra).
+  assert (K2 : 0 <= k2_exact) by (unfold k2_exact; pose proof (bpow_ge_0 radix2 (-37)); lra).
+  assert (A : k1 * (Ha * Hdb + Hb * Hda) <= k1 * ((1 + bpow radix2 (-50)) * (x + y) + 2 * bpow radix2 (-690)))
+    by (apply Rmult_le_compat_l; assumption).
+  assert (B : k2_exact * (Ha * Rdb + Ra * (Hdb + Rdb) + (Hb * Rda + Rb * (Hda + Rda))) <=
+              k2_exact * ((2 * (bpow radix2 (-100) + bpow radix2 (-150)) + bpow radix2 (-199)) * (x + y) +
+                          6 * bpow radix2 (-690)))
+    by (apply Rmult_le_compat_l; assumption).
+  assert (C : k3 <= bpow radix2 (-690)) by (unfold k3; apply bpow_le; lia).
+  assert (D : bpow radix2 (-690) <= bpow radix2 (-600) / 64).
+  { apply Rle_trans with (bpow radix2 (-606)); [apply bpow_le; lia|].
+    replace (-600)%Z with (6 + -606)%Z by reflexivity. rewrite bpow_plus. simpl (bpow radix2 6).
+    pose proof (bpow_ge_0 radix2 (-606)). lra. }
+  pose proof (bpow_ge_0 radix2 (-690)).
+  set (LHS1 := k1 * (Ha * Hdb + Hb * Hda)) in *. set (LHS2 := k2_exact * (Ha * Rdb + Ra * (Hdb + Rdb) + (Hb * Rda + Rb * (Hda + Rda)))) in *.
+  set (w := bpow radix2 (-690)) in *. set (z := bpow radix2 (-600)) in *. clearbody w z LHS1 LHS2.
+  unfold k1, k2_exact in *. simpl bpow in *. lra.
+Qed.
+
+(** The same ray and planes are in the simpler class: 2^-96·(1·1 + (1 + 2^-60)·1) + 2^-600 < 2^-60. *)
+Example compare_hit_distances_stage2_inputs_simple_example :
+  bpow radix2 (-96) * (pnum wo wpa wna * pden wd wnb + pnum wo wpb wnb * pden wd wna) + bpow radix2 (-600) <
+    Rabs (ray_num (vec_R wo) (vec_R wpa) (vec_R wna) * ray_den (vec_R wd) (vec_R wnb) -
+          ray_num (vec_R wo) (vec_R wpb) (vec_R wnb) * ray_den (vec_R wd) (vec_R wna)).
+Proof.
+  pose proof (bpow_gt_0 radix2 (-60)) as P60.
+  unfold pnum, pden. rewrite !ray_num_bits, !ray_den_bits. unfold wo, wd, wpa, wna, wpb, wnb. cbn [vxb vyb vzb].
+  rewrite w_one_val, w_zero_val, w_2m60_val.
+  match goal with |- _ < Rabs ?V => replace V with (- bpow radix2 (-60)) by ring end.
+  rewrite Rabs_Ropp, (Rabs_pos_eq (bpow radix2 (-60))) by lra.
+  replace (1 - 0) with 1 by ring. replace (0 - 0) with 0 by ring. replace (bpow radix2 (-60) - 0) with (bpow radix2 (-60)) by ring.
+  rewrite ?Rmult_1_l, ?Rmult_1_r, ?Rmult_0_l, ?Rmult_0_r, ?Rabs_R0, ?Rabs_R1, (Rabs_pos_eq (bpow radix2 (-60))) by lra.
+  assert (D : bpow radix2 (-600) <= bpow radix2 (-62)) by (apply bpow_le; lia).
+  set (z := bpow radix2 (-600)) in *. clearbody z. simpl bpow in *. lra.
 Qed.
