@@ -608,3 +608,15 @@ Definition twin_results_compare_liveness3_exact :=
   (CompareLiveness3.compare_hit_distances_stage2_live_exact, CompareLiveness3.cross_dd_close).
 Goal True. idtac "@@ compare_hit_distances_stage2_live_exact cross_dd_close". Abort.
 Print Assumptions twin_results_compare_liveness3_exact.
+(** CompareLiveness4.v: stage 2 of nearest_hit's comparison decides on a class stated in the ray's and planes'
+    inputs (coordinates ≤ 2^180, the bound in Σ|(p_i − o_i)·n_i| and Σ|d_i·n_i|), and an input in it *)
+From Raykernel Require CompareLiveness4.
+Definition twin_results_compare_liveness4 :=
+  (CompareLiveness4.compare_hit_distances_stage2_live_inputs,
+   CompareLiveness4.stage2_num_facts,
+   CompareLiveness4.stage2_den_facts,
+   CompareLiveness4.compare_hit_distances_stage2_inputs_example_in_class,
+   CompareLiveness4.compare_hit_distances_stage2_live_inputs_simple,
+   CompareLiveness4.compare_hit_distances_stage2_inputs_simple_example).
+Goal True. idtac "@@ compare_hit_distances_stage2_live_inputs stage2_num_facts stage2_den_facts compare_hit_distances_stage2_inputs_example_in_class compare_hit_distances_stage2_live_inputs_simple compare_hit_distances_stage2_inputs_simple_example". Abort.
+Print Assumptions twin_results_compare_liveness4.
