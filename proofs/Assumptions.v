@@ -432,6 +432,10 @@ Definition twin_results_triangle_intersect_public :=
    TriangleIntersectPublic.fast_intersection_tri_unasked).
 Goal True. idtac "@@ tc_intersect_b_den_nonzero tc_intersect_b_means contract_class_den tc_intersect_b_unlocated_nan fast_intersection_tri_unasked". Abort.
 Print Assumptions twin_results_triangle_intersect_public.
+(** TriangleIntersectPublic.v: the public relation (triangle_api.cpp: the fast path, else the cascade) on valid
+    inputs: finite inputs, docs/contract.md §6's class under the rule, den ≠ 0 exactly when located *)
+Goal True. idtac "@@ relation_public_correct". Abort.
+Print Assumptions TriangleIntersectPublic.relation_public_correct.
 (** TriangleIntersectTheorem.v: the triangle's fast intersection (ray_triangle_cascade.cpp,
     fast_triangle_intersection) answers as docs/contract.md §6, t = RN(num/den), barycentrics RN(π_k/den) *)
 From Raykernel Require TriangleIntersectTheorem.

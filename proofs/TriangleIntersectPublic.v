@@ -236,3 +236,42 @@ Proof.
     + split; [rewrite (Ut eq_refl); intros x X; discriminate X|]. destruct wu; cbv beta iota; [tsplit; assumption|].
       destruct (Uu eq_refl) as [-> [-> ->]]. tsplit; intros x X; discriminate X.
 Qed.
+
+(** ** The public [relation] *)
+
+(** The choice [relation] (triangle_api.cpp's [certified_relation]) makes on a valid query: the fast path's
+    classification when it has one (reported as the filter's), else the cascade's answer. Extract.v's
+    [tri_cascade_relation] calls it with the cascade's answer it has already computed, so the runner compares
+    exactly [tri_public_relation_b] with the compiled entry point. *)
+Definition tri_public_relation_of (fast : option TClass) (cascade : tc_answer) : tc_answer :=
+  match fast with
+  | Some k => TCDecided k StFilter QNaN QNaN QNaN QNaN StFilter
+  | None => cascade
+  end.
+
+(** [relation]'s twin on a valid query. *)
+Definition tri_public_relation_b (owned_rule : bool) (o d a b c : TVec) : tc_answer :=
+  tri_public_relation_of (fast_relation_tri_b o d a b c) (tc_relation_b owned_rule o d a b c).
+
+(** The public [relation] (triangle_api.cpp: [fast_triangle_relation], else [triangle_relation_cascade]),
+    through its twins: for every 64-bit pattern of o, d, a, b, c with [tri_valid_b] true (the inputs the entry
+    point does not reject) and both rules, an answer before the exact stage has finite inputs, docs/contract.md
+    §6's classification under the rule, and den ≠ 0 exactly when the class is located. *)
+Theorem relation_public_correct : forall owned_rule o d a b c cl rs t ua ub uc ts,
+  tri_valid_b o d a b c = true ->
+  tri_public_relation_b owned_rule o d a b c = TCDecided cl rs t ua ub uc ts ->
+  tfin o /\ tfin d /\ tfin a /\ tfin b /\ tfin c /\
+  let O := tvec_R o in let D := tvec_R d in let A := tvec_R a in let B := tvec_R b in let C := tvec_R c in
+  contract_class owned_rule O D A B C cl /\ (den_value O D A B C <> 0 <-> tloc cl <> None).
+Proof.
+  intros rule o d a b c cl rs t ua ub uc ts V. destruct (tri_valid_b_fin o d a b c V) as [Fo [Fd [Fa [Fb Fc]]]].
+  unfold tri_public_relation_b, tri_public_relation_of. intros E.
+  assert (Cl : contract_class rule (tvec_R o) (tvec_R d) (tvec_R a) (tvec_R b) (tvec_R c) cl).
+  { revert E. destruct (fast_relation_tri_b o d a b c) as [k|] eqn:Fast.
+    - intros E. injection E as <- _ _ _ _ _ _.
+      destruct (fast_relation_tri_correct o d a b c k Fast) as [_ [_ [_ [_ [_ M]]]]].
+      cbv zeta in M. destruct M as [_ [C1 C2]]. destruct rule; assumption.
+    - intros E. exact (TriangleCascadeFlowCorrect.tc_relation_b_correct rule o d a b c cl rs t ua ub uc ts E). }
+  split; [exact Fo|]. split; [exact Fd|]. split; [exact Fa|]. split; [exact Fb|]. split; [exact Fc|].
+  cbv zeta. split; [exact Cl | exact (contract_class_den _ _ _ _ _ _ _ Cl)].
+Qed.

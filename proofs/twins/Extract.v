@@ -362,7 +362,8 @@ Definition run_cascade_relation := Casc.cascade_relation.
     subject of [intersect_public_correct]).
     tri_cascade_relation: "mode o d a b c" (mode = 1 for the closed rule, 0 for the owned one):
     [triangle_relation_cascade]'s answer (relation, location, owned, stage) and the public [relation]'s (relation, location, owned: the fast path's when its
-    twin answers, else the cascade's; 1 when that is the exact stage's). *)
+    twin answers, else the cascade's; 1 when that is the exact stage's: TriangleIntersectPublic.v's
+    [tri_public_relation_b], the subject of [relation_public_correct]). *)
 Module TriFlow.
 Import TriangleTwins TriangleCascadeTwins TriangleIntersectTwins TriangleCascadeFlowTwins.
 Definition qbits (q : qval) : Z := match q with QNaN => Casc.nan_bits | QVal x => b x | QExact => 0 end.
@@ -399,9 +400,9 @@ Definition tri_cascade_relation (x : list Z) : list Z :=
       end in
     if tri_valid_b o d a bb c then
       let cascade := tc_relation_b rule o d a bb c in
-      let public := match fast_relation_tri_b o d a bb c with
-                    | Some k => TCDecided k StFilter QNaN QNaN QNaN QNaN StFilter
-                    | None => cascade end in
+      (* TriangleIntersectPublic.v's [tri_public_relation_b] (of [relation_public_correct]), sharing the
+         cascade's answer computed above. *)
+      let public := TriangleIntersectPublic.tri_public_relation_of (fast_relation_tri_b o d a bb c) cascade in
       let public_code := match code public with 2 :: r => 2 :: firstn 3 r | other => other end in
       code cascade ++ public_code
     else [0; 0]

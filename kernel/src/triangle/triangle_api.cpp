@@ -30,7 +30,9 @@ void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
 // Certified by: proofs/TriangleIntersectPublic.v, `intersect_public_correct` (certified's choice on valid
 // input, through the twins of both paths: an answer before the exact stage has finite inputs, §6's class,
 // den ≠ 0 when located, and each asked quotient RN(·/den) with den ≠ 0; run against this code by the
-// differential runner, routine tri_cascade_intersect).
+// differential runner, routine tri_cascade_intersect), and `relation_public_correct` (certified_relation's
+// choice on valid input: an answer before the exact stage has finite inputs, §6's class under the rule, den ≠ 0
+// exactly when located; routine tri_cascade_relation).
 detail::TracedTriangleClassification certified_relation(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
   if (const auto c = detail::fast_triangle_relation(ray, triangle, rule)) [[likely]]
     return *c;
