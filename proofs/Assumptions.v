@@ -526,6 +526,20 @@ Definition twin_results_quotient_liveness_twin :=
    FloatCore.fdiv_fwd).
 Goal True. idtac "@@ round_quotient_live_exact_b round_quotient_b_fwd prepare_divisor_b_fwd rq_model_bounds round_quotient_b_third_live round_quotient_b_near_midpoint_live fast_answer_from_live_b fdiv_fwd". Abort.
 Print Assumptions twin_results_quotient_liveness_twin.
+(** CascadeQuotientLiveness.v: the cascade's t (CascadeTwins.v's certified_quotient_b, intersect_traced_b) is
+    rounded by stage 2's first level, to RN(num/den), when the first-level enclosures are in round_quotient_live_b's
+    class; the query t = 1/3 is in the class *)
+From Raykernel Require CascadeQuotientLiveness.
+Goal True. idtac "@@ cascade_quotient_live_b". Abort.
+Print Assumptions CascadeQuotientLiveness.cascade_quotient_live_b.
+Definition twin_results_cascade_quotient_liveness :=
+  (CascadeQuotientLiveness.certified_quotient_b_first,
+   CascadeQuotientLiveness.intersect_cascade_t,
+   CascadeQuotientLiveness.intersect_traced_live_b,
+   CascadeQuotientLiveness.intersect_traced_third,
+   CascadeQuotientLiveness.cascade_quotient_live_third).
+Goal True. idtac "@@ certified_quotient_b_first intersect_cascade_t intersect_traced_live_b intersect_traced_third cascade_quotient_live_third". Abort.
+Print Assumptions twin_results_cascade_quotient_liveness.
 (** Stage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
     stage 3 when the expansions have one component each; a concrete input where stages 1 and 2 do not *)
 From Raykernel Require Stage3Liveness.
