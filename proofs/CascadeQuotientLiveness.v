@@ -40,28 +40,13 @@ Proof. intros o d p n H. unfold certified_quotient_b. cbv zeta. rewrite H. refle
     the first level of stage 2, to RN(num/den). *)
 Theorem cascade_quotient_live_b : forall (o d p n : Vec3B) (num den : EnclosureB),
   num = num2_b o p n -> den = den2_b d n ->
-  fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
-  fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
-  Rabs (B2R (hib num)) <= bpow radix2 1000 -> Rabs (B2R (lob num)) <= bpow radix2 1000 ->
-  Rabs (B2R (hib den)) <= bpow radix2 1000 -> Rabs (B2R (lob den)) <= bpow radix2 1000 ->
-  0 <= B2R (radiusb num) -> 0 <= B2R (radiusb den) ->
-  let X := B2R (hib num) + B2R (lob num) in
-  let Y := B2R (hib den) + B2R (lob den) in
-  divisor_min_magnitude <= Rabs Y <= divisor_max_magnitude ->
-  Q900 <= Rabs X ->
-  Q900 <= Rabs (X / Y) <= bpow radix2 1000 ->
-  Rabs (X / Y - RN (X / Y)) +
-    (1 + / 256) * ((B2R (radiusb num) + Rabs (X / Y) * B2R (radiusb den)) / Rabs Y) +
-    / 2 ^ 97 * Rabs (X / Y)
-    < half_gap (RN (X / Y)) ->
+  quotient_live_class num den ->
   let q := fst (round_quotient_b num (prepare_divisor_b den)) in
-  certified_quotient_b o d p n = Some (q, StCompensated) /\ fin q = true /\ B2R q = RN (X / Y) /\
+  certified_quotient_b o d p n = Some (q, StCompensated) /\ fin q = true /\ B2R q = RN (rq_quotient num den) /\
   B2R q = RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n)) /\
   ray_den (vec_R d) (vec_R n) <> 0.
 Proof.
-  intros o d p n num den En Ed Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd X Y GY GX GQ Hyp q.
-  destruct (round_quotient_live_b num den Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd GY GX GQ Hyp)
-    as [C [F T]].
+  intros o d p n num den En Ed L q. destruct (round_quotient_live_b num den L) as [C [F T]].
   fold q in F, T.
   assert (Q : certified_quotient_b o d p n = Some (q, StCompensated)).
   { unfold q. rewrite En, Ed in *. apply certified_quotient_b_first. exact C. }
@@ -87,29 +72,15 @@ Qed.
     exact stage's ([TExact]) nor stage 3's. *)
 Corollary intersect_traced_live_b : forall (o d p n : Vec3B) (num den : EnclosureB),
   num = num2_b o p n -> den = den2_b d n ->
-  fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
-  fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
-  Rabs (B2R (hib num)) <= bpow radix2 1000 -> Rabs (B2R (lob num)) <= bpow radix2 1000 ->
-  Rabs (B2R (hib den)) <= bpow radix2 1000 -> Rabs (B2R (lob den)) <= bpow radix2 1000 ->
-  0 <= B2R (radiusb num) -> 0 <= B2R (radiusb den) ->
-  let X := B2R (hib num) + B2R (lob num) in
-  let Y := B2R (hib den) + B2R (lob den) in
-  divisor_min_magnitude <= Rabs Y <= divisor_max_magnitude ->
-  Q900 <= Rabs X ->
-  Q900 <= Rabs (X / Y) <= bpow radix2 1000 ->
-  Rabs (X / Y - RN (X / Y)) +
-    (1 + / 256) * ((B2R (radiusb num) + Rabs (X / Y) * B2R (radiusb den)) / Rabs Y) +
-    / 2 ^ 97 * Rabs (X / Y)
-    < half_gap (RN (X / Y)) ->
+  quotient_live_class num den ->
   forall r st tt, intersect_traced_b o d p n = CDecided r st tt ->
   tt = TNaN \/ tt = TZero \/
   (tt = TRounded (fst (round_quotient_b num (prepare_divisor_b den))) StCompensated /\
    B2R (fst (round_quotient_b num (prepare_divisor_b den))) =
      RN (ray_num (vec_R o) (vec_R p) (vec_R n) / ray_den (vec_R d) (vec_R n))).
 Proof.
-  intros o d p n num den En Ed Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd X Y GY GX GQ Hyp r st tt.
-  destruct (cascade_quotient_live_b o d p n num den En Ed Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd
-              GY GX GQ Hyp) as [Q [_ [_ [S _]]]].
+  intros o d p n num den En Ed L r st tt.
+  destruct (cascade_quotient_live_b o d p n num den En Ed L) as [Q [_ [_ [S _]]]].
   unfold intersect_traced_b. destruct (validate_b o d p n); [discriminate|].
   intros E. destruct (intersect_cascade_t o d p n _ Q r st tt E) as [H | [H | H]]; auto.
 Qed.
@@ -182,19 +153,14 @@ Proof.
   assert (XY : (B2R (hib (num2_b third_o third_p third_n)) + B2R (lob (num2_b third_o third_p third_n))) /
           (B2R (hib (den2_b third_d third_n)) + B2R (lob (den2_b third_d third_n))) = 1 / 3)
     by (rewrite Vnh, Vnl, Vdh, Vdl; field).
-  pose proof (cascade_quotient_live_b third_o third_d third_p third_n _ _ eq_refl eq_refl
-    ltac:(vm_compute; reflexivity) ltac:(vm_compute; reflexivity)
-    ltac:(vm_compute; reflexivity) ltac:(vm_compute; reflexivity)
-    ltac:(vm_compute; reflexivity) ltac:(vm_compute; reflexivity)
-    ltac:(apply B; rewrite Vnh, Rabs_R1; lra) ltac:(apply B; rewrite Vnl, Rabs_R0; lra)
-    ltac:(apply B; rewrite Vdh, Rabs_pos_eq; lra) ltac:(apply B; rewrite Vdl, Rabs_R0; lra)
-    ltac:(rewrite Vnr; lra) ltac:(rewrite Vdr; lra)) as L.
-  cbv zeta in L. rewrite XY in L.
-  destruct L as [Q [F [T _]]].
-  - rewrite Vdh, Vdl, Rplus_0_r. exact GY.
-  - rewrite Vnh, Vnl, Rplus_0_r. exact GX.
-  - split; assumption.
-  - rewrite RQ, Hg', Vq3, Vnr, Vdr, Vdh, Vdl, Rplus_0_r, (Rabs_pos_eq 3), (Rabs_pos_eq (1 / 3)) by lra.
-    rewrite Rabs_pos_eq by lra. lra.
-  - split; [exact Q | split; [exact F | exact T]].
+  assert (L : quotient_live_class (num2_b third_o third_p third_n) (den2_b third_d third_n)).
+  { unfold quotient_live_class, rq_quotient, rq_center. rewrite XY, Vnr, Vdr, Vnh, Vnl, Vdh, Vdl, !Rplus_0_r.
+    do 6 (split; [vm_compute; reflexivity|]).
+    split; [apply B; rewrite Rabs_R1; lra|]. split; [apply B; rewrite Rabs_R0; lra|].
+    split; [apply B; rewrite Rabs_pos_eq; lra|]. split; [apply B; rewrite Rabs_R0; lra|].
+    split; [lra|]. split; [lra|]. split; [exact GY|]. split; [exact GX|]. split; [split; assumption|].
+    rewrite RQ, Hg', Vq3, (Rabs_pos_eq 3), (Rabs_pos_eq (1 / 3)) by lra. rewrite Rabs_pos_eq by lra. lra. }
+  destruct (cascade_quotient_live_b third_o third_d third_p third_n _ _ eq_refl eq_refl L) as [Q [F [T _]]].
+  unfold rq_quotient, rq_center in T. rewrite XY in T.
+  split; [exact Q | split; [exact F | exact T]].
 Qed.

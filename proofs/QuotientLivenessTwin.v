@@ -345,26 +345,36 @@ Proof.
 Qed.
 
 (** ** Main theorem: the twin certifies on [round_quotient_live]'s class, with t = RN(X/Y). *)
-Theorem round_quotient_live_b : forall num den : EnclosureB,
-  fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
-  fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
-  Rabs (B2R (hib num)) <= bpow radix2 1000 -> Rabs (B2R (lob num)) <= bpow radix2 1000 ->
-  Rabs (B2R (hib den)) <= bpow radix2 1000 -> Rabs (B2R (lob den)) <= bpow radix2 1000 ->
-  0 <= B2R (radiusb num) -> 0 <= B2R (radiusb den) ->
-  let X := B2R (hib num) + B2R (lob num) in
-  let Y := B2R (hib den) + B2R (lob den) in
-  divisor_min_magnitude <= Rabs Y <= divisor_max_magnitude ->
-  Q900 <= Rabs X ->
-  Q900 <= Rabs (X / Y) <= bpow radix2 1000 ->
-  Rabs (X / Y - RN (X / Y)) +
-    (1 + / 256) * ((B2R (radiusb num) + Rabs (X / Y) * B2R (radiusb den)) / Rabs Y) +
-    / 2 ^ 97 * Rabs (X / Y)
-    < half_gap (RN (X / Y)) ->
+
+(** The centres X = num.hi + num.lo, Y = den.hi + den.lo and Q = X/Y. *)
+Definition rq_center (e : EnclosureB) : R := B2R (hib e) + B2R (lob e).
+Definition rq_quotient (num den : EnclosureB) : R := rq_center num / rq_center den.
+
+(** The class: finite parts, hi and lo of magnitude ≤ 2^1000, radii ≥ 0, and [round_quotient_live]'s class
+    on Q = X/Y (the divisor's range, 2^-900 ≤ |X|, 2^-900 ≤ |Q| ≤ 2^1000, and Q's distance from the
+    midpoints' test). *)
+Definition quotient_live_class (num den : EnclosureB) : Prop :=
+  fin (hib num) = true /\ fin (lob num) = true /\ fin (radiusb num) = true /\
+  fin (hib den) = true /\ fin (lob den) = true /\ fin (radiusb den) = true /\
+  Rabs (B2R (hib num)) <= bpow radix2 1000 /\ Rabs (B2R (lob num)) <= bpow radix2 1000 /\
+  Rabs (B2R (hib den)) <= bpow radix2 1000 /\ Rabs (B2R (lob den)) <= bpow radix2 1000 /\
+  0 <= B2R (radiusb num) /\ 0 <= B2R (radiusb den) /\
+  divisor_min_magnitude <= Rabs (rq_center den) <= divisor_max_magnitude /\
+  Q900 <= Rabs (rq_center num) /\
+  Q900 <= Rabs (rq_quotient num den) <= bpow radix2 1000 /\
+  Rabs (rq_quotient num den - RN (rq_quotient num den)) +
+    (1 + / 256) * ((B2R (radiusb num) + Rabs (rq_quotient num den) * B2R (radiusb den)) / Rabs (rq_center den)) +
+    / 2 ^ 97 * Rabs (rq_quotient num den)
+    < half_gap (RN (rq_quotient num den)).
+
+Theorem round_quotient_live_b : forall num den : EnclosureB, quotient_live_class num den ->
   snd (round_quotient_b num (prepare_divisor_b den)) = true /\
   fin (fst (round_quotient_b num (prepare_divisor_b den))) = true /\
-  B2R (fst (round_quotient_b num (prepare_divisor_b den))) = RN (X / Y).
+  B2R (fst (round_quotient_b num (prepare_divisor_b den))) = RN (rq_quotient num den).
 Proof.
-  intros num den Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd X Y GY GX GQ Hyp.
+  intros num den C. unfold quotient_live_class, rq_quotient, rq_center in *.
+  destruct C as [Fnh [Fnl [FEn [Fdh [Fdl [FEd [Bnh [Bnl [Bdh [Bdl [PEn [PEd [GY [GX [GQ Hyp]]]]]]]]]]]]]]].
+  set (X := B2R (hib num) + B2R (lob num)) in *. set (Y := B2R (hib den) + B2R (lob den)) in *.
   destruct (round_quotient_live (enc_R num) (enc_R den) (binary64_B2R _) (binary64_B2R _) (binary64_B2R _)
               (binary64_B2R _) (binary64_B2R _) (binary64_B2R _) PEn PEd GY GX GQ Hyp) as [MC MT].
   assert (Gd : div_in_range (prepare_divisor (enc_R den)) = true).
@@ -449,8 +459,9 @@ Corollary round_quotient_live_exact_b : forall nh nl dh dl : float,
 Proof.
   intros nh nl dh dl Fnh Fnl Fdh Fdl Bnh Bnl Bdh Bdl X Y GY GX GQ H r.
   apply (round_quotient_live_b {| hib := nh; lob := nl; radiusb := fzero |}
-                               {| hib := dh; lob := dl; radiusb := fzero |});
-    cbn [hib lob radiusb]; try assumption; try reflexivity; change (B2R fzero) with 0; try lra.
+                               {| hib := dh; lob := dl; radiusb := fzero |}).
+  unfold quotient_live_class, rq_quotient, rq_center; cbn [hib lob radiusb]; change (B2R fzero) with 0.
+  repeat match goal with |- _ /\ _ => split; [first [assumption | reflexivity | lra] |] end.
   unfold Rdiv. rewrite Rmult_0_r, Rplus_0_l, Rmult_0_l, Rmult_0_r, Rplus_0_r. exact H.
 Qed.
 
@@ -565,28 +576,13 @@ Qed.
     enclosures in the class: its t is RN(X/Y), finite, and it is certain exactly when both signs are — the
     quotient rounding never makes the answer uncertain there. *)
 Corollary fast_answer_from_live_b : forall (df nf : Z) (den num : EnclosureB),
-  fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
-  fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
-  Rabs (B2R (hib num)) <= bpow radix2 1000 -> Rabs (B2R (lob num)) <= bpow radix2 1000 ->
-  Rabs (B2R (hib den)) <= bpow radix2 1000 -> Rabs (B2R (lob den)) <= bpow radix2 1000 ->
-  0 <= B2R (radiusb num) -> 0 <= B2R (radiusb den) ->
-  let X := B2R (hib num) + B2R (lob num) in
-  let Y := B2R (hib den) + B2R (lob den) in
-  divisor_min_magnitude <= Rabs Y <= divisor_max_magnitude ->
-  Q900 <= Rabs X ->
-  Q900 <= Rabs (X / Y) <= bpow radix2 1000 ->
-  Rabs (X / Y - RN (X / Y)) +
-    (1 + / 256) * ((B2R (radiusb num) + Rabs (X / Y) * B2R (radiusb den)) / Rabs Y) +
-    / 2 ^ 97 * Rabs (X / Y)
-    < half_gap (RN (X / Y)) ->
+  quotient_live_class num den ->
   let a := fast_answer_from_b df nf den num in
-  fin (fst (fst (fst a))) = true /\ B2R (fst (fst (fst a))) = RN (X / Y) /\
+  fin (fst (fst (fst a))) = true /\ B2R (fst (fst (fst a))) = RN (rq_quotient num den) /\
   snd (fst a) = (certain_lane (first_certain_lanes_b df (enclosure_sign_lanes_b den)) &&
                  certain_lane (first_certain_lanes_b nf (enclosure_sign_lanes_b num)))%bool.
 Proof.
-  intros df nf den num Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd X Y GY GX GQ Hyp a.
-  destruct (round_quotient_live_b num den Fnh Fnl FEn Fdh Fdl FEd Bnh Bnl Bdh Bdl PEn PEd GY GX GQ Hyp)
-    as [C [F T]].
+  intros df nf den num L a. destruct (round_quotient_live_b num den L) as [C [F T]].
   destruct (fast_answer_from_b_parts df nf den num) as [E1 [_ E3]].
   fold a in E1, E3. rewrite E1, E3, C, andb_true_r. split; [exact F | split; [exact T | reflexivity]].
 Qed.
