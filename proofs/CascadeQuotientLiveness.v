@@ -133,18 +133,7 @@ Proof.
   assert (Vdl : B2R (lob (den2_b third_d third_n)) = 0) by (vval (lob (den2_b third_d third_n)); lra).
   assert (Vdr : B2R (radiusb (den2_b third_d third_n)) = 3 / 2535301200456458802993406410752)
     by (vval (radiusb (den2_b third_d third_n)); lra).
-  (* RN(1/3) and its half gap, as in QuotientLivenessTwin.v's [round_quotient_b_third_live] *)
-  set (q3 := of_bits 4599676419421066581).
-  assert (Fq3 : fin q3 = true) by (vm_compute; reflexivity).
-  assert (Vq3 : B2R q3 = 18014398509481983 / 54043195528445952) by (unfold q3; fval (of_bits 4599676419421066581); lra).
-  assert (Gq3 : half_gap_min_magnitude <= Rabs (B2R q3)).
-  { rewrite Vq3, Rabs_pos_eq by lra. apply Rle_trans with (bpow radix2 (-2)); [apply bpow_le; lia|].
-    simpl bpow. lra. }
-  destruct (half_gap_twin q3 Fq3 Gq3) as [_ Hg].
-  assert (Hg' : half_gap (B2R q3) = / 36028797018963968).
-  { rewrite <- Hg. unfold q3. fval (half_gap_b (of_bits 4599676419421066581)). lra. }
-  assert (RQ : RN (1 / 3) = B2R q3).
-  { apply RN_of_close; [apply binary64_B2R|]. rewrite Hg', Vq3, Rabs_pos_eq; lra. }
+  destruct rn_third as [RQ3 HG3].
   assert (B : forall x, Rabs x <= 4 -> Rabs x <= bpow radix2 1000).
   { intros x Hx. eapply Rle_trans; [exact Hx|]. change 4 with (bpow radix2 2). apply bpow_le. lia. }
   destruct (small_in_range 1) as [GX _]; [rewrite Rabs_R1; simpl bpow; lra|].
@@ -159,7 +148,7 @@ Proof.
     split; [apply B; rewrite Rabs_R1; lra|]. split; [apply B; rewrite Rabs_R0; lra|].
     split; [apply B; rewrite Rabs_pos_eq; lra|]. split; [apply B; rewrite Rabs_R0; lra|].
     split; [lra|]. split; [lra|]. split; [exact GY|]. split; [exact GX|]. split; [split; assumption|].
-    rewrite RQ, Hg', Vq3, (Rabs_pos_eq 3), (Rabs_pos_eq (1 / 3)) by lra. rewrite Rabs_pos_eq by lra. lra. }
+    rewrite HG3, RQ3, (Rabs_pos_eq 3), (Rabs_pos_eq (1 / 3)) by lra. rewrite Rabs_pos_eq by lra. lra. }
   destruct (cascade_quotient_live_b third_o third_d third_p third_n _ _ eq_refl eq_refl L) as [Q [F [T _]]].
   unfold rq_quotient, rq_center in T. rewrite XY in T.
   split; [exact Q | split; [exact F | exact T]].

@@ -483,13 +483,9 @@ Proof.
   unfold divisor_max_magnitude. repeat split; lra.
 Qed.
 
-Lemma round_quotient_b_third_live :
-  let r := round_quotient_b {| hib := of_bits 4607182418800017408; lob := fzero; radiusb := fzero |}
-             (prepare_divisor_b {| hib := of_bits 4613937818241073152; lob := fzero; radiusb := fzero |}) in
-  snd r = true /\ fin (fst r) = true /\ B2R (fst r) = RN (1 / 3).
+(** RN(1/3) = (2^54 − 1)/(3·2^54) (the double below 1/3, of bits 0x3fd5555555555555) and its half gap 2^-55. *)
+Lemma rn_third : RN (1 / 3) = 18014398509481983 / 54043195528445952 /\ half_gap (RN (1 / 3)) = / 36028797018963968.
 Proof.
-  assert (V1 : B2R (of_bits 4607182418800017408) = 1) by (fval (of_bits 4607182418800017408); lra).
-  assert (V3 : B2R (of_bits 4613937818241073152) = 3) by (fval (of_bits 4613937818241073152); lra).
   set (q3 := of_bits 4599676419421066581).
   assert (Fq3 : fin q3 = true) by (vm_compute; reflexivity).
   assert (Vq3 : B2R q3 = 18014398509481983 / 54043195528445952) by (unfold q3; fval (of_bits 4599676419421066581); lra).
@@ -501,6 +497,17 @@ Proof.
   { rewrite <- Hg. unfold q3. fval (half_gap_b (of_bits 4599676419421066581)). lra. }
   assert (RQ : RN (1 / 3) = B2R q3).
   { apply RN_of_close; [apply binary64_B2R|]. rewrite Hg', Vq3, Rabs_pos_eq; lra. }
+  rewrite RQ, Hg'. split; [exact Vq3 | reflexivity].
+Qed.
+
+Lemma round_quotient_b_third_live :
+  let r := round_quotient_b {| hib := of_bits 4607182418800017408; lob := fzero; radiusb := fzero |}
+             (prepare_divisor_b {| hib := of_bits 4613937818241073152; lob := fzero; radiusb := fzero |}) in
+  snd r = true /\ fin (fst r) = true /\ B2R (fst r) = RN (1 / 3).
+Proof.
+  assert (V1 : B2R (of_bits 4607182418800017408) = 1) by (fval (of_bits 4607182418800017408); lra).
+  assert (V3 : B2R (of_bits 4613937818241073152) = 3) by (fval (of_bits 4613937818241073152); lra).
+  destruct rn_third as [RQ3 HG3].
   assert (X3 : (B2R (of_bits 4607182418800017408) + B2R fzero) / (B2R (of_bits 4613937818241073152) + B2R fzero) = 1 / 3)
     by (rewrite V1, V3; change (B2R fzero) with 0; field).
   destruct (small_in_range 1) as [GX _]; [rewrite Rabs_R1; simpl bpow; lra|].
@@ -518,7 +525,7 @@ Proof.
   - rewrite V3. change (B2R fzero) with 0. rewrite Rplus_0_r. exact GY.
   - rewrite V1. change (B2R fzero) with 0. rewrite Rplus_0_r. exact GX.
   - split; assumption.
-  - rewrite RQ, Hg', Vq3, Rabs_pos_eq, (Rabs_pos_eq (1 / 3)) by lra. lra.
+  - rewrite HG3, RQ3, Rabs_pos_eq, (Rabs_pos_eq (1 / 3)) by lra. lra.
 Qed.
 
 (** The near-midpoint example of [near_midpoint_threshold] at k = 513: X = (1 + 2^-52) + (−(2^53 − 513)·2^-106),
