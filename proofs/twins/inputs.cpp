@@ -151,6 +151,42 @@ class Source {
     const double shift = chance(2) ? 0.0 : 0x1p3;
     return {{{shift, shift, shift}, {d[0], d[1], d[2]}}, {{e[0] + shift, e[1] + shift, e[2] + shift}, {n[0], n[1], n[2]}}};
   }
+  // A query with an exact stage-3 expansion that fails Expansion::sign's check 2·Σ|lower| < |top| while the
+  // other expansion's sign is certain and stage 2 leaves a sign open. The shape, from three products
+  // h0·1 + r·1 + d3·n3 with d3·n3 = h2 + l2 exactly (TwoProduct), h0 = −h2 an odd multiple of q = ulp(h0),
+  // r = ±q/2 − l2: the expansion sum meets l2 + r = ±q/2 first, then h0: the tie rounds to even, away from h0
+  // (h0 ± q, low ∓q/2), and h2 cancels h0: the expansion is [∓q/2, ±q] (value ±q/2, the shape of
+  // CompareStage3Liveness.v's `compare_stage3_uncertain_example`). n = (1, 1, n3) and
+  // p = (−(x·n3).hi, −(x·n3).lo, x), whose terms cancel exactly. Half of the queries put the shape in den:
+  // d = (h0, r, d3)·2^k (|k| ≤ 40, exact), o = (0, t, 0), num = −t exactly (p_1 ⊖ t and its TwoDiff low
+  // part; t = 0 or ±2^-150..2^-349, below stage 2's reach |num| ≤ 1714u³·S); stage 2 certifies den. The
+  // other half put it in num's TwoDiff low parts: o = −(h0, r, d3)·2^-j (150 ≤ j < 450), so p_i − o_i =
+  // p_i + low_i with low = (h0, r, d3)·2^-j and num = ±(q/2)·2^-j, far below stage 2's reach; d random, den
+  // certain. Either way the cascade must go to the exact stage; stage 3 returning on the certain sign alone
+  // would return the other `uncertain` and, half of the time, the wrong relation.
+  testkit::Query stage3_tie_query() {
+    auto unit = [this] { return (static_cast<double>(word() >> 11) * 0x1p-53 + 0.5) * (chance(2) ? 1 : -1); };
+    double d3, n3, h0, q, half;
+    detail::DoubleDouble p{};
+    do {  // h0 an odd multiple of its ulp (half the draws), r = half − l2 exact (nearly all)
+      d3 = unit(), n3 = unit();
+      p = detail::two_prod(d3, n3);
+      h0 = -p.hi;
+      q = std::ldexp(1.0, std::ilogb(h0) - 52);
+      half = p.lo > 0 ? q / 2 : -q / 2;
+    } while (p.lo == 0 || std::fmod(h0 / q, 2.0) == 0 || detail::two_diff(half, p.lo).lo != 0);
+    const double r = half - p.lo;
+    const double x = unit();
+    const detail::DoubleDouble px = detail::two_prod(x, n3);
+    const Vec3 terms_cancel{-px.hi, -px.lo, x}, normal{1, 1, n3};
+    if (chance(2)) {  // the shape in num's low parts (px.lo ≠ 0: else p_1 = 0 and the low part moves)
+      const double tail = std::ldexp(1.0, -150 - static_cast<int>(below(300)));
+      if (px.lo != 0) return {{{-h0 * tail, -r * tail, -d3 * tail}, {unit(), unit(), unit()}}, {terms_cancel, normal}};
+    }
+    const double t = chance(2) ? 0.0 : std::ldexp(unit(), -149 - static_cast<int>(below(200)));
+    const double scale = std::ldexp(1.0, static_cast<int>(below(81)) - 40);
+    return {{{0, t, 0}, {h0 * scale, r * scale, d3 * scale}}, {terms_cancel, normal}};
+  }
   testkit::PlanePair plane_pair() { return testkit::make_plane_pair_near_tie([this] { return word(); }); }
 
  private:
@@ -388,13 +424,16 @@ const std::map<std::string, Generator>& generators() {
       {"fast_relation_pair", [](Source& s) { return query_args(s.query()); }},
       // the cascade's control flow (CascadeTwins.v): hard queries (their degenerate kinds reach stage 3 and the
       // exact stage), 1 in 8 with a special value in one component (query()), 1 in 16 wholly raw, 1 in 4 in the
-      // second level's zone (refined_zone_query)
+      // second level's zone (refined_zone_query), 1 in 32 with an exact stage-3 expansion whose checked sign is
+      // uncertain, num's or den's, and num left open by stage 2 (stage3_tie_query)
       {"cascade_intersect",
        [](Source& s) {
+         if (s.chance(32)) return query_args(s.stage3_tie_query());
          return s.chance(16) ? raw_args(s, 12) : query_args(s.chance(4) ? s.refined_zone_query() : s.query());
        }},
       {"cascade_relation",
        [](Source& s) {
+         if (s.chance(32)) return query_args(s.stage3_tie_query());
          return s.chance(16) ? raw_args(s, 12) : query_args(s.chance(4) ? s.refined_zone_query() : s.query());
        }},
       {"compensated_exact", [](Source& s) { return s.chance(3) ? raw_args(s, 6) : dot3_args(terms(s.query()), false, false); }},
