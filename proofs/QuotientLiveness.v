@@ -40,12 +40,7 @@ Lemma quotient_residuals_q0 : forall N n D d R,
   Q900 <= 2 * Rabs q0 ->
   let rr := RN (fma (- q0) D N + fma (- q0) d n) in
   let c := RN (rr * R) in
-  let A := Rabs q0 * Rabs D in
-  0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
-  Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
-  Rabs (c * D - rr) <= 9 * (u * u) * A /\
-  Rabs c <= 5 * u * Rabs q0 /\
-  Rabs (c * d) <= 5 * (u * u) * A.
+  residual_facts N n D d q0 rr c.
 Proof.
   intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD.
   pose proof (quotient_residuals_gen N n D d R BN Bn BD Bd Ln Ld GN Dnz RD) as G. cbv zeta in G |- *.

@@ -234,6 +234,15 @@ Proof.
   rewrite Rabs_R1. lra.
 Qed.
 
+(** What the residual analysis gives for q0, the residual rr and the correction c, with A = |q0|·|D|. *)
+Definition residual_facts (N n D d q0 rr c : R) : Prop :=
+  let A := Rabs q0 * Rabs D in
+  0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
+  Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
+  Rabs (c * D - rr) <= 9 * (u * u) * A /\
+  Rabs c <= 5 * u * Rabs q0 /\
+  Rabs (c * d) <= 5 * (u * u) * A.
+
 (** ** The residuals, once the guards pass (the derivation of error_bounds.hpp): with A = |q0|·|D|,
     the guard |q| ≥ 2^-900 (with |N| ≥ 2^-900) makes η and η·|D| at most 2^-170·A; the computed residual
     rr is within 9u²A of ρ_1 + ρ_2 = (N − q0 D) + (n − q0 d); c·D is within 9u²A of rr; |c| ≤ 5u|q0|
@@ -249,14 +258,9 @@ Lemma quotient_residuals_gen : forall N n D d R,
   let rr := RN (fma (- q0) D N + fma (- q0) d n) in
   let c := RN (rr * R) in
   Q900 * Rabs D <= 2 * (Rabs q0 * Rabs D + Rabs c * Rabs D) ->
-  let A := Rabs q0 * Rabs D in
-  0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
-  Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
-  Rabs (c * D - rr) <= 9 * (u * u) * A /\
-  Rabs c <= 5 * u * Rabs q0 /\
-  Rabs (c * d) <= 5 * (u * u) * A.
+  residual_facts N n D d q0 rr c.
 Proof.
-  intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD q0 rr c Gq A.
+  intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD q0 rr c Gq. unfold residual_facts. set (A := Rabs q0 * Rabs D).
   pose proof Q900_pos as HQ. pose proof eta_Q900 as EQ. pose proof u_pos as Hu. pose proof eta_pos as He.
   set (aD := Rabs D) in *. set (aq := Rabs q0) in *.
   assert (DP : 0 < aD) by (apply Rabs_pos_lt; exact Dnz).
@@ -355,12 +359,7 @@ Lemma quotient_residuals : forall N n D d R,
   let rr := RN (fma (- q0) D N + fma (- q0) d n) in
   let c := RN (rr * R) in
   Q900 <= Rabs (RN (q0 + c)) ->
-  let A := Rabs q0 * Rabs D in
-  0 < A /\ eta * Rabs D <= / 2 ^ 170 * A /\ eta <= / 2 ^ 170 * A /\
-  Rabs ((N - q0 * D) + (n - q0 * d) - rr) <= 9 * (u * u) * A /\
-  Rabs (c * D - rr) <= 9 * (u * u) * A /\
-  Rabs c <= 5 * u * Rabs q0 /\
-  Rabs (c * d) <= 5 * (u * u) * A.
+  residual_facts N n D d q0 rr c.
 Proof.
   intros N n D d R BN Bn BD Bd Ln Ld GN Dnz RD.
   pose proof (quotient_residuals_gen N n D d R BN Bn BD Bd Ln Ld GN Dnz RD) as G. cbv zeta in G |- *.
