@@ -119,6 +119,37 @@ TEST(ObjReader, Errors) {
   expect_line_error("\x01\x02\x03 garbage\n", F::obj, 1, "unknown statement '\\x01\\x02\\x03'");
 }
 
+// Index extremes of every path of every reader (issue 25: `f 1 2 -9223372036854775808` negated INT64_MIN, was
+// taken as in range and loaded as vertex 3 when a fourth vertex followed, or aborted the CLI when none did).
+TEST(ObjReader, IndexExtremesAreErrorsNeverWrappedIndices) {
+  using F = MeshFormat;
+  const std::string three = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expect_line_error(three + "f 1 2 -9223372036854775808\nv 0 0 1\n", F::obj, 4,
+                    "relative vertex index -9223372036854775808 is out of range (3 vertices so far)");
+  expect_line_error(three + "f 1 2 -9223372036854775808\n", F::obj, 4, "relative vertex index -9223372036854775808 is out of range");
+  expect_line_error(three + "f 1 2 -9223372036854775807\n", F::obj, 4, "relative vertex index -9223372036854775807 is out of range");
+  expect_line_error(three + "f 1 2 -9223372036854775809\n", F::obj, 4, "'-9223372036854775809' is not a vertex index");
+  expect_line_error(three + "f 1 2 9223372036854775807\n", F::obj, 4, "vertex index 9223372036854775807 is out of range");
+  expect_line_error(three + "f 1 2 9223372036854775808\n", F::obj, 4, "'9223372036854775808' is not a vertex index");
+  expect_line_error(three + "f 1 2 4294967296\n", F::obj, 4, "vertex index 4294967296 is out of range");
+  expect_line_error(three + "f 1 2 4294967297\n", F::obj, 4, "vertex index 4294967297 is out of range");
+  expect_line_error(three + "f 1 2 -4294967296\n", F::obj, 4, "relative vertex index -4294967296 is out of range");
+  // The relative index that reaches exactly the first vertex is fine; one more is not.
+  expect_mesh(read_mesh(three + "f -3 -2 -1\n", "t.obj", F::obj), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{Tri{0, 1, 2}}});
+  expect_line_error(three + "f -4 -2 -1\n", F::obj, 4, "relative vertex index -4 is out of range (3 vertices so far)");
+}
+
+TEST(OffReader, IndexExtremesAreErrors) {
+  using F = MeshFormat;
+  const std::string head = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+  expect_line_error(head + "3 0 1 -9223372036854775808\n", F::off, 6, "vertex index -9223372036854775808 of face 0 is out of range");
+  expect_line_error(head + "3 0 1 9223372036854775807\n", F::off, 6, "vertex index 9223372036854775807 of face 0 is out of range");
+  expect_line_error(head + "3 0 1 4294967296\n", F::off, 6, "vertex index 4294967296 of face 0 is out of range");
+  expect_line_error(head + "3 0 1 9223372036854775808\n", F::off, 6, "is not a vertex index");
+  expect_line_error(head + "9223372036854775807 0 1 2\n", F::off, 6, "declares 9223372036854775807 vertices but lists 3");
+  expect_line_error("OFF\n4294967296 0 0\n", F::off, 2, "expected the counts");
+}
+
 // ---- PLY ----------------------------------------------------------------------------------------------
 
 template <class T>
@@ -208,6 +239,14 @@ TEST(PlyReader, Errors) {
   expect_line_error("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n3 0 1 2\n", F::ply, 3,
                     "must be a list of integers");
   expect_line_error("solid\n", F::ply, 1, "not a PLY file");
+  // Index extremes of every integer type (ascii and binary): never wrapped into range.
+  const std::string head_uint = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                "element face 1\nproperty list uchar uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  expect_line_error(head_uint + "3 0 1 4294967295\n", F::ply, 13, "vertex index 4294967295 of face 0 is out of range");
+  expect_line_error(head_uint + "3 0 1 4294967296\n", F::ply, 13, "is not an integer of its type");
+  expect_line_error(head_uint + "3 0 1 -1\n", F::ply, 13, "is not an integer of its type");
+  expect_line_error(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 -2147483648\n", F::ply, 13, "vertex index -2147483648 of face 0 is out of range");
+  expect_line_error(head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 -2147483649\n", F::ply, 13, "is not an integer of its type");
   // Binary: byte offsets.
   std::string b = binary_ply(false, false);
   const std::size_t body = b.find("end_header\n") + 11;
@@ -221,6 +260,11 @@ TEST(PlyReader, Errors) {
   const std::uint32_t five = 5;
   std::memcpy(&bad_index[body + 51 + 2 + 4], &five, 4);
   expect_byte_error(bad_index, F::ply, body + 51 + 6, "vertex index 5 of face 0 is out of range (3 vertices)");
+  for (const std::uint32_t extreme : {std::uint32_t{0x80000000}, std::uint32_t{0xffffffff}}) {  // the binary indices are uint
+    std::string wrapped = b;
+    std::memcpy(&wrapped[body + 51 + 2 + 4], &extreme, 4);
+    expect_byte_error(wrapped, F::ply, body + 51 + 6, "vertex index " + std::to_string(extreme) + " of face 0 is out of range");
+  }
   std::string two_vertices = b;
   two_vertices[body + 51] = 2;  // the face's count (ushort, little endian)
   expect_byte_error(two_vertices, F::ply, body + 51, "face 0 has 2 vertices");

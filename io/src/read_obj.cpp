@@ -86,7 +86,8 @@ Mesh read_obj(std::string_view bytes, const ErrorSink& errors) {
         const auto count = static_cast<std::int64_t>(mesh.vertices.size());
         if (index == 0) errors.at_line(n, "vertex index 0 is out of range (OBJ counts vertices from 1)");
         if (index < 0) {
-          if (-index > count)
+          // −index overflows for INT64_MIN: compare without negating.
+          if (index < -count)
             errors.at_line(n, "relative vertex index " + std::to_string(index) + " is out of range (" +
                                   count_of(static_cast<std::uint64_t>(count), "vertex", "vertices") + " so far)");
           polygon.push_back(static_cast<std::uint32_t>(count + index));
