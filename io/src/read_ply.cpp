@@ -11,6 +11,7 @@
 #include <bit>
 #include <cstring>
 #include <optional>
+#include <unordered_set>
 
 namespace raykernel::io::detail {
 namespace {
@@ -137,6 +138,7 @@ Header read_header(std::string_view bytes, const ErrorSink& errors) {
   std::string_view line;
   if (!lines.next(line) || line != "ply") errors.at_line(1, "not a PLY file (the first line must be 'ply')");
   bool have_format = false;
+  std::unordered_set<std::string> element_names;  // a header may declare many elements: no linear scan per name
   while (true) {
     if (!lines.next(line)) errors.at_line(lines.line_number() + 1, "the header has no end_header line");
     const std::uint64_t n = lines.line_number();
@@ -166,8 +168,7 @@ Header read_header(std::string_view bytes, const ErrorSink& errors) {
       std::int64_t c = 0;
       if (e.name.empty() || !parse_integer(count, 0, INT64_MAX, c) || !tokens.at_end())
         errors.at_line(n, "an element line is 'element NAME COUNT' with COUNT ≥ 0");
-      for (const Element& other : h.elements)
-        if (other.name == e.name) errors.at_line(n, "a second element named " + quote_token(e.name));
+      if (!element_names.insert(e.name).second) errors.at_line(n, "a second element named " + quote_token(e.name));
       if (e.name == "tristrips") errors.at_line(n, "triangle strips (element tristrips) are not supported");
       e.count = static_cast<std::uint64_t>(c);
       e.header_line = n;
