@@ -98,17 +98,42 @@ std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
   return length;
 }
 
-// A well-formed UTF-8 sequence for a character that prints as nothing or changes how the rest prints: C1
-// controls (U+0080–U+009F), zero-width and direction marks (U+200B–U+200F), line and paragraph separators and
-// direction embeddings (U+2028–U+202E), word joiner and direction isolates (U+2060–U+2069), and the
-// byte-order mark U+FEFF.
-bool invisible(std::string_view sequence) {
-  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(sequence[k]); };
-  if (sequence.size() == 2) return b(0) == 0xc2 && b(1) < 0xa0;
-  if (sequence.size() != 3) return false;
-  const unsigned code = (b(0) & 0x0fu) << 12 | (b(1) & 0x3fu) << 6 | (b(2) & 0x3fu);
-  return (code >= 0x200b && code <= 0x200f) || (code >= 0x2028 && code <= 0x202e) ||
-         (code >= 0x2060 && code <= 0x2069) || code == 0xfeff;
+// The code point of a well-formed UTF-8 sequence.
+char32_t code_point(std::string_view sequence) {
+  const auto b = [&](std::size_t k) { return static_cast<char32_t>(static_cast<unsigned char>(sequence[k])); };
+  switch (sequence.size()) {
+    case 2: return (b(0) & 0x1fu) << 6 | (b(1) & 0x3fu);
+    case 3: return (b(0) & 0x0fu) << 12 | (b(1) & 0x3fu) << 6 | (b(2) & 0x3fu);
+    default: return (b(0) & 0x07u) << 18 | (b(1) & 0x3fu) << 12 | (b(2) & 0x3fu) << 6 | (b(3) & 0x3fu);
+  }
+}
+
+// Characters that print as nothing, as a blank that is not a space, or change how the rest of a line prints
+// (Unicode 15): every Default_Ignorable_Code_Point (DerivedCoreProperties.txt: soft hyphen, combining
+// grapheme joiner, Arabic letter mark, Hangul fillers, Khmer and Mongolian invisibles, zero-width and
+// direction marks, direction embeddings and isolates, invisible operators, variation selectors, the byte-order
+// mark, the tags and the reserved U+E0000 block); every other format character (Cf: Arabic number signs,
+// interlinear annotations, Egyptian format controls, musical format controls); C1 controls; every space
+// separator but U+0020 (Zs: no-break and fixed-width spaces), the line and paragraph separators (Zl, Zp) and
+// the Braille blank; private-use characters and noncharacters, which print as whatever a font makes of them.
+// Sorted, disjoint, inclusive.
+constexpr struct {
+  char32_t first, last;
+} invisible_ranges[] = {
+    {0x0080, 0x00a0},   {0x00ad, 0x00ad},   {0x034f, 0x034f},   {0x0600, 0x0605},   {0x061c, 0x061c},
+    {0x06dd, 0x06dd},   {0x070f, 0x070f},   {0x0890, 0x0891},   {0x08e2, 0x08e2},   {0x115f, 0x1160},
+    {0x1680, 0x1680},   {0x17b4, 0x17b5},   {0x180b, 0x180f},   {0x2000, 0x200f},   {0x2028, 0x202f},
+    {0x205f, 0x206f},   {0x2800, 0x2800},   {0x3000, 0x3000},   {0x3164, 0x3164},   {0xe000, 0xf8ff},
+    {0xfdd0, 0xfdef},   {0xfe00, 0xfe0f},   {0xfeff, 0xfeff},   {0xffa0, 0xffa0},   {0xfff0, 0xfffb},
+    {0x110bd, 0x110bd}, {0x110cd, 0x110cd}, {0x13430, 0x1343f}, {0x1bca0, 0x1bca3}, {0x1d173, 0x1d17a},
+    {0xe0000, 0xe0fff}, {0xf0000, 0x10ffff},
+};
+
+bool invisible(char32_t c) {
+  if ((c & 0xfffe) == 0xfffe) return true;  // the noncharacters U+xFFFE and U+xFFFF of every plane
+  for (const auto& r : invisible_ranges)
+    if (c <= r.last) return c >= r.first;
+  return false;
 }
 
 void append_escaped(std::string& out, unsigned char c) {
@@ -130,7 +155,7 @@ std::string printable(std::string_view bytes) {
       continue;
     }
     const std::size_t length = c >= 0x80 ? utf8_sequence_length(bytes, i) : 0;
-    if (length == 0 || invisible(bytes.substr(i, length))) {
+    if (length == 0 || invisible(code_point(bytes.substr(i, length)))) {
       append_escaped(out, c);
       ++i;
       continue;

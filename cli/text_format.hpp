@@ -31,9 +31,11 @@ namespace raykernel::cli {
 [[nodiscard]] std::string formatted(const char* format, ...) __attribute__((format(printf, 1, 2)));
 
 // `bytes` with every byte that is not printable text escaped as \xNN: C0 controls, DEL, bytes that are not
-// part of well-formed UTF-8, and the bytes of characters that print as nothing or reorder text (C1 controls,
-// zero-width and direction marks, line separators, the byte-order mark U+FEFF). Printable ASCII and other
-// well-formed UTF-8 pass unchanged; a backslash is not escaped.
+// part of well-formed UTF-8, and the bytes of characters that print as nothing, as a blank other than a
+// space, or reorder text (C1 controls, every default-ignorable and format character — zero-width and
+// direction marks, soft hyphen, tags, variation selectors, the byte-order mark U+FEFF —, no-break and other
+// spaces, line separators, private-use characters, noncharacters). Printable ASCII and other well-formed
+// UTF-8 pass unchanged; a backslash is not escaped.
 [[nodiscard]] std::string printable(std::string_view bytes);
 
 // 'TEXT' for messages: printable(text) between single quotes, cut after `max_bytes` bytes (at a character

@@ -198,6 +198,14 @@ TEST(TextFormat, PrintableEscapesWhatATerminalWouldNotShow) {
   // override, the byte-order mark.
   EXPECT_EQ(printable("\xc2\x85|\xe2\x80\x8b|\xe2\x80\xae|\xef\xbb\xbf"),
             "\\xc2\\x85|\\xe2\\x80\\x8b|\\xe2\\x80\\xae|\\xef\\xbb\\xbf");
+  // Issue 25's probe: a no-break space, a soft hyphen, the Arabic letter mark, a Hangul filler, a tag.
+  EXPECT_EQ(printable("\xc2\xa0|\xc2\xad|\xd8\x9c|\xe1\x85\x9f|\xf3\xa0\x80\x81"),
+            "\\xc2\\xa0|\\xc2\\xad|\\xd8\\x9c|\\xe1\\x85\\x9f|\\xf3\\xa0\\x80\\x81");
+  // The ends of the ranges, and their neighbours that print: U+00A1 ¡, U+2010 ‐, U+3001 、, U+FFFD �.
+  EXPECT_EQ(printable("\xc2\xa1\xe2\x80\x90\xe3\x80\x81\xef\xbf\xbd"), "\xc2\xa1\xe2\x80\x90\xe3\x80\x81\xef\xbf\xbd");
+  // An ideographic space, a variation selector, a private-use character, the noncharacters U+FFFE and U+1FFFF.
+  EXPECT_EQ(printable("\xe3\x80\x80\xef\xb8\x8f\xee\x80\x80\xef\xbf\xbe\xf0\x9f\xbf\xbf"),
+            "\\xe3\\x80\\x80\\xef\\xb8\\x8f\\xee\\x80\\x80\\xef\\xbf\\xbe\\xf0\\x9f\\xbf\\xbf");
   EXPECT_EQ(quote("abc"), "'abc'");
   EXPECT_EQ(quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "...'");
   // Cut before a character, not inside it: 39 ASCII bytes and a 2-byte é straddling byte 40.
