@@ -7,6 +7,8 @@
 #include "colour.hpp"
 #include "diagnostic_images.hpp"
 #include "parallel_rows.hpp"
+
+#include <raykernel/parallel.hpp>
 #include "shading.hpp"
 
 #include <raykernel/camera.hpp>
@@ -46,8 +48,8 @@ struct Pass {
   // one DefaultFpEnvironment scope: the library's environment check once per row, not once per call (the
   // render changes no floating-point environment).
   template <class PixelJob>
-  void for_each_pixel(PixelJob pixel_job) const {
-    for_each_row(height(), threads, progress, [&](std::uint32_t row) {
+  unsigned for_each_pixel(PixelJob pixel_job) const {
+    return for_each_row(height(), threads, progress, [&](std::uint32_t row) {
       const DefaultFpEnvironment environment;
       const std::uint32_t j = height() - 1 - row;
       for (std::uint32_t i = 0; i < width(); ++i) pixel_job(row, i, j, stratified_samples(samples(), scene.seed, i, j));
@@ -91,7 +93,7 @@ CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, 
   std::vector<RowTally> tally(height);
 
   const auto start = Clock::now();
-  pass.for_each_pixel([&](std::uint32_t row, std::uint32_t i, std::uint32_t j, const std::vector<PixelSample>& samples) {
+  stats.threads_ran = pass.for_each_pixel([&](std::uint32_t row, std::uint32_t i, std::uint32_t j, const std::vector<PixelSample>& samples) {
     Linear sum;
     Stage slowest = Stage::filter;
     RowTally& t = tally[row];
@@ -179,7 +181,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   std::optional<PreparedMesh> mesh;  // validated once, its BVH built once
   if (!scene.mesh.triangles.empty()) mesh.emplace(scene.mesh);
   const Shader shader(scene);
-  const Pass pass{scene,  geometry, prepared, mesh ? &*mesh : nullptr, shader, worker_threads(options.threads),
+  const Pass pass{scene,  geometry, prepared, mesh ? &*mesh : nullptr, shader, thread_count(options.threads),
                   options.progress};
 
   RenderResult result;

@@ -46,6 +46,7 @@ struct RenderStats {
   std::uint64_t hit_rays = 0;
   double seconds = 0;      // the certified pass alone (ray generation, nearest hit, shading)
   unsigned threads = 0;
+  unsigned threads_ran = 0;  // of `threads`, those the system started (the calling thread included)
   // By raykernel::Stage: pixels (and rays) by the slowest stage any of their decisions needed, and the
   // comparisons of two t values each stage decided.
   std::array<std::uint64_t, stage_count> pixels_by_stage{};

@@ -7,6 +7,7 @@
 #include "convert.hpp"
 
 #include <raykernel/batch.hpp>
+#include <raykernel/parallel.hpp>
 
 #include <algorithm>
 #include <cstddef>
@@ -16,7 +17,6 @@
 #include <limits>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace raykernel::python {
@@ -38,27 +38,13 @@ enum class Path { certified, exact, naive };
 
 [[nodiscard]] inline unsigned threads_from(const std::optional<unsigned>& threads) { return threads.value_or(0); }
 
-// Runs work(begin, end) over [0, n) on up to `threads` threads (0: the hardware's), at least `grain` items
-// each; rethrows the first exception after all have joined.
+// Runs work(begin, end) over [0, n) on up to `threads` threads (0: the hardware's; capped at
+// raykernel::max_threads), at least `grain` items each; rethrows the first exception after all have joined.
+// Threads the system will not start are no error (<raykernel/parallel.hpp>): the others do their parts.
 template <class Work>
 void parallel_for(std::size_t n, unsigned threads, std::size_t grain, Work&& work) {
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t wanted = threads != 0 ? threads : hardware;
-  const std::size_t count = std::max<std::size_t>(1, std::min(wanted, n / std::max<std::size_t>(grain, 1)));
-  std::vector<std::exception_ptr> failures(count);
-  auto part = [&](std::size_t k) {
-    try {
-      work(n * k / count, n * (k + 1) / count);
-    } catch (...) {
-      failures[k] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < count; ++k) pool.emplace_back(part, k);
-  part(0);
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& f : failures)
-    if (f) std::rethrow_exception(f);
+  const std::size_t count = std::max<std::size_t>(1, std::min<std::size_t>(thread_count(threads), n / std::max<std::size_t>(grain, 1)));
+  run_parts(count, static_cast<unsigned>(count), [&](std::size_t k) { work(n * k / count, n * (k + 1) / count); });
 }
 
 // Items per thread below which a thread costs more than it saves: exact queries take microseconds, certified

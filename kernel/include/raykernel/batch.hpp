@@ -54,7 +54,8 @@ struct BatchStats {
 };
 
 struct BatchOptions {
-  unsigned threads = 0;           // 0: as many as the hardware has, for batches large enough to gain
+  unsigned threads = 0;           // 0: as many as the hardware has, for batches large enough to gain; at most
+                                  // max_threads (<raykernel/parallel.hpp>: threads the system refuses are no error)
   BatchStats* stats = nullptr;    // filled in when not null
 };
 

@@ -6,6 +6,7 @@
 // operations the scalar path computes for that query, so the answers are the same bits. Each worker thread
 // runs in the default floating-point environment (fp_environment.hpp) and restores its own on exit.
 #include <raykernel/batch.hpp>
+#include <raykernel/parallel.hpp>
 
 #include "batch/fast_loop.hpp"
 #include "certified/fp_requirements.hpp"
@@ -19,7 +20,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace raykernel {
@@ -153,34 +153,24 @@ void run_range(const Job& job, std::size_t begin, std::size_t end, BatchStats& s
   }
 }
 
-unsigned thread_count(std::size_t n, unsigned requested) {
-  constexpr std::size_t per_thread_minimum = std::size_t{1} << 14;  // below this, threads cost more than they gain
-  unsigned hardware = requested != 0 ? requested : std::max(1u, std::thread::hardware_concurrency());
-  return static_cast<unsigned>(std::clamp<std::size_t>(n / per_thread_minimum, 1, hardware));
+// The parts a batch of n is split into: one per thread (thread_count), each at least 2^14 queries — below
+// that, a thread costs more than it gains.
+std::size_t part_count(std::size_t n, unsigned requested) {
+  constexpr std::size_t per_part_minimum = std::size_t{1} << 14;
+  return std::clamp<std::size_t>(n / per_part_minimum, 1, thread_count(requested));
 }
 
-// Splits [0, n) over threads, runs `work(begin, end, stats, error)` on each part in the default
-// floating-point environment, merges, and throws the lowest-index error as "<what> N: reason".
+// Splits [0, n) into parts, runs `work(begin, end, stats, error)` on each (over threads, run_parts) in the
+// default floating-point environment, merges, and throws the lowest-index error as "<what> N: reason".
 template <class Work>
 void run_parallel(std::size_t n, const BatchOptions& options, const char* what, Work work) {
-  const unsigned threads = thread_count(n, options.threads);
-  std::vector<BatchStats> stats(threads);
-  std::vector<FirstError> errors(threads);
-  std::vector<std::exception_ptr> failures(threads);
-  auto part = [&](unsigned k) {
-    const std::size_t begin = n * k / threads, end = n * (k + 1) / threads;
-    try {
-      detail::in_default_fp_environment([&] { work(begin, end, stats[k], errors[k]); });
-    } catch (...) {
-      failures[k] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned k = 1; k < threads; ++k) pool.emplace_back(part, k);
-  part(0);
-  for (std::thread& th : pool) th.join();
-  for (const std::exception_ptr& f : failures)
-    if (f) std::rethrow_exception(f);
+  const std::size_t parts = part_count(n, options.threads);
+  std::vector<BatchStats> stats(parts);
+  std::vector<FirstError> errors(parts);
+  run_parts(parts, static_cast<unsigned>(parts), [&](std::size_t k) {
+    const std::size_t begin = n * k / parts, end = n * (k + 1) / parts;
+    detail::in_default_fp_environment([&] { work(begin, end, stats[k], errors[k]); });
+  });
   const auto first = std::min_element(errors.begin(), errors.end(),
                                       [](const FirstError& a, const FirstError& b) { return a.index < b.index; });
   if (first->index != std::numeric_limits<std::size_t>::max())
