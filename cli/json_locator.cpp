@@ -1,6 +1,7 @@
 #include "json_locator.hpp"
 
 #include <raykernel/io/number.hpp>
+#include "limits.hpp"
 #include "text_format.hpp"
 
 #include <set>
@@ -10,17 +11,28 @@ namespace raykernel::cli {
 
 using nlohmann::json;
 
-std::string json_pointer_child(const std::string& pointer, std::string_view key) {
-  std::string out = pointer + "/";
+void append_json_pointer_token(std::string& pointer, std::string_view key) {
+  pointer += '/';
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~') pointer += "~0";
+    else if (c == '/') pointer += "~1";
+    else pointer += c;
   }
+}
+void append_json_pointer_token(std::string& pointer, std::size_t index) {
+  pointer += '/';
+  pointer += std::to_string(index);
+}
+
+std::string json_pointer_child(const std::string& pointer, std::string_view key) {
+  std::string out = pointer;
+  append_json_pointer_token(out, key);
   return out;
 }
 std::string json_pointer_child(const std::string& pointer, std::size_t index) {
-  return pointer + "/" + std::to_string(index);
+  std::string out = pointer;
+  append_json_pointer_token(out, index);
+  return out;
 }
 
 std::optional<std::variant<std::uint64_t, std::int64_t>> json_integer_value(std::string_view text) {
@@ -98,6 +110,7 @@ class LocatingSax {
   bool binary(json::binary_t& v) { return value(), dom_.binary(v); }
   bool start_object(std::size_t n) {
     value();
+    if (too_deep()) return false;
     frames_.push_back({false, -1, {}, {}});
     return dom_.start_object(n);
   }
@@ -113,6 +126,7 @@ class LocatingSax {
   }
   bool start_array(std::size_t n) {
     value();
+    if (too_deep()) return false;
     frames_.push_back({true, -1, {}, {}});
     return dom_.start_array(n);
   }
@@ -130,7 +144,9 @@ class LocatingSax {
     return dom_.parse_error(position, last_token, ex);
   }
 
-  [[nodiscard]] bool failed() const noexcept { return error_id_ != 0; }
+  [[nodiscard]] bool failed() const noexcept { return error_id_ != 0 || too_deep_; }
+  // Parsing stopped at an array or object nested deeper than limits::max_json_depth; error_pointer() is its.
+  [[nodiscard]] bool nested_too_deep() const noexcept { return too_deep_; }
   [[nodiscard]] int error_id() const noexcept { return error_id_; }
   [[nodiscard]] std::size_t error_position() const noexcept { return error_position_; }
   [[nodiscard]] const std::string& error_what() const noexcept { return error_what_; }
@@ -150,6 +166,14 @@ class LocatingSax {
   void value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
   }
+  // An array or object about to start one level too deep: stop (the DOM, nlohmann's recursion and the frames
+  // would otherwise grow with the nesting: 10^7 levels took 2.2 GB).
+  bool too_deep() {
+    if (frames_.size() < limits::max_json_depth) return false;
+    too_deep_ = true;
+    error_pointer_ = pointer(Which::current);
+    return true;
+  }
   // Keeps the first problem, at the value being parsed; parsing goes on, so that a syntax error later in
   // the text is still the one reported.
   void note_problem(std::string message) {
@@ -161,13 +185,14 @@ class LocatingSax {
   // value the parser is about to read (next: where a syntax error is): in an array, the last element
   // started or the one after it; in an object, the member of the last key either way.
   enum class Which { current, next };
+  // Built in place: linear in its length (a copy per level made 10^6 levels take 48 s).
   [[nodiscard]] std::string pointer(Which which) const {
     std::string p;
     for (std::size_t f = 0; f < frames_.size(); ++f) {
       const Frame& frame = frames_[f];
       const bool after = which == Which::next && f + 1 == frames_.size();
-      if (frame.array) p = json_pointer_child(p, static_cast<std::size_t>(frame.index + (after ? 1 : 0)));
-      else p = json_pointer_child(p, frame.key);
+      if (frame.array) append_json_pointer_token(p, static_cast<std::size_t>(frame.index + (after ? 1 : 0)));
+      else append_json_pointer_token(p, frame.key);
     }
     return p;
   }
@@ -175,6 +200,7 @@ class LocatingSax {
   nlohmann::detail::json_sax_dom_parser<json> dom_;
   std::vector<Frame> frames_;
   int error_id_ = 0;
+  bool too_deep_ = false;
   std::size_t error_position_ = 0;
   std::string error_what_, error_pointer_;
   std::string problem_, problem_pointer_;
@@ -208,7 +234,10 @@ LocatedJson parse_located_json(std::string_view text) {
   const bool parsed = json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, true);
   if (!parsed || sax.failed()) {
     r.document = nullptr;
-    if (sax.error_id() == 406) {  // a number outside the double range: its value is known
+    if (sax.nested_too_deep()) {
+      r.error_pointer = sax.error_pointer();
+      r.error = "arrays and objects nested deeper than " + std::to_string(limits::max_json_depth) + " levels";
+    } else if (sax.error_id() == 406) {  // a number outside the double range: its value is known
       r.error_pointer = sax.error_pointer();
       r.error = "number outside the double range (not finite), at " + line_and_column(text, sax.error_position());
     } else {

@@ -19,11 +19,15 @@
 
 namespace raykernel::cli {
 
-// The pointer of a member or an element below `pointer` ("~" and "/" in keys escaped as "~0" and "~1").
+// The pointer of a member or an element below `pointer` ("~" and "/" in keys escaped as "~0" and "~1"), as a
+// new string or appended in place.
+void append_json_pointer_token(std::string& pointer, std::string_view key);
+void append_json_pointer_token(std::string& pointer, std::size_t index);
 [[nodiscard]] std::string json_pointer_child(const std::string& pointer, std::string_view key);
 [[nodiscard]] std::string json_pointer_child(const std::string& pointer, std::size_t index);
 
-// The document, or where and why the text is not one.
+// The document, or where and why the text is not one. Arrays and objects nested deeper than
+// limits::max_json_depth are an error at the pointer of the first one too deep.
 struct LocatedJson {
   nlohmann::json document;    // when error is empty
   std::string error_pointer;  // "" for the document itself and for syntax errors

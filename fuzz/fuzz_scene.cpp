@@ -7,7 +7,8 @@
 //   - parse_scene never throws, and the overrides change nothing but the camera's verdict (they change its
 //     aspect ratio): the same scene or the same error, unless one of the two errors is about /camera;
 //   - an error has a message, and a pointer that is a JSON Pointer (RFC 6901: empty, or "/"-separated tokens
-//     with "~" only in "~0" and "~1"); the error is a syntax error ("invalid JSON: ...", or a number outside
+//     with "~" only in "~0" and "~1"); nesting deeper than limits::max_json_depth is an error at the first
+//     value too deep, whatever follows it; otherwise the error is a syntax error ("invalid JSON: ...", or a number outside
 //     the double range) exactly when nlohmann's own parse rejects the text; otherwise the pointer leads into
 //     the document, resolved here token by token: to an existing value, or, for "missing field", to a missing
 //     member of an existing object;
@@ -22,6 +23,7 @@
 #include "fuzz_support.hpp"
 #include "fuzz_text.hpp"
 
+#include "limits.hpp"
 #include "render.hpp"
 #include "scene.hpp"
 
@@ -122,7 +124,7 @@ const json* resolve(const json& doc, const std::vector<std::string>& tokens, std
   return v;
 }
 
-std::uint64_t syntax_errors = 0, errors_resolved = 0, errors_missing = 0;
+std::uint64_t syntax_errors = 0, nesting_errors = 0, errors_resolved = 0, errors_missing = 0;
 
 void check_error(std::string_view text, const cli::SceneError& error) {
   auto where = [&] { return " (error '" + error.str() + "')"; };
@@ -131,6 +133,15 @@ void check_error(std::string_view text, const cli::SceneError& error) {
   check(tokens.has_value(), [&] { return "the error's pointer is a JSON Pointer" + where(); });
 
   const json doc = json::parse(text.begin(), text.end(), nullptr, false);
+  if (error.message.starts_with("arrays and objects nested deeper than")) {
+    // Reading stops at the first array or object too deep, before any syntax error after it: its pointer has
+    // exactly max_json_depth tokens, and leads into the document whenever the text is JSON.
+    ++nesting_errors;
+    check(tokens->size() == cli::limits::max_json_depth, [&] { return "a nesting error points at the first value too deep" + where(); });
+    check(doc.is_discarded() || resolve(doc, *tokens, tokens->size()) != nullptr,
+          [&] { return "a nesting error's pointer leads into the document" + where(); });
+    return;
+  }
   const bool range_error = error.message.starts_with("number outside the double range");
   const bool syntax_error = error.message.starts_with("invalid JSON") || range_error;
   check(syntax_error == doc.is_discarded(),
@@ -370,9 +381,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       auto u = [](std::uint64_t x) { return static_cast<unsigned long long>(x); };
       std::fprintf(stderr,
                    "==== raykernel fuzz stats: scene: %llu scenes rendered (%llu pixels, %llu planes); errors: %llu "
-                   "syntax, %llu pointing at a value, %llu at a missing field; pixels by slowest stage: filter %llu, "
-                   "compensated %llu, expansion %llu, exact %llu\n",
-                   u(scenes), u(pixels), u(planes_seen), u(syntax_errors), u(errors_resolved), u(errors_missing),
+                   "syntax, %llu nesting, %llu pointing at a value, %llu at a missing field; pixels by slowest stage: "
+                   "filter %llu, compensated %llu, expansion %llu, exact %llu\n",
+                   u(scenes), u(pixels), u(planes_seen), u(syntax_errors), u(nesting_errors), u(errors_resolved), u(errors_missing),
                    u(pixels_by_stage[0]), u(pixels_by_stage[1]), u(pixels_by_stage[2]), u(pixels_by_stage[3]));
     });
     return true;

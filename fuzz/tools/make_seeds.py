@@ -472,7 +472,10 @@ def scene_variants(demo):
             ("syntax-number-overflow", text.replace('"normal": [0, 1, 0]', '"normal": [0, 1e400, 0]', 1)),
             ("syntax-number-overflow-negative", text.replace('"eye": [0.9', '"eye": [-1e99999', 1)),
             ("syntax-comment", "// a comment\n" + text), ("syntax-bom", "\ufeff" + text),
-            ("syntax-deep-nesting", "[" * 2000 + "]" * 2000), ("syntax-deep-nesting-in-field", text.replace('"fog": {"distance": 150}', '"fog": ' + "[" * 500 + "]" * 500)),
+            ("syntax-deep-nesting", "[" * 2000 + "]" * 2000), ("syntax-nesting-at-the-limit", "[" * 64 + "]" * 64),
+            ("syntax-deep-nesting-unclosed", "[" * 100000), ("syntax-deep-nesting-objects", '{"a~/": ' * 100),
+            ("mesh-file-nul", '{"camera": {"eye": [0, 2, 6], "target": [0, 0, 0]}, "planes": [], '
+                              '"meshes": [{"file": "octahedron.off\\u0000x"}]}'), ("syntax-deep-nesting-in-field", text.replace('"fog": {"distance": 150}', '"fog": ' + "[" * 500 + "]" * 500)),
             ("syntax-invalid-utf8", text.replace('"floor"', '"fl\udcffor"', 1)),
             ("duplicate-keys", text.replace('"fog": {', '"fog": {"distance": -1, ', 1)),
             ("duplicate-keys-nested", text.replace('"name": "pool",', '"name": "pool", "name": "pond",', 1)),
