@@ -6,7 +6,8 @@
 //     and the number of lines + 1, or a byte offset ≤ the input's size;
 //   - a mesh it returns is valid, decided from the bits (every coordinate finite, every index < the vertex
 //     count), and its triangles are what the readers promise: for OBJ read without line continuations, the
-//     `v` lines' first three tokens read by strtod are the vertices, bit for bit, in order;
+//     `v` lines' first three tokens read by strtod are the vertices, bit for bit, in order, and the `f` lines'
+//     references, resolved in 128-bit integers and fanned, are the triangles;
 //   - round trips: the mesh written as OBJ, OFF, PLY (ASCII, binary little- and big-endian) and read back is
 //     the same mesh bit for bit; written as ASCII STL and read back, the same triangles with unshared
 //     vertices; and, when every coordinate is a float, the same through binary STL;
@@ -17,11 +18,13 @@
 
 #include <raykernel/io/mesh_file.hpp>
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace {
 
@@ -85,6 +88,53 @@ void check_obj_vertices(const Mesh& m, std::string_view text) {
   check(v == m.vertices.size(), "OBJ: fewer v lines than vertices");
 }
 
+// The integer a face reference's vertex part denotes, in 128 bits (no 64-bit reference overflows it), or
+// false when it is not one: [+]digits or -digits, at most 38 digits.
+bool reference_value(std::string_view text, __int128& value) {
+  if (text.empty()) return false;
+  const bool negative = text[0] == '-';
+  if (text[0] == '-' || text[0] == '+') text.remove_prefix(1);
+  if (text.empty() || text.size() > 38) return false;
+  value = 0;
+  for (char c : text) {
+    if (c < '0' || c > '9') return false;
+    value = value * 10 + (c - '0');
+  }
+  if (negative) value = -value;
+  return true;
+}
+
+// The triangles an accepted OBJ file must have, worked out independently of the reader (in 128-bit integers,
+// so that no index wraps): each `f` line's vertex references, relative ones against the `v` lines before it,
+// fanned from the first. Issue 25: `f 1 2 -9223372036854775808` with a vertex after it was read as the
+// triangle [0, 1, 3]; the index checks above could not see it.
+void check_obj_faces(const Mesh& m, std::string_view text) {
+  if (text.find('\\') != std::string_view::npos) return;  // continuations: the simple reading below does not apply
+  std::vector<std::array<std::uint32_t, 3>> expected;
+  __int128 vertices_so_far = 0;
+  for (std::string_view line : raykernel::fuzz::getline_lines(text)) {
+    const auto tokens = raykernel::fuzz::tokens_of(line);
+    if (tokens.empty()) continue;
+    if (tokens[0] == "v") ++vertices_so_far;
+    if (tokens[0] != "f") continue;
+    std::vector<__int128> polygon;
+    for (std::size_t k = 1; k < tokens.size() && tokens[k][0] != '#'; ++k) {
+      __int128 value = 0;
+      check(reference_value(tokens[k].substr(0, tokens[k].find('/')), value), [&] {
+        return "OBJ: an accepted face has the reference " + std::string(tokens[k]);
+      });
+      const __int128 index = value < 0 ? vertices_so_far + value : value - 1;
+      check(index >= 0 && index < static_cast<__int128>(m.vertices.size()),
+            [&] { return "OBJ: the face reference " + std::string(tokens[k]) + " is out of range, but the file was accepted"; });
+      polygon.push_back(index);
+    }
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i)
+      expected.push_back({static_cast<std::uint32_t>(polygon[0]), static_cast<std::uint32_t>(polygon[i]),
+                          static_cast<std::uint32_t>(polygon[i + 1])});
+  }
+  check(expected == m.triangles, "OBJ: the triangles are not the fanned faces of the f lines");
+}
+
 void round_trip(const Mesh& m, std::string_view format_name) {
   using io::MeshEncoding;
   using io::MeshFormat;
@@ -140,7 +190,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       check(raykernel::fuzz::finite_vector_by_bits(v), [&] { return std::string(name) + ": a non-finite coordinate was accepted"; });
     for (const auto& t : mesh.triangles)
       for (std::uint32_t i : t) check(i < mesh.vertices.size(), [&] { return std::string(name) + ": an index out of range was accepted"; });
-    if (format == io::MeshFormat::obj) check_obj_vertices(mesh, input);
+    if (format == io::MeshFormat::obj) {
+      check_obj_vertices(mesh, input);
+      check_obj_faces(mesh, input);
+    }
     round_trip(mesh, name);
   }
   (void)io::sniff_format(input);
