@@ -74,9 +74,14 @@ FdInputBuffer::FdInputBuffer(int fd, std::size_t buffer_size) : fd_(fd), buffer_
   setg(buffer_.data(), buffer_.data(), buffer_.data());
 }
 
+void FdInputBuffer::fail(std::string reason) {
+  failure_ = std::move(reason);
+  setg(buffer_.data(), buffer_.data(), buffer_.data());
+}
+
 FdInputBuffer::int_type FdInputBuffer::underflow() {
   if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-  if (error_ != 0) return traits_type::eof();
+  if (error_ != 0 || !failure_.empty()) return traits_type::eof();
   while (true) {
     const ssize_t n = ::read(fd_, buffer_.data(), buffer_.size());
     if (n < 0) {
@@ -95,8 +100,10 @@ void use_checked_standard_streams() {
   // find their buffers then.
   static FdOutputBuffer* const out = new FdOutputBuffer(STDOUT_FILENO);
   static FdInputBuffer* const in = new FdInputBuffer(STDIN_FILENO);
+  static FdOutputBuffer* const err = new FdOutputBuffer(STDERR_FILENO, 1 << 12);
   std::cout.rdbuf(out);
   std::cin.rdbuf(in);
+  std::cerr.rdbuf(err);  // still unit-buffered: written at the end of every output operation
   if (::isatty(STDIN_FILENO) == 0) std::cin.tie(nullptr);
 }
 
@@ -130,8 +137,10 @@ Input::~Input() {
 
 std::string Input::read_error() const {
   if (stream_ == nullptr) return {};
-  if (const auto* fd_buffer = dynamic_cast<const FdInputBuffer*>(stream_->rdbuf()); fd_buffer && fd_buffer->error())
-    return system_reason(fd_buffer->error());
+  if (const auto* fd_buffer = dynamic_cast<const FdInputBuffer*>(stream_->rdbuf())) {
+    if (!fd_buffer->failure().empty()) return fd_buffer->failure();
+    if (fd_buffer->error()) return system_reason(fd_buffer->error());
+  }
   return stream_->bad() ? "read failed" : "";
 }
 
@@ -150,6 +159,12 @@ bool flush_standard_output() {
   return false;
 }
 
-int finish_standard_output(int status) { return flush_standard_output() ? status : exit_usage; }
+int finish_standard_output(int status) {
+  const bool output_ok = flush_standard_output();
+  // A write to standard error that failed lost a message or output that was asked for (--stats, a render's
+  // report when the image goes to standard output): an I/O error too, though it cannot be reported.
+  std::cerr.flush();
+  return output_ok && std::cerr ? status : exit_usage;
+}
 
 }  // namespace raykernel::cli

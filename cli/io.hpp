@@ -50,6 +50,10 @@ class FdInputBuffer : public std::streambuf {
   FdInputBuffer& operator=(const FdInputBuffer&) = delete;
 
   [[nodiscard]] int error() const noexcept { return error_; }
+  // Marks the input failed for a reason of the reader's (a line too long): reading stops, and this is the
+  // reason Input::read_error() gives.
+  void fail(std::string reason);
+  [[nodiscard]] const std::string& failure() const noexcept { return failure_; }
 
  protected:
   int_type underflow() override;
@@ -57,10 +61,11 @@ class FdInputBuffer : public std::streambuf {
  private:
   int fd_;
   int error_ = 0;
+  std::string failure_;
   std::vector<char> buffer_;
 };
 
-// Puts checked buffers under std::cout and std::cin (fd 1 and 0), once, at the start of main. std::cin
+// Puts checked buffers under std::cout, std::cin and std::cerr (fd 1, 0 and 2), once, at the start of main. std::cin
 // stays tied to std::cout (answers appear as lines are typed) only when standard input is a terminal.
 void use_checked_standard_streams();
 
@@ -94,8 +99,8 @@ class Input {
 // output: REASON" on stderr (the first time only) and returns false.
 [[nodiscard]] bool flush_standard_output();
 
-// The end of every command: `status` when everything written to std::cout reached it, else exit status 2
-// (exit_usage) after the message of flush_standard_output.
+// The end of every command: `status` when everything written to std::cout and std::cerr reached them, else
+// exit status 2 (exit_usage), after the message of flush_standard_output when std::cout failed.
 [[nodiscard]] int finish_standard_output(int status);
 
 // The system's text for an errno value ("No space left on device").

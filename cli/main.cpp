@@ -1,5 +1,6 @@
 // The raykernel command-line tool: dispatches to the subcommands.
 #include "commands.hpp"
+#include "failure.hpp"
 #include "io.hpp"
 #include "mesh_commands.hpp"
 #include "text_format.hpp"
@@ -54,17 +55,24 @@ int main(int argc, char** argv) {
     return finish_standard_output(exit_ok);
   }
   int status = exit_usage;
-  if (command == "classify") status = run_classify(args);
-  else if (command == "demo") status = run_demo(args);
-  else if (command == "nearest") status = run_nearest(args);
-  else if (command == "render") status = run_render(args);
-  else if (command == "triangle") status = run_triangle(args);
-  else if (command == "inside") status = run_inside(args);
-  else if (command == "watertight") status = run_watertight(args);
-  else {
-    std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
-    return exit_usage;
+  try {
+    if (command == "classify") status = run_classify(args);
+    else if (command == "demo") status = run_demo(args);
+    else if (command == "nearest") status = run_nearest(args);
+    else if (command == "render") status = run_render(args);
+    else if (command == "triangle") status = run_triangle(args);
+    else if (command == "inside") status = run_inside(args);
+    else if (command == "watertight") status = run_watertight(args);
+    else {
+      std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
+      return finish_standard_output(exit_usage);
+    }
+  } catch (...) {
+    // Nothing a command leaves uncaught ends in std::terminate: what was answered is kept, and exit 2.
+    (void)flush_standard_output();
+    return report_uncaught(command, std::current_exception());
   }
-  // Every command ends its own output; this catches anything written after (the message is printed once).
+  // Every command ends its own output; this catches anything written after (the message is printed once),
+  // and a failed write to standard error (requested statistics or a report lost) too.
   return finish_standard_output(status);
 }

@@ -1,4 +1,5 @@
 // raykernel inside and raykernel nearest --mesh (docs/contract.md §7).
+#include "failure.hpp"
 #include "mesh_commands.hpp"
 
 #include "options.hpp"
@@ -64,7 +65,13 @@ bool read_path_option(std::string_view command, std::string_view name, const std
 
 }  // namespace
 
+PreparedMesh prepare_mesh(Mesh&& mesh, const std::string& path) {
+  const Doing doing("the mesh " + quote(path, limits::quoted_token_bytes) + " and its BVH");
+  return PreparedMesh(std::move(mesh));  // valid: the readers return valid meshes
+}
+
 std::optional<Mesh> read_mesh_file(const std::string& path, std::ostream& err) {
+  const Doing doing("reading the mesh file " + quote(path, limits::quoted_token_bytes));
   try {
     return io::read_mesh(path);
   } catch (const io::mesh_file_error& e) {
@@ -123,7 +130,7 @@ int run_inside(const std::vector<std::string>& args) {
   }
   std::optional<Mesh> mesh = read_mesh_file(mesh_path, std::cerr);
   if (!mesh) return exit_usage;
-  const PreparedMesh prepared(std::move(*mesh));  // valid: the readers return valid meshes
+  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
 
   const std::string path = have_points ? points_path : "-";
   Input points(path);
@@ -184,7 +191,7 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
 int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path, const MeshNearestOptions& options) {
   std::optional<Mesh> mesh = read_mesh_file(mesh_path, std::cerr);
   if (!mesh) return exit_usage;
-  const PreparedMesh prepared(std::move(*mesh));  // valid: the readers return valid meshes
+  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
   Input rays(rays_path);
   if (!check_opened("nearest", "rays file", rays_path, rays)) return exit_usage;
   MeshNearestCounts counts;

@@ -15,6 +15,9 @@
 
 namespace raykernel::cli {
 
+// The mesh prepared for queries (its BVH built), with "not enough memory" naming it (failure.hpp).
+[[nodiscard]] PreparedMesh prepare_mesh(Mesh&& mesh, const std::string& path);
+
 // The mesh in a file, or nothing after printing "raykernel: FILE:LINE: REASON" (or "FILE: byte N: REASON",
 // "FILE: REASON") on `err` (docs/contract.md §7: an unreadable mesh is exit status 2, nothing on stdout).
 [[nodiscard]] std::optional<Mesh> read_mesh_file(const std::string& path, std::ostream& err);

@@ -1,4 +1,5 @@
 // raykernel nearest: the first plane each ray hits (docs/contract.md §4).
+#include "failure.hpp"
 #include "commands.hpp"
 #include "mesh_commands.hpp"
 #include "options.hpp"
@@ -231,6 +232,7 @@ int run_nearest(const std::vector<std::string>& args) {
 
   PlanesFile planes;
   {
+    const Doing doing("reading the planes file " + quote(planes_path, limits::quoted_token_bytes));
     Input planes_input(planes_path, Input::Dash::is_a_file);
     if (!check_opened("nearest", "planes file", planes_path, planes_input)) return exit_usage;
     planes = read_planes(planes_input.stream());

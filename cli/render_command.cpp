@@ -1,14 +1,17 @@
 // raykernel render: a scene of planes to PNG, with the stage and naive-difference images.
 #include "commands.hpp"
+#include "failure.hpp"
 #include "io.hpp"
 #include "limits.hpp"
 #include "options.hpp"
-#include "parallel_rows.hpp"
 #include "render.hpp"
 #include "render_summary.hpp"
 #include "scene.hpp"
 #include "text_format.hpp"
 
+#include <raykernel/parallel.hpp>
+
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -109,9 +112,22 @@ std::optional<std::uint32_t> parse_count(const std::string& text, std::uint32_t 
   return static_cast<std::uint32_t>(v);
 }
 
-// Whether two output paths name the same file: the same path once made absolute, normalized and with
-// symbolic links of existing directories resolved ("out.png", "./out.png" and "dir/../out.png" are one).
+// The file an output path names when it exists ("-": standard output), as the system identifies it: its
+// device and inode, after symbolic links (/dev/stdout, /proc/self/fd/1, a link, a hard link all show it).
+std::optional<std::pair<dev_t, ino_t>> file_identity(const std::string& path) {
+  struct stat status {};
+  const int r = path == "-" ? ::fstat(STDOUT_FILENO, &status) : ::stat(path.c_str(), &status);
+  if (r != 0) return std::nullopt;
+  return std::pair{status.st_dev, status.st_ino};
+}
+
+// Whether two outputs would write to one file: the same existing file (compared as opened, not as spelled:
+// "-o - --show-stages=/dev/stdout" is one stream), else the same path once made absolute, normalized and
+// with symbolic links of existing directories resolved ("out.png", "./out.png" and "dir/../out.png" are
+// one). /dev/null may take any number of outputs.
 bool same_file(const std::string& a, const std::string& b) {
+  const auto ia = file_identity(a), ib = file_identity(b);
+  if (ia && ib) return *ia == *ib && ia != file_identity("/dev/null");
   if (a == "-" || b == "-") return a == b;
   std::error_code ea, eb;
   const std::filesystem::path pa = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ea), ea);
@@ -262,9 +278,18 @@ int run_render(const std::vector<std::string>& args) {
   std::string text;
   std::string scene_name = "demo scene";
   if (have_scene) {
+    const Doing doing("reading the scene file " + quote(scene_path, limits::quoted_token_bytes));
     Input input(scene_path);
     if (!check_opened("render", "scene file", scene_path, input)) return exit_usage;
-    text.assign(std::istreambuf_iterator<char>(input.stream()), std::istreambuf_iterator<char>());
+    char chunk[1 << 16];
+    while (input.stream().read(chunk, sizeof chunk) || input.stream().gcount() > 0) {
+      text.append(chunk, static_cast<std::size_t>(input.stream().gcount()));
+      if (text.size() > limits::max_scene_bytes) {
+        std::cerr << "raykernel render: scene file " << input_name(scene_path) << " is larger than "
+                  << with_thousands(limits::max_scene_bytes) << " bytes, the largest scene raykernel reads\n";
+        return exit_usage;
+      }
+    }
     if (const std::string error = input.read_error(); !error.empty()) {
       std::cerr << "raykernel render: I/O error reading scene file " << input_name(scene_path) << ": " << error << '\n';
       return exit_usage;
@@ -273,6 +298,7 @@ int run_render(const std::vector<std::string>& args) {
   } else {
     text = demo_scene_json();
   }
+  const Doing doing("the scene " + (have_scene ? quote(scene_name, limits::quoted_token_bytes) : std::string("(the built-in demo)")));
   SceneParse parsed = parse_scene(text, overrides);
   if (!parsed.scene) {
     std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
@@ -290,7 +316,7 @@ int run_render(const std::vector<std::string>& args) {
   const Scene& scene = *parsed.scene;
 
   RenderOptions options;
-  options.threads = worker_threads(threads);
+  options.threads = thread_count(threads);
   options.stage_image = stages_path.has_value();
   options.compare_naive = naive_diff_path.has_value();
   options.naive_image = naive_image_path.has_value();

@@ -347,6 +347,9 @@ SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std:
   if (!file.is_string() || file.get<std::string>().empty())
     fail(child(p, "file"), "expected a file name (a non-empty string), found " + describe_type(file));
   m.file = file.get<std::string>();
+  // The system's calls end a name at its first NUL: "a.off\u0000x" would open a.off. Refuse it.
+  if (m.file.find('\0') != std::string::npos)
+    fail(child(p, "file"), "the file name contains a NUL character (\\u0000), which no file name can hold");
   m.color = scene_defaults::plane_colors[(index + 3) % scene_defaults::plane_colors.size()];
   if (const json* c = optional_field(v, "color")) m.color = color(*c, child(p, "color"));
   if (const json* t = optional_field(v, "transform")) {

@@ -1,5 +1,6 @@
 #include "text_input.hpp"
 
+#include "io.hpp"
 #include "text_format.hpp"
 
 #include <raykernel/io/number.hpp>
@@ -13,7 +14,32 @@
 namespace raykernel::cli {
 
 bool LineReader::next(std::string& line) {
-  if (!std::getline(in_, line)) return false;
+  line.clear();
+  if (!in_.good()) return false;
+  if (std::ostream* const tied = in_.tie()) tied->flush();  // answers appear as lines are typed (a terminal)
+  std::streambuf* const buffer = in_.rdbuf();
+  for (;;) {
+    const int c = buffer->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in_.setstate(std::ios::eofbit);
+      if (line.empty()) {
+        in_.setstate(std::ios::failbit);
+        return false;
+      }
+      break;  // a last line without '\n'
+    }
+    if (c == '\n') break;
+    if (line.size() == limits::max_line_bytes) {
+      // Not a text file of lines (/dev/zero, a binary file): stop, and say why (Input::read_error).
+      if (auto* fd_buffer = dynamic_cast<FdInputBuffer*>(buffer))
+        fd_buffer->fail("line " + with_thousands(line_number_ + 1) + " is longer than " + with_thousands(limits::max_line_bytes) +
+                        " bytes, the longest line raykernel reads");
+      in_.setstate(std::ios::badbit);
+      line.clear();
+      return false;
+    }
+    line += static_cast<char>(c);
+  }
   if (++line_number_ == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
   return true;
 }

@@ -16,6 +16,8 @@ inline constexpr int max_numbers_per_line = limits::max_numbers_per_line;
 
 // The lines of a query, planes or rays file, as std::getline splits them, numbered from 1. A UTF-8
 // byte-order mark (EF BB BF) at the very start of the input is dropped, as editors on some systems write it.
+// A line longer than limits::max_line_bytes ends the input as a read error (the stream goes bad; on an
+// Input's stream, Input::read_error() names the line and the limit): memory stays bounded on /dev/zero.
 class LineReader {
  public:
   explicit LineReader(std::istream& in) noexcept : in_(in) {}

@@ -272,7 +272,7 @@ int run_watertight(const std::vector<std::string>& args) {
     std::cerr << "raykernel: " << printable(mesh_path) << ": the mesh has no triangles\n";
     return exit_usage;
   }
-  const PreparedMesh prepared(std::move(*read));
+  const PreparedMesh prepared = prepare_mesh(std::move(*read), mesh_path);
   const Mesh& mesh = prepared.mesh();
   const bool closed_mesh = is_closed(mesh);
 

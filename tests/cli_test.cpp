@@ -468,6 +468,42 @@ TEST(WriteErrors, EveryCommandExitsWithTwoWhenStandardOutputIsFull) {
   }
 }
 
+// Issue 25: --stats 2>/dev/full exited 0 with the statistics lost. A failed write to standard error is an I/O
+// error too (exit 2), whatever else the command did; standard output is still complete.
+TEST(WriteErrors, AFailedWriteToStandardErrorIsExitStatusTwo) {
+  const std::string planes = temp_path("planes-stderr.txt");
+  write_file(planes, "0 0 5 0 0 1\n");
+  const std::string query = "0 0 0 0 0 1 0 0 5 0 0 1\n";
+  for (const std::string& args : {std::string("classify --stats"), "nearest --stats --planes " + planes}) {
+    const std::string input = temp_path("stdin-stderr.txt");
+    write_file(input, args.starts_with("classify") ? query : "0 0 0 0 0 1\n");
+    const int full = std::system((cli + " " + args + " < " + input + " > /dev/null 2> /dev/full").c_str());
+    ASSERT_TRUE(WIFEXITED(full)) << args;
+    EXPECT_EQ(WEXITSTATUS(full), 2) << args;
+    // The same command with standard error writable: exit 0.
+    const int fine = std::system((cli + " " + args + " < " + input + " > /dev/null 2> /dev/null").c_str());
+    ASSERT_TRUE(WIFEXITED(fine)) << args;
+    EXPECT_EQ(WEXITSTATUS(fine), 0) << args;
+  }
+}
+
+// Issue 25: `classify < /dev/zero` grew to 2.1 GB before "read failed". A line is at most 1 MiB: a longer one
+// ends the input as a read error naming the line and the limit, after the lines before it were answered.
+TEST(Input, ALineLongerThanTheLimitEndsTheInputWithANamedError) {
+  const std::string query = "0 0 0 0 0 1 0 0 5 0 0 1\n";
+  const CliRun r = run("classify", query + std::string((1u << 20) + 1, '0') + "\n" + query);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "hit 5\n");
+  EXPECT_EQ(r.err, "raykernel classify: I/O error reading standard input: line 2 is longer than 1,048,576 bytes, the longest line raykernel reads\n");
+  // Exactly the limit is a line like any other (here an invalid one).
+  const CliRun at_limit = run("classify", std::string(1u << 20, '0') + "\n" + query);
+  EXPECT_EQ(at_limit.status, 1) << at_limit.err;
+  EXPECT_EQ(at_limit.out.substr(at_limit.out.size() - 6), "hit 5\n");
+  // /dev/zero: one endless line of NUL bytes; memory stays bounded and the command ends.
+  const int status = std::system((cli + " classify < /dev/zero > /dev/null 2> /dev/null").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
 // The binary with `args`, `lines` copies of `line` written to its standard input by a thread, and a reader
 // of its standard output that reads one byte and closes the pipe; SIGPIPE is ignored (in the child too), so
 // writes to the closed pipe fail with EPIPE.

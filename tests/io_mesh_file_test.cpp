@@ -415,6 +415,14 @@ TEST(MeshFiles, ReadFromDiskNamesTheFile) {
     EXPECT_EQ(e.file(), "/dev/zero");
     EXPECT_NE(e.reason().find("device"), std::string::npos) << e.what();
   }
+  // Issue 25: a NUL in the name ended it for the system's calls, and "a.obj\0x" read a.obj. Refused.
+  try {
+    (void)read_mesh(std::filesystem::path((dir / "a.obj").string() + std::string("\0x", 2)));
+    ADD_FAILURE() << "a name with a NUL: no error";
+  } catch (const mesh_file_error& e) {
+    EXPECT_EQ(e.position().kind, FilePosition::Kind::none);
+    EXPECT_EQ(e.reason(), "the file name contains a NUL character, which no file name can hold");
+  }
   std::filesystem::remove_all(dir);
 }
 

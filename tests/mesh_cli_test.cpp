@@ -142,6 +142,9 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
       {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", ":4: "},
       {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", ":2: "},
       {"short.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", ":3: "},
+      // Issue 25: aborted (SIGABRT) with three vertices, loaded as triangle [0, 1, 3] with a fourth after.
+      {"int64-min.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n", ":4: relative vertex index"},
+      {"int64-min-then-vertex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n", ":4: relative vertex index"},
       {"count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", ""},
       {"unknown.xyz", "hello\n", ""},
       {"empty.stl", "", ""},
@@ -149,8 +152,8 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
   for (const Bad& b : bad) {
     const std::string path = temp_path(b.name);
     write_file(path, b.text);
-    for (const char* command : {"nearest --mesh ", "inside --mesh "}) {
-      const CliRun r = run(command + path, "0 0 0 1 0 0\n");
+    for (const char* command : {"nearest --mesh ", "inside --mesh ", "watertight "}) {
+      const CliRun r = run(command + path + (std::string_view(command) == "watertight " ? " --rays 10" : ""), "0 0 0 1 0 0\n");
       EXPECT_EQ(r.status, 2) << b.name;
       EXPECT_EQ(r.out, "") << b.name;
       EXPECT_EQ(r.err.rfind("raykernel: " + path + b.message, 0), 0u) << b.name << ": " << r.err;

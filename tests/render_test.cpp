@@ -355,6 +355,22 @@ TEST(Scene, BadJsonGivesLineAndColumn) {
   EXPECT_EQ(error_of("{\"a\": NaN}").substr(0, 40), "invalid JSON: parse error at line 1, col");
 }
 
+// Issue 25: 2·10^7 nested arrays (40 MB) aborted with an uncaught std::bad_alloc, 10^7 took 2.2 GB; a syntax
+// error under 10^6 levels took 48 s to locate (the pointer copied at every level). Nesting is limited, and the
+// error names the first array too deep by its pointer.
+TEST(Scene, NestingDeeperThanTheLimitIsAnErrorAtItsPointer) {
+  std::string p64;
+  for (int k = 0; k < 64; ++k) p64 += "/0";
+  EXPECT_EQ(error_of(std::string(100, '[')), p64 + ": arrays and objects nested deeper than 64 levels");
+  EXPECT_EQ(error_of(std::string(10'000'000, '[')), p64 + ": arrays and objects nested deeper than 64 levels");
+  std::string objects, pa;
+  for (int k = 0; k < 70; ++k) objects += "{\"a~/\": ";
+  for (int k = 0; k < 64; ++k) pa += "/a~0~1";
+  EXPECT_EQ(error_of(objects), pa + ": arrays and objects nested deeper than 64 levels");
+  // 64 levels are fine for the parser (the scene's own checks then speak).
+  EXPECT_EQ(error_of(std::string(64, '[') + std::string(64, ']')), "expected an object, found an array");
+}
+
 TEST(Scene, AMinimalSceneTakesTheDefaults) {
   // A camera (eye and target) and planes (point and normal) only.
   const SceneParse s = parse_scene(R"({"camera": {"eye": [0, 2, 6], "target": [0, 0, 0]},
@@ -750,6 +766,47 @@ TEST(RenderCommand, TwoOutputsWithTheSamePathAreRefused) {
     EXPECT_NE(r.err.find("name the same file"), std::string::npos) << args << ": " << r.err;
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir)) << "nothing is written";
+  // Issue 25: compared as opened, not as spelled: /dev/stdout is standard output (two PNGs on one stream
+  // exited 0), and a hard link or a symbolic link to an existing file is that file.
+  const CliRun r = run("render --width 4 --height 4 --no-progress -o - --show-stages=/dev/stdout", "", dir);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("name the same file"), std::string::npos) << r.err;
+  write_file(dir + "/a.png", "old");
+  std::filesystem::create_hard_link(dir + "/a.png", dir + "/hard.png");
+  std::filesystem::create_symlink("a.png", dir + "/soft.png");
+  for (const std::string& other : {std::string("hard.png"), std::string("soft.png")}) {
+    const CliRun link = run("render --width 4 --height 4 --no-progress -o a.png --show-stages=" + other, "", dir);
+    EXPECT_EQ(link.status, 2) << other;
+    EXPECT_NE(link.err.find("name the same file"), std::string::npos) << other << ": " << link.err;
+  }
+  EXPECT_EQ(read_file(dir + "/a.png"), "old");
+  // /dev/null takes any number of outputs.
+  EXPECT_EQ(run("render --width 4 --height 4 --no-progress -o /dev/null --show-stages=/dev/null", "", dir).status, 0);
+}
+
+// Issue 25: `render --threads 500` under `ulimit -v 4000000` and `--threads 100` under a process limit of 64
+// ended in std::terminate (a std::thread destroyed while joinable when the next one failed to start). Threads
+// the system refuses are no error: the render completes on those that started, the same image.
+TEST(RenderCommand, ThreadsTheSystemRefusesAreNoError) {
+  const std::string dir = temp_path("few-threads");
+  std::filesystem::create_directories(dir);
+  // 256 threads need 2 GB of stacks: under a 600 MB address-space limit most cannot start.
+  const int limited = std::system(("ulimit -s 8192 && ulimit -v 600000 && cd '" + dir + "' && " + cli +
+                                   " render --width 32 --height 16 --no-progress --threads 256 -o limited.png > out.txt 2> err.txt")
+                                      .c_str());
+  ASSERT_TRUE(WIFEXITED(limited)) << read_file(dir + "/err.txt");
+  EXPECT_EQ(WEXITSTATUS(limited), 0) << read_file(dir + "/err.txt");
+  const std::string report = read_file(dir + "/out.txt");
+  EXPECT_NE(report.find("the system started "), std::string::npos) << "the limit did refuse threads: " << report;
+  EXPECT_NE(report.find(" of the 256 threads asked for; they rendered every row"), std::string::npos) << report;
+  const CliRun free = run("render --width 32 --height 16 --no-progress --threads 1 -o free.png", "", dir);
+  ASSERT_EQ(free.status, 0) << free.err;
+  EXPECT_EQ(read_file(dir + "/limited.png"), read_file(dir + "/free.png"));
+  // More than raykernel::max_threads is a usage error naming the limit.
+  const CliRun many = run("render --threads 257");
+  EXPECT_EQ(many.status, 2);
+  EXPECT_NE(many.err.find("--threads needs an integer from 1 to 256"), std::string::npos) << many.err;
 }
 
 TEST(RenderCommand, DerivedNamesReplaceAPngExtensionInAnyCase) {
@@ -910,6 +967,15 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
   // A device is never read (/dev/zero would never end).
   EXPECT_EQ(load_error(R"([{"file": "/dev/zero"}])"), "/meshes/0/file: /dev/zero: not a regular file");
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off"}, {"file": "octahedron.off", "color": [0, 0, 1]}])"), "(valid)");
+  // Issue 25: a NUL in the name was cut off by the system's calls and octahedron.off was read instead.
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off\u0000x"}])"),
+            "/meshes/0/file: the file name contains a NUL character (\\u0000), which no file name can hold");
+  // Issue 25: a mesh file whose face index overflows when negated names its file and line (render exited 2
+  // with neither).
+  const std::string bad_obj = temp_path("int64-min.obj");
+  write_file(bad_obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n");
+  EXPECT_EQ(load_error(R"([{"file": ")" + bad_obj + R"("}])"),
+            "/meshes/0/file: " + bad_obj + ":4: relative vertex index -9223372036854775808 is out of range (3 vertices so far)");
 }
 
 TEST(RenderMesh, TheCommandRendersMeshesAndReportsBadOnesWithExitTwo) {

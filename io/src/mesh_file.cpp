@@ -95,6 +95,8 @@ Mesh read_mesh(std::string_view bytes, std::string_view name, MeshFormat format)
 Mesh read_mesh(const std::filesystem::path& path) {
   const std::string name = path.string();
   const detail::ErrorSink errors(name);
+  // The system's calls end a name at its first NUL: "a.off\0x" would read a.off. Refuse it.
+  if (name.find('\0') != std::string::npos) errors.whole_file("the file name contains a NUL character, which no file name can hold");
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (std::filesystem::is_directory(status)) errors.whole_file("is a directory");
