@@ -16,12 +16,28 @@ std::vector<std::string>& doing_stack() {
   return stack;
 }
 
+// The innermost Doing that an exception unwound, kept for main's message (the Doing itself is gone by then).
+std::string& unwound() {
+  static std::string what;
+  return what;
+}
+
 }  // namespace
 
-Doing::Doing(std::string what) { doing_stack().push_back(std::move(what)); }
-Doing::~Doing() { doing_stack().pop_back(); }
+Doing::Doing(std::string what) : exceptions_(std::uncaught_exceptions()) {
+  unwound().clear();  // an exception that unwound an earlier Doing was handled: it is not main's to report
+  doing_stack().push_back(std::move(what));
+}
 
-std::string what_is_being_done() { return doing_stack().empty() ? std::string() : doing_stack().back(); }
+Doing::~Doing() {
+  if (std::uncaught_exceptions() > exceptions_ && unwound().empty()) unwound() = std::move(doing_stack().back());
+  doing_stack().pop_back();
+}
+
+std::string what_is_being_done() {
+  if (!unwound().empty()) return unwound();
+  return doing_stack().empty() ? std::string() : doing_stack().back();
+}
 
 int report_uncaught(std::string_view command, const std::exception_ptr& failure) noexcept {
   std::string message = "raykernel";

@@ -17,9 +17,12 @@ class Doing {
   ~Doing();
   Doing(const Doing&) = delete;
   Doing& operator=(const Doing&) = delete;
+
+ private:
+  int exceptions_;  // std::uncaught_exceptions() at construction: more at destruction means unwinding
 };
 
-// What the innermost Doing names ("" when none is in scope).
+// What the innermost Doing an exception unwound named, else the innermost in scope ("" when none).
 [[nodiscard]] std::string what_is_being_done();
 
 // Prints the message for an exception that reached main — "raykernel COMMAND: not enough memory for
