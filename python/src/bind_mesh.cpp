@@ -274,7 +274,7 @@ the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. 
 
   m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
         py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-        R"doc(``inside`` over an (n, 3) float64 array of points, on threads, with the GIL released.
+        R"doc(``inside`` over an (n, 3) array of points (real numbers, read as float64), on threads, with the GIL released.
 
 Returns ``PointLocationArrays(location, valid)``: ``location`` uint8 ``PointLocation.code`` per row
 (``INVALID_RELATION_CODE`` where the point is not finite), ``valid`` bool. ``path``: "certified" (``inside``,

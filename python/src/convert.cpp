@@ -100,6 +100,7 @@ void load_types() {
   const py::object stage = m.attr("Stage");
   t->stage = {stage.attr("FILTER"), stage.attr("COMPENSATED"), stage.attr("EXPANSION"), stage.attr("EXACT")};
   t->fraction = py::module_::import("fractions").attr("Fraction");
+  t->masked_array = py::module_::import("numpy.ma").attr("MaskedArray");  // numpy is imported by _types already
   // The C++ enums' values are the codes the arrays carry; the Python enums must agree.
   for (int k = 0; k < 4; ++k)
     if (t->relation[static_cast<std::size_t>(k)].attr("code").cast<int>() != k)
@@ -255,10 +256,33 @@ py::object to_python(const ExactTriangleIntersection& x) {
       x.t ? to_fraction(*x.t) : py::none(), exact_barycentric);
 }
 
+py::array numeric_array(py::handle value, std::string_view name, Numbers numbers, std::string_view wanted) {
+  const std::string expected = str(name) + ": expected " + str(wanted) + ", got ";
+  // Before numpy.asarray, which would give the masked array's data alone.
+  if (py::isinstance(value, types().masked_array))
+    throw py::type_error(expected + "a numpy.ma.MaskedArray, whose mask would be ignored: pass numpy.ma.getdata(x) to "
+                                    "use every value, or only the rows to keep");
+  const py::array array = py::array::ensure(value);  // the value's own dtype: no cast, no copy of an ndarray
+  if (!array) throw py::type_error(expected + type_name(value));
+  const char kind = array.dtype().kind();
+  const bool accepted = kind == 'i' || kind == 'u' ||
+                        (kind == 'f' && (numbers == Numbers::real || array.size() == 0));
+  if (!accepted) throw py::type_error(expected + "an array of dtype " + py::str(array.dtype()).cast<std::string>());
+  return array;
+}
+
+std::string shape_string(const py::array& array) {
+  std::string shape = "(";
+  for (py::ssize_t k = 0; k < array.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array.shape(k));
+  return shape + (array.ndim() == 1 ? ",)" : ")");
+}
+
 ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_single) {
   const std::string shape_wanted = allow_single ? "an array of shape (n, 3) or (3,)" : "an array of shape (n, 3)";
-  array_ = py::array_t<double, py::array::forcecast>::ensure(value);
-  if (!array_) throw py::type_error(str(name) + ": expected " + shape_wanted + " of numbers, got " + type_name(value));
+  // A float64 array is used as it is; another real dtype is converted to float64 (a new array).
+  array_ = py::array_t<double, py::array::forcecast>::ensure(
+      numeric_array(value, name, Numbers::real, shape_wanted + " of real numbers (an integer or floating dtype)"));
+  if (!array_) throw py::type_error(str(name) + ": the array cannot be read as float64");  // out of memory
   const auto* base = reinterpret_cast<const char*>(array_.data());
   if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
     single_ = true;
@@ -266,12 +290,8 @@ ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_sin
     for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(0);
     return;
   }
-  if (array_.ndim() != 2 || array_.shape(1) != 3) {
-    std::string shape = "(";
-    for (py::ssize_t k = 0; k < array_.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array_.shape(k));
-    shape += array_.ndim() == 1 ? ",)" : ")";
-    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape);
-  }
+  if (array_.ndim() != 2 || array_.shape(1) != 3)
+    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape_string(array_));
   rows_ = static_cast<std::size_t>(array_.shape(0));
   row_stride_ = array_.strides(0);
   for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(1);
