@@ -1,6 +1,7 @@
 """Hostile inputs (issue 25): values NumPy or Python would silently change on the way into the kernel are refused,
 naming the argument and why, and values that are right are answered — bit for bit as before.
 
+- Mesh triangles: integer arrays only, each index checked against [0, vertex count) without wrapping.
 - Every vectorized entry point: real numeric arrays only (integer or floating dtypes); complex, str, bytes, object,
   datetime, timedelta, structured and bool arrays, and masked arrays (whose masks would be ignored), raise
   TypeError naming the argument and the dtype.
@@ -17,6 +18,53 @@ import raykernel as rk
 from raykernel._raykernel import testkit
 
 from test_arrays import same_bits
+
+# ---- Mesh(vertices, triangles) -------------------------------------------------------------------------------
+
+VERTICES = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+
+
+@pytest.mark.parametrize("triangles, dtype", [
+    ([[0, 1, 1.9]], "float64"),    # was truncated to 1
+    ([[0, 1, -0.5]], "float64"),   # was truncated to 0
+    ([[0, 1, 2.0]], "float64"),    # integral, but a float array all the same
+    (np.array([[0, 1, np.nan]]), "float64"),
+    (np.array([[0, 1, 2]], dtype=np.float32), "float32"),
+    ([[True, False, True]], "bool"),
+    (np.array([[0, 1, 2]], dtype=complex), "complex128"),
+    (np.array([["0", "1", "2"]]), "<U1"),
+    (np.array([[0, 1, 2]], dtype=object), "object"),
+])
+def test_mesh_triangles_must_be_an_integer_array(triangles, dtype):
+    with pytest.raises(TypeError, match=r"^triangles: expected an \(m, 3\) array of integer vertex indices, got an "
+                                        rf"array of dtype {dtype}"):
+        rk.Mesh(VERTICES, triangles)
+
+
+def test_mesh_triangles_of_every_integer_dtype_are_checked_without_wrapping():
+    for dtype in (np.int8, np.uint8, np.int16, np.uint16, np.int32, np.uint32, np.int64, np.uint64):
+        mesh = rk.Mesh(VERTICES, np.array([[0, 1, 2]], dtype=dtype))
+        assert mesh.triangles.tolist() == [[0, 1, 2]] and mesh.triangles.dtype == np.int64, dtype
+    assert rk.Mesh(VERTICES, [[2, 1, 0], [0, 1, 2]]).triangles.tolist() == [[2, 1, 0], [0, 1, 2]]  # lists of ints
+    # uint64 max was read as int64 −1 (and 2^32 + 1 would wrap to 1 through uint32): each is named as it is.
+    for triangles, value in [(np.array([[0, 2**64 - 1, 2]], dtype=np.uint64), 2**64 - 1),
+                             (np.array([[0, 2**32 + 1, 2]], dtype=np.int64), 2**32 + 1),
+                             (np.array([[0, -1, 2]], dtype=np.int8), -1),
+                             (np.array([[0, 3, 2]], dtype=np.uint8), 3)]:
+        with pytest.raises(rk.InvalidInput, match=rf"^mesh: triangle 0: vertex index {value} \(triangles\[0, 1\]\) "
+                                                  r"is out of range \(3 vertices\)$"):
+            rk.Mesh(VERTICES, triangles)
+    with pytest.raises(rk.InvalidInput, match=r"^mesh: triangle 1: vertex index 3 \(triangles\[1, 2\]\)"):
+        rk.Mesh(VERTICES, np.array([[0, 1, 2], [0, 1, 3]], dtype=np.int32))
+    # An empty array has no index to be wrong: numpy.zeros((0, 3)) (float64) is an empty mesh.
+    assert len(rk.Mesh(VERTICES, np.zeros((0, 3)))) == 0 and len(rk.Mesh(VERTICES, np.zeros((0, 3), dtype=int))) == 0
+
+
+def test_mesh_masked_triangles_are_refused():
+    masked = np.ma.masked_array([[0, 1, 2]], mask=[[False, False, True]])
+    with pytest.raises(TypeError, match=r"^triangles: .*numpy\.ma\.MaskedArray"):
+        rk.Mesh(VERTICES, masked)
+
 
 # ---- every vectorized entry point: real numeric arrays only ----------------------------------------------------
 
