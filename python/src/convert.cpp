@@ -45,6 +45,28 @@ py::object fast_sequence(py::handle value, std::string_view field, Py_ssize_t co
   return holder;
 }
 
+// CPython converts decimal strings of at most this many digits to and from ints whatever
+// sys.set_int_max_str_digits() says: it is _PY_LONG_MAX_STR_DIGITS_THRESHOLD, below which the limit is not
+// consulted, and the smallest limit a program may set. Longer strings may be refused (4300 digits by default).
+constexpr std::size_t always_convertible_digits = 640;
+
+// A new reference from the Python C API, or the Python error it set.
+py::object checked(PyObject* result) {
+  if (result == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::object>(result);
+}
+
+// A Python int from decimal digits ('-' allowed first) of any length: pieces of at most
+// always_convertible_digits, joined as high·10^h + low by halves (no quadratic digit-by-digit loop).
+py::object int_from_decimal(std::string_view digits) {
+  if (!digits.empty() && digits.front() == '-') return -int_from_decimal(digits.substr(1));
+  if (digits.size() <= always_convertible_digits)
+    return checked(PyLong_FromString(std::string(digits).c_str(), nullptr, 10));
+  const std::size_t low = digits.size() / 2;  // leading zeros of the low half are read as zeros
+  const py::object scale = checked(PyNumber_Power(py::int_(10).ptr(), py::int_(low).ptr(), Py_None));
+  return int_from_decimal(digits.substr(0, digits.size() - low)) * scale + int_from_decimal(digits.substr(digits.size() - low));
+}
+
 template <class Pair>
 Pair pair_from(py::handle value, std::string_view name, const char* first, const char* second) {
   const py::object seq = fast_sequence(value, name, 2, "(" + std::string(first) + ", " + second + ")");
@@ -182,10 +204,41 @@ Relation relation_from(py::handle value, std::string_view field) {
   throw py::type_error(str(field) + ": expected a raykernel.Relation, got " + type_name(value));
 }
 
-std::string decimal_digits(py::handle integer, std::string_view field) {
-  if (!PyLong_Check(integer.ptr()) || PyBool_Check(integer.ptr()))
-    throw py::type_error(str(field) + ": expected an int, got " + type_name(integer));
-  return py::str(integer).cast<std::string>();
+py::int_ int_from(py::handle value, std::string_view field) {
+  if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr()))
+    throw py::type_error(str(field) + ": expected an int, got " + type_name(value));
+  return py::reinterpret_borrow<py::int_>(value);
+}
+
+double round_to_double(const py::int_& numerator, const py::int_& denominator) {
+  // The kernel rounds a rational given as decimal strings. Python ints of any size are first reduced to a
+  // rational y = m/2^(K+1) that rounds to the same double as x = numerator/denominator, with m below 2^2101 (at
+  // most 633 digits) and 2^(K+1) of 324 digits: within always_convertible_digits.
+  //
+  // Why y rounds like x. Take x ≥ 0 (the sign is put back on m), x = a/b, K = 1075, q = ⌊a·2^K/b⌋, s = 1 when
+  // that division is inexact, else 0, and m = 2q + s. Every double is a multiple of 2^-1074 and every point where
+  // the rounding to nearest-even changes (the midpoint of two neighbouring doubles, or the overflow threshold
+  // 2^1024 − 2^970) a multiple of 2^-1075 = 2^-K. If s = 0, y = x. If s = 1, x and y = (q + 1/2)/2^K both lie
+  // strictly between q/2^K and (q + 1)/2^K, consecutive multiples of 2^-K: no such point separates them and
+  // neither is one, so they round alike. y = 0 only when x = 0, so a nonzero x that rounds to zero keeps its sign.
+  // An x ≥ 2^1025 rounds to inf as 2^1025 does and is replaced by it; then x ≤ 2^1025, q ≤ 2^(1025+K) and
+  // m ≤ 2^2101 (633 digits). The cost: a shift of a and one division whose quotient q has at most 2101 bits.
+  constexpr int K = 1075;
+  const bool negative = (numerator < py::int_(0)) != (denominator < py::int_(0));
+  py::object a = checked(PyNumber_Absolute(numerator.ptr()));
+  py::object b = checked(PyNumber_Absolute(denominator.ptr()));
+  if (a >= (b << py::int_(1025))) {
+    a = py::int_(1) << py::int_(1025);
+    b = py::int_(1);
+  }
+  const py::tuple qr = checked(PyNumber_Divmod((a << py::int_(K)).ptr(), b.ptr()));
+  const py::object q = qr[0], remainder = qr[1];
+  const int s = PyObject_IsTrue(remainder.ptr());  // a nonzero remainder: the division is inexact
+  const py::object m = (q << py::int_(1)) + py::int_(s);
+  const py::object two_to_k1 = py::int_(1) << py::int_(K + 1);
+  const std::string digits = py::str(m).cast<std::string>();
+  return round_rational_to_double(negative && digits != "0" ? "-" + digits : digits,
+                                  py::str(two_to_k1).cast<std::string>());
 }
 
 py::object to_python(const Vec3& v) { return types().vec3(v.x, v.y, v.z); }
@@ -202,12 +255,7 @@ py::object to_python(const TracedIntersection& x) {
 }
 
 py::object to_fraction(const Rational& r) {
-  auto integer = [](const std::string& digits) {
-    PyObject* v = PyLong_FromString(digits.c_str(), nullptr, 10);
-    if (v == nullptr) throw py::error_already_set();
-    return py::reinterpret_steal<py::object>(v);
-  };
-  return types().fraction(integer(r.numerator), integer(r.denominator));
+  return types().fraction(int_from_decimal(r.numerator), int_from_decimal(r.denominator));
 }
 
 py::object to_python(const ExactIntersection& x) {

@@ -77,8 +77,13 @@ void load_types();
 [[nodiscard]] double double_from(py::handle value, std::string_view field);
 // A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).
 [[nodiscard]] Relation relation_from(py::handle value, std::string_view field = "relation");
-// An integer as its decimal digits (for exact rationals): Python ints of any size.
-[[nodiscard]] std::string decimal_digits(py::handle integer, std::string_view field);
+// A Python int (not a bool), or TypeError naming `field`.
+[[nodiscard]] py::int_ int_from(py::handle value, std::string_view field);
+// The exact rational numerator/denominator (Python ints of any size, denominator nonzero) rounded to the nearest
+// double by the kernel's round_rational_to_double: ties to even, overflow to ±inf, gradual underflow, a nonzero
+// value that rounds to zero keeps its sign. No decimal string of more than 640 digits is made on the way, so
+// sys.set_int_max_str_digits() never refuses it and a huge int costs one division.
+[[nodiscard]] double round_to_double(const py::int_& numerator, const py::int_& denominator);
 
 // ---------------------------------------------------------------------------------------------------------
 // Building Python results.
@@ -98,7 +103,8 @@ void load_types();
 [[nodiscard]] py::object to_python(const TriangleClassification& x);
 [[nodiscard]] py::object to_python(const TracedTriangleIntersection& x);
 [[nodiscard]] py::object to_python(const ExactTriangleIntersection& x);
-// An exact rational (decimal strings in lowest terms) as a fractions.Fraction.
+// An exact rational (decimal strings in lowest terms) as a fractions.Fraction, whatever the number of digits and
+// sys.set_int_max_str_digits() (the digits are converted in pieces CPython always converts).
 [[nodiscard]] py::object to_fraction(const Rational& r);
 
 // ---------------------------------------------------------------------------------------------------------

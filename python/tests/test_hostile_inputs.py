@@ -5,6 +5,8 @@ naming the argument and why, and values that are right are answered — bit for 
 - Every vectorized entry point: real numeric arrays only (integer or floating dtypes); complex, str, bytes, object,
   datetime, timedelta, structured and bool arrays, and masked arrays (whose masks would be ignored), raise
   TypeError naming the argument and the dtype.
+- Python ints and exact rationals of any size cross between Python and C++ without decimal strings of more
+  than the 640 digits CPython always converts (sys.get_int_max_str_digits()).
 """
 
 import math
@@ -154,3 +156,87 @@ def test_batches_take_integer_and_floating_arrays_and_lists(name, call, arrays):
         got = answers(call({k: convert(x) for k, x in arrays.items()}))
         assert len(got) == len(reference) and all(
             same_bits(g, r) if r.dtype == np.float64 else (g == r).all() for g, r in zip(got, reference)), name
+
+
+# ---- Python ints and exact rationals of any size --------------------------------------------------------------
+
+
+def oracle(n: int, d: int) -> float:
+    """n/d rounded to the nearest double, ties to even: CPython's int true division is correctly rounded (with
+    gradual underflow and the sign on a zero); it raises OverflowError where the rounding overflows to ±inf."""
+    try:
+        return n / d
+    except OverflowError:
+        return math.inf if (n > 0) == (d > 0) else -math.inf
+
+
+def bits(x: float) -> str:
+    return float.hex(x)
+
+
+def test_round_rational_to_double_of_huge_ints():
+    assert rk.round_rational_to_double(Fraction(10**5000, 3)) == math.inf
+    assert rk.round_rational_to_double(Fraction(-(10**5000), 3)) == -math.inf
+    assert rk.round_rational_to_double(10**5000) == math.inf
+    assert bits(rk.round_rational_to_double(Fraction(1, 10**5000))) == "0x0.0p+0"
+    assert bits(rk.round_rational_to_double(Fraction(-1, 10**5000))) == "-0x0.0p+0"
+    assert bits(rk.round_rational_to_double(-1, 10**5000)) == "-0x0.0p+0"
+    assert bits(rk.round_rational_to_double(1, -(10**5000))) == "-0x0.0p+0"
+    # Ties and near-ties scaled by a 5000-digit factor (two ints: the quotient is not reduced first).
+    big = 10**5000 + 7
+    assert rk.round_rational_to_double((2**53 + 1) * big, big) == 2.0**53  # a tie: to even
+    assert rk.round_rational_to_double((2**53 + 3) * big, big) == 2.0**53 + 4
+    assert rk.round_rational_to_double((2**54 + 3) * big, 2 * big) == 2.0**53 + 2  # 2^53 + 3/2: above the tie
+    assert rk.round_rational_to_double(((2**53 + 1) * big + 1), big) == 2.0**53 + 2  # just above a tie
+    assert rk.round_rational_to_double(((2**53 + 1) * big - 1), big) == 2.0**53  # just below it
+    # The smallest subnormal, half of it (a tie: to 0) and just above the half, at 5000 digits.
+    assert rk.round_rational_to_double(big, big * 2**1074) == 5e-324
+    assert bits(rk.round_rational_to_double(big, big * 2**1075)) == "0x0.0p+0"
+    assert rk.round_rational_to_double(big + 1, big * 2**1075) == 5e-324
+    # The largest double, the overflow threshold 2^1024 − 2^970 (a tie: to even, which is inf) and below it.
+    max_double = (2**53 - 1) * 2**971
+    assert rk.round_rational_to_double(max_double * big, big) == sys.float_info.max
+    assert rk.round_rational_to_double((2**1024 - 2**970) * big, big) == math.inf
+    assert rk.round_rational_to_double((2**1024 - 2**970) * big - 1, big) == sys.float_info.max
+
+
+def test_round_rational_to_double_equals_the_oracle_at_every_size():
+    rng = np.random.default_rng(25)
+    for _ in range(3000):
+        bits_n, bits_d = (int(b) for b in rng.integers(1, 20000, 2))
+        n = int.from_bytes(rng.bytes(bits_n // 8 + 1), "little") >> (7 - bits_n % 8) or 1
+        d = int.from_bytes(rng.bytes(bits_d // 8 + 1), "little") >> (7 - bits_d % 8) or 1
+        # Bring the quotient near the double range's interesting parts: 1, the subnormals, the overflow.
+        shift = int(rng.choice([0, -1074, -1060, 1000, 1023, 1024])) + int(rng.integers(-60, 60))
+        n, d = (n << shift, d) if shift >= 0 else (n, d << -shift)
+        n = -n if rng.integers(2) else n
+        d = -d if rng.integers(2) else d
+        want = oracle(n, d)
+        assert bits(rk.round_rational_to_double(n, d)) == bits(want), (n.bit_length(), d.bit_length(), shift)
+        assert bits(rk.round_rational_to_double(Fraction(n, d))) == bits(want)
+
+
+@pytest.fixture
+def int_max_str_digits_640():
+    """The smallest limit Python lets a program set: every conversion must still work under it."""
+    old = sys.get_int_max_str_digits()
+    sys.set_int_max_str_digits(640)
+    yield
+    sys.set_int_max_str_digits(old)
+
+
+def test_exact_rationals_cross_under_the_smallest_digit_limit(int_max_str_digits_640):
+    # Subnormal and huge coordinates make exact values of 600 to 1,900 decimal digits (see the digit counts).
+    big, tiny = 1.7e308, 5e-324
+    ray, plane = ((tiny, big, tiny), (big, tiny, 3e-320)), ((big, tiny, -big), (tiny, big, 1.1e-300))
+    x = rk.intersect_exact_rational(ray, plane)
+    assert max(x.exact_t.numerator.bit_length(), x.exact_t.denominator.bit_length()) > 4000  # 1,200 digits
+    assert x.exact_t == x.num / x.den and oracle(x.exact_t.numerator, x.exact_t.denominator) == x.t
+    tri_ray = ((tiny, 1.0, -big), (tiny, 3e-320, 1.0))
+    tri = ((big, 1, tiny), (-tiny, big, 1e-300), (1e-310, -1e300, big))
+    y = rk.intersect_exact_rational(tri_ray, tri)
+    assert max(y.exact_t.numerator.bit_length(), y.exact_t.denominator.bit_length()) > 6000  # 1,800 digits
+    assert y.exact_t == y.num / y.den and sum(y.exact_barycentric) == 1
+    assert rk.round_rational_to_double(y.exact_t) == y.t
+    assert rk.round_rational_to_double(Fraction(10**700 + 1, 10**699)) == 10.0
+    assert rk.round_rational_to_double(-(10**700)) == -math.inf
