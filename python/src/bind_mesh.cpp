@@ -269,19 +269,30 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
   m.def(
       "load_mesh",
       [](const std::string& path) {
-        Mesh mesh;
-        {
-          py::gil_scoped_release release;
-          mesh = io::read_mesh(std::filesystem::path(path));
+        // The file APIs end a path at its first NUL: "a.off\0b" would open a.off. Python's open() refuses such
+        // a path (ValueError "embedded null byte"); so does this, as the MeshFileError of a file that cannot be
+        // read, with the NUL shown as \0 (the message is a C string: a raw NUL would cut it short).
+        if (path.find('\0') != std::string::npos) {
+          std::string shown;
+          for (const char c : path) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
+          throw io::mesh_file_error(shown, {}, "the path contains a NUL character, which no file name can");
         }
         py::gil_scoped_release release;
-        return PythonMesh(std::move(mesh));
+        Mesh mesh = io::read_mesh(std::filesystem::path(path));
+        try {
+          return PythonMesh(std::move(mesh));
+        } catch (const invalid_input& e) {
+          // The readers check what validating the mesh checks (indices in range, finite coordinates), so this is
+          // a reader's miss; it is still the file's problem, and reported as one: "FILE: mesh: triangle 0: ...".
+          throw io::mesh_file_error(path, {}, e.what());
+        }
       },
       py::arg("path"),
       R"doc(The mesh in the file at ``path`` (OBJ, PLY, STL or OFF: the extension's format, else the content's),
 read exactly: decimal coordinates correctly rounded, binary ones widened exactly, polygons fanned from their
 first vertex (docs/contract.md §7). Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the
-line or byte offset and the reason. Releases the GIL.)doc");
+line or byte offset and the reason — for every file that cannot be read as a mesh, and for a path (str or
+bytes) containing a NUL character, which ``open()`` refuses too. Releases the GIL.)doc");
 
   m.def(
       "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },
