@@ -55,7 +55,8 @@ Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
   mesh.vertices.reserve(v.rows());
   for (std::size_t i = 0; i < v.rows(); ++i) mesh.vertices.push_back(v.row(i));
   // Integer dtypes only: a float index is refused rather than truncated (1.9 → 1, −0.5 → 0, NaN → −2^63).
-  const py::array t = numeric_array(triangles, "triangles", Numbers::integer, "an (m, 3) array of integer vertex indices");
+  const py::array t =
+      numeric_array(triangles, "triangles", Numbers::integer, "an (m, 3) array of integer vertex indices");
   if (t.ndim() != 2 || t.shape(1) != 3)
     throw py::value_error("triangles: expected an (m, 3) array of vertex indices, got shape " + shape_string(t));
   if (t.dtype().kind() == 'u')
@@ -312,7 +313,8 @@ the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. 
 
   m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
         py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-        R"doc(``inside`` over an (n, 3) array of points (real numbers, read as float64), on threads, with the GIL released.
+        R"doc(``inside`` over an (n, 3) array of points (real numbers, read as float64), on threads, with the GIL
+released.
 
 Returns ``PointLocationArrays(location, valid)``: ``location`` uint8 ``PointLocation.code`` per row
 (``INVALID_RELATION_CODE`` where the point is not finite), ``valid`` bool. ``path``: "certified" (``inside``,

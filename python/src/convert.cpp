@@ -64,7 +64,8 @@ py::object int_from_decimal(std::string_view digits) {
     return checked(PyLong_FromString(std::string(digits).c_str(), nullptr, 10));
   const std::size_t low = digits.size() / 2;  // leading zeros of the low half are read as zeros
   const py::object scale = checked(PyNumber_Power(py::int_(10).ptr(), py::int_(low).ptr(), Py_None));
-  return int_from_decimal(digits.substr(0, digits.size() - low)) * scale + int_from_decimal(digits.substr(digits.size() - low));
+  return int_from_decimal(digits.substr(0, digits.size() - low)) * scale +
+         int_from_decimal(digits.substr(digits.size() - low));
 }
 
 template <class Pair>
@@ -212,7 +213,7 @@ py::int_ int_from(py::handle value, std::string_view field) {
 
 double round_to_double(const py::int_& numerator, const py::int_& denominator) {
   // The kernel rounds a rational given as decimal strings. Python ints of any size are first reduced to a
-  // rational y = m/2^(K+1) that rounds to the same double as x = numerator/denominator, with m below 2^2101 (at
+  // rational y = m/2^(K+1) that rounds to the same double as x = numerator/denominator, with m ≤ 2^2101 (at
   // most 633 digits) and 2^(K+1) of 324 digits: within always_convertible_digits.
   //
   // Why y rounds like x. Take x ≥ 0 (the sign is put back on m), x = a/b, K = 1075, q = ⌊a·2^K/b⌋, s = 1 when

@@ -121,17 +121,18 @@ enum class Numbers { real, integer };
 // (the imaginary part dropped), bool, str and bytes (parsed), object (float() of each item), datetime64 and
 // timedelta64, structured and void, floats for indices (truncated: 1.9 → 1, NaN → -2^63) — and a
 // numpy.ma.MaskedArray, whose mask would be dropped, silently answering the rows it masks.
-[[nodiscard]] py::array numeric_array(py::handle value, std::string_view name, Numbers numbers, std::string_view wanted);
+[[nodiscard]] py::array numeric_array(py::handle value, std::string_view name, Numbers numbers,
+                                      std::string_view wanted);
 
 // "(4, 2)", "(3,)": an array's shape as NumPy prints it.
 [[nodiscard]] std::string shape_string(const py::array& array);
 
 // The rows of an (n, 3) array of real numbers (numeric_array; read as float64: exactly for float16, float32 and
 // integers up to 2^53, to the nearest double beyond, as float() does), or of a single 3-vector, a broadcast row,
-// when allowed; any memory layout. Construct with the GIL held (it converts the Python value); reading needs no GIL. The batch API
-// takes contiguous columns: `columns(begin, end)` gives them as views into the array when its columns are
-// contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the rows
-// [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
+// when allowed; any memory layout. Construct with the GIL held (it converts the Python value); reading needs no
+// GIL. The batch API takes contiguous columns: `columns(begin, end)` gives them as views into the array when its
+// columns are contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the
+// rows [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
 // row-major array in chunks that stay in cache instead of copying it whole.
 class ColumnsView {
  public:
