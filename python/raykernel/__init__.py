@@ -19,7 +19,9 @@ formula / Möller–Trumbore, no guarantee), ``intersect_traced``, ``validate``;
 OFF), ``nearest_hit_naive`` (the baseline) over either; ``inside`` / ``inside_exact(point, mesh)`` (docs/contract.md
 §7: "inside", "outside" or "on-surface" by the exact winding number); ``round_rational_to_double``.
 
-Vectorized functions take (n, 3) float64 arrays and loop in C++ with the GIL released:
+Vectorized functions take (n, 3) arrays of real numbers (integer or floating dtypes, read as float64; complex,
+bool, str, object, datetime, structured and masked arrays raise ``TypeError``) and loop in C++ with the GIL
+released:
 ``intersect_batch`` / ``relation_batch(origins, directions, points, normals)``,
 ``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)`` and
 ``nearest_hit_batch(origins, directions, scene)``, ``inside_batch(points, mesh)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays

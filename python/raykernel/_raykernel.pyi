@@ -41,7 +41,10 @@ INVALID_RELATION_CODE: int
 class InvalidInput(ValueError): ...
 class MeshFileError(ValueError): ...
 
-ArrayLike3 = npt.ArrayLike  # (n, 3) float64, or (3,) where one plane is allowed
+# (n, 3), or (3,) where one plane or triangle is allowed: real numbers, an integer or floating dtype (lists of
+# numbers too), read as float64. Complex, bool, str, bytes, object, datetime64, timedelta64, structured arrays and
+# numpy.ma.MaskedArray (its mask would be ignored) raise TypeError naming the argument and the dtype.
+ArrayLike3 = npt.ArrayLike
 
 # The scalar queries take a plane (point, normal) or a triangle (a, b, c) as `primitive`; the triangle options
 # (rule "owned" or "closed", t, barycentric) are keyword-only and for triangles only.
@@ -99,6 +102,8 @@ class PlaneSet:
 Planes = Union[PlaneSet, Sequence[PlaneLike]]
 
 class Mesh:
+    # triangles: (m, 3) vertex indices of an integer dtype (int8..uint64, or lists of ints), each checked against
+    # [0, len(vertices)) as it is; float indices (even integral ones), bool and masked arrays raise TypeError.
     def __init__(self, vertices: ArrayLike3, triangles: npt.ArrayLike) -> None: ...
     def __len__(self) -> int: ...
     @property
@@ -109,6 +114,7 @@ class Mesh:
     @property
     def bvh_depth(self) -> int: ...
 
+# Every file that cannot be read as a mesh raises MeshFileError, and so does a path containing a NUL character.
 def load_mesh(path: str) -> Mesh: ...
 @overload
 def nearest_hit(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...

@@ -1,6 +1,6 @@
 // The vectorized forms: many queries per call over NumPy arrays, with no Python loop and the GIL released.
 //
-// Rays and planes come as (n, 3) float64 arrays (origins, directions, points, normals). The certified path
+// Rays and planes come as (n, 3) arrays of real numbers, read as float64 (origins, directions, points, normals). The certified path
 // runs the C++ batch API (raykernel/batch.hpp: the SIMD fast path, then the cascade for what it leaves, over
 // threads for large batches); the exact and naive paths loop over the scalar functions in C++, on threads.
 // Invalid rows either raise ValueError naming the first one ("query 17: ray direction is the zero vector")
@@ -278,7 +278,8 @@ void bind_batch(py::module_& m) {
         py::arg("threads") = py::none(), py::arg("stats") = false,
         R"doc(``intersect`` over arrays: query i is (ray i, plane i), or (ray i, the one plane).
 
-``origins``, ``directions``: (n, 3) float64 arrays (or anything ``numpy.asarray`` turns into one);
+``origins``, ``directions``: (n, 3) arrays of real numbers (float64, or any integer or floating dtype, or
+lists: read as float64; complex, bool, str, object, datetime, structured and masked arrays raise ``TypeError``);
 ``points``, ``normals``: (n, 3) arrays, or both a single 3-vector for one plane against every ray. Any memory
 layout works; a column-contiguous one (Fortran order, e.g. ``soa.T`` of a (3, n) structure of arrays) is read
 without a copy.

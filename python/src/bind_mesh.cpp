@@ -8,37 +8,61 @@
 
 #include <raykernel/io/mesh_file.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace raykernel::python {
 namespace {
+
+// Reads the (m, 3) indices of `triangles` as Index (int64 or uint64: every integer dtype widens to one of them
+// exactly), each checked as the integer it is against [0, vertex count) — never wrapped (uint64 max is not −1)
+// nor narrowed to the mesh's uint32 before the check.
+template <class Index>
+void read_triangles(const py::array& triangles, Mesh& mesh) {
+  const auto t = py::array_t<Index, py::array::forcecast>::ensure(triangles);
+  if (!t) throw py::type_error(std::string("triangles: the array cannot be read as ") +
+                               (std::is_signed_v<Index> ? "int64" : "uint64"));  // out of memory
+  const auto r = t.template unchecked<2>();
+  const std::size_t vertex_count = mesh.vertices.size();
+  mesh.triangles.reserve(static_cast<std::size_t>(t.shape(0)));
+  for (py::ssize_t k = 0; k < t.shape(0); ++k) {
+    std::array<std::uint32_t, 3> tri{};
+    for (py::ssize_t j = 0; j < 3; ++j) {
+      const Index index = r(k, j);
+      const std::string where = "mesh: triangle " + std::to_string(k) + ": vertex index " + std::to_string(index) +
+                                " (triangles[" + std::to_string(k) + ", " + std::to_string(j) + "])";
+      bool negative = false;
+      if constexpr (std::is_signed_v<Index>) negative = index < 0;
+      if (negative || static_cast<std::uint64_t>(index) >= vertex_count)
+        throw invalid_input(where + " is out of range (" + std::to_string(vertex_count) + " vertices)");
+      if (static_cast<std::uint64_t>(index) > std::numeric_limits<std::uint32_t>::max())
+        throw invalid_input(where + " is beyond 2^32 - 1, the largest index a mesh stores");
+      tri[static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(index);
+    }
+    mesh.triangles.push_back(tri);
+  }
+}
 
 Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
   ColumnsView v(vertices, "vertices");
   Mesh mesh;
   mesh.vertices.reserve(v.rows());
   for (std::size_t i = 0; i < v.rows(); ++i) mesh.vertices.push_back(v.row(i));
-  const auto t = py::array_t<std::int64_t, py::array::forcecast>::ensure(triangles);
-  if (!t || t.ndim() != 2 || t.shape(1) != 3)
-    throw py::value_error("triangles: expected an (m, 3) array of vertex indices");
-  const auto r = t.unchecked<2>();
-  mesh.triangles.reserve(static_cast<std::size_t>(t.shape(0)));
-  for (py::ssize_t k = 0; k < t.shape(0); ++k) {
-    std::array<std::uint32_t, 3> tri{};
-    for (py::ssize_t j = 0; j < 3; ++j) {
-      const std::int64_t index = r(k, j);
-      if (index < 0 || index > std::numeric_limits<std::uint32_t>::max())
-        throw invalid_input("mesh: triangle " + std::to_string(k) + ": vertex index " + std::to_string(index) +
-                            " is out of range (" + std::to_string(mesh.vertices.size()) + " vertices)");
-      tri[static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(index);
-    }
-    mesh.triangles.push_back(tri);
-  }
+  // Integer dtypes only: a float index is refused rather than truncated (1.9 → 1, −0.5 → 0, NaN → −2^63).
+  const py::array t =
+      numeric_array(triangles, "triangles", Numbers::integer, "an (m, 3) array of integer vertex indices");
+  if (t.ndim() != 2 || t.shape(1) != 3)
+    throw py::value_error("triangles: expected an (m, 3) array of vertex indices, got shape " + shape_string(t));
+  if (t.dtype().kind() == 'u')
+    read_triangles<std::uint64_t>(t, mesh);
+  else
+    read_triangles<std::int64_t>(t, mesh);  // signed, or an empty array of a floating dtype
   return mesh;
 }
 
@@ -190,10 +214,14 @@ void bind_mesh(py::module_& m) {
 
   py::class_<PythonMesh>(m, "Mesh", R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH built once.
 
-``Mesh(vertices, triangles)``: an (n, 3) float64 array of vertices, taken exactly, and an (m, 3) integer array
-of vertex indices counted from 0. Nothing is welded, moved or dropped; degenerate triangles are kept (never
-hit). Raises ``ValueError`` naming the first bad vertex or triangle ("mesh: vertex 7: y is not finite", "mesh:
-triangle 3: vertex index 12 is out of range (10 vertices)"). ``load_mesh(path)`` reads one from a file.)doc")
+``Mesh(vertices, triangles)``: an (n, 3) array of vertices (real numbers, read as float64: a float64 array is
+taken exactly), and an (m, 3) array of vertex indices counted from 0, of any integer dtype (int8 to uint64;
+lists of ints). Float indices are refused, integral or not (``TypeError``: they would be truncated), as are
+bool, complex, str, object and masked arrays; each index is checked as the integer it is, never wrapped
+(uint64 2^64 − 1 is not −1). Nothing is welded, moved or dropped; degenerate triangles are kept (never hit).
+Raises ``ValueError`` (``InvalidInput``) naming the first bad vertex or index ("mesh: vertex 7: y is not
+finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (10 vertices)").
+``load_mesh(path)`` reads one from a file.)doc")
       .def(py::init([](py::handle vertices, py::handle triangles) {
              Mesh mesh = mesh_from_arrays(vertices, triangles);
              py::gil_scoped_release release;
@@ -242,19 +270,30 @@ triangle 3: vertex index 12 is out of range (10 vertices)"). ``load_mesh(path)``
   m.def(
       "load_mesh",
       [](const std::string& path) {
-        Mesh mesh;
-        {
-          py::gil_scoped_release release;
-          mesh = io::read_mesh(std::filesystem::path(path));
+        // The file APIs end a path at its first NUL: "a.off\0b" would open a.off. Python's open() refuses such
+        // a path (ValueError "embedded null byte"); so does this, as the MeshFileError of a file that cannot be
+        // read, with the NUL shown as \0 (the message is a C string: a raw NUL would cut it short).
+        if (path.find('\0') != std::string::npos) {
+          std::string shown;
+          for (const char c : path) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
+          throw io::mesh_file_error(shown, {}, "the path contains a NUL character, which no file name can");
         }
         py::gil_scoped_release release;
-        return PythonMesh(std::move(mesh));
+        Mesh mesh = io::read_mesh(std::filesystem::path(path));
+        try {
+          return PythonMesh(std::move(mesh));
+        } catch (const invalid_input& e) {
+          // The readers check what validating the mesh checks (indices in range, finite coordinates), so this is
+          // a reader's miss; it is still the file's problem, and reported as one: "FILE: mesh: triangle 0: ...".
+          throw io::mesh_file_error(path, {}, e.what());
+        }
       },
       py::arg("path"),
       R"doc(The mesh in the file at ``path`` (OBJ, PLY, STL or OFF: the extension's format, else the content's),
 read exactly: decimal coordinates correctly rounded, binary ones widened exactly, polygons fanned from their
 first vertex (docs/contract.md §7). Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the
-line or byte offset and the reason. Releases the GIL.)doc");
+line or byte offset and the reason — for every file that cannot be read as a mesh, and for a path (str or
+bytes) containing a NUL character, which ``open()`` refuses too. Releases the GIL.)doc");
 
   m.def(
       "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },
@@ -274,7 +313,8 @@ the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. 
 
   m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
         py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-        R"doc(``inside`` over an (n, 3) float64 array of points, on threads, with the GIL released.
+        R"doc(``inside`` over an (n, 3) array of points (real numbers, read as float64), on threads, with the GIL
+released.
 
 Returns ``PointLocationArrays(location, valid)``: ``location`` uint8 ``PointLocation.code`` per row
 (``INVALID_RELATION_CODE`` where the point is not finite), ``valid`` bool. ``path``: "certified" (``inside``,

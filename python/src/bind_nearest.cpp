@@ -67,7 +67,7 @@ void bind_nearest(py::module_& m) {
   py::class_<PlaneSet>(m, "PlaneSet", R"doc(The planes of a scene, read and validated once.
 
 ``PlaneSet(planes)`` takes a sequence of ``(point, normal)`` pairs (e.g. ``raykernel.Plane`` values);
-``PlaneSet(points, normals)`` takes two (m, 3) float64 arrays. Plane k is the k-th, counted from 0: the index
+``PlaneSet(points, normals)`` takes two (m, 3) arrays of real numbers (read as float64). Plane k is the k-th, counted from 0: the index
 ``nearest_hit`` answers. Raises ``ValueError`` naming the first invalid plane
 (``"plane 3: plane normal is the zero vector"``). Pass it to ``nearest_hit`` and ``nearest_hit_batch``
 instead of a list to prepare the planes once: they are validated once, and each plane that coincides exactly

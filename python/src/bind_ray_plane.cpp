@@ -172,29 +172,30 @@ of the roundings asked for.)doc");
   m.def(
       "round_rational_to_double",
       [](py::handle value, py::handle denominator) {
-        std::string num, den;
+        py::int_ num, den;
         if (denominator.is_none()) {
           if (PyLong_Check(value.ptr())) {
-            num = decimal_digits(value, "value");
-            den = "1";
+            num = int_from(value, "value");
+            den = py::int_(1);
           } else if (py::hasattr(value, "numerator") && py::hasattr(value, "denominator")) {
-            num = decimal_digits(value.attr("numerator"), "value.numerator");
-            den = decimal_digits(value.attr("denominator"), "value.denominator");
+            num = int_from(value.attr("numerator"), "value.numerator");
+            den = int_from(value.attr("denominator"), "value.denominator");
           } else {
             throw py::type_error("value: expected a fractions.Fraction or an int, got " +
                                  std::string(Py_TYPE(value.ptr())->tp_name));
           }
         } else {
-          num = decimal_digits(value, "numerator");
-          den = decimal_digits(denominator, "denominator");
+          num = int_from(value, "numerator");
+          den = int_from(denominator, "denominator");
         }
-        if (den == "0") throw py::value_error("denominator is zero");
-        return round_rational_to_double(num, den);
+        if (den.equal(py::int_(0))) throw py::value_error("denominator is zero");
+        return round_to_double(num, den);
       },
       py::arg("value"), py::arg("denominator") = py::none(),
       R"doc(The exact rational ``value`` (a Fraction or int, or the ints ``value/denominator``) rounded to the
 nearest double, ties to even, with overflow to ±inf and gradual underflow; a nonzero value that rounds to
-zero keeps its sign. The rounding every exact t uses.)doc");
+zero keeps its sign. The rounding every exact t uses. Ints of any size, whatever ``sys.set_int_max_str_digits``
+says: ``Fraction(10**5000, 3)`` gives inf.)doc");
 
   m.def("floating_point_environment_is_default", &floating_point_environment_is_default,
         R"doc(Whether this thread's floating-point environment is the one the certified stages assume (round

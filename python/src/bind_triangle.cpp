@@ -165,7 +165,7 @@ void bind_triangle(py::module_& m) {
         py::arg("threads") = py::none(),
         R"doc(``intersect(ray, triangle)`` over arrays: query i is (ray i, triangle i), or (ray i, the one triangle).
 
-``origins``, ``directions``: (n, 3) float64 arrays; ``a``, ``b``, ``c``: the vertices, (n, 3) arrays, or all
+``origins``, ``directions``: (n, 3) arrays of real numbers (as in ``intersect_batch``); ``a``, ``b``, ``c``: the vertices, (n, 3) arrays, or all
 three a single 3-vector for one triangle against every ray. Any memory layout (a (3, n) structure of arrays
 passes as ``soa.T``). ``rule``, ``t``, ``barycentric`` as in ``intersect``.
 

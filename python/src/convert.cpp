@@ -45,6 +45,29 @@ py::object fast_sequence(py::handle value, std::string_view field, Py_ssize_t co
   return holder;
 }
 
+// CPython converts decimal strings of at most this many digits to and from ints whatever
+// sys.set_int_max_str_digits() says: it is _PY_LONG_MAX_STR_DIGITS_THRESHOLD, below which the limit is not
+// consulted, and the smallest limit a program may set. Longer strings may be refused (4300 digits by default).
+constexpr std::size_t always_convertible_digits = 640;
+
+// A new reference from the Python C API, or the Python error it set.
+py::object checked(PyObject* result) {
+  if (result == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::object>(result);
+}
+
+// A Python int from decimal digits ('-' allowed first) of any length: pieces of at most
+// always_convertible_digits, joined as high·10^h + low by halves (no quadratic digit-by-digit loop).
+py::object int_from_decimal(std::string_view digits) {
+  if (!digits.empty() && digits.front() == '-') return -int_from_decimal(digits.substr(1));
+  if (digits.size() <= always_convertible_digits)
+    return checked(PyLong_FromString(std::string(digits).c_str(), nullptr, 10));
+  const std::size_t low = digits.size() / 2;  // leading zeros of the low half are read as zeros
+  const py::object scale = checked(PyNumber_Power(py::int_(10).ptr(), py::int_(low).ptr(), Py_None));
+  return int_from_decimal(digits.substr(0, digits.size() - low)) * scale +
+         int_from_decimal(digits.substr(digits.size() - low));
+}
+
 template <class Pair>
 Pair pair_from(py::handle value, std::string_view name, const char* first, const char* second) {
   const py::object seq = fast_sequence(value, name, 2, "(" + std::string(first) + ", " + second + ")");
@@ -100,6 +123,7 @@ void load_types() {
   const py::object stage = m.attr("Stage");
   t->stage = {stage.attr("FILTER"), stage.attr("COMPENSATED"), stage.attr("EXPANSION"), stage.attr("EXACT")};
   t->fraction = py::module_::import("fractions").attr("Fraction");
+  t->masked_array = py::module_::import("numpy.ma").attr("MaskedArray");  // numpy is imported by _types already
   // The C++ enums' values are the codes the arrays carry; the Python enums must agree.
   for (int k = 0; k < 4; ++k)
     if (t->relation[static_cast<std::size_t>(k)].attr("code").cast<int>() != k)
@@ -181,10 +205,41 @@ Relation relation_from(py::handle value, std::string_view field) {
   throw py::type_error(str(field) + ": expected a raykernel.Relation, got " + type_name(value));
 }
 
-std::string decimal_digits(py::handle integer, std::string_view field) {
-  if (!PyLong_Check(integer.ptr()) || PyBool_Check(integer.ptr()))
-    throw py::type_error(str(field) + ": expected an int, got " + type_name(integer));
-  return py::str(integer).cast<std::string>();
+py::int_ int_from(py::handle value, std::string_view field) {
+  if (!PyLong_Check(value.ptr()) || PyBool_Check(value.ptr()))
+    throw py::type_error(str(field) + ": expected an int, got " + type_name(value));
+  return py::reinterpret_borrow<py::int_>(value);
+}
+
+double round_to_double(const py::int_& numerator, const py::int_& denominator) {
+  // The kernel rounds a rational given as decimal strings. Python ints of any size are first reduced to a
+  // rational y = m/2^(K+1) that rounds to the same double as x = numerator/denominator, with m ≤ 2^2101 (at
+  // most 633 digits) and 2^(K+1) of 324 digits: within always_convertible_digits.
+  //
+  // Why y rounds like x. Take x ≥ 0 (the sign is put back on m), x = a/b, K = 1075, q = ⌊a·2^K/b⌋, s = 1 when
+  // that division is inexact, else 0, and m = 2q + s. Every double is a multiple of 2^-1074 and every point where
+  // the rounding to nearest-even changes (the midpoint of two neighbouring doubles, or the overflow threshold
+  // 2^1024 − 2^970) a multiple of 2^-1075 = 2^-K. If s = 0, y = x. If s = 1, x and y = (q + 1/2)/2^K both lie
+  // strictly between q/2^K and (q + 1)/2^K, consecutive multiples of 2^-K: no such point separates them and
+  // neither is one, so they round alike. y = 0 only when x = 0, so a nonzero x that rounds to zero keeps its sign.
+  // An x ≥ 2^1025 rounds to inf as 2^1025 does and is replaced by it; then x ≤ 2^1025, q ≤ 2^(1025+K) and
+  // m ≤ 2^2101 (633 digits). The cost: a shift of a and one division whose quotient q has at most 2101 bits.
+  constexpr int K = 1075;
+  const bool negative = (numerator < py::int_(0)) != (denominator < py::int_(0));
+  py::object a = checked(PyNumber_Absolute(numerator.ptr()));
+  py::object b = checked(PyNumber_Absolute(denominator.ptr()));
+  if (a >= (b << py::int_(1025))) {
+    a = py::int_(1) << py::int_(1025);
+    b = py::int_(1);
+  }
+  const py::tuple qr = checked(PyNumber_Divmod((a << py::int_(K)).ptr(), b.ptr()));
+  const py::object q = qr[0], remainder = qr[1];
+  const int s = PyObject_IsTrue(remainder.ptr());  // a nonzero remainder: the division is inexact
+  const py::object m = (q << py::int_(1)) + py::int_(s);
+  const py::object two_to_k1 = py::int_(1) << py::int_(K + 1);
+  const std::string digits = py::str(m).cast<std::string>();
+  return round_rational_to_double(negative && digits != "0" ? "-" + digits : digits,
+                                  py::str(two_to_k1).cast<std::string>());
 }
 
 py::object to_python(const Vec3& v) { return types().vec3(v.x, v.y, v.z); }
@@ -201,12 +256,7 @@ py::object to_python(const TracedIntersection& x) {
 }
 
 py::object to_fraction(const Rational& r) {
-  auto integer = [](const std::string& digits) {
-    PyObject* v = PyLong_FromString(digits.c_str(), nullptr, 10);
-    if (v == nullptr) throw py::error_already_set();
-    return py::reinterpret_steal<py::object>(v);
-  };
-  return types().fraction(integer(r.numerator), integer(r.denominator));
+  return types().fraction(int_from_decimal(r.numerator), int_from_decimal(r.denominator));
 }
 
 py::object to_python(const ExactIntersection& x) {
@@ -255,10 +305,33 @@ py::object to_python(const ExactTriangleIntersection& x) {
       x.t ? to_fraction(*x.t) : py::none(), exact_barycentric);
 }
 
+py::array numeric_array(py::handle value, std::string_view name, Numbers numbers, std::string_view wanted) {
+  const std::string expected = str(name) + ": expected " + str(wanted) + ", got ";
+  // Before numpy.asarray, which would give the masked array's data alone.
+  if (py::isinstance(value, types().masked_array))
+    throw py::type_error(expected + "a numpy.ma.MaskedArray, whose mask would be ignored: pass numpy.ma.getdata(x) to "
+                                    "use every value, or only the rows to keep");
+  const py::array array = py::array::ensure(value);  // the value's own dtype: no cast, no copy of an ndarray
+  if (!array) throw py::type_error(expected + type_name(value));
+  const char kind = array.dtype().kind();
+  const bool accepted = kind == 'i' || kind == 'u' ||
+                        (kind == 'f' && (numbers == Numbers::real || array.size() == 0));
+  if (!accepted) throw py::type_error(expected + "an array of dtype " + py::str(array.dtype()).cast<std::string>());
+  return array;
+}
+
+std::string shape_string(const py::array& array) {
+  std::string shape = "(";
+  for (py::ssize_t k = 0; k < array.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array.shape(k));
+  return shape + (array.ndim() == 1 ? ",)" : ")");
+}
+
 ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_single) {
   const std::string shape_wanted = allow_single ? "an array of shape (n, 3) or (3,)" : "an array of shape (n, 3)";
-  array_ = py::array_t<double, py::array::forcecast>::ensure(value);
-  if (!array_) throw py::type_error(str(name) + ": expected " + shape_wanted + " of numbers, got " + type_name(value));
+  // A float64 array is used as it is; another real dtype is converted to float64 (a new array).
+  array_ = py::array_t<double, py::array::forcecast>::ensure(
+      numeric_array(value, name, Numbers::real, shape_wanted + " of real numbers (an integer or floating dtype)"));
+  if (!array_) throw py::type_error(str(name) + ": the array cannot be read as float64");  // out of memory
   const auto* base = reinterpret_cast<const char*>(array_.data());
   if (allow_single && array_.ndim() == 1 && array_.shape(0) == 3) {
     single_ = true;
@@ -266,12 +339,8 @@ ColumnsView::ColumnsView(py::handle value, std::string_view name, bool allow_sin
     for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(0);
     return;
   }
-  if (array_.ndim() != 2 || array_.shape(1) != 3) {
-    std::string shape = "(";
-    for (py::ssize_t k = 0; k < array_.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(array_.shape(k));
-    shape += array_.ndim() == 1 ? ",)" : ")";
-    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape);
-  }
+  if (array_.ndim() != 2 || array_.shape(1) != 3)
+    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape_string(array_));
   rows_ = static_cast<std::size_t>(array_.shape(0));
   row_stride_ = array_.strides(0);
   for (std::size_t k = 0; k < 3; ++k) firsts_[k] = base + static_cast<py::ssize_t>(k) * array_.strides(1);

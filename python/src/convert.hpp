@@ -3,7 +3,8 @@
 // Inputs are read from any Python sequence of the right length (tuples, lists, the NamedTuples of
 // raykernel._types, NumPy rows), and every error names the field it is about ("ray origin: expected 3
 // numbers, got 2"), so a user sees which argument to fix. Results are built as the NamedTuples and enums of
-// raykernel._types (loaded once, when the extension is imported). Arrays are (n, 3) float64 NumPy arrays:
+// raykernel._types (loaded once, when the extension is imported). Arrays are (n, 3) NumPy arrays of real numbers
+// (numeric_array refuses the dtypes NumPy would cast with a loss, and masked arrays), read as float64:
 // `ColumnsView` reads their three columns as the contiguous spans the batch API takes, without a copy when a
 // column is contiguous (an F-ordered array, e.g. `soa.T` for a (3, n) structure of arrays), copying it
 // otherwise.
@@ -49,6 +50,7 @@ struct PythonTypes {
   std::array<py::object, 2> triangle_rule;
   std::array<py::object, stage_count> stage;
   py::object fraction;                 // fractions.Fraction
+  py::object masked_array;             // numpy.ma.MaskedArray
 };
 
 // Imports raykernel._types and fractions once; called from the module's init.
@@ -75,8 +77,13 @@ void load_types();
 [[nodiscard]] double double_from(py::handle value, std::string_view field);
 // A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).
 [[nodiscard]] Relation relation_from(py::handle value, std::string_view field = "relation");
-// An integer as its decimal digits (for exact rationals): Python ints of any size.
-[[nodiscard]] std::string decimal_digits(py::handle integer, std::string_view field);
+// A Python int (not a bool), or TypeError naming `field`.
+[[nodiscard]] py::int_ int_from(py::handle value, std::string_view field);
+// The exact rational numerator/denominator (Python ints of any size, denominator nonzero) rounded to the nearest
+// double by the kernel's round_rational_to_double: ties to even, overflow to ±inf, gradual underflow, a nonzero
+// value that rounds to zero keeps its sign. No decimal string of more than 640 digits is made on the way, so
+// sys.set_int_max_str_digits() never refuses it and a huge int costs one division.
+[[nodiscard]] double round_to_double(const py::int_& numerator, const py::int_& denominator);
 
 // ---------------------------------------------------------------------------------------------------------
 // Building Python results.
@@ -96,17 +103,36 @@ void load_types();
 [[nodiscard]] py::object to_python(const TriangleClassification& x);
 [[nodiscard]] py::object to_python(const TracedTriangleIntersection& x);
 [[nodiscard]] py::object to_python(const ExactTriangleIntersection& x);
-// An exact rational (decimal strings in lowest terms) as a fractions.Fraction.
+// An exact rational (decimal strings in lowest terms) as a fractions.Fraction, whatever the number of digits and
+// sys.set_int_max_str_digits() (the digits are converted in pieces CPython always converts).
 [[nodiscard]] py::object to_fraction(const Rational& r);
 
 // ---------------------------------------------------------------------------------------------------------
 // Arrays.
 
-// The rows of an (n, 3) float64 array (or a single 3-vector, a broadcast row, when allowed), any memory
-// layout. Construct with the GIL held (it converts the Python value); reading needs no GIL. The batch API
-// takes contiguous columns: `columns(begin, end)` gives them as views into the array when its columns are
-// contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the rows
-// [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
+// What an array argument holds: real numbers (coordinates, read as float64) or integers (vertex indices).
+enum class Numbers { real, integer };
+
+// `value` as a NumPy array of its own dtype (numpy.asarray(value): nothing converted yet), once what it holds is
+// checked: the one check of every array argument, through ColumnsView (every vectorized function, PlaneSet and
+// Mesh vertices) and Mesh triangles. Real: an integer or floating dtype (int8..uint64, float16..longdouble).
+// Integer: an integer dtype, or an empty array of a floating one (numpy.asarray([]) is float64). Everything NumPy
+// would otherwise cast with a loss or a guess raises TypeError naming `name`, `wanted` and the dtype: complex
+// (the imaginary part dropped), bool, str and bytes (parsed), object (float() of each item), datetime64 and
+// timedelta64, structured and void, floats for indices (truncated: 1.9 → 1, NaN → -2^63) — and a
+// numpy.ma.MaskedArray, whose mask would be dropped, silently answering the rows it masks.
+[[nodiscard]] py::array numeric_array(py::handle value, std::string_view name, Numbers numbers,
+                                      std::string_view wanted);
+
+// "(4, 2)", "(3,)": an array's shape as NumPy prints it.
+[[nodiscard]] std::string shape_string(const py::array& array);
+
+// The rows of an (n, 3) array of real numbers (numeric_array; read as float64: exactly for float16, float32 and
+// integers up to 2^53, to the nearest double beyond, as float() does), or of a single 3-vector, a broadcast row,
+// when allowed; any memory layout. Construct with the GIL held (it converts the Python value); reading needs no
+// GIL. The batch API takes contiguous columns: `columns(begin, end)` gives them as views into the array when its
+// columns are contiguous (Fortran order, e.g. `soa.T` of a (3, n) structure of arrays), and otherwise gathers the
+// rows [begin, end) into a scratch buffer of this view, overwritten by the next call — so callers work through a
 // row-major array in chunks that stay in cache instead of copying it whole.
 class ColumnsView {
  public:

@@ -85,9 +85,10 @@ def test_mesh_from_arrays_and_its_errors():
     bad[1, 1] = np.nan
     with pytest.raises(ValueError, match="^mesh: vertex 1: y is not finite$"):
         rk.Mesh(bad, [[0, 1, 2]])
-    with pytest.raises(ValueError, match=r"^mesh: triangle 0: vertex index 5 is out of range \(3 vertices\)$"):
+    with pytest.raises(ValueError, match=r"^mesh: triangle 0: vertex index 5 \(triangles\[0, 2\]\) is out of range "
+                                         r"\(3 vertices\)$"):
         rk.Mesh(vertices, [[0, 1, 5]])
-    with pytest.raises(ValueError, match="^mesh: triangle 0: vertex index -1 is out of range"):
+    with pytest.raises(ValueError, match=r"^mesh: triangle 0: vertex index -1 \(triangles\[0, 1\]\) is out of range"):
         rk.Mesh(vertices, [[0, -1, 2]])
     with pytest.raises(ValueError, match=r"^triangles: expected an \(m, 3\) array"):
         rk.Mesh(vertices, [0, 1, 2])
