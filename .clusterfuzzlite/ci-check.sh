@@ -17,7 +17,7 @@
 # reproducing: build-cflite/out/fuzz_NAME <input>).
 #
 #   .clusterfuzzlite/ci-check.sh
-#   FUZZ_SECONDS=60 CFLITE_HARNESSES="classify nearest" .clusterfuzzlite/ci-check.sh
+#   FUZZ_SECONDS=60 CFLITE_HARNESSES="plane nearest" .clusterfuzzlite/ci-check.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD

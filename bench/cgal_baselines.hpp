@@ -6,7 +6,7 @@
 // query's doubles. Epeck computes both exactly.
 #pragma once
 
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <cstddef>
 #include <memory>

@@ -9,7 +9,7 @@
 // VM and timings are shared with other jobs; instruction counts are exact and repeatable.
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/triangle.hpp>
 

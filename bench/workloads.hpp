@@ -6,7 +6,7 @@
 #include <raykernel/camera.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <cstddef>
 #include <string>

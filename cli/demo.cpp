@@ -6,7 +6,7 @@
 #include "options.hpp"
 #include "text_format.hpp"
 
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <chrono>
 #include <cmath>

@@ -42,7 +42,7 @@ install(TARGETS raykernel raykernel_testkit raykernel_io
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   ${_raykernel_includes})
 
-# Every public header, including ones added later (raykernel/testkit/fuzz_decoder.hpp, ray casting): the
+# Every public header, including ones added later (raykernel/testkit/plane_fuzz_decoder.hpp, ray casting): the
 # directories are the targets' include directories, nothing private lives there.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/kernel/include/ ${PROJECT_SOURCE_DIR}/testkit/include/
                   ${PROJECT_SOURCE_DIR}/io/include/

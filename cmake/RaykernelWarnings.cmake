@@ -14,7 +14,7 @@ add_library(raykernel_warnings INTERFACE)
 target_compile_options(raykernel_warnings INTERFACE
   "$<$<CXX_COMPILER_ID:GNU,Clang,AppleClang>:-Wall;-Wextra>"
   # GCC notes that passing 64-byte vectors changed ABI in GCC 4.6; raykernel's vector types only pass between
-  # always-inline functions of one translation unit (kernel/src/certified/lanes.hpp), so the note is noise.
+  # always-inline functions of one translation unit (kernel/src/core/lanes.hpp), so the note is noise.
   # clang says the same of 32-byte vectors passed where AVX is off (the portable clone): the same noise. Where
   # it would be a real mismatch (a call from a target_clones("fma") clone to a function without the target)
   # clang makes it an error that no flag silences, so the multiversioned functions call their always-inline

@@ -59,8 +59,8 @@ config=$(find "$prefix" -name raykernel-config.cmake)
 pc=$(find "$prefix" -name raykernel.pc)
 [ -n "$config" ] && [ -f "$(dirname "$config")/raykernel-config-version.cmake" ] || fail "CMake package files not installed"
 [ -n "$pc" ] || fail "raykernel.pc not installed"
-for h in raykernel/raykernel.hpp raykernel/testkit/hard_queries.hpp raykernel/testkit/rapidcheck.hpp \
-         raykernel/testkit/reference_check.hpp raykernel/testkit/plane_pairs.hpp raykernel/testkit/fuzz_decoder.hpp; do
+for h in raykernel/raykernel.hpp raykernel/testkit/plane_queries.hpp raykernel/testkit/plane_rapidcheck.hpp \
+         raykernel/testkit/plane_reference_check.hpp raykernel/testkit/plane_pairs.hpp raykernel/testkit/plane_fuzz_decoder.hpp; do
   [ -f "$prefix/include/$h" ] || fail "header $h not installed"
 done
 if grep -rlF -e "$root" -e "$work/staging" "$(dirname "$config")" "$(dirname "$pc")"; then

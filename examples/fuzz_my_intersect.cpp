@@ -12,8 +12,8 @@
 #include "my_ray_code.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/fuzz_decoder.hpp>
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -8,7 +8,7 @@
 #include "my_ray_code.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/rapidcheck.hpp>  // gen_hard_query, gen_plane_pair_near_tie, the reference check
+#include <raykernel/testkit/plane_rapidcheck.hpp>  // gen_hard_query, gen_plane_pair_near_tie, the reference check
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>

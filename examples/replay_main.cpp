@@ -6,7 +6,7 @@
 //
 // Prints the report of the first failing input and a summary; exit status 1 when an input failed, 2 on a
 // usage or I/O error.
-#include <raykernel/testkit/hard_queries.hpp>  // SplitMix64
+#include <raykernel/testkit/plane_queries.hpp>  // SplitMix64
 
 #include <cstdint>
 #include <cstdio>

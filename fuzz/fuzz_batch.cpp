@@ -1,9 +1,9 @@
 // fuzz_batch: the batch API (raykernel/batch.hpp) against the one-query path it promises to match bit for
 // bit. The vectorized fast loop (AVX-512, AVX2 or portable, whichever the CPU runs) decides the queries it
 // can certify and hands the rest to the full cascade; every lane must give `intersect_traced`'s answer, which
-// fuzz_classify checks against CGAL.
+// fuzz_plane checks against CGAL.
 //
-// Input: a sequence of 97-byte records, each one query in the layout of raykernel/testkit/fuzz_decoder.hpp
+// Input: a sequence of 97-byte records, each one query in the layout of raykernel/testkit/plane_fuzz_decoder.hpp
 // (raw doubles or a hard query of one of the 13 kinds), up to 40 queries: enough to fill every SIMD lane and
 // leave a scalar remainder. Checked:
 //   - intersect_batch (pairwise, with `valid`): valid[i] is whether query i is valid input, and each valid
@@ -16,7 +16,7 @@
 
 #include <raykernel/batch.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
 
 #include <algorithm>
 #include <array>

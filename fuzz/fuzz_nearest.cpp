@@ -33,7 +33,7 @@
 #include <raykernel/batch.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 
 #include <algorithm>

@@ -29,7 +29,7 @@
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // corpus file runs in the ordinary test suite under any compiler, without libFuzzer (fmt's and OSS-Fuzz's
 // convention). Linked instead of libFuzzer's main.
 //
-//   fuzz_classify_replay FILE|DIR...     runs every file given and every file under every directory given
+//   fuzz_plane_replay FILE|DIR...     runs every file given and every file under every directory given
 //
 // Exits 0 when every input passed, 2 on a usage or I/O error; a failing input aborts with the harness's
 // report (which names the file).

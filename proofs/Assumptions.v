@@ -281,13 +281,13 @@ Definition twin_results_query_pairs :=
 Goal True. idtac "@@ fast_answer_from_twin_correct fast_relation_pair_twin_correct fast_answer_pair_twin_correct ray_plane_expansions_twin_exact". Abort.
 Print Assumptions twin_results_query_pairs.
 
-(** NearestTwins.v: the nearest-hit comparison (raycast/nearest_hit.cpp, compare_hit_distances) *)
+(** NearestTwins.v: the nearest-hit comparison (nearest/nearest_hit.cpp, compare_hit_distances) *)
 Definition twin_results_nearest :=
   (NearestTwins.compare_hit_distances_twin_correct).
 Goal True. idtac "@@ compare_hit_distances_twin_correct". Abort.
 Print Assumptions twin_results_nearest.
 
-(** TriangleStage3Twins.v: stage 3 of the triangle (triangle/expansion_value.hpp) is the model's determinant *)
+(** TriangleStage3Twins.v: stage 3 of the triangle (core/expansion_value.hpp) is the model's determinant *)
 From Raykernel Require TriangleStage3Twins.
 Goal True. idtac "@@ triangle_expansion_sign_sound". Abort.
 Print Assumptions TriangleStage3Twins.triangle_expansion_sign_sound.

@@ -1,6 +1,6 @@
-(** * The pieces as the C++ combines them: the cascade (kernel/src/certified/ray_plane_cascade.cpp), the
-    fast paths of kernel/src/certified/ray_plane_query.hpp ([fast_answer], [fast_relation]) that
-    [intersect] and [relation] (kernel/src/api.cpp) and the batch loops (kernel/src/batch/fast_loop.hpp)
+(** * The pieces as the C++ combines them: the cascade (kernel/src/plane/ray_plane_cascade.cpp), the
+    fast paths of kernel/src/plane/ray_plane_stages.hpp ([fast_answer], [fast_relation]) that
+    [intersect] and [relation] (kernel/src/plane/plane_api.cpp) and the batch loops (kernel/src/plane/fast_loop.hpp)
     run, and nearest_hit.cpp's comparison.
 
     - [compensated_dot3_exact_inputs]: [compensated_dot3_exact] (dot3_compensated.hpp), the α = 0 form
@@ -502,8 +502,8 @@ Corollary two_prod_threshold_exact : forall a b, binary64 a -> binary64 b ->
   fst (two_prod a b) + snd (two_prod a b) = a * b.
 Proof. exact two_prod_guard_exact. Qed.
 
-(** ** nearest_hit: the order of two hits along one ray (kernel/src/raycast/nearest_hit.cpp,
-    [compare_hit_distances]), from the per-query stage results of certified/ray_plane_query.hpp. *)
+(** ** nearest_hit: the order of two hits along one ray (kernel/src/nearest/nearest_hit.cpp,
+    [compare_hit_distances]), from the per-query stage results of plane/ray_plane_stages.hpp. *)
 
 (** [RayPlaneTermsT] and [RayPlaneCascade]: stage 1 ([num], [den] of the terms) and stage 2
     ([num_compensated], [den_compensated]: [compensated_dot3] and [compensated_dot3_exact]) of one query,

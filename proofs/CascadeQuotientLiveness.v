@@ -1,6 +1,6 @@
 (** * The ray–plane cascade's t is decided by stage 2 on a class (issue 16: liveness at the cascade level).
 
-    CascadeTwins.v's [certified_quotient_b] (certified/ray_plane_cascade.cpp's [certified_quotient], run by
+    CascadeTwins.v's [certified_quotient_b] (plane/ray_plane_cascade.cpp's [certified_quotient], run by
     [intersect_cascade] / the public [intersect] and [intersect_traced] past the fast path) rounds t by
     [round_quotient(num, prepare_divisor(den))] on the first level of stage 2 ([num2_b], [den2_b]:
     [num_compensated_b], [den_compensated_b]), then on the second level, then on stage 3's tail enclosures,

@@ -1,4 +1,4 @@
-(** * The classification of docs/contract.md §1 (kernel/src/ray_plane_formula.hpp, [relation_from_signs]).
+(** * The classification of docs/contract.md §1 (kernel/src/plane/ray_plane_formula.hpp, [relation_from_signs]).
 
     Over the reals, the seed's definition — a point o + t·d with t ≥ 0 on the plane (x − p)·n = 0 — is
     equivalent to the relation the code returns from the exact signs of num = (p − o)·n and den = d·n.

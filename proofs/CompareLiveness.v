@@ -1,5 +1,5 @@
 (** * Liveness of stage 1 of the nearest-hit comparison ([compare_quotients_filter],
-    kernel/src/certified/compare_quotients.hpp, as nearest_hit.cpp's [compare_hit_distances] calls it).
+    kernel/src/nearest/compare_quotients.hpp, as nearest_hit.cpp's [compare_hit_distances] calls it).
 
     The soundness theorem ([compare_quotients_filter_sound], [compare_hit_distances_twin_correct]) says a
     certain order is right; a filter that never certified would satisfy it.  Here, on the twin

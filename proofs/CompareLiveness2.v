@@ -1,7 +1,7 @@
 (** * Liveness of stage 2 of nearest_hit's comparison (issue 16): the radius upper bound (model).
 
-    Stage 2 of [compare_hit_distances] (raycast/nearest_hit.cpp) is [enclosure_sign] of
-    [compare_quotients_compensated] (certified/compare_quotients.hpp), modelled in CompareQuotients.v.
+    Stage 2 of [compare_hit_distances] (nearest/nearest_hit.cpp) is [enclosure_sign] of
+    [compare_quotients_compensated] (nearest/compare_quotients.hpp), modelled in CompareQuotients.v.
     Its sign is certain when the computed |hi| exceeds the radius E (and |lo| is small, RefinedLiveness.v's
     [enclosure_sign_live3_model]: |V| > (3 + 8u)·E suffices).  This file proves the first half of the
     liveness argument: an UPPER bound of E over the model,

@@ -1,7 +1,7 @@
 (** * Liveness of stage 2 of nearest_hit's comparison (issue 16): the second half.
 
-    Stage 2 of [compare_hit_distances] (raycast/nearest_hit.cpp) is [enclosure_sign] of
-    [compare_quotients_compensated] (certified/compare_quotients.hpp), modelled in CompareQuotients.v, twin
+    Stage 2 of [compare_hit_distances] (nearest/nearest_hit.cpp) is [enclosure_sign] of
+    [compare_quotients_compensated] (nearest/compare_quotients.hpp), modelled in CompareQuotients.v, twin
     [compare_quotients_compensated_b] (CompareTwins.v, tied by [compare_quotients_compensated_twin] and the
     runner's [nearest_compare]).  CompareLiveness2.v bounds its radius E from above; here:
 

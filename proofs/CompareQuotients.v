@@ -1,4 +1,4 @@
-(** * Comparing two quotients: the nearest-hit order (kernel/src/certified/compare_quotients.hpp).
+(** * Comparing two quotients: the nearest-hit order (kernel/src/nearest/compare_quotients.hpp).
 
     nearest_hit orders t_1 = N_1/D_1 and t_2 = N_2/D_2 by the sign of Δ = N_1·D_2 − N_2·D_1, each of the
     four values known through an enclosure from the cascade of its own query.
@@ -16,7 +16,7 @@
       the same for its shortcut for a plane through the origin.  Cascade.v composes these with the two
       stages above ([compare_hit_distances_filter_correct], [compare_hit_distances_compensated_correct]).
 
-    The derivation is the one in kernel/src/certified/error_bounds.hpp, "Comparing two quotients". *)
+    The derivation is the one in kernel/src/core/error_bounds.hpp, "Comparing two quotients". *)
 
 From Coq Require Import Reals Lra Lia ZArith.
 From Flocq Require Import Core Relative.
@@ -499,7 +499,7 @@ Proof.
   rewrite u_val in *. lra.
 Qed.
 
-(** ** The order nearest_hit derives from the signs (kernel/src/raycast/nearest_hit.cpp,
+(** ** The order nearest_hit derives from the signs (kernel/src/nearest/nearest_hit.cpp,
     [compare_hit_distances]). *)
 
 Lemma sign_of_mult : forall x y, sign_of (x * y) = (sign_of x * sign_of y)%Z.

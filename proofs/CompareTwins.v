@@ -1,4 +1,4 @@
-(** * Twins of the nearest-hit comparison (kernel/src/certified/compare_quotients.hpp) and of the
+(** * Twins of the nearest-hit comparison (kernel/src/nearest/compare_quotients.hpp) and of the
     per-query stage results it consumes (ray_plane_stages.hpp), tied to CompareQuotients.v.
 
     - [filter_enclosure_b], [compare_propagated_error_b], [compare_quotients_filter_b]

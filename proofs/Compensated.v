@@ -1,13 +1,13 @@
 (** * Stage 2 and the enclosure decisions.
 
-    - [compensated_dot3_enclosure]: kernel/src/certified/dot3_compensated.hpp, [compensated_dot3]
+    - [compensated_dot3_enclosure]: kernel/src/core/dot3_compensated.hpp, [compensated_dot3]
       (with the corollaries [compensated_den_enclosure] and [compensated_num_enclosure] for the two
       calls in intersect_certified.cpp);
     - [compensated_dot3_refined_enclosure]: the same file, [compensated_dot3_refined], the second level
       of stage 2 (corollaries [compensated_den_refined_enclosure], [compensated_num_refined_enclosure]);
-    - [enclosure_sign_sound]: kernel/src/certified/enclosure.hpp, [enclosure_sign] and (per lane)
+    - [enclosure_sign_sound]: kernel/src/core/enclosure.hpp, [enclosure_sign] and (per lane)
       [enclosure_sign_lanes];
-    - [tail_sum_enclosure]: kernel/src/certified/expansion.hpp, [expansion_tail_enclosure]. *)
+    - [tail_sum_enclosure]: kernel/src/core/expansion.hpp, [expansion_tail_enclosure]. *)
 
 From Coq Require Import Reals Lra Lia List.
 From Flocq Require Import Core.

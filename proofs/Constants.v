@@ -1,4 +1,4 @@
-(** * The error constants of kernel/src/certified/error_bounds.hpp, as exact reals.
+(** * The error constants of kernel/src/core/error_bounds.hpp, as exact reals.
 
     Every theorem in this directory is stated about the constants defined here, and the ctest test
     [proofs_constants_match] (proofs/check_constants.cpp) evaluates each right-hand side below

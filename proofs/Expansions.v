@@ -1,4 +1,4 @@
-(** * Stage 3: the expansion arithmetic of kernel/src/certified/expansion.hpp, as twins, proved exact.
+(** * Stage 3: the expansion arithmetic of kernel/src/core/expansion.hpp, as twins, proved exact.
 
     Twins, operation by operation (the builder's flag [exact_] is threaded through as a bool):
     [push], [finish] (zero elimination), [note_product_b], [product_b], [scale_gen] (Shewchuk's

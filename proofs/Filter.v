@@ -1,4 +1,4 @@
-(** * Stage 1: the binary64 sign filter (kernel/src/certified/dot3_filter.hpp).
+(** * Stage 1: the binary64 sign filter (kernel/src/core/dot3_filter.hpp).
 
     Main theorems: [den_filter_sound] (the sign of den = d·n) and [num_filter_sound] (the sign of
     num = (p − o)·n, with the rounded differences p_i ⊖ o_i), both for every binary64 input;

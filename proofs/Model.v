@@ -9,14 +9,14 @@
     result; [std::fma(a, b, c)] is [RN (a * b + c)] (one rounding); [std::fabs] and unary minus are
     exact.  This holds because the certified code is compiled with -ffp-contract=off, without
     -ffast-math, with SSE2 (FLT_EVAL_METHOD == 0), and runs only when MXCSR says round-to-nearest and no
-    flush-to-zero (kernel/src/api.cpp); see proofs/README.md ("Assumptions").
+    flush-to-zero (kernel/src/plane/plane_api.cpp); see proofs/README.md ("Assumptions").
 
     This file: the model, the branch-free sign encoding of sign.hpp ([sign_lanes]), the error-free
-    transformations of kernel/src/certified/eft.hpp with their exactness theorems, and the
+    transformations of kernel/src/core/eft.hpp with their exactness theorems, and the
     rounding-error lemmas the stage proofs are built from.
 
     The certified routines are templates over a lane type (double, or Lanes8, eight doubles;
-    kernel/src/certified/lanes.hpp).  The model is the scalar instantiation; each lane of Lanes8 performs
+    kernel/src/core/lanes.hpp).  The model is the scalar instantiation; each lane of Lanes8 performs
     the same IEEE operations on its own query (proofs/README.md, "Lanes"). *)
 
 From Coq Require Import Reals Lra Lia ZArith.
@@ -55,7 +55,7 @@ Definition two_diff (a b : R) : R * R := two_sum a (- b).
 Definition two_prod (a b : R) : R * R :=
   let p := RN (a * b) in (p, fma a b (- p)).
 
-(** ** The answer of a sign stage (kernel/src/certified/sign.hpp). *)
+(** ** The answer of a sign stage (kernel/src/core/sign.hpp). *)
 Inductive sign := Negative | Zero | Positive | Uncertain.
 
 (** What a stage's answer claims about the exact real value: [Uncertain] claims nothing. *)

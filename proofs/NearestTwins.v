@@ -1,4 +1,4 @@
-(** * The nearest-hit comparison (kernel/src/raycast/nearest_hit.cpp, [compare_hit_distances]), twin and theorem.
+(** * The nearest-hit comparison (kernel/src/nearest/nearest_hit.cpp, [compare_hit_distances]), twin and theorem.
 
     [compare_hit_distances_b] is the C++ function operation by operation on the bits of a ray (o, d) and two
     planes (p_a, n_a), (p_b, n_b) it hits, given the certified signs of num and den that the candidates

@@ -1,4 +1,4 @@
-(** * The Lanes2 forms of one ray–plane query, and stage 3 (certified/ray_plane_query.hpp), tied to the models.
+(** * The Lanes2 forms of one ray–plane query, and stage 3 (plane/ray_plane_stages.hpp), tied to the models.
 
     QueryTwins.v's [fast_answer_pair_b] and [fast_relation_pair_b] are the one-query forms [fast_answer(o,
     d, p, n)] and [fast_relation(o, d, p, n)], which put den and num in the two lanes of a Lanes2: den's

@@ -1,4 +1,4 @@
-(** * Twins of one ray–plane query (certified/ray_plane_query.hpp, certified/quotient_rounding.hpp)
+(** * Twins of one ray–plane query (plane/ray_plane_stages.hpp, core/quotient_rounding.hpp)
 
     The routines of Twins.v and Expansions.v as the query calls them, and the lean rounding, so that the
     differential runner also checks the call sites (a den constant passed for num, a wrong low part, the

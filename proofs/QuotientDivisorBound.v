@@ -1,4 +1,4 @@
-(** * What a certified quotient says about its divisor (kernel/src/certified/quotient_rounding.hpp).
+(** * What a certified quotient says about its divisor (kernel/src/core/quotient_rounding.hpp).
 
     [round_quotient_certain_divisor]: whenever [round_quotient n (prepare_divisor d)] says certain, the
     divisor's radius is at most u·|D| (D = hi ⊕ lo, the rounded divisor), 2^-1000 ≤ |D| ≤ 2^1000, and any

@@ -1,4 +1,4 @@
-(** * Liveness of the quotient rounding (kernel/src/certified/quotient_rounding.hpp: [prepare_divisor],
+(** * Liveness of the quotient rounding (kernel/src/core/quotient_rounding.hpp: [prepare_divisor],
     [round_quotient]).
 
     [round_quotient_sound] (QuotientRounding.v) says a certified t is RN(num/den); a rounding that never

@@ -1,4 +1,4 @@
-(** * Liveness of the quotient rounding over the twin (kernel/src/certified/quotient_rounding.hpp:
+(** * Liveness of the quotient rounding over the twin (kernel/src/core/quotient_rounding.hpp:
     [prepare_divisor], [round_quotient]; QueryTwins.v: [prepare_divisor_b], [round_quotient_b]).
 
     QuotientLiveness.v's [round_quotient_live] states the liveness over the model ([round_quotient],
@@ -22,7 +22,7 @@
       QuotientLiveness.v (1/3, and the near-midpoint X = 1 + 2^-53 + k·2^-106 at k = 513) are in the class,
       shown by real arithmetic, so the theorem is not vacuous and its threshold is the one
       [near_midpoint_threshold] brackets (the twin certifies from k = 290 on);
-    - [fast_answer_from_live_b]: at the call site (certified/ray_plane_query.hpp's [fast_answer_from]), on
+    - [fast_answer_from_live_b]: at the call site (plane/ray_plane_stages.hpp's [fast_answer_from]), on
       stage-2 enclosures in the class, t = RN(X/Y) and the answer is certain exactly when both signs are.
 
     The extra hypothesis |hi|, |lo| ≤ 2^1000 is needed: TwoSum of two finite doubles can overflow in its
@@ -578,7 +578,7 @@ Proof.
     rewrite XV, Rabs_pos_eq by lra. lra.
 Qed.
 
-(** ** At the call site: [fast_answer_from_b] (certified/ray_plane_query.hpp's [fast_answer_from], the stage-2
+(** ** At the call site: [fast_answer_from_b] (plane/ray_plane_stages.hpp's [fast_answer_from], the stage-2
     answer of the ray–plane query, which rounds t by [round_quotient(num, prepare_divisor(den))]) on stage-2
     enclosures in the class: its t is RN(X/Y), finite, and it is certain exactly when both signs are — the
     quotient rounding never makes the answer uncertain there. *)

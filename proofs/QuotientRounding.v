@@ -1,5 +1,5 @@
 (** * round_quotient: the correctly rounded t = num/den from two enclosures, with one reciprocal of
-    the denominator (kernel/src/certified/quotient_rounding.hpp).
+    the denominator (kernel/src/core/quotient_rounding.hpp).
 
     Main theorem: [round_quotient_sound]: for all reals num, den and enclosures n, d of doubles with
     |num − (n.hi + n.lo)| ≤ n.radius and |den − (d.hi + d.lo)| ≤ d.radius, whenever

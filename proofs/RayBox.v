@@ -1,4 +1,4 @@
-(** * The BVH's ray–box test never rejects a box the exact ray meets (kernel/src/mesh/ray_box.hpp).
+(** * The BVH's ray–box test never rejects a box the exact ray meets (kernel/src/box/ray_box.hpp).
 
     For one axis of the slab test, with d ≠ 0 in the range where 1/d is a normal double (case B of the
     argument in ray_box.hpp), the code computes

@@ -1,4 +1,4 @@
-(** * The twin of the second level of stage 2, tied to the model (certified/dot3_compensated.hpp,
+(** * The twin of the second level of stage 2, tied to the model (core/dot3_compensated.hpp,
     [compensated_dot3_refined]; ray_plane_query.hpp, [den_refined], [num_refined]).
 
     [compensated_dot3_refined_b] (Twins.v) is the C++ operation by operation over IEEE binary64; the

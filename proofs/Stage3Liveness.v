@@ -1,6 +1,6 @@
 (** * Liveness of stage 3 of the ray–plane cascade (the expansion stage's checked sign).
 
-    [Expansion::sign()] (kernel/src/certified/expansion.hpp), twinned by [expansion_sign_b]
+    [Expansion::sign()] (kernel/src/core/expansion.hpp), twinned by [expansion_sign_b]
     (Expansions.v), returns uncertain unless 2·(rounded Σ|lower components|) < |top| or the expansion is
     the single 0.  Soundness is [expansion_sign_sound]; this file proves that it does certify:
     - [expansion_sign_single_certain]: on every expansion of ONE finite component (what the builder's

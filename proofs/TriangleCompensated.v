@@ -1,6 +1,6 @@
 (** * Stage 2 of the ray–triangle cascade: double-double enclosures of a 3×3 determinant
-    (kernel/src/triangle/det3_stages.hpp, [CompensatedLeaf], [CompensatedTerm], [det3_enclosure]; evaluated in
-    the order of kernel/src/ray_triangle_formula.hpp).
+    (kernel/src/core/det3_stages.hpp, [CompensatedLeaf], [CompensatedTerm], [det3_enclosure]; evaluated in
+    the order of kernel/src/triangle/ray_triangle_formula.hpp).
 
     Leaves are exact double-doubles (h, l), |l| ≤ u|h| (d with l = 0, and TwoDiff(v, o)).  A product keeps
     the first-order low part by three FMAs, a sum or difference is a TwoSum with the low parts added.  Main

@@ -1,6 +1,6 @@
 (** * Stage 1 of the ray–triangle cascade: the binary64 filter of a 3×3 determinant
-    (kernel/src/triangle/det3_stages.hpp, [FilterLeaf], [FilterTerm], [det3_filter_lanes], [det3_absolute_term];
-    evaluated in the order of kernel/src/ray_triangle_formula.hpp).
+    (kernel/src/core/det3_stages.hpp, [FilterLeaf], [FilterTerm], [det3_filter_lanes], [det3_absolute_term];
+    evaluated in the order of kernel/src/triangle/ray_triangle_formula.hpp).
 
     Every value of a ray–triangle query is det(x, y, z) = x·(y × z) of leaves: d (an input) and the rounded
     differences ê = v ⊖ o.  Main theorems:

@@ -3,7 +3,7 @@
     The soundness theorems of TriangleFilter.v, TriangleCompensated.v and TriangleTwins.v say that what a stage
     certifies is true; a stage that never certified would satisfy them.  These theorems say the converse on a
     class of inputs, for the twins of TriangleTwins.v (hence, by the differential runner, for the compiled C++
-    of kernel/src/triangle/det3_stages.hpp and ray_triangle_stages.hpp): with every input a finite double of
+    of kernel/src/core/det3_stages.hpp and ray_triangle_stages.hpp): with every input a finite double of
     magnitude at most 2^300 (so that nothing overflows), V the exact value (π(p, q), num or den),
     P the permanent of the computed leaves Σ|x_i|·(|y_j z_k| + |y_k z_j|) (for den: the sum of the three π's)
     and X = Σ|x_i| of the outer vector (d for the π's and den, ê_a = a ⊖ o for num):

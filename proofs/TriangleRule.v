@@ -1,4 +1,4 @@
-(** * The decisions of docs/contract.md §6 over the reals (kernel/src/ray_triangle_formula.hpp:
+(** * The decisions of docs/contract.md §6 over the reals (kernel/src/triangle/ray_triangle_formula.hpp:
     [triangle_location], [owned_sign], [crossing_relation], [classify_triangle]).
 
     - [den_as_edge_values], [den_normal]: den = πa + πb + πc = d·((b − a) × (c − a));

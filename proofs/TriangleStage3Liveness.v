@@ -1,7 +1,7 @@
 (** * Liveness of stage 3 of the ray–triangle cascade (the checked sign of [ExpansionValue]).
 
     Stage 3 of [TriangleCascade::sign(v)] (kernel/src/triangle/ray_triangle_cascade.cpp) is
-    [value_expansion(ray, triangle, v).sign()] (triangle/expansion_value.hpp composed by
+    [value_expansion(ray, triangle, v).sign()] (core/expansion_value.hpp composed by
     ray_triangle_stages.hpp's [edge_expansion], [num_expansion]), twinned by TriangleStage3Twins.v's
     [ev_sign (value_ev o d a b c v)] and, in the cascade, by TriangleCascadeFlowTwins.v's [tc_sign_b] (the
     runner ties them to the C++: [tri_expansion], [tri_cascade_relation], [tri_cascade_intersect]).  Its

@@ -1,4 +1,4 @@
-(** * Stage 3 of the ray–triangle cascade: the composition of kernel/src/triangle/expansion_value.hpp, as a
+(** * Stage 3 of the ray–triangle cascade: the composition of kernel/src/core/expansion_value.hpp, as a
     twin over IEEE-754 binary64, proved to be the exact determinants of TriangleFilter.v.
 
     [EVal] is [ExpansionValue<N>]: the components (the capacity N is a compile-time bound the C++ never

@@ -1,7 +1,7 @@
 (** * tri_drop_guard for every bit pattern: stage 2's low parts of the ray–triangle cascade.
 
     TriangleMutations.v proves [tri_drop_guard_same_unless_infinite_low]: the twin of fast_triangle_intersection
-    with det3_enclosure's guard |l| ≤ largest finite dropped (kernel/src/triangle/det3_stages.hpp, mutation
+    with det3_enclosure's guard |l| ≤ largest finite dropped (kernel/src/core/det3_stages.hpp, mutation
     [tri_drop_guard] of proofs/mutation/run.py) answers as the twin whenever the five stage-2 terms satisfy
     [no_infinite_low] (never a finite h with l = ±inf and a finite radius).  This file proves [no_infinite_low]
     for the stage-2 terms as TriangleTwins.v computes them, for every 64-bit pattern of every input, and so

@@ -1,7 +1,7 @@
 (** * Computable twins of the ray–triangle stages 1 and 2, over IEEE-754 binary64, tied to the models.
 
-    Each [*_b] definition is the C++ of kernel/src/triangle/det3_stages.hpp and ray_triangle_stages.hpp,
-    operation by operation in the C++ order (the order of kernel/src/ray_triangle_formula.hpp's
+    Each [*_b] definition is the C++ of kernel/src/core/det3_stages.hpp and ray_triangle_stages.hpp,
+    operation by operation in the C++ order (the order of kernel/src/triangle/ray_triangle_formula.hpp's
     [cross_terms] and [dot_terms]), over Flocq's binary64 (FloatCore.v); the differential runner
     (proofs/twins/, routines [tri_filter], [tri_relation_lanes], [tri_compensated], [tri_compensated_lanes])
     checks them bit for bit against the compiled C++ on every variant.

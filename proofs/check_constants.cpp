@@ -4,7 +4,7 @@
 // For every constant it checks, with exact dyadic arithmetic (no rounding anywhere), that three values
 // agree with the exact value written in the table below (derived by hand from the Coq definition):
 //   1. the right-hand side of `Definition NAME : R := ...` in proofs/Constants.v, evaluated exactly;
-//   2. the literal of `inline constexpr double NAME = ...;` in kernel/src/certified/error_bounds.hpp,
+//   2. the literal of `inline constexpr double NAME = ...;` in kernel/src/core/error_bounds.hpp,
 //      read from the text exactly;
 //   3. the value the compiler gave bounds::NAME (this file includes error_bounds.hpp).
 // It also fails when either file defines a constant the table does not know, so a new constant cannot
@@ -16,7 +16,7 @@
 // Usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT
 // (files told apart by their extension: the headers' constants are merged, and so are the Coq files', read in
 // order with one environment, so that a later file may use an earlier file's names).
-#include "certified/error_bounds.hpp"
+#include "core/error_bounds.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -6,7 +6,7 @@
 // round_quotient_candidate_normal proves |q| ≥ 2^-900 wherever round_quotient certifies) to 1023, and
 // several significands per exponent: the power of two, its successor, the largest significand and seeded
 // pseudo-random ones.
-#include "certified/quotient_rounding.hpp"
+#include "core/quotient_rounding.hpp"
 
 #include <cmath>
 #include <cstdint>

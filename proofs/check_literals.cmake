@@ -1,5 +1,5 @@
 # ctest proofs_constants_in_bounds: every floating-point constant of the certified code lives in namespace
-# bounds (kernel/src/certified/error_bounds.hpp), where the constants generator (twins/emit_constants.cmake)
+# bounds (kernel/src/core/error_bounds.hpp), where the constants generator (twins/emit_constants.cmake)
 # hands it to the proofs. Scans the certified sources (comments and string literals removed) outside
 # error_bounds.hpp for
 #   - floating-point literals: hexadecimal (0x1p-968) and decimal (0.5, 1e-3, 2.f);
@@ -141,7 +141,7 @@ if(unlisted OR stale)
   if(unlisted)
     list(JOIN unlisted "\n  " text)
     string(APPEND message "floating-point constants outside namespace bounds (move them to "
-                          "kernel/src/certified/error_bounds.hpp, or list them in proofs/literals_allowlist.txt "
+                          "kernel/src/core/error_bounds.hpp, or list them in proofs/literals_allowlist.txt "
                           "with the reason):\n  ${text}\n")
   endif()
   if(stale)

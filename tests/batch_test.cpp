@@ -1,12 +1,12 @@
 // The batch API gives `intersect`'s answers bit for bit: over every kind of hard query, through each
 // instruction-set variant of the fast loop this CPU can run, split over threads or not, many rays against
 // one plane or pairwise, with invalid queries reported or thrown.
-#include "batch/fast_loop.hpp"
+#include "plane/fast_loop.hpp"
 #include "support/oracle.hpp"
 
 #include <raykernel/batch.hpp>
 #include <raykernel/nearest_hit.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <gtest/gtest.h>
 

@@ -330,7 +330,7 @@ TEST(Classify, ExactTAndHex) {
   EXPECT_EQ(classify("0 0 0 10 0 0 1 0 0 1 0 0\n", o), "hit 0.1 1/10\n");
   o.hex = true;
   EXPECT_EQ(classify("0 0 0 10 0 0 1 0 0 1 0 0\n", o), "hit 0x1.999999999999ap-4 1/10\n");
-  // Signed zero: t = −2^-1174 → behind -0 (hand-derived in contract_test.cpp).
+  // Signed zero: t = −2^-1174 → behind -0 (hand-derived in plane_contract_test.cpp).
   EXPECT_EQ(classify("0x1p-1074 0 0 0x1p100 0 0 0 0 0 1 0 0\n", {}), "behind -0\n");
 }
 

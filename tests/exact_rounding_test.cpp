@@ -4,7 +4,7 @@
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <gtest/gtest.h>
 #include <mpfr.h>

@@ -2,7 +2,7 @@
 // no FMA contraction in the kernel's build, round-to-nearest, no flush-to-zero. The kernel's own build is
 // probed; a deliberately contracting build of the same expression shows the probe can tell; and the run-time
 // check is exercised by switching the rounding mode and flush-to-zero on and off.
-#include "fp_probe.hpp"
+#include "core/fp_probe.hpp"
 #include "support/entry_points.hpp"
 #include "support/oracle.hpp"
 

@@ -18,8 +18,8 @@
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
-#include "exact/exact_mesh.hpp"
-#include "mesh/mesh_predicates.hpp"
+#include "mesh/exact_mesh.hpp"
+#include "orient/orient_predicates.hpp"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 //  * Hand-derived cases: the loop of docs/ray-casting.md §1.1, ties, coincident planes, planes through one point of the ray,
 //    two t closer than an ulp (where comparing rounded t picks the wrong plane), t = 0, planes never hit,
 //    products that underflow (the exact stage), invalid input, a non-default floating-point environment.
-//  * Each stage of the comparison on its own against exact rationals (like stages_test.cpp): what a
+//  * Each stage of the comparison on its own against exact rationals (like plane_stages_test.cpp): what a
 //    stage certifies must be right, every enclosure must contain the exact Δ = num_a·den_b − num_b·den_a.
 //  * RapidCheck: certified == brute-force exact nearest on generated scenes full of exact and near ties.
 //  * The screen (stage 1 and the filter comparison over several planes at once): every screen and the
@@ -12,16 +12,16 @@
 #include "support/oracle.hpp"
 #include "support/plane_scenes.hpp"
 
-#include "certified/compare_quotients.hpp"
-#include "certified/enclosure.hpp"
-#include "certified/ray_plane_cascade.hpp"
-#include "exact/rational_from_double.hpp"
-#include "raycast/nearest_hit_internal.hpp"
-#include "raycast/nearest_screen.hpp"
+#include "nearest/compare_quotients.hpp"
+#include "core/enclosure.hpp"
+#include "plane/ray_plane_cascade.hpp"
+#include "core/rational_from_double.hpp"
+#include "nearest/nearest_hit_internal.hpp"
+#include "nearest/nearest_screen.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 
 #include <gtest/gtest.h>
@@ -577,7 +577,7 @@ RC_GTEST_PROP(NearestHitProperty, AgreesWithIntersectOnTheWinner, ()) {
   }
 }
 
-// ---- The screen (raycast/nearest_screen.hpp): every screen and the scalar loop on the same sets ---------
+// ---- The screen (nearest/nearest_screen.hpp): every screen and the scalar loop on the same sets ---------
 //
 // nearest_traced_with_screen runs a given screen whatever the set's size (the public entry points use it
 // from 8 candidate planes on): the scalar loop (null), the portable screen (two planes at a time) and the

@@ -4,8 +4,8 @@
 // constant fails here even where a later stage would have masked it. Then the filter alone on subnormal and
 // huge inputs, where the dynamic absolute term matters, with a demonstration that a constant absolute term
 // (as for the plane's dot products) would certify wrong signs.
-#include "certified/error_bounds.hpp"
-#include "ray_triangle_formula.hpp"
+#include "core/error_bounds.hpp"
+#include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
 #include <raykernel/testkit/triangle_queries.hpp>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures what the structure-aware input adds to fuzz_classify: runs it for SECONDS (default 60) in each
+# Measures what the structure-aware input adds to fuzz_plane: runs it for SECONDS (default 60) in each
 # configuration, from the seed corpus into a fresh scratch corpus, and prints execs/s, coverage and the
 # stage table of each. Needs the fuzz build (fuzz/ci-run-fuzzers.sh, or cmake -C fuzz/clang-fuzz.cmake).
 #
@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-60}
 build=${FUZZ_BUILD_DIR:-build-fuzz}
-fuzzer="$build/fuzz/fuzz_classify"
+fuzzer="$build/fuzz/fuzz_plane"
 [ -x "$fuzzer" ] || { echo "no $fuzzer: build the fuzz build first (fuzz/ci-run-fuzzers.sh)" >&2; exit 2; }
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
@@ -26,7 +26,7 @@ run() {
   mkdir -p "$scratch/$label"
   echo "==== $label ($seconds s)"
   # shellcheck disable=SC2086  # EXTRA holds separate flags
-  env "$@" "$fuzzer" "$scratch/$label" fuzz/corpus/classify -dict=fuzz/dict/classify.dict -max_len=256 \
+  env "$@" "$fuzzer" "$scratch/$label" fuzz/corpus/plane -dict=fuzz/dict/plane.dict -max_len=256 \
     -max_total_time="$seconds" -print_final_stats=1 -seed=1 ${EXTRA:-} >"$scratch/$label.log" 2>&1
   grep -E '^#[0-9]+[[:space:]]+DONE' "$scratch/$label.log" | sed 's/^/final: /'
   grep -E '^stat::average_exec_per_sec' "$scratch/$label.log"

@@ -20,22 +20,22 @@
 //
 // When a routine the kernel exports changes its name or signature, the function of the same name below is
 // the one line to update (proofs/README.md lists them).
-#include "certified/compare_quotients.hpp"
-#include "certified/dot3_compensated.hpp"
-#include "certified/dot3_filter.hpp"
-#include "certified/eft.hpp"
-#include "certified/enclosure.hpp"
-#include "certified/error_bounds.hpp"
-#include "certified/expansion.hpp"
-#include "certified/lanes.hpp"
-#include "certified/quotient_rounding.hpp"
-#include "certified/ray_plane_cascade.hpp"
-#include "certified/ray_plane_query.hpp"
-#include "raycast/nearest_hit_internal.hpp"
-#include "triangle/det3_stages.hpp"
+#include "nearest/compare_quotients.hpp"
+#include "core/dot3_compensated.hpp"
+#include "core/dot3_filter.hpp"
+#include "core/eft.hpp"
+#include "core/enclosure.hpp"
+#include "core/error_bounds.hpp"
+#include "core/expansion.hpp"
+#include "core/lanes.hpp"
+#include "core/quotient_rounding.hpp"
+#include "plane/ray_plane_cascade.hpp"
+#include "plane/ray_plane_stages.hpp"
+#include "nearest/nearest_hit_internal.hpp"
+#include "core/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
-#include "validation.hpp"
+#include "core/validation.hpp"
 #include <raykernel/triangle.hpp>
 
 #include <bit>

@@ -2,7 +2,7 @@
 // pattern in unsigned decimal.
 //
 // Two sources, mixed per routine:
-//   * the testkit's hard queries (testkit/include/raykernel/testkit/hard_queries.hpp: near-parallel,
+//   * the testkit's hard queries (testkit/include/raykernel/testkit/plane_queries.hpp: near-parallel,
 //     near-coplanar, exact degeneracies, ties, subnormal, huge, t overflow/underflow, ...) and near-tie plane
 //     pairs (plane_pairs.hpp), turned into each routine's arguments the way the cascade forms them (den from
 //     d and n, num from p ⊖ o and n with the TwoDiff low parts, enclosures from stage 2, expansions from
@@ -13,12 +13,12 @@
 // Deterministic in SEED (SplitMix64), which is printed.
 //
 // Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
-#include "certified/compare_quotients.hpp"
-#include "certified/eft.hpp"
-#include "certified/ray_plane_cascade.hpp"
-#include "certified/ray_plane_query.hpp"
+#include "nearest/compare_quotients.hpp"
+#include "core/eft.hpp"
+#include "plane/ray_plane_cascade.hpp"
+#include "plane/ray_plane_stages.hpp"
 
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 

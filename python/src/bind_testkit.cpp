@@ -5,11 +5,11 @@
 #include "convert.hpp"
 #include "mesh.hpp"
 
-#include <raykernel/testkit/fuzz_decoder.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/testkit/triangle_reference_check.hpp>
 
@@ -347,7 +347,7 @@ DBL_MAX to inf one step): 0 exactly when a and b have the same bits. None when e
                               f.kind ? py::object(py::str(std::string(testkit::to_string(*f.kind)))) : py::none());
       },
       py::arg("data"),
-      R"doc(Any bytes as a query (testkit/fuzz_decoder.hpp): raw doubles when the first byte is below 0x80
+      R"doc(Any bytes as a query (testkit/plane_fuzz_decoder.hpp): raw doubles when the first byte is below 0x80
 (possibly invalid input), else a hard query of kind QUERY_KINDS[(byte − 0x80) mod 13] built from the
 following bytes. ``(ray, plane, kind or None)``.)doc");
   m.def(

@@ -4,7 +4,7 @@
 // and the incidence (a line through a vertex, a direction in the plane) is scale-invariant.
 #include <raykernel/testkit/triangle_queries.hpp>
 
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 
 #include <cmath>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // The triangle reference check (triangle_reference_check.hpp).
 #include <raykernel/testkit/triangle_reference_check.hpp>
 
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 
 #include "default_environment.hpp"
 

@@ -14,8 +14,8 @@
 #include <raykernel/camera.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/testkit/triangle_reference_check.hpp>
 #include <raykernel/transform.hpp>

@@ -10,7 +10,7 @@
 #include "support/oracle.hpp"
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <gmpxx.h>
 

@@ -6,7 +6,7 @@
 // doubles, so it contains them exactly. The traversal asks, for each box, whether the ray o + t·d, t in
 // [t_min, t_max], may meet it. Its answer is conservative in one direction only: a box the exact ray meets is
 // never rejected, and the lower bound it reports for the box's exact entry t is never above that t
-// (kernel/src/mesh/ray_box.hpp has the argument, step by step, with overflow, underflow, zero and tiny
+// (kernel/src/box/ray_box.hpp has the argument, step by step, with overflow, underflow, zero and tiny
 // direction components). A box may be reported that the exact ray just misses; the exact primitive test
 // decides those. The four children of a node are tested in one vector pass (AVX2 where the CPU has it), each
 // lane performing exactly the scalar test's operations, so the argument (and proofs/RayBox.v) covers every
@@ -142,7 +142,7 @@ class BvhRayTraversal {
 
   [[nodiscard]] std::uint64_t boxes_tested() const noexcept { return walk_.boxes_tested; }
 
-  // The per-ray set-up of the box test (kernel/src/mesh/ray_box.hpp), exposed for tests: for each axis the
+  // The per-ray set-up of the box test (kernel/src/box/ray_box.hpp), exposed for tests: for each axis the
   // origin, RN(1/d) (±inf for d = ±0, NaN when the axis is left out of the test) and whether the ray
   // enters through the box's upper face (d negative, or −0).
   struct Slabs {
@@ -156,7 +156,7 @@ class BvhRayTraversal {
   detail::BvhWalk walk_;
 };
 
-// The certified ray–box test on its own (kernel/src/mesh/ray_box.hpp): whether the ray may meet `box` at
+// The certified ray–box test on its own (kernel/src/box/ray_box.hpp): whether the ray may meet `box` at
 // some t in [t_min, t_max], and then a lower bound of the exact entry t. `magnitude` bounds |coordinate| of
 // every box that will be tested, per axis (the overflow guard). For tests and for callers with their own
 // boxes. The ray must be valid and 0 ≤ t_min ≤ t_max.

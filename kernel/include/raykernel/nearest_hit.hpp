@@ -55,7 +55,7 @@ class PlaneSet {
   friend struct detail::PlaneSetColumns;
   std::vector<Plane> planes_;
   std::vector<std::uint32_t> candidates_;
-  std::vector<double> columns_;  // the candidates as structure of arrays (kernel/src/raycast/nearest_screen.hpp)
+  std::vector<double> columns_;  // the candidates as structure of arrays (kernel/src/nearest/nearest_screen.hpp)
 };
 
 // The certified nearest hit (docs/contract.md §4), or nothing when no plane is hit (no planes, or every

@@ -25,7 +25,7 @@
 // This header needs neither CGAL nor GMP.
 #pragma once
 
-#include <raykernel/raykernel.hpp>
+#include <raykernel/core.hpp>
 
 #include <array>
 #include <cstdint>
@@ -34,6 +34,13 @@
 #include <string_view>
 
 namespace raykernel {
+
+// The triangle with vertices a, b, c (docs/contract.md §6). Its orientation is the order of the vertices:
+// the normal N = (b − a) × (c − a). Degenerate triangles (collinear or repeated vertices) are valid input.
+struct Triangle {
+  Vec3 a, b, c;
+};
+
 
 // Which points of the triangle count as a hit (docs/contract.md §6).
 enum class TriangleRule : std::uint8_t {

@@ -1,9 +1,9 @@
 // MeshBvh (binned SAH build of a binary hierarchy, collapsed to four children per node) and
 // BvhRayTraversal (nearest-first walk with the certified box test of ray_box.hpp, bvh_walk.hpp).
-#include "certified/fp_requirements.hpp"
-#include "fp_environment.hpp"
+#include "core/fp_requirements.hpp"
+#include "core/fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
-#include "mesh/ray_box.hpp"
+#include "box/ray_box.hpp"
 
 #include <raykernel/bvh.hpp>
 

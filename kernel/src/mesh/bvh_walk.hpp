@@ -1,13 +1,13 @@
 // The BVH walk: the next leaf of one ray's nearest-first traversal (BvhRayTraversal::next and the mesh
 // queries). Written once here and compiled per instruction set in bvh_walk_<isa>.cpp (AVX2: the four child
 // boxes of a node in one ymm pass per face row; portable: the same Lanes4 operations as SSE2 pairs), chosen
-// at run time by bvh.cpp — as the batch loops are (batch/fast_loop.hpp), and for the same reason separate
+// at run time by bvh.cpp — as the batch loops are (plane/fast_loop.hpp), and for the same reason separate
 // translation units: everything here is always inlined into the per-ISA entry point, so those objects define
 // no other symbol (tests/check_isa_objects.cmake checks it) and no AVX2 copy of a shared inline function can
 // be picked by the linker for other callers.
 #pragma once
 
-#include "mesh/ray_box.hpp"
+#include "box/ray_box.hpp"
 
 #include <raykernel/bvh.hpp>
 

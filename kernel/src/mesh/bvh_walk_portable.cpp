@@ -1,5 +1,5 @@
 // The BVH walk for any x86-64 (SSE2) or other target (mesh/bvh_walk.hpp).
-#include "certified/fp_requirements.hpp"
+#include "core/fp_requirements.hpp"
 #include "mesh/bvh_walk.hpp"
 
 RAYKERNEL_DEFINE_BVH_WALK(portable)

@@ -2,17 +2,17 @@
 // of an axis-aligned ray from the point, through the BVH.
 //
 // For the ray o + t·s·e_k every value that decides a crossing is a planar orientation in the other two axes
-// (mesh/mesh_predicates.hpp), so a crossing costs a few 2×2 determinants, filtered; the owned rule itself is
+// (orient/orient_predicates.hpp), so a crossing costs a few 2×2 determinants, filtered; the owned rule itself is
 // docs/contract.md §6's, decided by the same code as every ray–triangle query (detail::classify_triangle of
 // ray_triangle_formula.hpp) from these signs.
 #include <raykernel/mesh_queries.hpp>
 
-#include "certified/fp_requirements.hpp"
-#include "exact/exact_mesh.hpp"
-#include "fp_environment.hpp"
+#include "core/fp_requirements.hpp"
+#include "mesh/exact_mesh.hpp"
+#include "core/fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
-#include "mesh/mesh_predicates.hpp"
-#include "ray_triangle_formula.hpp"
+#include "orient/orient_predicates.hpp"
+#include "triangle/ray_triangle_formula.hpp"
 
 #include <algorithm>
 #include <cmath>

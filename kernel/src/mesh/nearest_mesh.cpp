@@ -6,11 +6,11 @@
 //   - The bound passed to the walk is +inf until a hit is found, then nextup(RN(t_best)): RN moves a value by
 //     at most half an ulp, so t_best < nextup(RN(t_best)); any triangle that could win (t ≤ t_best) is kept.
 //   - Two hits are ordered by RN(t): RN is monotone, so RN(t1) < RN(t2) implies t1 < t2; when RN(t1) = RN(t2)
-//     the exact t are compared in rationals (exact/exact_mesh.hpp), and an exact tie goes to the smaller index.
+//     the exact t are compared in rationals (mesh/exact_mesh.hpp), and an exact tie goes to the smaller index.
 #include <raykernel/mesh_queries.hpp>
 
-#include "exact/exact_mesh.hpp"
-#include "fp_environment.hpp"
+#include "mesh/exact_mesh.hpp"
+#include "core/fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
 
 #include <cmath>

@@ -43,10 +43,10 @@
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "triangle/ray_triangle_cascade.hpp"
 
-#include "certified/fp_requirements.hpp"
-#include "certified/multiversion.hpp"
-#include "certified/quotient_rounding.hpp"
-#include "exact/exact_triangle.hpp"
+#include "core/fp_requirements.hpp"
+#include "core/multiversion.hpp"
+#include "core/quotient_rounding.hpp"
+#include "triangle/exact_triangle.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
 #include <algorithm>

@@ -2,11 +2,11 @@
 // and whatever else asks triangle queries (meshes):
 //
 //   fast_triangle_intersection, fast_triangle_relation   the fast paths on raw input: multiversioned
-//                                                        (certified/multiversion.hpp), noexcept, branch-free
+//                                                        (core/multiversion.hpp), noexcept, branch-free
 //                                                        up to the decision; nothing when they do not certify
 //   triangle_intersection_cascade, triangle_relation_cascade   everything else, for validated input
 //
-// The split is the one certified/multiversion.hpp requires: the multiversioned functions never throw, and
+// The split is the one core/multiversion.hpp requires: the multiversioned functions never throw, and
 // validation (which throws) happens between the two, in the caller. Every function assumes the default
 // floating-point environment (fp_environment.hpp), which the public entry points install.
 #pragma once

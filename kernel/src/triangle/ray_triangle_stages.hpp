@@ -3,12 +3,12 @@
 // and by the stage tests, which check each stage alone against exact rationals.
 #pragma once
 
-#include "certified/enclosure.hpp"
-#include "certified/sign.hpp"
-#include "certified/error_bounds.hpp"
-#include "ray_triangle_formula.hpp"
-#include "triangle/det3_stages.hpp"
-#include "triangle/expansion_value.hpp"
+#include "core/enclosure.hpp"
+#include "core/sign.hpp"
+#include "core/error_bounds.hpp"
+#include "triangle/ray_triangle_formula.hpp"
+#include "core/det3_stages.hpp"
+#include "core/expansion_value.hpp"
 
 #include <raykernel/raykernel.hpp>
 #include <raykernel/triangle.hpp>

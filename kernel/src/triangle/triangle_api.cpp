@@ -5,12 +5,12 @@
 // environment, as the baseline it is.
 #include <raykernel/triangle.hpp>
 
-#include "certified/fp_requirements.hpp"
-#include "exact/exact_triangle.hpp"
-#include "fp_environment.hpp"
-#include "ray_triangle_formula.hpp"
+#include "core/fp_requirements.hpp"
+#include "triangle/exact_triangle.hpp"
+#include "core/fp_environment.hpp"
+#include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
-#include "validation.hpp"
+#include "core/validation.hpp"
 
 #include <limits>
 #include <optional>

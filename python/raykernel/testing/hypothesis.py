@@ -9,7 +9,7 @@
         relation, t = my_ray_plane(q.ray, q.plane)
         assert_matches_reference(q.ray, q.plane, relation, t, max_t_ulps=4)
 
-Ray–plane queries come from raykernel's C++ testing toolkit (testkit/hard_queries.hpp), the same
+Ray–plane queries come from raykernel's C++ testing toolkit (testkit/plane_queries.hpp), the same
 constructions its RapidCheck generators and fuzz decoder use: near-parallel and near-coplanar queries,
 exact degeneracies, rounding ties and near ties, subnormal and huge components, t overflowing and
 underflowing (``QUERY_KINDS``). The random 64-bit words a construction uses are read from one block of

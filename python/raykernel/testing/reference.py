@@ -1,5 +1,5 @@
 """The reference check: is an answer the exact one, and if not, how far off — in ulps, with a report that
-reproduces the query exactly (raykernel::testkit's reference check, testkit/reference_check.hpp).
+reproduces the query exactly (raykernel::testkit's reference check, testkit/plane_reference_check.hpp).
 
 Ray–plane and ray–triangle answers are checked by the C++ toolkit (exact rationals, correctly rounded t and
 barycentric coordinates; testkit/triangle_reference_check.hpp for triangles). A bare hit/miss and t (what a

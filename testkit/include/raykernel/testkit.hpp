@@ -14,16 +14,16 @@
 //   meshes.hpp           closed meshes with exact shared vertices: octahedron, subdivided cube, icosphere,
 //                        terrain solid
 //
-// The RapidCheck generators are in <raykernel/testkit/rapidcheck.hpp> (and triangle_rapidcheck.hpp), not included here because they need
+// The RapidCheck generators are in <raykernel/testkit/plane_rapidcheck.hpp> (and triangle_rapidcheck.hpp), not included here because they need
 // RapidCheck (find_package(raykernel CONFIG REQUIRED COMPONENTS testing), link `rapidcheck`).
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/fuzz_decoder.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
-#include <raykernel/testkit/reference_check.hpp>
+#include <raykernel/testkit/plane_reference_check.hpp>
 #include <raykernel/testkit/triangle_fuzz_decoder.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/testkit/triangle_reference_check.hpp>

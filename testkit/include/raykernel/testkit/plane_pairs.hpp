@@ -12,12 +12,12 @@
 //
 // Every coordinate is an integer of at most 48 bits times a power of two, so the doubles hold the
 // construction exactly and the promised relation between the two exact t is a theorem of the
-// construction, not a floating-point estimate (plane_pairs.cpp; tests/reference_check_test.cpp checks it
+// construction, not a floating-point estimate (plane_pairs.cpp; tests/plane_reference_check_test.cpp checks it
 // in exact rationals). Both planes are hit (exact t > 0). The queries are always valid input.
 #pragma once
 
 #include <raykernel/raykernel.hpp>
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include <array>
 #include <cstdint>

@@ -16,7 +16,7 @@
 //   }
 #pragma once
 
-#include <raykernel/testkit/fuzz_decoder.hpp>
+#include <raykernel/testkit/plane_fuzz_decoder.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 
 #include <cstddef>

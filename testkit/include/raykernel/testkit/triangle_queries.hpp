@@ -11,7 +11,7 @@
 // Queries are always valid input (finite, nonzero direction); degenerate triangles are valid input.
 #pragma once
 
-#include <raykernel/testkit/hard_queries.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <array>

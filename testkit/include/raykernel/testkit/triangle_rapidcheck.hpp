@@ -11,7 +11,7 @@
 // toward simpler queries of the same kind; counterexamples print every component as a hexadecimal float.
 #pragma once
 
-#include <raykernel/testkit/rapidcheck.hpp>
+#include <raykernel/testkit/plane_rapidcheck.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/testkit/triangle_reference_check.hpp>
 

@@ -1,5 +1,0 @@
-// The batch fast loop compiled for AVX2 with FMA (batch/fast_loop.hpp; -march=x86-64-v3 in kernel/CMakeLists.txt).
-#include "batch/fast_loop.hpp"
-#include "certified/fp_requirements.hpp"
-
-RAYKERNEL_DEFINE_FAST_LOOPS(avx2, detail::Lanes4)

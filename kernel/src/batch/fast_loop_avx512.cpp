@@ -1,5 +1,0 @@
-// The batch fast loop compiled for AVX-512 (batch/fast_loop.hpp; -march=x86-64-v4 in kernel/CMakeLists.txt).
-#include "batch/fast_loop.hpp"
-#include "certified/fp_requirements.hpp"
-
-RAYKERNEL_DEFINE_FAST_LOOPS(avx512, detail::Lanes8)

@@ -1,0 +1,167 @@
+// Stage 3 of the certified cascade: exact arithmetic on floating-point expansions (Shewchuk, "Adaptive
+// precision floating-point arithmetic and fast robust geometric predicates", DCG 18, 1997).
+//
+// An expansion is an unevaluated sum of doubles whose exact sum is the value it stands for; zero is the single
+// component 0 (zero elimination). TwoSum is exact for finite sums, TwoProduct only when the product does not
+// underflow (|a·b| ≥ 2^-969, Flocq `mult_error_FLT`): every product goes through `ExpansionBuilder::product`,
+// which records whether that held. A stage-3 result is used only when `exact()` is true; otherwise the cascade
+// goes to the exact rational stage. Overflow shows up as a non-finite component and is caught the same way.
+//
+// The routines follow Shewchuk's fast_expansion_sum_zeroelim and scale_expansion_zeroelim with two changes
+// that make them provable without his nonoverlapping theorems (proofs/Expansions.v): TwoSum everywhere
+// (where he uses Fast2Sum, whose exactness needs |a| ≥ |b|, an invariant of his Theorems 13 and 19), and a
+// checked sign (his sign of the largest component needs the expansion to be nonoverlapping). On the
+// expansions his algorithms produce, TwoSum returns the same pair as Fast2Sum and the checked sign decides,
+// so the changes cost a few additions and leave stage 3's answers as they were. TwoProduct is FMA-based in
+// place of Veltkamp splitting. Round-to-nearest is required (the default environment, fp_environment.hpp).
+#pragma once
+
+#include "core/eft.hpp"
+#include "core/enclosure.hpp"
+#include "core/error_bounds.hpp"
+#include "core/sign.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <cstddef>
+
+namespace raykernel::detail {
+
+template <std::size_t Capacity>
+struct Expansion {
+  double component[Capacity];  // the first `size` are meaningful (left uninitialized: this is a hot path)
+  std::size_t size = 0;        // ≥ 1 once built; the zero expansion is {0}
+
+  // The sign of the exact sum, or `uncertain`: the last component decides when its magnitude exceeds twice the
+  // rounded sum of the others' magnitudes (then it exceeds their exact sum); the single component 0 is zero.
+  //   Valid range: finite components (callers check `exact()` first), at most 2^20 of them.
+  //   Certified by: proofs/Expansions.v, `expansion_sign_sound` (any list of finite doubles, nonoverlapping
+  //   or not); `uncertain` sends the caller to the exact stage.
+  [[nodiscard]] Sign sign() const noexcept {
+    static_assert(Capacity <= (std::size_t{1} << 20));
+    const double top = component[size - 1];
+    double lower = 0;
+    for (std::size_t i = 0; i + 1 < size; ++i) lower += std::fabs(component[i]);
+    if (lower + lower < std::fabs(top)) return top > 0 ? Sign::positive : Sign::negative;
+    return (size == 1 && top == 0) ? Sign::zero : Sign::uncertain;
+  }
+};
+
+// Builds expansions and keeps the one condition exactness depends on besides round-to-nearest: that no
+// TwoProduct underflowed and nothing overflowed.
+class ExpansionBuilder {
+ public:
+  // a·b as a 1- or 2-component expansion (zero-eliminated).
+  DoubleDouble product(double a, double b) noexcept {
+    const DoubleDouble p = two_prod(a, b);
+    note_product(a, b, p.hi);
+    return p;
+  }
+
+  template <std::size_t N>
+  void check_finite(const Expansion<N>& e) noexcept {
+    for (std::size_t i = 0; i < e.size; ++i) exact_ &= std::isfinite(e.component[i]);
+  }
+
+  [[nodiscard]] bool exact() const noexcept { return exact_; }
+
+  // h = e·b (Shewchuk's scale_expansion_zeroelim with TwoSum for his Fast2Sum). h has at most 2·|e| components.
+  //   Certified by: proofs/Expansions.v, `scale_gen_exact` (Σh = b·Σe when exact() and h finite).
+  template <std::size_t M, std::size_t N>
+  void scale(const Expansion<M>& e, double b, Expansion<N>& h) noexcept {
+    static_assert(N >= 2 * M);
+    h.size = 0;
+    DoubleDouble p = product(e.component[0], b);
+    double q = p.hi;
+    push(h, p.lo);
+    for (std::size_t i = 1; i < e.size; ++i) {
+      p = product(e.component[i], b);
+      const DoubleDouble sum = two_sum(q, p.lo);
+      push(h, sum.lo);
+      const DoubleDouble next = two_sum(p.hi, sum.hi);
+      push(h, next.lo);
+      q = next.hi;
+    }
+    finish(h, q);
+  }
+
+  // h = e + f (Shewchuk's fast_expansion_sum_zeroelim with TwoSum for his Fast2Sum), merging by increasing
+  // magnitude. Certified by: proofs/Expansions.v, `sum_gen_exact` (Σh = Σe + Σf when h is finite).
+  template <std::size_t M, std::size_t N, std::size_t K>
+  static void sum(const Expansion<M>& e, const Expansion<N>& f, Expansion<K>& h) noexcept {
+    static_assert(K >= M + N);
+    std::size_t ei = 0, fi = 0;
+    // The next component in magnitude order; ties take f's (as predicates.c does).
+    auto take_smaller = [&]() -> double {
+      if (fi >= f.size) return e.component[ei++];
+      if (ei >= e.size) return f.component[fi++];
+      const double en = e.component[ei], fn = f.component[fi];
+      if ((fn > en) == (fn > -en)) {
+        ++ei;
+        return en;
+      }
+      ++fi;
+      return fn;
+    };
+    h.size = 0;
+    double q = take_smaller();
+    if (ei < e.size || fi < f.size) {
+      const DoubleDouble s = two_sum(take_smaller(), q);
+      push(h, s.lo);
+      q = s.hi;
+      while (ei < e.size || fi < f.size) {
+        const DoubleDouble t = two_sum(q, take_smaller());
+        push(h, t.lo);
+        q = t.hi;
+      }
+    }
+    finish(h, q);
+  }
+
+  template <std::size_t N>
+  static void from_pair(const DoubleDouble& p, Expansion<N>& h) noexcept {
+    static_assert(N >= 2);
+    h.size = 0;
+    push(h, p.lo);
+    finish(h, p.hi);
+  }
+
+ private:
+  // TwoProduct is exact when a·b == 0 or |a·b| ≥ 2^-969; |a ⊗ b| ≥ 2^-968 implies the latter
+  // (bounds::exact_product_threshold).
+  void note_product(double a, double b, double p) noexcept {
+    const bool exact = (p == 0) ? (a == 0 || b == 0) : (std::fabs(p) >= bounds::exact_product_threshold);
+    exact_ &= exact && std::isfinite(p);
+  }
+
+  template <std::size_t N>
+  static void push(Expansion<N>& h, double x) noexcept {
+    if (x != 0) h.component[h.size++] = x;  // NaN is kept, so that check_finite sees it
+  }
+  template <std::size_t N>
+  static void finish(Expansion<N>& h, double q) noexcept {
+    if (q != 0 || h.size == 0) h.component[h.size++] = q;
+  }
+
+  bool exact_ = true;
+};
+
+// expansion_tail_enclosure: an enclosure (hi, lo, E) of the exact sum of an expansion: one TwoSum pass
+// condenses it into Q plus small residuals r_j, then lo = Σ r_j rounded and E bounds that rounding.
+//   Error bound: |S − (hi + lo)| ≤ (A ⊗ 2^-48) ⊕ 2μ, A = Σ|r_j| rounded (error_bounds.hpp, stage 3).
+//   Certified by: proofs/Compensated.v, `tail_sum_enclosure`.
+template <std::size_t N>
+[[nodiscard]] Enclosure expansion_tail_enclosure(const Expansion<N>& e) noexcept {
+  static_assert(N <= bounds::tail_sum_max_terms);
+  double q = e.component[0];
+  double lo = 0, magnitude = 0;
+  for (std::size_t i = 1; i < e.size; ++i) {
+    const DoubleDouble s = two_sum(q, e.component[i]);
+    q = s.hi;
+    lo += s.lo;
+    magnitude += std::fabs(s.lo);
+  }
+  return {q, lo, magnitude * bounds::tail_sum_relative + bounds::tail_sum_absolute};
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,1 @@
+# orient: the orient2d/orient3d filters of inside() (orient_predicates.hpp, header only).

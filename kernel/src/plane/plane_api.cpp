@@ -1,0 +1,149 @@
+// The public ray–plane entry points: the default floating-point environment for the call
+// (fp_environment.hpp), the fast path on raw input, and — for what it does not certify — validation at the
+// boundary (validation.hpp) and the rest of the cascade from the same per-query state
+// (plane/ray_plane_stages.hpp); or the exact reference; or the naive baseline.
+#include <raykernel/raykernel.hpp>
+
+#include "core/fp_requirements.hpp"
+#include "core/multiversion.hpp"
+#include "plane/ray_plane_cascade.hpp"
+#include "plane/exact_plane.hpp"
+#include "core/fp_environment.hpp"
+#include "core/fp_probe.hpp"
+#include "plane/ray_plane_formula.hpp"
+#include "core/validation.hpp"
+
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace raykernel {
+namespace {
+
+void throw_if_invalid(const Ray& ray, const Plane& plane) {
+  if (detail::is_valid(ray) & detail::is_valid(plane)) [[likely]]
+    return;
+  throw invalid_input(*validate(ray, plane));
+}
+
+// The multiversioned functions below (core/multiversion.hpp) never throw: GCC 12 treats a
+// target_clones function as nothrow, so its callers would skip their cleanups (here: restoring the
+// caller's floating-point environment) if an exception passed through one. Validation, which throws, is
+// done between them.
+
+// The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
+// caller reports), else the cascade's answer. Out of line: the fast path stays small. The cascade starts
+// from the same terms the fast path computed (RayPlaneCascade recomputes them with the same operations:
+// cheaper than storing them on every call, which costs the fast path about 40 instructions).
+[[gnu::noinline]] std::optional<Intersection> intersection_rest(const Ray& ray, const Plane& plane) noexcept {
+  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  detail::RayPlaneCascade query(ray, plane);
+  return detail::intersect_cascade(query).intersection;
+}
+
+[[gnu::noinline]] std::optional<Relation> relation_rest(const Ray& ray, const Plane& plane) noexcept {
+  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  detail::RayPlaneCascade query(ray, plane);
+  const detail::CertifiedSigns signs = detail::certified_signs(query);
+  return detail::relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den));
+}
+
+// The whole certified path for one query, in the default environment: the fast path, then the rest.
+RAYKERNEL_MULTIVERSION
+std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& plane) noexcept {
+  const detail::FastAnswer a = detail::fast_answer(ray, plane);
+  if (a.certain) [[likely]]
+    return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
+  return intersection_rest(ray, plane);
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<Relation> certified_relation(const Ray& ray, const Plane& plane) noexcept {
+  const detail::FastRelationT<double> r = detail::fast_relation(ray, plane);
+  if (r.certain) [[likely]]
+    return r.behind ? Relation::behind : Relation::hit;
+  return relation_rest(ray, plane);
+}
+
+}  // namespace
+
+bool floating_point_environment_is_default() noexcept { return detail::fp_environment_is_default(); }
+
+Intersection intersect(const Ray& ray, const Plane& plane) {
+  const std::optional<Intersection> a = detail::in_default_fp_environment([&] { return certified_intersection(ray, plane); });
+  if (!a) [[unlikely]]
+    throw invalid_input(*validate(ray, plane));
+  return *a;
+}
+
+Relation relation(const Ray& ray, const Plane& plane) {
+  const std::optional<Relation> r = detail::in_default_fp_environment([&] { return certified_relation(ray, plane); });
+  if (!r) [[unlikely]]
+    throw invalid_input(*validate(ray, plane));
+  return *r;
+}
+
+// The cascade stage by stage (filter first), so that the stages it reports are the cascade's, not the
+// fused fast path's.
+TracedIntersection intersect_traced(const Ray& ray, const Plane& plane) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    detail::RayPlaneCascade query(ray, plane);
+    return detail::intersect_cascade(query);
+  });
+}
+
+Intersection intersect_exact(const Ray& ray, const Plane& plane) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    return detail::exact::intersect(ray, plane);
+  });
+}
+
+ExactIntersection intersect_exact_rational(const Ray& ray, const Plane& plane) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, plane);
+    return detail::exact::intersect_rational(ray, plane);
+  });
+}
+
+// The seed's formula in the caller's environment, as the baseline it is (no guarantee, no check).
+Intersection intersect_naive(const Ray& ray, const Plane& plane) noexcept {
+  const auto [num, den] = detail::ray_plane_values<double>(ray, plane, [](double x) { return x; });
+  if (den == 0) return {num == 0 ? Relation::in_plane : Relation::parallel, std::numeric_limits<double>::quiet_NaN()};
+  const double t = num / den;
+  return {t >= 0 ? Relation::hit : Relation::behind, t};
+}
+
+std::string_view to_string(Relation relation) noexcept {
+  switch (relation) {
+    case Relation::hit: return "hit";
+    case Relation::behind: return "behind";
+    case Relation::parallel: return "parallel";
+    case Relation::in_plane: return "in-plane";
+  }
+  return "?";
+}
+
+std::string_view to_string(Stage stage) noexcept {
+  switch (stage) {
+    case Stage::filter: return "filter";
+    case Stage::compensated: return "compensated";
+    case Stage::expansion: return "expansion";
+    case Stage::exact: return "exact";
+  }
+  return "?";
+}
+
+std::string_view version() noexcept { return RAYKERNEL_VERSION; }
+
+}  // namespace raykernel
+
+namespace raykernel::detail {
+
+// a·a − c as the kernel's compiler flags evaluate it. With -ffp-contract=off it is RN(RN(a·a) − c); a
+// build that contracts it into one FMA returns the exact a·a − c instead. tests/fp_environment_test.cpp
+// calls it with a = 1 + 2^-30, c = 1 + 2^-29, where the two differ (0 versus 2^-60).
+double contraction_probe(double a, double c) noexcept { return a * a - c; }
+
+}  // namespace raykernel::detail

@@ -1,0 +1,71 @@
+// The ray–plane cascade beyond the fast path, for one valid query: the relation from the signs of num and
+// den, each stage asked only for what the cheaper ones left open, and t rounded by the first stage whose
+// enclosures certify it (plane/ray_plane_stages.hpp has the stages and the per-query state).
+//
+// Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt): the proofs model each
+// + − × / as one correctly rounded operation and each std::fma as one rounding. Each function is cloned
+// for CPUs with and without an FMA unit (core/multiversion.hpp); both clones compute the same bits.
+#include "core/fp_requirements.hpp"
+#include "core/multiversion.hpp"
+#include "plane/ray_plane_cascade.hpp"
+#include "plane/exact_plane.hpp"
+#include "plane/exact_plane_compare.hpp"
+
+#include <limits>
+
+namespace raykernel::detail {
+
+RAYKERNEL_MULTIVERSION
+CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
+  // Stage 1: binary64 filter.
+  Sign den_sign = query.den_filter();
+  Sign num_sign = query.num_filter();
+  Stage stage = Stage::filter;
+
+  // Stage 2, both levels, computed on demand and kept for the rounding of t.
+  if (!is_certain(den_sign) || !is_certain(num_sign)) {
+    stage = Stage::compensated;
+    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_compensated());
+    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_compensated());
+    // The second level, for values that cancel to within ~2^-100 of the terms.
+    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_refined());
+    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_refined());
+  }
+  if (is_certain(den_sign) && is_certain(num_sign)) return {num_sign, den_sign, stage};
+
+  // Stage 3: exact signs, if the expansions are exact and their signs certain; else the exact stage.
+  if (const ExactExpansions& e = query.expansions(); e.exact) {
+    const Sign num = e.num.sign(), den = e.den.sign();
+    if (is_certain(num) && is_certain(den)) return {num, den, Stage::expansion};
+  }
+  const exact::ExactSigns s = exact::ray_plane_signs(query.ray(), query.plane());
+  return {sign_from_int(s.num), sign_from_int(s.den), Stage::exact};
+}
+
+RAYKERNEL_MULTIVERSION
+std::pair<double, Stage> certified_quotient(RayPlaneCascade& query) noexcept {
+  if (const auto t = round_quotient_if_certain(query.num_compensated(), prepare_divisor(query.den_compensated())))
+    return {*t, Stage::compensated};
+  if (const auto t = round_quotient_if_certain(query.num_refined(), prepare_divisor(query.den_refined())))
+    return {*t, Stage::compensated};
+  if (const ExactExpansions& e = query.expansions(); e.exact) {
+    if (const auto t = round_quotient_if_certain(expansion_tail_enclosure(e.num),
+                                                 prepare_divisor(expansion_tail_enclosure(e.den))))
+      return {*t, Stage::expansion};
+  }
+  return {exact::intersect(query.ray(), query.plane()).t, Stage::exact};
+}
+
+TracedIntersection intersect_cascade(RayPlaneCascade& query) noexcept {
+  const CertifiedSigns signs = certified_signs(query);
+  const Relation relation = relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den));
+  if (relation == Relation::parallel || relation == Relation::in_plane)
+    return {{relation, std::numeric_limits<double>::quiet_NaN()}, signs.stage, signs.stage};
+  if (signs.num == Sign::zero) return {{Relation::hit, 0.0}, signs.stage, signs.stage};  // t = 0 exactly: +0
+  // Extreme exponents (stage 3 was not exact): the exact stage rounds t too.
+  if (signs.stage == Stage::exact) return {exact::intersect(query.ray(), query.plane()), Stage::exact, Stage::exact};
+  const auto [t, t_stage] = certified_quotient(query);
+  return {{relation, t}, signs.stage, t_stage};
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,251 @@
+// One ray–plane query through the certified cascade: its state, built once, and every stage that reads it.
+//
+//   den = d·n,   num = (p − o)·n                                        (docs/contract.md §1)
+//
+// RayPlaneTermsT holds what every stage starts from — the inputs, the differences p_i ⊖ o_i and stage 1's
+// rounded dot products — for one query (V = double) or for four or eight at once (V = Lanes4, Lanes8: the
+// batch API). The stages read it and never recompute it (the exact TwoDiff errors of the differences,
+// which only stage 2 needs, are derived there from the same inputs and differences):
+//
+//   stage 1   den_filter_sign, num_filter_sign      dot3_filter_lanes          (core/dot3_filter.hpp)
+//   stage 2   den_compensated, num_compensated      compensated_dot3(_exact)   (core/dot3_compensated.hpp)
+//             den_refined, num_refined              compensated_dot3_refined, the second level
+//   stage 3   ray_plane_expansions                  exact expansions           (core/expansion.hpp)
+//   t         round_quotient on an enclosure pair   (core/quotient_rounding.hpp)
+//
+// `fast_answer` is the fast path `intersect` and the batch API run on raw input: stage 1, stage 2's first
+// level and round_quotient, branch-free. `fast_relation` is stage 1 alone, for `relation`. Neither needs
+// validated input: a certified nonzero sign of den implies d ≠ 0 and n ≠ 0 (a zero vector makes every
+// product of den exactly 0), and a certified decision implies finite inputs (a NaN or infinite component
+// makes the magnitude m, hence every bound compared against, NaN or +inf, and every certifying comparison
+// false). Queries they leave uncertain are validated and continue in RayPlaneCascade
+// (plane/ray_plane_cascade.hpp) from the same terms.
+#pragma once
+
+#include "core/dot3_compensated.hpp"
+#include "core/dot3_filter.hpp"
+#include "core/eft.hpp"
+#include "core/enclosure.hpp"
+#include "core/error_bounds.hpp"
+#include "core/expansion.hpp"
+#include "core/lanes.hpp"
+#include "core/quotient_rounding.hpp"
+#include "core/sign.hpp"
+#include "plane/ray_plane_formula.hpp"
+
+#include <raykernel/raykernel.hpp>
+
+
+namespace raykernel::detail {
+
+template <class V>
+struct RayPlaneTermsT {
+  V o[3], d[3], p[3], n[3];
+  V diff[3];  // p_i ⊖ o_i, the a_i of num
+  Dot3RoundedT<V> den, num;
+};
+using RayPlaneTerms = RayPlaneTermsT<double>;
+
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline RayPlaneTermsT<V> ray_plane_terms(const V o[3], const V d[3], const V p[3],
+                                                                              const V n[3]) noexcept {
+  RayPlaneTermsT<V> q;
+  for (int i = 0; i < 3; ++i) {
+    q.o[i] = o[i], q.d[i] = d[i], q.p[i] = p[i], q.n[i] = n[i];
+    q.diff[i] = p[i] - o[i];
+  }
+  q.den = dot3_rounded(q.d, q.n);
+  q.num = dot3_rounded(q.diff, q.n);
+  return q;
+}
+
+// The exact errors of the differences: p_i − o_i = diff_i + low_i (TwoDiff; its first operation is the
+// p_i ⊖ o_i of the terms, so this is the same computation as two_diff(p_i, o_i)).
+template <class V>
+[[gnu::always_inline]] inline void difference_low_parts(const RayPlaneTermsT<V>& q, V low[3]) noexcept {
+  for (int i = 0; i < 3; ++i) low[i] = two_diff(q.p[i], q.o[i]).lo;
+}
+
+// The query's vectors as the arrays the stages take.
+#define RAYKERNEL_QUERY_ARRAYS(ray, plane)                                                                  \
+  const double o[3] = {(ray).origin.x, (ray).origin.y, (ray).origin.z};                                    \
+  const double d[3] = {(ray).direction.x, (ray).direction.y, (ray).direction.z};                           \
+  const double p[3] = {(plane).point.x, (plane).point.y, (plane).point.z};                                 \
+  const double n[3] = {(plane).normal.x, (plane).normal.y, (plane).normal.z}
+
+[[nodiscard]] [[gnu::always_inline]] inline RayPlaneTerms ray_plane_terms(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  return ray_plane_terms(o, d, p, n);
+}
+
+// Stage 1 (never certifies zero: see RayPlaneCascade for the exactly-zero cases).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> den_filter_sign(const RayPlaneTermsT<V>& q) noexcept {
+  return dot3_filter_lanes(q.den, bounds::filter_den_relative);
+}
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> num_filter_sign(const RayPlaneTermsT<V>& q) noexcept {
+  return dot3_filter_lanes(q.num, bounds::filter_num_relative);
+}
+
+// Stage 2, first level.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> den_compensated(const RayPlaneTermsT<V>& q) noexcept {
+  return compensated_dot3_exact(q.d, q.n, q.den);
+}
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> num_compensated(const RayPlaneTermsT<V>& q) noexcept {
+  V low[3];
+  difference_low_parts(q, low);
+  return compensated_dot3(q.diff, low, q.n, q.num);
+}
+
+// Stage 2, second level (one query).
+inline constexpr double exact_low_parts[3] = {0, 0, 0};  // den's inputs are exact: α = 0
+[[nodiscard]] inline Enclosure den_refined(const RayPlaneTerms& q) noexcept {
+  return compensated_dot3_refined(q.d, exact_low_parts, q.n, q.den);
+}
+[[nodiscard]] inline Enclosure num_refined(const RayPlaneTerms& q) noexcept {
+  double low[3];
+  difference_low_parts(q, low);
+  return compensated_dot3_refined(q.diff, low, q.n, q.num);
+}
+
+// Stage 3: the exact expansions of num and den. num = Σ (δ_i + ε_i)·n_i with δ_i + ε_i = p_i − o_i exactly
+// (the TwoDiff pair): each term is a 2-component expansion scaled by n_i (≤ 4 components), three ≤ 12.
+struct ExactExpansions {
+  Expansion<12> num;
+  Expansion<6> den;
+  bool exact;  // every TwoProduct was exact and nothing overflowed: num and den are the exact values
+};
+[[nodiscard]] inline ExactExpansions ray_plane_expansions(const RayPlaneTerms& q) noexcept {
+  ExpansionBuilder builder;
+  ExactExpansions e;
+  {
+    Expansion<2> product[3];
+    for (int i = 0; i < 3; ++i) ExpansionBuilder::from_pair(builder.product(q.d[i], q.n[i]), product[i]);
+    Expansion<4> partial;
+    ExpansionBuilder::sum(product[0], product[1], partial);
+    ExpansionBuilder::sum(partial, product[2], e.den);
+  }
+  {
+    double low[3];
+    difference_low_parts(q, low);
+    Expansion<4> term[3];
+    for (int i = 0; i < 3; ++i) {
+      Expansion<2> difference;
+      ExpansionBuilder::from_pair({q.diff[i], low[i]}, difference);
+      builder.scale(difference, q.n[i], term[i]);
+    }
+    Expansion<8> partial;
+    ExpansionBuilder::sum(term[0], term[1], partial);
+    ExpansionBuilder::sum(partial, term[2], e.num);
+  }
+  builder.check_finite(e.num);
+  builder.check_finite(e.den);
+  e.exact = builder.exact();
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The fast paths.
+
+// The fast path's answer, per query or per lane. `behind` and `t` are meaningful where `certain`.
+template <class V>
+struct FastAnswerT {
+  V t;
+  MaskOf<V> behind;              // the relation is behind, else hit
+  MaskOf<V> certain;             // both signs certified nonzero (so the input is valid) and t certified
+  MaskOf<V> relation_by_filter;  // stage 1 decided both signs (else the first compensated level helped)
+};
+using FastAnswer = FastAnswerT<double>;
+
+// The fast path's decision from stage 1's signs and stage 2's enclosures: the signs stage 1 left open taken
+// from the enclosures, t from round_quotient on them.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer_from(IntegerOf<V> den_filter, IntegerOf<V> num_filter,
+                                                                          const EnclosureT<V>& den,
+                                                                          const EnclosureT<V>& num) noexcept {
+  const IntegerOf<V> den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den));
+  const IntegerOf<V> num_sign = first_certain_lanes(num_filter, enclosure_sign_lanes(num));
+  const QuotientRoundingT<V> t = round_quotient(num, prepare_divisor(den));
+  return {t.t, signs_say_behind(num_sign, den_sign),
+          both(both(den_sign != uncertain_lane, num_sign != uncertain_lane), t.certain),
+          both(den_filter != uncertain_lane, num_filter != uncertain_lane)};
+}
+
+// Stage 1, then the first level of stage 2 for the signs stage 1 left open, and round_quotient on the
+// stage-2 enclosures for t; per query, or per lane of a batch.
+//   Certified by: proofs/Cascade.v, `fast_answer_correct` (and `fast_path_den_valid` for validity); on the
+//   bits, any input pattern, proofs/QueryTwins.v, `fast_answer_twin_correct`.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer(const RayPlaneTermsT<V>& q) noexcept {
+  return fast_answer_from(den_filter_sign(q), num_filter_sign(q), den_compensated(q), num_compensated(q));
+}
+
+// The same for one query, with den and num computed side by side as the two lanes of a Lanes2: lane 0
+// evaluates den = Σ d_i n_i from a_i = d_i ⊖ 0 = d_i (whose TwoDiff error is 0: the α = 0 form), lane 1
+// num = Σ (p_i − o_i) n_i from a_i = p_i ⊖ o_i with its TwoDiff error — each lane the very operations of
+// the scalar stage for its value, with its own filter constant, so every theorem about the stages holds
+// lane by lane (proofs/README.md, "Lanes"). Half the instructions of two scalar evaluations.
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
+                                                                const double n[3]) noexcept {
+  Lanes2 a[3], alpha[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    const DD<Lanes2> s = two_diff(Lanes2{d[i], p[i]}, Lanes2{0.0, o[i]});
+    a[i] = s.hi;
+    alpha[i] = s.lo;
+    b[i] = Lanes2{n[i], n[i]};
+  }
+  const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
+  const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  const EnclosureT<Lanes2> e = compensated_dot3(a, alpha, b, stage1);
+  return fast_answer_from<double>(filter[0], filter[1], Enclosure{e.hi[0], e.lo[0], e.radius[0]},
+                                  Enclosure{e.hi[1], e.lo[1], e.radius[1]});
+}
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  return fast_answer(o, d, p, n);
+}
+
+// Stage 1 alone, for the relation without t.
+//   Certified by: proofs/Cascade.v, `fast_relation_correct` (which includes d ≠ 0 and n ≠ 0); on the bits,
+//   any input pattern, proofs/QueryTwins.v, `fast_relation_twin_correct`.
+template <class V>
+struct FastRelationT {
+  MaskOf<V> behind;   // the relation is behind, else hit
+  MaskOf<V> certain;  // both signs certified nonzero (so the input is valid)
+};
+// Written with |s| > B instead of dot3_filter_lanes' (s > B, s < −B): the same decision (B ≥ 0; NaN
+// fails both), and then num·den < 0 exactly when the rounded values differ in sign. It computes only the
+// stage-1 values it needs, as locals (GCC keeps them in registers; through RayPlaneTermsT it spills).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline FastRelationT<V> fast_relation(const V o[3], const V d[3], const V p[3],
+                                                                           const V n[3]) noexcept {
+  const V diff[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+  const Dot3RoundedT<V> den = dot3_rounded(d, n);
+  const Dot3RoundedT<V> num = dot3_rounded(diff, n);
+  const V den_bound = dot3_filter_bound(den, bounds::filter_den_relative);
+  const V num_bound = dot3_filter_bound(num, bounds::filter_num_relative);
+  return {(num.value < 0) != (den.value < 0), both(abs(den.value) > den_bound, abs(num.value) > num_bound)};
+}
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline FastRelationT<V> fast_relation(const RayPlaneTermsT<V>& q) noexcept {
+  return fast_relation(q.o, q.d, q.p, q.n);
+}
+// For one query, den and num side by side as the two lanes of a Lanes2 (as fast_answer does; the den lane's
+// a_i = d_i ⊖ 0 = d_i exactly).
+[[nodiscard]] [[gnu::always_inline]] inline FastRelationT<double> fast_relation(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  Lanes2 a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = Lanes2{d[i], p[i]} - Lanes2{0.0, o[i]};
+    b[i] = Lanes2{n[i], n[i]};
+  }
+  const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
+  const Lanes2 bound = dot3_filter_bound(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  const Mask2 certain = abs(stage1.value) > bound;
+  return {(stage1.value[1] < 0) != (stage1.value[0] < 0), static_cast<bool>(certain[0] & certain[1])};
+}
+
+}  // namespace raykernel::detail

@@ -1,6 +1,0 @@
-// The nearest_hit screen for any target (raycast/nearest_screen.hpp): two planes at a time (one SSE2
-// register on x86-64; the vector extensions lower to scalar operations elsewhere).
-#include "certified/fp_requirements.hpp"
-#include "raycast/nearest_screen.hpp"
-
-RAYKERNEL_DEFINE_NEAREST_SCREEN(portable, detail::Lanes2)
