@@ -9,7 +9,7 @@
 #                                               exported targets raykernel::raykernel, raykernel::testkit and
 #                                               raykernel::io (mesh files),
 #                                               and RaykernelDependencies.cmake (GMP, gmpxx, MPFR for linking)
-#   P/lib/pkgconfig/raykernel.pc, raykernel-testkit.pc
+#   P/lib/pkgconfig/raykernel.pc, raykernel-testkit.pc, raykernel-io.pc
 #
 # Everything installed locates itself relative to its own directory (CMake's _IMPORT_PREFIX and
 # PACKAGE_PREFIX_DIR, pkg-config's ${pcfiledir}), so an installed tree can be moved: no build or source path
@@ -103,5 +103,6 @@ else()
 endif()
 configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel.pc.in ${PROJECT_BINARY_DIR}/raykernel.pc @ONLY)
 configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel-testkit.pc.in ${PROJECT_BINARY_DIR}/raykernel-testkit.pc @ONLY)
-install(FILES ${PROJECT_BINARY_DIR}/raykernel.pc ${PROJECT_BINARY_DIR}/raykernel-testkit.pc
+configure_file(${PROJECT_SOURCE_DIR}/cmake/raykernel-io.pc.in ${PROJECT_BINARY_DIR}/raykernel-io.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/raykernel.pc ${PROJECT_BINARY_DIR}/raykernel-testkit.pc ${PROJECT_BINARY_DIR}/raykernel-io.pc
   DESTINATION ${RAYKERNEL_INSTALL_PKGCONFIGDIR})

@@ -59,6 +59,7 @@ config=$(find "$prefix" -name raykernel-config.cmake)
 pc=$(find "$prefix" -name raykernel.pc)
 [ -n "$config" ] && [ -f "$(dirname "$config")/raykernel-config-version.cmake" ] || fail "CMake package files not installed"
 [ -n "$pc" ] || fail "raykernel.pc not installed"
+[ -f "$(dirname "$pc")/raykernel-io.pc" ] || fail "raykernel-io.pc not installed"
 for h in raykernel/raykernel.hpp raykernel/testkit/plane_queries.hpp raykernel/testkit/plane_rapidcheck.hpp \
          raykernel/testkit/plane_reference_check.hpp raykernel/testkit/plane_pairs.hpp raykernel/testkit/plane_fuzz_decoder.hpp; do
   [ -f "$prefix/include/$h" ] || fail "header $h not installed"
@@ -91,6 +92,25 @@ echo "pkg-config --libs raykernel-testkit: $(pkg-config --libs raykernel-testkit
 c++ -std=c++20 -O1 examples/intersect_basics.cpp $flags -o "$work/intersect_basics_pkgconfig"
 "$work/intersect_basics_pkgconfig" > "$work/basics-pkgconfig.out"
 expect_in "$work/basics-pkgconfig.out" "raykernel $version"
+# Mesh files through raykernel-io (it requires raykernel): a program that reads an OBJ and casts a ray.
+io_flags=$(pkg-config --cflags --libs raykernel-io)
+echo "pkg-config --cflags --libs raykernel-io: $io_flags"
+case " $io_flags " in *" -lraykernel_io "*) ;; *) fail "no -lraykernel_io in '$io_flags'" ;; esac
+cat > "$work/read_mesh_app.cpp" <<'CPP'
+#include <raykernel/io/mesh_file.hpp>
+#include <raykernel/mesh_queries.hpp>
+#include <cstdio>
+int main(int, char** argv) {
+  const raykernel::Mesh mesh = raykernel::io::read_mesh(argv[1]);
+  const auto hit = raykernel::nearest_hit(raykernel::Ray{{0.25, 0.25, 1}, {0, 0, -1}}, mesh);
+  std::printf("%zu triangles, %s\n", mesh.triangles.size(), hit ? "hit" : "miss");
+}
+CPP
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$work/one.obj"
+# shellcheck disable=SC2086  # the flags are words
+c++ -std=c++20 -O1 "$work/read_mesh_app.cpp" $io_flags -o "$work/read_mesh_app"
+"$work/read_mesh_app" "$work/one.obj" > "$work/read-mesh.out"
+expect_in "$work/read-mesh.out" "1 triangles, hit"
 
 step "find_package(raykernel) from two sibling directories of one project"
 # Imported targets are directory-scoped: each find_package must define what the link interface names.
