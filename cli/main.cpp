@@ -1,10 +1,11 @@
 // The raykernel command-line tool: dispatches to the subcommands.
-#include "commands.hpp"
-#include "failure.hpp"
-#include "io.hpp"
-#include "mesh_commands.hpp"
-#include "text_format.hpp"
-#include "triangle_command.hpp"
+#include "commands/commands.hpp"
+#include "common/exit_status.hpp"
+#include "common/failure.hpp"
+#include "common/io.hpp"
+#include "common/text_format.hpp"
+
+#include <raykernel/raykernel.hpp>
 
 #include <iostream>
 #include <string>

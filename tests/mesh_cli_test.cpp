@@ -1,7 +1,7 @@
 // `raykernel nearest --mesh` and `raykernel inside` (docs/contract.md §7, with §3's and §4's line rules): hand-derived
 // answers on an octahedron file through the real binary, in every mesh format; the stream code's paths against
 // each other; files that are not meshes (exit 2, "raykernel: FILE:LINE: REASON", nothing on stdout); usage errors.
-#include "mesh_commands.hpp"
+#include "commands/mesh_nearest.hpp"
 
 #include <raykernel/io/mesh_file.hpp>
 

@@ -2,10 +2,10 @@
 // sample cases), scene files (every kind of error, with its JSON Pointer), rendering (hand-derived
 // pixels, supersampling, determinism across thread counts, the demo's stage and naive-difference counts),
 // PNG output, and the binary's usage errors.
-#include "commands.hpp"
-#include "png_image.hpp"
-#include "render.hpp"
-#include "scene.hpp"
+#include "commands/plane_nearest.hpp"
+#include "rendering/png_image.hpp"
+#include "rendering/render.hpp"
+#include "scenes/scene.hpp"
 #include "support/answer_lines.hpp"
 
 #include <gtest/gtest.h>

@@ -1,0 +1,378 @@
+// raykernel render: a scene of planes to PNG, with the stage and naive-difference images.
+#include "commands/commands.hpp"
+#include "common/exit_status.hpp"
+#include "common/failure.hpp"
+#include "common/io.hpp"
+#include "common/limits.hpp"
+#include "common/stream_command.hpp"
+#include "common/text_format.hpp"
+#include "rendering/render.hpp"
+#include "rendering/render_summary.hpp"
+#include "scenes/scene.hpp"
+
+#include <raykernel/parallel.hpp>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <iterator>
+#include <optional>
+#include <string>
+
+namespace raykernel::cli {
+namespace {
+
+// A printf format: the limits are filled in from limits.hpp.
+constexpr const char* render_help = R"(usage: raykernel render [options] [--] [SCENE.json|-]
+
+Renders a scene of infinite planes by ray casting: for every pixel and sample, the plane the ray
+hits first, decided exactly (the same nearest_hit as `raykernel nearest`), coloured by plane or
+checker, darkened at grazing angles and faded with distance. Without SCENE.json it renders the
+built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes);
+with - it reads the scene from standard input.
+Rows are rendered in parallel on every core. Prints what it renders before it starts, then the
+render time, rays per second and how many pixels needed which stage.
+
+options:
+  -o, --output FILE          the PNG to write (default render.png; - writes it to standard output,
+                             and the report then goes to standard error)
+  --show-stages[=FILE]       also write an image marking the pixels where the certified path needed
+                             a slower stage than the binary64 filter: yellow compensated (double-
+                             double), orange expansion (exact expansions), crimson exact (rationals)
+                             (default FILE: OUTPUT with -stages.png for its .png)
+  --compare-naive[=FILE]     also run the textbook loop in plain doubles on the same rays and write
+                             an image marking in magenta the pixels where it picks another plane than
+                             the exact answer, with the counts (default FILE: OUTPUT with
+                             -naive-diff.png)
+  --naive-image[=FILE]       also write the scene as the plain-double loop renders it
+                             (default FILE: OUTPUT with -naive.png)
+  --width N, --height N      override the scene's image size (1 to %u)
+  --samples N                override the samples per pixel (1 to %u; stratified, reproducible)
+  --threads N                worker threads (1 to %u; default: every core)
+  --progress, --no-progress  force or suppress the progress bar (default: on a terminal)
+  --print-demo-scene         print the demo scene's JSON (a starting point for your own) and exit
+  --help                     this text
+  --                         end of options (SCENE.json may then start with -)
+Two outputs may not be the same file.
+
+Scene file (JSON; unknown fields and keys given twice are errors; examples in scenes/). Only
+"camera" (eye, target) and "planes" (point, normal) are required; the defaults are shown:
+  {"image":  {"width": 960, "height": 540, "samples_per_pixel": 1, "seed": 1},
+   "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [0,1,0],
+              "perspective": {"fov_degrees": 60, "near": 0.1, "ray_start": "near_plane"}
+                 or {"window": {"left": l, "right": r, "bottom": b, "top": t}, "near": n}
+              or "orthographic": {"height": h} or {"window": {...}, "near": n}},
+   "background": [r,g,b] or {"horizon": [r,g,b], "zenith": [r,g,b]},
+   "fog": {"distance": D},         (half of a colour fades away every D units; default none)
+   "planes": [{"name": "floor", "point": [x,y,z], "normal": [x,y,z],
+               "color": [r,g,b]  or  "checker": {"colors": [[r,g,b], [r,g,b]], "size": s,
+                                                 "u_axis": [x,y,z] (optional)}}, ...],
+   "meshes": [{"file": "PATH" (OBJ/PLY/STL/OFF, relative to the scene file's directory),
+               "transform": [16 numbers, row-major; only ±2^k scales and translations, applied exactly],
+               "color": [r,g,b]}, ...],
+   "description": "..."}
+Integers may be written as any JSON number with an integer value (1e3). Colours are display
+(sRGB) values in [0, 1]; a plane without a colour gets one from a built-in palette. Planes are
+numbered from 0 in file order; on an exact tie the smaller number wins.
+A plane wins an exact tie with a mesh triangle; among triangles the smaller index (docs/contract.md §7).
+
+Perspective cameras: fov_degrees is the VERTICAL field of view (the horizontal one follows from
+the image's aspect ratio). Rays start on the near plane, at distance near in front of the eye
+(z = -near in camera space), not at the eye: anything closer to the eye than the near plane is
+clipped. A near-plane window grows as near * tan(fov/2), and rays at the image's edges start up to
+near / cos(angle off the view axis) from the eye, so with a wide field of view a floor or wall
+close to the camera is visibly cut away towards the sides. "ray_start": "eye" starts every ray
+at the eye instead (same directions; nothing is clipped); a smaller near clips less.
+
+exit status: 0 rendered; 2 usage error, unreadable or invalid scene (reported as
+raykernel: FILE: /json/pointer: REASON), an image that cannot be written, or standard output
+that cannot be written
+)";
+
+// OUTPUT with its ".png" (any case) replaced by `suffix` ("render.png", "OUT.PNG" → "render-stages.png",
+// "OUT-stages.png"); OUTPUT without .png gets the suffix appended.
+std::string sibling(const std::string& output, const std::string& suffix) {
+  std::string stem = output;
+  if (stem.size() > 4) {
+    std::string extension = stem.substr(stem.size() - 4);
+    for (char& c : extension) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    if (extension == ".png") stem.resize(stem.size() - 4);
+  }
+  return stem + suffix;
+}
+
+std::optional<std::uint32_t> parse_count(const std::string& text, std::uint32_t max) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) return std::nullopt;
+  const unsigned long v = std::strtoul(text.c_str(), nullptr, 10);
+  if (v == 0 || v > max) return std::nullopt;
+  return static_cast<std::uint32_t>(v);
+}
+
+// The file an output path names when it exists ("-": standard output), as the system identifies it: its
+// device and inode, after symbolic links (/dev/stdout, /proc/self/fd/1, a link, a hard link all show it).
+std::optional<std::pair<dev_t, ino_t>> file_identity(const std::string& path) {
+  struct stat status {};
+  const int r = path == "-" ? ::fstat(STDOUT_FILENO, &status) : ::stat(path.c_str(), &status);
+  if (r != 0) return std::nullopt;
+  return std::pair{status.st_dev, status.st_ino};
+}
+
+// Whether two outputs would write to one file: the same existing file (compared as opened, not as spelled:
+// "-o - --show-stages=/dev/stdout" is one stream), else the same path once made absolute, normalized and
+// with symbolic links of existing directories resolved ("out.png", "./out.png" and "dir/../out.png" are
+// one). /dev/null may take any number of outputs.
+bool same_file(const std::string& a, const std::string& b) {
+  const auto ia = file_identity(a), ib = file_identity(b);
+  if (ia && ib) return *ia == *ib && ia != file_identity("/dev/null");
+  if (a == "-" || b == "-") return a == b;
+  std::error_code ea, eb;
+  const std::filesystem::path pa = std::filesystem::weakly_canonical(std::filesystem::absolute(a, ea), ea);
+  const std::filesystem::path pb = std::filesystem::weakly_canonical(std::filesystem::absolute(b, eb), eb);
+  if (ea || eb) return std::filesystem::path(a).lexically_normal() == std::filesystem::path(b).lexically_normal();
+  return pa == pb;
+}
+
+// A one-line progress bar on stderr, redrawn in place; it appears only once a render has taken 0.3 s.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled, std::string label) : enabled_(enabled), label_(std::move(label)) {}
+  void operator()(double fraction) {
+    if (!enabled_) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!shown_ && (elapsed < 0.3 || fraction >= 1)) return;
+    shown_ = true;
+    constexpr int width = 40;
+    const int filled = static_cast<int>(fraction * width);
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.append(static_cast<std::size_t>(width - filled), '.');
+    std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s", label_.c_str(), bar.c_str(), static_cast<int>(fraction * 100), elapsed);
+    std::fflush(stderr);
+  }
+  // Erases the bar, so that the report after the render starts on a clean line.
+  void finish() {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", 80, "");
+    shown_ = false;
+    enabled_ = false;
+  }
+  ~ProgressBar() { finish(); }
+  ProgressBar(const ProgressBar&) = delete;
+  ProgressBar& operator=(const ProgressBar&) = delete;
+
+ private:
+  bool enabled_;
+  bool shown_ = false;
+  std::string label_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+int run_render(const std::vector<std::string>& args) {
+  std::string scene_path, output = "render.png";
+  std::optional<std::string> stages_path, naive_diff_path, naive_image_path;
+  SceneOverrides overrides;
+  unsigned threads = 0;
+  int progress_mode = -1;  // −1: on a terminal
+  bool have_scene = false;
+  bool options_ended = false;
+
+  auto value_of = [&](std::size_t& i, const std::string& a, const std::string& name) -> std::optional<std::string> {
+    if (a == name) {
+      if (i + 1 >= args.size()) return std::nullopt;
+      return args[++i];
+    }
+    return a.substr(name.size() + 1);  // --name=value
+  };
+  auto is_named = [](const std::string& a, const std::string& name) { return a == name || a.starts_with(name + "="); };
+  // --show-stages[=FILE] and its kind: nothing when absent, "" for the derived name.
+  auto optional_file = [](const std::string& a, const std::string& name) { return a.size() > name.size() ? a.substr(name.size() + 1) : ""; };
+
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (!take_single_operand("render", "scene file", a, scene_path, have_scene)) return exit_usage;
+    } else if (a == "--help" || a == "-h") {
+      std::cout << formatted(render_help, limits::max_image_side, limits::max_samples_per_pixel, limits::max_threads);
+      return finish_standard_output(exit_ok);
+    } else if (a == "--print-demo-scene") {
+      std::cout << demo_scene_json();
+      return finish_standard_output(exit_ok);
+    } else if (a == "-o" || is_named(a, "--output")) {
+      const std::optional<std::string> v = value_of(i, a, a == "-o" ? "-o" : "--output");
+      if (!v || v->empty()) {
+        std::cerr << "raykernel render: " << a << " needs a file name (or - for standard output)\n";
+        return exit_usage;
+      }
+      output = *v;
+    } else if (is_named(a, "--show-stages")) {
+      stages_path = optional_file(a, "--show-stages");
+    } else if (is_named(a, "--compare-naive")) {
+      naive_diff_path = optional_file(a, "--compare-naive");
+    } else if (is_named(a, "--naive-image")) {
+      naive_image_path = optional_file(a, "--naive-image");
+    } else if (is_named(a, "--width") || is_named(a, "--height") || is_named(a, "--samples") ||
+               is_named(a, "--threads")) {
+      const std::string name = a.substr(0, a.find('='));
+      const std::optional<std::string> v = value_of(i, a, name);
+      const std::uint32_t max = name == "--samples"   ? limits::max_samples_per_pixel
+                                : name == "--threads" ? limits::max_threads
+                                                      : limits::max_image_side;
+      const std::optional<std::uint32_t> n = v ? parse_count(*v, max) : std::nullopt;
+      if (!n) {
+        std::cerr << "raykernel render: " << name << " needs an integer from 1 to " << max
+                  << (v ? ", not " + quote(*v) : "") << "\n";
+        return exit_usage;
+      }
+      if (name == "--width") overrides.width = *n;
+      else if (name == "--height") overrides.height = *n;
+      else if (name == "--samples") overrides.samples_per_pixel = *n;
+      else threads = *n;
+    } else if (a == "--progress") {
+      progress_mode = 1;
+    } else if (a == "--no-progress") {
+      progress_mode = 0;
+    } else {
+      std::cerr << "raykernel render: unknown option " << quote(a) << " (see raykernel render --help)\n";
+      return exit_usage;
+    }
+  }
+
+  // The outputs: derived names, then no two the same.
+  struct Output {
+    const char* option;
+    std::optional<std::string>* path;
+    const char* suffix;
+  };
+  std::optional<std::string> main_output = output;
+  const Output outputs[] = {{"--output", &main_output, ""},
+                            {"--show-stages", &stages_path, "-stages.png"},
+                            {"--compare-naive", &naive_diff_path, "-naive-diff.png"},
+                            {"--naive-image", &naive_image_path, "-naive.png"}};
+  for (const Output& o : outputs) {
+    if (!o.path->has_value() || !(*o.path)->empty()) continue;
+    if (output == "-") {
+      std::cerr << "raykernel render: " << o.option << " needs =FILE when the image goes to standard output\n";
+      return exit_usage;
+    }
+    *o.path = sibling(output, o.suffix);
+  }
+  for (std::size_t x = 0; x < std::size(outputs); ++x)
+    for (std::size_t y = x + 1; y < std::size(outputs); ++y)
+      if (outputs[x].path->has_value() && outputs[y].path->has_value() && same_file(**outputs[x].path, **outputs[y].path)) {
+        std::cerr << "raykernel render: " << outputs[x].option << " and " << outputs[y].option << " name the same file "
+                  << quote(**outputs[y].path, (*outputs[y].path)->size()) << "\n";
+        return exit_usage;
+      }
+  bool image_to_standard_output = false;
+  for (const Output& o : outputs) image_to_standard_output |= o.path->has_value() && **o.path == "-";
+  // The report goes where the image does not.
+  std::ostream& report = image_to_standard_output ? std::cerr : std::cout;
+
+  // The scene.
+  std::string text;
+  std::string scene_name = "demo scene";
+  if (have_scene) {
+    const Doing doing("reading the scene file " + quote(scene_path, limits::quoted_token_bytes));
+    Input input(scene_path);
+    if (!check_opened("render", "scene file", scene_path, input)) return exit_usage;
+    char chunk[1 << 16];
+    while (input.stream().read(chunk, sizeof chunk) || input.stream().gcount() > 0) {
+      text.append(chunk, static_cast<std::size_t>(input.stream().gcount()));
+      if (text.size() > limits::max_scene_bytes) {
+        std::cerr << "raykernel render: scene file " << input_name(scene_path) << " is larger than "
+                  << with_thousands(limits::max_scene_bytes) << " bytes, the largest scene raykernel reads\n";
+        return exit_usage;
+      }
+    }
+    if (const std::string error = input.read_error(); !error.empty()) {
+      std::cerr << "raykernel render: I/O error reading scene file " << input_name(scene_path) << ": " << error << '\n';
+      return exit_usage;
+    }
+    scene_name = scene_path == "-" ? "standard input" : scene_path;
+  } else {
+    text = demo_scene_json();
+  }
+  const Doing doing("the scene " + (have_scene ? quote(scene_name, limits::quoted_token_bytes) : std::string("(the built-in demo)")));
+  SceneParse parsed = parse_scene(text, overrides);
+  if (!parsed.scene) {
+    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
+              << '\n';
+    return exit_usage;
+  }
+  // Mesh files are relative to the scene file's directory (the working directory for standard input).
+  const std::filesystem::path scene_directory =
+      have_scene && scene_path != "-" ? std::filesystem::path(scene_path).parent_path() : std::filesystem::path();
+  if (const std::optional<SceneError> error = load_scene_meshes(*parsed.scene, scene_directory)) {
+    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << error->str()
+              << '\n';
+    return exit_usage;
+  }
+  const Scene& scene = *parsed.scene;
+
+  RenderOptions options;
+  options.threads = thread_count(threads);
+  options.stage_image = stages_path.has_value();
+  options.compare_naive = naive_diff_path.has_value();
+  options.naive_image = naive_image_path.has_value();
+  options.legend = true;
+  // Say what is about to happen before it takes its time (and stop now if nobody can read it).
+  report << render_header(scene_name, scene, options.threads);
+  report.flush();
+  if (!image_to_standard_output && !flush_standard_output()) return exit_usage;
+
+  const bool show_progress = progress_mode == 1 || (progress_mode == -1 && isatty(STDERR_FILENO));
+  ProgressBar bar(show_progress, "raykernel render");
+  options.progress = [&bar](double fraction) { bar(fraction); };
+  RenderResult result;
+  try {
+    result = render_scene(scene, options);
+  } catch (const std::exception& e) {
+    std::cerr << "raykernel render: " << e.what() << '\n';
+    return exit_usage;
+  }
+  bar.finish();
+
+  auto write = [](const std::string& path, const Image& image) {
+    if (path == "-") {
+      std::string error;
+      const std::vector<std::uint8_t> bytes = encode_png(image, error);
+      if (!error.empty()) {
+        std::cerr << "raykernel render: " << error << '\n';
+        return false;
+      }
+      std::cout.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      return flush_standard_output();
+    }
+    if (const std::optional<std::string> error = write_png(path, image)) {
+      std::cerr << "raykernel render: " << *error << '\n';
+      return false;
+    }
+    return true;
+  };
+  const RenderStats& s = result.stats;
+  if (!write(output, result.image)) return exit_usage;
+  report << render_statistics(output, s);
+  if (stages_path) {
+    if (!write(*stages_path, result.stages)) return exit_usage;
+    report << stage_image_line(*stages_path, s);
+  }
+  if (s.naive_compared) report << naive_comparison_line(s);
+  if (naive_diff_path) {
+    if (!write(*naive_diff_path, result.naive_difference)) return exit_usage;
+    report << naive_difference_line(*naive_diff_path);
+  }
+  if (naive_image_path) {
+    if (!write(*naive_image_path, result.naive)) return exit_usage;
+    report << naive_image_line(*naive_image_path);
+  }
+  return finish_standard_output(exit_ok);
+}
+
+}  // namespace raykernel::cli

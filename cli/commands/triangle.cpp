@@ -1,0 +1,186 @@
+// raykernel triangle: one ray–triangle query per line (docs/contract.md §6).
+#include "commands/triangle.hpp"
+
+#include "commands/commands.hpp"
+#include "common/stream_command.hpp"
+#include "common/text_format.hpp"
+#include "common/text_input.hpp"
+
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace raykernel::cli {
+namespace {
+
+constexpr const char* triangle_help = R"(usage: raykernel triangle [options] [--] [FILE|-]
+
+Intersects one ray with one triangle per input line (standard input when FILE is - or absent):
+  ox oy oz dx dy dz ax ay az bx by bz cx cy cz
+numbers in C strtod syntax (decimal, scientific, or hexadecimal with 0x), separated by blanks;
+a number must be finite when read, and a nonzero number must not round to zero (1e-400 is
+invalid, 4e-324 reads as a subnormal and is fine). Blank lines and lines starting with # are
+skipped; a UTF-8 byte-order mark at the start is ignored. Each other line gives one output line:
+  degenerate | parallel | coplanar | REL LOC T UA UB UC | invalid REASON
+REL is hit, behind or miss under the rule; LOC is where the ray's line crosses the triangle's
+plane: inside, edge-ab, edge-bc, edge-ca, vertex-a, vertex-b, vertex-c or outside. T is
+t = num/den and UA UB UC the barycentric coordinates pi_a/den, pi_b/den, pi_c/den, each the
+exact value rounded to the nearest double (ties to even), printed so that strtod reads it back
+exactly. (N = (b-a) x (c-a), den = d.N, num = (a-o).N; degenerate: N = 0; parallel,
+coplanar: den = 0 with num != 0, num = 0.)
+
+options:
+  --rule=owned|closed            owned (default): an edge or vertex hit is counted by exactly
+                                 one triangle of a closed mesh (watertight tie-breaking);
+                                 closed: the triangle with its boundary
+  --exact                        append the exact t, UA, UB, UC as P/Q in lowest terms
+  --path=certified|exact|naive   which computation answers (default certified; naive is
+                                 Moller-Trumbore in plain doubles with its own closed test,
+                                 without guarantees; --rule does not apply to it)
+  --hex                          print T, UA, UB, UC as hexadecimal floats
+  --stats                        print to stderr how many queries each stage decided
+  --help                         this text
+  --                             end of options (a FILE may then start with -)
+
+exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
+input, or standard output that cannot be written: triangle then stops reading)
+)";
+
+Ray ray_of(const NumberLine& line) {
+  const auto& v = line.value;
+  return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+}
+Triangle triangle_of(const NumberLine& line) {
+  const auto& v = line.value;
+  return {{v[6], v[7], v[8]}, {v[9], v[10], v[11]}, {v[12], v[13], v[14]}};
+}
+
+bool crosses(TriangleRelation r) {
+  return r == TriangleRelation::hit || r == TriangleRelation::behind || r == TriangleRelation::miss;
+}
+
+
+}  // namespace
+
+int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, const TriangleCommandOptions& options,
+                    TriangleCounts& counts) {
+  LineReader lines(in);
+  std::string line;
+  std::string answer;
+  const TriangleOptions query_options{options.rule, true, true};
+  while (out && lines.next(line)) {
+    const NumberLine parsed = parse_number_line(line, 15);
+    if (parsed.status == LineStatus::skip) continue;
+    ++counts.lines_answered;
+
+    std::string reason = parsed.reason;
+    const Ray ray = ray_of(parsed);
+    const Triangle triangle = triangle_of(parsed);
+    if (parsed.status == LineStatus::numbers) {
+      if (std::optional<std::string> invalid = validate(ray, triangle)) reason = *invalid;
+    }
+    if (!reason.empty()) {
+      ++counts.invalid;
+      report_invalid_line(out, err, lines.line_number(), reason);
+      continue;
+    }
+
+    TriangleIntersection result{};
+    switch (options.method) {
+      case Method::certified: {
+        const TracedTriangleIntersection traced = intersect_traced(ray, triangle, query_options);
+        result = traced.intersection;
+        ++counts.relation_stage[static_cast<int>(traced.relation_stage)];
+        if (crosses(result.relation)) ++counts.rounding_stage[static_cast<int>(traced.rounding_stage)];
+        break;
+      }
+      case Method::exact: result = intersect_exact(ray, triangle, query_options); break;
+      case Method::naive: result = intersect_naive(ray, triangle); break;
+    }
+    ++counts.relation[static_cast<int>(result.relation)];
+    ++counts.location[static_cast<int>(result.location)];
+
+    answer.assign(to_string(result.relation));
+    if (crosses(result.relation)) {
+      answer += ' ';
+      answer += to_string(result.location);
+      for (double x : {result.t, result.barycentric[0], result.barycentric[1], result.barycentric[2]}) {
+        answer += ' ';
+        answer += options.hex ? format_hex(x) : format_shortest(x);
+      }
+      if (options.exact_t) {
+        const ExactTriangleIntersection exact = intersect_exact_rational(ray, triangle, options.rule);
+        if (exact.t && exact.barycentric) {
+          for (const Rational* q : {&*exact.t, &(*exact.barycentric)[0], &(*exact.barycentric)[1],
+                                    &(*exact.barycentric)[2]}) {
+            answer += ' ';
+            answer += q->str();
+          }
+        } else {
+          answer += " none none none none";  // only the naive path can disagree with exact
+        }
+      }
+    }
+    out << answer << '\n';
+  }
+  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+}
+
+std::string describe(const TriangleCounts& c, Method method) {
+  std::ostringstream s;
+  s << c.lines_answered << " queries:";
+  for (int r = 0; r < 6; ++r)
+    s << (r ? ", " : " ") << c.relation[r] << ' ' << to_string(static_cast<TriangleRelation>(r));
+  s << ", " << c.invalid << " invalid\n";
+  s << "locations:";
+  for (int l = 0; l < 8; ++l) s << (l ? ", " : " ") << c.location[l] << ' ' << to_string(static_cast<TriangleLocation>(l));
+  s << '\n';
+  if (method == Method::certified) {
+    s << "relation decided by: " << stage_counts_text(c.relation_stage) << "\n";
+    s << "t and barycentric coordinates (den != 0) decided by: " << stage_counts_text(c.rounding_stage) << "\n";
+  } else {
+    s << no_stages_text(method);
+  }
+  return s.str();
+}
+
+int run_triangle(const std::vector<std::string>& args) {
+  TriangleCommandOptions options;
+  std::string file;
+  bool have_file = false;
+  bool options_ended = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const Argument kind = argument_kind(a, options_ended);
+    if (kind == Argument::end_of_options) continue;
+    if (kind == Argument::operand) {
+      if (!take_single_operand("triangle", "input file", a, file, have_file)) return exit_usage;
+    } else if (a == "--help" || a == "-h") {
+      std::cout << triangle_help;
+      return finish_standard_output(exit_ok);
+    } else if (a == "--exact") {
+      options.exact_t = true;
+    } else if (a == "--rule" || a.starts_with("--rule=")) {
+      if (!parse_rule_option("triangle", args, i, options.rule)) return exit_usage;
+    } else if (a == "--exact-t") {  // classify's spelling; docs/contract.md §6 says --exact
+      std::cerr << "raykernel triangle: unknown option '--exact-t' (triangle's option is --exact)\n";
+      return exit_usage;
+    } else if (const SharedOption shared = parse_shared_option("triangle", args, i, options);
+               shared != SharedOption::not_shared) {
+      if (shared == SharedOption::usage_error) return exit_usage;
+    } else {
+      std::cerr << "raykernel triangle: unknown option " << quote(a) << " (see raykernel triangle --help)\n";
+      return exit_usage;
+    }
+  }
+
+  const std::string path = have_file ? file : "-";
+  Input input(path);
+  if (!check_opened("triangle", "file", path, input)) return exit_usage;
+  TriangleCounts counts;
+  const int status = triangle_stream(input.stream(), std::cout, std::cerr, options, counts);
+  return finish_stream_command("triangle", input, input_name(path), status, options.stats,
+                               describe(counts, options.method));
+}
+
+}  // namespace raykernel::cli
