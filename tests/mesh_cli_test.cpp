@@ -247,6 +247,10 @@ TEST(MeshCli, Watertight) {
   EXPECT_EQ(closed[2], "0");  // the closed rule never misses an owned crossing (the owned points are closed ones)
   std::ifstream f(png, std::ios::binary);
   EXPECT_TRUE(f.good());
+  // Both spellings of a value, as every command takes them (watertight alone refused --rays=N).
+  const CliRun attached = run("watertight --rays=40 --seed=7 " + path);
+  EXPECT_EQ(attached.status, 0) << attached.err;
+  EXPECT_NE(attached.out.find("lines: 40 (seed 7)"), std::string::npos) << attached.out;
   EXPECT_EQ(run("watertight " + path + " --rays 0").status, 2);
   EXPECT_EQ(run("watertight " + path + " --rays x").status, 2);
   EXPECT_EQ(run("watertight").status, 2);

@@ -1,9 +1,10 @@
 // raykernel demo: a built-in batch of hard classify queries, answered by the certified, exact and naive
 // paths, with a per-kind summary of relations, deciding stages and naive mistakes.
 #include "commands/commands.hpp"
+#include "common/exit_status.hpp"
 #include "common/io.hpp"
 #include "common/limits.hpp"
-#include "common/stream_command.hpp"
+#include "common/options.hpp"
 #include "common/text_format.hpp"
 
 #include <raykernel/testkit/hard_queries.hpp>
@@ -20,30 +21,17 @@
 namespace raykernel::cli {
 namespace {
 
-// A printf format: the limit is filled in from limits.hpp.
-constexpr const char* demo_help = R"(usage: raykernel demo [--per-kind N] [--seed S]
+constexpr const char* help_before = R"(usage: raykernel demo [--per-kind N] [--seed S]
 
-Generates N queries (default 20000, at most %llu) of each kind of hard ray-plane query (near-parallel rays,
-origins a few ulps from the plane, exact degeneracies, rounding ties, extreme exponents, ...),
-answers each with the certified, exact and naive paths, and prints per kind the relations found,
-which certified stage decided them, and how often the naive formula in doubles was wrong.
-S (default 1) is any integer from 0 to 18446744073709551615.
-Exit status 0 when certified == exact on every query, 2 for a usage error or when standard
-output cannot be written, 3 when certified != exact somewhere (a bug: please report it).
+Generates N queries of each kind of hard ray-plane query (near-parallel rays, origins a few ulps
+from the plane, exact degeneracies, rounding ties, extreme exponents, ...), answers each with the
+certified, exact and naive paths, and prints per kind the relations found, which certified stage
+decided them, and how often the naive formula in doubles was wrong.
 )";
 
-// A decimal integer from `min` to `max` (digits only: no sign, no blanks), or nothing.
-std::optional<std::uint64_t> parse_integer(const std::string& text, std::uint64_t min, std::uint64_t max) {
-  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
-  std::uint64_t v = 0;
-  for (char c : text) {
-    const auto digit = static_cast<std::uint64_t>(c - '0');
-    if (v > (max - digit) / 10) return std::nullopt;  // v·10 + digit > max (and no wrap-around)
-    v = v * 10 + digit;
-  }
-  if (v < min) return std::nullopt;
-  return v;
-}
+constexpr const char* help_after = R"(exit status: 0 when certified == exact on every query, 2 for a usage error or when standard
+output cannot be written, 3 when certified != exact somewhere (a bug: please report it).
+)";
 
 bool same_answer(const Intersection& a, const Intersection& b) {
   if (a.relation != b.relation) return false;
@@ -61,44 +49,15 @@ struct KindTally {
 int run_demo(const std::vector<std::string>& args) {
   std::uint64_t per_kind = 20000;
   std::uint64_t seed = 1;
-  bool options_ended = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      std::cerr << "raykernel demo: unexpected argument " << quote(a) << " (see raykernel demo --help)\n";
-      return exit_usage;
-    }
-    if (a == "--help" || a == "-h") {
-      std::cout << formatted(demo_help, static_cast<unsigned long long>(limits::max_demo_queries_per_kind));
-      return finish_standard_output(exit_ok);
-    }
-    const bool per_kind_option = a == "--per-kind" || a.starts_with("--per-kind=");
-    if (!per_kind_option && a != "--seed" && !a.starts_with("--seed=")) {
-      std::cerr << "raykernel demo: unknown option " << quote(a) << " (see raykernel demo --help)\n";
-      return exit_usage;
-    }
-    const std::string name = a.substr(0, a.find('='));
-    const std::uint64_t min = per_kind_option ? 1 : 0;
-    const std::uint64_t max = per_kind_option ? limits::max_demo_queries_per_kind : UINT64_MAX;
-    const std::string range = "an integer from " + std::to_string(min) + " to " + std::to_string(max);
-    std::string value;
-    if (a.find('=') != std::string::npos) {
-      value = a.substr(a.find('=') + 1);
-    } else if (i + 1 < args.size()) {
-      value = args[++i];
-    } else {
-      std::cerr << "raykernel demo: " << name << " needs a value (" << range << ")\n";
-      return exit_usage;
-    }
-    const std::optional<std::uint64_t> v = parse_integer(value, min, max);
-    if (!v) {
-      std::cerr << "raykernel demo: bad value for " << name << ": " << quote(value) << " (" << range << ")\n";
-      return exit_usage;
-    }
-    (per_kind_option ? per_kind : seed) = *v;
-  }
+  const CommandLine line{
+      .command = "demo",
+      .options = {{"--per-kind", integer(per_kind, 1, limits::max_demo_queries_per_kind),
+                   "queries of each kind (default 20000)"},
+                  {"--seed", integer(seed, 0, UINT64_MAX, "S"), "the seed of the queries (default 1)"}},
+      .operand = std::nullopt,
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
 
   using testkit::QueryKind;
   std::cout << formatted("raykernel %s demo: %llu queries of each of %d kinds (seed %llu)\n\n",

@@ -3,8 +3,8 @@
 
 #include "commands/commands.hpp"
 #include "commands/mesh_file.hpp"
+#include "common/options.hpp"
 #include "common/stream_command.hpp"
-#include "common/text_format.hpp"
 #include "common/text_input.hpp"
 
 #include <iostream>
@@ -14,7 +14,7 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* inside_help = R"(usage: raykernel inside --mesh FILE [options] [--] [POINTS|-]
+constexpr const char* help_before = R"(usage: raykernel inside --mesh FILE [options] [--] [POINTS|-]
 
 For each point, whether it is inside the closed triangle mesh in FILE (OBJ, PLY, STL or OFF):
   on-surface   the point lies on some triangle (its plane, inside or on its boundary), exactly
@@ -28,39 +28,11 @@ closed, consistently oriented mesh it is the same for every ray. Everything is d
 
 Numbers, blank and # lines, invalid lines and the byte-order mark as for classify; each point
 line gives one output line: inside | outside | on-surface | invalid REASON.
-
-options:
-  --mesh FILE   the mesh (required; the format from the extension, else from the content)
-  --stats       print to stderr how many points were inside, outside and on the surface
-  --help        this text
-  --            end of options (POINTS may then start with -)
-
-exit status: 0 every point valid, 1 some point line invalid, 2 usage or I/O error or a file
-that is not a mesh (reported as raykernel: FILE:LINE: REASON, nothing on standard output)
 )";
 
-// `--NAME FILE` or `--NAME=FILE` at args[i] (advancing i past FILE in the first form); false after a message
-// when FILE is missing or the option was given before.
-bool read_path_option(std::string_view command, std::string_view name, const std::vector<std::string>& args,
-                      std::size_t& i, std::string& path, bool& have) {
-  const std::string& a = args[i];
-  const std::string flag = "--" + std::string(name);
-  if (have) {
-    std::cerr << "raykernel " << command << ": " << flag << " given twice\n";
-    return false;
-  }
-  if (a == flag) {
-    if (i + 1 >= args.size()) {
-      std::cerr << "raykernel " << command << ": " << flag << " needs a file\n";
-      return false;
-    }
-    path = args[++i];
-  } else {
-    path = a.substr(flag.size() + 1);
-  }
-  have = true;
-  return true;
-}
+constexpr const char* help_after = R"(exit status: 0 every point valid, 1 some point line invalid, 2 usage or I/O error or a file
+that is not a mesh (reported as raykernel: FILE:LINE: REASON, nothing on standard output)
+)";
 
 }  // namespace
 
@@ -86,35 +58,26 @@ int inside_stream(std::istream& in, std::ostream& out, std::ostream& err, const 
 }
 
 int run_inside(const std::vector<std::string>& args) {
-  std::string mesh_path, points_path;
-  bool have_mesh = false, have_points = false, options_ended = false, stats = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("inside", "points file", a, points_path, have_points)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << inside_help;
-      return finish_standard_output(exit_ok);
-    } else if (a == "--stats") {
-      stats = true;
-    } else if (a == "--mesh" || a.starts_with("--mesh=")) {
-      if (!read_path_option("inside", "mesh", args, i, mesh_path, have_mesh)) return exit_usage;
-    } else {
-      std::cerr << "raykernel inside: unknown option " << quote(a) << " (see raykernel inside --help)\n";
-      return exit_usage;
-    }
-  }
-  if (!have_mesh) {
+  std::optional<std::string> mesh_path, points_path;
+  bool stats = false;
+  const CommandLine line{
+      .command = "inside",
+      .options = {{"--mesh", file(mesh_path),
+                   "the mesh (required; the format from the extension, else from the content)"},
+                  {"--stats", flag(stats), "print to stderr how many points were inside, outside and on the surface"}},
+      .operand = Operand{.metavar = "POINTS", .what = "points file", .destination = &points_path},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+  if (!mesh_path) {
     std::cerr << "raykernel inside: --mesh FILE is required (see raykernel inside --help)\n";
     return exit_usage;
   }
-  std::optional<Mesh> mesh = read_mesh_file(mesh_path, std::cerr);
+  std::optional<Mesh> mesh = read_mesh_file(*mesh_path, std::cerr);
   if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
+  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *mesh_path);
 
-  const std::string path = have_points ? points_path : "-";
+  const std::string path = points_path.value_or("-");
   Input points(path);
   if (!check_opened("inside", "points file", path, points)) return exit_usage;
   InsideCounts counts;

@@ -2,7 +2,7 @@
 #include "commands/mesh_nearest.hpp"
 
 #include "commands/mesh_file.hpp"
-#include "common/text_format.hpp"
+#include "common/stream_command.hpp"
 #include "common/text_input.hpp"
 
 #include <iostream>

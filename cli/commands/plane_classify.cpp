@@ -2,18 +2,20 @@
 #include "commands/plane_classify.hpp"
 
 #include "commands/commands.hpp"
+#include "common/options.hpp"
 #include "common/stream_command.hpp"
-#include "common/text_format.hpp"
 #include "common/text_input.hpp"
 
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* classify_help = R"(usage: raykernel classify [options] [--] [FILE|-]
+constexpr const char* help_before = R"(usage: raykernel classify [options] [--] [FILE|-]
 
 Classifies one ray-plane query per input line (standard input when FILE is - or absent):
   ox oy oz dx dy dz px py pz nx ny nz
@@ -24,17 +26,9 @@ skipped; a UTF-8 byte-order mark at the start is ignored. Each other line gives 
   hit T | behind T | parallel | in-plane | invalid REASON
 where T is t = ((p - o).n) / (d.n) rounded to the nearest double (ties to even), printed so
 that strtod reads it back exactly.
+)";
 
-options:
-  --path=certified|exact|naive   which computation answers (default certified; naive is the
-                                 textbook formula in plain doubles, without guarantees)
-  --exact-t                      append the exact t as P/Q in lowest terms
-  --hex                          print T as a hexadecimal float
-  --stats                        print to stderr how many queries each stage decided
-  --help                         this text
-  --                             end of options (a FILE may then start with -)
-
-exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
+constexpr const char* help_after = R"(exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
 input, or standard output that cannot be written: classify then stops reading)
 )";
 
@@ -116,28 +110,21 @@ std::string describe(const ClassifyCounts& c, Method method) {
 
 int run_classify(const std::vector<std::string>& args) {
   ClassifyOptions options;
-  std::string file;
-  bool have_file = false;
-  bool options_ended = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("classify", "input file", a, file, have_file)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << classify_help;
-      return finish_standard_output(exit_ok);
-    } else if (const SharedOption shared = parse_shared_option("classify", args, i, options);
-               shared != SharedOption::not_shared) {
-      if (shared == SharedOption::usage_error) return exit_usage;
-    } else {
-      std::cerr << "raykernel classify: unknown option " << quote(a) << " (see raykernel classify --help)\n";
-      return exit_usage;
-    }
-  }
+  std::optional<std::string> file;
+  const CommandLine line{
+      .command = "classify",
+      .options = {{"--path", one_of(options.method, method_choices),
+                   "which computation answers (default certified; naive is the textbook formula in plain "
+                   "doubles, without guarantees)"},
+                  {"--exact-t", flag(options.exact_t), "append the exact t as P/Q in lowest terms"},
+                  {"--hex", flag(options.hex), "print T as a hexadecimal float"},
+                  {"--stats", flag(options.stats), "print to stderr how many queries each stage decided"}},
+      .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &file},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
 
-  const std::string path = have_file ? file : "-";
+  const std::string path = file.value_or("-");
   Input input(path);
   if (!check_opened("classify", "file", path, input)) return exit_usage;
   ClassifyCounts counts;

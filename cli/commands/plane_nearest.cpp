@@ -5,6 +5,7 @@
 #include "commands/mesh_nearest.hpp"
 #include "common/failure.hpp"
 #include "common/limits.hpp"
+#include "common/options.hpp"
 #include "common/stream_command.hpp"
 #include "common/text_format.hpp"
 #include "common/text_input.hpp"
@@ -15,11 +16,12 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* nearest_help = R"(usage: raykernel nearest --planes FILE [options] [--] [RAYS|-]
+constexpr const char* help_before = R"(usage: raykernel nearest --planes FILE [options] [--] [RAYS|-]
        raykernel nearest --mesh FILE [--rule=owned|closed] [options] [--] [RAYS|-]
 
 For each ray, the plane it hits first: among the planes whose relation is hit (t >= 0), the
@@ -43,20 +45,9 @@ or OFF; triangle K counted from 0 in file order, polygons fanned) whose relation
 is hit (raykernel triangle --help), the one with the smallest exact t, ties to the smallest K;
 the answer is hit K T or miss. A file that is not a mesh is exit status 2, reported as
 raykernel: FILE:LINE: REASON (or FILE: byte N: REASON), with nothing on standard output.
+)";
 
-options:
-  --planes FILE                  the planes (this or --mesh is required)
-  --mesh FILE                    a triangle mesh instead of planes
-  --rule=owned|closed            with --mesh: which points of a triangle count (default owned)
-  --path=certified|exact|naive   which computation answers (default certified; naive is the
-                                 textbook loop in plain doubles, without guarantees)
-  --exact-t                      append the winner's exact t as P/Q in lowest terms
-  --hex                          print T as a hexadecimal float
-  --stats                        print to stderr how many decisions each stage made
-  --help                         this text
-  --                             end of options (RAYS may then start with -)
-
-exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error (an unreadable
+constexpr const char* help_after = R"(exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error (an unreadable
 file, or standard output that cannot be written: nearest then stops reading) or an invalid
 plane line (reported as raykernel: FILE:N: REASON, with nothing on standard output)
 )";
@@ -161,96 +152,63 @@ std::string describe(const NearestCounts& c, Method method) {
 
 int run_nearest(const std::vector<std::string>& args) {
   NearestOptions options;
-  std::string planes_path, rays_path, mesh_path;
-  bool have_planes = false, have_rays = false, have_mesh = false, have_rule = false;
-  TriangleRule rule = TriangleRule::owned;
-  bool options_ended = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("nearest", "rays file", a, rays_path, have_rays)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << nearest_help;
-      return finish_standard_output(exit_ok);
-    } else if (const SharedOption shared = parse_shared_option("nearest", args, i, options);
-               shared != SharedOption::not_shared) {
-      if (shared == SharedOption::usage_error) return exit_usage;
-    } else if (a == "--planes" || a.starts_with("--planes=")) {
-      if (a == "--planes") {
-        if (i + 1 >= args.size()) {
-          std::cerr << "raykernel nearest: --planes needs a file\n";
-          return exit_usage;
-        }
-        planes_path = args[++i];
-      } else {
-        planes_path = a.substr(9);
-      }
-      if (have_planes) {
-        std::cerr << "raykernel nearest: --planes given twice\n";
-        return exit_usage;
-      }
-      have_planes = true;
-    } else if (a == "--mesh" || a.starts_with("--mesh=")) {
-      if (have_mesh) {
-        std::cerr << "raykernel nearest: --mesh given twice\n";
-        return exit_usage;
-      }
-      if (a == "--mesh") {
-        if (i + 1 >= args.size()) {
-          std::cerr << "raykernel nearest: --mesh needs a file\n";
-          return exit_usage;
-        }
-        mesh_path = args[++i];
-      } else {
-        mesh_path = a.substr(7);
-      }
-      have_mesh = true;
-    } else if (a == "--rule" || a.starts_with("--rule=")) {
-      if (!parse_rule_option("nearest", args, i, rule)) return exit_usage;
-      have_rule = true;
-    } else {
-      std::cerr << "raykernel nearest: unknown option " << quote(a) << " (see raykernel nearest --help)\n";
-      return exit_usage;
-    }
-  }
-  if (have_planes && have_mesh) {
+  std::optional<std::string> planes_path, mesh_path, rays_path;
+  std::optional<TriangleRule> rule;
+  const CommandLine line{
+      .command = "nearest",
+      .options = {{"--planes", file(planes_path), "the planes (this or --mesh is required)"},
+                  {"--mesh", file(mesh_path), "a triangle mesh instead of planes"},
+                  {"--rule", one_of(rule, rule_choices),
+                   "with --mesh: which points of a triangle count (default owned)"},
+                  {"--path", one_of(options.method, method_choices),
+                   "which computation answers (default certified; naive is the textbook loop in plain "
+                   "doubles, without guarantees)"},
+                  {"--exact-t", flag(options.exact_t), "append the winner's exact t as P/Q in lowest terms"},
+                  {"--hex", flag(options.hex), "print T as a hexadecimal float"},
+                  {"--stats", flag(options.stats), "print to stderr how many decisions each stage made"}},
+      .operand = Operand{.metavar = "RAYS", .what = "rays file", .destination = &rays_path},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+  if (planes_path && mesh_path) {
     std::cerr << "raykernel nearest: --planes and --mesh cannot be given together\n";
     return exit_usage;
   }
-  if (have_rule && !have_mesh) {
+  if (rule && !mesh_path) {
     std::cerr << "raykernel nearest: --rule needs --mesh (planes have no rule)\n";
     return exit_usage;
   }
-  if (have_mesh) {
-    const MeshNearestOptions mesh_options{
-        .method = options.method, .rule = rule, .exact_t = options.exact_t, .hex = options.hex, .stats = options.stats};
-    return run_mesh_nearest(mesh_path, have_rays ? rays_path : "-", mesh_options);
+  const std::string path = rays_path.value_or("-");
+  if (mesh_path) {
+    const MeshNearestOptions mesh_options{.method = options.method,
+                                          .rule = rule.value_or(TriangleRule::owned),
+                                          .exact_t = options.exact_t,
+                                          .hex = options.hex,
+                                          .stats = options.stats};
+    return run_mesh_nearest(*mesh_path, path, mesh_options);
   }
-  if (!have_planes) {
+  if (!planes_path) {
     std::cerr << "raykernel nearest: --planes FILE or --mesh FILE is required (see raykernel nearest --help)\n";
     return exit_usage;
   }
 
   PlanesFile planes;
   {
-    const Doing doing("reading the planes file " + quote(planes_path, limits::quoted_token_bytes));
-    Input planes_input(planes_path, Input::Dash::is_a_file);
-    if (!check_opened("nearest", "planes file", planes_path, planes_input)) return exit_usage;
+    const Doing doing("reading the planes file " + quote(*planes_path, limits::quoted_token_bytes));
+    Input planes_input(*planes_path, Input::Dash::is_a_file);
+    if (!check_opened("nearest", "planes file", *planes_path, planes_input)) return exit_usage;
     planes = read_planes(planes_input.stream());
     if (const std::string error = planes_input.read_error(); !error.empty()) {
-      std::cerr << "raykernel nearest: I/O error reading planes file '" << printable(planes_path) << "': " << error
+      std::cerr << "raykernel nearest: I/O error reading planes file '" << printable(*planes_path) << "': " << error
                 << '\n';
       return exit_usage;
     }
   }
   if (!planes.ok()) {
-    std::cerr << "raykernel: " << printable(planes_path) << ":" << planes.error_line << ": " << planes.error << '\n';
+    std::cerr << "raykernel: " << printable(*planes_path) << ":" << planes.error_line << ": " << planes.error << '\n';
     return exit_usage;
   }
 
-  const std::string path = have_rays ? rays_path : "-";
   Input rays(path);
   if (!check_opened("nearest", "rays file", path, rays)) return exit_usage;
   NearestCounts counts;

@@ -4,6 +4,7 @@
 #include "common/failure.hpp"
 #include "common/io.hpp"
 #include "common/limits.hpp"
+#include "common/options.hpp"
 #include "common/stream_command.hpp"
 #include "common/text_format.hpp"
 #include "rendering/render.hpp"
@@ -17,18 +18,17 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <iterator>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace raykernel::cli {
 namespace {
 
-// A printf format: the limits are filled in from limits.hpp.
-constexpr const char* render_help = R"(usage: raykernel render [options] [--] [SCENE.json|-]
+constexpr const char* help_before = R"(usage: raykernel render [options] [--] [SCENE.json|-]
 
 Renders a scene of infinite planes by ray casting: for every pixel and sample, the plane the ray
 hits first, decided exactly (the same nearest_hit as `raykernel nearest`), coloured by plane or
@@ -37,28 +37,9 @@ built-in demo scene (planes meeting at shallow angles, a far checkered floor, co
 with - it reads the scene from standard input.
 Rows are rendered in parallel on every core. Prints what it renders before it starts, then the
 render time, rays per second and how many pixels needed which stage.
+)";
 
-options:
-  -o, --output FILE          the PNG to write (default render.png; - writes it to standard output,
-                             and the report then goes to standard error)
-  --show-stages[=FILE]       also write an image marking the pixels where the certified path needed
-                             a slower stage than the binary64 filter: yellow compensated (double-
-                             double), orange expansion (exact expansions), crimson exact (rationals)
-                             (default FILE: OUTPUT with -stages.png for its .png)
-  --compare-naive[=FILE]     also run the textbook loop in plain doubles on the same rays and write
-                             an image marking in magenta the pixels where it picks another plane than
-                             the exact answer, with the counts (default FILE: OUTPUT with
-                             -naive-diff.png)
-  --naive-image[=FILE]       also write the scene as the plain-double loop renders it
-                             (default FILE: OUTPUT with -naive.png)
-  --width N, --height N      override the scene's image size (1 to %u)
-  --samples N                override the samples per pixel (1 to %u; stratified, reproducible)
-  --threads N                worker threads (1 to %u; default: every core)
-  --progress, --no-progress  force or suppress the progress bar (default: on a terminal)
-  --print-demo-scene         print the demo scene's JSON (a starting point for your own) and exit
-  --help                     this text
-  --                         end of options (SCENE.json may then start with -)
-Two outputs may not be the same file.
+constexpr const char* help_after = R"(Two outputs may not be the same file.
 
 Scene file (JSON; unknown fields and keys given twice are errors; examples in scenes/). Only
 "camera" (eye, target) and "planes" (point, normal) are required; the defaults are shown:
@@ -104,13 +85,6 @@ std::string sibling(const std::string& output, const std::string& suffix) {
     if (extension == ".png") stem.resize(stem.size() - 4);
   }
   return stem + suffix;
-}
-
-std::optional<std::uint32_t> parse_count(const std::string& text, std::uint32_t max) {
-  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) return std::nullopt;
-  const unsigned long v = std::strtoul(text.c_str(), nullptr, 10);
-  if (v == 0 || v > max) return std::nullopt;
-  return static_cast<std::uint32_t>(v);
 }
 
 // The file an output path names when it exists ("-": standard output), as the system identifies it: its
@@ -173,75 +147,44 @@ class ProgressBar {
 }  // namespace
 
 int run_render(const std::vector<std::string>& args) {
-  std::string scene_path, output = "render.png";
-  std::optional<std::string> stages_path, naive_diff_path, naive_image_path;
+  std::optional<std::string> scene_path, stages_path, naive_diff_path, naive_image_path;
+  std::string output = "render.png";
   SceneOverrides overrides;
   unsigned threads = 0;
   int progress_mode = -1;  // −1: on a terminal
-  bool have_scene = false;
-  bool options_ended = false;
-
-  auto value_of = [&](std::size_t& i, const std::string& a, const std::string& name) -> std::optional<std::string> {
-    if (a == name) {
-      if (i + 1 >= args.size()) return std::nullopt;
-      return args[++i];
-    }
-    return a.substr(name.size() + 1);  // --name=value
-  };
-  auto is_named = [](const std::string& a, const std::string& name) { return a == name || a.starts_with(name + "="); };
-  // --show-stages[=FILE] and its kind: nothing when absent, "" for the derived name.
-  auto optional_file = [](const std::string& a, const std::string& name) { return a.size() > name.size() ? a.substr(name.size() + 1) : ""; };
-
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("render", "scene file", a, scene_path, have_scene)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << formatted(render_help, limits::max_image_side, limits::max_samples_per_pixel, limits::max_threads);
-      return finish_standard_output(exit_ok);
-    } else if (a == "--print-demo-scene") {
-      std::cout << demo_scene_json();
-      return finish_standard_output(exit_ok);
-    } else if (a == "-o" || is_named(a, "--output")) {
-      const std::optional<std::string> v = value_of(i, a, a == "-o" ? "-o" : "--output");
-      if (!v || v->empty()) {
-        std::cerr << "raykernel render: " << a << " needs a file name (or - for standard output)\n";
-        return exit_usage;
-      }
-      output = *v;
-    } else if (is_named(a, "--show-stages")) {
-      stages_path = optional_file(a, "--show-stages");
-    } else if (is_named(a, "--compare-naive")) {
-      naive_diff_path = optional_file(a, "--compare-naive");
-    } else if (is_named(a, "--naive-image")) {
-      naive_image_path = optional_file(a, "--naive-image");
-    } else if (is_named(a, "--width") || is_named(a, "--height") || is_named(a, "--samples") ||
-               is_named(a, "--threads")) {
-      const std::string name = a.substr(0, a.find('='));
-      const std::optional<std::string> v = value_of(i, a, name);
-      const std::uint32_t max = name == "--samples"   ? limits::max_samples_per_pixel
-                                : name == "--threads" ? limits::max_threads
-                                                      : limits::max_image_side;
-      const std::optional<std::uint32_t> n = v ? parse_count(*v, max) : std::nullopt;
-      if (!n) {
-        std::cerr << "raykernel render: " << name << " needs an integer from 1 to " << max
-                  << (v ? ", not " + quote(*v) : "") << "\n";
-        return exit_usage;
-      }
-      if (name == "--width") overrides.width = *n;
-      else if (name == "--height") overrides.height = *n;
-      else if (name == "--samples") overrides.samples_per_pixel = *n;
-      else threads = *n;
-    } else if (a == "--progress") {
-      progress_mode = 1;
-    } else if (a == "--no-progress") {
-      progress_mode = 0;
-    } else {
-      std::cerr << "raykernel render: unknown option " << quote(a) << " (see raykernel render --help)\n";
-      return exit_usage;
-    }
+  bool print_demo_scene = false;
+  const CommandLine line{
+      .command = "render",
+      .options = {{"--output", "-o", file(output, "FILE", "a file name, or - for standard output"),
+                   "the PNG to write (default render.png; - writes it to standard output, and the report then "
+                   "goes to standard error)"},
+                  {"--show-stages", optional_file(stages_path),
+                   "also write an image marking the pixels where the certified path needed a slower stage than "
+                   "the binary64 filter: yellow compensated (double-double), orange expansion (exact "
+                   "expansions), crimson exact (rationals) (default FILE: OUTPUT with -stages.png for its .png)"},
+                  {"--compare-naive", optional_file(naive_diff_path),
+                   "also run the textbook loop in plain doubles on the same rays and write an image marking in "
+                   "magenta the pixels where it picks another plane than the exact answer, with the counts "
+                   "(default FILE: OUTPUT with -naive-diff.png)"},
+                  {"--naive-image", optional_file(naive_image_path),
+                   "also write the scene as the plain-double loop renders it (default FILE: OUTPUT with "
+                   "-naive.png)"},
+                  {"--width", integer(overrides.width, 1, limits::max_image_side), "override the scene's image width"},
+                  {"--height", integer(overrides.height, 1, limits::max_image_side), "override the scene's image height"},
+                  {"--samples", integer(overrides.samples_per_pixel, 1, limits::max_samples_per_pixel),
+                   "override the samples per pixel (stratified, reproducible)"},
+                  {"--threads", integer(threads, 1, limits::max_threads), "worker threads (default: every core)"},
+                  {"--progress", flag(progress_mode, 1), "force the progress bar"},
+                  {"--no-progress", flag(progress_mode, 0), "suppress the progress bar (default: shown on a terminal)"},
+                  {"--print-demo-scene", action(print_demo_scene),
+                   "print the demo scene's JSON (a starting point for your own) and exit"}},
+      .operand = Operand{.metavar = "SCENE.json", .what = "scene file", .destination = &scene_path},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+  if (print_demo_scene) {
+    std::cout << demo_scene_json();
+    return finish_standard_output(exit_ok);
   }
 
   // The outputs: derived names, then no two the same.
@@ -278,39 +221,39 @@ int run_render(const std::vector<std::string>& args) {
   // The scene.
   std::string text;
   std::string scene_name = "demo scene";
-  if (have_scene) {
-    const Doing doing("reading the scene file " + quote(scene_path, limits::quoted_token_bytes));
-    Input input(scene_path);
-    if (!check_opened("render", "scene file", scene_path, input)) return exit_usage;
+  if (scene_path) {
+    const Doing doing("reading the scene file " + quote(*scene_path, limits::quoted_token_bytes));
+    Input input(*scene_path);
+    if (!check_opened("render", "scene file", *scene_path, input)) return exit_usage;
     char chunk[1 << 16];
     while (input.stream().read(chunk, sizeof chunk) || input.stream().gcount() > 0) {
       text.append(chunk, static_cast<std::size_t>(input.stream().gcount()));
       if (text.size() > limits::max_scene_bytes) {
-        std::cerr << "raykernel render: scene file " << input_name(scene_path) << " is larger than "
+        std::cerr << "raykernel render: scene file " << input_name(*scene_path) << " is larger than "
                   << with_thousands(limits::max_scene_bytes) << " bytes, the largest scene raykernel reads\n";
         return exit_usage;
       }
     }
     if (const std::string error = input.read_error(); !error.empty()) {
-      std::cerr << "raykernel render: I/O error reading scene file " << input_name(scene_path) << ": " << error << '\n';
+      std::cerr << "raykernel render: I/O error reading scene file " << input_name(*scene_path) << ": " << error << '\n';
       return exit_usage;
     }
-    scene_name = scene_path == "-" ? "standard input" : scene_path;
+    scene_name = *scene_path == "-" ? "standard input" : *scene_path;
   } else {
     text = demo_scene_json();
   }
-  const Doing doing("the scene " + (have_scene ? quote(scene_name, limits::quoted_token_bytes) : std::string("(the built-in demo)")));
+  const Doing doing("the scene " + (scene_path ? quote(scene_name, limits::quoted_token_bytes) : std::string("(the built-in demo)")));
   SceneParse parsed = parse_scene(text, overrides);
   if (!parsed.scene) {
-    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
+    std::cerr << "raykernel: " << (scene_path ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
               << '\n';
     return exit_usage;
   }
   // Mesh files are relative to the scene file's directory (the working directory for standard input).
   const std::filesystem::path scene_directory =
-      have_scene && scene_path != "-" ? std::filesystem::path(scene_path).parent_path() : std::filesystem::path();
+      scene_path && *scene_path != "-" ? std::filesystem::path(*scene_path).parent_path() : std::filesystem::path();
   if (const std::optional<SceneError> error = load_scene_meshes(*parsed.scene, scene_directory)) {
-    std::cerr << "raykernel: " << (have_scene ? printable(scene_name) : "built-in demo scene") << ": " << error->str()
+    std::cerr << "raykernel: " << (scene_path ? printable(scene_name) : "built-in demo scene") << ": " << error->str()
               << '\n';
     return exit_usage;
   }

@@ -2,18 +2,20 @@
 #include "commands/triangle.hpp"
 
 #include "commands/commands.hpp"
+#include "common/options.hpp"
 #include "common/stream_command.hpp"
-#include "common/text_format.hpp"
 #include "common/text_input.hpp"
 
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* triangle_help = R"(usage: raykernel triangle [options] [--] [FILE|-]
+constexpr const char* help_before = R"(usage: raykernel triangle [options] [--] [FILE|-]
 
 Intersects one ray with one triangle per input line (standard input when FILE is - or absent):
   ox oy oz dx dy dz ax ay az bx by bz cx cy cz
@@ -28,21 +30,9 @@ t = num/den and UA UB UC the barycentric coordinates pi_a/den, pi_b/den, pi_c/de
 exact value rounded to the nearest double (ties to even), printed so that strtod reads it back
 exactly. (N = (b-a) x (c-a), den = d.N, num = (a-o).N; degenerate: N = 0; parallel,
 coplanar: den = 0 with num != 0, num = 0.)
+)";
 
-options:
-  --rule=owned|closed            owned (default): an edge or vertex hit is counted by exactly
-                                 one triangle of a closed mesh (watertight tie-breaking);
-                                 closed: the triangle with its boundary
-  --exact                        append the exact t, UA, UB, UC as P/Q in lowest terms
-  --path=certified|exact|naive   which computation answers (default certified; naive is
-                                 Moller-Trumbore in plain doubles with its own closed test,
-                                 without guarantees; --rule does not apply to it)
-  --hex                          print T, UA, UB, UC as hexadecimal floats
-  --stats                        print to stderr how many queries each stage decided
-  --help                         this text
-  --                             end of options (a FILE may then start with -)
-
-exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
+constexpr const char* help_after = R"(exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error (an unreadable
 input, or standard output that cannot be written: triangle then stops reading)
 )";
 
@@ -146,35 +136,24 @@ std::string describe(const TriangleCounts& c, Method method) {
 
 int run_triangle(const std::vector<std::string>& args) {
   TriangleCommandOptions options;
-  std::string file;
-  bool have_file = false;
-  bool options_ended = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("triangle", "input file", a, file, have_file)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << triangle_help;
-      return finish_standard_output(exit_ok);
-    } else if (a == "--exact") {
-      options.exact_t = true;
-    } else if (a == "--rule" || a.starts_with("--rule=")) {
-      if (!parse_rule_option("triangle", args, i, options.rule)) return exit_usage;
-    } else if (a == "--exact-t") {  // classify's spelling; docs/contract.md §6 says --exact
-      std::cerr << "raykernel triangle: unknown option '--exact-t' (triangle's option is --exact)\n";
-      return exit_usage;
-    } else if (const SharedOption shared = parse_shared_option("triangle", args, i, options);
-               shared != SharedOption::not_shared) {
-      if (shared == SharedOption::usage_error) return exit_usage;
-    } else {
-      std::cerr << "raykernel triangle: unknown option " << quote(a) << " (see raykernel triangle --help)\n";
-      return exit_usage;
-    }
-  }
+  std::optional<std::string> file;
+  const CommandLine line{
+      .command = "triangle",
+      .options = {{"--rule", one_of(options.rule, rule_choices),
+                   "owned (default): an edge or vertex hit is counted by exactly one triangle of a closed "
+                   "mesh (watertight tie-breaking); closed: the triangle with its boundary"},
+                  {"--exact", flag(options.exact_t), "append the exact t, UA, UB, UC as P/Q in lowest terms"},
+                  {"--path", one_of(options.method, method_choices),
+                   "which computation answers (default certified; naive is Moller-Trumbore in plain "
+                   "doubles with its own closed test, without guarantees; --rule does not apply to it)"},
+                  {"--hex", flag(options.hex), "print T, UA, UB, UC as hexadecimal floats"},
+                  {"--stats", flag(options.stats), "print to stderr how many queries each stage decided"}},
+      .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &file},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
 
-  const std::string path = have_file ? file : "-";
+  const std::string path = file.value_or("-");
   Input input(path);
   if (!check_opened("triangle", "file", path, input)) return exit_usage;
   TriangleCounts counts;

@@ -16,7 +16,9 @@
 // ulps, or at random points of the box.
 #include "commands/commands.hpp"
 #include "commands/mesh_file.hpp"
-#include "common/stream_command.hpp"
+#include "common/exit_status.hpp"
+#include "common/io.hpp"
+#include "common/options.hpp"
 #include "common/text_format.hpp"
 #include "rendering/png_image.hpp"
 
@@ -29,12 +31,13 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -43,7 +46,7 @@
 namespace raykernel::cli {
 namespace {
 
-constexpr const char* watertight_help = R"(usage: raykernel watertight FILE [--rays N] [--seed S] [--png OUT]
+constexpr const char* help_before = R"(usage: raykernel watertight FILE [--rays N] [--seed S] [--png OUT]
 
 Shoots N random lines through the triangle mesh in FILE (OBJ, PLY, STL or OFF) and counts, for
 raykernel's owned rule, the closed rule, Moller-Trumbore in doubles and Embree (default and
@@ -58,17 +61,13 @@ by an infinitesimal (e, e^2, e^3), each a true crossing counted once. The owned 
 are its parity (leaks) and its balance (unbalanced: entries minus exits is not 0). Half the
 lines are aimed exactly at vertices, edge points and face points; the others near them, or at
 random.
-
-options:
-  --rays N     number of lines (default 10000)
-  --seed S     random seed (default 1)
-  --png OUT    write a render of the mesh with the lines' targets marked where a method leaked
-               (red: Moller-Trumbore, orange: Embree, magenta: Embree robust, blue: closed rule,
-               green: owned rule)
-  --help       this text
-
-exit status: 0 done, 2 usage or I/O error or a file that is not a mesh
 )";
+
+constexpr const char* help_after = R"(exit status: 0 done, 2 usage or I/O error or a file that is not a mesh
+)";
+
+// The most lines one run shoots (--rays).
+constexpr std::uint64_t max_rays = 100'000'000;
 
 enum class Target { vertex, edge, face, random };
 
@@ -224,55 +223,35 @@ bool is_closed(const Mesh& mesh) {
   return true;
 }
 
-bool parse_count(const std::string& text, std::uint64_t& value) {
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && end == text.data() + text.size();
-}
-
 }  // namespace
 
 int run_watertight(const std::vector<std::string>& args) {
-  std::string mesh_path, png_path;
+  std::optional<std::string> mesh_path;
+  std::string png_path;
   std::uint64_t rays = 10000, seed = 1;
-  bool have_mesh = false, options_ended = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Argument kind = argument_kind(a, options_ended);
-    if (kind == Argument::end_of_options) continue;
-    if (kind == Argument::operand) {
-      if (!take_single_operand("watertight", "mesh file", a, mesh_path, have_mesh)) return exit_usage;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << watertight_help;
-      return finish_standard_output(exit_ok);
-    } else if (a == "--rays" || a == "--seed" || a == "--png") {
-      if (i + 1 >= args.size()) {
-        std::cerr << "raykernel watertight: " << a << " needs a value\n";
-        return exit_usage;
-      }
-      const std::string& value = args[++i];
-      if (a == "--png") {
-        png_path = value;
-      } else if (!parse_count(value, a == "--rays" ? rays : seed) || (a == "--rays" && (rays == 0 || rays > 100000000))) {
-        std::cerr << "raykernel watertight: " << a << " needs a whole number" << (a == "--rays" ? " from 1 to 10^8" : "")
-                  << ", not " << quote(value) << "\n";
-        return exit_usage;
-      }
-    } else {
-      std::cerr << "raykernel watertight: unknown option " << quote(a) << " (see raykernel watertight --help)\n";
-      return exit_usage;
-    }
-  }
-  if (!have_mesh) {
+  const CommandLine line{
+      .command = "watertight",
+      .options = {{"--rays", integer(rays, 1, max_rays), "number of lines (default 10000)"},
+                  {"--seed", integer(seed, 0, UINT64_MAX, "S"), "random seed (default 1)"},
+                  {"--png", file(png_path, "OUT"),
+                   "write a render of the mesh with the lines' targets marked where a method leaked (red: "
+                   "Moller-Trumbore, orange: Embree, magenta: Embree robust, blue: closed rule, green: owned "
+                   "rule)"}},
+      .operand = Operand{.metavar = "FILE", .what = "mesh file", .destination = &mesh_path},
+      .help_before = help_before,
+      .help_after = help_after};
+  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+  if (!mesh_path) {
     std::cerr << "raykernel watertight: a mesh FILE is required (see raykernel watertight --help)\n";
     return exit_usage;
   }
-  std::optional<Mesh> read = read_mesh_file(mesh_path, std::cerr);
+  std::optional<Mesh> read = read_mesh_file(*mesh_path, std::cerr);
   if (!read) return exit_usage;
   if (read->triangles.empty()) {
-    std::cerr << "raykernel: " << printable(mesh_path) << ": the mesh has no triangles\n";
+    std::cerr << "raykernel: " << printable(*mesh_path) << ": the mesh has no triangles\n";
     return exit_usage;
   }
-  const PreparedMesh prepared = prepare_mesh(std::move(*read), mesh_path);
+  const PreparedMesh prepared = prepare_mesh(std::move(*read), *mesh_path);
   const Mesh& mesh = prepared.mesh();
   const bool closed_mesh = is_closed(mesh);
 
@@ -338,7 +317,7 @@ int run_watertight(const std::vector<std::string>& args) {
     }
   }
 
-  std::cout << "mesh " << printable(mesh_path) << ": " << mesh.triangles.size() << " triangles, " << mesh.vertices.size()
+  std::cout << "mesh " << printable(*mesh_path) << ": " << mesh.triangles.size() << " triangles, " << mesh.vertices.size()
             << " vertices, " << (closed_mesh ? "closed" : "not closed (leaks not counted)") << "\n";
   std::cout << "lines: " << rays << " (seed " << seed << "), aimed at " << by_kind[0] << " vertices, " << by_kind[1]
             << " edge points, " << by_kind[2] << " face points, " << by_kind[3] << " random points; " << aimed_exactly
