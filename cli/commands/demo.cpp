@@ -44,25 +44,34 @@ struct KindTally {
   std::uint64_t naive_wrong_relation = 0, naive_wrong_t = 0, mismatches = 0;
 };
 
-}  // namespace
-
-int run_demo(const std::vector<std::string>& args) {
+// What the command line says.
+struct Arguments {
   std::uint64_t per_kind = 20000;
   std::uint64_t seed = 1;
-  const CommandLine line{
-      .command = "demo",
-      .options = {{"--per-kind", integer(per_kind, 1, limits::max_demo_queries_per_kind),
-                   "queries of each kind (default 20000)"},
-                  {"--seed", integer(seed, 0, UINT64_MAX, "S"), "the seed of the queries (default 1)"}},
-      .operand = std::nullopt,
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "demo",
+          .options = {{"--per-kind", integer(a.per_kind, 1, limits::max_demo_queries_per_kind),
+                       "queries of each kind (default 20000)"},
+                      {"--seed", integer(a.seed, 0, UINT64_MAX, "S"), "the seed of the queries (default 1)"}},
+          .operand = std::nullopt,
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
+}  // namespace
+
+OwnedCommandLine demo_command_line() { return owned_command_line(command_line); }
+
+int run_demo(const std::vector<std::string>& args) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
 
   using testkit::QueryKind;
   std::cout << formatted("raykernel %s demo: %llu queries of each of %d kinds (seed %llu)\n\n",
-                         std::string(version()).c_str(), static_cast<unsigned long long>(per_kind),
-                         testkit::query_kind_count, static_cast<unsigned long long>(seed));
+                         std::string(version()).c_str(), static_cast<unsigned long long>(arguments.per_kind),
+                         testkit::query_kind_count, static_cast<unsigned long long>(arguments.seed));
   // The stage columns are as wide as the longest stage name.
   std::cout << formatted("%-16s %7s %7s %8s %8s | %-47s | %s\n", "", "hit", "behind", "parallel", "in-plane",
                          "relation decided by stage", "naive formula wrong");
@@ -73,9 +82,9 @@ int run_demo(const std::vector<std::string>& args) {
 
   KindTally total;
   double seconds[3] = {0, 0, 0};  // certified, exact, naive
-  testkit::SplitMix64 rng(seed);
+  testkit::SplitMix64 rng(arguments.seed);
   const testkit::BitSource bits = [&rng] { return rng(); };
-  std::vector<testkit::Query> batch(static_cast<std::size_t>(per_kind));
+  std::vector<testkit::Query> batch(static_cast<std::size_t>(arguments.per_kind));
   std::vector<Intersection> certified(batch.size()), exact(batch.size()), naive(batch.size());
   std::vector<TracedIntersection> traced(batch.size());
   for (QueryKind kind : testkit::all_query_kinds) {

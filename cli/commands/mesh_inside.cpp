@@ -34,6 +34,23 @@ constexpr const char* help_after = R"(exit status: 0 every point valid, 1 some p
 that is not a mesh (reported as raykernel: FILE:LINE: REASON, nothing on standard output)
 )";
 
+// What the command line says.
+struct Arguments {
+  std::optional<std::string> mesh_path, points_path;
+  bool stats = false;
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "inside",
+          .options = {{"--mesh", file(a.mesh_path),
+                       "the mesh (required; the format from the extension, else from the content)"},
+                      {"--stats", flag(a.stats),
+                       "print to stderr how many points were inside, outside and on the surface"}},
+          .operand = Operand{.metavar = "POINTS", .what = "points file", .destination = &a.points_path},
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
 }  // namespace
 
 int inside_stream(std::istream& in, std::ostream& out, std::ostream& err, const PreparedMesh& mesh,
@@ -57,27 +74,20 @@ int inside_stream(std::istream& in, std::ostream& out, std::ostream& err, const 
   return counts.invalid == 0 ? exit_ok : exit_invalid_line;
 }
 
+OwnedCommandLine inside_command_line() { return owned_command_line(command_line); }
+
 int run_inside(const std::vector<std::string>& args) {
-  std::optional<std::string> mesh_path, points_path;
-  bool stats = false;
-  const CommandLine line{
-      .command = "inside",
-      .options = {{"--mesh", file(mesh_path),
-                   "the mesh (required; the format from the extension, else from the content)"},
-                  {"--stats", flag(stats), "print to stderr how many points were inside, outside and on the surface"}},
-      .operand = Operand{.metavar = "POINTS", .what = "points file", .destination = &points_path},
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
-  if (!mesh_path) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (!arguments.mesh_path) {
     std::cerr << "raykernel inside: --mesh FILE is required (see raykernel inside --help)\n";
     return exit_usage;
   }
-  std::optional<Mesh> mesh = read_mesh_file(*mesh_path, std::cerr);
+  std::optional<Mesh> mesh = read_mesh_file(*arguments.mesh_path, std::cerr);
   if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *mesh_path);
+  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *arguments.mesh_path);
 
-  const std::string path = points_path.value_or("-");
+  const std::string path = arguments.points_path.value_or("-");
   Input points(path);
   if (!check_opened("inside", "points file", path, points)) return exit_usage;
   InsideCounts counts;
@@ -85,7 +95,7 @@ int run_inside(const std::vector<std::string>& args) {
   std::ostringstream text;
   text << counts.lines_answered << " points: " << counts.by_location[0] << " outside, " << counts.by_location[1]
        << " inside, " << counts.by_location[2] << " on-surface, " << counts.invalid << " invalid\n";
-  return finish_stream_command("inside", points, input_name(path), status, stats, text.str());
+  return finish_stream_command("inside", points, input_name(path), status, arguments.stats, text.str());
 }
 
 }  // namespace raykernel::cli

@@ -41,6 +41,25 @@ Plane plane_of(const NumberLine& line) {
   return {{v[6], v[7], v[8]}, {v[9], v[10], v[11]}};
 }
 
+// What the command line says.
+struct Arguments {
+  ClassifyOptions options;
+  std::optional<std::string> file;
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "classify",
+          .options = {{"--path", one_of(a.options.method, method_choices),
+                       "which computation answers (default certified; naive is the textbook formula in plain "
+                       "doubles, without guarantees)"},
+                      {"--exact-t", flag(a.options.exact_t), "append the exact t as P/Q in lowest terms"},
+                      {"--hex", flag(a.options.hex), "print T as a hexadecimal float"},
+                      {"--stats", flag(a.options.stats), "print to stderr how many queries each stage decided"}},
+          .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &a.file},
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
 }  // namespace
 
 int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, const ClassifyOptions& options,
@@ -108,29 +127,19 @@ std::string describe(const ClassifyCounts& c, Method method) {
   return s.str();
 }
 
-int run_classify(const std::vector<std::string>& args) {
-  ClassifyOptions options;
-  std::optional<std::string> file;
-  const CommandLine line{
-      .command = "classify",
-      .options = {{"--path", one_of(options.method, method_choices),
-                   "which computation answers (default certified; naive is the textbook formula in plain "
-                   "doubles, without guarantees)"},
-                  {"--exact-t", flag(options.exact_t), "append the exact t as P/Q in lowest terms"},
-                  {"--hex", flag(options.hex), "print T as a hexadecimal float"},
-                  {"--stats", flag(options.stats), "print to stderr how many queries each stage decided"}},
-      .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &file},
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+OwnedCommandLine classify_command_line() { return owned_command_line(command_line); }
 
-  const std::string path = file.value_or("-");
+int run_classify(const std::vector<std::string>& args) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+
+  const std::string path = arguments.file.value_or("-");
   Input input(path);
   if (!check_opened("classify", "file", path, input)) return exit_usage;
   ClassifyCounts counts;
-  const int status = classify_stream(input.stream(), std::cout, std::cerr, options, counts);
-  return finish_stream_command("classify", input, input_name(path), status, options.stats,
-                               describe(counts, options.method));
+  const int status = classify_stream(input.stream(), std::cout, std::cerr, arguments.options, counts);
+  return finish_stream_command("classify", input, input_name(path), status, arguments.options.stats,
+                               describe(counts, arguments.options.method));
 }
 
 }  // namespace raykernel::cli

@@ -57,6 +57,30 @@ Ray ray_of(const NumberLine& line) {
   return {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
 }
 
+// What the command line says.
+struct Arguments {
+  NearestOptions options;
+  std::optional<std::string> planes_path, mesh_path, rays_path;
+  std::optional<TriangleRule> rule;
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "nearest",
+          .options = {{"--planes", file(a.planes_path), "the planes (this or --mesh is required)"},
+                      {"--mesh", file(a.mesh_path), "a triangle mesh instead of planes"},
+                      {"--rule", one_of(a.rule, rule_choices),
+                       "with --mesh: which points of a triangle count (default owned)"},
+                      {"--path", one_of(a.options.method, method_choices),
+                       "which computation answers (default certified; naive is the textbook loop in plain "
+                       "doubles, without guarantees)"},
+                      {"--exact-t", flag(a.options.exact_t), "append the winner's exact t as P/Q in lowest terms"},
+                      {"--hex", flag(a.options.hex), "print T as a hexadecimal float"},
+                      {"--stats", flag(a.options.stats), "print to stderr how many decisions each stage made"}},
+          .operand = Operand{.metavar = "RAYS", .what = "rays file", .destination = &a.rays_path},
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
 }  // namespace
 
 PlanesFile read_planes(std::istream& in) {
@@ -150,71 +174,57 @@ std::string describe(const NearestCounts& c, Method method) {
   return s.str();
 }
 
+OwnedCommandLine nearest_command_line() { return owned_command_line(command_line); }
+
 int run_nearest(const std::vector<std::string>& args) {
-  NearestOptions options;
-  std::optional<std::string> planes_path, mesh_path, rays_path;
-  std::optional<TriangleRule> rule;
-  const CommandLine line{
-      .command = "nearest",
-      .options = {{"--planes", file(planes_path), "the planes (this or --mesh is required)"},
-                  {"--mesh", file(mesh_path), "a triangle mesh instead of planes"},
-                  {"--rule", one_of(rule, rule_choices),
-                   "with --mesh: which points of a triangle count (default owned)"},
-                  {"--path", one_of(options.method, method_choices),
-                   "which computation answers (default certified; naive is the textbook loop in plain "
-                   "doubles, without guarantees)"},
-                  {"--exact-t", flag(options.exact_t), "append the winner's exact t as P/Q in lowest terms"},
-                  {"--hex", flag(options.hex), "print T as a hexadecimal float"},
-                  {"--stats", flag(options.stats), "print to stderr how many decisions each stage made"}},
-      .operand = Operand{.metavar = "RAYS", .what = "rays file", .destination = &rays_path},
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
-  if (planes_path && mesh_path) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (arguments.planes_path && arguments.mesh_path) {
     std::cerr << "raykernel nearest: --planes and --mesh cannot be given together\n";
     return exit_usage;
   }
-  if (rule && !mesh_path) {
+  if (arguments.rule && !arguments.mesh_path) {
     std::cerr << "raykernel nearest: --rule needs --mesh (planes have no rule)\n";
     return exit_usage;
   }
-  const std::string path = rays_path.value_or("-");
-  if (mesh_path) {
-    const MeshNearestOptions mesh_options{.method = options.method,
-                                          .rule = rule.value_or(TriangleRule::owned),
-                                          .exact_t = options.exact_t,
-                                          .hex = options.hex,
-                                          .stats = options.stats};
-    return run_mesh_nearest(*mesh_path, path, mesh_options);
+  const std::string path = arguments.rays_path.value_or("-");
+  if (arguments.mesh_path) {
+    const MeshNearestOptions mesh_options{.method = arguments.options.method,
+                                          .rule = arguments.rule.value_or(TriangleRule::owned),
+                                          .exact_t = arguments.options.exact_t,
+                                          .hex = arguments.options.hex,
+                                          .stats = arguments.options.stats};
+    return run_mesh_nearest(*arguments.mesh_path, path, mesh_options);
   }
-  if (!planes_path) {
+  if (!arguments.planes_path) {
     std::cerr << "raykernel nearest: --planes FILE or --mesh FILE is required (see raykernel nearest --help)\n";
     return exit_usage;
   }
 
+  const std::string& planes_path = *arguments.planes_path;
   PlanesFile planes;
   {
-    const Doing doing("reading the planes file " + quote(*planes_path, limits::quoted_token_bytes));
-    Input planes_input(*planes_path, Input::Dash::is_a_file);
-    if (!check_opened("nearest", "planes file", *planes_path, planes_input)) return exit_usage;
+    const Doing doing("reading the planes file " + quote(planes_path, limits::quoted_token_bytes));
+    Input planes_input(planes_path, Input::Dash::is_a_file);
+    if (!check_opened("nearest", "planes file", planes_path, planes_input)) return exit_usage;
     planes = read_planes(planes_input.stream());
     if (const std::string error = planes_input.read_error(); !error.empty()) {
-      std::cerr << "raykernel nearest: I/O error reading planes file '" << printable(*planes_path) << "': " << error
+      std::cerr << "raykernel nearest: I/O error reading planes file '" << printable(planes_path) << "': " << error
                 << '\n';
       return exit_usage;
     }
   }
   if (!planes.ok()) {
-    std::cerr << "raykernel: " << printable(*planes_path) << ":" << planes.error_line << ": " << planes.error << '\n';
+    std::cerr << "raykernel: " << printable(planes_path) << ":" << planes.error_line << ": " << planes.error << '\n';
     return exit_usage;
   }
 
   Input rays(path);
   if (!check_opened("nearest", "rays file", path, rays)) return exit_usage;
   NearestCounts counts;
-  const int status = nearest_stream(rays.stream(), std::cout, std::cerr, planes.planes, options, counts);
-  return finish_stream_command("nearest", rays, input_name(path), status, options.stats,
-                               describe(counts, options.method));
+  const int status = nearest_stream(rays.stream(), std::cout, std::cerr, planes.planes, arguments.options, counts);
+  return finish_stream_command("nearest", rays, input_name(path), status, arguments.options.stats,
+                               describe(counts, arguments.options.method));
 }
 
 }  // namespace raykernel::cli

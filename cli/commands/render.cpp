@@ -144,45 +144,56 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace
-
-int run_render(const std::vector<std::string>& args) {
+// What the command line says.
+struct Arguments {
   std::optional<std::string> scene_path, stages_path, naive_diff_path, naive_image_path;
   std::string output = "render.png";
   SceneOverrides overrides;
   unsigned threads = 0;
   int progress_mode = -1;  // −1: on a terminal
   bool print_demo_scene = false;
-  const CommandLine line{
+};
+
+CommandLine command_line(Arguments& a) {
+  return {
       .command = "render",
-      .options = {{"--output", "-o", file(output, "FILE", "a file name, or - for standard output"),
-                   "the PNG to write (default render.png; - writes it to standard output, and the report then "
-                   "goes to standard error)"},
-                  {"--show-stages", optional_file(stages_path),
-                   "also write an image marking the pixels where the certified path needed a slower stage than "
-                   "the binary64 filter: yellow compensated (double-double), orange expansion (exact "
-                   "expansions), crimson exact (rationals) (default FILE: OUTPUT with -stages.png for its .png)"},
-                  {"--compare-naive", optional_file(naive_diff_path),
-                   "also run the textbook loop in plain doubles on the same rays and write an image marking in "
-                   "magenta the pixels where it picks another plane than the exact answer, with the counts "
-                   "(default FILE: OUTPUT with -naive-diff.png)"},
-                  {"--naive-image", optional_file(naive_image_path),
-                   "also write the scene as the plain-double loop renders it (default FILE: OUTPUT with "
-                   "-naive.png)"},
-                  {"--width", integer(overrides.width, 1, limits::max_image_side), "override the scene's image width"},
-                  {"--height", integer(overrides.height, 1, limits::max_image_side), "override the scene's image height"},
-                  {"--samples", integer(overrides.samples_per_pixel, 1, limits::max_samples_per_pixel),
-                   "override the samples per pixel (stratified, reproducible)"},
-                  {"--threads", integer(threads, 1, limits::max_threads), "worker threads (default: every core)"},
-                  {"--progress", flag(progress_mode, 1), "force the progress bar"},
-                  {"--no-progress", flag(progress_mode, 0), "suppress the progress bar (default: shown on a terminal)"},
-                  {"--print-demo-scene", action(print_demo_scene),
-                   "print the demo scene's JSON (a starting point for your own) and exit"}},
-      .operand = Operand{.metavar = "SCENE.json", .what = "scene file", .destination = &scene_path},
+      .options =
+          {{"--output", "-o", file(a.output, "FILE", "a file name, or - for standard output"),
+            "the PNG to write (default render.png; - writes it to standard output, and the report then "
+            "goes to standard error)"},
+           {"--show-stages", optional_file(a.stages_path),
+            "also write an image marking the pixels where the certified path needed a slower stage than "
+            "the binary64 filter: yellow compensated (double-double), orange expansion (exact "
+            "expansions), crimson exact (rationals) (default FILE: OUTPUT with -stages.png for its .png)"},
+           {"--compare-naive", optional_file(a.naive_diff_path),
+            "also run the textbook loop in plain doubles on the same rays and write an image marking in "
+            "magenta the pixels where it picks another plane than the exact answer, with the counts "
+            "(default FILE: OUTPUT with -naive-diff.png)"},
+           {"--naive-image", optional_file(a.naive_image_path),
+            "also write the scene as the plain-double loop renders it (default FILE: OUTPUT with "
+            "-naive.png)"},
+           {"--width", integer(a.overrides.width, 1, limits::max_image_side), "override the scene's image width"},
+           {"--height", integer(a.overrides.height, 1, limits::max_image_side), "override the scene's image height"},
+           {"--samples", integer(a.overrides.samples_per_pixel, 1, limits::max_samples_per_pixel),
+            "override the samples per pixel (stratified, reproducible)"},
+           {"--threads", integer(a.threads, 1, limits::max_threads), "worker threads (default: every core)"},
+           {"--progress", flag(a.progress_mode, 1), "force the progress bar"},
+           {"--no-progress", flag(a.progress_mode, 0), "suppress the progress bar (default: shown on a terminal)"},
+           {"--print-demo-scene", action(a.print_demo_scene),
+            "print the demo scene's JSON (a starting point for your own) and exit"}},
+      .operand = Operand{.metavar = "SCENE.json", .what = "scene file", .destination = &a.scene_path},
       .help_before = help_before,
       .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
-  if (print_demo_scene) {
+}
+
+}  // namespace
+
+OwnedCommandLine render_command_line() { return owned_command_line(command_line); }
+
+int run_render(const std::vector<std::string>& args) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (arguments.print_demo_scene) {
     std::cout << demo_scene_json();
     return finish_standard_output(exit_ok);
   }
@@ -193,18 +204,18 @@ int run_render(const std::vector<std::string>& args) {
     std::optional<std::string>* path;
     const char* suffix;
   };
-  std::optional<std::string> main_output = output;
+  std::optional<std::string> main_output = arguments.output;
   const Output outputs[] = {{"--output", &main_output, ""},
-                            {"--show-stages", &stages_path, "-stages.png"},
-                            {"--compare-naive", &naive_diff_path, "-naive-diff.png"},
-                            {"--naive-image", &naive_image_path, "-naive.png"}};
+                            {"--show-stages", &arguments.stages_path, "-stages.png"},
+                            {"--compare-naive", &arguments.naive_diff_path, "-naive-diff.png"},
+                            {"--naive-image", &arguments.naive_image_path, "-naive.png"}};
   for (const Output& o : outputs) {
     if (!o.path->has_value() || !(*o.path)->empty()) continue;
-    if (output == "-") {
+    if (arguments.output == "-") {
       std::cerr << "raykernel render: " << o.option << " needs =FILE when the image goes to standard output\n";
       return exit_usage;
     }
-    *o.path = sibling(output, o.suffix);
+    *o.path = sibling(arguments.output, o.suffix);
   }
   for (std::size_t x = 0; x < std::size(outputs); ++x)
     for (std::size_t y = x + 1; y < std::size(outputs); ++y)
@@ -219,6 +230,7 @@ int run_render(const std::vector<std::string>& args) {
   std::ostream& report = image_to_standard_output ? std::cerr : std::cout;
 
   // The scene.
+  const std::optional<std::string>& scene_path = arguments.scene_path;
   std::string text;
   std::string scene_name = "demo scene";
   if (scene_path) {
@@ -243,7 +255,7 @@ int run_render(const std::vector<std::string>& args) {
     text = demo_scene_json();
   }
   const Doing doing("the scene " + (scene_path ? quote(scene_name, limits::quoted_token_bytes) : std::string("(the built-in demo)")));
-  SceneParse parsed = parse_scene(text, overrides);
+  SceneParse parsed = parse_scene(text, arguments.overrides);
   if (!parsed.scene) {
     std::cerr << "raykernel: " << (scene_path ? printable(scene_name) : "built-in demo scene") << ": " << parsed.error.str()
               << '\n';
@@ -260,17 +272,17 @@ int run_render(const std::vector<std::string>& args) {
   const Scene& scene = *parsed.scene;
 
   RenderOptions options;
-  options.threads = thread_count(threads);
-  options.stage_image = stages_path.has_value();
-  options.compare_naive = naive_diff_path.has_value();
-  options.naive_image = naive_image_path.has_value();
+  options.threads = thread_count(arguments.threads);
+  options.stage_image = arguments.stages_path.has_value();
+  options.compare_naive = arguments.naive_diff_path.has_value();
+  options.naive_image = arguments.naive_image_path.has_value();
   options.legend = true;
   // Say what is about to happen before it takes its time (and stop now if nobody can read it).
   report << render_header(scene_name, scene, options.threads);
   report.flush();
   if (!image_to_standard_output && !flush_standard_output()) return exit_usage;
 
-  const bool show_progress = progress_mode == 1 || (progress_mode == -1 && isatty(STDERR_FILENO));
+  const bool show_progress = arguments.progress_mode == 1 || (arguments.progress_mode == -1 && isatty(STDERR_FILENO));
   ProgressBar bar(show_progress, "raykernel render");
   options.progress = [&bar](double fraction) { bar(fraction); };
   RenderResult result;
@@ -300,20 +312,20 @@ int run_render(const std::vector<std::string>& args) {
     return true;
   };
   const RenderStats& s = result.stats;
-  if (!write(output, result.image)) return exit_usage;
-  report << render_statistics(output, s);
-  if (stages_path) {
-    if (!write(*stages_path, result.stages)) return exit_usage;
-    report << stage_image_line(*stages_path, s);
+  if (!write(arguments.output, result.image)) return exit_usage;
+  report << render_statistics(arguments.output, s);
+  if (arguments.stages_path) {
+    if (!write(*arguments.stages_path, result.stages)) return exit_usage;
+    report << stage_image_line(*arguments.stages_path, s);
   }
   if (s.naive_compared) report << naive_comparison_line(s);
-  if (naive_diff_path) {
-    if (!write(*naive_diff_path, result.naive_difference)) return exit_usage;
-    report << naive_difference_line(*naive_diff_path);
+  if (arguments.naive_diff_path) {
+    if (!write(*arguments.naive_diff_path, result.naive_difference)) return exit_usage;
+    report << naive_difference_line(*arguments.naive_diff_path);
   }
-  if (naive_image_path) {
-    if (!write(*naive_image_path, result.naive)) return exit_usage;
-    report << naive_image_line(*naive_image_path);
+  if (arguments.naive_image_path) {
+    if (!write(*arguments.naive_image_path, result.naive)) return exit_usage;
+    report << naive_image_line(*arguments.naive_image_path);
   }
   return finish_standard_output(exit_ok);
 }

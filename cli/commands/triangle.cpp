@@ -50,6 +50,28 @@ bool crosses(TriangleRelation r) {
 }
 
 
+// What the command line says.
+struct Arguments {
+  TriangleCommandOptions options;
+  std::optional<std::string> file;
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "triangle",
+          .options = {{"--rule", one_of(a.options.rule, rule_choices),
+                       "owned (default): an edge or vertex hit is counted by exactly one triangle of a closed "
+                       "mesh (watertight tie-breaking); closed: the triangle with its boundary"},
+                      {"--exact", flag(a.options.exact_t), "append the exact t, UA, UB, UC as P/Q in lowest terms"},
+                      {"--path", one_of(a.options.method, method_choices),
+                       "which computation answers (default certified; naive is Moller-Trumbore in plain "
+                       "doubles with its own closed test, without guarantees; --rule does not apply to it)"},
+                      {"--hex", flag(a.options.hex), "print T, UA, UB, UC as hexadecimal floats"},
+                      {"--stats", flag(a.options.stats), "print to stderr how many queries each stage decided"}},
+          .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &a.file},
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
 }  // namespace
 
 int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, const TriangleCommandOptions& options,
@@ -134,32 +156,19 @@ std::string describe(const TriangleCounts& c, Method method) {
   return s.str();
 }
 
-int run_triangle(const std::vector<std::string>& args) {
-  TriangleCommandOptions options;
-  std::optional<std::string> file;
-  const CommandLine line{
-      .command = "triangle",
-      .options = {{"--rule", one_of(options.rule, rule_choices),
-                   "owned (default): an edge or vertex hit is counted by exactly one triangle of a closed "
-                   "mesh (watertight tie-breaking); closed: the triangle with its boundary"},
-                  {"--exact", flag(options.exact_t), "append the exact t, UA, UB, UC as P/Q in lowest terms"},
-                  {"--path", one_of(options.method, method_choices),
-                   "which computation answers (default certified; naive is Moller-Trumbore in plain "
-                   "doubles with its own closed test, without guarantees; --rule does not apply to it)"},
-                  {"--hex", flag(options.hex), "print T, UA, UB, UC as hexadecimal floats"},
-                  {"--stats", flag(options.stats), "print to stderr how many queries each stage decided"}},
-      .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &file},
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
+OwnedCommandLine triangle_command_line() { return owned_command_line(command_line); }
 
-  const std::string path = file.value_or("-");
+int run_triangle(const std::vector<std::string>& args) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+
+  const std::string path = arguments.file.value_or("-");
   Input input(path);
   if (!check_opened("triangle", "file", path, input)) return exit_usage;
   TriangleCounts counts;
-  const int status = triangle_stream(input.stream(), std::cout, std::cerr, options, counts);
-  return finish_stream_command("triangle", input, input_name(path), status, options.stats,
-                               describe(counts, options.method));
+  const int status = triangle_stream(input.stream(), std::cout, std::cerr, arguments.options, counts);
+  return finish_stream_command("triangle", input, input_name(path), status, arguments.options.stats,
+                               describe(counts, arguments.options.method));
 }
 
 }  // namespace raykernel::cli

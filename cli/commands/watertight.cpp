@@ -223,35 +223,47 @@ bool is_closed(const Mesh& mesh) {
   return true;
 }
 
-}  // namespace
-
-int run_watertight(const std::vector<std::string>& args) {
+// What the command line says.
+struct Arguments {
   std::optional<std::string> mesh_path;
   std::string png_path;
   std::uint64_t rays = 10000, seed = 1;
-  const CommandLine line{
-      .command = "watertight",
-      .options = {{"--rays", integer(rays, 1, max_rays), "number of lines (default 10000)"},
-                  {"--seed", integer(seed, 0, UINT64_MAX, "S"), "random seed (default 1)"},
-                  {"--png", file(png_path, "OUT"),
-                   "write a render of the mesh with the lines' targets marked where a method leaked (red: "
-                   "Moller-Trumbore, orange: Embree, magenta: Embree robust, blue: closed rule, green: owned "
-                   "rule)"}},
-      .operand = Operand{.metavar = "FILE", .what = "mesh file", .destination = &mesh_path},
-      .help_before = help_before,
-      .help_after = help_after};
-  if (const std::optional<int> status = parse_command_line(line, args)) return *status;
-  if (!mesh_path) {
+};
+
+CommandLine command_line(Arguments& a) {
+  return {.command = "watertight",
+          .options = {{"--rays", integer(a.rays, 1, max_rays), "number of lines (default 10000)"},
+                      {"--seed", integer(a.seed, 0, UINT64_MAX, "S"), "random seed (default 1)"},
+                      {"--png", file(a.png_path, "OUT"),
+                       "write a render of the mesh with the lines' targets marked where a method leaked (red: "
+                       "Moller-Trumbore, orange: Embree, magenta: Embree robust, blue: closed rule, green: owned "
+                       "rule)"}},
+          .operand = Operand{.metavar = "FILE", .what = "mesh file", .destination = &a.mesh_path},
+          .help_before = help_before,
+          .help_after = help_after};
+}
+
+}  // namespace
+
+OwnedCommandLine watertight_command_line() { return owned_command_line(command_line); }
+
+int run_watertight(const std::vector<std::string>& args) {
+  Arguments arguments;
+  if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (!arguments.mesh_path) {
     std::cerr << "raykernel watertight: a mesh FILE is required (see raykernel watertight --help)\n";
     return exit_usage;
   }
-  std::optional<Mesh> read = read_mesh_file(*mesh_path, std::cerr);
+  const std::string& mesh_path = *arguments.mesh_path;
+  const std::string& png_path = arguments.png_path;
+  const std::uint64_t rays = arguments.rays, seed = arguments.seed;
+  std::optional<Mesh> read = read_mesh_file(mesh_path, std::cerr);
   if (!read) return exit_usage;
   if (read->triangles.empty()) {
-    std::cerr << "raykernel: " << printable(*mesh_path) << ": the mesh has no triangles\n";
+    std::cerr << "raykernel: " << printable(mesh_path) << ": the mesh has no triangles\n";
     return exit_usage;
   }
-  const PreparedMesh prepared = prepare_mesh(std::move(*read), *mesh_path);
+  const PreparedMesh prepared = prepare_mesh(std::move(*read), mesh_path);
   const Mesh& mesh = prepared.mesh();
   const bool closed_mesh = is_closed(mesh);
 
@@ -317,7 +329,7 @@ int run_watertight(const std::vector<std::string>& args) {
     }
   }
 
-  std::cout << "mesh " << printable(*mesh_path) << ": " << mesh.triangles.size() << " triangles, " << mesh.vertices.size()
+  std::cout << "mesh " << printable(mesh_path) << ": " << mesh.triangles.size() << " triangles, " << mesh.vertices.size()
             << " vertices, " << (closed_mesh ? "closed" : "not closed (leaks not counted)") << "\n";
   std::cout << "lines: " << rays << " (seed " << seed << "), aimed at " << by_kind[0] << " vertices, " << by_kind[1]
             << " edge points, " << by_kind[2] << " face points, " << by_kind[3] << " random points; " << aimed_exactly

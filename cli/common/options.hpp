@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,6 +72,19 @@ struct CommandLine {
   std::string help_before;         // the help's usage and description, before "options:"
   std::string help_after;          // after the options (formats, exit status), or nothing
 };
+
+// A command line over destinations of its own, kept alive with it: what tests that go through every option of
+// every command read into. owned_command_line(command_line) makes one from a command's table function.
+struct OwnedCommandLine {
+  std::shared_ptr<void> destinations;
+  CommandLine line;
+};
+template <class Arguments>
+[[nodiscard]] OwnedCommandLine owned_command_line(CommandLine (*command_line)(Arguments&)) {
+  auto destinations = std::make_shared<Arguments>();
+  CommandLine line = command_line(*destinations);
+  return {std::move(destinations), std::move(line)};
+}
 
 // Reads `args` (the command line without the program and command names) as `line` says. Returns nothing when
 // the command is to run; otherwise the exit status it ends with: exit_ok after --help printed the help
