@@ -201,7 +201,8 @@ TEST(Options, OutOfRangeIsABadValue) {
       above[k] = '0';
       if (k == 0) above.insert(0, "1");
     }
-    for (const std::string& bad : {above, std::string("-1"), std::string("+1"), std::string("1e3"), std::string(" 1")}) {
+    for (const std::string& bad :
+         {above, std::string("-1"), std::string("+1"), std::string("1e3"), std::string(" 1")}) {
       const Parse p = parse(*command, {option.name, bad});
       EXPECT_EQ(p.status, exit_usage) << where << " " << bad;
       EXPECT_EQ(p.err, prefix(*command) + "bad value for " + option.name + ": '" + bad + "' (an integer from " +
@@ -217,7 +218,8 @@ TEST(Options, AnUnknownOptionIsOneMessageForEveryCommand) {
     for (const std::string unknown : {"--no-such-option", "--no-such-option=1", "-x", "-o=x", "--help-me"}) {
       const Parse p = parse(c, {unknown});
       EXPECT_EQ(p.status, exit_usage) << c.name << " " << unknown;
-      EXPECT_EQ(p.err, prefix(c) + "unknown option '" + unknown + "' (see raykernel " + std::string(c.name) + " --help)\n")
+      EXPECT_EQ(p.err,
+                prefix(c) + "unknown option '" + unknown + "' (see raykernel " + std::string(c.name) + " --help)\n")
           << c.name;
     }
 }
