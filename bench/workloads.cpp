@@ -1,6 +1,6 @@
 #include "workloads.hpp"
 
-#include "scene.hpp"
+#include "scenes/scene.hpp"
 
 #include <raykernel/parallel.hpp>
 

@@ -1,12 +1,15 @@
 // The raykernel command-line tool: dispatches to the subcommands.
-#include "commands.hpp"
-#include "failure.hpp"
-#include "io.hpp"
-#include "mesh_commands.hpp"
-#include "text_format.hpp"
-#include "triangle_command.hpp"
+#include "commands/commands.hpp"
+#include "common/exit_status.hpp"
+#include "common/failure.hpp"
+#include "common/io.hpp"
+#include "common/text_format.hpp"
 
+#include <raykernel/raykernel.hpp>
+
+#include <algorithm>
 #include <iostream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,19 +57,15 @@ int main(int argc, char** argv) {
     std::cout << "raykernel " << raykernel::version() << '\n';
     return finish_standard_output(exit_ok);
   }
+  const std::span<const Command> all = commands();
+  const auto found = std::ranges::find(all, command, &Command::name);
+  if (found == all.end()) {
+    std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
+    return finish_standard_output(exit_usage);
+  }
   int status = exit_usage;
   try {
-    if (command == "classify") status = run_classify(args);
-    else if (command == "demo") status = run_demo(args);
-    else if (command == "nearest") status = run_nearest(args);
-    else if (command == "render") status = run_render(args);
-    else if (command == "triangle") status = run_triangle(args);
-    else if (command == "inside") status = run_inside(args);
-    else if (command == "watertight") status = run_watertight(args);
-    else {
-      std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
-      return finish_standard_output(exit_usage);
-    }
+    status = found->run(args);
   } catch (...) {
     // Nothing a command leaves uncaught ends in std::terminate: what was answered is kept, and exit 2.
     (void)flush_standard_output();

@@ -20,8 +20,8 @@
 #include "fuzz_support.hpp"
 #include "fuzz_text.hpp"
 
-#include "commands.hpp"
-#include "text_input.hpp"
+#include "commands/plane_classify.hpp"
+#include "common/text_input.hpp"
 
 #include <raykernel/raykernel.hpp>
 

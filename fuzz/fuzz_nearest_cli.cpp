@@ -19,8 +19,9 @@
 #include "fuzz_support.hpp"
 #include "fuzz_text.hpp"
 
-#include "commands.hpp"
-#include "text_input.hpp"
+#include "commands/commands.hpp"
+#include "commands/plane_nearest.hpp"
+#include "common/text_input.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>

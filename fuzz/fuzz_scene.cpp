@@ -23,9 +23,9 @@
 #include "fuzz_support.hpp"
 #include "fuzz_text.hpp"
 
-#include "limits.hpp"
-#include "render.hpp"
-#include "scene.hpp"
+#include "common/limits.hpp"
+#include "rendering/render.hpp"
+#include "scenes/scene.hpp"
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>

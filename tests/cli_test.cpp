@@ -1,10 +1,11 @@
 // The CLI (docs/contract.md §3): the number syntax, the output format, invalid lines, exit statuses, and the
 // contract's sample cases run through the real binary.
-#include "commands.hpp"
+#include "commands/plane_classify.hpp"
+#include "commands/plane_nearest.hpp"
 #include "support/answer_lines.hpp"
-#include "text_input.hpp"
+#include "common/text_input.hpp"
 
-#include "text_format.hpp"
+#include "common/text_format.hpp"
 
 #include <gtest/gtest.h>
 

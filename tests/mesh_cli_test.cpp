@@ -1,7 +1,7 @@
 // `raykernel nearest --mesh` and `raykernel inside` (docs/contract.md §7, with §3's and §4's line rules): hand-derived
 // answers on an octahedron file through the real binary, in every mesh format; the stream code's paths against
 // each other; files that are not meshes (exit 2, "raykernel: FILE:LINE: REASON", nothing on stdout); usage errors.
-#include "mesh_commands.hpp"
+#include "commands/mesh_nearest.hpp"
 
 #include <raykernel/io/mesh_file.hpp>
 
@@ -247,6 +247,10 @@ TEST(MeshCli, Watertight) {
   EXPECT_EQ(closed[2], "0");  // the closed rule never misses an owned crossing (the owned points are closed ones)
   std::ifstream f(png, std::ios::binary);
   EXPECT_TRUE(f.good());
+  // Both spellings of a value, as every command takes them (watertight alone refused --rays=N).
+  const CliRun attached = run("watertight --rays=40 --seed=7 " + path);
+  EXPECT_EQ(attached.status, 0) << attached.err;
+  EXPECT_NE(attached.out.find("lines: 40 (seed 7)"), std::string::npos) << attached.out;
   EXPECT_EQ(run("watertight " + path + " --rays 0").status, 2);
   EXPECT_EQ(run("watertight " + path + " --rays x").status, 2);
   EXPECT_EQ(run("watertight").status, 2);

@@ -4,8 +4,8 @@
 // (tests/data/triangle-cases/hand.*), whose every expected line is also checked against an independent oracle.
 #include "support/answer_lines.hpp"
 #include "support/triangle_oracle.hpp"
-#include "text_input.hpp"
-#include "triangle_command.hpp"
+#include "common/text_input.hpp"
+#include "commands/triangle.hpp"
 
 #include <gtest/gtest.h>
 

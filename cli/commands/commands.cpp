@@ -1,0 +1,18 @@
+#include "commands/commands.hpp"
+
+namespace raykernel::cli {
+
+std::span<const Command> commands() {
+  static constexpr Command all[] = {
+      {"classify", run_classify, classify_command_line},
+      {"nearest", run_nearest, nearest_command_line},
+      {"inside", run_inside, inside_command_line},
+      {"watertight", run_watertight, watertight_command_line},
+      {"triangle", run_triangle, triangle_command_line},
+      {"render", run_render, render_command_line},
+      {"demo", run_demo, demo_command_line},
+  };
+  return all;
+}
+
+}  // namespace raykernel::cli

@@ -1,0 +1,74 @@
+// raykernel nearest --mesh: the first triangle of a mesh each ray hits (docs/contract.md §4, §7).
+#include "commands/mesh_nearest.hpp"
+
+#include "commands/mesh_file.hpp"
+#include "common/stream_command.hpp"
+#include "common/text_input.hpp"
+
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+namespace raykernel::cli {
+
+int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, const PreparedMesh& mesh,
+                        const MeshNearestOptions& options, MeshNearestCounts& counts) {
+  LineReader lines(rays);
+  std::string line, answer;
+  while (out && lines.next(line)) {
+    const NumberLine parsed = parse_number_line(line, 6);
+    if (parsed.status == LineStatus::skip) continue;
+    ++counts.lines_answered;
+    std::string reason = parsed.reason;
+    const auto& v = parsed.value;
+    const Ray ray{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (parsed.status == LineStatus::numbers) {
+      if (std::optional<std::string> invalid = validate(ray)) reason = *invalid;
+    }
+    if (!reason.empty()) {
+      ++counts.invalid;
+      report_invalid_line(out, err, lines.line_number(), reason);
+      continue;
+    }
+    std::optional<MeshHit> hit;
+    switch (options.method) {
+      case Method::certified: hit = nearest_hit(ray, mesh, options.rule); break;
+      case Method::exact: hit = nearest_hit_exact(ray, mesh.mesh(), options.rule); break;
+      case Method::naive: hit = nearest_hit_naive(ray, mesh); break;
+    }
+    if (!hit) {
+      ++counts.misses;
+      out << "miss\n";
+      continue;
+    }
+    ++counts.hits;
+    answer = "hit ";
+    answer += std::to_string(hit->triangle);
+    answer += ' ';
+    answer += options.hex ? format_hex(hit->intersection.t) : format_shortest(hit->intersection.t);
+    if (options.exact_t) {
+      const ExactTriangleIntersection exact = intersect_exact_rational(ray, mesh.mesh().triangle(hit->triangle), options.rule);
+      answer += ' ';
+      answer += exact.t ? exact.t->str() : "none";  // only the naive path can pick a triangle with no t
+    }
+    out << answer << '\n';
+  }
+  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+}
+
+int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path, const MeshNearestOptions& options) {
+  std::optional<Mesh> mesh = read_mesh_file(mesh_path, std::cerr);
+  if (!mesh) return exit_usage;
+  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
+  Input rays(rays_path);
+  if (!check_opened("nearest", "rays file", rays_path, rays)) return exit_usage;
+  MeshNearestCounts counts;
+  const int status = mesh_nearest_stream(rays.stream(), std::cout, std::cerr, prepared, options, counts);
+  std::ostringstream text;
+  text << counts.lines_answered << " rays: " << counts.hits << " hit, " << counts.misses << " miss, " << counts.invalid
+       << " invalid (" << prepared.mesh().triangles.size() << " triangles, rule " << to_string(options.rule) << ")\n";
+  return finish_stream_command("nearest", rays, input_name(rays_path), status, options.stats, text.str());
+}
+
+}  // namespace raykernel::cli

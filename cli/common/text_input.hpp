@@ -1,0 +1,56 @@
+// The text formats of the CLI (docs/contract.md §3–§4): lines of numbers in strtod syntax, and doubles printed so
+// that strtod reads them back exactly.
+#pragma once
+
+#include "common/limits.hpp"
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+
+namespace raykernel::cli {
+
+inline constexpr int max_numbers_per_line = limits::max_numbers_per_line;
+
+// The lines of a query, planes or rays file, as std::getline splits them, numbered from 1. A UTF-8
+// byte-order mark (EF BB BF) at the very start of the input is dropped, as editors on some systems write it.
+// A line longer than limits::max_line_bytes ends the input as a read error (the stream goes bad; on an
+// Input's stream, Input::read_error() names the line and the limit): memory stays bounded on /dev/zero.
+class LineReader {
+ public:
+  explicit LineReader(std::istream& in) noexcept : in_(in) {}
+  // The next line into `line` (without its '\n'); false at the end of the input or when reading fails.
+  [[nodiscard]] bool next(std::string& line);
+  // The number of the line `next` returned last (1 for the first).
+  [[nodiscard]] std::uint64_t line_number() const noexcept { return line_number_; }
+
+ private:
+  std::istream& in_;
+  std::uint64_t line_number_ = 0;
+};
+
+enum class LineStatus { skip, numbers, invalid };
+
+struct NumberLine {
+  LineStatus status = LineStatus::skip;
+  std::array<double, max_numbers_per_line> value{};  // the first `expected` entries, when status == numbers
+  std::string reason;                                // when status == invalid
+};
+
+// Reads a line of exactly `expected` (≤ max_numbers_per_line) finite numbers separated by blanks (space, tab, CR, VT, FF).
+// Blank lines and lines whose first non-blank character is '#' are `skip`. A number is anything C's strtod
+// accepts in the "C" locale (decimal, scientific, hexadecimal with 0x) whose value, rounded to a double, is
+// finite and is zero only when the number is zero: a value that overflows (1e400) or a nonzero value that
+// rounds to zero (1e-400, -2e-324) is invalid; one that rounds to a subnormal (4e-324) is fine. Anything
+// else is `invalid` with a reason naming the field and the token (quoted with printable bytes), or, for a
+// wrong count, where the extra tokens start.
+[[nodiscard]] NumberLine parse_number_line(std::string_view line, int expected);
+
+// The shortest decimal text that strtod reads back as exactly x ("inf", "-inf", "-0" included).
+[[nodiscard]] std::string format_shortest(double x);
+// A hexadecimal float ("0x1.8p+1", "-0x0p+0", "inf"), exact by construction.
+[[nodiscard]] std::string format_hex(double x);
+
+}  // namespace raykernel::cli
