@@ -12,6 +12,7 @@
 #include "exact/exact_mesh.hpp"
 #include "fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
+#include "triangle/ray_triangle_cascade.hpp"
 
 #include <cmath>
 #include <limits>
@@ -22,49 +23,115 @@ namespace raykernel {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 void throw_if_invalid(const Ray& ray) {
   if (auto reason = validate(ray)) throw invalid_input(*reason);
+}
+
+// Records what a traced query cost (TracedMeshHit); NoTrace compiles to nothing.
+struct NoTrace {
+  void candidate(Stage) noexcept {}
+  void hit() noexcept {}
+  void tie() noexcept {}
+  void tie_without_arithmetic() noexcept {}
+  void comparison(Stage) noexcept {}
+};
+struct Trace {
+  TracedMeshHit* out;
+  void candidate(Stage s) noexcept {
+    ++out->candidates;
+    ++out->relations[static_cast<std::size_t>(s)];
+  }
+  void hit() noexcept { ++out->hits; }
+  void tie() noexcept { ++out->ties; }
+  void tie_without_arithmetic() noexcept { ++out->ties_without_arithmetic; }
+  void comparison(Stage s) noexcept { ++out->comparisons[static_cast<std::size_t>(s)]; }
+};
+
+// One candidate's relation and, for a hit, its t = RN(num/den), each certified (triangle/ray_triangle_cascade.hpp):
+// the fast path's relation (stage 1; a miss decided there costs nothing more), then for a hit the fast path's
+// rounding of t (stage 2). What the fast paths leave open goes to the full cascade once, which classifies and
+// rounds t in one pass (the stages it computes are shared). Valid input: the mesh was validated when prepared,
+// the ray by the caller; the default floating-point environment is installed by the caller for the whole walk.
+struct Candidate {
+  TriangleRelation relation;
+  TriangleLocation location;
+  double t;  // RN(num/den) for a hit; NaN otherwise
+  Stage stage;
+};
+
+Candidate classify(const Ray& ray, const Triangle& tri, TriangleRule rule) {
+  const TriangleOptions t_only{.rule = rule, .t = true, .barycentric = false};
+  if (const auto c = detail::fast_triangle_relation(ray, tri, rule)) [[likely]] {
+    const TriangleClassification& r = c->classification;
+    if (r.relation != TriangleRelation::hit) return {r.relation, r.location, not_a_number, c->stage};
+    if (const auto x = detail::fast_triangle_intersection(ray, tri, t_only)) [[likely]]
+      return {r.relation, r.location, x->intersection.t, c->stage};
+  }
+  const TracedTriangleIntersection x = detail::triangle_intersection_cascade(ray, tri, t_only);
+  return {x.intersection.relation, x.intersection.location, x.intersection.t, x.relation_stage};
+}
+
+// The walk, in the default floating-point environment, for a valid ray.
+template <class Tracer>
+std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule,
+                                                      Tracer tracer) {
+  const MeshBvh& bvh = mesh.bvh();
+  if (bvh.nodes().empty()) return std::nullopt;
+  detail::BvhWalk walk;
+  mesh_detail::start_walk(walk, bvh, ray, 0, inf);
+  const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
+  const std::span<const Triangle> triangles = mesh.leaf_triangles();
+  bool found = false;
+  std::uint32_t best = 0, best_position = 0;
+  double best_t = inf, bound = inf;
+  BvhLeaf leaf;
+  while (next_leaf(walk, bound, leaf)) {
+    for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
+      const Triangle& tri = triangles[leaf.position + n];
+      const Candidate c = classify(ray, tri, rule);
+      tracer.candidate(c.stage);
+      if (c.relation != TriangleRelation::hit) continue;
+      tracer.hit();
+      const std::uint32_t k = leaf.triangles[n];
+      const double t = c.t;
+      if (found) {
+        if (t > best_t) continue;
+        if (t == best_t) {
+          tracer.tie();
+          const int order = detail::exact::compare_triangle_t(ray, tri, triangles[best_position]);
+          tracer.comparison(Stage::exact);
+          if (order > 0 || (order == 0 && k > best)) continue;
+        }
+      }
+      found = true;
+      best = k;
+      best_position = static_cast<std::uint32_t>(leaf.position + n);
+      best_t = t;
+      bound = std::nextafter(t, inf);
+    }
+  }
+  if (!found) return std::nullopt;
+  const TriangleOptions all{.rule = rule};
+  const Triangle& winner = triangles[best_position];
+  const auto x = detail::fast_triangle_intersection(ray, winner, all);
+  return MeshHit{best, x ? x->intersection : detail::triangle_intersection_cascade(ray, winner, all).intersection};
 }
 
 }  // namespace
 
 std::optional<MeshHit> nearest_hit(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) {
   throw_if_invalid(ray);
-  const MeshBvh& bvh = mesh.bvh();
-  if (bvh.nodes().empty()) return std::nullopt;
-  return detail::in_default_fp_environment([&]() -> std::optional<MeshHit> {
-    detail::BvhWalk walk;
-    mesh_detail::start_walk(walk, bvh, ray, 0, inf);
-    const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
-    const std::span<const Triangle> triangles = mesh.leaf_triangles();
-    const TriangleOptions t_only{.rule = rule, .t = true, .barycentric = false};
-    bool found = false;
-    std::uint32_t best = 0, best_position = 0;
-    double best_t = inf, bound = inf;
-    BvhLeaf leaf;
-    while (next_leaf(walk, bound, leaf)) {
-      for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
-        const Triangle& tri = triangles[leaf.position + n];
-        if (relation(ray, tri, rule).relation != TriangleRelation::hit) continue;
-        const std::uint32_t k = leaf.triangles[n];
-        const double t = intersect(ray, tri, t_only).t;
-        if (found) {
-          if (t > best_t) continue;
-          if (t == best_t) {
-            const int c = detail::exact::compare_triangle_t(ray, tri, triangles[best_position]);
-            if (c > 0 || (c == 0 && k > best)) continue;
-          }
-        }
-        found = true;
-        best = k;
-        best_position = static_cast<std::uint32_t>(leaf.position + n);
-        best_t = t;
-        bound = std::nextafter(t, inf);
-      }
-    }
-    if (!found) return std::nullopt;
-    return MeshHit{best, intersect(ray, triangles[best_position], TriangleOptions{.rule = rule})};
+  return detail::in_default_fp_environment([&] { return nearest_in_default_environment(ray, mesh, rule, NoTrace{}); });
+}
+
+TracedMeshHit nearest_hit_traced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) {
+  throw_if_invalid(ray);
+  return detail::in_default_fp_environment([&] {
+    TracedMeshHit traced;
+    traced.hit = nearest_in_default_environment(ray, mesh, rule, Trace{&traced});
+    return traced;
   });
 }
 
