@@ -62,7 +62,7 @@ struct MeshHit {
                                                  TriangleRule rule = TriangleRule::owned);
 
 // `nearest_hit` plus what it cost: how many candidate triangles the walk returned and which stage decided
-// each one's relation, how many were hit, and how the hits whose rounded t equalled the best one's so far
+// each one's relation (or that it repeated the previous candidate), how many were hit, and how the hits whose rounded t equalled the best one's so far
 // were ordered — by the same-plane or same-point shortcut (no arithmetic) or by the stage of the certified
 // comparison of the two exact t that decided (compensated, expansion or exact rationals). For tests, the
 // benchmarks and `raykernel nearest --mesh --stats`; the same answer as nearest_hit.
@@ -70,6 +70,7 @@ struct TracedMeshHit {
   std::optional<MeshHit> hit;
   std::uint64_t candidates = 0;                            // triangles in the leaves the walk returned
   std::array<std::uint64_t, stage_count> relations{};      // candidates whose relation each stage decided
+  std::uint64_t repeats = 0;  // candidates equal to the previous one (the same nine doubles): its answer reused
   std::uint64_t hits = 0;                                  // candidates whose relation is hit
   std::uint64_t ties = 0;                                  // hits whose rounded t equalled the best's so far
   std::uint64_t ties_without_arithmetic = 0;               // ties settled by the same-plane or same-point rule

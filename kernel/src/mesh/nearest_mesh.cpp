@@ -5,17 +5,34 @@
 //   - Every triangle hit at an exact t ≤ the bound in force is in a returned leaf (bvh.hpp's guarantee).
 //   - The bound passed to the walk is +inf until a hit is found, then nextup(RN(t_best)): RN moves a value by
 //     at most half an ulp, so t_best < nextup(RN(t_best)); any triangle that could win (t ≤ t_best) is kept.
-//   - Two hits are ordered by RN(t): RN is monotone, so RN(t1) < RN(t2) implies t1 < t2; when RN(t1) = RN(t2)
-//     the exact t are compared in rationals (exact/exact_mesh.hpp), and an exact tie goes to the smaller index.
+//   - Two hits are ordered by RN(t): RN is monotone, so RN(t1) < RN(t2) implies t1 < t2. When RN(t1) = RN(t2)
+//     (a tie of the rounded t), the exact t are compared: equal without arithmetic when the vertices show that
+//     both lines cross one plane or one point (same_t_by_vertices), else by the certified comparison of two
+//     quotients num/den (compare_tied_t: double-double enclosures, exact expansions, then rationals); an exact tie
+//     goes to the smaller index.
+//   - A candidate equal to the previous one (the same nine doubles) has the same relation and t, which are
+//     functions of the exact inputs (docs/contract.md §6): they are reused.
+//
+// Cost (issue 25): a tie used to cost a comparison in rationals (about 5 µs); 100,000 copies of one triangle cost
+// 0.4 s per ray, a fan of 10^6 overlapping coplanar triangles seconds. A tie now costs nothing for copies (in any
+// vertex order) and for triangles in one axis-aligned plane or crossed at one shared vertex or edge, and a
+// stage-2 or stage-3 comparison otherwise; rationals only when those cannot decide (exact ties whose expansions
+// exceed the proved length, or an underflow).
 #include <raykernel/mesh_queries.hpp>
 
+#include "certified/compare_quotients.hpp"
+#include "certified/fp_requirements.hpp"
+#include "certified/multiversion.hpp"
 #include "exact/exact_mesh.hpp"
 #include "fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
+#include "triangle/ray_triangle_stages.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +49,7 @@ void throw_if_invalid(const Ray& ray) {
 // Records what a traced query cost (TracedMeshHit); NoTrace compiles to nothing.
 struct NoTrace {
   void candidate(Stage) noexcept {}
+  void repeat() noexcept {}
   void hit() noexcept {}
   void tie() noexcept {}
   void tie_without_arithmetic() noexcept {}
@@ -43,34 +61,184 @@ struct Trace {
     ++out->candidates;
     ++out->relations[static_cast<std::size_t>(s)];
   }
+  void repeat() noexcept {
+    ++out->candidates;
+    ++out->repeats;
+  }
   void hit() noexcept { ++out->hits; }
   void tie() noexcept { ++out->ties; }
   void tie_without_arithmetic() noexcept { ++out->ties_without_arithmetic; }
   void comparison(Stage s) noexcept { ++out->comparisons[static_cast<std::size_t>(s)]; }
 };
 
-// One candidate's relation and, for a hit, its t = RN(num/den), each certified (triangle/ray_triangle_cascade.hpp):
-// the fast path's relation (stage 1; a miss decided there costs nothing more), then for a hit the fast path's
-// rounding of t (stage 2). What the fast paths leave open goes to the full cascade once, which classifies and
-// rounds t in one pass (the stages it computes are shared). Valid input: the mesh was validated when prepared,
-// the ray by the caller; the default floating-point environment is installed by the caller for the whole walk.
+// One candidate's relation, certified (triangle/ray_triangle_cascade.hpp): the fast path's (stage 1), which
+// decides most candidates, misses and hits alike; what it leaves open goes to the full cascade once, which for a
+// hit rounds t in the same pass (the stages it computes are shared) — except a triangle with two equal vertices,
+// whose normal N = (b − a) × (c − a) is exactly 0 (a factor is the zero vector): degenerate, never hit, no
+// arithmetic (a fan of a polygon with repeated vertices has many). A hit's t = RN(num/den) is rounded only when
+// the order needs it (hit_t): not for a hit certainly tied with the best one by its vertices. Valid input: the
+// mesh was validated when prepared, the ray by the caller; the default floating-point environment is installed
+// by the caller for the whole walk.
 struct Candidate {
   TriangleRelation relation;
   TriangleLocation location;
-  double t;  // RN(num/den) for a hit; NaN otherwise
+  double t;  // RN(num/den) for a hit, once rounded; NaN before
   Stage stage;
 };
 
+bool same_point(const Vec3& p, const Vec3& q) noexcept { return p.x == q.x && p.y == q.y && p.z == q.z; }
+
 Candidate classify(const Ray& ray, const Triangle& tri, TriangleRule rule) {
-  const TriangleOptions t_only{.rule = rule, .t = true, .barycentric = false};
-  if (const auto c = detail::fast_triangle_relation(ray, tri, rule)) [[likely]] {
-    const TriangleClassification& r = c->classification;
-    if (r.relation != TriangleRelation::hit) return {r.relation, r.location, not_a_number, c->stage};
-    if (const auto x = detail::fast_triangle_intersection(ray, tri, t_only)) [[likely]]
-      return {r.relation, r.location, x->intersection.t, c->stage};
-  }
-  const TracedTriangleIntersection x = detail::triangle_intersection_cascade(ray, tri, t_only);
+  if (const auto c = detail::fast_triangle_relation(ray, tri, rule)) [[likely]]
+    return {c->classification.relation, c->classification.location, not_a_number, c->stage};
+  if (same_point(tri.a, tri.b) || same_point(tri.b, tri.c) || same_point(tri.c, tri.a))
+    return {TriangleRelation::degenerate, TriangleLocation::none, not_a_number, Stage::filter};
+  const TracedTriangleIntersection x =
+      detail::triangle_intersection_cascade(ray, tri, TriangleOptions{.rule = rule, .t = true, .barycentric = false});
   return {x.intersection.relation, x.intersection.location, x.intersection.t, x.relation_stage};
+}
+
+// RN(t) of a hit: the fast path's rounding (stage 2), else the full cascade's.
+double hit_t(const Ray& ray, const Triangle& tri, TriangleRule rule) {
+  const TriangleOptions t_only{.rule = rule, .t = true, .barycentric = false};
+  if (const auto x = detail::fast_triangle_intersection(ray, tri, t_only)) [[likely]]
+    return x->intersection.t;
+  return detail::triangle_intersection_cascade(ray, tri, t_only).intersection.t;
+}
+
+// ---- Ties of the rounded t --------------------------------------------------------------------------------
+
+// The point where the line crosses a hit triangle's plane, when its location names it by vertices: the vertex
+// (location vertex_*) or the two endpoints of the edge it lies on (edge_*). From the barycentric form
+// X = (πa·a + πb·b + πc·c)/den (docs/contract.md §6): vertex_a has πb = πc = 0, so X = a; edge_ab has πc = 0,
+// so X = (πa·a + πb·b)/den with πa + πb = den, a point of the line through a and b; and so on.
+struct CrossingSite {
+  const Vec3* p = nullptr;  // the vertex, or the edge's first endpoint; null for inside
+  const Vec3* q = nullptr;  // the edge's second endpoint; null for a vertex
+};
+CrossingSite crossing_site(const Triangle& t, TriangleLocation location) noexcept {
+  switch (location) {
+    case TriangleLocation::vertex_a: return {&t.a, nullptr};
+    case TriangleLocation::vertex_b: return {&t.b, nullptr};
+    case TriangleLocation::vertex_c: return {&t.c, nullptr};
+    case TriangleLocation::edge_ab: return {&t.a, &t.b};
+    case TriangleLocation::edge_bc: return {&t.b, &t.c};
+    case TriangleLocation::edge_ca: return {&t.c, &t.a};
+    default: return {};
+  }
+}
+
+bool is_vertex_of(const Vec3& p, const Triangle& t) noexcept {
+  return same_point(p, t.a) || same_point(p, t.b) || same_point(p, t.c);
+}
+
+// Whether two triangles the ray hits (so den ≠ 0 for both: each is non-degenerate and the line crosses its plane
+// at exactly one point) certainly have the same exact t, by comparing their vertices' doubles only. Each case
+// shows that the two crossing points are one point X of the line, whose parameter t is unique (d ≠ 0):
+//   - s's three vertices are vertices of t (the same triangle in any vertex order, or reversed): they span s's
+//     plane (s is non-degenerate) and lie on t's, so the planes are one;
+//   - all six vertices have the same coordinate x_k = v on some axis k: each plane contains three
+//     non-collinear points of {x_k = v}, so both are {x_k = v};
+//   - both are crossed at a vertex, the same point (crossing_site);
+//   - both are crossed inside an edge, with the same two endpoints: both crossing points lie on the line L
+//     through them, which lies in both planes; the ray's line is not L (it would lie in a plane: den = 0), so it
+//     meets L at one point at most — both crossing points are that point.
+bool same_t_by_vertices(const Triangle& s, TriangleLocation s_location, const Triangle& t,
+                        TriangleLocation t_location) noexcept {
+  if (is_vertex_of(s.a, t) && is_vertex_of(s.b, t) && is_vertex_of(s.c, t)) return true;
+  if (s.a.x == s.b.x && s.a.x == s.c.x && s.a.x == t.a.x && s.a.x == t.b.x && s.a.x == t.c.x) return true;
+  if (s.a.y == s.b.y && s.a.y == s.c.y && s.a.y == t.a.y && s.a.y == t.b.y && s.a.y == t.c.y) return true;
+  if (s.a.z == s.b.z && s.a.z == s.c.z && s.a.z == t.a.z && s.a.z == t.b.z && s.a.z == t.c.z) return true;
+  const CrossingSite x = crossing_site(s, s_location), y = crossing_site(t, t_location);
+  if (x.p == nullptr || y.p == nullptr || (x.q == nullptr) != (y.q == nullptr)) return false;
+  if (x.q == nullptr) return same_point(*x.p, *y.p);
+  return (same_point(*x.p, *y.p) && same_point(*x.q, *y.q)) || (same_point(*x.p, *y.q) && same_point(*x.q, *y.p));
+}
+
+// A hit's values for comparing its exact t = num/den with another hit's, each computed on first use: the stage-2
+// enclosures of num and den (ray_triangle_stages.hpp), then their exact stage-3 expansions (den as
+// d·((b − a) × (c − a)), the shorter form of the same value).
+class TiedHit {
+ public:
+  void reset(const Triangle* triangle) noexcept {
+    triangle_ = triangle;
+    compensated_.reset();
+    num_.reset();
+    den_.reset();
+  }
+  [[nodiscard]] const Triangle& triangle() const noexcept { return *triangle_; }
+  [[gnu::always_inline]] const detail::TriangleCompensatedValues& compensated(const Ray& ray) noexcept {
+    if (!compensated_) compensated_ = detail::triangle_compensated_values(ray, *triangle_);
+    return *compensated_;
+  }
+  const detail::ExpansionValue<192>& num(const Ray& ray) noexcept {
+    if (!num_) num_ = detail::value_expansion(ray, *triangle_, detail::value_num);
+    return *num_;
+  }
+  const detail::ExpansionValue<192>& den(const Ray& ray) noexcept {
+    if (!den_) den_ = detail::value_expansion(ray, *triangle_, detail::value_den);
+    return *den_;
+  }
+
+ private:
+  const Triangle* triangle_ = nullptr;
+  std::optional<detail::TriangleCompensatedValues> compensated_;
+  std::optional<detail::ExpansionValue<192>> num_, den_;
+};
+
+// An exact expansion with at most 16 components (compare_quotients_expansion's proved range), or nothing.
+constexpr std::size_t short_expansion_terms = 16;
+std::optional<detail::Expansion<short_expansion_terms>> short_form(const detail::ExpansionValue<192>& v) noexcept {
+  if (!v.exact || v.e.size > short_expansion_terms) return std::nullopt;
+  detail::Expansion<short_expansion_terms> e;
+  for (std::size_t i = 0; i < v.e.size; ++i) e.component[i] = v.e.component[i];
+  e.size = v.e.size;
+  return e;
+}
+
+struct TieOrder {
+  int sign;  // of t_a − t_b
+  Stage stage;
+};
+
+// The sign of t_a − t_b for two hits (den_a, den_b ≠ 0), certified, without rationals: sign(t_a − t_b) =
+// sign(Δ)·sign(den_a)·sign(den_b), Δ = num_a·den_b − num_b·den_a (certified/compare_quotients.hpp, the ray–plane
+// nearest hit's comparison, on the triangles' num and den):
+//   stage 2  compare_quotients_compensated on the stage-2 enclosures of num and den (proofs/TriangleCompensated.v,
+//            `num_compensated_encloses`, `den_compensated_encloses`: the enclosures its theorem
+//            `compare_quotients_compensated_enclosure` takes), its sign and den's by enclosure_sign;
+//   stage 3  compare_quotients_expansion on the exact expansions (proofs/TriangleStage3Twins.v, `value_ev_exact`:
+//            their exact sums are num and den; proofs/Expansions.v, `compare_quotients_expansion_sound`, for at
+//            most 16 components each), den's sign by the checked expansion sign.
+// Stage 1 (compare_quotients_filter on the stage-1 values) is not tried: it cannot decide a tie of the rounded t.
+// Equal RN(t) put the exact t within an ulp of each other, |t_a − t_b| ≤ 2u·|t_a| (u = 2^-53), so
+// |Δ| = |t_a − t_b|·|den_a·den_b| ≤ 2u·|num_a·den_b|; its bound exceeds that, since the stage-1 radii alone are at
+// least 8u·m ≥ 8u·|value| for num and den (error_bounds.hpp, "Ray–triangle", stage 1) and enter it as
+// |x_a|·f_b + e_a·|y_b| ≥ 16u·|num_a·den_b| (up to rounding). Nothing when neither stage decides (an exact tie
+// with expansions longer than 16 components, or an underflow): the caller compares in rationals.
+RAYKERNEL_MULTIVERSION
+std::optional<TieOrder> compare_tied_t(const Ray& ray, TiedHit& a, TiedHit& b) noexcept {
+  using detail::value_den;
+  using detail::value_num;
+  const detail::TriangleCompensatedValues& sa = a.compensated(ray);
+  const detail::TriangleCompensatedValues& sb = b.compensated(ray);
+  const detail::Enclosure da = sa.enclosure(value_den), db = sb.enclosure(value_den);
+  const detail::Sign den_a = detail::enclosure_sign(da), den_b = detail::enclosure_sign(db);
+  if (detail::is_certain(den_a) && detail::is_certain(den_b)) {
+    const detail::Sign delta = detail::enclosure_sign(
+        detail::compare_quotients_compensated(sa.enclosure(value_num), da, sb.enclosure(value_num), db));
+    if (detail::is_certain(delta))
+      return TieOrder{static_cast<int>(delta) * static_cast<int>(den_a) * static_cast<int>(den_b), Stage::compensated};
+  }
+  const auto na = short_form(a.num(ray)), nb = short_form(b.num(ray));
+  if (!na || !nb) return std::nullopt;
+  const auto xa = short_form(a.den(ray)), xb = short_form(b.den(ray));
+  if (!xa || !xb) return std::nullopt;
+  const detail::Sign sign_a = xa->sign(), sign_b = xb->sign();
+  if (!detail::is_certain(sign_a) || !detail::is_certain(sign_b)) return std::nullopt;
+  const detail::Sign delta = detail::compare_quotients_expansion(*na, *xa, *nb, *xb);
+  if (!detail::is_certain(delta)) return std::nullopt;
+  return TieOrder{static_cast<int>(delta) * static_cast<int>(sign_a) * static_cast<int>(sign_b), Stage::expansion};
 }
 
 // The walk, in the default floating-point environment, for a valid ray.
@@ -83,36 +251,63 @@ std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const Prep
   mesh_detail::start_walk(walk, bvh, ray, 0, inf);
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
-  bool found = false;
+  // Two slots: the best hit so far and the candidate being compared with it, so that neither is copied.
+  TiedHit slot[2];
+  int best_slot = -1;
   std::uint32_t best = 0, best_position = 0;
+  TriangleLocation best_location = TriangleLocation::none;
   double best_t = inf, bound = inf;
+  const Triangle* previous = nullptr;
+  Candidate c{};
   BvhLeaf leaf;
   while (next_leaf(walk, bound, leaf)) {
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
       const Triangle& tri = triangles[leaf.position + n];
-      const Candidate c = classify(ray, tri, rule);
-      tracer.candidate(c.stage);
+      if (previous != nullptr && same_point(tri.a, previous->a) && same_point(tri.b, previous->b) &&
+          same_point(tri.c, previous->c)) {
+        tracer.repeat();  // the same relation and t as the previous candidate
+      } else {
+        c = classify(ray, tri, rule);
+        previous = &tri;
+        tracer.candidate(c.stage);
+      }
       if (c.relation != TriangleRelation::hit) continue;
       tracer.hit();
       const std::uint32_t k = leaf.triangles[n];
-      const double t = c.t;
-      if (found) {
-        if (t > best_t) continue;
-        if (t == best_t) {
-          tracer.tie();
-          const int order = detail::exact::compare_triangle_t(ray, tri, triangles[best_position]);
-          tracer.comparison(Stage::exact);
-          if (order > 0 || (order == 0 && k > best)) continue;
+      const int current = best_slot == 0 ? 1 : 0;
+      bool compared = false;  // slot[current] holds this candidate's values, computed for a comparison
+      if (best_slot >= 0 && same_t_by_vertices(tri, c.location, slot[best_slot].triangle(), best_location)) {
+        // The same exact t as the best hit, hence the same RN(t): a tie, decided by the index.
+        tracer.tie();
+        tracer.tie_without_arithmetic();
+        c.t = best_t;
+        if (k > best) continue;
+      } else {
+        if (std::isnan(c.t)) c.t = hit_t(ray, tri, rule);
+        if (best_slot >= 0) {
+          if (c.t > best_t) continue;
+          if (c.t == best_t) {
+            tracer.tie();
+            slot[current].reset(&tri);
+            compared = true;
+            const std::optional<TieOrder> certified = compare_tied_t(ray, slot[current], slot[best_slot]);
+            const int order =  // the sign of t − t_best
+                certified ? certified->sign : detail::exact::compare_triangle_t(ray, tri, slot[best_slot].triangle());
+            tracer.comparison(certified ? certified->stage : Stage::exact);
+            if (order > 0 || (order == 0 && k > best)) continue;
+          }
         }
       }
-      found = true;
+      if (!compared) slot[current].reset(&tri);
+      best_slot = current;
       best = k;
       best_position = static_cast<std::uint32_t>(leaf.position + n);
-      best_t = t;
-      bound = std::nextafter(t, inf);
+      best_location = c.location;
+      best_t = c.t;
+      bound = std::nextafter(c.t, inf);
     }
   }
-  if (!found) return std::nullopt;
+  if (best_slot < 0) return std::nullopt;
   const TriangleOptions all{.rule = rule};
   const Triangle& winner = triangles[best_position];
   const auto x = detail::fast_triangle_intersection(ray, winner, all);
