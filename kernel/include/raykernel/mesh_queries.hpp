@@ -70,7 +70,7 @@ struct TracedMeshHit {
   std::optional<MeshHit> hit;
   std::uint64_t candidates = 0;                            // triangles in the leaves the walk returned
   std::array<std::uint64_t, stage_count> relations{};      // candidates whose relation each stage decided
-  std::uint64_t repeats = 0;  // candidates equal to the previous one (the same nine doubles): its answer reused
+  std::uint64_t repeats = 0;  // candidates with the previous one's vertices (any order): its answer reused
   std::uint64_t hits = 0;                                  // candidates whose relation is hit
   std::uint64_t ties = 0;                                  // hits whose rounded t equalled the best's so far
   std::uint64_t ties_without_arithmetic = 0;               // ties settled by the same-plane or same-point rule

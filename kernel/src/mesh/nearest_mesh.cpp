@@ -10,8 +10,9 @@
 //     both lines cross one plane or one point (same_t_by_vertices), else by the certified comparison of two
 //     quotients num/den (compare_tied_t: double-double enclosures, exact expansions, then rationals); an exact tie
 //     goes to the smaller index.
-//   - A candidate equal to the previous one (the same nine doubles) has the same relation and t, which are
-//     functions of the exact inputs (docs/contract.md §6): they are reused.
+//   - A candidate with the previous one's vertices (in the same order, or in another one when the location names
+//     no vertex) has the same relation and t, which are functions of the exact inputs (docs/contract.md §6):
+//     they are reused (repeats).
 //
 // Cost (issue 25): a tie used to cost a comparison in rationals (about 5 µs); 100,000 copies of one triangle cost
 // 0.4 s per ray, a fan of 10^6 overlapping coplanar triangles seconds. A tie now costs nothing for copies (in any
@@ -28,6 +29,7 @@
 #include "mesh/bvh_walk.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
 #include "triangle/ray_triangle_stages.hpp"
+#include "validation.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -43,7 +45,9 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 void throw_if_invalid(const Ray& ray) {
-  if (auto reason = validate(ray)) throw invalid_input(*reason);
+  if (detail::is_valid(ray)) [[likely]]
+    return;
+  throw invalid_input(*validate(ray));
 }
 
 // Records what a traced query cost (TracedMeshHit); NoTrace compiles to nothing.
@@ -157,33 +161,38 @@ bool same_t_by_vertices(const Triangle& s, TriangleLocation s_location, const Tr
 
 // A hit's values for comparing its exact t = num/den with another hit's, each computed on first use: the stage-2
 // enclosures of num and den (ray_triangle_stages.hpp), then their exact stage-3 expansions (den as
-// d·((b − a) × (c − a)), the shorter form of the same value).
+// d·((b − a) × (c − a)), the shorter form of the same value). A few kB, left uninitialized until used (no
+// std::optional, which GCC clears whole on construction: once per ray).
 class TiedHit {
  public:
+  TiedHit() noexcept {}  // NOLINT: the values are filled on first use
   void reset(const Triangle* triangle) noexcept {
     triangle_ = triangle;
-    compensated_.reset();
-    num_.reset();
-    den_.reset();
+    has_compensated_ = has_num_ = has_den_ = false;
   }
   [[nodiscard]] const Triangle& triangle() const noexcept { return *triangle_; }
+  [[nodiscard]] bool holds(const Triangle* triangle) const noexcept { return triangle_ == triangle; }
   [[gnu::always_inline]] const detail::TriangleCompensatedValues& compensated(const Ray& ray) noexcept {
-    if (!compensated_) compensated_ = detail::triangle_compensated_values(ray, *triangle_);
-    return *compensated_;
+    if (!has_compensated_) compensated_ = detail::triangle_compensated_values(ray, *triangle_);
+    has_compensated_ = true;
+    return compensated_;
   }
   const detail::ExpansionValue<192>& num(const Ray& ray) noexcept {
-    if (!num_) num_ = detail::value_expansion(ray, *triangle_, detail::value_num);
-    return *num_;
+    if (!has_num_) num_ = detail::value_expansion(ray, *triangle_, detail::value_num);
+    has_num_ = true;
+    return num_;
   }
   const detail::ExpansionValue<192>& den(const Ray& ray) noexcept {
-    if (!den_) den_ = detail::value_expansion(ray, *triangle_, detail::value_den);
-    return *den_;
+    if (!has_den_) den_ = detail::value_expansion(ray, *triangle_, detail::value_den);
+    has_den_ = true;
+    return den_;
   }
 
  private:
   const Triangle* triangle_ = nullptr;
-  std::optional<detail::TriangleCompensatedValues> compensated_;
-  std::optional<detail::ExpansionValue<192>> num_, den_;
+  bool has_compensated_ = false, has_num_ = false, has_den_ = false;
+  detail::TriangleCompensatedValues compensated_;
+  detail::ExpansionValue<192> num_, den_;
 };
 
 // An exact expansion with at most 16 components (compare_quotients_expansion's proved range), or nothing.
@@ -241,6 +250,24 @@ std::optional<TieOrder> compare_tied_t(const Ray& ray, TiedHit& a, TiedHit& b) n
   return TieOrder{static_cast<int>(delta) * static_cast<int>(sign_a) * static_cast<int>(sign_b), Stage::expansion};
 }
 
+// Whether candidate `t` has the relation, location and t of the previous candidate `s` (whose location is given),
+// from their vertices' doubles: the relation and t are functions of the exact inputs (docs/contract.md §6), so
+//   - the same three points in the same order repeat all three;
+//   - the same points in another order (each vertex of either is one of the other's; with a repeated point both
+//     are degenerate) repeat the relation and t: a rotation renames the π's; a swap of two vertices negates den,
+//     num, every π and every edge's tie-break vector d × (q − p) (its edge is reversed), which leaves each
+//     comparison that decides the relation — a π's sign or owned sign against den's, num·den ≥ 0 — as it was;
+//     and t = num/den is unchanged. The location names vertices (edge_ab, vertex_c, ...) except inside, outside
+//     and none, which are the same for every order: reused only then.
+bool repeats(const Triangle& t, const Triangle& s, TriangleLocation s_location) noexcept {
+  if (same_point(t.a, s.a) && same_point(t.b, s.b) && same_point(t.c, s.c)) return true;
+  if (s_location != TriangleLocation::inside && s_location != TriangleLocation::outside &&
+      s_location != TriangleLocation::none)
+    return false;
+  return is_vertex_of(t.a, s) && is_vertex_of(t.b, s) && is_vertex_of(t.c, s) && is_vertex_of(s.a, t) &&
+         is_vertex_of(s.b, t) && is_vertex_of(s.c, t);
+}
+
 // The walk, in the default floating-point environment, for a valid ray.
 template <class Tracer>
 std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule,
@@ -251,20 +278,22 @@ std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const Prep
   mesh_detail::start_walk(walk, bvh, ray, 0, inf);
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
-  // Two slots: the best hit so far and the candidate being compared with it, so that neither is copied.
-  TiedHit slot[2];
-  int best_slot = -1;
+  bool found = false;
   std::uint32_t best = 0, best_position = 0;
+  const Triangle* best_triangle = nullptr;
   TriangleLocation best_location = TriangleLocation::none;
   double best_t = inf, bound = inf;
+  // The values compared on ties, in two slots: the best hit's (when tied[best_slot] holds its triangle) and the
+  // candidate's, so that neither is copied.
+  TiedHit tied[2];
+  int best_slot = 0;
   const Triangle* previous = nullptr;
   Candidate c{};
   BvhLeaf leaf;
   while (next_leaf(walk, bound, leaf)) {
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
       const Triangle& tri = triangles[leaf.position + n];
-      if (previous != nullptr && same_point(tri.a, previous->a) && same_point(tri.b, previous->b) &&
-          same_point(tri.c, previous->c)) {
+      if (previous != nullptr && repeats(tri, *previous, c.location)) {
         tracer.repeat();  // the same relation and t as the previous candidate
       } else {
         c = classify(ray, tri, rule);
@@ -274,9 +303,7 @@ std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const Prep
       if (c.relation != TriangleRelation::hit) continue;
       tracer.hit();
       const std::uint32_t k = leaf.triangles[n];
-      const int current = best_slot == 0 ? 1 : 0;
-      bool compared = false;  // slot[current] holds this candidate's values, computed for a comparison
-      if (best_slot >= 0 && same_t_by_vertices(tri, c.location, slot[best_slot].triangle(), best_location)) {
+      if (found && same_t_by_vertices(tri, c.location, *best_triangle, best_location)) {
         // The same exact t as the best hit, hence the same RN(t): a tie, decided by the index.
         tracer.tie();
         tracer.tie_without_arithmetic();
@@ -284,30 +311,33 @@ std::optional<MeshHit> nearest_in_default_environment(const Ray& ray, const Prep
         if (k > best) continue;
       } else {
         if (std::isnan(c.t)) c.t = hit_t(ray, tri, rule);
-        if (best_slot >= 0) {
+        if (found) {
           if (c.t > best_t) continue;
           if (c.t == best_t) {
             tracer.tie();
-            slot[current].reset(&tri);
-            compared = true;
-            const std::optional<TieOrder> certified = compare_tied_t(ray, slot[current], slot[best_slot]);
+            TiedHit& held = tied[best_slot];
+            TiedHit& candidate = tied[1 - best_slot];
+            if (!held.holds(best_triangle)) held.reset(best_triangle);
+            candidate.reset(&tri);
+            const std::optional<TieOrder> certified = compare_tied_t(ray, candidate, held);
             const int order =  // the sign of t − t_best
-                certified ? certified->sign : detail::exact::compare_triangle_t(ray, tri, slot[best_slot].triangle());
+                certified ? certified->sign : detail::exact::compare_triangle_t(ray, tri, *best_triangle);
             tracer.comparison(certified ? certified->stage : Stage::exact);
             if (order > 0 || (order == 0 && k > best)) continue;
+            best_slot = 1 - best_slot;  // the candidate's slot, which holds the new best's values
           }
         }
       }
-      if (!compared) slot[current].reset(&tri);
-      best_slot = current;
+      found = true;
       best = k;
       best_position = static_cast<std::uint32_t>(leaf.position + n);
+      best_triangle = &tri;
       best_location = c.location;
       best_t = c.t;
       bound = std::nextafter(c.t, inf);
     }
   }
-  if (best_slot < 0) return std::nullopt;
+  if (!found) return std::nullopt;
   const TriangleOptions all{.rule = rule};
   const Triangle& winner = triangles[best_position];
   const auto x = detail::fast_triangle_intersection(ray, winner, all);
