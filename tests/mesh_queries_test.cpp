@@ -334,6 +334,30 @@ RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForce, ()) {
   }
 }
 
+// inside on the tie soups: points in the planes of many triangles (on them, on their edges' lines beyond the
+// ends, elsewhere in the plane), where the on-surface test meets exact zeros of orient3d in every triangle whose
+// box holds the point (decided by exact expansions and filtered planar orientations instead of rationals).
+RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForceOnFlatSoups, ()) {
+  const Mesh mesh = tie_soup();
+  const PreparedMesh prepared(mesh, *rc::gen::element(BvhBuildOptions{}, BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4}));
+  const Box3& bounds = prepared.bvh().bounds();
+  for (int n = 0; n < kBatch; ++n) {
+    Vec3 p;
+    if (*rc::gen::inRange(0, 3) == 0) {
+      p = target_point(mesh, bounds, *rc::gen::inRange(0, 4));
+    } else {  // a point of a triangle's plane: a + (b − a)·i/4 + (c − a')·j/4, on or off the triangle
+      const Triangle t = mesh.triangle(*rc::gen::inRange<std::size_t>(0, mesh.triangles.size()));
+      const auto q = testkit::edge_point(t.a, t.b, *rc::gen::inRange<std::int64_t>(-4, 9), 2);
+      const auto r = q ? testkit::edge_point(*q, t.c, *rc::gen::inRange<std::int64_t>(-4, 9), 2) : std::nullopt;
+      p = r ? *r : t.a;
+    }
+    const PointLocation fast = inside(p, prepared);
+    const PointLocation exact = inside_exact(p, mesh);
+    ++points_checked;
+    RC_ASSERT(fast == exact);
+  }
+}
+
 // The totals, for the long runs' 10^6 claim (printed whatever filter ran).
 class Totals : public ::testing::Environment {
  public:
