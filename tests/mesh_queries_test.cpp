@@ -12,6 +12,10 @@
 //   per triangle.
 // - inside(point, PreparedMesh) must equal inside_exact for points at vertices, on edges, inside faces, on the
 //   axis lines through them (where the axis-aligned ray runs along edges and through vertices), and at random.
+// - Ties of the rounded t (issue 25): 10^5 copies of one triangle must cost no rational comparison (counted by
+//   nearest_hit_traced: 99,999 before the fix); self-overlapping coplanar fans, near ties, copies under both rules
+//   and tie-heavy soups (coplanar small-integer triangles, rotated and reversed copies; every way a tie is settled,
+//   rationals included) against nearest_hit_exact; inside against inside_exact with points in those planes.
 // - Hand-derived cases (derivations in the comments) check both.
 // Each property case draws one mesh and a batch of rays or points (kBatch), so `long` runs cover 10^6 rays
 // (mesh_nearest_1M; mesh_inside_100k checks 10^5 points against inside_exact); RapidCheck prints its seed, RC_PARAMS="seed=N" reproduces a run.
