@@ -16,6 +16,15 @@
 //   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
 //   mesh/cgal_aabb/<mesh>           rays/s of CGAL's AABB_tree::first_intersected_primitive (Epick)
 //   inside/cgal/<mesh>              points/s of CGAL's Side_of_triangle_mesh
+//   ties/{certified,naive}/<mesh>   issue 25: nearest_hit(ray, PreparedMesh) and nearest_hit_naive (the BVH with
+//                                   Möller–Trumbore, the baseline) on meshes where one ray meets many triangles at
+//                                   one exact t or crosses many boxes: duplicates-100k (10^5 copies of one
+//                                   triangle, vertex orders rotated and reversed), fan-1M (a convex 10^6-gon on the
+//                                   unit circle fanned from its first vertex: slivers whose boxes all hold that
+//                                   vertex), overlapping-fan-1M and overlapping-fan-tilted-100k (the fan of a
+//                                   polygon winding over itself, v0 = 0, vi = (i, ±1), in the plane z = 0 or
+//                                   z = x + 2y: every ray hits every triangle at one exact t); counters: candidate
+//                                   triangles, hits, ties of the rounded t and those ordered in rationals, per ray
 // Meshes (testkit, exact dyadic vertices): icosphere, subdivided cube and terrain at ~10^3, ~10^5 and
 // ~10^6 triangles. Rays: 2^16 per mesh, from a sphere around it towards random points of its box (fixed
 // seed). Every ray benchmark runs on 1 thread and on all threads (items_per_second is the total).
@@ -33,12 +42,14 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -171,7 +182,148 @@ void threads(benchmark::internal::Benchmark* b) {
   b->UseRealTime();
 }
 
+// ---- issue 25: ties and slivers ---------------------------------------------------------------------------
+
+struct TieSpec {
+  std::string name;
+  std::function<Mesh()> make;
+  std::function<Ray(std::mt19937_64&)> ray;  // a ray of the workload
+};
+
+// The fan (v0, vi, vi+1) of the polygon v0 = (0, 0), vi = (i, ±1) alternately, in the plane z = 0 or z = x + 2y.
+Mesh overlapping_fan(std::uint32_t n, bool tilted) {
+  Mesh m;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double x = i, y = i == 0 ? 0 : (i % 2 == 1 ? 1 : -1);
+    m.vertices.push_back({x, y, tilted ? x + 2 * y : 0});
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
+  return m;
+}
+
+// Downwards (with a small tilt) through a point of the region 0 < x ≤ 1/2, |y| < x·2^-21 that every triangle of
+// an overlapping fan of at most 2^20 vertices contains.
+Ray ray_through_fan_core(std::mt19937_64& rng, bool tilted) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double x = 0.5 * (0.25 + 0.75 * unit(rng)), y = x * std::ldexp(2 * unit(rng) - 1, -22);
+  const double z = tilted ? x + 2 * y : 0;
+  const Vec3 o{x + std::ldexp(unit(rng) - 0.5, -30), y, z + 8};
+  return {o, {x - o.x, y - o.y, z - o.z}};
+}
+
+const std::vector<TieSpec>& tie_specs() {
+  static const std::vector<TieSpec> specs = {
+      {"duplicates-100k",
+       [] {
+         Mesh m;
+         m.vertices = {{-1, -1, 1}, {3, -1, 1.5}, {-1, 3, 2}};
+         const std::array<std::array<std::uint32_t, 3>, 4> orders{{{0, 1, 2}, {1, 2, 0}, {2, 1, 0}, {0, 2, 1}}};
+         for (std::uint32_t k = 0; k < 100000; ++k) m.triangles.push_back(orders[k % 4]);
+         return m;
+       },
+       [](std::mt19937_64& rng) {  // from above towards a point inside the triangle
+         std::uniform_real_distribution<double> unit(0.0, 1.0);
+         const double u = unit(rng), v = unit(rng) * (1 - u);
+         const Vec3 target{-1 + 4 * u, -1 + 4 * v, 1 + 0.5 * u + v};  // a + u(b − a) + v(c − a)
+         const Vec3 o{unit(rng) - 0.5, unit(rng) - 0.5, 6};
+         return Ray{o, {target.x - o.x, target.y - o.y, target.z - o.z}};
+       }},
+      {"fan-1M",
+       [] {
+         Mesh m;
+         constexpr std::uint32_t n = 1000000;
+         for (std::uint32_t i = 0; i < n; ++i) {
+           const double a = 2 * M_PI * i / n;
+           m.vertices.push_back({std::cos(a), std::sin(a), 0});
+         }
+         for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
+         return m;
+       },
+       [](std::mt19937_64& rng) {  // from above towards a point within radius 0.9
+         std::uniform_real_distribution<double> unit(0.0, 1.0);
+         const double r = 0.9 * std::sqrt(unit(rng)), a = 2 * M_PI * unit(rng);
+         const Vec3 target{r * std::cos(a), r * std::sin(a), 0};
+         const Vec3 o{target.x + 0.5 * (unit(rng) - 0.5), target.y + 0.5 * (unit(rng) - 0.5), 2};
+         return Ray{o, {target.x - o.x, target.y - o.y, -o.z}};
+       }},
+      {"overlapping-fan-1M", [] { return overlapping_fan(1000000, false); },
+       [](std::mt19937_64& rng) { return ray_through_fan_core(rng, false); }},
+      {"overlapping-fan-tilted-100k", [] { return overlapping_fan(100000, true); },
+       [](std::mt19937_64& rng) { return ray_through_fan_core(rng, true); }},
+  };
+  return specs;
+}
+
+struct TieFixture {
+  std::string name;
+  std::unique_ptr<PreparedMesh> prepared;
+  std::vector<Ray> rays;
+  TracedMeshHit totals;  // summed over the rays
+};
+std::unique_ptr<TieFixture> current_ties;
+
+TieFixture& tie_fixture(const std::string& name) {
+  if (current_ties && current_ties->name == name) return *current_ties;
+  current_ties.reset();
+  auto f = std::make_unique<TieFixture>();
+  f->name = name;
+  for (const TieSpec& s : tie_specs()) {
+    if (s.name != name) continue;
+    f->prepared = std::make_unique<PreparedMesh>(s.make());
+    std::mt19937_64 rng(25);
+    for (int i = 0; i < 64; ++i) f->rays.push_back(s.ray(rng));
+  }
+  // What the certified path does for these rays (and a check that it answers as the brute force would: every
+  // ray hits; the rational reference is too slow at this size).
+  for (const Ray& r : f->rays) {
+    const TracedMeshHit t = nearest_hit_traced(r, *f->prepared);
+    if (!t.hit) throw std::logic_error("ties benchmark: a ray of " + name + " misses");
+    f->totals.candidates += t.candidates;
+    f->totals.hits += t.hits;
+    f->totals.ties += t.ties;
+    f->totals.ties_without_arithmetic += t.ties_without_arithmetic;
+    for (int s = 0; s < stage_count; ++s) f->totals.comparisons[static_cast<std::size_t>(s)] += t.comparisons[static_cast<std::size_t>(s)];
+  }
+  current_ties = std::move(f);
+  return *current_ties;
+}
+
+void register_ties() {
+  for (const TieSpec& spec : tie_specs()) {
+    const std::string m = spec.name;
+    for (const bool certified : {true, false}) {
+      benchmark::RegisterBenchmark(("ties/" + std::string(certified ? "certified/" : "naive/") + m).c_str(),
+                                   [m, certified](benchmark::State& state) {
+                                     TieFixture* f;
+                                     {
+                                       std::lock_guard lock(fixture_mutex);
+                                       f = &tie_fixture(m);
+                                     }
+                                     std::size_t i = 0;
+                                     std::uint64_t sink = 0;
+                                     for (auto _ : state) {
+                                       const auto hit = certified ? nearest_hit(f->rays[i], *f->prepared)
+                                                                  : nearest_hit_naive(f->rays[i], *f->prepared);
+                                       sink += hit ? hit->triangle : 0;
+                                       if (++i == f->rays.size()) i = 0;
+                                     }
+                                     benchmark::DoNotOptimize(sink);
+                                     set_rate(state, 1);
+                                     const double rays = static_cast<double>(f->rays.size());
+                                     state.counters["candidates"] = static_cast<double>(f->totals.candidates) / rays;
+                                     state.counters["hits"] = static_cast<double>(f->totals.hits) / rays;
+                                     state.counters["ties"] = static_cast<double>(f->totals.ties) / rays;
+                                     state.counters["ties_exact"] =
+                                         static_cast<double>(f->totals.comparisons[static_cast<std::size_t>(Stage::exact)]) / rays;
+                                   })
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+}
+
 void register_all() {
+  register_ties();
 
   // Readers, on the 10^6 icosphere written in each format.
   for (auto [label, format, encoding] :

@@ -12,6 +12,10 @@
 //   per triangle.
 // - inside(point, PreparedMesh) must equal inside_exact for points at vertices, on edges, inside faces, on the
 //   axis lines through them (where the axis-aligned ray runs along edges and through vertices), and at random.
+// - Ties of the rounded t (issue 25): 10^5 copies of one triangle must cost no rational comparison (counted by
+//   nearest_hit_traced: 99,999 before the fix); self-overlapping coplanar fans, near ties, copies under both rules
+//   and tie-heavy soups (coplanar small-integer triangles, rotated and reversed copies; every way a tie is settled,
+//   rationals included) against nearest_hit_exact; inside against inside_exact with points in those planes.
 // - Hand-derived cases (derivations in the comments) check both.
 // Each property case draws one mesh and a batch of rays or points (kBatch), so `long` runs cover 10^6 rays
 // (mesh_nearest_1M; mesh_inside_100k checks 10^5 points against inside_exact); RapidCheck prints its seed, RC_PARAMS="seed=N" reproduces a run.
@@ -180,6 +184,9 @@ Drawn draw_mesh() {
 }
 
 std::uint64_t rays_checked = 0, rays_checked_brute_force = 0, points_checked = 0;
+// How the ties of the rounded t in AgreesWithTheExactBruteForceOnTies were settled: from the vertices, or by the
+// stage of the comparison (so that a run shows each path exercised).
+std::uint64_t tie_count[1 + stage_count] = {};
 
 // The brute force with a cheaper per-triangle decision, for the 10^6-ray run: every triangle's relation by the
 // certified `relation` (each one checked against exact rationals by triangle_properties_test), every hit's exact
@@ -247,6 +254,69 @@ RC_GTEST_PROP(MeshNearest, AgreesWithTheExactBruteForce, ()) {
   }
 }
 
+// A soup built for ties of the rounded t (issue 25): triangles with small-integer vertices on one or two planes —
+// axis-aligned (z = c) or tilted (z = p·x + q·y + c), so that coplanar triangles have exactly equal t — many
+// copies of some with their vertices rotated or reversed, and fans sharing a vertex; scaled by a power of two
+// (tiny scales make stage 3 underflow, so that the rational comparison runs too).
+// Rays aimed at vertices, edge points and inside points hit several triangles at one exact t, through faces,
+// edges and vertices; the answer must be nearest_hit_exact's under both rules.
+Mesh tie_soup() {
+  const int e = *rc::gen::element(0, 0, -30, 40, -1000, 600);  // 2^-1000: stage 3 underflows, rationals decide
+  Mesh m;
+  const int planes = *rc::gen::inRange(1, 3);
+  std::vector<std::array<int, 3>> plane(static_cast<std::size_t>(planes));
+  for (auto& p : plane)
+    p = *rc::gen::element(std::array<int, 3>{0, 0, 0}, std::array<int, 3>{0, 0, 1}, std::array<int, 3>{1, 2, 0},
+                          std::array<int, 3>{-3, 1, 2}, std::array<int, 3>{1, 1, -1});
+  auto vertex = [&](int x, int y, const std::array<int, 3>& p) {
+    m.vertices.push_back({std::ldexp(x, e), std::ldexp(y, e), std::ldexp(p[0] * x + p[1] * y + p[2], e)});
+    return static_cast<std::uint32_t>(m.vertices.size() - 1);
+  };
+  const int count = *rc::gen::inRange(2, 40);
+  for (int k = 0; k < count; ++k) {
+    const int kind = *rc::gen::inRange(0, 4);
+    if (kind == 0 && !m.triangles.empty()) {  // a copy: the same indices rotated, maybe reversed
+      auto t = m.triangles[*rc::gen::inRange<std::size_t>(0, m.triangles.size())];
+      std::rotate(t.begin(), t.begin() + *rc::gen::inRange(0, 3), t.end());
+      if (*rc::gen::arbitrary<bool>()) std::swap(t[1], t[2]);
+      m.triangles.push_back(t);
+      continue;
+    }
+    const auto& p = plane[*rc::gen::inRange<std::size_t>(0, plane.size())];
+    std::array<std::uint32_t, 3> t{};
+    for (auto& index : t) {
+      if (kind == 1 && !m.vertices.empty()) {  // shared vertices (possibly off this plane): fans, copies as doubles
+        index = static_cast<std::uint32_t>(*rc::gen::inRange<std::size_t>(0, m.vertices.size()));
+      } else {
+        index = vertex(*rc::gen::inRange(-4, 5), *rc::gen::inRange(-4, 5), p);
+      }
+    }
+    m.triangles.push_back(t);
+  }
+  return m;
+}
+
+RC_GTEST_PROP(MeshNearest, AgreesWithTheExactBruteForceOnTies, ()) {
+  const Mesh mesh = tie_soup();
+  const PreparedMesh prepared(mesh, *rc::gen::element(BvhBuildOptions{}, BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4}));
+  const Box3& bounds = prepared.bvh().bounds();
+  const TriangleRule rule = *rc::gen::element(TriangleRule::owned, TriangleRule::closed);
+  for (int n = 0; n < kBatch; ++n) {
+    const Ray ray = aimed_ray(mesh, bounds, target_point(mesh, bounds, *rc::gen::inRange(0, 4)));
+    const TracedMeshHit traced = nearest_hit_traced(ray, prepared, rule);
+    const auto& fast = traced.hit;
+    const auto exact = nearest_hit_exact(ray, mesh, rule);
+    ++rays_checked;
+    tie_count[0] += traced.ties_without_arithmetic;
+    for (int s = 0; s < stage_count; ++s) tie_count[1 + s] += traced.comparisons[static_cast<std::size_t>(s)];
+    if (!same_answer(fast, exact) || !same_answer(fast, nearest_hit(ray, prepared, rule)))
+      RC_FAIL("ray (" + std::to_string(ray.origin.x) + " " + std::to_string(ray.origin.y) + " " +
+              std::to_string(ray.origin.z) + ") + t(" + std::to_string(ray.direction.x) + " " +
+              std::to_string(ray.direction.y) + " " + std::to_string(ray.direction.z) + "), rule " +
+              std::string(to_string(rule)) + ": BVH " + describe(fast) + ", exact " + describe(exact));
+  }
+}
+
 RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForce, ()) {
   const Drawn drawn = draw_mesh();
   const PreparedMesh& prepared = *drawn.mesh;
@@ -268,6 +338,30 @@ RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForce, ()) {
   }
 }
 
+// inside on the tie soups: points in the planes of many triangles (on them, on their edges' lines beyond the
+// ends, elsewhere in the plane), where the on-surface test meets exact zeros of orient3d in every triangle whose
+// box holds the point (decided by exact expansions and filtered planar orientations instead of rationals).
+RC_GTEST_PROP(MeshInside, AgreesWithTheExactBruteForceOnFlatSoups, ()) {
+  const Mesh mesh = tie_soup();
+  const PreparedMesh prepared(mesh, *rc::gen::element(BvhBuildOptions{}, BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4}));
+  const Box3& bounds = prepared.bvh().bounds();
+  for (int n = 0; n < kBatch; ++n) {
+    Vec3 p;
+    if (*rc::gen::inRange(0, 3) == 0) {
+      p = target_point(mesh, bounds, *rc::gen::inRange(0, 4));
+    } else {  // a point of a triangle's plane: a + (b − a)·i/4 + (c − a')·j/4, on or off the triangle
+      const Triangle t = mesh.triangle(*rc::gen::inRange<std::size_t>(0, mesh.triangles.size()));
+      const auto q = testkit::edge_point(t.a, t.b, *rc::gen::inRange<std::int64_t>(-4, 9), 2);
+      const auto r = q ? testkit::edge_point(*q, t.c, *rc::gen::inRange<std::int64_t>(-4, 9), 2) : std::nullopt;
+      p = r ? *r : t.a;
+    }
+    const PointLocation fast = inside(p, prepared);
+    const PointLocation exact = inside_exact(p, mesh);
+    ++points_checked;
+    RC_ASSERT(fast == exact);
+  }
+}
+
 // The totals, for the long runs' 10^6 claim (printed whatever filter ran).
 class Totals : public ::testing::Environment {
  public:
@@ -277,6 +371,11 @@ class Totals : public ::testing::Environment {
                   "points against inside_exact %llu\n",
                   static_cast<unsigned long long>(rays_checked), static_cast<unsigned long long>(rays_checked_brute_force),
                   static_cast<unsigned long long>(points_checked));
+    if (tie_count[0] + tie_count[1] + tie_count[2] + tie_count[3] + tie_count[4] > 0)
+      std::printf("mesh_queries_test: ties of the rounded t settled from the vertices %llu, by stage compensated %llu, "
+                  "expansion %llu, exact %llu\n",
+                  static_cast<unsigned long long>(tie_count[0]), static_cast<unsigned long long>(tie_count[2]),
+                  static_cast<unsigned long long>(tie_count[3]), static_cast<unsigned long long>(tie_count[4]));
   }
 };
 const auto* const totals = ::testing::AddGlobalTestEnvironment(new Totals);
@@ -399,6 +498,142 @@ TEST(MeshNearest, OrdersTiesOfTheRoundedTExactly) {
     ASSERT_TRUE(h);
     EXPECT_EQ(h->triangle, 0u);
   }
+}
+
+// Issue 25: 100,000 copies of one triangle (the same indices; then its vertices rotated and reversed) all hit at
+// the same exact t. The answer is the smallest index; the equal rounded t must not each cost a comparison in
+// rationals (they did: 99,999 of them, 0.4 s per ray) — the same plane is recognised from the vertices, with no
+// arithmetic. Counted through nearest_hit_traced, not timed.
+TEST(MeshNearest, DuplicatesCostNoRationalComparison) {
+  constexpr std::uint32_t copies = 100000;
+  for (const bool permuted : {false, true}) {
+    Mesh m;
+    m.vertices = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}};
+    const std::array<std::array<std::uint32_t, 3>, 4> orders{{{0, 1, 2}, {1, 2, 0}, {2, 1, 0}, {0, 2, 1}}};
+    for (std::uint32_t k = 0; k < copies; ++k) m.triangles.push_back(permuted ? orders[k % 4] : orders[0]);
+    const PreparedMesh prepared(m);
+    for (const Ray& ray : {Ray{{0, 0, 0}, {0, 0, 1}}, Ray{{0.25, -0.5, 3}, {0.125, 0.5, -1}}}) {
+      const TracedMeshHit traced = nearest_hit_traced(ray, prepared, TriangleRule::owned);
+      ASSERT_TRUE(traced.hit);
+      EXPECT_EQ(traced.hit->triangle, 0u);
+      const TriangleIntersection expected = intersect_exact(ray, m.triangle(0));
+      EXPECT_TRUE(same_bits(traced.hit->intersection.t, expected.t));
+      EXPECT_EQ(traced.hits, copies);
+      EXPECT_EQ(traced.ties, copies - 1);
+      EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::exact)], 0u) << "permuted " << permuted;
+      EXPECT_EQ(traced.ties_without_arithmetic, copies - 1) << "permuted " << permuted;
+    }
+  }
+}
+
+// The fan (v0, vi, vi+1) of a polygon that winds over itself: v0 = (0, 0) and vi = (i, ±1) alternately. Every
+// triangle contains the points (x, y) with 0 < x ≤ 1/2 and |y| < x/n, so a ray through one of them hits all
+// n − 2 triangles at one exact t (issue 25's 10^6-gon: seconds per ray, a rational comparison per triangle). In
+// the plane z = 0 the ties are settled from the vertices (one axis-aligned plane); in the plane z = x + 2y by the
+// exact expansions (small integers: short expansions), never in rationals. Answers against nearest_hit_exact for
+// rays through the common region, through the apex v0 (every triangle at its vertex a), through vertices and
+// edge points, under both rules.
+Mesh zigzag_fan(std::uint32_t n, bool tilted) {
+  Mesh m;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double x = i, y = i == 0 ? 0 : (i % 2 == 1 ? 1 : -1);
+    m.vertices.push_back({x, y, tilted ? x + 2 * y : 0});
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
+  return m;
+}
+
+TEST(MeshNearest, OverlappingCoplanarFan) {
+  constexpr std::uint32_t n = 300;
+  for (const bool tilted : {false, true}) {
+    const Mesh m = zigzag_fan(n, tilted);
+    const PreparedMesh prepared(m);
+    auto above = [&](double x, double y) { return Vec3{x, y, (tilted ? x + 2 * y : 0) + 8}; };
+    // Through the common region, straight down and obliquely.
+    for (const Ray& ray : {Ray{above(0.5, 0x1p-20), {0, 0, -1}}, Ray{above(0.25, -0x1p-22), {0x1p-10, 0, -1}}}) {
+      const TracedMeshHit traced = nearest_hit_traced(ray, prepared, TriangleRule::owned);
+      EXPECT_TRUE(same_answer(traced.hit, nearest_hit_exact(ray, m))) << describe(traced.hit);
+      ASSERT_TRUE(traced.hit);
+      EXPECT_EQ(traced.hit->triangle, 0u);
+      EXPECT_EQ(traced.hits, n - 2);
+      EXPECT_EQ(traced.ties, n - 3);
+      EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::exact)], 0u) << "tilted " << tilted;
+      if (tilted) {
+        EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::expansion)], n - 3);
+      } else {
+        EXPECT_EQ(traced.ties_without_arithmetic, n - 3);
+      }
+    }
+    // Through the apex, a vertex and edge points of each kind.
+    std::vector<Ray> rays;
+    for (const Vec3& target : {Vec3{0, 0, 0}, Vec3{7, 1, 0}, Vec3{0.5, 0.5, 0}, Vec3{150.5, 0, 0}, Vec3{3.5, -1, 0}}) {
+      const Vec3 t{target.x, target.y, tilted ? target.x + 2 * target.y : 0};
+      for (const Vec3& o : {Vec3{t.x, t.y, t.z + 4}, Vec3{t.x + 2, t.y - 3, t.z + 5}, Vec3{-1, 0.5, -2}})
+        rays.push_back({o, {t.x - o.x, t.y - o.y, t.z - o.z}});
+    }
+    for (const Ray& ray : rays)
+      for (const TriangleRule rule : {TriangleRule::owned, TriangleRule::closed}) {
+        const TracedMeshHit traced = nearest_hit_traced(ray, prepared, rule);
+        EXPECT_TRUE(same_answer(traced.hit, nearest_hit_exact(ray, m, rule)))
+            << "tilted " << tilted << " rule " << to_string(rule) << " ray " << ray.origin.x << " " << ray.origin.y
+            << " " << ray.origin.z << ": " << describe(traced.hit);
+        EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::exact)], 0u);
+      }
+  }
+}
+
+// Near ties: the triangles (−1, −1, 1), (3, −1, 1), (−1, 3, 1 + j·2^-60) over the ray (0, 0, 0) + t(0, 0, 1) have
+// t = 1 + j·2^-62 (z = 1 + δ(y + 1)/4 at y = 0), which round to 1 for |j| ≤ 256. With j in a scrambled order, some
+// triangles repeated (vertices rotated or reversed: exact ties), the smallest j wins, its first index; the
+// rounded t tie, the exact ones are ordered by the compensated stage (no rationals).
+TEST(MeshNearest, NearTiesOfTheRoundedT) {
+  Mesh m;
+  m.vertices = {{-1, -1, 1}, {3, -1, 1}};
+  std::vector<int> js;
+  for (int j = -256; j <= 256; j += 8) js.push_back(j);
+  for (std::size_t i = 0; i < js.size(); ++i) std::swap(js[i], js[(i * 37 + 11) % js.size()]);
+  for (const int j : js) {
+    m.vertices.push_back({-1, 3, 1 + std::ldexp(j, -60)});
+    const auto v = static_cast<std::uint32_t>(m.vertices.size() - 1);
+    m.triangles.push_back({0, 1, v});
+    if (j % 3 == 0) m.triangles.push_back({1, v, 0});
+    if (j % 5 == 0) m.triangles.push_back({0, v, 1});
+  }
+  const PreparedMesh prepared(m);
+  const Ray ray{{0, 0, 0}, {0, 0, 1}};
+  const TracedMeshHit traced = nearest_hit_traced(ray, prepared, TriangleRule::owned);
+  EXPECT_TRUE(same_answer(traced.hit, nearest_hit_exact(ray, m))) << describe(traced.hit);
+  ASSERT_TRUE(traced.hit);
+  EXPECT_EQ(m.vertices[m.triangles[traced.hit->triangle][2]].z, 1 - 0x1p-52);  // j = −256 (rotation: index 2)
+  EXPECT_EQ(traced.hit->intersection.t, 1.0);
+  EXPECT_EQ(traced.ties, traced.hits - 1);
+  EXPECT_GT(traced.comparisons[static_cast<std::size_t>(Stage::compensated)], 0u);
+  EXPECT_EQ(traced.comparisons[static_cast<std::size_t>(Stage::exact)], 0u);
+  // The same in reverse order: the winner's index changes, the answer is still the brute force's.
+  Mesh reversed = m;
+  std::reverse(reversed.triangles.begin(), reversed.triangles.end());
+  EXPECT_TRUE(same_answer(nearest_hit(ray, PreparedMesh(reversed)), nearest_hit_exact(ray, reversed)));
+}
+
+// Copies of one triangle (the same indices, rotated, reversed, or as separate equal vertices) under rays through
+// its inside, an edge and a vertex, both rules: the brute force's answer (the smallest index among the hit ones),
+// ties settled from the vertices.
+TEST(MeshNearest, DuplicatesAgreeWithTheExactBruteForce) {
+  Mesh m;
+  m.vertices = {{-1, -1, 1}, {3, -1, 1.5}, {-1, 3, 2}, {-1, -1, 1}, {3, -1, 1.5}, {-1, 3, 2}};
+  const std::array<std::array<std::uint32_t, 3>, 6> orders{{{0, 1, 2}, {1, 2, 0}, {2, 1, 0}, {0, 2, 1}, {3, 4, 5}, {5, 4, 3}}};
+  for (std::uint32_t k = 0; k < 240; ++k) m.triangles.push_back(orders[(k * 7 + k / 6) % 6]);
+  const PreparedMesh prepared(m, {.max_leaf_size = 2, .max_leaf_size_hard = 4, .bins = 8});
+  for (const Vec3& target : {Vec3{0, 0, 1.375}, Vec3{1, 1, 1.75}, Vec3{1, -1, 1.25}, Vec3{-1, 3, 2}, Vec3{-1, -1, 1}})
+    for (const Vec3& o : {Vec3{0, 0, 8}, Vec3{5, -2, -3}, Vec3{target.x, target.y, target.z - 1}})
+      for (const TriangleRule rule : {TriangleRule::owned, TriangleRule::closed}) {
+        const Ray ray{o, {target.x - o.x, target.y - o.y, target.z - o.z}};
+        const TracedMeshHit traced = nearest_hit_traced(ray, prepared, rule);
+        EXPECT_TRUE(same_answer(traced.hit, nearest_hit_exact(ray, m, rule)))
+            << "target " << target.x << " " << target.y << " " << target.z << " rule " << to_string(rule) << ": "
+            << describe(traced.hit);
+        EXPECT_EQ(traced.ties_without_arithmetic, traced.ties);
+      }
 }
 
 TEST(MeshNearest, RejectsInvalidRays) {

@@ -33,7 +33,19 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
     }
     std::optional<MeshHit> hit;
     switch (options.method) {
-      case Method::certified: hit = nearest_hit(ray, mesh, options.rule); break;
+      case Method::certified: {
+        const TracedMeshHit traced = nearest_hit_traced(ray, mesh, options.rule);
+        hit = traced.hit;
+        counts.candidates += traced.candidates;
+        counts.repeats += traced.repeats;
+        counts.ties += traced.ties;
+        counts.ties_without_arithmetic += traced.ties_without_arithmetic;
+        for (std::size_t k = 0; k < stage_count; ++k) {
+          counts.relation_stage[k] += traced.relations[k];
+          counts.comparison_stage[k] += traced.comparisons[k];
+        }
+        break;
+      }
       case Method::exact: hit = nearest_hit_exact(ray, mesh.mesh(), options.rule); break;
       case Method::naive: hit = nearest_hit_naive(ray, mesh); break;
     }
@@ -68,6 +80,14 @@ int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path,
   std::ostringstream text;
   text << counts.lines_answered << " rays: " << counts.hits << " hit, " << counts.misses << " miss, " << counts.invalid
        << " invalid (" << prepared.mesh().triangles.size() << " triangles, rule " << to_string(options.rule) << ")\n";
+  if (options.method == Method::certified) {
+    text << "candidate triangles: " << counts.candidates << " (relation decided by: " << stage_counts_text(counts.relation_stage)
+         << "; repeating the previous candidate " << counts.repeats << ")\n";
+    text << "ties of the rounded t: " << counts.ties << " (settled from the vertices " << counts.ties_without_arithmetic
+         << "; compared by: " << stage_counts_text(counts.comparison_stage) << ")\n";
+  } else {
+    text << no_stages_text(options.method);
+  }
   return finish_stream_command("nearest", rays, input_name(rays_path), status, options.stats, text.str());
 }
 

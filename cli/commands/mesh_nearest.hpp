@@ -26,6 +26,12 @@ struct MeshNearestCounts {
   std::uint64_t invalid = 0;
   std::uint64_t hits = 0;
   std::uint64_t misses = 0;
+  // The certified path's work, summed over the rays (nearest_hit_traced): candidate triangles, the stage that
+  // decided each relation (and those repeating the previous candidate), ties of the rounded t settled from the
+  // vertices, and the stage of the other ties' comparisons.
+  std::uint64_t candidates = 0, repeats = 0, ties = 0, ties_without_arithmetic = 0;
+  std::uint64_t relation_stage[stage_count] = {};
+  std::uint64_t comparison_stage[stage_count] = {};
 };
 
 // Answers every ray line of `rays` (`ox oy oz dx dy dz`) with `hit K T` (K the triangle index) or `miss`, as

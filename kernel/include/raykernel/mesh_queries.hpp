@@ -12,7 +12,9 @@
 #include <raykernel/mesh.hpp>
 #include <raykernel/triangle.hpp>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -58,6 +60,24 @@ struct MeshHit {
                                                  TriangleRule rule = TriangleRule::owned);
 [[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh,  // prepares the mesh for the call
                                                  TriangleRule rule = TriangleRule::owned);
+
+// `nearest_hit` plus what it cost: how many candidate triangles the walk returned and which stage decided
+// each one's relation (or that it repeated the previous candidate), how many were hit, and how the hits whose rounded t equalled the best one's so far
+// were ordered — by the same-plane or same-point shortcut (no arithmetic) or by the stage of the certified
+// comparison of the two exact t that decided (compensated, expansion or exact rationals). For tests, the
+// benchmarks and `raykernel nearest --mesh --stats`; the same answer as nearest_hit.
+struct TracedMeshHit {
+  std::optional<MeshHit> hit;
+  std::uint64_t candidates = 0;                            // triangles in the leaves the walk returned
+  std::array<std::uint64_t, stage_count> relations{};      // candidates whose relation each stage decided
+  std::uint64_t repeats = 0;  // candidates with the previous one's vertices (any order): its answer reused
+  std::uint64_t hits = 0;                                  // candidates whose relation is hit
+  std::uint64_t ties = 0;                                  // hits whose rounded t equalled the best's so far
+  std::uint64_t ties_without_arithmetic = 0;               // ties settled by the same-plane or same-point rule
+  std::array<std::uint64_t, stage_count> comparisons{};    // the other ties: the stage that ordered the exact t
+};
+[[nodiscard]] TracedMeshHit nearest_hit_traced(const Ray& ray, const PreparedMesh& mesh,
+                                               TriangleRule rule = TriangleRule::owned);
 
 // The reference: every triangle by intersect_exact_rational (exact rationals), the smallest exact t taken in
 // rationals, ties to the smallest index. Slow (microseconds per triangle) and obviously right. Throws

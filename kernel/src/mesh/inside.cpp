@@ -67,9 +67,11 @@ Crossing crossing(const AxisRay& r, const Triangle& tri) {
   range(r.k, lo_k, hi_k);
   if (r.s > 0 ? hi_k < pk : lo_k > pk) return {false, 0};  // the whole triangle behind the origin
   const bool origin_in_box = lo_k <= pk && pk <= hi_k;
-  // On the triangle only if coplanar: the filtered orientation rules most triangles out before the exact test.
+  // On the triangle only if coplanar: the filtered orientation rules most triangles out; for a coplanar point
+  // (exact expansions decide that zero: a point in the plane of a flat mesh meets it in every triangle whose box
+  // holds it) the on-triangle test with filtered planar orientations — exact::point_on_triangle's signs.
   const int snum = origin_in_box ? mesh_detail::orient3d_sign(p, tri.a, tri.b, tri.c) : 0;
-  if (origin_in_box && snum == 0 && detail::exact::point_on_triangle(p, tri)) return {true, 0};
+  if (origin_in_box && snum == 0 && mesh_detail::coplanar_point_on_triangle(p, tri)) return {true, 0};
 
   // den = d·N = s·orient2d(b, c, a); π(q, w) = s·orient2d(q, w, o); the tie-break vector d × (w − q) has the
   // components s·(e_k × (w − q)): 0 on axis k, −s(w_j − q_j) on axis i, s(w_i − q_i) on axis j.
@@ -106,10 +108,19 @@ std::optional<std::int64_t> winding(const Vec3& point, const PreparedMesh& mesh)
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
   std::int64_t count = 0;
+  // A triangle with the previous one's vertices in the same order (copies) contributes the same (a function of
+  // the exact inputs): its crossing is reused.
+  const Triangle* previous = nullptr;
+  Crossing c{false, 0};
+  auto same = [](const Vec3& u, const Vec3& v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
   BvhLeaf leaf;
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
-      const Crossing c = crossing(r, triangles[leaf.position + n]);
+      const Triangle& tri = triangles[leaf.position + n];
+      if (previous == nullptr || !same(tri.a, previous->a) || !same(tri.b, previous->b) || !same(tri.c, previous->c)) {
+        c = crossing(r, tri);
+        previous = &tri;
+      }
       if (c.on_surface) return std::nullopt;
       count += c.sign;
     }

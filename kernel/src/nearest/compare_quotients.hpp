@@ -166,26 +166,38 @@ void multiply_expansions(ExpansionBuilder& builder, const Expansion<M>& e, const
   compare_internal::accumulate_scaled<1>(builder, e, f, first, product);
 }
 
-// compare_quotients_expansion: the exact sign of Δ = N_1·D_2 − N_2·D_1 from the exact stage-3 expansions
-// of num and den of both queries, or `uncertain` when either input or a product in Δ is not exact (a
-// TwoProduct underflowed, or something overflowed): then the exact stage decides.
+// compare_quotients_expansion: the exact sign of Δ = N_1·D_2 − N_2·D_1 from exact expansions of num and den of
+// both queries, or `uncertain` when a product in Δ is not exact (a TwoProduct underflowed, or something
+// overflowed): then the exact stage decides. The expansions' capacities are compile-time bounds only; what is
+// computed depends on their components alone, so every instantiation performs the operations of the one model.
+//   Valid range: at most 16 components in each of the four inputs (the theorem's hypothesis; the callers check it
+//   or their capacities guarantee it).
 //   Certified by: proofs/Expansions.v, `compare_quotients_expansion_sound` (a certain sign is the sign of
 //   Δ for the exact sums of the inputs; with `build_expansions_exact`, of the exact num and den).
-[[nodiscard]] inline Sign compare_quotients_expansion(const ExactExpansions& first,
-                                                      const ExactExpansions& second) noexcept {
-  if (!first.exact || !second.exact) return Sign::uncertain;
+template <std::size_t A, std::size_t B, std::size_t C, std::size_t D>
+[[nodiscard]] inline Sign compare_quotients_expansion(const Expansion<A>& num1, const Expansion<B>& den1,
+                                                      const Expansion<C>& num2, const Expansion<D>& den2) noexcept {
+  static_assert(A <= 16 && B <= 16 && C <= 16 && D <= 16);
   ExpansionBuilder builder;
-  Expansion<2 * 12 * 6> n1_d2, n2_d1;
-  multiply_expansions(builder, first.num, second.den, n1_d2);
-  multiply_expansions(builder, second.num, first.den, n2_d1);
+  Expansion<2 * A * D> n1_d2;
+  Expansion<2 * C * B> n2_d1;
+  multiply_expansions(builder, num1, den2, n1_d2);
+  multiply_expansions(builder, num2, den1, n2_d1);
   for (std::size_t i = 0; i < n2_d1.size; ++i) n2_d1.component[i] = -n2_d1.component[i];  // exact
-  Expansion<2 * 2 * 12 * 6> delta;
+  Expansion<2 * A * D + 2 * C * B> delta;
   ExpansionBuilder::sum(n1_d2, n2_d1, delta);
   builder.check_finite(n1_d2);
   builder.check_finite(n2_d1);
   builder.check_finite(delta);
   if (!builder.exact()) return Sign::uncertain;
   return delta.sign();
+}
+
+// The same from the ray–plane stage-3 expansions (num ≤ 12, den ≤ 6 components), when both are exact.
+[[nodiscard]] inline Sign compare_quotients_expansion(const ExactExpansions& first,
+                                                      const ExactExpansions& second) noexcept {
+  if (!first.exact || !second.exact) return Sign::uncertain;
+  return compare_quotients_expansion(first.num, first.den, second.num, second.den);
 }
 
 }  // namespace raykernel::detail

@@ -1,5 +1,6 @@
 // The planar orientation sign the point-in-mesh query decides its crossings with, certified: a binary64 filter,
-// then exact rationals (mesh/exact_mesh.hpp) when the filter cannot decide.
+// then exact rationals (mesh/exact_mesh.hpp) when the filter cannot decide; and the 3D orientation of its
+// on-surface test (filter, exact expansions, rationals), with the on-triangle test for a coplanar point.
 //
 // For a ray along an axis, d = s·e_k (s = ±1), every value of docs/contract.md §6 that decides a crossing is a
 // 2×2 determinant in the plane of the other two axes (i, j) = ((k + 1) mod 3, (k + 2) mod 3):
@@ -12,7 +13,9 @@
 #pragma once
 
 #include "core/fp_requirements.hpp"
+#include "core/sign.hpp"
 #include "mesh/exact_mesh.hpp"
+#include "triangle/ray_triangle_stages.hpp"
 
 #include <raykernel/raykernel.hpp>
 
@@ -105,10 +108,17 @@ namespace raykernel::mesh_detail {
   return (det > bound) - (det < -bound);
 }
 
-// The exact sign of det(a − o, b − o, c − o).
+// The exact sign of det(a − o, b − o, c − o): the filter, then exact expansions — the determinant is the ray–triangle
+// cascade's num for a ray from o (ray_triangle_stages.hpp's num_expansion; proofs/TriangleStage3Twins.v,
+// `value_ev_exact` and `triangle_expansion_sign_sound`: an exact expansion's checked sign is the exact sign) —
+// then rationals when an expansion is not exact (an underflow) or its sign is not certain. The expansions
+// decide the exact zeros a point in a triangle's plane gives (inside() on flat meshes) at a fraction of the
+// rationals' cost.
 [[nodiscard]] inline int orient3d_sign(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
   const int s = orient3d_filter(o, a, b, c);
-  return s != 0 ? s : detail::exact::det3_sign(o, a, b, c);
+  if (s != 0) return s;
+  const detail::Sign e = detail::num_expansion(Ray{o, {0, 0, 0}}, Triangle{a, b, c}).sign();
+  return detail::is_certain(e) ? static_cast<int>(e) : detail::exact::det3_sign(o, a, b, c);
 }
 
 // The exact sign of orient2d(p, q, r) in the plane of axes (i, j).
@@ -121,6 +131,32 @@ namespace raykernel::mesh_detail {
   if (left_zero && right_zero) return 0;
   const int s = orient2d_filter(p, q, r, i, j);
   return s != 0 ? s : detail::exact::orient2d_sign(p, q, r, i, j);
+}
+
+// Whether p, coplanar with the triangle (det(a − p, b − p, c − p) = 0 exactly), lies on the closed triangle:
+// exact::point_on_triangle's decision after its coplanarity test, step for step, with the filtered orientations
+// (orient2d_sign: the filter, then rationals) — the same exact signs, so the same answer.
+[[nodiscard]] inline bool coplanar_point_on_triangle(const Vec3& p, const Triangle& t) {
+  // N_k = ((b − a) × (c − a))_k is orient2d(b, c, a) in the plane of axes (k + 1, k + 2) mod 3; a projection
+  // along an axis with N_k ≠ 0 maps the plane one to one, keeping the orientation n.
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const int n = orient2d_sign(t.b, t.c, t.a, i, j);
+    if (n == 0) continue;
+    return orient2d_sign(t.a, t.b, p, i, j) != -n && orient2d_sign(t.b, t.c, p, i, j) != -n &&
+           orient2d_sign(t.c, t.a, p, i, j) != -n;
+  }
+  // Degenerate (N = 0): on one of the three edges [u, v]: (v − u) × (p − u) = 0 and p within their box.
+  auto within = [](double x, double a, double b) { return (a <= x && x <= b) || (b <= x && x <= a); };
+  const Vec3* edges[3][2] = {{&t.a, &t.b}, {&t.b, &t.c}, {&t.c, &t.a}};
+  for (const auto& e : edges) {
+    const Vec3 &u = *e[0], &v = *e[1];
+    bool on = true;
+    for (int k = 0; k < 3 && on; ++k)
+      on = orient2d_sign(u, v, p, (k + 1) % 3, (k + 2) % 3) == 0 && within(coordinate(p, k), coordinate(u, k), coordinate(v, k));
+    if (on) return true;
+  }
+  return false;
 }
 
 }  // namespace raykernel::mesh_detail
