@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr const char* overview = R"(raykernel: exact ray-plane intersection, certified fast
+constexpr const char* overview = R"(raykernel: exact ray casting for binary64 inputs (planes, triangles, meshes), certified fast
 
 usage: raykernel <command> [options]
 
@@ -33,7 +33,7 @@ commands:
                       and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)
   triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
                       rule (raykernel triangle --help)
-  render [SCENE.json] render a scene of planes to PNG, or the built-in demo scene; can mark
+  render [SCENE.json] render a scene of planes and meshes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)
   demo                run the built-in batch of hard queries and summarize it

@@ -189,8 +189,8 @@ def main():
             new, pictures = regenerate(path, scratch)
             if args.check:
                 if normalized(new) != normalized(old):
-                    diff = difflib.unified_diff(old.split("\n"), new.split("\n"), document, document + " (fresh run)",
-                                                lineterm="", n=1)
+                    diff = difflib.unified_diff(normalized(old).split("\n"), normalized(new).split("\n"), document,
+                                                document + " (fresh run)", lineterm="", n=1)
                     stale.append("\n".join(diff))
             elif new != old:
                 open(path, "w", encoding="utf-8").write(new)

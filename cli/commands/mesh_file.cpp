@@ -9,15 +9,25 @@
 
 #include <new>
 #include <ostream>
+#include <string_view>
 
 namespace raykernel::cli {
 
-std::optional<Mesh> read_mesh_file(const std::string& path, std::ostream& err) {
+std::optional<Mesh> read_mesh_file(std::string_view command, const std::string& path, std::ostream& err) {
   const Doing doing("reading the mesh file " + quote(path, limits::quoted_token_bytes));
   try {
     return io::read_mesh(path);
   } catch (const io::mesh_file_error& e) {
-    err << "raykernel: " << printable(e.what()) << '\n';
+    // A file that cannot be opened is reported as every command reports its inputs (common/stream_command);
+    // what is wrong inside a file, with its line or byte offset (docs/contract.md §7).
+    const std::string& reason = e.reason();
+    if (e.position().kind == io::FilePosition::Kind::none && reason.starts_with("cannot open: "))
+      err << "raykernel " << command << ": cannot open mesh file " << quote(path, path.size()) << ": "
+          << printable(reason.substr(13)) << '\n';
+    else if (e.position().kind == io::FilePosition::Kind::none && reason == "is a directory")
+      err << "raykernel " << command << ": cannot open mesh file " << quote(path, path.size()) << ": Is a directory\n";
+    else
+      err << "raykernel: " << printable(e.what()) << '\n';
   } catch (const std::bad_alloc&) {
     err << "raykernel: " << printable(path) << ": not enough memory for the mesh\n";
   }

@@ -83,7 +83,7 @@ int run_inside(const std::vector<std::string>& args) {
     std::cerr << "raykernel inside: --mesh FILE is required (see raykernel inside --help)\n";
     return exit_usage;
   }
-  std::optional<Mesh> mesh = read_mesh_file(*arguments.mesh_path, std::cerr);
+  std::optional<Mesh> mesh = read_mesh_file("inside", *arguments.mesh_path, std::cerr);
   if (!mesh) return exit_usage;
   const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *arguments.mesh_path);
 

@@ -70,7 +70,7 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
 }
 
 int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path, const MeshNearestOptions& options) {
-  std::optional<Mesh> mesh = read_mesh_file(mesh_path, std::cerr);
+  std::optional<Mesh> mesh = read_mesh_file("nearest", mesh_path, std::cerr);
   if (!mesh) return exit_usage;
   const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
   Input rays(rays_path);

@@ -257,7 +257,7 @@ int run_watertight(const std::vector<std::string>& args) {
   const std::string& mesh_path = *arguments.mesh_path;
   const std::string& png_path = arguments.png_path;
   const std::uint64_t rays = arguments.rays, seed = arguments.seed;
-  std::optional<Mesh> read = read_mesh_file(mesh_path, std::cerr);
+  std::optional<Mesh> read = read_mesh_file("watertight", mesh_path, std::cerr);
   if (!read) return exit_usage;
   if (read->triangles.empty()) {
     std::cerr << "raykernel: " << printable(mesh_path) << ": the mesh has no triangles\n";

@@ -31,7 +31,7 @@ std::string render_header(std::string_view scene_name, const Scene& scene, unsig
 
 std::string render_statistics(std::string_view output, const RenderStats& s) {
   return "wrote " + output_name(output) + ": " + count_of(s.rays, "ray") + " in " + duration(s.seconds) + ", " +
-         rate(s.rays_per_second(), "rays/s") + " (" + percent(s.hit_rays, s.rays) + " hit a plane)\n" +
+         rate(s.rays_per_second(), "rays/s") + " (" + percent(s.hit_rays, s.rays) + " hit the scene)\n" +
          (s.threads_ran < s.threads ? "the system started " + with_thousands(s.threads_ran) + " of the " +
                                           count_of(s.threads, "thread") + " asked for; they rendered every row\n"
                                     : std::string()) +

@@ -54,8 +54,12 @@ struct MeshHit {
 // skipped, bvh.hpp) with the certified ray–triangle cascade; two hits are ordered by their rounded t, which is
 // monotone in the exact t, and by the exact t in rationals when the rounded t are equal; the walk is pruned by
 // the successor of the best rounded t, an upper bound of the best exact t. So the answer is the brute-force one.
-// Throws invalid_input for an invalid ray (a non-finite component, a zero direction). Thread-safe; right in any
-// floating-point environment.
+// Under the owned rule (the default) a ray through a shared edge or vertex of a closed, consistently oriented
+// mesh hits exactly one of the triangles around it — except at a silhouette: a ray that only touches the mesh
+// along an edge or at a vertex where the surface turns away from it (grazing the outline) has zero or two
+// owned hits there, as the moved ray of §6 misses the mesh or crosses it twice. The closed rule hits every
+// triangle it touches. Throws invalid_input for an invalid ray (a non-finite component, a zero direction).
+// Thread-safe; right in any floating-point environment.
 [[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const PreparedMesh& mesh,
                                                  TriangleRule rule = TriangleRule::owned);
 [[nodiscard]] std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh,  // prepares the mesh for the call
