@@ -16,7 +16,7 @@
 //   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
 //   mesh/cgal_aabb/<mesh>           rays/s of CGAL's AABB_tree::first_intersected_primitive (Epick)
 //   inside/cgal/<mesh>              points/s of CGAL's Side_of_triangle_mesh
-//   ties/{certified,naive}/<mesh>   issue 25: nearest_hit(ray, PreparedMesh) and nearest_hit_naive (the BVH with
+//   ties/{certified,naive}/<mesh>   nearest_hit(ray, PreparedMesh) and nearest_hit_naive (the BVH with
 //                                   Möller–Trumbore, the baseline) on meshes where one ray meets many triangles at
 //                                   one exact t or crosses many boxes: duplicates-100k (10^5 copies of one
 //                                   triangle, vertex orders rotated and reversed), fan-1M (a convex 10^6-gon on the
@@ -182,7 +182,7 @@ void threads(benchmark::internal::Benchmark* b) {
   b->UseRealTime();
 }
 
-// ---- issue 25: ties and slivers ---------------------------------------------------------------------------
+// ---- ties and slivers ---------------------------------------------------------------------------
 
 struct TieSpec {
   std::string name;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CI: raykernel as a dependency (issue 7). Installs raykernel into a temporary prefix, MOVES the installed
+# CI: raykernel as a dependency. Installs raykernel into a temporary prefix, MOVES the installed
 # tree (it must be relocatable), then builds examples/ as a stand-alone project out of the source tree
 # against that prefix only, runs the examples and checks what they must show:
 #

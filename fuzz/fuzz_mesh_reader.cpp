@@ -106,7 +106,7 @@ bool reference_value(std::string_view text, __int128& value) {
 
 // The triangles an accepted OBJ file must have, worked out independently of the reader (in 128-bit integers,
 // so that no index wraps): each `f` line's vertex references, relative ones against the `v` lines before it,
-// fanned from the first. Issue 25: `f 1 2 -9223372036854775808` with a vertex after it was read as the
+// fanned from the first. Regression: `f 1 2 -9223372036854775808` with a vertex after it was read as the
 // triangle [0, 1, 3]; the index checks above could not see it.
 void check_obj_faces(const Mesh& m, std::string_view text) {
   if (text.find('\\') != std::string_view::npos) return;  // continuations: the simple reading below does not apply

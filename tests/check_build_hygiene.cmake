@@ -1,5 +1,5 @@
 # ctest build_hygiene: checks about how raykernel is built and where things live, that no compiler or unit
-# test sees (issue 12):
+# test sees:
 #   - every translation unit of the project is compiled with the warnings of raykernel_warnings (-Wall
 #     -Wextra for GCC and Clang; cmake/RaykernelWarnings.cmake), read from compile_commands.json;
 #   - the CLI library keeps its include directory and its testkit dependency to itself (what it exports:

@@ -199,7 +199,7 @@ TEST(TextFormat, PrintableEscapesWhatATerminalWouldNotShow) {
   // override, the byte-order mark.
   EXPECT_EQ(printable("\xc2\x85|\xe2\x80\x8b|\xe2\x80\xae|\xef\xbb\xbf"),
             "\\xc2\\x85|\\xe2\\x80\\x8b|\\xe2\\x80\\xae|\\xef\\xbb\\xbf");
-  // Issue 25's probe: a no-break space, a soft hyphen, the Arabic letter mark, a Hangul filler, a tag.
+  // A hostile-input probe's finds: a no-break space, a soft hyphen, the Arabic letter mark, a Hangul filler, a tag.
   EXPECT_EQ(printable("\xc2\xa0|\xc2\xad|\xd8\x9c|\xe1\x85\x9f|\xf3\xa0\x80\x81"),
             "\\xc2\\xa0|\\xc2\\xad|\\xd8\\x9c|\\xe1\\x85\\x9f|\\xf3\\xa0\\x80\\x81");
   // The ends of the ranges, and their neighbours that print: U+00A1 ¡, U+2010 ‐, U+3001 、, U+FFFD �.
@@ -469,7 +469,7 @@ TEST(WriteErrors, EveryCommandExitsWithTwoWhenStandardOutputIsFull) {
   }
 }
 
-// Issue 25: --stats 2>/dev/full exited 0 with the statistics lost. A failed write to standard error is an I/O
+// Regression: --stats 2>/dev/full exited 0 with the statistics lost. A failed write to standard error is an I/O
 // error too (exit 2), whatever else the command did; standard output is still complete.
 TEST(WriteErrors, AFailedWriteToStandardErrorIsExitStatusTwo) {
   const std::string planes = temp_path("planes-stderr.txt");
@@ -488,7 +488,7 @@ TEST(WriteErrors, AFailedWriteToStandardErrorIsExitStatusTwo) {
   }
 }
 
-// Issue 25: `classify < /dev/zero` grew to 2.1 GB before "read failed". A line is at most 1 MiB: a longer one
+// Regression: `classify < /dev/zero` grew to 2.1 GB before "read failed". A line is at most 1 MiB: a longer one
 // ends the input as a read error naming the line and the limit, after the lines before it were answered.
 TEST(Input, ALineLongerThanTheLimitEndsTheInputWithANamedError) {
   const std::string query = "0 0 0 0 0 1 0 0 5 0 0 1\n";

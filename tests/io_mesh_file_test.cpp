@@ -119,7 +119,7 @@ TEST(ObjReader, Errors) {
   expect_line_error("\x01\x02\x03 garbage\n", F::obj, 1, "unknown statement '\\x01\\x02\\x03'");
 }
 
-// Index extremes of every path of every reader (issue 25: `f 1 2 -9223372036854775808` negated INT64_MIN, was
+// Index extremes of every path of every reader (a regression: `f 1 2 -9223372036854775808` negated INT64_MIN, was
 // taken as in range and loaded as vertex 3 when a fourth vertex followed, or aborted the CLI when none did).
 TEST(ObjReader, IndexExtremesAreErrorsNeverWrappedIndices) {
   using F = MeshFormat;
@@ -415,7 +415,7 @@ TEST(MeshFiles, ReadFromDiskNamesTheFile) {
     EXPECT_EQ(e.file(), "/dev/zero");
     EXPECT_NE(e.reason().find("device"), std::string::npos) << e.what();
   }
-  // Issue 25: a NUL in the name ended it for the system's calls, and "a.obj\0x" read a.obj. Refused.
+  // Regression: a NUL in the name ended it for the system's calls, and "a.obj\0x" read a.obj. Refused.
   try {
     (void)read_mesh(std::filesystem::path((dir / "a.obj").string() + std::string("\0x", 2)));
     ADD_FAILURE() << "a name with a NUL: no error";

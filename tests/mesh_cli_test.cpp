@@ -153,7 +153,7 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
       {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", ":4: "},
       {"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", ":2: "},
       {"short.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", ":3: "},
-      // Issue 25: aborted (SIGABRT) with three vertices, loaded as triangle [0, 1, 3] with a fourth after.
+      // Regression: aborted (SIGABRT) with three vertices, loaded as triangle [0, 1, 3] with a fourth after.
       {"int64-min.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n", ":4: relative vertex index"},
       {"int64-min-then-vertex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n", ":4: relative vertex index"},
       {"count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", ""},
@@ -176,7 +176,7 @@ TEST(MeshCli, FilesThatAreNotMeshes) {
   EXPECT_NE(missing.err.find("does-not-exist.obj"), std::string::npos);
 }
 
-// Issue 25: every std::bad_alloc becomes "not enough memory for WHAT", exit 2 — never std::terminate. A mesh
+// Regression: every std::bad_alloc becomes "not enough memory for WHAT", exit 2 — never std::terminate. A mesh
 // of 150,000 vertices (5 MB of OBJ) under address-space limits from too small to enough: each run answers
 // or says which file it could not hold, and at least one run runs out.
 TEST(MeshCli, RunningOutOfMemoryIsAMessageNamingTheFileNeverACrash) {

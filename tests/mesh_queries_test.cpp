@@ -12,7 +12,7 @@
 //   per triangle.
 // - inside(point, PreparedMesh) must equal inside_exact for points at vertices, on edges, inside faces, on the
 //   axis lines through them (where the axis-aligned ray runs along edges and through vertices), and at random.
-// - Ties of the rounded t (issue 25): 10^5 copies of one triangle must cost no rational comparison (counted by
+// - Ties of the rounded t: 10^5 copies of one triangle must cost no rational comparison (counted by
 //   nearest_hit_traced: 99,999 before the fix); self-overlapping coplanar fans, near ties, copies under both rules
 //   and tie-heavy soups (coplanar small-integer triangles, rotated and reversed copies; every way a tie is settled,
 //   rationals included) against nearest_hit_exact; inside against inside_exact with points in those planes.
@@ -254,7 +254,7 @@ RC_GTEST_PROP(MeshNearest, AgreesWithTheExactBruteForce, ()) {
   }
 }
 
-// A soup built for ties of the rounded t (issue 25): triangles with small-integer vertices on one or two planes —
+// A soup built for ties of the rounded t: triangles with small-integer vertices on one or two planes —
 // axis-aligned (z = c) or tilted (z = p·x + q·y + c), so that coplanar triangles have exactly equal t — many
 // copies of some with their vertices rotated or reversed, and fans sharing a vertex; scaled by a power of two
 // (tiny scales make stage 3 underflow, so that the rational comparison runs too).
@@ -500,7 +500,7 @@ TEST(MeshNearest, OrdersTiesOfTheRoundedTExactly) {
   }
 }
 
-// Issue 25: 100,000 copies of one triangle (the same indices; then its vertices rotated and reversed) all hit at
+// Regression: 100,000 copies of one triangle (the same indices; then its vertices rotated and reversed) all hit at
 // the same exact t. The answer is the smallest index; the equal rounded t must not each cost a comparison in
 // rationals (they did: 99,999 of them, 0.4 s per ray) — the same plane is recognised from the vertices, with no
 // arithmetic. Counted through nearest_hit_traced, not timed.
@@ -528,7 +528,7 @@ TEST(MeshNearest, DuplicatesCostNoRationalComparison) {
 
 // The fan (v0, vi, vi+1) of a polygon that winds over itself: v0 = (0, 0) and vi = (i, ±1) alternately. Every
 // triangle contains the points (x, y) with 0 < x ≤ 1/2 and |y| < x/n, so a ray through one of them hits all
-// n − 2 triangles at one exact t (issue 25's 10^6-gon: seconds per ray, a rational comparison per triangle). In
+// n − 2 triangles at one exact t (a 10^6-gon fanned: seconds per ray, a rational comparison per triangle). In
 // the plane z = 0 the ties are settled from the vertices (one axis-aligned plane); in the plane z = x + 2y by the
 // exact expansions (small integers: short expansions), never in rationals. Answers against nearest_hit_exact for
 // rays through the common region, through the apex v0 (every triangle at its vertex a), through vertices and

@@ -1,7 +1,7 @@
 // run_parts (<raykernel/parallel.hpp>), the one thread pool of the library, the Python module and the CLI:
 // every part once, the lowest failing part's exception after every thread joined, the thread cap, and — in a
 // child process whose address space is too small for the stacks asked for — no std::terminate when the
-// system refuses threads (issue 25: `render --threads 500` under `ulimit -v 4000000` aborted).
+// system refuses threads (a regression: `render --threads 500` under `ulimit -v 4000000` aborted).
 #include <raykernel/batch.hpp>
 #include <raykernel/parallel.hpp>
 

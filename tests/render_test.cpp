@@ -355,7 +355,7 @@ TEST(Scene, BadJsonGivesLineAndColumn) {
   EXPECT_EQ(error_of("{\"a\": NaN}").substr(0, 40), "invalid JSON: parse error at line 1, col");
 }
 
-// Issue 25: 2·10^7 nested arrays (40 MB) aborted with an uncaught std::bad_alloc, 10^7 took 2.2 GB; a syntax
+// Regression: 2·10^7 nested arrays (40 MB) aborted with an uncaught std::bad_alloc, 10^7 took 2.2 GB; a syntax
 // error under 10^6 levels took 48 s to locate (the pointer copied at every level). Nesting is limited, and the
 // error names the first array too deep by its pointer.
 TEST(Scene, NestingDeeperThanTheLimitIsAnErrorAtItsPointer) {
@@ -766,7 +766,7 @@ TEST(RenderCommand, TwoOutputsWithTheSamePathAreRefused) {
     EXPECT_NE(r.err.find("name the same file"), std::string::npos) << args << ": " << r.err;
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir)) << "nothing is written";
-  // Issue 25: compared as opened, not as spelled: /dev/stdout is standard output (two PNGs on one stream
+  // Regression: compared as opened, not as spelled: /dev/stdout is standard output (two PNGs on one stream
   // exited 0), and a hard link or a symbolic link to an existing file is that file.
   const CliRun r = run("render --width 4 --height 4 --no-progress -o - --show-stages=/dev/stdout", "", dir);
   EXPECT_EQ(r.status, 2);
@@ -785,7 +785,7 @@ TEST(RenderCommand, TwoOutputsWithTheSamePathAreRefused) {
   EXPECT_EQ(run("render --width 4 --height 4 --no-progress -o /dev/null --show-stages=/dev/null", "", dir).status, 0);
 }
 
-// Issue 25: `render --threads 500` under `ulimit -v 4000000` and `--threads 100` under a process limit of 64
+// Regression: `render --threads 500` under `ulimit -v 4000000` and `--threads 100` under a process limit of 64
 // ended in std::terminate (a std::thread destroyed while joinable when the next one failed to start). Threads
 // the system refuses are no error: the render completes on those that started, the same image.
 TEST(RenderCommand, ThreadsTheSystemRefusesAreNoError) {
@@ -967,10 +967,10 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
   // A device is never read (/dev/zero would never end).
   EXPECT_EQ(load_error(R"([{"file": "/dev/zero"}])"), "/meshes/0/file: /dev/zero: not a regular file");
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off"}, {"file": "octahedron.off", "color": [0, 0, 1]}])"), "(valid)");
-  // Issue 25: a NUL in the name was cut off by the system's calls and octahedron.off was read instead.
+  // Regression: a NUL in the name was cut off by the system's calls and octahedron.off was read instead.
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off\u0000x"}])"),
             "/meshes/0/file: the file name contains a NUL character (\\u0000), which no file name can hold");
-  // Issue 25: a mesh file whose face index overflows when negated names its file and line (render exited 2
+  // Regression: a mesh file whose face index overflows when negated names its file and line (render exited 2
   // with neither).
   const std::string bad_obj = temp_path("int64-min.obj");
   write_file(bad_obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n");

@@ -31,7 +31,7 @@ seeds["obj-nan"] = b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"
 seeds["obj-underflow"] = b"v 1e-400 0 0\n"
 seeds["obj-overflow"] = b"v 1e400 0 0\n"
 seeds["obj-unknown"] = b"vertex 1 2 3\n"
-# Index extremes (issue 25: -9223372036854775808 negated to itself and was taken as in range).
+# Index extremes (a regression: -9223372036854775808 negated to itself and was taken as in range).
 seeds["obj-int64-min"] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n"
 seeds["obj-int64-min-then-vertex"] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n"
 seeds["obj-int64-max"] = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9223372036854775807\n"

@@ -1,4 +1,4 @@
-"""Hostile inputs (issue 25): values NumPy or Python would silently change on the way into the kernel are refused,
+"""Hostile inputs: values NumPy or Python would silently change on the way into the kernel are refused,
 naming the argument and why, and values that are right are answered — bit for bit as before.
 
 - Mesh triangles: integer arrays only, each index checked against [0, vertex count) without wrapping.

@@ -14,7 +14,7 @@
 //     no vertex) has the same relation and t, which are functions of the exact inputs (docs/contract.md §6):
 //     they are reused (repeats).
 //
-// Cost (issue 25): a tie used to cost a comparison in rationals (about 5 µs); 100,000 copies of one triangle cost
+// Cost: a tie used to cost a comparison in rationals (about 5 µs); 100,000 copies of one triangle cost
 // 0.4 s per ray, a fan of 10^6 overlapping coplanar triangles seconds. A tie now costs nothing for copies (in any
 // vertex order) and for triangles in one axis-aligned plane or crossed at one shared vertex or edge, and a
 // stage-2 or stage-3 comparison otherwise; rationals only when those cannot decide (exact ties whose expansions
