@@ -72,7 +72,7 @@ py::object to_python(const std::optional<MeshHit>& hit) {
   if (!hit) return py::none();
   const TriangleIntersection& x = hit->intersection;
   return types().mesh_hit(hit->triangle, x.t, python::to_python(x.location),
-                          types().barycentric(x.barycentric[0], x.barycentric[1], x.barycentric[2]));
+                          types().barycentric(x.barycentric.a, x.barycentric.b, x.barycentric.c));
 }
 
 }  // namespace

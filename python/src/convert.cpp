@@ -273,7 +273,7 @@ py::object to_python(TriangleRelation r) { return types().triangle_relation[stat
 py::object to_python(TriangleLocation l) { return types().triangle_location[static_cast<std::size_t>(l)]; }
 
 namespace {
-py::object barycentric_to_python(const std::array<double, 3>& b) { return types().barycentric(b[0], b[1], b[2]); }
+py::object barycentric_to_python(const Barycentric& b) { return types().barycentric(b.a, b.b, b.c); }
 }  // namespace
 
 py::object to_python(const TriangleIntersection& x) {

@@ -28,6 +28,7 @@
 #include <raykernel/core.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -85,14 +86,26 @@ struct TriangleClassification {
   bool owned;                 // the owned rule lets the line through (false unless den ≠ 0)
 };
 
+// Barycentric coordinates (πa, πb, πc)/den of the point where the ray's line crosses the triangle's plane:
+// the weights of the vertices a, b, c (they sum to 1 exactly; each is rounded on its own). Named as Python's
+// raykernel.Barycentric(a, b, c); indexable as [0], [1], [2] in that order.
+template <class T>
+struct BarycentricOf {
+  T a, b, c;
+  [[nodiscard]] const T& operator[](std::size_t k) const noexcept { return k == 0 ? a : k == 1 ? b : c; }
+  [[nodiscard]] T& operator[](std::size_t k) noexcept { return k == 0 ? a : k == 1 ? b : c; }
+  friend bool operator==(const BarycentricOf&, const BarycentricOf&) = default;
+};
+using Barycentric = BarycentricOf<double>;
+
 struct TriangleIntersection {
   TriangleRelation relation;  // under the rule asked for
   TriangleLocation location;  // none unless den ≠ 0
   bool owned;                 // the owned rule lets the line through (false unless den ≠ 0)
   double t;                   // RN(num/den) (an exact 0 is +0; a nonzero t rounding to 0 keeps its sign); NaN when
                               // den = 0 or not asked for
-  std::array<double, 3> barycentric;  // RN(πa/den), RN(πb/den), RN(πc/den), each rounded on its own; NaN when
-                                      // den = 0 or not asked for
+  Barycentric barycentric;   // RN(πa/den), RN(πb/den), RN(πc/den), each rounded on its own; NaN when den = 0
+                              // or not asked for
 };
 
 // The reason `ray`/`triangle` are invalid input (a NaN or infinite component, a zero direction), or nothing.
@@ -139,7 +152,7 @@ struct ExactTriangleIntersection {
   TriangleIntersection intersection;
   Rational den, num, pi_a, pi_b, pi_c;
   std::optional<Rational> t;
-  std::optional<std::array<Rational, 3>> barycentric;
+  std::optional<BarycentricOf<Rational>> barycentric;
 };
 [[nodiscard]] ExactTriangleIntersection intersect_exact_rational(const Ray& ray, const Triangle& triangle,
                                                                  TriangleRule rule = TriangleRule::owned);

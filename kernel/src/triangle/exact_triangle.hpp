@@ -22,7 +22,7 @@ namespace raykernel::detail::exact {
 // RN(num/den) and RN(π_k/den) for den ≠ 0, each only where asked for (NaN elsewhere).
 struct TriangleRoundings {
   double t;
-  std::array<double, 3> barycentric;
+  Barycentric barycentric;
 };
 [[nodiscard]] TriangleRoundings round_triangle_quotients(const Ray& ray, const Triangle& triangle, bool t,
                                                          bool barycentric);

@@ -376,8 +376,8 @@ namespace {
                          (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
                          (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
   const double t = options.t ? q.t[lane_num] : not_a_number;
-  const std::array<double, 3> u = options.barycentric ? std::array<double, 3>{q.t[0], q.t[1], q.t[2]}
-                                                      : std::array<double, 3>{not_a_number, not_a_number, not_a_number};
+  const Barycentric u = options.barycentric ? Barycentric{q.t[0], q.t[1], q.t[2]}
+                                            : Barycentric{not_a_number, not_a_number, not_a_number};
   return TracedTriangleIntersection{{c->relation, c->location, c->owned, t, u},
                                     by_filter ? Stage::filter : Stage::compensated, Stage::compensated};
 }
