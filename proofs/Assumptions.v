@@ -9,16 +9,16 @@
     Assumptions walks the whole real-number library, about a second; one per theorem took 2–3 minutes):
     when a tuple fails, print its members one by one to see which. *)
 
-From Raykernel Require Import Constants Model Filter Compensated QuotientRounding Classification
-  CompareQuotients Cascade RayBox.
+From Raykernel Require Import Constants Model PlaneFilter PlaneCompensated QuotientRounding PlaneClassification
+  CompareQuotients PlaneCascade RayBox.
 From Raykernel Require Import TriangleFilter TriangleCompensated TriangleRule TriangleCascade.
-From Raykernel Require Import FloatCore ConstantsCpp Twins CompareTwins Expansions Liveness QueryTwins.
+From Raykernel Require Import FloatCore ConstantsCpp PlaneTwins CompareTwins Expansions PlaneLiveness PlaneQueryTwins.
 From Raykernel Require TriangleTwins.
 From Raykernel Require TriangleLiveness.
-From Raykernel Require StageTwoFinite.
-From Raykernel Require QueryPairTwins.
+From Raykernel Require PlaneStageTwoFinite.
+From Raykernel Require PlaneQueryPairTwins.
 From Raykernel Require NearestTwins.
-From Raykernel Require RefinedTwins.
+From Raykernel Require PlaneRefinedTwins.
 
 Definition main_results_1 :=
   (@near_bound_sound,
@@ -131,7 +131,7 @@ Print Assumptions main_results_5.
 
 (** The twins (issue 16), one block per file: each tuple's assumptions are the union of its members'. *)
 
-(** Twins.v: the twins of stages 1 and 2, tied to the model, and sound end to end *)
+(** PlaneTwins.v: the twins of stages 1 and 2, tied to the model, and sound end to end *)
 Definition twin_results_0 :=
   (two_sum_twin,
    two_sum_twin_exact,
@@ -189,7 +189,7 @@ Definition twin_results_3 :=
 Goal True. idtac "@@ sum_gen_exact scale_gen_exact multiply_gen_exact build_expansions_exact expansion_sign_sound certified_signs_expansion_sound compare_quotients_expansion_sound". Abort.
 Print Assumptions twin_results_3.
 
-(** Liveness.v *)
+(** PlaneLiveness.v *)
 Definition twin_results_4 :=
   (filter_live,
    filter_den_live,
@@ -226,17 +226,17 @@ Print Assumptions twin_results_triangle.
 
 (** the compiled triangle constants are the proved ones *)
 Definition twin_results_triangle_constants :=
-  (TriangleTwins.cpp_triangle_absolute_scale,
-   TriangleTwins.cpp_triangle_absolute,
-   TriangleTwins.cpp_triangle_filter_pi_relative,
-   TriangleTwins.cpp_triangle_filter_num_relative,
-   TriangleTwins.cpp_triangle_filter_den_relative,
-   TriangleTwins.cpp_triangle_compensated_relative,
-   TriangleTwins.cpp_triangle_compensated_den_relative).
+  (ConstantsCpp.cpp_triangle_absolute_scale,
+   ConstantsCpp.cpp_triangle_absolute,
+   ConstantsCpp.cpp_triangle_filter_pi_relative,
+   ConstantsCpp.cpp_triangle_filter_num_relative,
+   ConstantsCpp.cpp_triangle_filter_den_relative,
+   ConstantsCpp.cpp_triangle_compensated_relative,
+   ConstantsCpp.cpp_triangle_compensated_den_relative).
 Goal True. idtac "@@ cpp_triangle_absolute_scale cpp_triangle_absolute cpp_triangle_filter_pi_relative cpp_triangle_filter_num_relative cpp_triangle_filter_den_relative cpp_triangle_compensated_relative cpp_triangle_compensated_den_relative". Abort.
 Print Assumptions twin_results_triangle_constants.
 
-(** QueryTwins.v: the rounding of t and the fast paths, tied to the models *)
+(** PlaneQueryTwins.v: the rounding of t and the fast paths, tied to the models *)
 Definition twin_results_5 :=
   (half_gap_twin,
    round_quotient_twin,
@@ -259,25 +259,25 @@ Definition twin_results_triangle_liveness :=
 Goal True. idtac "@@ triangle_pi_filter_live triangle_num_filter_live triangle_den_filter_live triangle_pi_compensated_live triangle_num_compensated_live triangle_den_compensated_live". Abort.
 Print Assumptions twin_results_triangle_liveness.
 
-(** StageTwoFinite.v: stage 2 for every bit pattern, without the hypothesis "hi and lo finite" *)
+(** PlaneStageTwoFinite.v: stage 2 for every bit pattern, without the hypothesis "hi and lo finite" *)
 Definition twin_results_stage_two_finite :=
-  (StageTwoFinite.two_sum_b_nan_or_finite,
-   StageTwoFinite.den_compensated_certain_finite,
-   StageTwoFinite.num_compensated_certain_finite,
-   StageTwoFinite.den_compensated_twin_sound_total,
-   StageTwoFinite.num_compensated_twin_sound_total,
-   StageTwoFinite.compare_compensated_certain_finite,
-   StageTwoFinite.compare_compensated_twin_sound_total,
-   StageTwoFinite.hit_order_compensated_twin_sound_total).
+  (PlaneStageTwoFinite.two_sum_b_nan_or_finite,
+   PlaneStageTwoFinite.den_compensated_certain_finite,
+   PlaneStageTwoFinite.num_compensated_certain_finite,
+   PlaneStageTwoFinite.den_compensated_twin_sound_total,
+   PlaneStageTwoFinite.num_compensated_twin_sound_total,
+   PlaneStageTwoFinite.compare_compensated_certain_finite,
+   PlaneStageTwoFinite.compare_compensated_twin_sound_total,
+   PlaneStageTwoFinite.hit_order_compensated_twin_sound_total).
 Goal True. idtac "@@ two_sum_b_nan_or_finite den_compensated_certain_finite num_compensated_certain_finite den_compensated_twin_sound_total num_compensated_twin_sound_total compare_compensated_certain_finite compare_compensated_twin_sound_total hit_order_compensated_twin_sound_total". Abort.
 Print Assumptions twin_results_stage_two_finite.
 
-(** QueryPairTwins.v: the Lanes2 one-query forms and stage 3 of ray_plane_query.hpp *)
+(** PlaneQueryPairTwins.v: the Lanes2 one-query forms and stage 3 of ray_plane_query.hpp *)
 Definition twin_results_query_pairs :=
   (fast_answer_from_twin_correct,
-   QueryPairTwins.fast_relation_pair_twin_correct,
-   QueryPairTwins.fast_answer_pair_twin_correct,
-   QueryPairTwins.ray_plane_expansions_twin_exact).
+   PlaneQueryPairTwins.fast_relation_pair_twin_correct,
+   PlaneQueryPairTwins.fast_answer_pair_twin_correct,
+   PlaneQueryPairTwins.ray_plane_expansions_twin_exact).
 Goal True. idtac "@@ fast_answer_from_twin_correct fast_relation_pair_twin_correct fast_answer_pair_twin_correct ray_plane_expansions_twin_exact". Abort.
 Print Assumptions twin_results_query_pairs.
 
@@ -302,46 +302,46 @@ From Raykernel Require TriangleCascadeTwins.
 Goal True. idtac "@@ fast_relation_tri_correct". Abort.
 Print Assumptions TriangleCascadeTwins.fast_relation_tri_correct.
 
-(** RefinedTwins.v: the second level of stage 2 (compensated_dot3_refined) tied to its twin *)
+(** PlaneRefinedTwins.v: the second level of stage 2 (compensated_dot3_refined) tied to its twin *)
 Goal True. idtac "@@ compensated_dot3_refined_twin". Abort.
-Print Assumptions RefinedTwins.compensated_dot3_refined_twin.
+Print Assumptions PlaneRefinedTwins.compensated_dot3_refined_twin.
 Definition twin_results_refined :=
-  (RefinedTwins.den_refined_twin_encloses,
-   RefinedTwins.num_refined_twin_encloses,
-   RefinedTwins.den_refined_twin_sound,
-   RefinedTwins.num_refined_twin_sound).
+  (PlaneRefinedTwins.den_refined_twin_encloses,
+   PlaneRefinedTwins.num_refined_twin_encloses,
+   PlaneRefinedTwins.den_refined_twin_sound,
+   PlaneRefinedTwins.num_refined_twin_sound).
 Goal True. idtac "@@ den_refined_twin_encloses num_refined_twin_encloses den_refined_twin_sound num_refined_twin_sound". Abort.
 Print Assumptions twin_results_refined.
 
-(** CascadeTwins.v: the cascade's control flow (ray_plane_cascade.cpp, validation.cpp) for every bit pattern *)
-From Raykernel Require CascadeTwins.
+(** PlaneCascadeTwins.v: the cascade's control flow (ray_plane_cascade.cpp, validation.cpp) for every bit pattern *)
+From Raykernel Require PlaneCascadeTwins.
 Goal True. idtac "@@ cascade_twin_correct". Abort.
-Print Assumptions CascadeTwins.cascade_twin_correct.
+Print Assumptions PlaneCascadeTwins.cascade_twin_correct.
 Definition twin_results_cascade :=
-  (CascadeTwins.certified_signs_twin_sound,
-   CascadeTwins.certified_quotient_twin_sound,
-   CascadeTwins.validate_b_none).
+  (PlaneCascadeTwins.certified_signs_twin_sound,
+   PlaneCascadeTwins.certified_quotient_twin_sound,
+   PlaneCascadeTwins.validate_b_none).
 Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
 Print Assumptions twin_results_cascade.
-(** CascadeTwins.v: [relation] past its fast path, and validation's other direction *)
+(** PlaneCascadeTwins.v: [relation] past its fast path, and validation's other direction *)
 Goal True. idtac "@@ relation_twin_correct". Abort.
-Print Assumptions CascadeTwins.relation_twin_correct.
-Definition twin_results_validate := (CascadeTwins.validate_b_valid, CascadeTwins.validate_b_some).
+Print Assumptions PlaneCascadeTwins.relation_twin_correct.
+Definition twin_results_validate := (PlaneCascadeTwins.validate_b_valid, PlaneCascadeTwins.validate_b_some).
 Goal True. idtac "@@ validate_b_valid validate_b_some". Abort.
 Print Assumptions twin_results_validate.
 Definition twin_results_stage2_agrees :=
-  (CascadeTwins.den_stage2_agrees_with_filter, CascadeTwins.num_stage2_agrees_with_filter).
+  (PlaneCascadeTwins.den_stage2_agrees_with_filter, PlaneCascadeTwins.num_stage2_agrees_with_filter).
 Goal True. idtac "@@ den_stage2_agrees_with_filter num_stage2_agrees_with_filter". Abort.
 Print Assumptions twin_results_stage2_agrees.
 
-(** RefinedFinite.v: the second level of stage 2, a certain sign implies finite hi and lo (every bit pattern) *)
-From Raykernel Require RefinedFinite.
+(** PlaneRefinedFinite.v: the second level of stage 2, a certain sign implies finite hi and lo (every bit pattern) *)
+From Raykernel Require PlaneRefinedFinite.
 Definition twin_results_refined_finite :=
-  (RefinedFinite.refined_radius_finite_parts,
-   RefinedFinite.den_refined_certain_finite,
-   RefinedFinite.num_refined_certain_finite,
-   RefinedFinite.den_refined_twin_sound_total,
-   RefinedFinite.num_refined_twin_sound_total).
+  (PlaneRefinedFinite.refined_radius_finite_parts,
+   PlaneRefinedFinite.den_refined_certain_finite,
+   PlaneRefinedFinite.num_refined_certain_finite,
+   PlaneRefinedFinite.den_refined_twin_sound_total,
+   PlaneRefinedFinite.num_refined_twin_sound_total).
 Goal True. idtac "@@ refined_radius_finite_parts den_refined_certain_finite num_refined_certain_finite den_refined_twin_sound_total num_refined_twin_sound_total". Abort.
 Print Assumptions twin_results_refined_finite.
 
@@ -463,37 +463,37 @@ Definition twin_results_den_certain :=
    TriangleDenCertain.den_quotient_filter_certain).
 Goal True. idtac "@@ round_quotient_certain_divisor den_filter_margin den_quotient_filter_certain". Abort.
 Print Assumptions twin_results_den_certain.
-(** CompareLiveness.v: stage 1 of the nearest-hit comparison (compare_quotients_filter, as
+(** CompareStage1Liveness.v: stage 1 of the nearest-hit comparison (compare_quotients_filter, as
     compare_hit_distances calls it) certifies whenever |x_1·y_2 − x_2·y_1| > c_1·S + c_2·ρ + c_3; not
     vacuous (an example certified by computation) and neither c_1 nor c_2 can be halved *)
-From Raykernel Require CompareLiveness.
+From Raykernel Require CompareStage1Liveness.
 Goal True. idtac "@@ compare_filter_live compare_filter_live_exact compare_hit_distances_stage1_live". Abort.
 Definition liveness_results_compare :=
-  (CompareLiveness.compare_filter_live,
-   CompareLiveness.compare_filter_live_exact,
-   CompareLiveness.compare_hit_distances_stage1_live).
+  (CompareStage1Liveness.compare_filter_live,
+   CompareStage1Liveness.compare_filter_live_exact,
+   CompareStage1Liveness.compare_hit_distances_stage1_live).
 Print Assumptions liveness_results_compare.
 Goal True. idtac "@@ compare_filter_live_example compare_filter_half_c1_fails compare_filter_half_c2_fails". Abort.
 Definition liveness_sharpness_compare :=
-  (CompareLiveness.compare_filter_live_example,
-   CompareLiveness.compare_filter_half_c1_fails,
-   CompareLiveness.compare_filter_half_c2_fails).
+  (CompareStage1Liveness.compare_filter_live_example,
+   CompareStage1Liveness.compare_filter_half_c1_fails,
+   CompareStage1Liveness.compare_filter_half_c2_fails).
 Print Assumptions liveness_sharpness_compare.
-(** RefinedLiveness.v: the second level of stage 2 certifies on a stated class; the class is not vacuous
+(** PlaneRefinedLiveness.v: the second level of stage 2 certifies on a stated class; the class is not vacuous
     and its constant is within a factor 1.2 of the best *)
-From Raykernel Require RefinedLiveness.
+From Raykernel Require PlaneRefinedLiveness.
 Definition main_results_16 :=
-  (@RefinedLiveness.refined_live,
-   @RefinedLiveness.refined_den_live,
-   @RefinedLiveness.refined_num_live).
+  (@PlaneRefinedLiveness.refined_live,
+   @PlaneRefinedLiveness.refined_den_live,
+   @PlaneRefinedLiveness.refined_num_live).
 Goal True. idtac "@@ refined_live refined_den_live refined_num_live". Abort.
 Print Assumptions main_results_16.
 Definition twin_results_refined_liveness :=
-  (RefinedLiveness.refined_radius_upper,
-   RefinedLiveness.enclosure_sign_live3,
-   RefinedLiveness.refined_den_live_witness,
-   RefinedLiveness.refined_num_live_witness,
-   RefinedLiveness.refined_den_live_half_false).
+  (PlaneRefinedLiveness.refined_radius_upper,
+   PlaneRefinedLiveness.enclosure_sign_live3,
+   PlaneRefinedLiveness.refined_den_live_witness,
+   PlaneRefinedLiveness.refined_num_live_witness,
+   PlaneRefinedLiveness.refined_den_live_half_false).
 Goal True. idtac "@@ refined_radius_upper enclosure_sign_live3 refined_den_live_witness refined_num_live_witness refined_den_live_half_false". Abort.
 Print Assumptions twin_results_refined_liveness.
 (** QuotientLiveness.v: the quotient rounding (quotient_rounding.hpp, prepare_divisor and round_quotient)
@@ -509,7 +509,7 @@ Definition twin_results_quotient_liveness :=
    QuotientLiveness.third_radius_threshold).
 Goal True. idtac "@@ round_quotient_live_exact quotient_residuals_q0 round_quotient_b_third near_midpoint_threshold third_radius_threshold". Abort.
 Print Assumptions twin_results_quotient_liveness.
-(** QuotientLivenessTwin.v: the same liveness over the twin (QueryTwins.v's prepare_divisor_b, round_quotient_b,
+(** QuotientLivenessTwin.v: the same liveness over the twin (PlaneQueryTwins.v's prepare_divisor_b, round_quotient_b,
     runner-tied): finite parts of magnitude <= 2^1000 in round_quotient_live's class certify, t = RN(X/Y) finite;
     the twin computes the model's rounding forwards on bounded inputs; the computed examples are in the class *)
 From Raykernel Require QuotientLivenessTwin.
@@ -526,40 +526,40 @@ Definition twin_results_quotient_liveness_twin :=
    FloatCore.fdiv_fwd).
 Goal True. idtac "@@ round_quotient_live_exact_b round_quotient_b_fwd prepare_divisor_b_fwd rq_model_bounds round_quotient_b_third_live round_quotient_b_near_midpoint_live fast_answer_from_live_b fdiv_fwd". Abort.
 Print Assumptions twin_results_quotient_liveness_twin.
-(** CascadeQuotientLiveness.v: the cascade's t (CascadeTwins.v's certified_quotient_b, intersect_traced_b) is
+(** PlaneCascadeQuotientLiveness.v: the cascade's t (PlaneCascadeTwins.v's certified_quotient_b, intersect_traced_b) is
     rounded by stage 2's first level, to RN(num/den), when the first-level enclosures are in round_quotient_live_b's
     class; the query t = 1/3 is in the class *)
-From Raykernel Require CascadeQuotientLiveness.
+From Raykernel Require PlaneCascadeQuotientLiveness.
 Goal True. idtac "@@ cascade_quotient_live_b". Abort.
-Print Assumptions CascadeQuotientLiveness.cascade_quotient_live_b.
+Print Assumptions PlaneCascadeQuotientLiveness.cascade_quotient_live_b.
 Definition twin_results_cascade_quotient_liveness :=
-  (CascadeQuotientLiveness.certified_quotient_b_first,
-   CascadeQuotientLiveness.intersect_cascade_t,
-   CascadeQuotientLiveness.intersect_traced_live_b,
-   CascadeQuotientLiveness.intersect_traced_third,
-   CascadeQuotientLiveness.cascade_quotient_live_third).
+  (PlaneCascadeQuotientLiveness.certified_quotient_b_first,
+   PlaneCascadeQuotientLiveness.intersect_cascade_t,
+   PlaneCascadeQuotientLiveness.intersect_traced_live_b,
+   PlaneCascadeQuotientLiveness.intersect_traced_third,
+   PlaneCascadeQuotientLiveness.cascade_quotient_live_third).
 Goal True. idtac "@@ certified_quotient_b_first intersect_cascade_t intersect_traced_live_b intersect_traced_third cascade_quotient_live_third". Abort.
 Print Assumptions twin_results_cascade_quotient_liveness.
-(** Stage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
+(** PlaneStage3Liveness.v: stage 3's checked sign certifies on one-component expansions; the twin cascade answers at
     stage 3 when the expansions have one component each; a concrete input where stages 1 and 2 do not *)
-From Raykernel Require Stage3Liveness.
+From Raykernel Require PlaneStage3Liveness.
 Definition twin_results_stage3_liveness :=
-  (Stage3Liveness.expansion_sign_single_certain,
-   Stage3Liveness.expansion_sign_single_exact,
-   Stage3Liveness.certified_signs_single_live,
-   Stage3Liveness.relation_single_live,
-   Stage3Liveness.stage3_plane_live_example,
-   Stage3Liveness.build_expansions_single,
-   Stage3Liveness.expansions_int_single,
-   Stage3Liveness.stage3_int_live,
-   Stage3Liveness.relation_int_live).
+  (PlaneStage3Liveness.expansion_sign_single_certain,
+   PlaneStage3Liveness.expansion_sign_single_exact,
+   PlaneStage3Liveness.certified_signs_single_live,
+   PlaneStage3Liveness.relation_single_live,
+   PlaneStage3Liveness.stage3_plane_live_example,
+   PlaneStage3Liveness.build_expansions_single,
+   PlaneStage3Liveness.expansions_int_single,
+   PlaneStage3Liveness.stage3_int_live,
+   PlaneStage3Liveness.relation_int_live).
 Goal True. idtac "@@ expansion_sign_single_certain expansion_sign_single_exact certified_signs_single_live relation_single_live stage3_plane_live_example build_expansions_single expansions_int_single stage3_int_live relation_int_live". Abort.
 Print Assumptions twin_results_stage3_liveness.
-(** CompareLiveness2.v: the radius of stage 2 of nearest_hit's comparison (compare_quotients_compensated) from
+(** CompareStage2Radius.v: the radius of stage 2 of nearest_hit's comparison (compare_quotients_compensated) from
     above, over the model: the first half of stage 2's liveness *)
-From Raykernel Require CompareLiveness2.
+From Raykernel Require CompareStage2Radius.
 Goal True. idtac "@@ compare_compensated_radius_upper". Abort.
-Print Assumptions CompareLiveness2.compare_compensated_radius_upper.
+Print Assumptions CompareStage2Radius.compare_compensated_radius_upper.
 (** TriangleStage3Liveness.v: the ray–triangle stage 3 (value_ev, ev_sign; tc_sign_b in the cascade) certifies on
     integer inputs of magnitude ≤ 2^15; the twin cascades decide before the exact stage there; rays through an
     edge and a vertex where stages 1 and 2 do not; k = 17 gives a two-component expansion *)
@@ -604,37 +604,65 @@ Definition twin_results_compare_stage3_liveness :=
    CompareStage3Liveness.compare_stage3_uncertain_in_class).
 Goal True. idtac "@@ compare_quotients_expansion_single compare_stage3_int_live_gen compare_stage3_int_live compare_hit_distances_int_live compare_hit_distances_int_correct compare_stage3_tie_example compare_stage3_tie_in_class compare_quotients_expansion_int_tie compare_stage3_int_tie compare_hit_distances_int_tie_live compare_hit_distances_int_tie_correct compare_stage3_tie2_example compare_stage3_tie2_in_class compare_stage3_uncertain_example compare_stage3_uncertain_in_class". Abort.
 Print Assumptions twin_results_compare_stage3_liveness.
-(** CompareLiveness3.v: the second half of the liveness of stage 2 of nearest_hit's comparison: the error of
+(** CompareStage2Liveness.v: the second half of the liveness of stage 2 of nearest_hit's comparison: the error of
     hi + lo (model), the class on which the twin of compare_quotients_compensated is certain,
     compare_hit_distances returning by stage 2 at the latest on it, computed witnesses and the sharpness
     of the class's constants *)
-From Raykernel Require CompareLiveness3.
+From Raykernel Require CompareStage2Liveness.
 Definition twin_results_compare_liveness3 :=
-  (CompareLiveness3.compare_compensated_error_model,
-   CompareLiveness3.compare_compensated_live_model,
-   CompareLiveness3.compare_compensated_live,
-   CompareLiveness3.compare_hit_distances_stage2_live,
-   CompareLiveness3.compare_compensated_live_example,
-   CompareLiveness3.compare_hit_distances_stage2_example,
-   CompareLiveness3.compare_compensated_k1_fails,
-   CompareLiveness3.compare_compensated_k2_fails,
-   CompareLiveness3.compare_hit_distances_stage2_example_in_class,
-   CompareLiveness3.compare_compensated_live_exact).
+  (CompareStage2Liveness.compare_compensated_error_model,
+   CompareStage2Liveness.compare_compensated_live_model,
+   CompareStage2Liveness.compare_compensated_live,
+   CompareStage2Liveness.compare_hit_distances_stage2_live,
+   CompareStage2Liveness.compare_compensated_live_example,
+   CompareStage2Liveness.compare_hit_distances_stage2_example,
+   CompareStage2Liveness.compare_compensated_k1_fails,
+   CompareStage2Liveness.compare_compensated_k2_fails,
+   CompareStage2Liveness.compare_hit_distances_stage2_example_in_class,
+   CompareStage2Liveness.compare_compensated_live_exact).
 Goal True. idtac "@@ compare_compensated_error_model compare_compensated_live_model compare_compensated_live compare_hit_distances_stage2_live compare_compensated_live_example compare_hit_distances_stage2_example compare_compensated_k1_fails compare_compensated_k2_fails compare_hit_distances_stage2_example_in_class compare_compensated_live_exact". Abort.
 Print Assumptions twin_results_compare_liveness3.
 Definition twin_results_compare_liveness3_exact :=
-  (CompareLiveness3.compare_hit_distances_stage2_live_exact, CompareLiveness3.cross_dd_close).
+  (CompareStage2Liveness.compare_hit_distances_stage2_live_exact, CompareStage2Liveness.cross_dd_close).
 Goal True. idtac "@@ compare_hit_distances_stage2_live_exact cross_dd_close". Abort.
 Print Assumptions twin_results_compare_liveness3_exact.
-(** CompareLiveness4.v: stage 2 of nearest_hit's comparison decides on a class stated in the ray's and planes'
+(** CompareStage2InputsLiveness.v: stage 2 of nearest_hit's comparison decides on a class stated in the ray's and planes'
     inputs (coordinates ≤ 2^180, the bound in Σ|(p_i − o_i)·n_i| and Σ|d_i·n_i|), and an input in it *)
-From Raykernel Require CompareLiveness4.
+From Raykernel Require CompareStage2InputsLiveness.
 Definition twin_results_compare_liveness4 :=
-  (CompareLiveness4.compare_hit_distances_stage2_live_inputs,
-   CompareLiveness4.stage2_num_facts,
-   CompareLiveness4.stage2_den_facts,
-   CompareLiveness4.compare_hit_distances_stage2_inputs_example_in_class,
-   CompareLiveness4.compare_hit_distances_stage2_live_inputs_simple,
-   CompareLiveness4.compare_hit_distances_stage2_inputs_simple_example).
+  (CompareStage2InputsLiveness.compare_hit_distances_stage2_live_inputs,
+   CompareStage2InputsLiveness.stage2_num_facts,
+   CompareStage2InputsLiveness.stage2_den_facts,
+   CompareStage2InputsLiveness.compare_hit_distances_stage2_inputs_example_in_class,
+   CompareStage2InputsLiveness.compare_hit_distances_stage2_live_inputs_simple,
+   CompareStage2InputsLiveness.compare_hit_distances_stage2_inputs_simple_example).
 Goal True. idtac "@@ compare_hit_distances_stage2_live_inputs stage2_num_facts stage2_den_facts compare_hit_distances_stage2_inputs_example_in_class compare_hit_distances_stage2_live_inputs_simple compare_hit_distances_stage2_inputs_simple_example". Abort.
 Print Assumptions twin_results_compare_liveness4.
+(** orient/: the orientation filters of the point-in-mesh query (mesh_predicates.hpp): soundness over the model
+    and for every bit pattern, the compiled constants, and liveness with its witnesses *)
+From Raykernel Require OrientFilter OrientTwins OrientLiveness.
+Definition orient_results :=
+  (OrientFilter.orient2d_filter_sound,
+   OrientFilter.orient2d_error,
+   OrientFilter.orient3d_filter_sound,
+   OrientFilter.orient3d_error,
+   OrientFilter.orient3d_error_bounds,
+   OrientTwins.orient2d_filter_twin_sound,
+   OrientTwins.orient3d_filter_twin_sound,
+   OrientTwins.orient2d_filter_twin_model,
+   OrientTwins.orient3d_filter_twin_model,
+   ConstantsCpp.cpp_orient3d_filter_relative).
+Goal True. idtac "@@ orient2d_filter_sound orient2d_error orient3d_filter_sound orient3d_error orient3d_error_bounds orient2d_filter_twin_sound orient3d_filter_twin_sound orient2d_filter_twin_model orient3d_filter_twin_model cpp_orient3d_filter_relative". Abort.
+Print Assumptions orient_results.
+Definition orient_liveness :=
+  (OrientLiveness.orient2d_filter_live,
+   OrientLiveness.orient2d_filter_b_fwd,
+   OrientLiveness.orient2d_filter_twin_live,
+   OrientLiveness.orient3d_filter_live,
+   OrientLiveness.orient2d_live_witness,
+   OrientLiveness.orient2d_live_witness_in_class,
+   OrientLiveness.orient2d_uncertain_witness,
+   OrientLiveness.orient3d_live_witness,
+   OrientLiveness.orient3d_range_witness).
+Goal True. idtac "@@ orient2d_filter_live orient2d_filter_b_fwd orient2d_filter_twin_live orient3d_filter_live orient2d_live_witness orient2d_live_witness_in_class orient2d_uncertain_witness orient3d_live_witness orient3d_range_witness". Abort.
+Print Assumptions orient_liveness.

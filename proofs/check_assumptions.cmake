@@ -1,14 +1,17 @@
 # ctest proofs_assumptions: compiles proofs/Assumptions.v against the compiled proofs and fails unless
 #   - every theorem printed there depends only on the allowed axioms (Coq's classical real numbers,
 #     functional extensionality, excluded middle: what Flocq itself uses);
-#   - every theorem that kernel/src/certified/*.hpp cites ("proofs/File.v ... `name`") is stated in that
-#     file and printed by Assumptions.v; a quoted name on such a line that is one of the ctest tests of
-#     proofs/ (PROOF_TESTS, e.g. "and the test `proofs_half_gap`") is a test, not a theorem.
+#   - every theorem that a source below CITING_ROOTS (kernel/src and kernel/include, recursively: no folder is
+#     left out) cites ("proofs/<family>/File.v ... `name`") is stated in that file and printed by Assumptions.v;
+#     a quoted name on such a line that is one of the ctest tests of proofs/ (PROOF_TESTS, e.g. "and the test
+#     `proofs_half_gap`") is a test, not a theorem. A citation of a proof file that does not exist (such as the
+#     flat proofs/File.v of before the families) fails.
 #
-# Usage: cmake -DCOQC=coqc -DCOQ_DIR=<dir with the compiled .vo> -DPROOF_DIR=<proofs/>
-#              -DCERTIFIED_DIR=<kernel/src/certified> [-DPROOF_TESTS=name,name,...] -P check_assumptions.cmake
+# Usage: cmake -DCOQC=coqc -DCOQ_DIR=<dir with the compiled .vo> "-DCOQ_FLAGS=-Q|<dir>|<path>|..."
+#              -DPROOF_DIR=<proofs/> "-DCITING_ROOTS=<dir>|<dir>" [-DPROOF_TESTS=name,name,...]
+#              -P check_assumptions.cmake
 cmake_minimum_required(VERSION 3.20)
-foreach(var COQC COQ_DIR PROOF_DIR CERTIFIED_DIR)
+foreach(var COQC COQ_DIR COQ_FLAGS PROOF_DIR CITING_ROOTS)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_assumptions.cmake: -D${var}=... is required")
   endif()
@@ -25,9 +28,11 @@ set(allowed_axioms
   FunctionalExtensionality.functional_extensionality_dep
   Classical_Prop.classic)
 
+string(REPLACE "|" ";" COQ_FLAGS "${COQ_FLAGS}")
+string(REPLACE "|" ";" CITING_ROOTS "${CITING_ROOTS}")
 configure_file(${PROOF_DIR}/Assumptions.v ${COQ_DIR}/Assumptions.v COPYONLY)
 execute_process(
-  COMMAND ${COQC} -q -Q ${COQ_DIR} Raykernel ${COQ_DIR}/Assumptions.v
+  COMMAND ${COQC} -q ${COQ_FLAGS} ${COQ_DIR}/Assumptions.v
   WORKING_DIRECTORY ${COQ_DIR}
   RESULT_VARIABLE status
   OUTPUT_VARIABLE output
@@ -93,18 +98,18 @@ foreach(line IN LISTS pending_theorem_lines)
 endforeach()
 set(pending_report "")
 
-# The theorems the C++ cites: "proofs/File.v" followed on the same line by `name`s. EXTRA_CITING_DIRS (optional,
-# a ;-list) adds directories of certified code outside kernel/src/certified (kernel/src/triangle).
-file(GLOB headers ${CERTIFIED_DIR}/*.hpp ${CERTIFIED_DIR}/*.cpp)
-foreach(extra IN LISTS EXTRA_CITING_DIRS)
-  file(GLOB extra_headers ${extra}/*.hpp ${extra}/*.cpp)
-  list(APPEND headers ${extra_headers})
+# The theorems the C++ cites: "proofs/<family>/File.v" followed on the same line by `name`s, in every source below
+# CITING_ROOTS.
+set(headers "")
+foreach(root IN LISTS CITING_ROOTS)
+  file(GLOB_RECURSE found ${root}/*.hpp ${root}/*.cpp ${root}/*.h)
+  list(APPEND headers ${found})
 endforeach()
 set(cited 0)
 foreach(header IN LISTS headers)
-  file(STRINGS ${header} citing REGEX "proofs/[A-Za-z]+\\.v")
+  file(STRINGS ${header} citing REGEX "proofs/([a-z]+/)?[A-Za-z0-9]+\\.v")
   foreach(line IN LISTS citing)
-    string(REGEX MATCH "proofs/([A-Za-z]+)\\.v" _ "${line}")
+    string(REGEX MATCH "proofs/(([a-z]+/)?[A-Za-z0-9]+)\\.v" _ "${line}")
     set(vname "${CMAKE_MATCH_1}.v")
     set(vfile "${PROOF_DIR}/${vname}")
     string(REGEX MATCHALL "`[a-z0-9_]+`" names "${line}")
@@ -143,7 +148,7 @@ foreach(header IN LISTS headers)
   endforeach()
 endforeach()
 if(cited EQUAL 0)
-  list(APPEND failures "no theorem citations found in ${CERTIFIED_DIR}")
+  list(APPEND failures "no theorem citations found below ${CITING_ROOTS}")
 endif()
 
 if(failures)

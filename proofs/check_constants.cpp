@@ -3,10 +3,12 @@
 //
 // For every constant it checks, with exact dyadic arithmetic (no rounding anywhere), that three values
 // agree with the exact value written in the table below (derived by hand from the Coq definition):
-//   1. the right-hand side of `Definition NAME : R := ...` in proofs/Constants.v, evaluated exactly;
-//   2. the literal of `inline constexpr double NAME = ...;` in kernel/src/core/error_bounds.hpp,
-//      read from the text exactly;
-//   3. the value the compiler gave bounds::NAME (this file includes error_bounds.hpp).
+//   1. the right-hand side of `Definition NAME : R := ...` in proofs/core/Constants.v, evaluated exactly;
+//   2. the literal of `inline constexpr double NAME = ...;` in the bounds headers (error_bounds.hpp and every
+//      header that reopens a bounds namespace: proofs/CMakeLists.txt finds them and passes them in), read from
+//      the text exactly (a hexadecimal float, an integer, or a sum or difference of them such as 1.0 - 0x1p-50);
+//   3. the value the compiler gave bounds::NAME (this file includes the generated constants_headers.hpp,
+//      the #include lines of those headers).
 // It also fails when either file defines a constant the table does not know, so a new constant cannot
 // escape the comparison, except the constants proofs/pending.txt lists as not proved yet (reported as
 // PENDING; listing one that Constants.v defines is an error). `--one-ulp` (ctest
@@ -16,7 +18,7 @@
 // Usage: raykernel_check_constants [--one-ulp] BOUNDS_HPP... CONSTANTS_V... PENDING_TXT
 // (files told apart by their extension: the headers' constants are merged, and so are the Coq files', read in
 // order with one environment, so that a later file may use an earlier file's names).
-#include "core/error_bounds.hpp"
+#include "constants_headers.hpp"  // generated: the headers of the bounds:: constants
 
 #include <cmath>
 #include <cstdint>
@@ -130,6 +132,26 @@ struct Dyadic {
     r.normalize();
     return r;
   }
+  // a − b, for a ≥ b (the constants are nonnegative).
+  friend Dyadic operator-(Dyadic a, Dyadic b) {
+    if (b.is_zero()) return a;
+    const long e = std::min(a.exponent, b.exponent);
+    a.shift_left(a.exponent - e);
+    b.shift_left(b.exponent - e);
+    if (b.limbs.size() > a.limbs.size()) throw std::runtime_error("a negative constant");
+    Dyadic r;
+    r.exponent = e;
+    r.limbs.assign(a.limbs.size(), 0);
+    std::int64_t borrow = 0;
+    for (std::size_t i = 0; i < a.limbs.size(); ++i) {
+      std::int64_t d = static_cast<std::int64_t>(a.limbs[i]) - borrow - (i < b.limbs.size() ? b.limbs[i] : 0);
+      borrow = d < 0 ? 1 : 0;
+      r.limbs[i] = static_cast<std::uint32_t>(d + (borrow << 32));
+    }
+    if (borrow != 0) throw std::runtime_error("a negative constant");
+    r.normalize();
+    return r;
+  }
   friend Dyadic operator*(const Dyadic& a, const Dyadic& b) {
     Dyadic r;
     if (a.is_zero() || b.is_zero()) return r;
@@ -192,10 +214,11 @@ Dyadic operator+(std::uint64_t k, const Dyadic& d) { return Dyadic::integer(k) +
 // ---------------------------------------------------------------------------------------------------
 // The table: every constant, the exact value derived from its Coq definition, and the compiled value.
 namespace b = raykernel::detail::bounds;
+namespace mb = raykernel::bounds;  // the mesh headers' (ray_box.hpp, mesh_predicates.hpp)
 
 struct Row {
   const char* name;
-  const char* coq_formula;  // as in proofs/Constants.v, for the messages
+  const char* coq_formula;  // as in proofs/core/Constants.v, for the messages
   Dyadic expected;
   std::optional<double> compiled;   // double constants
   std::optional<long> compiled_int; // int constants
@@ -252,11 +275,28 @@ std::vector<Row> table() {
        {}},
       {"triangle_compensated_den_relative", "256 * (u * u)", 256 * Dyadic::pow2(-106),
        b::triangle_compensated_den_relative, {}},
+      // The BVH's ray–box test (ray_box.hpp; box/RayBox.v): K = 1 ∓ 2^-50, τ = 2^-1022, case B's range.
+      // 1 − 2^-50 = (2^50 − 1)·2^-50
+      {"ray_box_near_factor", "1125899906842623 * bpow radix2 (-50)",
+       Dyadic::integer((std::uint64_t{1} << 50) - 1) * Dyadic::pow2(-50), mb::ray_box_near_factor, {}},
+      {"ray_box_far_factor", "1 + bpow radix2 (-50)", 1 + Dyadic::pow2(-50), mb::ray_box_far_factor, {}},
+      {"ray_box_absolute", "bpow radix2 (-1022)", Dyadic::pow2(-1022), mb::ray_box_absolute, {}},
+      {"ray_box_min_direction", "bpow radix2 (-1022)", Dyadic::pow2(-1022), mb::ray_box_min_direction, {}},
+      {"ray_box_max_direction", "bpow radix2 (1022)", Dyadic::pow2(1022), mb::ray_box_max_direction, {}},
+      {"ray_box_max_parameter", "bpow radix2 (1022)", Dyadic::pow2(1022), mb::ray_box_max_parameter, {}},
+      // The point-in-mesh orientation filters (mesh_predicates.hpp; orient/OrientFilter.v).
+      {"orient2d_filter_relative", "bpow radix2 (-51)", Dyadic::pow2(-51), mb::orient2d_filter_relative, {}},
+      {"orient2d_filter_absolute", "bpow radix2 (-1071)", Dyadic::pow2(-1071), mb::orient2d_filter_absolute, {}},
+      {"orient3d_filter_relative", "bpow radix2 (-49)", Dyadic::pow2(-49), mb::orient3d_filter_relative, {}},
+      {"orient3d_filter_min_difference", "bpow radix2 (-300)", Dyadic::pow2(-300), mb::orient3d_filter_min_difference,
+       {}},
+      {"orient3d_filter_max_difference", "bpow radix2 (300)", Dyadic::pow2(300), mb::orient3d_filter_max_difference,
+       {}},
   };
 }
 
 // ---------------------------------------------------------------------------------------------------
-// proofs/Constants.v: `Definition NAME : R := EXPR.` with EXPR over integers, earlier names,
+// proofs/core/Constants.v: `Definition NAME : R := EXPR.` with EXPR over integers, earlier names,
 // `bpow radix2 (k)`, `+`, `*` and parentheses; `Definition NAME : nat := N.`
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
@@ -371,7 +411,8 @@ std::map<std::string, Dyadic> parse_coq_constants(const std::string& path, std::
 }
 
 // ---------------------------------------------------------------------------------------------------
-// error_bounds.hpp: `inline constexpr double NAME = LITERAL;` (hexadecimal float) or `... int NAME = N;`
+// The bounds headers: `inline constexpr double NAME = LITERAL;` (a hexadecimal float, or a sum or difference of
+// hexadecimal floats and integers such as 1.0 - 0x1p-50) or `... int NAME = N;`
 int hex_digit(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -379,7 +420,7 @@ int hex_digit(char c) {
   return -1;
 }
 
-Dyadic parse_literal(const std::string& literal) {
+Dyadic parse_term(const std::string& literal) {
   std::smatch m;
   if (std::regex_match(literal, m, std::regex(R"(0[xX]([0-9a-fA-F]*)(?:\.([0-9a-fA-F]*))?[pP]([-+]?[0-9]+))"))) {
     Dyadic v;
@@ -388,9 +429,29 @@ Dyadic parse_literal(const std::string& literal) {
     const long exponent = std::stol(m[3]) - 4 * static_cast<long>(m[2].str().size());
     return v * Dyadic::pow2(exponent);
   }
-  if (std::regex_match(literal, std::regex(R"([0-9]+)"))) return Dyadic::integer(std::stoull(literal));
-  throw std::runtime_error("error_bounds.hpp: write constants as hexadecimal floats (0x1.8p-52) or integers, "
-                           "not: " + literal);
+  if (std::regex_match(literal, m, std::regex(R"(([0-9]+)(?:\.0*)?)"))) return Dyadic::integer(std::stoull(m[1]));
+  throw std::runtime_error("bounds headers: write constants as hexadecimal floats (0x1.8p-52) or integers, "
+                           "or sums and differences of them, not: " + literal);
+}
+
+Dyadic parse_literal(const std::string& literal) {
+  // terms separated by " + " and " - ", evaluated left to right
+  std::regex term(R"(\s*([-+])?\s*(0[xX][0-9a-fA-F]*(?:\.[0-9a-fA-F]*)?[pP][-+]?[0-9]+|[0-9]+(?:\.0*)?))");
+  std::smatch m;
+  std::string rest = literal;
+  Dyadic value;
+  bool first = true;
+  while (std::regex_search(rest, m, term, std::regex_constants::match_continuous) && m.length(0) > 0) {
+    const std::string sign = m[1];
+    if (first == !sign.empty()) throw std::runtime_error("bounds headers: cannot read the constant " + literal);
+    const Dyadic t = parse_term(m[2]);
+    value = first ? t : sign == "+" ? value + t : value - t;
+    first = false;
+    rest = m.suffix();
+  }
+  if (first || rest.find_first_not_of(" \t\r\n") != std::string::npos)
+    throw std::runtime_error("bounds headers: cannot read the constant " + literal);
+  return value;
 }
 
 // proofs/pending.txt: lines "constant NAME" (and "file NAME.v", used by check_assumptions.cmake).
@@ -475,7 +536,7 @@ int main(int argc, char** argv) {
       if (coq.count(name) != 0)
         fail(name + " is defined in Constants.v: remove it from pending.txt and add it to check_constants.cpp");
       else if (cpp.count(name) != 0)
-        std::cout << "PENDING: " << name << " (error_bounds.hpp) has no proof yet (proofs/pending.txt)\n";
+        std::cout << "PENDING: " << name << " (a bounds header) has no proof yet (proofs/pending.txt)\n";
     }
 
     for (const Row& row : rows) {
@@ -493,7 +554,7 @@ int main(int argc, char** argv) {
       if (h == cpp.end())
         fail(name + ": no `inline constexpr` " + name + " in the bounds headers");
       else if (!(h->second == row.expected))
-        fail(name + ": the literal in error_bounds.hpp is " + h->second.str() + ", the proofs use " + want + " (" +
+        fail(name + ": the literal in the bounds header is " + h->second.str() + ", the proofs use " + want + " (" +
              row.coq_formula + ")");
 
       if (row.compiled && !(Dyadic::from_double(*row.compiled) == row.expected))
@@ -511,7 +572,7 @@ int main(int argc, char** argv) {
       bool known = false;
       for (const Row& row : rows) known = known || name == row.name;
       if (!known && !is_pending(name))
-        fail(name + " is defined in error_bounds.hpp but not checked (add it to Constants.v and check_constants.cpp)");
+        fail(name + " is defined in a bounds header but not checked (add it to Constants.v and check_constants.cpp)");
     }
     if (failures == 0)
       std::cout << "ok: " << rows.size() << " constants agree exactly between the bounds headers, their compiled values "

@@ -1,5 +1,5 @@
 // ctest proofs_half_gap: the C++ bit manipulation half_gap_to_nearer_neighbour (quotient_rounding.hpp)
-// computes the model's half_gap (proofs/QuotientRounding.v):
+// computes the model's half_gap (proofs/plane/QuotientRounding.v):
 //   half_gap q = min(succ q − q, q − pred q) / 2,
 // where succ and pred are the neighbouring doubles, i.e. std::nextafter towards ±inf. Checked for both
 // signs, every exponent from −968 (the function's precondition, bounds::half_gap_min_magnitude;

@@ -1,24 +1,26 @@
-# ctest proofs_constants_in_bounds: every floating-point constant of the certified code lives in namespace
-# bounds (kernel/src/core/error_bounds.hpp), where the constants generator (twins/emit_constants.cmake)
-# hands it to the proofs. Scans the certified sources (comments and string literals removed) outside
-# error_bounds.hpp for
+# ctest proofs_constants_in_bounds: every floating-point constant of the certified code lives in a bounds::
+# namespace block (kernel/src/core/error_bounds.hpp, and the headers that reopen the namespace), where the
+# constants generator (twins/emit_constants.cmake) hands it to the proofs. Scans every .hpp/.cpp/.h below
+# SCAN_ROOT, recursively (so a new folder is scanned by rule), except the paths NOT_CERTIFIED names with their
+# reason, with comments, string literals and the bounds:: blocks removed, for
 #   - floating-point literals: hexadecimal (0x1p-968) and decimal (0.5, 1e-3, 2.f);
 #   - HUGE_VAL, INFINITY, NAN and the value-producing members of std::numeric_limits (infinity(),
 #     quiet_NaN(), max(), lowest(), epsilon(), denorm_min(), ...);
 #   - constexpr double/float declarations, and const double/float declarations initialized from literals
 #     only;
 # and fails listing every finding that proofs/literals_allowlist.txt does not list, and every allow-list
-# entry that no longer matches (so that the list is emptied as the constants move into bounds::).
+# entry that no longer matches (so that the list is emptied as the constants move into bounds::). It also
+# fails when a NOT_CERTIFIED path does not exist, or carries a mark of certified code: "Certified by", a
+# citation of proofs/<family>/<File>.v, a use of bounds::, or a bounds namespace block.
 #
-# Usage: cmake -DPROOF_DIR=<proofs/> -DSCAN_DIRS="<dir>|<dir>" -P check_literals.cmake
+# Usage: cmake -DPROOF_DIR=<proofs/> -DSCAN_ROOT=<kernel/src> "-DNOT_CERTIFIED=path|reason#path|reason"
+#              -P check_literals.cmake
 cmake_minimum_required(VERSION 3.20)
-foreach(var PROOF_DIR SCAN_DIRS)
+foreach(var PROOF_DIR SCAN_ROOT)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_literals.cmake: -D${var}=... is required")
   endif()
 endforeach()
-
-string(REPLACE "|" ";" SCAN_DIRS "${SCAN_DIRS}")
 
 # The allow-list: "<file name> <token>  # reason" per line.
 file(STRINGS ${PROOF_DIR}/literals_allowlist.txt allow_lines)
@@ -33,29 +35,76 @@ foreach(line IN LISTS allow_lines)
   list(APPEND allowed "${line}")
 endforeach()
 
-set(sources "")
-foreach(dir IN LISTS SCAN_DIRS)
-  if(EXISTS ${dir})
-    file(GLOB found ${dir}/*.hpp ${dir}/*.cpp ${dir}/*.h)
-    list(APPEND sources ${found})
+file(GLOB_RECURSE sources ${SCAN_ROOT}/*.hpp ${SCAN_ROOT}/*.cpp ${SCAN_ROOT}/*.h)
+set(marks "Certified by|proofs/[a-z]+/[A-Za-z0-9]+\\.v|bounds::|namespace raykernel(::detail)?::bounds")
+set(exempt_failures "")
+set(exempt_count 0)
+string(REPLACE "#" ";" not_certified "${NOT_CERTIFIED}")
+foreach(entry IN LISTS not_certified)
+  string(REGEX REPLACE "\\|.*$" "" path "${entry}")
+  set(full ${SCAN_ROOT}/${path})
+  if(NOT EXISTS ${full})
+    list(APPEND exempt_failures "${path} is listed as not certified but does not exist (update proofs/CMakeLists.txt)")
+    continue()
   endif()
+  if(IS_DIRECTORY ${full})
+    file(GLOB_RECURSE exempt ${full}/*.hpp ${full}/*.cpp ${full}/*.h)
+  else()
+    set(exempt ${full})
+  endif()
+  foreach(file IN LISTS exempt)
+    file(STRINGS ${file} marked REGEX "${marks}")
+    if(marked)
+      list(GET marked 0 first)
+      list(APPEND exempt_failures "${file} is listed as not certified but is certified code: ${first}")
+    endif()
+    list(REMOVE_ITEM sources ${file})
+    math(EXPR exempt_count "${exempt_count} + 1")
+  endforeach()
 endforeach()
 list(LENGTH sources n_sources)
 if(n_sources EQUAL 0)
-  message(FATAL_ERROR "proofs_constants_in_bounds: no sources in ${SCAN_DIRS}")
+  message(FATAL_ERROR "proofs_constants_in_bounds: no sources below ${SCAN_ROOT}")
 endif()
+
+# Replace LENGTH characters of the variable TEXT_VAR from OPEN by their newlines only (a removed span keeps the
+# line numbers of what follows).
+function(blank_out text_var open length)
+  string(SUBSTRING "${${text_var}}" ${open} ${length} block)
+  string(REGEX REPLACE "[^\n]" "" block_newlines "${block}")
+  string(SUBSTRING "${${text_var}}" 0 ${open} before)
+  math(EXPR after_start "${open} + ${length}")
+  string(SUBSTRING "${${text_var}}" ${after_start} -1 after)
+  set(${text_var} "${before}${block_newlines}${after}" PARENT_SCOPE)
+endfunction()
 
 set(findings "")
 set(used "")
 set(unlisted "")
 foreach(source IN LISTS sources)
   get_filename_component(name ${source} NAME)
-  if(name STREQUAL "error_bounds.hpp")
-    continue()
-  endif()
   file(READ ${source} text)
-  # Protect semicolons (CMake list separators), then remove comments and string/char literals.
+  # Protect semicolons (CMake list separators), then remove the bounds:: blocks (their constants go to the
+  # proofs; emit_constants.cmake requires each to end with its closing comment), comments and string/char
+  # literals (a block's lines are kept, empty, so that the line numbers stay right).
   string(REPLACE ";" "<SEMI>" text "${text}")
+  while(TRUE)
+    string(REGEX MATCH "\nnamespace raykernel(::detail)?::bounds {" opening "${text}")
+    if(NOT opening)
+      break()
+    endif()
+    string(FIND "${text}" "${opening}" open)
+    string(SUBSTRING "${text}" ${open} -1 rest)
+    string(REGEX MATCH "\n}  // namespace raykernel(::detail)?::bounds" closing "${rest}")
+    if(NOT closing)
+      message(FATAL_ERROR "proofs_constants_in_bounds: ${source} opens a bounds namespace without its closing "
+                          "comment `}  // namespace raykernel[::detail]::bounds`")
+    endif()
+    string(FIND "${rest}" "${closing}" close)
+    string(LENGTH "${closing}" closing_length)
+    math(EXPR close "${close} + ${closing_length}")
+    blank_out(text ${open} ${close})
+  endwhile()
   string(REPLACE "\\\"" "" text "${text}")
   string(REGEX REPLACE "\"[^\"\n]*\"" "\"\"" text "${text}")
   string(REGEX REPLACE "'[^'\n]*'" "''" text "${text}")
@@ -71,11 +120,7 @@ foreach(source IN LISTS sources)
       set(close 2)
     endif()
     math(EXPR close "${close} + 2")
-    string(SUBSTRING "${rest}" 0 ${close} block)
-    string(REGEX REPLACE "[^\n]" "" block_newlines "${block}")
-    string(SUBSTRING "${text}" 0 ${open} before)
-    string(SUBSTRING "${rest}" ${close} -1 after)
-    set(text "${before}${block_newlines}${after}")
+    blank_out(text ${open} ${close})
   endwhile()
   string(REGEX REPLACE "//[^\n]*" "" text "${text}")
   string(REPLACE "\n" ";" lines "${text}")
@@ -136,12 +181,17 @@ foreach(entry IN LISTS allowed)
 endforeach()
 
 list(LENGTH findings n_findings)
-if(unlisted OR stale)
+if(unlisted OR stale OR exempt_failures)
   set(message "proofs_constants_in_bounds FAILED:\n")
+  if(exempt_failures)
+    list(JOIN exempt_failures "\n  " text)
+    string(APPEND message "the list of sources that are not certified code (proofs/CMakeLists.txt, "
+                          "kernel_not_certified):\n  ${text}\n")
+  endif()
   if(unlisted)
     list(JOIN unlisted "\n  " text)
-    string(APPEND message "floating-point constants outside namespace bounds (move them to "
-                          "kernel/src/core/error_bounds.hpp, or list them in proofs/literals_allowlist.txt "
+    string(APPEND message "floating-point constants outside namespace bounds (move them into a bounds:: block, "
+                          "such as error_bounds.hpp's, or list them in proofs/literals_allowlist.txt "
                           "with the reason):\n  ${text}\n")
   endif()
   if(stale)
@@ -151,8 +201,9 @@ if(unlisted OR stale)
   message(FATAL_ERROR "${message}")
 endif()
 list(LENGTH allowed n_allowed)
-message(STATUS "proofs_constants_in_bounds: ${n_sources} files, ${n_findings} constants outside bounds::, all "
-               "in the allow-list (${n_allowed} entries)")
+message(STATUS "proofs_constants_in_bounds: ${n_sources} files below ${SCAN_ROOT} (${exempt_count} not certified "
+               "code, not scanned), ${n_findings} constants outside bounds::, all in the allow-list (${n_allowed} "
+               "entries)")
 foreach(finding IN LISTS findings)
   message(STATUS "  allowed: ${finding}")
 endforeach()

@@ -267,7 +267,7 @@ TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
   EXPECT_GT(certified, queries / 5);  // the easy kinds (about a quarter of these): the comparison is not vacuous
 }
 
-// TwoSum can overflow inside with finite operands and a finite sum (proofs/StageTwoFinite.v,
+// TwoSum can overflow inside with finite operands and a finite sum (proofs/plane/PlaneStageTwoFinite.v,
 // two_sum_b_nan_or_finite): for p = −(2^1022 + 3·2^970) and o = −(2^1024 − 2^971), the largest double,
 // p − o = 3·2^1022 − 5·2^970 is a tie between two doubles 2^971 apart and rounds to the even one,
 // s = 3·2^1022 − 2^972; then s − p = 2^1024 − 2^970 is the tie between the largest double and 2^1024, which

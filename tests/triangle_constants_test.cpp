@@ -1,7 +1,7 @@
 // The ray–triangle error constants (kernel/src/core/error_bounds.hpp), recomputed from their formulas in
-// exact rationals, and checked against the inequalities their derivations (proofs/TriangleFilter.v,
-// proofs/TriangleCompensated.v) need. A constant edited by one ulp, or a derivation that stops covering its
-// constant, fails here. (proofs_constants_match checks the same numbers against proofs/TriangleConstants.v.)
+// exact rationals, and checked against the inequalities their derivations (proofs/triangle/TriangleFilter.v,
+// proofs/triangle/TriangleCompensated.v) need. A constant edited by one ulp, or a derivation that stops covering its
+// constant, fails here. (proofs_constants_match checks the same numbers against proofs/core/Constants.v.)
 #include "core/error_bounds.hpp"
 
 #include <gmpxx.h>

@@ -220,13 +220,14 @@ MUTATIONS = [
 
 # Mutations that change no observable behaviour (proofs/README.md, "Triangle mutations"): reported, not counted as
 # escapes. Proved on the twin of fast_triangle_intersection: tri_call_site_den for every bit pattern,
-# `tri_call_site_den_same` (proofs/TriangleDenCertain.v: outside the window between the 8u and 10u bounds by
+# `tri_call_site_den_same` (proofs/triangle/TriangleDenCertain.v: outside the window between the 8u and 10u bounds by
 # TriangleMutations.v's `tri_call_site_den_same_unless_between`; inside it neither twin answers, since a quotient
 # certified over den's divisor makes den's 10u filter certain, `den_quotient_filter_certain`);
-# tri_drop_guard for every bit pattern, `tri_drop_guard_same` (proofs/TriangleStageTwoFinite.v: the mutated twin
-# equals the twin, stage 2's low parts being NaN or bounded wherever h and m are finite); tri_by_filter_den for every
-# bit pattern, `tri_by_filter_den_same` (proofs/TriangleDenCertain.v: an answer with t or a barycentric needs a
-# quotient certified over den's divisor, which makes den's filter sign certain, so by_filter reads the same).
+# tri_drop_guard for every bit pattern, `tri_drop_guard_same` (proofs/triangle/TriangleStageTwoFinite.v: the
+# mutated twin equals the twin, stage 2's low parts being NaN or bounded wherever h and m are finite);
+# tri_by_filter_den for every bit pattern, `tri_by_filter_den_same` (proofs/triangle/TriangleDenCertain.v: an answer
+# with t or a barycentric needs a quotient certified over den's divisor, which makes den's filter sign certain, so
+# by_filter reads the same).
 UNOBSERVABLE = {"tri_call_site_den", "tri_drop_guard", "tri_by_filter_den"}
 
 

@@ -13,14 +13,15 @@
     wrong one would show as a mismatch against the compiled C++. *)
 
 From Coq Require Import ZArith List.
-From Raykernel Require Import Model Classification CompareQuotients FloatCore ConstantsCpp Twins CompareTwins
-  Expansions QueryTwins.
+From Raykernel Require Import Model PlaneClassification CompareQuotients FloatCore ConstantsCpp PlaneTwins CompareTwins
+  Expansions PlaneQueryTwins.
 From Raykernel Require TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleRule.
 From Raykernel Require TriangleIntersectTwins.
 From Raykernel Require NearestTwins.
-From Raykernel Require CascadeTwins.
+From Raykernel Require PlaneCascadeTwins.
 From Raykernel Require TriangleCascadeFlowTwins.
 From Raykernel Require TriangleIntersectPublic.
+From Raykernel Require OrientTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -309,17 +310,20 @@ Definition run_tri_relation_lanes := Tri.tri_relation_lanes.
 Definition run_tri_compensated := Tri.tri_compensated.
 Definition run_tri_compensated_lanes := Tri.tri_compensated_lanes.
 
-(** The cascade's control flow (CascadeTwins.v): [intersect_traced] and [relation] on "o d p n".
+(** The cascade's control flow (PlaneCascadeTwins.v): [intersect_traced] and [relation] on "o d p n".
     cascade_intersect: kind (0 invalid, 1 exact stage, 2 decided), the invalid code or the relation, the
     relation's stage, t's bits and t's stage, then the public [intersect]'s relation and t (the same answer,
     which its fast path must give too); what the exact stage decides is not the twin's (0, stage 3).
     cascade_relation: kind, code or relation, stage, and the signs of num and den. *)
 Module Casc.
-Import CascadeTwins.
+Import PlaneCascadeTwins.
 From Flocq Require IEEE754.BinarySingleNaN.
 Definition stage_code (s : stage) : Z := match s with StFilter => 0 | StCompensated => 1 | StExpansion => 2 | StExact => 3 end.
-Definition rel_code (r : Classification.relation) : Z :=
-  match r with Classification.Hit => 0 | Classification.Behind => 1 | Classification.Parallel => 2 | Classification.InPlane => 3 end.
+Definition rel_code (r : PlaneClassification.relation) : Z :=
+  match r with
+  | PlaneClassification.Hit => 0 | PlaneClassification.Behind => 1
+  | PlaneClassification.Parallel => 2 | PlaneClassification.InPlane => 3
+  end.
 Definition nan_bits : Z := b (IEEE754.BinarySingleNaN.B754_nan).
 Definition cascade_intersect (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; px; py; pz; nx; ny; nz] =>
@@ -411,6 +415,22 @@ End TriFlow.
 Definition run_tri_cascade_intersect := TriFlow.tri_cascade_intersect.
 Definition run_tri_cascade_relation := TriFlow.tri_cascade_relation.
 
+(** mesh_predicates.hpp: the orientation filters of the point-in-mesh query (OrientTwins.v).  [orient2d]:
+    "k p q r" (k the ray's axis 0..2 as an integer word, p, q, r three points), the filter in the plane of the
+    axes i = (k + 1) mod 3, j = (k + 2) mod 3 as [inside] calls it, each coordinate read as [coordinate(v,
+    axis)] reads it; [orient3d]: "o a b c". Output: the filter's answer, +1, −1 or 0. *)
+Definition coordinate (v0 v1 v2 axis : Z) : Z := if axis =? 0 then v0 else if axis =? 1 then v1 else v2.
+Definition run_orient2d (x : list Z) : list Z :=
+  match x with [k; px; py; pz; qx; qy; qz; rx; ry; rz] =>
+    let i := (k + 1) mod 3 in let j := (k + 2) mod 3 in
+    [OrientTwins.orient2d_filter_b (f (coordinate px py pz i)) (f (coordinate px py pz j))
+       (f (coordinate qx qy qz i)) (f (coordinate qx qy qz j)) (f (coordinate rx ry rz i)) (f (coordinate rx ry rz j))]
+  | _ => [] end.
+Definition run_orient3d (x : list Z) : list Z :=
+  match x with [o0; o1; o2; a0; a1; a2; b0; b1; b2; c0; c1; c2] =>
+    [OrientTwins.orient3d_filter_b (f o0) (f o1) (f o2) (f a0) (f a1) (f a2) (f b0) (f b1) (f b2) (f c0) (f c1) (f c2)]
+  | _ => [] end.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -420,4 +440,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
   run_tri_fast_relation run_tri_fast_intersect
   run_cascade_intersect run_cascade_relation
-  run_tri_cascade_intersect run_tri_cascade_relation.
+  run_tri_cascade_intersect run_tri_cascade_relation
+  run_orient2d run_orient3d.

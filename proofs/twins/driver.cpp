@@ -31,6 +31,7 @@
 #include "core/quotient_rounding.hpp"
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_stages.hpp"
+#include "orient/orient_predicates.hpp"
 #include "nearest/nearest_hit_internal.hpp"
 #include "core/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
@@ -249,7 +250,7 @@ RayPlaneTerms terms_of(const std::vector<double>& x, std::size_t plane_at = 6) {
 }
 
 
-// ---- The cascade's control flow (proofs/CascadeTwins.v) ----------------------------------------------------
+// ---- The cascade's control flow (proofs/plane/PlaneCascadeTwins.v) ----------------------------------------------------
 
 // The code of an invalid_input's reason (validation.cpp's wording): 3·i + k for component i of o, d, p, n
 // (k: 0 NaN, 1 +inf, 2 −inf), 36 a zero direction, 37 a zero normal; −1 for any other text.
@@ -384,6 +385,26 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
       // nearest_hit.cpp's compare_hit_distances on two candidates built as nearest_hit builds them (stage 1
       // of den and num from d and p − o, the carried signs from the input): order (0 when the exact stage
       // decides: not a twin) and stage.
+      // mesh_predicates.hpp's orientation filters (proofs/orient/OrientTwins.v): orient2d_filter(p, q, r, i, j) in
+      // the plane of the axes i = (k + 1) mod 3, j = (k + 2) mod 3 of the ray's axis k (as inside() calls it),
+      // "k p q r"; orient3d_filter(o, a, b, c), "o a b c". Output: +1, −1 or 0.
+      {"orient2d",
+       [](const Words& w, Out& o) {
+         if (w.size() != 10 || w[0] > 2) return false;
+         const std::vector<double> x = doubles(w, 1);
+         const int k = static_cast<int>(w[0]), i = (k + 1) % 3, j = (k + 2) % 3;
+         const raykernel::Vec3 p{x[0], x[1], x[2]}, q{x[3], x[4], x[5]}, r{x[6], x[7], x[8]};
+         o.i(raykernel::mesh_detail::orient2d_filter(p, q, r, i, j));
+         return true;
+       }},
+      {"orient3d",
+       [](const Words& w, Out& o) {
+         if (w.size() != 12) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Vec3 p{x[0], x[1], x[2]}, a{x[3], x[4], x[5]}, b{x[6], x[7], x[8]}, c{x[9], x[10], x[11]};
+         o.i(raykernel::mesh_detail::orient3d_filter(p, a, b, c));
+         return true;
+       }},
       {"nearest_compare",
        [](const Words& w, Out& o) {
          if (w.size() != 22) return false;
@@ -474,7 +495,7 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
   return table;
 }
 
-// ---- Ray–triangle stages 1 and 2 (kernel/src/triangle/; twins: proofs/TriangleTwins.v) ---------------------
+// ---- Ray–triangle stages 1 and 2 (kernel/src/triangle/; twins: proofs/triangle/TriangleTwins.v) ---------------------
 // Queries "ox oy oz dx dy dz ax ay az bx by bz cx cy cz". Run in every variant: their Lanes4 code is compiled
 // for the variant's target (SSE2 pairs without -march, AVX2 with x86-64-v3 and v4), the scalar code too.
 
@@ -559,7 +580,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
          o.i(det3_filter_lanes(filter_view(den), bounds::triangle_filter_den_relative, s2.absolute[0]));
          enclosure_lane_out(o, det3_enclosure(den, bounds::triangle_compensated_den_relative, s2.absolute[0]), 0);
        })},
-      // Stage 3 (proofs/TriangleStage3Twins.v): value_expansion of determinant v (the first word, an integer
+      // Stage 3 (proofs/triangle/TriangleStage3Twins.v): value_expansion of determinant v (the first word, an integer
       // 0..4), its components, exact flag and sign.
       {"tri_expansion",
        triangle_routine(4, [](std::uint64_t word, const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
@@ -569,7 +590,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
          o.i(e.exact ? 1 : 0);
          o.i(static_cast<int>(e.sign()));
        })},
-      // The relation's fast path (proofs/TriangleCascadeTwins.v): fast_triangle_relation, and when it
+      // The relation's fast path (proofs/triangle/TriangleCascadeTwins.v): fast_triangle_relation, and when it
       // answers the public relation(), for the owned rule and the closed one.
       {"tri_fast_relation",
        triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
@@ -583,7 +604,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            o.i(static_cast<int>(p.relation)), o.i(static_cast<int>(p.location)), o.i(p.owned ? 1 : 0);
          }
        })},
-      // The intersection's fast path (proofs/TriangleIntersectTwins.v): the options from the first word
+      // The intersection's fast path (proofs/triangle/TriangleIntersectTwins.v): the options from the first word
       // (t + 2 · barycentric), fast_triangle_intersection and, when it answers, the public intersect_traced
       // and intersect, for the owned rule and the closed one.
       {"tri_fast_intersect",
@@ -606,7 +627,7 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            intersection_out(raykernel::intersect(ray, tri, options));
          }
        })},
-      // The full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options and the rule from the
+      // The full cascade's control flow (proofs/triangle/TriangleCascadeFlowTwins.v): the options and the rule from the
       // first word (t + 2 · barycentric + 4 · closed), triangle_intersection_cascade and the public
       // intersect_traced; "0 0" for invalid input (then the public entry point must throw); an answer as "1"
       // (the classification is the exact stage's) or "2 relation location owned relation_stage rounding_stage t

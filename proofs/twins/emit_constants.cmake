@@ -1,61 +1,91 @@
-# Configure-time half of the constants generator (proofs/README.md, "The constants"): finds every
+# Configure-time half of the constants generator (proofs/README.md, "The constants"): in every header it is
+# given (proofs/CMakeLists.txt passes each header below kernel/src that opens a bounds namespace), finds every
 #   [inline] [static] constexpr double|int NAME = ...;
-# in kernel/src/core/error_bounds.hpp (namespace raykernel::detail::bounds) and writes a C++ program
-# that prints the compiled value of each, bounds::NAME, as a Coq definition of module Cpp (bit pattern for
-# a double, integer for an int). The build runs it into build/proofs/coq/ConstantsCpp.v, which the twins
-# import: the theorems are stated about the compiled constants, so an edited constant either still
-# satisfies its proof or fails the build of `proofs` (proofs/Twins.v, "Constants").
+# between `namespace raykernel[::detail]::bounds {` and its closing `}  // namespace raykernel[::detail]::bounds`,
+# and writes a C++ program that prints the compiled value of each, as a Coq definition of module Cpp (bit
+# pattern for a double, integer for an int), and for each NAME the lemma cpp_NAME : B2R Cpp.NAME = NAME (proved
+# by FloatCore.v's tie against Constants.v's NAME). The build runs it into build/proofs/coq/core/ConstantsCpp.v,
+# which the twins import: the theorems are stated about the compiled constants, so an edited constant either
+# still satisfies its proof or fails the build of `proofs`, and a constant Constants.v does not define fails it.
+# It also writes INCLUDES_OUTPUT, the #include lines of the headers (for check_constants.cpp).
 #
-# Input:  ERROR_BOUNDS (path), OUTPUT (the .cpp to write).
+# Input:  HEADERS (|-separated paths), INCLUDE_ROOT (the include root they are named from), OUTPUT (the .cpp to
+#         write), INCLUDES_OUTPUT (the header to write).
 cmake_minimum_required(VERSION 3.20)
-file(READ ${ERROR_BOUNDS} text)
-if(NOT text MATCHES "namespace raykernel::detail::bounds")
-  message(FATAL_ERROR "emit_constants: ${ERROR_BOUNDS} does not open namespace raykernel::detail::bounds")
-endif()
-string(REGEX MATCHALL "constexpr[ \t]+(double|int)[ \t]+[A-Za-z_][A-Za-z0-9_]*[ \t]*=" decls "${text}")
-# Every declaration of a double or int in the file must be one of the captured forms.
-string(REGEX MATCHALL "(double|int)[ \t]+[A-Za-z_][A-Za-z0-9_]*[ \t]*=" all_decls "${text}")
-list(LENGTH decls n_decls)
-list(LENGTH all_decls n_all)
-if(NOT n_decls EQUAL n_all)
-  message(FATAL_ERROR "emit_constants: ${ERROR_BOUNDS} declares ${n_all} doubles/ints but only ${n_decls} "
-                      "in the form `inline constexpr double NAME = ...;`:\n${all_decls}")
-endif()
+string(REPLACE "|" ";" HEADERS "${HEADERS}")
 set(body "")
+set(ties "")
 set(names "")
-foreach(decl IN LISTS decls)
-  string(REGEX REPLACE "constexpr[ \t]+(double|int)[ \t]+([A-Za-z_][A-Za-z0-9_]*).*" "\\1;\\2" parts "${decl}")
-  list(GET parts 0 type)
-  list(GET parts 1 name)
-  list(APPEND names ${name})
-  if(type STREQUAL "double")
-    string(APPEND body "  std::fprintf(out, \"Definition ${name} : float := of_bits %llu.\\n\", "
-                       "static_cast<unsigned long long>(std::bit_cast<std::uint64_t>(b::${name})));\n")
-  else()
-    string(APPEND body "  std::fprintf(out, \"Definition ${name} : Z := %lld.\\n\", static_cast<long long>(b::${name}));\n")
+set(includes "")
+set(sources "")
+foreach(header IN LISTS HEADERS)
+  file(RELATIVE_PATH relative ${INCLUDE_ROOT} ${header})
+  string(APPEND includes "#include \"${relative}\"\n")
+  list(APPEND sources ${relative})
+  file(READ ${header} text)
+  string(REPLACE ";" "<SEMI>" text "${text}")
+  string(REGEX MATCHALL "namespace raykernel(::detail)?::bounds {.*}  // namespace raykernel(::detail)?::bounds"
+         blocks "${text}")
+  if(NOT blocks)
+    message(FATAL_ERROR "emit_constants: ${header} opens a bounds namespace without the closing comment "
+                        "`}  // namespace raykernel[::detail]::bounds`")
   endif()
+  foreach(block IN LISTS blocks)
+    string(REGEX MATCH "^namespace ([a-z:]+) {" _ "${block}")
+    set(namespace ${CMAKE_MATCH_1})
+    string(REGEX MATCHALL "constexpr[ \t]+(double|int)[ \t]+[A-Za-z_][A-Za-z0-9_]*[ \t]*=" decls "${block}")
+    # Every declaration of a double or int in the block must be one of the captured forms.
+    string(REGEX MATCHALL "(double|int)[ \t]+[A-Za-z_][A-Za-z0-9_]*[ \t]*=" all_decls "${block}")
+    list(LENGTH decls n_decls)
+    list(LENGTH all_decls n_all)
+    if(NOT n_decls EQUAL n_all)
+      message(FATAL_ERROR "emit_constants: ${header} declares ${n_all} doubles/ints in namespace ${namespace} but "
+                          "only ${n_decls} in the form `inline constexpr double NAME = ...;`:\n${all_decls}")
+    endif()
+    foreach(decl IN LISTS decls)
+      string(REGEX REPLACE "constexpr[ \t]+(double|int)[ \t]+([A-Za-z_][A-Za-z0-9_]*).*" "\\1;\\2" parts "${decl}")
+      list(GET parts 0 type)
+      list(GET parts 1 name)
+      if(name IN_LIST names)
+        message(FATAL_ERROR "emit_constants: ${name} is declared twice in the bounds namespaces")
+      endif()
+      list(APPEND names ${name})
+      if(type STREQUAL "double")
+        string(APPEND body "  std::fprintf(out, \"Definition ${name} : float := of_bits %llu.\\n\", "
+                           "static_cast<unsigned long long>(std::bit_cast<std::uint64_t>(${namespace}::${name})));\n")
+        string(APPEND ties "Lemma cpp_${name} : B2R Cpp.${name} = ${name}.\\nProof. tie Cpp.${name}. Qed.\\n")
+      else()
+        string(APPEND body "  std::fprintf(out, \"Definition ${name} : Z := %lld.\\n\", "
+                           "static_cast<long long>(${namespace}::${name}));\n")
+        string(APPEND ties "Lemma cpp_${name} : Z.to_nat Cpp.${name} = ${name}.\\nProof. reflexivity. Qed.\\n")
+      endif()
+    endforeach()
+  endforeach()
 endforeach()
 list(JOIN names " " names_text)
-file(WRITE ${OUTPUT}.tmp "// Generated by proofs/twins/emit_constants.cmake from ${ERROR_BOUNDS}. Do not edit.
-#include \"core/error_bounds.hpp\"
-
+list(JOIN sources ", " sources_text)
+file(WRITE ${OUTPUT}.tmp "// Generated by proofs/twins/emit_constants.cmake from ${sources_text}. Do not edit.
+${includes}
 #include <bit>
 #include <cstdint>
 #include <cstdio>
-
-namespace b = raykernel::detail::bounds;
 
 int main(int argc, char** argv) {
   if (argc != 2) return 2;
   std::FILE* out = std::fopen(argv[1], \"w\");
   if (out == nullptr) return 1;
-  std::fprintf(out, \"(** Generated at build time from kernel/src/core/error_bounds.hpp: the compiled value of every\\n\"
-              \"    constant of namespace bounds, as the bit pattern of the double (std::bit_cast) or the integer.\\n\"
+  std::fprintf(out, \"(** Generated at build time from the bounds:: constants of ${sources_text}: the compiled value\\n\"
+              \"    of each, as the bit pattern of the double (std::bit_cast) or the integer, and the lemma cpp_NAME\\n\"
+              \"    that it is the value of NAME in Constants.v, the one the theorems use (FloatCore.v's tie).\\n\"
               \"    Do not edit; proofs/twins/emit_constants.cmake.  Constants: ${names_text} *)\\n\\n\"
-              \"From Coq Require Import ZArith.\\nFrom Raykernel Require Import FloatCore.\\n\\nModule Cpp.\\n\");
-${body}  std::fprintf(out, \"End Cpp.\\n\");
+              \"From Coq Require Import ZArith Reals.\\nFrom Raykernel Require Import Constants FloatCore.\\n\\n\"
+              \"Module Cpp.\\n\");
+${body}  std::fprintf(out, \"End Cpp.\\n\\n%s\", \"${ties}\");
   return std::fclose(out) == 0 ? 0 : 1;
 }
 ")
 execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different ${OUTPUT}.tmp ${OUTPUT})
 file(REMOVE ${OUTPUT}.tmp)
+file(WRITE ${INCLUDES_OUTPUT}.tmp "// Generated by proofs/twins/emit_constants.cmake: the headers of the bounds:: constants.\n#pragma once\n${includes}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different ${INCLUDES_OUTPUT}.tmp ${INCLUDES_OUTPUT})
+file(REMOVE ${INCLUDES_OUTPUT}.tmp)

@@ -130,6 +130,35 @@ class Source {
     for (int i = 0; i < 9; ++i) x[6 + i] = v[i];
     return x;
   }
+  // The points of an orientation test (mesh_predicates.hpp, proofs/orient/OrientTwins.v), as "o a b c": those
+  // of a hard triangle query (its ray's origin and the triangle's vertices: through vertices and edges,
+  // degenerate, coplanar, tiny and huge, raw values), 1 in 4 an origin just off the triangle's plane
+  // (near_plane_triangle_query: orient3d near its filter's bound), 1 in 4 with c on the line ab up to its
+  // rounding and a nudge of an ulp (orient2d near 0 in every plane), 1 in 8 scaled by 2^s, s in [−1100, 1000]
+  // (the range test's bounds 2^±300, underflow and overflow), 1 in 16 wholly raw.
+  std::vector<double> orientation_points() {
+    std::vector<double> x(12);
+    if (chance(16)) {
+      for (double& c : x) c = raw();
+      return x;
+    }
+    const std::vector<double> q = chance(4) ? near_plane_triangle_query() : triangle_query();
+    for (int i = 0; i < 3; ++i) x[i] = q[i];
+    for (int i = 0; i < 9; ++i) x[3 + i] = q[6 + i];
+    if (chance(4)) {  // c = a + t·(b − a), rounded, one coordinate nudged by an ulp
+      const double t = static_cast<double>(word() >> 11) * 0x1p-53;
+      for (int i = 0; i < 3; ++i) x[9 + i] = x[3 + i] + t * (x[6 + i] - x[3 + i]);
+      if (chance(2)) {
+        double& c = x[9 + below(3)];
+        c = std::nextafter(c, chance(2) ? HUGE_VAL : -HUGE_VAL);
+      }
+    }
+    if (chance(8)) {
+      const int s = static_cast<int>(below(2101)) - 1100;
+      for (double& c : x) c = std::ldexp(c, s);
+    }
+    return x;
+  }
   // A query whose den and num cancel to about u²·m, where stage 2's first level is uncertain and its second
   // level decides (no testkit kind aims there): n random; a_0 random, a_1 = −a_0·n_0/n_1 rounded, so that
   // a_0·n_0 + a_1·n_1 = r is about u·m; a_2 = −r/n_2 rounded, so that the whole sum is about u·|r|. d is such a
@@ -422,7 +451,7 @@ const std::map<std::string, Generator>& generators() {
       {"fast_answer_pair", [](Source& s) { return query_args(s.query()); }},
       {"fast_relation", [](Source& s) { return query_args(s.query()); }},
       {"fast_relation_pair", [](Source& s) { return query_args(s.query()); }},
-      // the cascade's control flow (CascadeTwins.v): hard queries (their degenerate kinds reach stage 3 and the
+      // the cascade's control flow (PlaneCascadeTwins.v): hard queries (their degenerate kinds reach stage 3 and the
       // exact stage), 1 in 8 with a special value in one component (query()), 1 in 16 wholly raw, 1 in 4 in the
       // second level's zone (refined_zone_query), 1 in 32 with an exact stage-3 expansion whose checked sign is
       // uncertain, num's or den's, and num left open by stage 2 (stage3_tie_query)
@@ -455,15 +484,15 @@ const std::map<std::string, Generator>& generators() {
          const Terms t = terms(s.query());
          return Args{(t.diff[0] * t.n[0]) / (t.d[0] * t.n[0])};
        }},
-      // ray–triangle stages 1 and 2 (proofs/TriangleTwins.v)
+      // ray–triangle stages 1 and 2 (proofs/triangle/TriangleTwins.v)
       {"tri_filter", [](Source& s) { return s.triangle_query(); }},
       {"tri_relation_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tri_compensated", [](Source& s) { return s.triangle_query(); }},
       {"tri_compensated_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tri_fast_relation", [](Source& s) { return s.triangle_query(); }},
-      // stage 3 (proofs/TriangleStage3Twins.v): the determinant's index 0..4 as an integer word, then the query
+      // stage 3 (proofs/triangle/TriangleStage3Twins.v): the determinant's index 0..4 as an integer word, then the query
       {"tri_expansion", [](Source& s) { return word_then_triangle_query(s, s.below(5)); }},
-      // fast_triangle_intersection (proofs/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric
+      // fast_triangle_intersection (proofs/triangle/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric
       // (0..3) as an integer word, then the query
       // (1 in 4: an origin just off the triangle's plane above an inside point, the barycentrics asked, so that
       // num's filter is uncertain and its stage 2 certain: the stage label depends on num's filter term)
@@ -475,12 +504,26 @@ const std::map<std::string, Generator>& generators() {
          }
          return word_then_triangle_query(s, s.below(4));
        }},
-      // the full cascade's control flow (proofs/TriangleCascadeFlowTwins.v): the options asked and the rule
+      // the full cascade's control flow (proofs/triangle/TriangleCascadeFlowTwins.v): the options asked and the rule
       // (t + 2 · barycentric + 4 · closed; for the relation 1 · closed) as an integer word, then a hard query
       // (ties through vertices and edges, where the owned rule's tie-break decides; degenerate, parallel,
       // coplanar; raw patterns)
       {"tri_cascade_intersect", [](Source& s) { return word_then_triangle_query(s, s.below(8)); }},
       {"tri_cascade_relation", [](Source& s) { return word_then_triangle_query(s, s.below(2)); }},
+      // the orientation filters (proofs/orient/OrientTwins.v): orient2d on three of the four points in the plane
+      // of the axes of a ray's axis k (0..2, an integer word), as inside() calls it: (a, b, o), (b, c, o),
+      // (c, a, o) or (b, c, a); orient3d on "o a b c"
+      {"orient2d",
+       [](Source& s) {
+         const std::vector<double> x = s.orientation_points();
+         static constexpr int order[4][3] = {{1, 2, 0}, {2, 3, 0}, {3, 1, 0}, {2, 3, 1}};
+         const int* pick = order[s.below(4)];
+         std::vector<double> points;
+         for (int m = 0; m < 3; ++m)
+           for (int i = 0; i < 3; ++i) points.push_back(x[static_cast<std::size_t>(3 * pick[m] + i)]);
+         return word_then(s.below(3), points);
+       }},
+      {"orient3d", [](Source& s) { return s.orientation_points(); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -43,6 +43,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("cascade_relation", Twins.run_cascade_relation);
   ("tri_cascade_intersect", Twins.run_tri_cascade_intersect);
   ("tri_cascade_relation", Twins.run_tri_cascade_relation);
+  ("orient2d", Twins.run_orient2d);
+  ("orient3d", Twins.run_orient3d);
 ]
 
 let () =

@@ -9,7 +9,7 @@
 // (kernel/src/box/ray_box.hpp has the argument, step by step, with overflow, underflow, zero and tiny
 // direction components). A box may be reported that the exact ray just misses; the exact primitive test
 // decides those. The four children of a node are tested in one vector pass (AVX2 where the CPU has it), each
-// lane performing exactly the scalar test's operations, so the argument (and proofs/RayBox.v) covers every
+// lane performing exactly the scalar test's operations, so the argument (and proofs/box/RayBox.v) covers every
 // lane.
 //
 // Leaves come nearest box first (each node's children in the order of their entry bounds; a deferred child is

@@ -9,7 +9,7 @@
 // (one-sided; "maybe" may be wrong). Valid range: every double input, with the per-ray set-up below.
 // Certified by: the argument below, step by step (IEEE-754 binary64, round to nearest even, gradual
 // underflow, as fixed by kernel/CMakeLists.txt and checked by core/fp_requirements.hpp); exercised by
-// tests/bvh_test.cpp against exact rational arithmetic, and Coq: proofs/RayBox.v (`near_bound_sound`,
+// tests/bvh_test.cpp against exact rational arithmetic, and Coq: proofs/box/RayBox.v (`near_bound_sound`,
 // `far_bound_sound`, `ray_box_sound`).
 //
 // Notation: RN is round to nearest even, u = 2^-53, η = 2^-1075 (half the smallest subnormal). For a real x
@@ -128,7 +128,7 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
 
 // One axis of ray_box_entry, written once for one box (V = double) and for the four children of a node at
 // once (V = Lanes4, one box per lane): every lane performs exactly these operations in this order, so the
-// argument above and proofs/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
+// argument above and proofs/box/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
 // keeps t where the comparison is false, in particular where x is NaN.
 template <class V>
 [[gnu::always_inline]] inline void ray_box_axis(V near_plane, V far_plane, V origin, V inverse, V& t0, V& t1) noexcept {

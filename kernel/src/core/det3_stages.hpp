@@ -11,18 +11,21 @@
 // Stage 2's high parts and magnitudes are stage 1's values, operation for operation (h = P, c, t, s; m the
 // same permanent), so one stage-2 evaluation serves both stages. Each type is templated on the lane type V
 // (double for one value, Lanes4 for four values at once; lanes.hpp): every lane performs the scalar IEEE
-// operations, which is what proofs/TriangleFilter.v and proofs/TriangleCompensated.v model.
+// operations, which is what proofs/triangle/TriangleFilter.v and proofs/triangle/TriangleCompensated.v model.
 //
 // Twins: the same operations over IEEE binary64 (every bit pattern, ±0, inf and NaN included), compared bit for
 // bit with this code by the differential runner (routines tri_filter, tri_relation_lanes, tri_compensated,
 // tri_compensated_lanes; proofs/README.md), and tied to the models above:
-//   proofs/TriangleTwins.v, `triangle_pi_filter_twin_sound`, `triangle_num_filter_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_den_filter_twin_sound`, `triangle_pi_lane_filter_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_pi_compensated_twin_sound`, `triangle_num_compensated_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_den_compensated_twin_sound`, `triangle_pi_lane_compensated_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_den_lane_compensated_twin_sound`, `triangle_num_lane_compensated_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_pi_lane_view_filter_twin_sound`, `triangle_num_lane_view_filter_twin_sound`
-//   proofs/TriangleTwins.v, `triangle_den_lane_view_filter_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_pi_filter_twin_sound`, `triangle_num_filter_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_den_filter_twin_sound`, `triangle_pi_lane_filter_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_pi_compensated_twin_sound`, `triangle_num_compensated_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_den_compensated_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_pi_lane_compensated_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_den_lane_compensated_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_num_lane_compensated_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_pi_lane_view_filter_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_num_lane_view_filter_twin_sound`
+//   proofs/triangle/TriangleTwins.v, `triangle_den_lane_view_filter_twin_sound`
 #pragma once
 
 #include "core/eft.hpp"
@@ -79,7 +82,7 @@ template <class V>
 // det3_filter: the sign of the exact determinant, from its stage-1 evaluation.
 //   Error bound: |v − V| ≤ (C ⊗ m) ⊕ A, C = bounds::triangle_filter_{pi,num,den}_relative.
 //   Valid range: all finite inputs; uncertain when m or A is not finite.
-//   Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`.
+//   Certified by: proofs/triangle/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`.
 // Branch-free, per lane: +1, −1, or uncertain (sign.hpp); never zero.
 // (`relative` is a double, or per lane a V: the π's and num share one vector.)
 template <class V, class Relative>
@@ -142,8 +145,8 @@ template <class V>
 // det3_compensated: the enclosure |V − (h + l)| ≤ (K ⊗ m) ⊕ A of the exact determinant, K =
 // bounds::triangle_compensated_relative (π, num) or triangle_compensated_den_relative (den).
 //   Valid range: all finite inputs; the radius is +inf when h or l is not finite.
-//   Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
-//   Certified by: proofs/TriangleCompensated.v, `den_compensated_encloses`
+//   Certified by: proofs/triangle/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+//   Certified by: proofs/triangle/TriangleCompensated.v, `den_compensated_encloses`
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> det3_enclosure(const CompensatedTerm<V>& t, double relative,
                                                                          V absolute) noexcept {

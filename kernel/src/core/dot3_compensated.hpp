@@ -23,9 +23,9 @@ namespace raykernel::detail {
 //   p = −(2^1022 + 3·2^970), o = −largest finite, p − o rounds to +inf inside TwoSum), and a NaN lo makes
 //   hi + lo NaN, which no comparison certifies; a non-finite m makes the radius +inf or NaN ("no
 //   information"). So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
-//   proofs/StageTwoFinite.v, `den_compensated_certain_finite`, `num_compensated_certain_finite`.
-//   Certified by: proofs/Compensated.v, `compensated_dot3_enclosure`; the α = 0 form computes the same
-//   enclosure bit for bit: proofs/Cascade.v, `compensated_dot3_exact_inputs`.
+//   proofs/plane/PlaneStageTwoFinite.v, `den_compensated_certain_finite`, `num_compensated_certain_finite`.
+//   Certified by: proofs/plane/PlaneCompensated.v, `compensated_dot3_enclosure`; the α = 0 form computes the same
+//   enclosure bit for bit: proofs/plane/PlaneCascade.v, `compensated_dot3_exact_inputs`.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3_from_low_parts(const V g[3],
                                                                                           const Dot3RoundedT<V>& stage1) noexcept {
@@ -59,7 +59,7 @@ template <class V>
 // Used when compensated_dot3's enclosure is too wide for a sign or for the rounding of t.
 //   Error bound: |V − (hi + lo)| ≤ ((2^-150 ⊗ m) ⊕ (2^-52 ⊗ |lo|)) ⊕ 8μ (error_bounds.hpp).
 //   Valid range: all finite inputs; the radius is not finite if anything overflowed.
-//   Certified by: proofs/Compensated.v, `compensated_dot3_refined_enclosure`.
+//   Certified by: proofs/plane/PlaneCompensated.v, `compensated_dot3_refined_enclosure`.
 [[nodiscard]] inline Enclosure compensated_dot3_refined(const double a[3], const double alpha[3], const double b[3],
                                                         const Dot3Rounded& stage1) noexcept {
   const DoubleDouble s2 = two_sum(stage1.product[0], stage1.product[1]);
@@ -85,7 +85,7 @@ template <class V>
   // No overflow test: the radius contains 2^-52 ⊗ |lo|, so a finite radius means a finite lo (a NaN α_i,
   // which a TwoDiff low part can be, makes lo and the radius NaN), and a finite x.lo means a finite
   // x.hi. So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
-  // proofs/RefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
+  // proofs/plane/PlaneRefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
   return {x.hi, lo,
           (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
               bounds::refined_absolute};

@@ -37,12 +37,12 @@ template <class V>
 // (bounds::filter_den_relative when a holds exact values, bounds::filter_num_relative when a_i = p_i ⊖ o_i).
 //   Error bound: |s − a·b| ≤ (C ⊗ m) ⊕ 3μ, C as derived in error_bounds.hpp.
 //   Valid range: all finite inputs (subnormal included); uncertain if m overflows.
-//   Certified by: proofs/Filter.v, `den_filter_sound` and `num_filter_sound`; dot3_filter_lanes alone (no
-//   zero flag, the fast path): proofs/Filter.v, `den_filter_lanes_sound` and `num_filter_lanes_sound`.
+//   Certified by: proofs/plane/PlaneFilter.v, `den_filter_sound` and `num_filter_sound`; dot3_filter_lanes alone (no
+//   zero flag, the fast path): proofs/plane/PlaneFilter.v, `den_filter_lanes_sound` and `num_filter_lanes_sound`.
 // dot3_filter_lanes gives the sign as an integer (Sign's values) per lane; branch-free: the sign of a random
 // query is unpredictable, its certainty almost always predictable. Neither comparison holds when the bound
 // or the value is NaN: uncertain.
-// The bound itself, B = (C ⊗ m) ⊕ 3μ: |s − a·b| ≤ B (proofs/Filter.v, `den_filter_encloses`,
+// The bound itself, B = (C ⊗ m) ⊕ 3μ: |s − a·b| ≤ B (proofs/plane/PlaneFilter.v, `den_filter_encloses`,
 // `num_filter_encloses`). Every stage-1 decision compares against it.
 // (The constant is a double, or one per lane: den's and num's when a vector holds both of one query.)
 template <class V, class C>

@@ -21,7 +21,7 @@ using Enclosure = EnclosureT<double>;
 
 // enclosure_sign: with (v, e) = TwoSum(hi, lo), |V − v| ≤ |e| + radius ≤ u|v| + radius, so
 // |v| > 2·radius ⇒ sign(V) = sign(v). Never certifies zero (an enclosure of positive radius cannot).
-//   Certified by: proofs/Compensated.v, `enclosure_sign_sound`.
+//   Certified by: proofs/plane/PlaneCompensated.v, `enclosure_sign_sound`.
 // Per lane and branch-free, as dot3_filter: uncertain also when the radius is +inf or NaN.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> enclosure_sign_lanes(const EnclosureT<V>& e) noexcept {

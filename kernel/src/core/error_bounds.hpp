@@ -2,7 +2,7 @@
 // beside its derivation, its valid range and the theorem in proofs/ that certifies it. This file is the only
 // place they are written; the stages include it, tests/plane_constants_test.cpp and
 // tests/triangle_constants_test.cpp recompute every constant from its formula, and the proofs state their
-// theorems about these exact numbers (proofs/Constants.v; proofs/README.md
+// theorems about these exact numbers (proofs/core/Constants.v; proofs/README.md
 // explains how the two are compared).
 //
 // Notation. Binary64, round to nearest (ties to even; the bounds hold for any tie rule).
@@ -30,7 +30,7 @@ inline constexpr double largest_finite = 0x1.fffffffffffffp+1023;  // |x| ≤ la
 // TwoProduct (core/eft.hpp) is exact when a·b = 0 or |a·b| ≥ 2^-969 = 2^(emin + 2p − 1) (Flocq
 // `mult_error_FLT`); |a ⊗ b| ≥ 2^-968 implies |a·b| ≥ 2^-969 (a rounding moves a value by at most half an
 // ulp), so the expansion stage checks the rounded product against this threshold.
-// Certified by: proofs/Model.v, `two_prod_guard_exact`.
+// Certified by: proofs/core/Model.v, `two_prod_guard_exact`.
 inline constexpr double exact_product_threshold = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
@@ -49,7 +49,7 @@ inline constexpr double exact_product_threshold = 0x1p-968;
 //   C_num ≥ (4u + 2u²)(1+u)^4 = 4u + 18u² + O(u³)     → C_num = (4 + 32u)·u
 //   U ≥ η + 3(1+u)²η ≈ 4η                             → U = 3μ = 6η
 // Valid for all finite inputs, including subnormal ones; uncertain (never wrong) when m overflows.
-// Certified by: proofs/Filter.v, theorems `den_filter_sound` and `num_filter_sound`.
+// Certified by: proofs/plane/PlaneFilter.v, theorems `den_filter_sound` and `num_filter_sound`.
 inline constexpr double filter_den_relative = 0x1.8000000000004p-52;  // (3 + 16u)u
 inline constexpr double filter_num_relative = 0x1.0000000000004p-51;  // (4 + 32u)u
 inline constexpr double filter_absolute = 0x0.0000000000003p-1022;    // 3μ
@@ -71,7 +71,7 @@ inline constexpr double filter_absolute = 0x0.0000000000003p-1022;    // 3μ
 //   K ≥ 18.1u²(1+u)^4      → K = 32u² = 2^-101
 //   U ≥ η + 6.1(1+u)η      → U = 16μ = 2^-1070
 // Valid for all finite inputs; uncertain when a value or E is not finite.
-// Certified by: proofs/Compensated.v, theorem `compensated_dot3_enclosure`.
+// Certified by: proofs/plane/PlaneCompensated.v, theorem `compensated_dot3_enclosure`.
 inline constexpr double compensated_relative = 0x1p-101;
 inline constexpr double compensated_absolute = 0x1p-1070;
 
@@ -95,7 +95,7 @@ inline constexpr double compensated_absolute = 0x1p-1070;
 // Valid for all finite inputs; the radius is +inf when anything overflowed. Decides signs unless V is
 // within ~2^-148 of the terms' magnitude (exact zeros go on to stage 3), and lets round_quotient decide t
 // for condition numbers up to ~2^90.
-// Certified by: proofs/Compensated.v, theorem `compensated_dot3_refined_enclosure` (its bookkeeping is
+// Certified by: proofs/plane/PlaneCompensated.v, theorem `compensated_dot3_refined_enclosure` (its bookkeeping is
 // coarser, the TwoSum chain bounded step by step with (1+u)^7: about 283u³·H + u·|lo| + 7η, which these
 // constants also cover).
 inline constexpr double refined_relative = 0x1p-150;
@@ -103,7 +103,7 @@ inline constexpr double refined_low_relative = 0x1p-52;
 inline constexpr double refined_absolute = 0x0.0000000000008p-1022;  // 8μ
 
 // Sign from an enclosure |V − (hi + lo)| ≤ E: with (v, e) = TwoSum(hi, lo), |V − v| ≤ u|v| + E, so
-// |v| > 2E ⇒ sign(V) = sign(v).  Certified by: proofs/Compensated.v, theorem `enclosure_sign_sound`.
+// |v| > 2E ⇒ sign(V) = sign(v).  Certified by: proofs/plane/PlaneCompensated.v, theorem `enclosure_sign_sound`.
 
 // ---------------------------------------------------------------------------------------------------------
 // Stage 3: expansion_tail_enclosure (core/expansion.hpp)
@@ -112,7 +112,7 @@ inline constexpr double refined_absolute = 0x0.0000000000008p-1022;  // 8μ
 // which keeps its exact sum S = Q + Σ r_j. Then hi = Q, lo = RN-sum of the r_j (left to right), and
 // A = RN-sum of |r_j|. Summing k−1 ≤ 31 terms: |lo − Σ r_j| ≤ γ_30·Σ|r_j| ≤ γ_30(1+u)^30·A < 2^-48·A, so
 //   E = (A ⊗ 2^-48) ⊕ 2μ    (the 2μ covers the underflow of A ⊗ 2^-48, whose error is at most η).
-// Certified by: proofs/Compensated.v, theorem `tail_sum_enclosure`.
+// Certified by: proofs/plane/PlaneCompensated.v, theorem `tail_sum_enclosure`.
 inline constexpr double tail_sum_relative = 0x1p-48;
 inline constexpr double tail_sum_absolute = 0x0.0000000000002p-1022;  // 2μ
 inline constexpr int tail_sum_max_terms = 32;
@@ -148,7 +148,7 @@ inline constexpr int tail_sum_max_terms = 32;
 // ϕ_c = 1 + 2^-9; the factor 1 + 2^-45 absorbs the relative errors of the six roundings of the left side,
 // and their absolute (underflow) errors, which can occur when E_n or E_d is tiny, fit in the slack between
 // 2^-101 and the 23u² the proof needs; h ⊗ |D| is a power of two times a double.
-// Certified by: proofs/QuotientRounding.v, theorem `round_quotient_sound`.
+// Certified by: proofs/plane/QuotientRounding.v, theorem `round_quotient_sound`.
 inline constexpr double quotient_min_magnitude = 0x1p-900;   // |N| and |q|
 inline constexpr double divisor_min_magnitude = 0x1p-1000;   // |D|: 1/D finite
 inline constexpr double divisor_max_magnitude = 0x1p+1000;   // |D|: 1/D normal
@@ -157,7 +157,7 @@ inline constexpr double quotient_enclosure_factor = 0x1.008p+0;      // 1 + 2^-9
 inline constexpr double quotient_test_factor = 0x1.0000000000080p+0;  // 1 + 2^-45
 // half_gap_to_nearer_neighbour builds 2^(e−53) (or 2^(e−54) at a power of two) from q's exponent bits; the
 // result is normal, as the proofs require, for |q| ≥ 2^-968 (the guard above keeps |q| ≥ 2^-900).
-// Certified by: proofs/QuotientRounding.v, `half_gap_bits`, and the test `proofs_half_gap`.
+// Certified by: proofs/plane/QuotientRounding.v, `half_gap_bits`, and the test `proofs_half_gap`.
 inline constexpr double half_gap_min_magnitude = 0x1p-968;
 
 // ---------------------------------------------------------------------------------------------------------
@@ -177,7 +177,7 @@ inline constexpr double half_gap_min_magnitude = 0x1p-968;
 //     ≥ ρ/(1+u)^4 − 4η/(1+u)^2.
 //
 // Stage 1: compare_quotients_filter, inputs x_i = s (value), e_i, f_i = (C ⊗ m) ⊕ 3μ (the stage-1 values
-// and error bounds of num_i and den_i, whose enclosure |s − V| ≤ (C ⊗ m) ⊕ 3μ is proofs/Filter.v's
+// and error bounds of num_i and den_i, whose enclosure |s − V| ≤ (C ⊗ m) ⊕ 3μ is proofs/plane/PlaneFilter.v's
 // `den_filter_encloses` and `num_filter_encloses`):
 //   P = x_1 ⊗ y_2,  Q = x_2 ⊗ y_1,  δ = P ⊖ Q,  M = |P| ⊕ |Q|,
 //   B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c;    δ > B ⇒ Δ > 0,  δ < −B ⇒ Δ < 0,  otherwise uncertain.
@@ -192,7 +192,7 @@ inline constexpr double half_gap_min_magnitude = 0x1p-968;
 // Valid for all finite inputs with e_i, f_i ≥ 0; uncertain (never wrong) when anything overflows: P, Q or
 // δ overflowing makes M, hence B, +inf; a non-finite x_i, e_i or f_i makes B +inf or NaN; every
 // certifying comparison is then false.
-// Certified by: proofs/CompareQuotients.v, theorem `compare_quotients_filter_sound`.
+// Certified by: proofs/compare/CompareQuotients.v, theorem `compare_quotients_filter_sound`.
 inline constexpr double compare_filter_relative = 0x1.0000000000004p-52;    // C_f = (2 + 16u)u
 inline constexpr double compare_propagation_factor = 0x1.0000000000008p+0;  // C_p = 1 + 16u = 1 + 2^-49
 inline constexpr double compare_absolute = 0x0.0000000000008p-1022;        // U_c = 8μ = 2^-1071
@@ -221,11 +221,11 @@ inline constexpr double compare_absolute = 0x0.0000000000008p-1022;        // U_
 // Valid for all finite inputs; when a value overflows the enclosure's radius is +inf ("no information"),
 // and so is E when M or R overflows. Decides the order unless t_1, t_2 agree to about 2^-100 relatively
 // (or the inputs' own radii are that wide); exact ties always go on to stage 3.
-// Certified by: proofs/CompareQuotients.v, theorem `compare_quotients_compensated_enclosure`.
+// Certified by: proofs/compare/CompareQuotients.v, theorem `compare_quotients_compensated_enclosure`.
 inline constexpr double compare_compensated_relative = 0x1p-101;  // K_c = 32u²
 
 // Stage 3: compare_quotients_expansion computes Δ exactly as an expansion from the stage-3 expansions of
-// num_i and den_i (expansion.hpp; proofs/Expansions.v, `compare_quotients_expansion_sound`): exact whenever
+// num_i and den_i (expansion.hpp; proofs/core/Expansions.v, `compare_quotients_expansion_sound`): exact whenever
 // the builder reports no underflowing TwoProduct and nothing non-finite, its sign checked. No constant but
 // exact_product_threshold. Stage 4 (exact rationals) decides the rest.
 
@@ -269,15 +269,15 @@ inline constexpr double compare_compensated_relative = 0x1p-101;  // K_c = 32u²
 // and the bounds below need (1−u)(A − η) ≥ that absolute part: K_A = 32η and U_A = 64η give
 // (1−u)(A − η) ≥ 31.9η·Σ|x_i| + 61.9η, which covers all of them.
 // Valid for all finite inputs; A = +inf when S overflows (then nothing is certified).
-// Certified by: proofs/TriangleFilter.v, `absolute_term_lower`, `det3_filter_encloses`
-// Certified by: proofs/TriangleCompensated.v, `det3_compensated_encloses`
+// Certified by: proofs/triangle/TriangleFilter.v, `absolute_term_lower`, `det3_filter_encloses`
+// Certified by: proofs/triangle/TriangleCompensated.v, `det3_compensated_encloses`
 inline constexpr double triangle_absolute_scale = 0x1p-1070;  // K_A = 32η = 16μ
 inline constexpr double triangle_absolute = 0x1p-1069;        // U_A = 64η = 32μ
 
 // ---------------------------------------------------------------------------------------------------------
 // Stage 1: det3_filter (core/det3_stages.hpp), B = (C ⊗ m) ⊕ A;  v > B ⇒ V > 0,  v < −B ⇒ V < 0.
 //
-// Derivation (proofs/TriangleFilter.v carries |v − V| ≤ α·m + β through each operation, m the computed
+// Derivation (proofs/triangle/TriangleFilter.v carries |v − V| ≤ α·m + β through each operation, m the computed
 // permanent, the leaves within relative error u of the exact differences and x within ex ∈ {0, u}):
 //   product of two leaves   α = 3u + 6u²,          β = (1 + 3u)η             (leaf_mul_approx)
 //   cross component         α = 4u + 11u²,         β = (2 + 6u)η             (cross_approx)
@@ -287,7 +287,7 @@ inline constexpr double triangle_absolute = 0x1p-1069;        // U_A = 64η = 32
 // with ex = 0 for the π's (x = d, exact) and ex = u for num (x = ê_a). The bound covers α·m + β when
 // α ≤ C(1−u)² (bound_covers: (C ⊗ m) ⊕ A ≥ C(1−u)²·m + (1−u)(A − η)), so C = 8u, 9u, 10u.
 // Valid for all finite inputs (subnormal included); uncertain (never wrong) when m or A is not finite.
-// Certified by: proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
+// Certified by: proofs/triangle/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
 inline constexpr double triangle_filter_pi_relative = 0x1p-50;     // 8u
 inline constexpr double triangle_filter_num_relative = 0x1.2p-50;  // 9u
 inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
@@ -297,8 +297,8 @@ inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
 //
 // Double-double leaves (h, l), |l| ≤ u|h|, exact. A product of two leaves (or of a leaf x and a cross
 // component (h, l)): P = a_h ⊗ b_h, l = RN(a_h·b_l + RN(a_l·b_h + RN(a_h·b_h − P))) (three FMAs; the term a_l·b_l
-// is dropped). A sum or difference: (s, σ) = TwoSum(a_h, ±b_h), l = (a_l ⊕ ±b_l) ⊕ σ. proofs/TriangleCompensated.v
-// carries |h + l − V| ≤ α·m + β and |l| ≤ λ·m + κ through each operation:
+// is dropped). A sum or difference: (s, σ) = TwoSum(a_h, ±b_h), l = (a_l ⊕ ±b_l) ⊕ σ.
+// proofs/triangle/TriangleCompensated.v carries |h + l − V| ≤ α·m + β and |l| ≤ λ·m + κ through each operation:
 //   product of two leaves   α = 7u²,    β = 4η,                 λ = 4u,    κ = 7η       (cleaf_mul_capprox)
 //   cross component         α = 17u²,   β = 8.1η,               λ = 6u,    κ = 15η      (ccross_capprox)
 //   outer term              α = 35u²,   β = 8.2η·|x_h| + 5η,    λ = 10u,   κ = 16η·|x_h| + 6η (couter_capprox)
@@ -309,13 +309,13 @@ inline constexpr double triangle_filter_den_relative = 0x1.4p-50;  // 10u
 // Valid for all finite inputs; the radius is +inf when a value is not finite. Decides signs unless the value
 // is within ~2^-98 of m (exact zeros go on to stage 3), and lets round_quotient round t and the
 // barycentric coordinates for condition numbers up to ~2^40.
-// Certified by: proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
-// Certified by: proofs/TriangleCompensated.v, `den_compensated_encloses`, `stage2_filter_view`
+// Certified by: proofs/triangle/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+// Certified by: proofs/triangle/TriangleCompensated.v, `den_compensated_encloses`, `stage2_filter_view`
 inline constexpr double triangle_compensated_relative = 0x1p-99;      // K_π = K_num = 128u²
 inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den = 256u²
 
 // Stage 3 (core/expansion_value.hpp) computes the five values, the tie-break vectors and N as exact
-// expansions (expansion.hpp; proofs/Expansions.v) whenever no TwoProduct underflowed and nothing overflowed:
+// expansions (expansion.hpp; proofs/core/Expansions.v) whenever no TwoProduct underflowed and nothing overflowed:
 // no constant. Stage 4 (exact rationals) decides the rest.
 
 }  // namespace raykernel::detail::bounds

@@ -8,7 +8,7 @@
 // goes to the exact rational stage. Overflow shows up as a non-finite component and is caught the same way.
 //
 // The routines follow Shewchuk's fast_expansion_sum_zeroelim and scale_expansion_zeroelim with two changes
-// that make them provable without his nonoverlapping theorems (proofs/Expansions.v): TwoSum everywhere
+// that make them provable without his nonoverlapping theorems (proofs/core/Expansions.v): TwoSum everywhere
 // (where he uses Fast2Sum, whose exactness needs |a| ≥ |b|, an invariant of his Theorems 13 and 19), and a
 // checked sign (his sign of the largest component needs the expansion to be nonoverlapping). On the
 // expansions his algorithms produce, TwoSum returns the same pair as Fast2Sum and the checked sign decides,
@@ -35,7 +35,7 @@ struct Expansion {
   // The sign of the exact sum, or `uncertain`: the last component decides when its magnitude exceeds twice the
   // rounded sum of the others' magnitudes (then it exceeds their exact sum); the single component 0 is zero.
   //   Valid range: finite components (callers check `exact()` first), at most 2^20 of them.
-  //   Certified by: proofs/Expansions.v, `expansion_sign_sound` (any list of finite doubles, nonoverlapping
+  //   Certified by: proofs/core/Expansions.v, `expansion_sign_sound` (any list of finite doubles, nonoverlapping
   //   or not); `uncertain` sends the caller to the exact stage.
   [[nodiscard]] Sign sign() const noexcept {
     static_assert(Capacity <= (std::size_t{1} << 20));
@@ -66,7 +66,7 @@ class ExpansionBuilder {
   [[nodiscard]] bool exact() const noexcept { return exact_; }
 
   // h = e·b (Shewchuk's scale_expansion_zeroelim with TwoSum for his Fast2Sum). h has at most 2·|e| components.
-  //   Certified by: proofs/Expansions.v, `scale_gen_exact` (Σh = b·Σe when exact() and h finite).
+  //   Certified by: proofs/core/Expansions.v, `scale_gen_exact` (Σh = b·Σe when exact() and h finite).
   template <std::size_t M, std::size_t N>
   void scale(const Expansion<M>& e, double b, Expansion<N>& h) noexcept {
     static_assert(N >= 2 * M);
@@ -86,7 +86,7 @@ class ExpansionBuilder {
   }
 
   // h = e + f (Shewchuk's fast_expansion_sum_zeroelim with TwoSum for his Fast2Sum), merging by increasing
-  // magnitude. Certified by: proofs/Expansions.v, `sum_gen_exact` (Σh = Σe + Σf when h is finite).
+  // magnitude. Certified by: proofs/core/Expansions.v, `sum_gen_exact` (Σh = Σe + Σf when h is finite).
   template <std::size_t M, std::size_t N, std::size_t K>
   static void sum(const Expansion<M>& e, const Expansion<N>& f, Expansion<K>& h) noexcept {
     static_assert(K >= M + N);
@@ -149,7 +149,7 @@ class ExpansionBuilder {
 // expansion_tail_enclosure: an enclosure (hi, lo, E) of the exact sum of an expansion: one TwoSum pass
 // condenses it into Q plus small residuals r_j, then lo = Σ r_j rounded and E bounds that rounding.
 //   Error bound: |S − (hi + lo)| ≤ (A ⊗ 2^-48) ⊕ 2μ, A = Σ|r_j| rounded (error_bounds.hpp, stage 3).
-//   Certified by: proofs/Compensated.v, `tail_sum_enclosure`.
+//   Certified by: proofs/plane/PlaneCompensated.v, `tail_sum_enclosure`.
 template <std::size_t N>
 [[nodiscard]] Enclosure expansion_tail_enclosure(const Expansion<N>& e) noexcept {
   static_assert(N <= bounds::tail_sum_max_terms);

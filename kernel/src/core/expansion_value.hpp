@@ -7,10 +7,10 @@
 //
 // The formula multiplies a leaf (d or a difference: at most 2 components) by a cross component, or two
 // leaves: the product scales the longer operand by each component of the shorter and sums the scaled
-// expansions (ExpansionBuilder::scale and ::sum, exact by proofs/Expansions.v). Capacities: leaf 2,
+// expansions (ExpansionBuilder::scale and ::sum, exact by proofs/core/Expansions.v). Capacities: leaf 2,
 // leaf·leaf 8, cross component 16, leaf·cross 64, π and num 192, den 576.
 //
-// Certified by: proofs/TriangleStage3Twins.v, `value_ev_exact` (every operation below and
+// Certified by: proofs/triangle/TriangleStage3Twins.v, `value_ev_exact` (every operation below and
 // ray_triangle_stages.hpp's value_expansion as a twin: when `exact`, the components are finite and sum to the
 // exact πa, πb, πc, den or num) and `triangle_expansion_sign_sound` (so `sign()` is the exact sign); the twin
 // is compared bit for bit with this code by the differential runner (routine tri_expansion).

@@ -19,7 +19,7 @@ namespace raykernel::detail {
 // Half the distance from a normal double q to its nearer neighbour: 2^(e−53) for |q| ∈ [2^e, 2^(e+1)),
 // 2^(e−54) when |q| = 2^e exactly (the gap below a power of two is half the gap above). Requires
 // |q| ≥ bounds::half_gap_min_magnitude so that the result is normal. Per lane for vectors.
-//   Certified by: proofs/QuotientRounding.v, `half_gap_bits` (and the test proofs_half_gap).
+//   Certified by: proofs/plane/QuotientRounding.v, `half_gap_bits` (and the test proofs_half_gap).
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline V half_gap_to_nearer_neighbour(V q) noexcept {
   using Bits = BitsOf<V>;
@@ -67,9 +67,9 @@ using QuotientRounding = QuotientRoundingT<double>;
 //   Error bound: |t − q| ≤ |w| + 2^-101·|q0| + (1 + 2^-9)·(E_n + |q0|·E_d)/|D| (error_bounds.hpp).
 //   Valid range: |N| ≥ 2^-900, 2^-1000 ≤ |D| ≤ 2^1000, 2^-900 ≤ |q| ≤ largest_finite (checked: otherwise
 //   not certain; NaN and ±inf fail every guard).
-//   Certified by: proofs/QuotientRounding.v, `round_quotient_sound` (the Coq definition computes every
+//   Certified by: proofs/plane/QuotientRounding.v, `round_quotient_sound` (the Coq definition computes every
 //   guard and the test, as here, and returns (t, certain); per lane for vectors); on the bits, with
-//   prepare_divisor and half_gap_to_nearer_neighbour, proofs/QueryTwins.v, `round_quotient_twin_sound`.
+//   prepare_divisor and half_gap_to_nearer_neighbour, proofs/plane/PlaneQueryTwins.v, `round_quotient_twin_sound`.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline QuotientRoundingT<V> round_quotient(const EnclosureT<V>& num,
                                                                                 const DivisorT<V>& den) noexcept {

@@ -213,11 +213,11 @@ struct TieOrder {
 // The sign of t_a − t_b for two hits (den_a, den_b ≠ 0), certified, without rationals: sign(t_a − t_b) =
 // sign(Δ)·sign(den_a)·sign(den_b), Δ = num_a·den_b − num_b·den_a (nearest/compare_quotients.hpp, the ray–plane
 // nearest hit's comparison, on the triangles' num and den):
-//   stage 2  compare_quotients_compensated on the stage-2 enclosures of num and den (proofs/TriangleCompensated.v,
+//   stage 2  compare_quotients_compensated on the stage-2 enclosures of num and den (proofs/triangle/TriangleCompensated.v,
 //            `num_compensated_encloses`, `den_compensated_encloses`: the enclosures its theorem
 //            `compare_quotients_compensated_enclosure` takes), its sign and den's by enclosure_sign;
-//   stage 3  compare_quotients_expansion on the exact expansions (proofs/TriangleStage3Twins.v, `value_ev_exact`:
-//            their exact sums are num and den; proofs/Expansions.v, `compare_quotients_expansion_sound`, for at
+//   stage 3  compare_quotients_expansion on the exact expansions (proofs/triangle/TriangleStage3Twins.v, `value_ev_exact`:
+//            their exact sums are num and den; proofs/core/Expansions.v, `compare_quotients_expansion_sound`, for at
 //            most 16 components each), den's sign by the checked expansion sign.
 // Stage 1 (compare_quotients_filter on the stage-1 values) is not tried: it cannot decide a tie of the rounded t.
 // Equal RN(t) put the exact t within an ulp of each other, |t_a − t_b| ≤ 2u·|t_a| (u = 2^-53), so

@@ -40,7 +40,7 @@ using RoundedEnclosure = RoundedEnclosureT<double>;
 
 // The stage-1 enclosure of a dot product: value s and the bound (C ⊗ m) ⊕ 3μ that dot3_filter compares s
 // against (the same operations, in the same order). |s − V| ≤ that bound is, for den and for num,
-// proofs/Filter.v's `den_filter_encloses` and `num_filter_encloses` (both by `dot3_filter_bound_encloses`).
+// proofs/plane/PlaneFilter.v's `den_filter_encloses` and `num_filter_encloses` (both by `dot3_filter_bound_encloses`).
 template <class L>
 [[nodiscard]] [[gnu::always_inline]] inline RoundedEnclosureT<L> filter_enclosure(const Dot3RoundedT<L>& r,
                                                                                   double relative_constant) noexcept {
@@ -61,7 +61,7 @@ template <class L>
 //                B = ((C_f ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c;  δ > B ⇒ Δ > 0, δ < −B ⇒ Δ < 0.
 //   Error bound: |Δ − δ| ≤ ρ + 2u(|P| + |Q|) + 2η ≤ B, with C_f = (2 + 16u)u, C_p = 1 + 16u, U_c = 8μ.
 //   Valid range: all finite inputs with radii ≥ 0; uncertain (never wrong) when anything overflows.
-//   Certified by: proofs/CompareQuotients.v, `compare_quotients_filter_sound`.
+//   Certified by: proofs/compare/CompareQuotients.v, `compare_quotients_filter_sound`.
 // Cost: 8 mul, 9 add, 6 abs (δ and M: 2 mul, 2 add; R: 4 mul, 5 add; B: 2 mul, 2 add).
 // compare_quotients_filter_lanes gives the sign as an integer (Sign's values) per lane, for one pair
 // (L = double) or for four or eight first quotients against one second (L = Lanes4, Lanes8: each lane is
@@ -80,7 +80,7 @@ template <class L>
       compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
   const L bound = (compare_filter_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute;
   // Both comparisons can hold only for a negative bound (negative radii, which no stage produces): then
-  // positive, as the test δ > B comes first (as in the twin of proofs/CompareTwins.v).
+  // positive, as the test δ > B comes first (as in the twin of proofs/compare/CompareTwins.v).
   const auto above = delta > bound;
   return sign_lanes(above, (delta < -bound) & (above == 0));
 }
@@ -98,7 +98,7 @@ template <class L>
 //                hi = S, lo = ((p ⊖ q) ⊕ (c_1 ⊖ c_2)) ⊕ s, E = ((K_c ⊗ M) ⊕ (C_p ⊗ R)) ⊕ U_c, M = |P| ⊕ |Q|.
 //   Error bound: |Δ − (hi + lo)| ≤ (1+u)ρ + 16.02u²(|P| + |Q|) + 6.02η ≤ E, K_c = 2^-101 (error_bounds.hpp).
 //   Valid range: all finite inputs; the radius is +inf or NaN (no information) when a value overflows.
-//   Certified by: proofs/CompareQuotients.v, `compare_quotients_compensated_enclosure`, then
+//   Certified by: proofs/compare/CompareQuotients.v, `compare_quotients_compensated_enclosure`, then
 //   `enclosure_sign_sound` for the sign.
 [[nodiscard]] inline Enclosure compare_quotients_compensated(const Enclosure& n1, const Enclosure& d1,
                                                              const Enclosure& n2, const Enclosure& d2) noexcept {
@@ -119,7 +119,7 @@ template <class L>
   // No finiteness test: |S| ≤ M, and each term of lo is below 2^973 when M is finite, or NaN (a TwoSum
   // low part of an input's hi and lo can be), which makes hi + lo NaN and enclosure_sign uncertain; a
   // non-finite input makes M, R or the radius non-finite. So a certain sign implies finite hi and lo:
-  // proofs/StageTwoFinite.v, `compare_compensated_certain_finite`, `compare_compensated_twin_sound_total`.
+  // proofs/plane/PlaneStageTwoFinite.v, `compare_compensated_certain_finite`, `compare_compensated_twin_sound_total`.
   return {s.hi, lo, (compare_compensated_relative * magnitude + compare_propagation_factor * propagated) + compare_absolute};
 }
 
@@ -172,7 +172,7 @@ void multiply_expansions(ExpansionBuilder& builder, const Expansion<M>& e, const
 // computed depends on their components alone, so every instantiation performs the operations of the one model.
 //   Valid range: at most 16 components in each of the four inputs (the theorem's hypothesis; the callers check it
 //   or their capacities guarantee it).
-//   Certified by: proofs/Expansions.v, `compare_quotients_expansion_sound` (a certain sign is the sign of
+//   Certified by: proofs/core/Expansions.v, `compare_quotients_expansion_sound` (a certain sign is the sign of
 //   Δ for the exact sums of the inputs; with `build_expansions_exact`, of the exact num and den).
 template <std::size_t A, std::size_t B, std::size_t C, std::size_t D>
 [[nodiscard]] inline Sign compare_quotients_expansion(const Expansion<A>& num1, const Expansion<B>& den1,

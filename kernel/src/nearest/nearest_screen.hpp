@@ -7,8 +7,8 @@
 // dot3_filter_lanes (core/dot3_filter.hpp) for den and num, filter_enclosure and
 // compare_quotients_filter_lanes (nearest/compare_quotients.hpp) for the comparison, so the stage-1 values
 // handed to the scalar path are the bits it would have computed itself, and every decision is one the
-// proofs cover (proofs/Filter.v `den_filter_lanes_sound`, `num_filter_lanes_sound`; proofs/CompareQuotients.v
-// `compare_quotients_filter_sound`).
+// proofs cover (proofs/plane/PlaneFilter.v `den_filter_lanes_sound`, `num_filter_lanes_sound`;
+// proofs/compare/CompareQuotients.v `compare_quotients_filter_sound`).
 //
 // Why skipping is exact: the reference R is a plane the ray hits, so the winner's exact t is at most t_R; a
 // hit whose t is certainly greater than t_R is neither the winner nor tied with it. The planes left are

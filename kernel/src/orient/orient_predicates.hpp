@@ -42,8 +42,9 @@ namespace raykernel::bounds {
 //   underflow and one rounding fewer in B.)
 // Valid range: every finite input. An overflow makes D, S or B infinite or NaN, every comparison above is then
 //   false or needs D = ±inf > B = inf, so the filter answers uncertain and the exact stage decides.
-// Certified by: the argument above (not proved in Coq); tested against exact rationals on random,
-//   near-degenerate, subnormal and huge inputs (tests/mesh_queries_test.cpp).
+// Certified by: proofs/orient/OrientFilter.v, `orient2d_filter_sound` (the model: every double; the error
+//   bound `orient2d_error`, 3u + 9u² and 4η); for every bit pattern, non-finite inputs and overflow included:
+//   proofs/orient/OrientTwins.v, `orient2d_filter_twin_sound` (the twin the runner's group orient checks).
 inline constexpr double orient2d_filter_relative = 0x1p-51;
 inline constexpr double orient2d_filter_absolute = 0x1p-1071;
 
@@ -58,12 +59,14 @@ inline constexpr double orient2d_filter_absolute = 0x1p-1071;
 //   D and P, u = 2^-53, the differences' roundings included, when no operation underflows or overflows; A ⊗ P is
 //   at least (7u + 56u²)P since A ≥ 2(7u + 56u²)/(1 − u) (one more rounding).
 // Valid range: each difference is 0 or has magnitude in [2^-300, 2^300] (checked; else uncertain): then every
-//   nonzero product of two is in [2^-600, 2^600] and of three in [2^-900, 2^900], and every sum of such terms
-//   stays below 2^903, so nothing underflows or overflows and Shewchuk's assumption holds. (A zero difference
+//   nonzero product of two is in [2^-600, 2^600]; a difference of two such products is 0 or at least 2^-652
+//   (both are multiples of 2^-652), so every nonzero product the filter rounds is at least 2^-952, and every
+//   value stays below 2^905: nothing underflows or overflows and Shewchuk's assumption holds. (A zero difference
 //   makes its products exact zeros. A difference of two doubles is rounded only when it is above the subnormal
 //   range.)
-// Certified by: Shewchuk's analysis with the range check above (not proved in Coq); tested against exact
-//   rationals through inside() == inside_exact (tests/mesh_queries_test.cpp).
+// Certified by: proofs/orient/OrientFilter.v, `orient3d_filter_sound` (the model: every double; the error bound
+//   `orient3d_error`, |D − det| ≤ A ⊗ P in range: about 10u·P against A = 16u); for every bit pattern:
+//   proofs/orient/OrientTwins.v, `orient3d_filter_twin_sound` (the twin the runner's group orient checks).
 inline constexpr double orient3d_filter_relative = 0x1p-49;
 inline constexpr double orient3d_filter_min_difference = 0x1p-300;
 inline constexpr double orient3d_filter_max_difference = 0x1p300;
@@ -109,7 +112,7 @@ namespace raykernel::mesh_detail {
 }
 
 // The exact sign of det(a − o, b − o, c − o): the filter, then exact expansions — the determinant is the ray–triangle
-// cascade's num for a ray from o (ray_triangle_stages.hpp's num_expansion; proofs/TriangleStage3Twins.v,
+// cascade's num for a ray from o (ray_triangle_stages.hpp's num_expansion; proofs/triangle/TriangleStage3Twins.v,
 // `value_ev_exact` and `triangle_expansion_sign_sound`: an exact expansion's checked sign is the exact sign) —
 // then rationals when an expansion is not exact (an underflow) or its sign is not certain. The expansions
 // decide the exact zeros a point in a triangle's plane gives (inside() on flat meshes) at a fraction of the

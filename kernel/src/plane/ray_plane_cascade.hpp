@@ -67,14 +67,14 @@ struct CertifiedSigns {
 // Stages 1–3 of the relation: the signs of num and den, each stage asked only for the signs the cheaper
 // ones left uncertain, then the exact stage (plane/exact_plane.hpp) when stage 3 is not exact (a TwoProduct
 // underflowed or a value overflowed).
-//   Certified by: proofs/Cascade.v, `cascade_signs_correct` (stages 1 and 2); proofs/Expansions.v,
+//   Certified by: proofs/plane/PlaneCascade.v, `cascade_signs_correct` (stages 1 and 2); proofs/core/Expansions.v,
 //   `certified_signs_expansion_sound` (stage 3).
 [[nodiscard]] CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept;
 
 // t = RN(num/den) for num ≠ 0 ≠ den (hit or behind): round_quotient on the stage-2 enclosures, on the
 // second level's, on the stage-3 tail enclosures, then the exact stage. Returns t and the stage that
 // rounded it.
-//   Certified by: proofs/Cascade.v, `cascade_quotient_correct`, `expansion_t_correct`.
+//   Certified by: proofs/plane/PlaneCascade.v, `cascade_quotient_correct`, `expansion_t_correct`.
 [[nodiscard]] std::pair<double, Stage> certified_quotient(RayPlaneCascade& query) noexcept;
 
 // The whole cascade for a valid query (relation, then t), with the stages that decided them.

@@ -176,8 +176,8 @@ template <class V>
 
 // Stage 1, then the first level of stage 2 for the signs stage 1 left open, and round_quotient on the
 // stage-2 enclosures for t; per query, or per lane of a batch.
-//   Certified by: proofs/Cascade.v, `fast_answer_correct` (and `fast_path_den_valid` for validity); on the
-//   bits, any input pattern, proofs/QueryTwins.v, `fast_answer_twin_correct`.
+//   Certified by: proofs/plane/PlaneCascade.v, `fast_answer_correct` (and `fast_path_den_valid` for validity); on the
+//   bits, any input pattern, proofs/plane/PlaneQueryTwins.v, `fast_answer_twin_correct`.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswerT<V> fast_answer(const RayPlaneTermsT<V>& q) noexcept {
   return fast_answer_from(den_filter_sign(q), num_filter_sign(q), den_compensated(q), num_compensated(q));
@@ -209,8 +209,8 @@ template <class V>
 }
 
 // Stage 1 alone, for the relation without t.
-//   Certified by: proofs/Cascade.v, `fast_relation_correct` (which includes d ≠ 0 and n ≠ 0); on the bits,
-//   any input pattern, proofs/QueryTwins.v, `fast_relation_twin_correct`.
+//   Certified by: proofs/plane/PlaneCascade.v, `fast_relation_correct` (which includes d ≠ 0 and n ≠ 0); on the bits,
+//   any input pattern, proofs/plane/PlaneQueryTwins.v, `fast_relation_twin_correct`.
 template <class V>
 struct FastRelationT {
   MaskOf<V> behind;   // the relation is behind, else hit

@@ -17,28 +17,30 @@
 // d = 0 makes every product of den exactly 0, which neither stage certifies as nonzero.
 //
 // Certified by:
-//   signs, stage 1:      proofs/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
-//   signs, stage 2:      proofs/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`
-//                        proofs/TriangleCompensated.v, `num_compensated_encloses`
-//                        proofs/Compensated.v, `enclosure_sign_sound`
-//   the fast path:       proofs/TriangleCascade.v, `triangle_fast_sign_correct`, `fast_location_correct`
-//                        proofs/TriangleCascade.v, `den_nonzero_direction`
-//                        proofs/TriangleCompensated.v, `stage2_filter_view`
-//   quotients, stage 2:  proofs/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
-//   quotients, stage 3:  proofs/TriangleCascade.v, `triangle_quotient_expansion_correct` (tail_sum_enclosure)
-//   the full cascade:    proofs/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`, `tc_stage3_quotient_correct`
-//                        proofs/TriangleCascadeQuotients.v, `tc_intersect_b_correct` (classification and every
+//   signs, stage 1:      proofs/triangle/TriangleFilter.v, `pi_filter_sound`, `num_filter_sound`, `den_filter_sound`
+//   signs, stage 2:      proofs/triangle/TriangleCompensated.v, `pi_compensated_encloses`, `den_compensated_encloses`
+//                        proofs/triangle/TriangleCompensated.v, `num_compensated_encloses`
+//                        proofs/plane/PlaneCompensated.v, `enclosure_sign_sound`
+//   the fast path:       proofs/triangle/TriangleCascade.v, `triangle_fast_sign_correct`, `fast_location_correct`
+//                        proofs/triangle/TriangleCascade.v, `den_nonzero_direction`
+//                        proofs/triangle/TriangleCompensated.v, `stage2_filter_view`
+//   quotients, stage 2:  proofs/triangle/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
+//   quotients, stage 3:  proofs/triangle/TriangleCascade.v, `triangle_quotient_expansion_correct`
+//                        (tail_sum_enclosure)
+//   the full cascade:    proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`
+//                        proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_stage3_quotient_correct`
+//                        proofs/triangle/TriangleCascadeQuotients.v, `tc_intersect_b_correct` (classification and every
 //                        quotient of triangle_intersection_cascade's answer before the exact stage)
-//                        proofs/TriangleIntersectPublic.v, `tc_intersect_b_den_nonzero` (a quotient with a value
+//                        proofs/triangle/TriangleIntersectPublic.v, `tc_intersect_b_den_nonzero` (a quotient with a value
 //                        comes with den ≠ 0)
 //                        (TriangleCascade's control flow twinned in TriangleCascadeFlowTwins.v and run against this
 //                        code by the differential runner, routines tri_cascade_intersect, tri_cascade_relation)
-//   decisions:           proofs/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
-//                        proofs/TriangleRule.v, `owned_sign_antisymmetric`
-//   stage 3 values:      proofs/TriangleStage3Twins.v, `triangle_expansion_sign_sound`, `value_ev_exact`
+//   decisions:           proofs/triangle/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
+//                        proofs/triangle/TriangleRule.v, `owned_sign_antisymmetric`
+//   stage 3 values:      proofs/triangle/TriangleStage3Twins.v, `triangle_expansion_sign_sound`, `value_ev_exact`
 //                        (the composition in expansion_value.hpp and ray_triangle_stages.hpp's value_expansion,
 //                        twinned and run against the C++: routine tri_expansion); each sum and scale by
-//                        proofs/Expansions.v, `sum_gen_exact`, `scale_gen_exact`; stage 4: GMP and MPFR.
+//                        proofs/core/Expansions.v, `sum_gen_exact`, `scale_gen_exact`; stage 4: GMP and MPFR.
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "triangle/ray_triangle_cascade.hpp"
@@ -73,7 +75,7 @@ struct FourQuotients {
 
 // The one place where the fast path rounds: round_quotient of each numerator's enclosure (lanes πa, πb, πc,
 // num) over one divisor prepared from den's enclosure — one reciprocal for all four — in one Lanes4 pass,
-// four roundings per vector operation (each lane the scalar operations: proofs/TriangleCascade.v,
+// four roundings per vector operation (each lane the scalar operations: proofs/triangle/TriangleCascade.v,
 // `triangle_quotient_correct`, with the divisor shared).
 [[gnu::always_inline]] inline FourQuotients round_quotients(const EnclosureT<Lanes4>& numerators,
                                                              const Enclosure& den) noexcept {
@@ -213,7 +215,7 @@ class TriangleCascade {
 
 // The relation alone: the signs of πa, πb, πc and den from one stage-1 evaluation in lanes (lane 3: den
 // directly, as a determinant of d and the edges b − a, c − a), num only for a line through the triangle.
-// Certified by: proofs/TriangleCascadeTwins.v, `fast_relation_tri_correct` (its twin, run against this code
+// Certified by: proofs/triangle/TriangleCascadeTwins.v, `fast_relation_tri_correct` (its twin, run against this code
 // and the public relation() by the differential runner, routine tri_fast_relation: every answer is
 // docs/contract.md §6's under both rules).
 [[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(const Ray& ray,
@@ -338,7 +340,7 @@ namespace {
 // that passes a 256-bit vector (Lanes4) by value from a target_clones("fma") clone to a function without
 // that target ("changes the ABI"), even an always_inline one; from this always_inline function, which the
 // clones inline, no such call is made across targets. Everything it calls is always_inline too.
-// Certified by: proofs/TriangleIntersectTheorem.v, `fast_intersection_tri_correct` (its twin, run against this
+// Certified by: proofs/triangle/TriangleIntersectTheorem.v, `fast_intersection_tri_correct` (its twin, run against this
 // code and the public intersect_traced() and intersect() by the differential runner, routine
 // tri_fast_intersect: every answer is docs/contract.md §6's under both rules, t = RN(num/den), each
 // barycentric RN(π_k/den)).

@@ -124,8 +124,8 @@ template <class Leaf, class Difference>
 }
 
 // The owned rule's sign of one π: its own sign, or when it is 0, the sign of the first nonzero of the x, y, z
-// components of its tie-break vector d × (q − p) (given as signs). Never 0 when den ≠ 0 (proofs/TriangleRule.v,
-// `owned_sign_nonzero`).
+// components of its tie-break vector d × (q − p) (given as signs). Never 0 when den ≠ 0
+// (proofs/triangle/TriangleRule.v, `owned_sign_nonzero`).
 [[nodiscard]] constexpr int owned_sign(int pi_sign, int tx, int ty, int tz) noexcept {
   if (pi_sign != 0) return pi_sign;
   return tx != 0 ? tx : (ty != 0 ? ty : tz);

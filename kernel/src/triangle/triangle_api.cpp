@@ -27,7 +27,7 @@ void throw_if_invalid(const Ray& ray, const Triangle& triangle) {
 
 // The certified answer: the fast path (multiversioned, noexcept), then — outside it, since validation
 // throws — the full cascade for valid input. In the default environment (the callers install it).
-// Certified by: proofs/TriangleIntersectPublic.v, `intersect_public_correct` (certified's choice on valid
+// Certified by: proofs/triangle/TriangleIntersectPublic.v, `intersect_public_correct` (certified's choice on valid
 // input, through the twins of both paths: an answer before the exact stage has finite inputs, §6's class,
 // den ≠ 0 when located, and each asked quotient RN(·/den) with den ≠ 0; run against this code by the
 // differential runner, routine tri_cascade_intersect), and `relation_public_correct` (certified_relation's
