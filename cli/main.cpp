@@ -33,6 +33,8 @@ commands:
                       and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)
   triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
                       rule (raykernel triangle --help)
+  spawn [FILE|-]      the origin of a secondary ray that never re-hits the triangle it leaves,
+                      in binary64 or binary32 (raykernel spawn --help)
   render [SCENE.json] render a scene of planes and meshes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)

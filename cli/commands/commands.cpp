@@ -9,6 +9,7 @@ std::span<const Command> commands() {
       {"inside", run_inside, inside_command_line},
       {"watertight", run_watertight, watertight_command_line},
       {"triangle", run_triangle, triangle_command_line},
+      {"spawn", run_spawn, spawn_command_line},
       {"render", run_render, render_command_line},
       {"demo", run_demo, demo_command_line},
   };

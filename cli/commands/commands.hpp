@@ -35,6 +35,8 @@ int run_watertight(const std::vector<std::string>& args);  // watertight.cpp
 OwnedCommandLine watertight_command_line();
 int run_triangle(const std::vector<std::string>& args);  // triangle.cpp
 OwnedCommandLine triangle_command_line();
+int run_spawn(const std::vector<std::string>& args);  // spawn.cpp
+OwnedCommandLine spawn_command_line();
 int run_render(const std::vector<std::string>& args);  // render.cpp
 OwnedCommandLine render_command_line();
 int run_demo(const std::vector<std::string>& args);  // demo.cpp

@@ -28,8 +28,8 @@ inline constexpr std::uint64_t max_demo_queries_per_kind = 100'000'000;
 // numbers of 800 digits), small enough that memory stays bounded.
 inline constexpr std::size_t max_line_bytes = std::size_t{1} << 20;
 
-// The most numbers a query line holds (classify's 12), and the bytes of a bad token a message quotes.
-inline constexpr int max_numbers_per_line = 15;  // a triangle line (docs/contract.md §6)
+// The most numbers a query line holds (spawn's 18), and the bytes of a bad token a message quotes.
+inline constexpr int max_numbers_per_line = 18;  // a spawn line (docs/contract.md §9)
 inline constexpr std::size_t quoted_token_bytes = 40;
 
 }  // namespace raykernel::cli::limits

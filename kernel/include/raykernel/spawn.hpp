@@ -1,0 +1,66 @@
+// raykernel/spawn.hpp: the origin of a secondary ray that provably never re-hits the surface it leaves
+// (docs/contract.md §9).
+//
+// A renderer starts a reflected, refracted or shadow ray at a hit point P. P = o + t·d is exact as a rational
+// but generally not representable, and its rounding may lie on either side of the surface, so the new ray can
+// hit the surface it leaves ("self-intersection", "shadow acne"). spawn returns the representable origin
+// nearest to P in the stated sense that is strictly on the side the new ray leaves towards:
+//
+//   s = sign(w·N) (spawn) or σ(q) (spawn_to), with N = (b − a) × (c − a) and σ(x) = sign((x − a)·N);
+//   P̂ = P rounded to nearest-even in the origin's format F (binary64, or binary32 straight from the exact P);
+//   if σ(P̂) = s the origin is P̂ and k = 0; otherwise coordinate i (the largest |N_i|, the smallest i on an
+//   exact tie) of P̂ moves k steps through the finite values of F (one zero, as nextafter walks them) in the
+//   direction sign(N_i)·s, for the smallest k ≥ 1 that gives σ = s.
+//
+// Guarantee: the origin is strictly on side s, so the ray from it along w meets the triangle's plane only at
+// t < 0 — it never hits the source triangle under either rule; with spawn_to, the segment from the origin to q
+// (§8) never meets it. k is exact (it can exceed 2^53 and 2^63; it is below 2^64).
+//
+// Invalid input (invalid_input, naming the reason): a non-finite component, a zero d or w, N = 0 (a degenerate
+// triangle), den = d·N = 0 (the ray parallel to the plane), w·N = 0, σ(q) = 0, a P̂ that overflows F, or no
+// value of F on side s along axis i.
+#pragma once
+
+#include <raykernel/core.hpp>
+#include <raykernel/triangle.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace raykernel {
+
+// The format of the origin: binary64, or binary32 for renderers that trace in float.
+enum class OriginFormat : std::uint8_t { binary64, binary32 };
+
+// Where the hit point P is: where the ray's line crosses the triangle's plane (P = o + (num/den)·d exactly,
+// whatever the sign of t and whether or not inside the triangle), or a point of doubles (P = p; it need not lie
+// on the plane).
+struct HitPoint {
+  enum class Kind : std::uint8_t { ray_crossing, point };
+  Kind kind;
+  Ray ray;      // ray_crossing
+  Vec3 point;   // point
+  [[nodiscard]] static HitPoint crossing(const Ray& r) noexcept { return {Kind::ray_crossing, r, {}}; }
+  [[nodiscard]] static HitPoint at(const Vec3& p) noexcept { return {Kind::point, {}, p}; }
+};
+
+// The origin (each coordinate a value of the format: for binary32, a float held exactly in a double) and k,
+// the steps it took from P̂.
+struct SpawnedOrigin {
+  Vec3 origin;
+  std::uint64_t steps;
+};
+
+// The origin for a new ray along `direction` leaving the source triangle's plane towards sign(w·N).
+[[nodiscard]] SpawnedOrigin spawn(const HitPoint& hit, const Triangle& source, const Vec3& direction,
+                                  OriginFormat format = OriginFormat::binary64);
+
+// The origin for a shadow ray towards the point `target` (s = σ(q)): the segment from it to q never meets the
+// source triangle.
+[[nodiscard]] SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target,
+                                     OriginFormat format = OriginFormat::binary64);
+
+[[nodiscard]] std::string_view to_string(OriginFormat format) noexcept;  // "binary64", "binary32"
+
+}  // namespace raykernel

@@ -1,0 +1,171 @@
+// spawn and spawn_to (<raykernel/spawn.hpp>, docs/contract.md §9), decided exactly: the hit point P, the
+// sides and the threshold along the stepping axis are exact rationals (GMP), the roundings to the origin's
+// format one correct rounding each (MPFR, core/binary64_rounding.hpp).
+//
+// Why the steps are found without stepping: only coordinate i moves, and σ((x_1, x_2, x_3)) is the sign of
+// N_i·x_i + C with C = Σ_{j≠i} N_j·(P̂_j − a_j) − N_i·a_i, linear in x_i. Moving x_i in the direction
+// δ = sign(N_i)·s moves N_i·x_i towards s's side: the values of F at or before the threshold x* = −C/N_i (in
+// direction δ) have σ ≠ s, those strictly beyond it σ = s. So the origin's coordinate is v, the first value of
+// F strictly beyond x* (x* rounded towards δ, one more step when that is x* itself), and k is the number of
+// values of F from P̂_i to v: the difference of their ordinals (ordinal below). σ(P̂) ≠ s puts P̂_i at or
+// before x*, so k ≥ 1 and every value before v has σ ≠ s: k is the smallest.
+#include <raykernel/spawn.hpp>
+
+#include "core/binary64_rounding.hpp"
+#include "core/fp_environment.hpp"
+#include "core/rational_from_double.hpp"
+
+#include <gmpxx.h>
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <string>
+
+namespace raykernel {
+namespace {
+
+using detail::exact::rational_from_double;
+using Q = mpq_class;
+using Q3 = std::array<Q, 3>;
+
+Q3 exact(const Vec3& v) { return {rational_from_double(v.x), rational_from_double(v.y), rational_from_double(v.z)}; }
+Q dot(const Q3& u, const Q3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+Q3 minus(const Q3& u, const Q3& v) { return {u[0] - v[0], u[1] - v[1], u[2] - v[2]}; }
+Q3 cross(const Q3& u, const Q3& v) {
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+const char* axis_name(int i) { return i == 0 ? "x" : i == 1 ? "y" : "z"; }
+
+[[noreturn]] void invalid(const std::string& reason) { throw invalid_input(reason); }
+
+// The first non-finite component of v ("WHAT x is NaN"), or nothing.
+void require_finite(const Vec3& v, const char* what) {
+  const double c[3] = {v.x, v.y, v.z};
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(c[k]))
+      invalid(std::string(what) + " " + axis_name(k) + " is " + (std::isnan(c[k]) ? "NaN" : c[k] > 0 ? "inf" : "-inf"));
+}
+
+const detail::exact::BinaryFormat& format_of(OriginFormat f) {
+  return f == OriginFormat::binary32 ? detail::exact::binary32_format : detail::exact::binary64_format;
+}
+
+// The position of a value of the format among its finite values in increasing order, with one zero (−0 and +0
+// are both 0): the magnitude's bits, negated for negative values. Consecutive values have consecutive ordinals,
+// in both formats (binary32 values are read from their float bits).
+// Finite values have magnitudes below 2^63 as bits, so an ordinal fits in a std::int64_t.
+std::int64_t ordinal(double x, OriginFormat f) {
+  const std::uint64_t magnitude = f == OriginFormat::binary32
+                                      ? std::bit_cast<std::uint32_t>(static_cast<float>(std::fabs(x)))
+                                      : std::bit_cast<std::uint64_t>(std::fabs(x));
+  return x < 0 ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
+}
+
+// The value of the format with ordinal n, or ±inf beyond the largest finite value.
+double from_ordinal(std::int64_t n, OriginFormat f) {
+  const std::uint64_t magnitude = n < 0 ? static_cast<std::uint64_t>(-n) : static_cast<std::uint64_t>(n);
+  double x;
+  if (f == OriginFormat::binary32)
+    x = magnitude > 0x7f7fffff ? HUGE_VAL : static_cast<double>(std::bit_cast<float>(static_cast<std::uint32_t>(magnitude)));
+  else
+    x = magnitude > 0x7fefffffffffffff ? HUGE_VAL : std::bit_cast<double>(magnitude);
+  return n < 0 ? -x : x;
+}
+
+SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int side_of, const Vec3& w_or_q,
+                            OriginFormat format) {
+  // side_of: 0 for spawn (s = sign(w·N)), 1 for spawn_to (s = σ(q)).
+  if (hit.kind == HitPoint::Kind::ray_crossing) {
+    require_finite(hit.ray.origin, "ray origin");
+    require_finite(hit.ray.direction, "ray direction");
+  } else {
+    require_finite(hit.point, "point");
+  }
+  require_finite(source.a, "triangle a");
+  require_finite(source.b, "triangle b");
+  require_finite(source.c, "triangle c");
+  require_finite(w_or_q, side_of == 0 ? "direction w" : "target q");
+  if (hit.kind == HitPoint::Kind::ray_crossing && hit.ray.direction.x == 0 && hit.ray.direction.y == 0 &&
+      hit.ray.direction.z == 0)
+    invalid("ray direction is the zero vector");
+  if (side_of == 0 && w_or_q.x == 0 && w_or_q.y == 0 && w_or_q.z == 0) invalid("direction w is the zero vector");
+
+  const Q3 a = exact(source.a);
+  const Q3 normal = cross(minus(exact(source.b), a), minus(exact(source.c), a));
+  if (sgn(normal[0]) == 0 && sgn(normal[1]) == 0 && sgn(normal[2]) == 0)
+    invalid("the triangle is degenerate (N = (b - a) x (c - a) = 0)");
+
+  // P, exactly.
+  Q3 p;
+  if (hit.kind == HitPoint::Kind::ray_crossing) {
+    const Q3 o = exact(hit.ray.origin), d = exact(hit.ray.direction);
+    const Q den = dot(d, normal);
+    if (sgn(den) == 0) invalid("the ray is parallel to the triangle's plane (den = d.N = 0)");
+    const Q t = dot(minus(a, o), normal) / den;
+    for (int k = 0; k < 3; ++k) p[k] = o[k] + t * d[k];
+  } else {
+    p = exact(hit.point);
+  }
+
+  // The side s.
+  const int s = side_of == 0 ? sgn(dot(exact(w_or_q), normal)) : sgn(dot(minus(exact(w_or_q), a), normal));
+  if (s == 0)
+    invalid(side_of == 0 ? "direction w is parallel to the triangle's plane (w.N = 0)"
+                         : "target q lies in the triangle's plane (sigma(q) = 0)");
+
+  // P̂.
+  const detail::exact::BinaryFormat& f = format_of(format);
+  Vec3 rounded{};
+  double* r = &rounded.x;
+  Q3 rounded_exact;
+  for (int k = 0; k < 3; ++k) {
+    r[k] = detail::exact::round_rational(p[k], f, MPFR_RNDN);
+    if (!std::isfinite(r[k]))
+      invalid(std::string("the rounded hit point overflows ") + std::string(to_string(format)) + " (coordinate " +
+              axis_name(k) + ")");
+    rounded_exact[k] = rational_from_double(r[k]);
+  }
+  const int sigma = sgn(dot(minus(rounded_exact, a), normal));
+  if (sigma == s) return {rounded, 0};
+
+  // The axis of the largest |N_i| (the smallest i on an exact tie) and the direction of the steps.
+  int i = 0;
+  for (int k = 1; k < 3; ++k)
+    if (abs(normal[k]) > abs(normal[i])) i = k;
+  const int delta = sgn(normal[i]) * s;
+  // The threshold x* on axis i, and v, the first value of the format strictly beyond it in direction δ.
+  Q rest = 0;
+  for (int k = 0; k < 3; ++k)
+    if (k != i) rest += normal[k] * (rounded_exact[k] - a[k]);
+  const Q threshold = a[i] - rest / normal[i];
+  bool on_threshold = false;
+  double v = detail::exact::round_rational(threshold, f, delta > 0 ? MPFR_RNDU : MPFR_RNDD, &on_threshold);
+  if (on_threshold) v = from_ordinal(ordinal(v, format) + delta, format);  // x* itself has σ = 0: one more
+  if (!std::isfinite(v))
+    invalid(std::string("no origin in ") + std::string(to_string(format)) + " on the side of w along axis " +
+            axis_name(i) + " (beyond the largest finite value)");
+  // k = |ordinal(v) − ordinal(P̂_i)| < 2^64: the unsigned difference of the larger and the smaller is exact.
+  const std::int64_t from = ordinal(r[i], format), to = ordinal(v, format);
+  const std::uint64_t steps = to > from ? static_cast<std::uint64_t>(to) - static_cast<std::uint64_t>(from)
+                                        : static_cast<std::uint64_t>(from) - static_cast<std::uint64_t>(to);
+  r[i] = v;
+  return {rounded, steps};
+}
+
+}  // namespace
+
+SpawnedOrigin spawn(const HitPoint& hit, const Triangle& source, const Vec3& direction, OriginFormat format) {
+  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 0, direction, format); });
+}
+
+SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
+  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 1, target, format); });
+}
+
+std::string_view to_string(OriginFormat format) noexcept {
+  return format == OriginFormat::binary32 ? "binary32" : "binary64";
+}
+
+}  // namespace raykernel
