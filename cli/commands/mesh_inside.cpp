@@ -55,23 +55,14 @@ CommandLine command_line(Arguments& a) {
 
 int inside_stream(std::istream& in, std::ostream& out, std::ostream& err, const PreparedMesh& mesh,
                   InsideCounts& counts) {
-  LineReader lines(in);
-  std::string line;
-  while (out && lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 3);
-    if (parsed.status == LineStatus::skip) continue;
-    ++counts.lines_answered;
-    if (parsed.status != LineStatus::numbers) {
-      ++counts.invalid;
-      report_invalid_line(out, err, lines.line_number(), parsed.reason);
-      continue;
-    }
+  return answer_query_lines(in, out, err, 3, counts.lines_answered, counts.invalid,
+                            [&](const NumberLine& parsed) -> std::optional<std::string> {
     const Vec3 point{parsed.value[0], parsed.value[1], parsed.value[2]};  // finite: parse_number_line checks
     const PointLocation location = inside(point, mesh);
     ++counts.by_location[static_cast<int>(location)];
     out << to_string(location) << '\n';
-  }
-  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+    return std::nullopt;
+  });
 }
 
 OwnedCommandLine inside_command_line() { return owned_command_line(command_line); }

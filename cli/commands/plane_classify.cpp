@@ -64,25 +64,12 @@ CommandLine command_line(Arguments& a) {
 
 int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, const ClassifyOptions& options,
                     ClassifyCounts& counts) {
-  LineReader lines(in);
-  std::string line;
   std::string answer;
-  while (out && lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 12);
-    if (parsed.status == LineStatus::skip) continue;
-    ++counts.lines_answered;
-
-    std::string reason = parsed.reason;
+  return answer_query_lines(in, out, err, 12, counts.lines_answered, counts.invalid,
+                            [&](const NumberLine& parsed) -> std::optional<std::string> {
     const Ray ray = ray_of(parsed);
     const Plane plane = plane_of(parsed);
-    if (parsed.status == LineStatus::numbers) {
-      if (std::optional<std::string> invalid = validate(ray, plane)) reason = *invalid;
-    }
-    if (!reason.empty()) {
-      ++counts.invalid;
-      report_invalid_line(out, err, lines.line_number(), reason);
-      continue;
-    }
+    if (std::optional<std::string> invalid = validate(ray, plane)) return invalid;
 
     Intersection result{};
     switch (options.method) {
@@ -110,8 +97,8 @@ int classify_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
       }
     }
     out << answer << '\n';
-  }
-  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+    return std::nullopt;
+  });
 }
 
 std::string describe(const ClassifyCounts& c, Method method) {

@@ -70,37 +70,24 @@ std::string format_in(double x, OriginFormat format) {
 
 int spawn_stream(std::istream& in, std::ostream& out, std::ostream& err, const SpawnCommandOptions& options,
                  SpawnCounts& counts) {
-  LineReader lines(in);
-  std::string line;
-  const int expected = options.point ? 15 : 18;
-  while (out && lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, expected);
-    if (parsed.status == LineStatus::skip) continue;
-    ++counts.lines_answered;
-    if (parsed.status != LineStatus::numbers) {
-      ++counts.invalid;
-      report_invalid_line(out, err, lines.line_number(), parsed.reason);
-      continue;
-    }
+  const int t = options.point ? 3 : 6;  // where the triangle starts
+  return answer_query_lines(in, out, err, options.point ? 15 : 18, counts.lines_answered, counts.invalid,
+                            [&](const NumberLine& parsed) -> std::optional<std::string> {
     const auto& v = parsed.value;
-    const int t = options.point ? 3 : 6;  // where the triangle starts
-    const HitPoint hit = options.point ? HitPoint::at({v[0], v[1], v[2]})
-                                       : HitPoint::crossing({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
     const auto vec = [&](int k) { return Vec3{v[k], v[k + 1], v[k + 2]}; };
+    const HitPoint hit = options.point ? HitPoint::at(vec(0)) : HitPoint::crossing({vec(0), vec(3)});
     const Triangle triangle{vec(t), vec(t + 3), vec(t + 6)};
-    const Vec3 last = vec(t + 9);
     try {
-      const SpawnedOrigin o = options.to ? spawn_to(hit, triangle, last, options.format)
-                                         : spawn(hit, triangle, last, options.format);
+      const SpawnedOrigin o = options.to ? spawn_to(hit, triangle, vec(t + 9), options.format)
+                                         : spawn(hit, triangle, vec(t + 9), options.format);
       if (o.steps != 0) ++counts.moved;
       out << format_in(o.origin.x, options.format) << ' ' << format_in(o.origin.y, options.format) << ' '
           << format_in(o.origin.z, options.format) << ' ' << o.steps << '\n';
+      return std::nullopt;
     } catch (const invalid_input& e) {
-      ++counts.invalid;
-      report_invalid_line(out, err, lines.line_number(), e.what());
+      return e.what();
     }
-  }
-  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+  });
 }
 
 OwnedCommandLine spawn_command_line() { return owned_command_line(command_line); }

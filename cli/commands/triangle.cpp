@@ -76,26 +76,13 @@ CommandLine command_line(Arguments& a) {
 
 int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, const TriangleCommandOptions& options,
                     TriangleCounts& counts) {
-  LineReader lines(in);
-  std::string line;
   std::string answer;
   const TriangleOptions query_options{options.rule, true, true};
-  while (out && lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 15);
-    if (parsed.status == LineStatus::skip) continue;
-    ++counts.lines_answered;
-
-    std::string reason = parsed.reason;
+  return answer_query_lines(in, out, err, 15, counts.lines_answered, counts.invalid,
+                            [&](const NumberLine& parsed) -> std::optional<std::string> {
     const Ray ray = ray_of(parsed);
     const Triangle triangle = triangle_of(parsed);
-    if (parsed.status == LineStatus::numbers) {
-      if (std::optional<std::string> invalid = validate(ray, triangle)) reason = *invalid;
-    }
-    if (!reason.empty()) {
-      ++counts.invalid;
-      report_invalid_line(out, err, lines.line_number(), reason);
-      continue;
-    }
+    if (std::optional<std::string> invalid = validate(ray, triangle)) return invalid;
 
     TriangleIntersection result{};
     switch (options.method) {
@@ -134,8 +121,8 @@ int triangle_stream(std::istream& in, std::ostream& out, std::ostream& err, cons
       }
     }
     out << answer << '\n';
-  }
-  return counts.invalid == 0 ? exit_ok : exit_invalid_line;
+    return std::nullopt;
+  });
 }
 
 std::string describe(const TriangleCounts& c, Method method) {

@@ -1,14 +1,17 @@
-// What the stream commands share (classify, nearest, triangle, inside: a line of input in, a line of answer
-// out): the values of --path and --rule, opening an input, the invalid lines, and the end of a run (I/O errors,
-// --stats).
+// What the stream commands share (classify, nearest, triangle, inside, spawn: a line of input in, a line of
+// answer out): the values of --path and --rule, opening an input, the loop over the query lines and their
+// invalid lines, and the end of a run (I/O errors, --stats).
 #pragma once
 
 #include "common/exit_status.hpp"
 #include "common/io.hpp"
 #include "common/options.hpp"
+#include "common/text_input.hpp"
 
 #include <cstdint>
-#include <iosfwd>
+#include <istream>
+#include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -46,5 +49,31 @@ inline const Choices<TriangleRule> rule_choices = {{"owned", TriangleRule::owned
 
 // An invalid query line (docs/contract.md §3): "invalid REASON" on `out`, "raykernel: line N: REASON" on `err`.
 void report_invalid_line(std::ostream& out, std::ostream& err, std::uint64_t line_number, const std::string& reason);
+
+// The loop of every line-in, line-out command (docs/contract.md §3), written once: reads `in` line by line
+// (LineReader: a byte-order mark skipped, lines of at most limits::max_line_bytes) until it ends or `out` fails;
+// skips blank and # lines; gives every line of `expected` valid numbers to answer(line), which writes its answer
+// line on `out`, or returns the reason the query is invalid; reports each invalid line (a bad or missing
+// number, or answer's reason) with report_invalid_line. Counts the lines answered and the invalid ones;
+// returns exit_ok, or exit_invalid_line when a line was invalid.
+template <class Answer>  // std::optional<std::string>(const NumberLine&)
+int answer_query_lines(std::istream& in, std::ostream& out, std::ostream& err, int expected,
+                       std::uint64_t& lines_answered, std::uint64_t& invalid, Answer&& answer) {
+  LineReader lines(in);
+  std::string line;
+  while (out && lines.next(line)) {
+    const NumberLine parsed = parse_number_line(line, expected);
+    if (parsed.status == LineStatus::skip) continue;
+    ++lines_answered;
+    std::optional<std::string> reason;
+    if (parsed.status != LineStatus::numbers) reason = parsed.reason;
+    else reason = answer(parsed);
+    if (reason) {
+      ++invalid;
+      report_invalid_line(out, err, lines.line_number(), *reason);
+    }
+  }
+  return invalid == 0 ? exit_ok : exit_invalid_line;
+}
 
 }  // namespace raykernel::cli
