@@ -23,7 +23,9 @@ namespace raykernel::cli {
 // the slower of its relation and comparison stages, or its t stage if that is slower still. Rounding t
 // starts at the compensated stage (the filter only gives signs), so a t rounded there is the fast path and
 // counts as filter; expansion and exact count.
-[[nodiscard]] inline Stage slowest_stage(const TracedNearestHit& traced) noexcept {
+// (A TracedNearestHit of planes, or a TracedSceneHit of planes and triangles.)
+template <class Traced>
+[[nodiscard]] inline Stage slowest_stage(const Traced& traced) noexcept {
   Stage s = traced.relation_stage;
   if (traced.comparison_stage > s) s = traced.comparison_stage;
   if (traced.t_stage > Stage::compensated && traced.t_stage > s) s = traced.t_stage;
