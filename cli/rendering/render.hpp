@@ -1,9 +1,10 @@
-// Rendering a scene of planes (scenes/scene.hpp) by ray casting (docs/ray-casting.md §1.1): for every pixel, for
-// every sample, the exact nearest hit (nearest_hit.hpp) and simple legible shading. Rows are rendered in parallel.
+// Rendering a scene of planes and meshes (scenes/scene.hpp) by ray casting (docs/ray-casting.md §1.1): for every
+// pixel, for every sample, the exact nearest hit among the planes and the triangles (one query,
+// raykernel/nearest_scene.hpp: a plane wins an exact tie) and simple legible shading. Rows are rendered in
+// parallel.
 //
 // Robustness made visible: the stage image marks the pixels where the certified path needed a slower
-// stage than the binary64 filter (for a plane's relation, for ordering two t values, or for rounding the
-// winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
+// stage than the binary64 filter (for a relation, for ordering two t values, or for rounding the winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
 // (nearest_hit_naive, docs/ray-casting.md §1.1) picks another plane than the exact answer.
 #pragma once
 

@@ -156,7 +156,7 @@ class NearestSearch {
     const std::span<const Plane> planes = set.planes();
     const std::span<const std::uint32_t> candidates = set.candidates();
     auto examine = [&](std::uint32_t k, const Dot3Rounded& den, const Dot3Rounded& num, std::int64_t den_filter,
-                       std::int64_t num_filter) [[gnu::always_inline]] {
+                       std::int64_t num_filter) __attribute__((always_inline)) {
       const Plane& plane = planes[k];
       const int slot = best_ == Best::plane && plane_best_ == 0 ? 1 : 0;
       if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
@@ -264,12 +264,12 @@ class NearestSearch {
   [[nodiscard]] SurfaceKind winner_kind() const noexcept {
     return best_ == Best::plane ? SurfaceKind::plane : SurfaceKind::triangle;
   }
-  [[nodiscard]] HitCandidate& plane_winner() noexcept { return *plane_[plane_best_]; }
-  [[nodiscard]] TriangleCandidate& triangle_winner() noexcept { return *triangle_[triangle_best_]; }
+  [[nodiscard]] [[gnu::always_inline]] HitCandidate& plane_winner() noexcept { return *plane_[plane_best_]; }
+  [[nodiscard]] [[gnu::always_inline]] TriangleCandidate& triangle_winner() noexcept { return *triangle_[triangle_best_]; }
 
   // The winner's t, rounded once (or taken from the rounding the walk made for its bound), and the stage that
   // rounded it.
-  double winner_t() noexcept { return best_t(); }
+  [[gnu::always_inline]] double winner_t() noexcept { return best_t(); }
   [[nodiscard]] Stage winner_t_stage() noexcept {
     return best_ == Best::plane ? plane_winner().t_stage : triangle_winner().t_stage;
   }
@@ -278,22 +278,21 @@ class NearestSearch {
   enum class Best : std::uint8_t { none, plane, triangle };
 
   [[nodiscard]] SurfaceKind best_kind() const noexcept { return winner_kind(); }
-  [[nodiscard]] std::size_t best_index() noexcept {
+  [[nodiscard]] [[gnu::always_inline]] std::size_t best_index() noexcept {
     return best_ == Best::plane ? plane_winner().index : triangle_winner().index;
   }
-  double best_t() noexcept { return best_ == Best::plane ? plane_winner().round_t() : triangle_winner().round_t(); }
+  [[gnu::always_inline]] double best_t() noexcept { return best_ == Best::plane ? plane_winner().round_t() : triangle_winner().round_t(); }
 
-  // A double strictly above the exact t of a hit, for the walk's pruning: num ⊘ den widened by 2^-40 of itself,
-  // certified above t by compare_quotients_filter (proofs/CompareQuotients.v, `compare_quotients_filter_sound`,
-  // on the stage-1 enclosures and the exact b/1: sign(t − b) = sign(num·1 − b·den)·sign(den)); the widening is a
-  // guess the comparison checks, not an error bound. When the filter cannot certify it (t = 0, a near-zero den,
-  // an overflow), nextup(RN(t)), with t rounded once and kept for the answer.
+  // A double strictly above the exact t of a hit, for the walk's pruning: b = (|N| + 2e)/(|D| − 2f) from the
+  // stage-1 enclosures N ± e of num and D ± f of den (rounded as it comes: a guess, not a bound), certified above t
+  // by compare_quotients_filter (proofs/CompareQuotients.v, `compare_quotients_filter_sound`, on those enclosures
+  // and the exact b/1: sign(t − b) = sign(num·1 − b·den)·sign(den)). When the filter cannot certify it (t = 0, a
+  // den near zero, an overflow), nextup(RN(t)), with t rounded once and kept for the answer.
   template <class C>
   [[gnu::always_inline]] static double upper_bound_t(C& c) noexcept {
     if (c.num_sign != Sign::zero && !c.rounded) {
       const RoundedEnclosure n = c.num_filter(), d = c.den_filter();
-      const double estimate = n.value / d.value;
-      const double b = estimate + std::ldexp(std::fabs(estimate), -40);
+      const double b = (std::fabs(n.value) + 2 * n.radius) / (std::fabs(d.value) - 2 * d.radius);
       const Sign delta = compare_quotients_filter(n, d, RoundedEnclosure{b, 0}, RoundedEnclosure{1, 0});
       if (is_certain(delta) && static_cast<int>(delta) * static_cast<int>(c.den_sign) < 0) return b;
     }
@@ -315,7 +314,7 @@ class NearestSearch {
     return order;
   }
   template <class C>
-  void make_best(const C&, int slot) noexcept {
+  [[gnu::always_inline]] void make_best(const C&, int slot) noexcept {
     if constexpr (C::kind == SurfaceKind::plane) {
       best_ = Best::plane;
       plane_best_ = slot;

@@ -55,10 +55,10 @@ struct HitCandidate {
     return *full;
   }
 
-  [[nodiscard]] RoundedEnclosure num_filter() const noexcept {
+  [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure num_filter() const noexcept {
     return filter_enclosure(num, bounds::filter_num_relative);
   }
-  [[nodiscard]] RoundedEnclosure den_filter() const noexcept {
+  [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure den_filter() const noexcept {
     return filter_enclosure(den, bounds::filter_den_relative);
   }
   [[nodiscard]] const Enclosure& num_compensated() noexcept { return cascade().num_compensated(); }

@@ -11,15 +11,18 @@
 //     sign(t − m) = sign(2·num − (x + y)·den)·sign(den),
 //
 // the comparison of the two quotients num/den and (x + y)/2 — compare_quotients_expansion on num, den and the
-// expansions {x, y} and {2}, exact (nearest/compare_quotients.hpp). Nothing is rounded: no error constant.
+// expansions TwoSum(x, y) (exactly x + y) and {2}, exact (nearest/compare_quotients.hpp). Nothing is rounded: no
+// error constant.
 //   Valid range: 2^-968 ≤ |q| < largest_finite (so that q⁻ and q⁺ are normal doubles of q's sign and the
 //   products exact unless the builder says otherwise), num and den as exact expansions of at most 16 components
 //   each; nothing (the exact stage decides) when a product is not exact, the candidate is not t's rounding or
 //   its neighbour's (t beyond m⁺ or below m⁻), or q is outside that range.
-//   Certified by: proofs/Expansions.v, `compare_quotients_expansion_sound` (each sign); the choice of RN(t) from
-//   the two signs is round-to-nearest-even's definition on the midpoints (no Coq theorem of its own yet).
+//   Certified by: proofs/Expansions.v, `compare_quotients_expansion_sound` (each sign; TwoSum's exactness for the
+//   midpoint's expansion); the choice of RN(t) from the two signs is round-to-nearest-even's definition on the
+//   midpoints (no Coq theorem of its own yet).
 #pragma once
 
+#include "core/eft.hpp"
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
 #include "core/sign.hpp"
@@ -39,11 +42,10 @@ template <std::size_t A, std::size_t B>
 [[nodiscard]] inline Sign side_of_midpoint(const Expansion<A>& num, const Expansion<B>& den, int den_sign, double x,
                                            double y) noexcept {
   // (Capacities of 16, as the triangles' comparisons: one instantiation of compare_quotients_expansion.)
-  Expansion<16> pair;  // {x, y} in increasing magnitude: an expansion whose exact sum is x + y
-  const bool x_smaller = std::fabs(x) <= std::fabs(y);
-  pair.component[0] = x_smaller ? x : y;
-  pair.component[1] = x_smaller ? y : x;
-  pair.size = 2;
+  // {x, y} as the expansion TwoSum(x, y) = (s, e): nonoverlapping, so that the checked sign of the difference
+  // decides, and s + e = x + y exactly.
+  Expansion<16> pair;
+  ExpansionBuilder::from_pair(two_sum(x, y), pair);
   Expansion<16> two;
   two.component[0] = 2;
   two.size = 1;

@@ -150,20 +150,20 @@ class TriangleCandidate {
 
   // Another triangle with this one's vertices (repeats()): the same relation, location and t, so this
   // candidate's values stand for it; it takes over the identity (index, position, the triangle reported).
-  void take_identity(const Triangle& tri, std::size_t mesh_index, std::uint32_t leaf_position) noexcept {
+  [[gnu::always_inline]] void take_identity(const Triangle& tri, std::size_t mesh_index, std::uint32_t leaf_position) noexcept {
     triangle = &tri;
     index = mesh_index;
     position = leaf_position;
   }
 
-  [[nodiscard]] RoundedEnclosure num_filter() const noexcept {
+  [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure num_filter() const noexcept {
     return {stage1_.num.v, bounds::triangle_filter_num_relative * stage1_.num.m + stage1_.absolute_e};
   }
-  [[nodiscard]] RoundedEnclosure den_filter() const noexcept {
+  [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure den_filter() const noexcept {
     return {stage1_.den.v, bounds::triangle_filter_pi_relative * stage1_.den.m + stage1_.absolute_d};
   }
-  [[nodiscard]] const Enclosure& num_compensated() noexcept { return stage2().num; }
-  [[nodiscard]] const Enclosure& den_compensated() noexcept { return stage2().den; }
+  [[gnu::always_inline]] [[nodiscard]] const Enclosure& num_compensated() noexcept { return stage2().num; }
+  [[gnu::always_inline]] [[nodiscard]] const Enclosure& den_compensated() noexcept { return stage2().den; }
   [[nodiscard]] const ShortQuotientExpansions& expansions() noexcept {
     stage3();
     return short_;
