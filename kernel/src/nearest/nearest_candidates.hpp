@@ -61,6 +61,20 @@ template <class A, class B>
   return false;
 }
 
+// Stage 3 of the comparison, out of line: its products of expansions need kilobytes of stack, which the search's
+// hot frame should not carry (nor probe page by page on every ray).
+template <class A, class B>
+[[nodiscard]] [[gnu::noinline]] std::optional<DistanceOrder> compare_candidates_by_expansions(A& a, B& b,
+                                                                                              int orientation) noexcept {
+  const auto& ea = a.expansions();
+  const auto& eb = b.expansions();
+  if (ea.exact && eb.exact) {
+    const Sign delta = compare_quotients_expansion(ea.num, ea.den, eb.num, eb.den);
+    if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::expansion};
+  }
+  return std::nullopt;
+}
+
 // Stages 1 to 3 of the comparison of two quotient candidates: the order, or nothing when the exact stage must
 // decide. The filter stage reads the kept stage-1 values; the later stages are computed on first use and kept
 // in the candidates.
@@ -83,13 +97,7 @@ template <class A, class B>
                                                        b.den_compensated()));
   if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::compensated};
 
-  const auto& ea = a.expansions();
-  const auto& eb = b.expansions();
-  if (ea.exact && eb.exact) {
-    delta = compare_quotients_expansion(ea.num, ea.den, eb.num, eb.den);
-    if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::expansion};
-  }
-  return std::nullopt;
+  return compare_candidates_by_expansions(a, b, orientation);
 }
 
 // The exact order of two candidates' t, the exact stage last (exact_order overloads: rationals).

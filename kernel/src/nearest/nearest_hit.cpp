@@ -75,11 +75,6 @@ template <class Tracer>
   return NearestHit{winner.index, t};
 }
 
-void fill(TracedNearestHit& out, const SearchCounts& counts) noexcept {
-  out.relation_stage = counts.relation_stage;
-  out.comparison_stage = counts.comparison_stage;
-  for (std::size_t s = 0; s < stage_count; ++s) out.comparisons[s] = static_cast<std::uint32_t>(counts.comparisons[s]);
-}
 
 RAYKERNEL_MULTIVERSION
 std::optional<NearestHit> nearest_untraced(const Ray& ray, const PlaneSet& set) noexcept {
@@ -89,11 +84,11 @@ std::optional<NearestHit> nearest_untraced(const Ray& ray, const PlaneSet& set) 
 
 RAYKERNEL_MULTIVERSION
 TracedNearestHit nearest_traced(const Ray& ray, const PlaneSet& set, nearest_kernel::ScreenFunction screen) noexcept {
-  TracedNearestHit trace;
-  SearchCounts counts;
-  trace.hit = nearest_plane(ray, set, screen, Trace{&counts}, trace.t_stage);
-  fill(trace, counts);
-  if (!trace.hit) trace.t_stage = Stage::filter;
+  StageCounts counts;
+  Stage t_stage = Stage::filter;
+  const std::optional<NearestHit> hit = nearest_plane(ray, set, screen, StageTrace{&counts}, t_stage);
+  TracedNearestHit trace{hit, counts.relation_stage, counts.comparison_stage, hit ? t_stage : Stage::filter, {}};
+  for (std::size_t s = 0; s < stage_count; ++s) trace.comparisons[s] = static_cast<std::uint32_t>(counts.comparisons[s]);
   return trace;
 }
 
@@ -126,14 +121,11 @@ std::optional<SurfaceHit> scene_untraced(const Ray& ray, const NearestScene& sce
 
 RAYKERNEL_MULTIVERSION
 TracedSceneHit scene_traced(const Ray& ray, const NearestScene& scene, const NearestOptions& options) noexcept {
-  TracedSceneHit trace;
-  SearchCounts counts;
-  trace.hit = nearest_in_scene(ray, scene, options, Trace{&counts}, trace.t_stage);
-  trace.relation_stage = counts.relation_stage;
-  trace.comparison_stage = counts.comparison_stage;
-  trace.comparisons = counts.comparisons;
-  if (!trace.hit) trace.t_stage = Stage::filter;
-  return trace;
+  StageCounts counts;
+  Stage t_stage = Stage::filter;
+  const std::optional<SurfaceHit> hit = nearest_in_scene(ray, scene, options, StageTrace{&counts}, t_stage);
+  return TracedSceneHit{hit, counts.relation_stage, counts.comparison_stage, hit ? t_stage : Stage::filter,
+                        counts.comparisons};
 }
 
 }  // namespace

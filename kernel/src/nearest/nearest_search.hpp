@@ -3,9 +3,9 @@
 // through its BVH — classify each surface once and offer its hits; the search keeps the best so far and one
 // candidate being examined per kind (two slots each, so neither is ever copied), orders every hit against the
 // best by the certified comparison of their exact t (compare_candidates), breaks exact ties by kind then index
-// (wins_tie), and rounds t once: the best's, when the BVH walk needs a pruning bound and at the end for the
-// winner (kept in the candidate, so the winner's is never rounded twice). Used by nearest_hit for a plane set, a
-// mesh and a scene of both (nearest/nearest_hit.cpp, mesh/nearest_mesh.cpp).
+// (wins_tie), and rounds t once, for the winner (kept in the candidate: the walk's pruning bound is certified
+// from the filter's values, and only when it cannot be is a best's t rounded early, then reused). Used by
+// nearest_hit for a plane set, a mesh and a scene of both (nearest/nearest_hit.cpp, mesh/nearest_mesh.cpp).
 //
 // Why the answer is the brute-force one:
 //   - Every plane of the set that can win is examined (nearest/nearest_screen.hpp: the screen sets aside only
@@ -87,6 +87,15 @@ struct SearchCounts {
 
 [[nodiscard]] constexpr Stage slower(Stage a, Stage b) noexcept { return a > b ? a : b; }
 
+// What a traced search of planes or of a scene reports (TracedNearestHit, TracedSceneHit): the stages alone, in
+// 40 bytes (a larger block of counters is cleared per ray with `rep stos`, whose start-up costs more than the
+// counting).
+struct StageCounts {
+  Stage relation_stage = Stage::filter;
+  Stage comparison_stage = Stage::filter;
+  std::array<std::uint64_t, stage_count> comparisons{};
+};
+
 // NoTrace compiles to nothing.
 struct NoTrace {
   void plane_relation(Stage) noexcept {}
@@ -96,6 +105,7 @@ struct NoTrace {
   void comparison(const DistanceOrder&) noexcept {}
   void screened(std::uint32_t) noexcept {}
 };
+// Every count (SearchCounts), for the mesh's traced query.
 struct Trace {
   SearchCounts* out;
   void plane_relation(Stage s) noexcept { out->relation_stage = slower(out->relation_stage, s); }
@@ -123,6 +133,19 @@ struct Trace {
   void screened(std::uint32_t count) noexcept {  // hits the screen set aside: one filter comparison each
     out->comparisons[static_cast<std::size_t>(Stage::filter)] += count;
   }
+};
+// The stages only (StageCounts).
+struct StageTrace {
+  StageCounts* out;
+  void plane_relation(Stage s) noexcept { out->relation_stage = slower(out->relation_stage, s); }
+  void triangle_candidate(Stage s) noexcept { out->relation_stage = slower(out->relation_stage, s); }
+  void repeat() noexcept {}
+  void triangle_hit() noexcept {}
+  void comparison(const DistanceOrder& order) noexcept {
+    ++out->comparisons[static_cast<std::size_t>(order.stage)];
+    out->comparison_stage = slower(out->comparison_stage, order.stage);
+  }
+  void screened(std::uint32_t count) noexcept { out->comparisons[static_cast<std::size_t>(Stage::filter)] += count; }
 };
 
 // Storage for one candidate, constructed in place when used (nothing is cleared per ray).

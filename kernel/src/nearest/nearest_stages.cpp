@@ -13,8 +13,8 @@ RAYKERNEL_MULTIVERSION
 void round_triangle_t_beyond_stage2(TriangleCandidate& c, double candidate) noexcept {
   c.t_stage = Stage::expansion;
   c.stage3();
-  if (const std::optional<Enclosure> n = TriangleCandidate::tail_enclosure(c.num3_)) {
-    const std::optional<Enclosure> d = TriangleCandidate::tail_enclosure(c.den3_);
+  if (const std::optional<Enclosure>& n = c.num3_tail_) {
+    const std::optional<Enclosure>& d = c.den3_tail_;
     const QuotientRounding r = round_quotient(*n, prepare_divisor(d ? *d : c.den_compensated()));
     if (r.certain) {
       c.t = r.t;

@@ -222,8 +222,8 @@ class TriangleCandidate {
     if (!is_certain(den)) den = enclosure_sign(den_compensated());
     if (!is_certain(num) || !is_certain(den)) {
       stage3();
-      if (!is_certain(num)) num = num3_.sign();
-      if (!is_certain(den)) den = den3_.sign();
+      if (!is_certain(num)) num = num3_sign_;
+      if (!is_certain(den)) den = den3_sign_;
     }
     if (!is_certain(num) || !is_certain(den)) {
       const exact::QuotientSigns s = exact::triangle_quotient_signs(*ray_, *source);
@@ -240,17 +240,24 @@ class TriangleCandidate {
     return stage2_;
   }
 
+  // Stage 3 of num and den, computed once and kept in short form (the full expansions live in this function's
+  // frame only, so that a search's candidates stay small): the expansions of at most 16 components for the
+  // comparisons and the rounding boundaries, their tail enclosures for round_quotient, their signs.
   [[gnu::noinline]] void stage3() noexcept {
     if (has_expansions_) return;
-    num3_ = value_expansion(*ray_, *source, value_num);
-    den3_ = value_expansion(*ray_, *source, value_den);
-    short_.exact = num3_.exact && den3_.exact && num3_.e.size <= 16 && den3_.e.size <= 16;
+    const ExpansionValue<192> num = value_expansion(*ray_, *source, value_num);
+    const ExpansionValue<192> den = value_expansion(*ray_, *source, value_den);
+    short_.exact = num.exact && den.exact && num.e.size <= 16 && den.e.size <= 16;
     if (short_.exact) {
-      for (std::size_t i = 0; i < num3_.e.size; ++i) short_.num.component[i] = num3_.e.component[i];
-      short_.num.size = num3_.e.size;
-      for (std::size_t i = 0; i < den3_.e.size; ++i) short_.den.component[i] = den3_.e.component[i];
-      short_.den.size = den3_.e.size;
+      for (std::size_t i = 0; i < num.e.size; ++i) short_.num.component[i] = num.e.component[i];
+      short_.num.size = num.e.size;
+      for (std::size_t i = 0; i < den.e.size; ++i) short_.den.component[i] = den.e.component[i];
+      short_.den.size = den.e.size;
     }
+    num3_tail_ = tail_enclosure(num);
+    den3_tail_ = tail_enclosure(den);
+    num3_sign_ = num.sign();
+    den3_sign_ = den.sign();
     has_expansions_ = true;
   }
 
@@ -268,8 +275,9 @@ class TriangleCandidate {
   TriangleQuotientStage1 stage1_;  // valid for a hit
   bool has_stage2_ = false, has_expansions_ = false;
   TriangleQuotientStage2 stage2_;
-  ExpansionValue<192> num3_, den3_;
   ShortQuotientExpansions short_;
+  std::optional<Enclosure> num3_tail_, den3_tail_;
+  Sign num3_sign_ = Sign::uncertain, den3_sign_ = Sign::uncertain;
 };
 
 // RN(πa/den), RN(πb/den), RN(πc/den) of a triangle the ray hits (the fast path, else the cascade).
