@@ -6,17 +6,20 @@
 //             triangle), which also hands over the stage-1 values of num and den; what it leaves open goes to
 //             triangle_relation_cascade once (a triangle with two equal vertices is degenerate without
 //             arithmetic: N = 0)
-//   stage 1   those values as enclosures        proofs/TriangleFilter.v, `num_filter_encloses`, `pi_filter_encloses`
-//   stage 2   triangle_quotient_compensated      proofs/TriangleCompensated.v, `num_compensated_encloses`,
-//                                                `pi_compensated_encloses` (den with a in the origin's place)
-//   stage 3   value_expansion of num and den     proofs/TriangleStage3Twins.v, `value_ev_exact`
-//   t         round_quotient on stage 2, then on stage 3's tail enclosures (proofs/QuotientRounding.v,
-//             `round_quotient_sound`; proofs/Compensated.v, `tail_sum_enclosure`), then at the rounding
-//             boundaries in expansions (nearest/quotient_boundary.hpp), then exactly
+//   stage 1   those values as enclosures (num; den as π(b, c) with a in the origin's place):
+//             proofs/TriangleFilter.v, `det3_filter_encloses` (the instances num_filter_encloses, pi_filter_encloses)
+//   stage 2   triangle_quotient_compensated:
+//             proofs/TriangleCompensated.v, `num_compensated_encloses`, `pi_compensated_encloses`
+//   stage 3   value_expansion of num and den:
+//             proofs/TriangleStage3Twins.v, `value_ev_exact`
+//   t         round_quotient on stage 2, then on stage 3's tail enclosures:
+//             proofs/QuotientRounding.v, `round_quotient_sound`
+//             proofs/Compensated.v, `tail_sum_enclosure`
+//             then at the rounding boundaries in expansions (nearest/quotient_boundary.hpp), then exactly
 //             (exact::round_triangle_quotients)
 //
-// The storage of stages 2 and 3 (a few kB) is left uninitialized until used: a search keeps two candidates per
-// kind and must not clear them per ray (std::optional would).
+// The storage of stages 2 and 3 is left uninitialized until used (a search keeps two candidates per kind and must
+// not clear them per ray), and stage 3 is kept in short form: the candidate stays small.
 #pragma once
 
 #include "core/expansion.hpp"

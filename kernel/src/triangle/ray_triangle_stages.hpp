@@ -220,10 +220,11 @@ struct TriangleNumFilter {
 // triangle_relation_lanes — so the π's constants and theorems hold for it with a in the origin's place;
 // num = ê_a·(ê_b × ê_c) as everywhere. The stage-3 expansions of the same two forms are value_expansion's
 // value_num and value_den.
-//   stage 1: |V − v| ≤ (C ⊗ m) ⊕ A, the bound det3_filter compares against:
-//            proofs/TriangleFilter.v, `pi_filter_encloses` (den, o := a), `num_filter_encloses`
-//   stage 2: det3_enclosure: proofs/TriangleCompensated.v, `pi_compensated_encloses` (den, o := a),
-//            `num_compensated_encloses`
+//   stage 1: |V − v| ≤ (C ⊗ m) ⊕ A, the bound det3_filter compares against (the instances num_filter_encloses and,
+//            for den with o := a, pi_filter_encloses of the general theorem):
+//            proofs/TriangleFilter.v, `det3_filter_encloses`
+//   stage 2: det3_enclosure (den with o := a):
+//            proofs/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
 
 // Stage 1 of num and den (den in the short form), with their absolute terms: the values fast_triangle_relation
 // decides a line through the triangle from (triangle/ray_triangle_cascade.hpp), or computed on their own.
