@@ -88,7 +88,9 @@ template <class A, class B>
 
   // sign(t_a − t_b) = sign(Δ)·sign(den_a)·sign(den_b).
   const int orientation = a.den_sign == b.den_sign ? 1 : -1;
-  Sign delta = compare_quotients_filter(a.num_filter(), a.den_filter(), b.num_filter(), b.den_filter());
+  // compare_quotients_filter, inlined (its lane form on one lane: the same operations).
+  Sign delta = static_cast<Sign>(
+      compare_quotients_filter_lanes(a.num_filter(), a.den_filter(), b.num_filter(), b.den_filter()));
   if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::filter};
 
   if (same_t_without_arithmetic(a, b)) return DistanceOrder{0, Stage::filter, true};

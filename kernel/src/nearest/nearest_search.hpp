@@ -316,7 +316,8 @@ class NearestSearch {
     if (c.num_sign != Sign::zero && !c.rounded) {
       const RoundedEnclosure n = c.num_filter(), d = c.den_filter();
       const double b = (std::fabs(n.value) + 2 * n.radius) / (std::fabs(d.value) - 2 * d.radius);
-      const Sign delta = compare_quotients_filter(n, d, RoundedEnclosure{b, 0}, RoundedEnclosure{1, 0});
+      const Sign delta = static_cast<Sign>(  // compare_quotients_filter, inlined
+          compare_quotients_filter_lanes(n, d, RoundedEnclosure{b, 0}, RoundedEnclosure{1, 0}));
       if (is_certain(delta) && static_cast<int>(delta) * static_cast<int>(c.den_sign) < 0) return b;
     }
     return std::nextafter(c.round_t(), std::numeric_limits<double>::infinity());
