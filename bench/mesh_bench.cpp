@@ -24,7 +24,8 @@
 //                                   vertex), overlapping-fan-1M and overlapping-fan-tilted-100k (the fan of a
 //                                   polygon winding over itself, v0 = 0, vi = (i, ±1), in the plane z = 0 or
 //                                   z = x + 2y: every ray hits every triangle at one exact t); counters: candidate
-//                                   triangles, hits, ties of the rounded t and those ordered in rationals, per ray
+//                                   triangles, hits, near ties (not ordered by the filter) and those ordered in
+//                                   rationals, per ray
 // Meshes (testkit, exact dyadic vertices): icosphere, subdivided cube and terrain at ~10^3, ~10^5 and
 // ~10^6 triangles. Rays: 2^16 per mesh, from a sphere around it towards random points of its box (fixed
 // seed). Every ray benchmark runs on 1 thread and on all threads (items_per_second is the total).

@@ -13,6 +13,9 @@
 //                                  demo4/demo64 (the demo camera's rays and planes), random4/random64
 //   render/<path>/demo             the whole demo image, one sample per pixel: camera ray, nearest plane,
 //                                  shading; naive or certified
+//   render/<path>/octahedron       scenes/octahedron.json (a floor and a mesh), 400 × 400 × 4 rays: camera ray,
+//                                  the nearest of the planes and triangles (one query, or the two naive loops),
+//                                  shading
 //   sweep/<path>/<k>               queries at angle 2^-k between ray and plane, k = 0, 4, ..., 100
 //
 // Workloads: random (2^20 queries, 96 MiB: streaming), random_l2 (2^12 queries: in L2), wide, degenerate,
@@ -226,6 +229,15 @@ void register_render() {
       for (auto _ : s) benchmark::DoNotOptimize(demo.render_once(certified));
       s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) * static_cast<std::int64_t>(demo.pixels()));
     });
+  }
+  for (const bool certified : {false, true}) {
+    benchmark::RegisterBenchmark(certified ? "render/certified/octahedron" : "render/naive/octahedron",
+                                 [certified](benchmark::State& s) {
+                                   const SceneRender& octahedron = octahedron_render();
+                                   for (auto _ : s) benchmark::DoNotOptimize(octahedron.render_once(certified));
+                                   s.SetItemsProcessed(static_cast<std::int64_t>(s.iterations()) *
+                                                       static_cast<std::int64_t>(octahedron.rays()));
+                                 });
   }
 }
 

@@ -72,7 +72,8 @@ def main():
           f"{fmt(ns.get('memory/read/random'))} ns per query\n")
     table("nearest hit, ns per ray (prepared plane set):", ["naive", "certified", "exact"],
           ["demo4", "demo64", "random4", "random64"], ns, lambda p, s: f"nearest/{p}/{s}")
-    table("render of the demo image (1 sample per pixel, 1 thread), ns per pixel:", ["naive", "certified"], ["demo"],
+    table("render of the demo image (1 sample per pixel, 1 thread), ns per pixel; of scenes/octahedron.json "
+          "(4 samples per pixel), ns per ray:", ["naive", "certified"], ["demo", "octahedron"],
           ns, lambda p, s: f"render/{p}/{s}")
     table("ray–triangle, ns per query:", ["naive", "relation", "relation_scoped", "certified", "certified_scoped", "exact",
                                          "cgal_epick", "cgal_epeck"],
@@ -95,6 +96,7 @@ def main():
         ("nearest/certified/random64", "nearest/naive/random64", 2.5, ""),
         ("nearest/certified/demo64", "nearest/naive/demo64", 3, ""),
         ("render/certified/demo", "render/naive/demo", 2, ""),
+        ("render/certified/octahedron", "render/naive/octahedron", 3, ""),
         ("triangle/relation/random", "triangle/naive/random", 2, ""),
         ("triangle/certified/random", "triangle/naive/random", 10, " (aim 6×)"),
     ]

@@ -2,6 +2,9 @@
 
 #include "scenes/scene.hpp"
 
+#include <raykernel/fp_environment.hpp>
+#include <raykernel/mesh_queries.hpp>
+#include <raykernel/nearest_scene.hpp>
 #include <raykernel/parallel.hpp>
 
 #include <cmath>
@@ -9,6 +12,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
 #include <map>
 #include <mutex>
 #include <string>
@@ -221,6 +227,83 @@ double DemoRender::render_once(bool certified) const {
 
 const DemoRender& demo_render() {
   static const DemoRender render;
+  return render;
+}
+
+struct SceneRender::Loaded {
+  cli::Scene scene;
+  std::vector<Plane> planes;
+  std::unique_ptr<PlaneSet> prepared;
+  std::unique_ptr<PreparedMesh> mesh;
+};
+
+SceneRender::SceneRender(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) throw std::runtime_error("cannot open " + path);
+  std::string text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+  std::fclose(f);
+  cli::SceneParse parsed = cli::parse_scene(text);
+  if (!parsed.scene) throw std::runtime_error(path + ": " + parsed.error.str());
+  auto loaded = std::make_shared<Loaded>();
+  loaded->scene = std::move(*parsed.scene);
+  if (const auto error = cli::load_scene_meshes(loaded->scene, std::filesystem::path(path).parent_path()))
+    throw std::runtime_error(path + ": " + error->str());
+  loaded->planes = loaded->scene.geometry();
+  loaded->prepared = std::make_unique<PlaneSet>(loaded->planes);
+  loaded->mesh = std::make_unique<PreparedMesh>(loaded->scene.mesh);
+  scene_ = std::move(loaded);
+}
+
+std::size_t SceneRender::rays() const noexcept {
+  const cli::Scene& s = scene_->scene;
+  return std::size_t{s.image.width} * s.image.height * s.samples_per_pixel;
+}
+
+// Lambert shading against the ray, |d·n| / (|d|·|n|), with the plane's normal or the triangle's (b − a) × (c − a):
+// the same work for both paths.
+double SceneRender::render_once(bool certified) const {
+  const Loaded& l = *scene_;
+  const cli::Scene& scene = l.scene;
+  const NearestScene surfaces{l.prepared.get(), l.mesh.get(), TriangleRule::owned};
+  const DefaultFpEnvironment environment;  // as the CLI's rows
+  double total = 0;
+  for (std::uint32_t j = 0; j < scene.image.height; ++j)
+    for (std::uint32_t i = 0; i < scene.image.width; ++i)
+      for (const PixelSample& sample : stratified_samples(scene.samples_per_pixel, scene.seed, i, j)) {
+        const Ray ray = scene.camera.ray(i, j, sample);
+        std::optional<SurfaceKind> kind;
+        std::size_t index = 0;
+        if (certified) {
+          if (const std::optional<SurfaceHit> hit = nearest_hit(ray, surfaces)) kind = hit->kind, index = hit->index;
+        } else {
+          const std::optional<NearestHit> plane = nearest_hit_naive(ray, l.planes);
+          const std::optional<MeshHit> triangle = nearest_hit_naive(ray, *l.mesh);
+          if (triangle && !(plane && !(triangle->intersection.t < plane->t))) {
+            kind = SurfaceKind::triangle, index = triangle->triangle;
+          } else if (plane) {
+            kind = SurfaceKind::plane, index = plane->plane;
+          }
+        }
+        if (!kind) continue;
+        Vec3 n;
+        if (*kind == SurfaceKind::plane) {
+          n = l.planes[index].normal;
+        } else {
+          const Triangle t = scene.mesh.triangle(index);
+          const Vec3 e1{t.b.x - t.a.x, t.b.y - t.a.y, t.b.z - t.a.z}, e2{t.c.x - t.a.x, t.c.y - t.a.y, t.c.z - t.a.z};
+          n = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+        }
+        const Vec3& d = ray.direction;
+        const double dn = d.x * n.x + d.y * n.y + d.z * n.z;
+        total += std::fabs(dn) / std::sqrt((d.x * d.x + d.y * d.y + d.z * d.z) * (n.x * n.x + n.y * n.y + n.z * n.z));
+      }
+  return total;
+}
+
+const SceneRender& octahedron_render() {
+  static const SceneRender render(std::string(RAYKERNEL_SCENES_DIR) + "/octahedron.json");
   return render;
 }
 

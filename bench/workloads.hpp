@@ -9,6 +9,7 @@
 #include <raykernel/testkit/plane_queries.hpp>
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,23 @@ class DemoRender {
   PlaneSet prepared_;
 };
 [[nodiscard]] const DemoRender& demo_render();
+
+// scenes/octahedron.json rendered as `raykernel render` does (render/<path>/octahedron): 400 × 400 pixels, 4
+// stratified samples each, for each sample its camera ray, the nearest surface among the floor and the mesh's
+// triangles and its shading, on one thread. Certified: the scene's one query (nearest_hit(ray, NearestScene),
+// t rounded once for the winner); naive: nearest_hit_naive on the planes and on the mesh (Möller–Trumbore
+// through the BVH), the smaller t winning, a plane on equal t — the CLI's two passes (cli/rendering/render.cpp).
+class SceneRender {
+ public:
+  explicit SceneRender(const std::string& path);
+  [[nodiscard]] double render_once(bool certified) const;  // the sum of the shaded values
+  [[nodiscard]] std::size_t rays() const noexcept;
+
+ private:
+  struct Loaded;
+  std::shared_ptr<const Loaded> scene_;
+};
+[[nodiscard]] const SceneRender& octahedron_render();
 
 // Queries whose direction makes the angle 2^-k with the plane (k = 0 .. 100), for the degeneracy sweep.
 [[nodiscard]] const std::vector<Query>& angle_sweep(int k);

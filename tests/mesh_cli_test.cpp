@@ -117,13 +117,13 @@ TEST(MeshCli, NearestRules) {
   EXPECT_EQ(r.out, "hit 0 0x1.5555555555555p-2\n");
   r = run("nearest --mesh " + path + " --stats -", "0 0 0 1 1 1\n");
   EXPECT_NE(r.err.find("1 rays: 1 hit, 0 miss, 0 invalid"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("ties of the rounded t: 0 "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("near ties (two t the filter could not order): 0 "), std::string::npos) << r.err;
   // Closed, through the top vertex: the four triangles around it tie at t = 4, settled from the vertices (one
   // crossing point) without arithmetic.
   r = run("nearest --rule=closed --mesh " + path + " --stats -", "0 0 5 0 0 -1\n");
   EXPECT_EQ(r.out, "hit 0 4\n");
-  EXPECT_NE(r.err.find("ties of the rounded t: 3 (settled from the vertices 3; compared by: filter 0, compensated 0, "
-                       "expansion 0, exact 0)"),
+  EXPECT_NE(r.err.find("near ties (two t the filter could not order): 3 (settled from the vertices 3; compared by: "
+                       "filter 0, compensated 0, expansion 0, exact 0)"),
             std::string::npos)
       << r.err;
   r = run("nearest --mesh " + path + " --path=naive --stats -", "0 0 0 1 1 1\n");

@@ -12,8 +12,8 @@
 //   per triangle.
 // - inside(point, PreparedMesh) must equal inside_exact for points at vertices, on edges, inside faces, on the
 //   axis lines through them (where the axis-aligned ray runs along edges and through vertices), and at random.
-// - Ties of the rounded t: 10^5 copies of one triangle must cost no rational comparison (counted by
-//   nearest_hit_traced: 99,999 before the fix); self-overlapping coplanar fans, near ties, copies under both rules
+// - Ties: 10^5 copies of one triangle must cost no rational comparison (counted by nearest_hit_traced: 99,999
+//   before the fix); self-overlapping coplanar fans, near ties, copies under both rules
 //   and tie-heavy soups (coplanar small-integer triangles, rotated and reversed copies; every way a tie is settled,
 //   rationals included) against nearest_hit_exact; inside against inside_exact with points in those planes.
 // - Hand-derived cases (derivations in the comments) check both.
@@ -184,7 +184,7 @@ Drawn draw_mesh() {
 }
 
 std::uint64_t rays_checked = 0, rays_checked_brute_force = 0, points_checked = 0;
-// How the ties of the rounded t in AgreesWithTheExactBruteForceOnTies were settled: from the vertices, or by the
+// How the near ties (two t the filter could not order) in AgreesWithTheExactBruteForceOnTies were settled: from the vertices, or by the
 // stage of the comparison (so that a run shows each path exercised).
 std::uint64_t tie_count[1 + stage_count] = {};
 
@@ -254,7 +254,7 @@ RC_GTEST_PROP(MeshNearest, AgreesWithTheExactBruteForce, ()) {
   }
 }
 
-// A soup built for ties of the rounded t: triangles with small-integer vertices on one or two planes —
+// A soup built for ties: triangles with small-integer vertices on one or two planes —
 // axis-aligned (z = c) or tilted (z = p·x + q·y + c), so that coplanar triangles have exactly equal t — many
 // copies of some with their vertices rotated or reversed, and fans sharing a vertex; scaled by a power of two
 // (tiny scales make stage 3 underflow, so that the rational comparison runs too).
@@ -372,7 +372,7 @@ class Totals : public ::testing::Environment {
                   static_cast<unsigned long long>(rays_checked), static_cast<unsigned long long>(rays_checked_brute_force),
                   static_cast<unsigned long long>(points_checked));
     if (tie_count[0] + tie_count[1] + tie_count[2] + tie_count[3] + tie_count[4] > 0)
-      std::printf("mesh_queries_test: ties of the rounded t settled from the vertices %llu, by stage compensated %llu, "
+      std::printf("mesh_queries_test: near ties settled from the vertices %llu, by stage compensated %llu, "
                   "expansion %llu, exact %llu\n",
                   static_cast<unsigned long long>(tie_count[0]), static_cast<unsigned long long>(tie_count[2]),
                   static_cast<unsigned long long>(tie_count[3]), static_cast<unsigned long long>(tie_count[4]));
@@ -501,7 +501,7 @@ TEST(MeshNearest, OrdersTiesOfTheRoundedTExactly) {
 }
 
 // Regression: 100,000 copies of one triangle (the same indices; then its vertices rotated and reversed) all hit at
-// the same exact t. The answer is the smallest index; the equal rounded t must not each cost a comparison in
+// the same exact t. The answer is the smallest index; the exact ties must not each cost a comparison in
 // rationals (they did: 99,999 of them, 0.4 s per ray) — the same plane is recognised from the vertices, with no
 // arithmetic. Counted through nearest_hit_traced, not timed.
 TEST(MeshNearest, DuplicatesCostNoRationalComparison) {
@@ -584,8 +584,9 @@ TEST(MeshNearest, OverlappingCoplanarFan) {
 
 // Near ties: the triangles (−1, −1, 1), (3, −1, 1), (−1, 3, 1 + j·2^-60) over the ray (0, 0, 0) + t(0, 0, 1) have
 // t = 1 + j·2^-62 (z = 1 + δ(y + 1)/4 at y = 0), which round to 1 for |j| ≤ 256. With j in a scrambled order, some
-// triangles repeated (vertices rotated or reversed: exact ties), the smallest j wins, its first index; the
-// rounded t tie, the exact ones are ordered by the compensated stage (no rationals).
+// triangles repeated (vertices rotated or reversed: exact ties), the smallest j wins, its first index. The filter
+// cannot order any two of them (every hit after the first is a near tie); the compensated stage orders them, no
+// rationals.
 TEST(MeshNearest, NearTiesOfTheRoundedT) {
   Mesh m;
   m.vertices = {{-1, -1, 1}, {3, -1, 1}};

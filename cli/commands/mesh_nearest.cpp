@@ -83,7 +83,8 @@ int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path,
   if (options.method == Method::certified) {
     text << "candidate triangles: " << counts.candidates << " (relation decided by: " << stage_counts_text(counts.relation_stage)
          << "; repeating the previous candidate " << counts.repeats << ")\n";
-    text << "ties of the rounded t: " << counts.ties << " (settled from the vertices " << counts.ties_without_arithmetic
+    text << "near ties (two t the filter could not order): " << counts.ties << " (settled from the vertices "
+         << counts.ties_without_arithmetic
          << "; compared by: " << stage_counts_text(counts.comparison_stage) << ")\n";
   } else {
     text << no_stages_text(options.method);

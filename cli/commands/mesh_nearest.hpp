@@ -27,8 +27,8 @@ struct MeshNearestCounts {
   std::uint64_t hits = 0;
   std::uint64_t misses = 0;
   // The certified path's work, summed over the rays (nearest_hit_traced): candidate triangles, the stage that
-  // decided each relation (and those repeating the previous candidate), ties of the rounded t settled from the
-  // vertices, and the stage of the other ties' comparisons.
+  // decided each relation (and those repeating the previous candidate), near ties (hits the filter could not
+  // order against the best so far) settled from the vertices, and the stage of the other near ties' comparisons.
   std::uint64_t candidates = 0, repeats = 0, ties = 0, ties_without_arithmetic = 0;
   std::uint64_t relation_stage[stage_count] = {};
   std::uint64_t comparison_stage[stage_count] = {};

@@ -12,9 +12,10 @@
 #include "rendering/shading.hpp"
 
 #include <raykernel/camera.hpp>
-#include <raykernel/mesh_queries.hpp>
 #include <raykernel/fp_environment.hpp>
+#include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_hit.hpp>
+#include <raykernel/nearest_scene.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -25,12 +26,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// What both passes share: the scene, its planes (as given, for the naive loop, and prepared once for the
-// certified nearest hit), the shader and the thread count.
+// What both passes share: the scene, its planes (as given, for the naive loop) and its surfaces prepared once
+// for the certified nearest hit (the planes, and the scene's meshes in one), the shader and the thread count.
 struct Pass {
   const Scene& scene;
   const std::vector<Plane>& geometry;
-  const PlaneSet& prepared;
+  const NearestScene& surfaces;
   const PreparedMesh* mesh;  // the scene's meshes in one, or null when it has none
   const Shader& shader;
   unsigned threads;
@@ -63,19 +64,6 @@ std::int64_t triangle_winner(const Pass& pass, std::uint32_t triangle) noexcept 
   return static_cast<std::int64_t>(pass.geometry.size()) + triangle;
 }
 
-// Whether the certified mesh hit is nearer than the certified plane hit, exactly (README "raykernel render":
-// a plane wins an exact tie). Both t are the exact t rounded to nearest, and rounding is monotone, so two
-// different rounded t order the exact ones the same way; equal rounded t are settled in exact rationals.
-bool mesh_hit_nearer(const Pass& pass, const Ray& ray, const NearestHit& plane, const MeshHit& mesh) {
-  const double mesh_t = mesh.intersection.t;
-  if (mesh_t != plane.t) return mesh_t < plane.t;
-  const ExactIntersection p = intersect_exact_rational(ray, pass.geometry[plane.plane]);
-  const ExactTriangleIntersection m =
-      intersect_exact_rational(ray, pass.mesh->mesh().triangle(mesh.triangle), TriangleRule::owned);
-  if (!p.t || !m.t) throw invalid_input("render: a hit without an exact t");  // cannot happen: both are hits
-  return compare_exact(*m.t, *p.t) < 0;
-}
-
 // The certified pass: the image, each pixel's slowest stage, each ray's winner (plane index, or −1 for a
 // miss) when `keep_winners`, and the counts of `stats`.
 struct CertifiedPass {
@@ -99,17 +87,18 @@ CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, 
     RowTally& t = tally[row];
     for (std::uint32_t s = 0; s < spp; ++s) {
       const Ray ray = pass.scene.camera.ray(i, j, samples[s]);
-      const TracedNearestHit traced = nearest_hit_traced(ray, pass.prepared);
-      std::optional<MeshHit> mesh_hit;
-      if (pass.mesh != nullptr) mesh_hit = nearest_hit(ray, *pass.mesh, TriangleRule::owned);
-      if (mesh_hit && traced.hit && !mesh_hit_nearer(pass, ray, *traced.hit, *mesh_hit)) mesh_hit.reset();
+      // The exact nearest of the planes and the mesh's triangles (a plane wins an exact tie), t rounded once.
+      const TracedSceneHit traced = nearest_hit_traced(ray, pass.surfaces);
       std::int64_t winner = -1;
-      if (mesh_hit) {
-        sum += pass.shader.shade_triangle(ray, mesh_hit->triangle, mesh_hit->intersection.t);
-        winner = triangle_winner(pass, mesh_hit->triangle);
+      if (traced.hit && traced.hit->kind == SurfaceKind::triangle) {
+        const auto triangle = static_cast<std::uint32_t>(traced.hit->index);
+        sum += pass.shader.shade_triangle(ray, triangle, traced.hit->t);
+        winner = triangle_winner(pass, triangle);
       } else {
-        sum += pass.shader.shade(ray, traced.hit);
-        if (traced.hit) winner = static_cast<std::int64_t>(traced.hit->plane);
+        std::optional<NearestHit> plane;
+        if (traced.hit) plane = NearestHit{traced.hit->index, traced.hit->t};
+        sum += pass.shader.shade(ray, plane);
+        if (plane) winner = static_cast<std::int64_t>(plane->plane);
       }
       const Stage stage = slowest_stage(traced);
       slowest = std::max(slowest, stage);
@@ -181,7 +170,8 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   std::optional<PreparedMesh> mesh;  // validated once, its BVH built once
   if (!scene.mesh.triangles.empty()) mesh.emplace(scene.mesh);
   const Shader shader(scene);
-  const Pass pass{scene,  geometry, prepared, mesh ? &*mesh : nullptr, shader, thread_count(options.threads),
+  const NearestScene surfaces{&prepared, mesh ? &*mesh : nullptr, TriangleRule::owned};
+  const Pass pass{scene,  geometry, surfaces, mesh ? &*mesh : nullptr, shader, thread_count(options.threads),
                   options.progress};
 
   RenderResult result;

@@ -1,9 +1,10 @@
-// Rendering a scene of planes (scenes/scene.hpp) by ray casting (docs/ray-casting.md §1.1): for every pixel, for
-// every sample, the exact nearest hit (nearest_hit.hpp) and simple legible shading. Rows are rendered in parallel.
+// Rendering a scene of planes and meshes (scenes/scene.hpp) by ray casting (docs/ray-casting.md §1.1): for every
+// pixel, for every sample, the exact nearest hit among the planes and the triangles (one query,
+// raykernel/nearest_scene.hpp: a plane wins an exact tie) and simple legible shading. Rows are rendered in
+// parallel.
 //
 // Robustness made visible: the stage image marks the pixels where the certified path needed a slower
-// stage than the binary64 filter (for a plane's relation, for ordering two t values, or for rounding the
-// winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
+// stage than the binary64 filter (for a relation, for ordering two t values, or for rounding the winner's t); the naive-difference image marks the pixels where the textbook loop in plain doubles
 // (nearest_hit_naive, docs/ray-casting.md §1.1) picks another plane than the exact answer.
 #pragma once
 
@@ -23,7 +24,9 @@ namespace raykernel::cli {
 // the slower of its relation and comparison stages, or its t stage if that is slower still. Rounding t
 // starts at the compensated stage (the filter only gives signs), so a t rounded there is the fast path and
 // counts as filter; expansion and exact count.
-[[nodiscard]] inline Stage slowest_stage(const TracedNearestHit& traced) noexcept {
+// (A TracedNearestHit of planes, or a TracedSceneHit of planes and triangles.)
+template <class Traced>
+[[nodiscard]] inline Stage slowest_stage(const Traced& traced) noexcept {
   Stage s = traced.relation_stage;
   if (traced.comparison_stage > s) s = traced.comparison_stage;
   if (traced.t_stage > Stage::compensated && traced.t_stage > s) s = traced.t_stage;

@@ -51,9 +51,12 @@ struct MeshHit {
 
 // docs/contract.md §7: among the triangles whose relation under `rule` is hit (t ≥ 0), the one with the smallest
 // exact t, ties to the smallest triangle index; or nothing. Through the BVH (a box the exact ray meets is never
-// skipped, bvh.hpp) with the certified ray–triangle cascade; two hits are ordered by their rounded t, which is
-// monotone in the exact t, and by the exact t in rationals when the rounded t are equal; the walk is pruned by
-// the successor of the best rounded t, an upper bound of the best exact t. So the answer is the brute-force one.
+// skipped, bvh.hpp) with the certified ray–triangle cascade, each candidate classified once; two hits are ordered
+// by the certified comparison of their exact t (a binary64 filter on the values the relation was decided from,
+// double-double enclosures, exact expansions, rationals last; exact ties seen from the vertices without
+// arithmetic), never by rounded t; the walk is pruned by a certified upper bound of the best exact t. t and the
+// barycentric coordinates are rounded once, for the winner. So the answer is the brute-force one. (The same
+// nearest-hit module as planes' and scenes', raykernel/nearest_scene.hpp.)
 // Under the owned rule (the default) a ray through a shared edge or vertex of a closed, consistently oriented
 // mesh hits exactly one of the triangles around it — except at a silhouette: a ray that only touches the mesh
 // along an edge or at a vertex where the surface turns away from it (grazing the outline) has zero or two
@@ -66,19 +69,21 @@ struct MeshHit {
                                                  TriangleRule rule = TriangleRule::owned);
 
 // `nearest_hit` plus what it cost: how many candidate triangles the walk returned and which stage decided
-// each one's relation (or that it repeated the previous candidate), how many were hit, and how the hits whose rounded t equalled the best one's so far
-// were ordered — by the same-plane or same-point shortcut (no arithmetic) or by the stage of the certified
-// comparison of the two exact t that decided (compensated, expansion or exact rationals). For tests, the
-// benchmarks and `raykernel nearest --mesh --stats`; the same answer as nearest_hit.
+// each one's relation (or that it repeated the previous candidate), how many were hit, and how the near ties —
+// the hits whose exact t the binary64 filter could not order against the best one's so far (exact ties, and t
+// closer than the filter's error) — were ordered: by the same-plane or same-point shortcut, or as a repeat of the
+// previous candidate (no arithmetic), or by the stage of the certified comparison of the two exact t that decided
+// (compensated, expansion or exact rationals). For tests, the benchmarks and `raykernel nearest --mesh --stats`;
+// the same answer as nearest_hit.
 struct TracedMeshHit {
   std::optional<MeshHit> hit;
   std::uint64_t candidates = 0;                            // triangles in the leaves the walk returned
   std::array<std::uint64_t, stage_count> relations{};      // candidates whose relation each stage decided
   std::uint64_t repeats = 0;  // candidates with the previous one's vertices (any order): its answer reused
   std::uint64_t hits = 0;                                  // candidates whose relation is hit
-  std::uint64_t ties = 0;                                  // hits whose rounded t equalled the best's so far
-  std::uint64_t ties_without_arithmetic = 0;               // ties settled by the same-plane or same-point rule
-  std::array<std::uint64_t, stage_count> comparisons{};    // the other ties: the stage that ordered the exact t
+  std::uint64_t ties = 0;                                  // near ties: hits the filter could not order
+  std::uint64_t ties_without_arithmetic = 0;  // of those, settled by the same-plane or same-point rule, or repeated
+  std::array<std::uint64_t, stage_count> comparisons{};    // the other near ties: the stage that ordered the exact t
 };
 [[nodiscard]] TracedMeshHit nearest_hit_traced(const Ray& ray, const PreparedMesh& mesh,
                                                TriangleRule rule = TriangleRule::owned);
@@ -94,10 +99,10 @@ struct TracedMeshHit {
 // guarantee. No validation beyond the walk's (throws invalid_input for an invalid ray).
 [[nodiscard]] std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mesh);
 
-// The sign (−1, 0, +1) of x − y for two exact rationals (decimal strings, denominators nonzero), exactly. For
-// ordering the exact t of different surfaces — a plane's (intersect_exact_rational in raykernel.hpp) and a
-// triangle's (triangle.hpp) — when their rounded t are equal, as `raykernel render` does for scenes with planes
-// and meshes. Throws std::invalid_argument on malformed text.
+// The sign (−1, 0, +1) of x − y for two exact rationals (decimal strings, denominators nonzero), exactly: for
+// ordering exact t values given as text — a plane's (intersect_exact_rational in raykernel.hpp) and a triangle's
+// (triangle.hpp). (A scene of planes and a mesh is better asked as one query: raykernel/nearest_scene.hpp.)
+// Throws std::invalid_argument on malformed text.
 [[nodiscard]] int compare_exact(const Rational& x, const Rational& y);
 
 // ---- inside ---------------------------------------------------------------------------------------------------

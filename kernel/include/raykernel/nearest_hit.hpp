@@ -10,7 +10,8 @@
 // a binary64 filter, a double-double stage, exact expansions and exact rationals, each asked only when
 // the cheaper ones cannot decide. Rounded t values are never compared, so two planes whose t differ by
 // less than an ulp are ordered correctly, and planes whose exact t are equal (coincident planes, planes
-// through the same point of the ray) tie.
+// through the same point of the ray) tie. The same nearest-hit module answers for meshes
+// (raykernel/mesh_queries.hpp) and for scenes of planes and a mesh (raykernel/nearest_scene.hpp).
 #pragma once
 
 #include <raykernel/raykernel.hpp>

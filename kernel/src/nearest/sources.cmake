@@ -1,5 +1,8 @@
-# nearest: the nearest hit over primitives (the exact comparison of two t values, the screen, the module).
-target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/nearest_hit.cpp ${CMAKE_CURRENT_LIST_DIR}/nearest_screen_portable.cpp)
+# nearest: the nearest hit over every kind of surface — the module (candidates, search, the certified comparison of
+# two t values, the exact stage across kinds), the screen, the entry points for plane sets and scenes.
+target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/nearest_hit.cpp ${CMAKE_CURRENT_LIST_DIR}/exact_nearest.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/nearest_stages.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/nearest_screen_portable.cpp)
 # nearest_hit's screen (nearest_screen.hpp), once per instruction set: AVX2, or portable.
 if(RAYKERNEL_ISA_VARIANTS)
   target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/nearest_screen_avx2.cpp)

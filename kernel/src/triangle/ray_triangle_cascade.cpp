@@ -218,8 +218,11 @@ class TriangleCascade {
 // Certified by: proofs/triangle/TriangleCascadeTwins.v, `fast_relation_tri_correct` (its twin, run against this code
 // and the public relation() by the differential runner, routine tri_fast_relation: every answer is
 // docs/contract.md §6's under both rules).
-[[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(const Ray& ray,
-                                                                                      const Triangle& triangle) noexcept {
+// With `values`, a line through the triangle (hit or behind) also leaves there the stage-1 values of num and
+// den (lane 3) it was decided from, for the nearest hit's comparisons (ray_triangle_stages.hpp,
+// TriangleQuotientStage1).
+[[gnu::always_inline]] inline std::optional<TracedTriangleClassification> fast_relation(
+    const Ray& ray, const Triangle& triangle, TriangleQuotientStage1* values = nullptr) noexcept {
   const TriangleLanes<FilterTerm<Lanes4>> s1 = triangle_relation_lanes(ray, triangle);
   // The proved stage-1 sign of each lane (the π constant holds for lane 3, see triangle_relation_lanes).
   const Mask4 sign = det3_filter_lanes(s1.lanes, bounds::triangle_filter_pi_relative, s1.absolute);
@@ -231,6 +234,7 @@ class TriangleCascade {
     if (!inside) return TracedTriangleClassification{{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
     const TriangleNumFilter num = triangle_num_filter(ray, triangle);
     const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
+    if (values != nullptr) *values = {num.value, lane(s1.lanes, 3), num.absolute, s1.absolute[3]};
     if (num_sign != uncertain_lane)
       return TracedTriangleClassification{
           {num_sign == sden ? TriangleRelation::hit : TriangleRelation::behind, TriangleLocation::inside, true},
@@ -333,6 +337,12 @@ RAYKERNEL_MULTIVERSION
 std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray, const Triangle& triangle,
                                                                    TriangleRule) noexcept {
   return fast_relation(ray, triangle);  // what it certifies has no π = 0: the rules agree
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray, const Triangle& triangle,
+                                                                   TriangleRule, TriangleQuotientStage1& values) noexcept {
+  return fast_relation(ray, triangle, &values);
 }
 
 namespace {

@@ -32,6 +32,13 @@ struct TracedTriangleClassification {
 [[nodiscard]] std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray,
                                                                                  const Triangle& triangle,
                                                                                  TriangleRule rule) noexcept;
+// The same, and for a line through the triangle (relation hit or behind, whether certified or not) the stage-1
+// values of num and den it read (ray_triangle_stages.hpp): a nearest hit compares them without recomputing.
+struct TriangleQuotientStage1;
+[[nodiscard]] std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray,
+                                                                                 const Triangle& triangle,
+                                                                                 TriangleRule rule,
+                                                                                 TriangleQuotientStage1& values) noexcept;
 
 // The whole cascade, each sign and each quotient escalated on its own (filter, compensated, expansion,
 // exact). Requires valid input (validation.hpp).

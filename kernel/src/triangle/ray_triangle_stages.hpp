@@ -213,6 +213,71 @@ struct TriangleNumFilter {
   return {t.h[k], t.l[k], t.m[k]};
 }
 
+// ---- t = num/den alone: what a nearest hit compares and rounds ---------------------------------------------
+//
+// A nearest hit orders its candidates by t and rounds the winner's t: it needs num and den, not the three π.
+// den is taken in its short form d·((b − a) × (c − a)) — π(b, c) seen from a, lane 3 of
+// triangle_relation_lanes — so the π's constants and theorems hold for it with a in the origin's place;
+// num = ê_a·(ê_b × ê_c) as everywhere. The stage-3 expansions of the same two forms are value_expansion's
+// value_num and value_den.
+//   stage 1: |V − v| ≤ (C ⊗ m) ⊕ A, the bound det3_filter compares against (the instances num_filter_encloses and,
+//            for den with o := a, pi_filter_encloses of the general theorem):
+//            proofs/triangle/TriangleFilter.v, `det3_filter_encloses`
+//   stage 2: det3_enclosure (den with o := a):
+//            proofs/triangle/TriangleCompensated.v, `pi_compensated_encloses`, `num_compensated_encloses`
+
+// Stage 1 of num and den (den in the short form), with their absolute terms: the values fast_triangle_relation
+// decides a line through the triangle from (triangle/ray_triangle_cascade.hpp), or computed on their own.
+struct TriangleQuotientStage1 {
+  FilterTerm<double> num, den;
+  double absolute_e, absolute_d;  // num's (ê_a) and den's (d)
+};
+
+template <class Leaf>
+[[nodiscard]] [[gnu::always_inline]] inline std::array<Leaf, 3> leaf_differences(const Vec3& v, const Vec3& from,
+                                                                                 auto difference) noexcept {
+  return {difference(v.x, from.x), difference(v.y, from.y), difference(v.z, from.z)};
+}
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleQuotientStage1 triangle_quotient_filter(const Ray& ray,
+                                                                                           const Triangle& t) noexcept {
+  const auto difference = [](double v, double w) { return FilterLeaf<double>{v - w}; };
+  const Vec3 &o = ray.origin, &d = ray.direction;
+  const std::array<FilterLeaf<double>, 3> dl{FilterLeaf<double>{d.x}, FilterLeaf<double>{d.y}, FilterLeaf<double>{d.z}};
+  const auto ea = leaf_differences<FilterLeaf<double>>(t.a, o, difference);
+  const auto eb = leaf_differences<FilterLeaf<double>>(t.b, o, difference);
+  const auto ec = leaf_differences<FilterLeaf<double>>(t.c, o, difference);
+  const auto ab = leaf_differences<FilterLeaf<double>>(t.b, t.a, difference);
+  const auto ac = leaf_differences<FilterLeaf<double>>(t.c, t.a, difference);
+  return {dot_terms(ea, cross_terms(eb, ec)), dot_terms(dl, cross_terms(ab, ac)),
+          det3_absolute_term(ea[0].v, ea[1].v, ea[2].v), det3_absolute_term(d.x, d.y, d.z)};
+}
+
+// Stage 2 of num and den (den in the short form): their enclosures.
+struct TriangleQuotientStage2 {
+  Enclosure num, den;
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleQuotientStage2 triangle_quotient_compensated(
+    const Ray& ray, const Triangle& t) noexcept {
+  const auto difference = [](double v, double w) {
+    const DoubleDouble s = two_diff(v, w);
+    return CompensatedLeaf<double>{s.hi, s.lo};
+  };
+  const Vec3 &o = ray.origin, &d = ray.direction;
+  const std::array<CompensatedLeaf<double>, 3> dl{CompensatedLeaf<double>{d.x, 0.0}, CompensatedLeaf<double>{d.y, 0.0},
+                                                  CompensatedLeaf<double>{d.z, 0.0}};
+  const auto ea = leaf_differences<CompensatedLeaf<double>>(t.a, o, difference);
+  const auto eb = leaf_differences<CompensatedLeaf<double>>(t.b, o, difference);
+  const auto ec = leaf_differences<CompensatedLeaf<double>>(t.c, o, difference);
+  const auto ab = leaf_differences<CompensatedLeaf<double>>(t.b, t.a, difference);
+  const auto ac = leaf_differences<CompensatedLeaf<double>>(t.c, t.a, difference);
+  return {det3_enclosure(dot_terms(ea, cross_terms(eb, ec)), bounds::triangle_compensated_relative,
+                         det3_absolute_term(ea[0].h, ea[1].h, ea[2].h)),
+          det3_enclosure(dot_terms(dl, cross_terms(ab, ac)), bounds::triangle_compensated_relative,
+                         det3_absolute_term(d.x, d.y, d.z))};
+}
+
 // The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
 // components, or nothing when an expansion was not exact or its sign not certain.
 [[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,

@@ -1,0 +1,79 @@
+// The correctly rounded quotient t = num/den decided at its rounding boundaries, exactly: for the quotients
+// round_quotient cannot certify because t lies on a boundary or closer to it than any enclosure can tell — a
+// rounding tie, t exactly halfway between two doubles (a triangle seen straight down at dyadic coordinates: t in
+// [8, 9) with a denominator 2^50 is a tie one time in two) — without rational arithmetic.
+//
+// Given a candidate q (the rounding of an enclosure of t, which is t's rounding or one of its neighbours), RN(t)
+// is q exactly when t lies strictly between the midpoints m⁻ = (q⁻ + q)/2 and m⁺ = (q + q⁺)/2 of q and its
+// neighbours q⁻ < q < q⁺; on m⁺ (or m⁻) it is the one of q, q⁺ (q⁻, q) whose last significand bit is 0 (ties to
+// even). The side of t against a midpoint m = (x + y)/2 is
+//
+//     sign(t − m) = sign(2·num − (x + y)·den)·sign(den),
+//
+// the comparison of the two quotients num/den and (x + y)/2 — compare_quotients_expansion on num, den and the
+// expansions TwoSum(x, y) (exactly x + y) and {2}, exact (nearest/compare_quotients.hpp). Nothing is rounded: no
+// error constant.
+//   Valid range: 2^-968 ≤ |q| < largest_finite (so that q⁻ and q⁺ are normal doubles of q's sign and the
+//   products exact unless the builder says otherwise), num and den as exact expansions of at most 16 components
+//   each; nothing (the exact stage decides) when a product is not exact, the candidate is not t's rounding or
+//   its neighbour's (t beyond m⁺ or below m⁻), or q is outside that range.
+//   Certified by: proofs/core/Expansions.v, `compare_quotients_expansion_sound` (each sign; TwoSum's exactness for the
+//   midpoint's expansion); the choice of RN(t) from the two signs is round-to-nearest-even's definition on the
+//   midpoints (no Coq theorem of its own yet).
+#pragma once
+
+#include "core/eft.hpp"
+#include "core/error_bounds.hpp"
+#include "core/expansion.hpp"
+#include "core/sign.hpp"
+#include "nearest/compare_quotients.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+
+namespace raykernel::detail {
+
+namespace boundary_internal {
+
+// The sign of t − (x + y)/2 for t = num/den (den's exact sign given, ±1), or uncertain.
+template <std::size_t A, std::size_t B>
+[[nodiscard]] inline Sign side_of_midpoint(const Expansion<A>& num, const Expansion<B>& den, int den_sign, double x,
+                                           double y) noexcept {
+  // (Capacities of 16, as the triangles' comparisons: one instantiation of compare_quotients_expansion.)
+  // {x, y} as the expansion TwoSum(x, y) = (s, e): nonoverlapping, so that the checked sign of the difference
+  // decides, and s + e = x + y exactly.
+  Expansion<16> pair;
+  ExpansionBuilder::from_pair(two_sum(x, y), pair);
+  Expansion<16> two;
+  two.component[0] = 2;
+  two.size = 1;
+  const Sign delta = compare_quotients_expansion(num, den, pair, two);  // sign(num·2 − (x + y)·den)
+  if (!is_certain(delta)) return Sign::uncertain;
+  return static_cast<Sign>(static_cast<int>(delta) * den_sign);
+}
+
+[[nodiscard]] inline bool even(double x) noexcept { return (std::bit_cast<std::uint64_t>(x) & 1) == 0; }
+
+}  // namespace boundary_internal
+
+// RN(num/den), ties to even, for the candidate q; nothing when the signs do not decide (see above).
+template <std::size_t A, std::size_t B>
+[[nodiscard]] inline std::optional<double> round_quotient_at_boundaries(const Expansion<A>& num,
+                                                                         const Expansion<B>& den, int den_sign,
+                                                                         double q) noexcept {
+  using boundary_internal::side_of_midpoint;
+  const double magnitude = std::fabs(q);
+  if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
+  const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
+  const Sign above = side_of_midpoint(num, den, den_sign, q, up);  // t against m⁺
+  if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
+  if (above != Sign::negative) return std::nullopt;  // t > m⁺ (or undecided): q is not RN(t)
+  const Sign below = side_of_midpoint(num, den, den_sign, down, q);  // t against m⁻
+  if (below == Sign::zero) return boundary_internal::even(q) ? q : down;
+  if (below != Sign::positive) return std::nullopt;
+  return q;
+}
+
+}  // namespace raykernel::detail
