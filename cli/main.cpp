@@ -35,6 +35,10 @@ commands:
                       rule (raykernel triangle --help)
   spawn [FILE|-]      the origin of a secondary ray that never re-hits the triangle it leaves,
                       in binary64 or binary32 (raykernel spawn --help)
+  spawn-audit FILE [--hits N] [--seed S] [--scale-exponent E] [--png OUT]
+                      check exactly how renderers' ray-offset methods (pbrt-v4, Ray Tracing
+                      Gems/Cycles, Mitsuba 3, Embree, One Weekend) and spawn fare on a mesh:
+                      self-hits, wrong side, first hits that differ (raykernel spawn-audit --help)
   render [SCENE.json] render a scene of planes and meshes to PNG, or the built-in demo scene; can mark
                       where the exact answer needed slower stages and where plain doubles pick
                       another plane (raykernel render --help)

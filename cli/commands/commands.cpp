@@ -10,6 +10,7 @@ std::span<const Command> commands() {
       {"watertight", run_watertight, watertight_command_line},
       {"triangle", run_triangle, triangle_command_line},
       {"spawn", run_spawn, spawn_command_line},
+      {"spawn-audit", run_spawn_audit, spawn_audit_command_line},
       {"render", run_render, render_command_line},
       {"demo", run_demo, demo_command_line},
   };

@@ -37,6 +37,8 @@ int run_triangle(const std::vector<std::string>& args);  // triangle.cpp
 OwnedCommandLine triangle_command_line();
 int run_spawn(const std::vector<std::string>& args);  // spawn.cpp
 OwnedCommandLine spawn_command_line();
+int run_spawn_audit(const std::vector<std::string>& args);  // spawn_audit.cpp
+OwnedCommandLine spawn_audit_command_line();
 int run_render(const std::vector<std::string>& args);  // render.cpp
 OwnedCommandLine render_command_line();
 int run_demo(const std::vector<std::string>& args);  // demo.cpp

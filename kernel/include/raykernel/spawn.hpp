@@ -22,11 +22,13 @@
 #pragma once
 
 #include <raykernel/core.hpp>
+#include <raykernel/mesh.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace raykernel {
 
@@ -60,6 +62,44 @@ struct SpawnedOrigin {
 // source triangle.
 [[nodiscard]] SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target,
                                      OriginFormat format = OriginFormat::binary64);
+
+// P̂: the hit point P rounded to nearest-even in the format, coordinate by coordinate (what spawn starts from).
+// Invalid input as for spawn; a coordinate that overflows the format is ±inf.
+[[nodiscard]] Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source,
+                                     OriginFormat format = OriginFormat::binary64);
+
+// σ(x) = sign((x − a)·N), N = (b − a) × (c − a): the side of the triangle's plane a point lies on (0: on it),
+// exactly. Throws invalid_input for a non-finite value.
+[[nodiscard]] int plane_side(const Vec3& point, const Triangle& triangle);
+// sign(w·N): the side a direction leaves the plane towards (0: parallel to it), exactly.
+[[nodiscard]] int direction_side(const Vec3& direction, const Triangle& triangle);
+
+// ---- The exact ground truth of a secondary ray -----------------------------------------------------------
+// What `raykernel spawn-audit` checks the offset methods renderers use against. A new ray starts at `from` —
+// the exact hit point P where the ray crosses the plane of `source` (HitPoint::crossing; P is a rational point,
+// generally not representable), or a point of doubles (HitPoint::at; `source` is then not used) — and goes
+// along `direction`. A triangle counts when the ray meets it under the closed rule (docs/contract.md §6: any
+// point of the closed triangle; coplanar and degenerate triangles never) at an exact t in the interval: t ≥ t_min
+// (`t_min_included`), or t > t_min (t > 0: what the ray meets at its start point itself left out). Both are
+// exact for every input (GMP rationals); invalid input (a non-finite value, a zero direction, t_min negative or
+// not finite, a crossing parallel to the plane of `source`, an invalid mesh) throws invalid_input.
+struct SecondaryInterval {
+  double t_min = 0;
+  bool t_min_included = true;
+};
+
+// Whether the ray meets `triangle` with t in the interval.
+[[nodiscard]] bool hits_exact(const HitPoint& from, const Triangle& source, const Vec3& direction,
+                              const Triangle& triangle, const SecondaryInterval& interval = {});
+
+// The triangles of `mesh` (indices, ascending) that the ray meets first — at the least exact t in the interval —
+// leaving out the triangle `skip`; empty when it meets none. Each triangle's box is tested first against the
+// box of the start point swept along the direction, with slab bounds rounded outwards, which sets most aside
+// without rationals; the rest are decided in rationals.
+[[nodiscard]] std::vector<std::uint32_t> first_hits_exact(const HitPoint& from, const Triangle& source,
+                                                          const Vec3& direction, const Mesh& mesh,
+                                                          const SecondaryInterval& interval = {},
+                                                          std::optional<std::uint32_t> skip = std::nullopt);
 
 [[nodiscard]] std::string_view to_string(OriginFormat format) noexcept;  // "binary64", "binary32"
 

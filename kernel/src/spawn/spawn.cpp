@@ -14,6 +14,7 @@
 #include "core/binary64_rounding.hpp"
 #include "core/fp_environment.hpp"
 #include "core/rational_from_double.hpp"
+#include "spawn/exact_point.hpp"
 
 #include <gmpxx.h>
 
@@ -25,16 +26,13 @@
 namespace raykernel {
 namespace {
 
+using detail::exact::cross;
+using detail::exact::dot;
+using detail::exact::exact;
+using detail::exact::minus;
+using detail::exact::Q3;
 using detail::exact::rational_from_double;
 using Q = mpq_class;
-using Q3 = std::array<Q, 3>;
-
-Q3 exact(const Vec3& v) { return {rational_from_double(v.x), rational_from_double(v.y), rational_from_double(v.z)}; }
-Q dot(const Q3& u, const Q3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
-Q3 minus(const Q3& u, const Q3& v) { return {u[0] - v[0], u[1] - v[1], u[2] - v[2]}; }
-Q3 cross(const Q3& u, const Q3& v) {
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
 
 const char* axis_name(int i) { return i == 0 ? "x" : i == 1 ? "y" : "z"; }
 
@@ -98,16 +96,8 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
     invalid("the triangle is degenerate (N = (b - a) x (c - a) = 0)");
 
   // P, exactly.
-  Q3 p;
-  if (hit.kind == HitPoint::Kind::ray_crossing) {
-    const Q3 o = exact(hit.ray.origin), d = exact(hit.ray.direction);
-    const Q den = dot(d, normal);
-    if (sgn(den) == 0) invalid("the ray is parallel to the triangle's plane (den = d.N = 0)");
-    const Q t = dot(minus(a, o), normal) / den;
-    for (int k = 0; k < 3; ++k) p[k] = o[k] + t * d[k];
-  } else {
-    p = exact(hit.point);
-  }
+  const std::optional<Q3> p = detail::exact::hit_point(hit, a, normal);
+  if (!p) invalid("the ray is parallel to the triangle's plane (den = d.N = 0)");
 
   // The side s.
   const int s = side_of == 0 ? sgn(dot(exact(w_or_q), normal)) : sgn(dot(minus(exact(w_or_q), a), normal));
@@ -121,7 +111,7 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
   double* r = &rounded.x;
   Q3 rounded_exact;
   for (int k = 0; k < 3; ++k) {
-    r[k] = detail::exact::round_rational(p[k], f, MPFR_RNDN);
+    r[k] = detail::exact::round_rational((*p)[k], f, MPFR_RNDN);
     if (!std::isfinite(r[k]))
       invalid(std::string("the rounded hit point overflows ") + std::string(to_string(format)) + " (coordinate " +
               axis_name(k) + ")");
@@ -162,6 +152,50 @@ SpawnedOrigin spawn(const HitPoint& hit, const Triangle& source, const Vec3& dir
 
 SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
   return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 1, target, format); });
+}
+
+Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source, OriginFormat format) {
+  return detail::in_default_fp_environment([&] {
+    if (hit.kind == HitPoint::Kind::ray_crossing) {
+      require_finite(hit.ray.origin, "ray origin");
+      require_finite(hit.ray.direction, "ray direction");
+    } else {
+      require_finite(hit.point, "point");
+    }
+    require_finite(source.a, "triangle a");
+    require_finite(source.b, "triangle b");
+    require_finite(source.c, "triangle c");
+    const Q3 a = exact(source.a);
+    const Q3 normal = cross(minus(exact(source.b), a), minus(exact(source.c), a));
+    const std::optional<Q3> p = detail::exact::hit_point(hit, a, normal);
+    if (!p) invalid("the ray is parallel to the triangle's plane (den = d.N = 0), or the triangle is degenerate");
+    Vec3 r{};
+    double* c = &r.x;
+    for (std::size_t k = 0; k < 3; ++k) c[k] = detail::exact::round_rational((*p)[k], format_of(format), MPFR_RNDN);
+    return r;
+  });
+}
+
+int plane_side(const Vec3& point, const Triangle& triangle) {
+  return detail::in_default_fp_environment([&] {
+    require_finite(point, "point");
+    require_finite(triangle.a, "triangle a");
+    require_finite(triangle.b, "triangle b");
+    require_finite(triangle.c, "triangle c");
+    const Q3 a = exact(triangle.a);
+    return sgn(dot(minus(exact(point), a), cross(minus(exact(triangle.b), a), minus(exact(triangle.c), a))));
+  });
+}
+
+int direction_side(const Vec3& direction, const Triangle& triangle) {
+  return detail::in_default_fp_environment([&] {
+    require_finite(direction, "direction");
+    require_finite(triangle.a, "triangle a");
+    require_finite(triangle.b, "triangle b");
+    require_finite(triangle.c, "triangle c");
+    const Q3 a = exact(triangle.a);
+    return sgn(dot(exact(direction), cross(minus(exact(triangle.b), a), minus(exact(triangle.c), a))));
+  });
 }
 
 std::string_view to_string(OriginFormat format) noexcept {

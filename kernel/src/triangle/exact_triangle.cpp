@@ -4,6 +4,7 @@
 #include "triangle/exact_triangle.hpp"
 
 #include "core/binary64_rounding.hpp"
+#include "core/exact_value.hpp"
 #include "core/rational_from_double.hpp"
 #include "triangle/ray_triangle_formula.hpp"
 
@@ -15,18 +16,6 @@ namespace raykernel::detail::exact {
 namespace {
 
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-
-// mpq_class without expression templates, so that the formulas' types are values.
-struct Exact {
-  mpq_class q;
-};
-Exact operator+(const Exact& a, const Exact& b) { return {a.q + b.q}; }
-Exact operator-(const Exact& a, const Exact& b) { return {a.q - b.q}; }
-Exact operator*(const Exact& a, const Exact& b) { return {a.q * b.q}; }
-int sgn(const Exact& a) { return ::sgn(a.q); }
-
-Exact lift(double x) { return {rational_from_double(x)}; }
-Exact difference(double v, double w) { return {rational_from_double(v) - rational_from_double(w)}; }
 
 RayTriangleTerms<Exact> exact_terms(const Ray& ray, const Triangle& triangle) {
   return ray_triangle_terms<Exact>(ray, triangle, lift, difference);

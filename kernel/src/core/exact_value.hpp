@@ -1,0 +1,24 @@
+// The exact number type the formulas are instantiated with on the exact path: GMP's mpq_class wrapped without
+// expression templates (so that a formula's intermediate types are values), with the leaves the formula
+// templates take (`lift`: a double exactly; `difference`: v − w exactly). Doubles are read from their bits
+// (rational_from_double.hpp), so the values are exact in any floating-point environment.
+#pragma once
+
+#include "core/rational_from_double.hpp"
+
+#include <gmpxx.h>
+
+namespace raykernel::detail::exact {
+
+struct Exact {
+  mpq_class q;
+};
+inline Exact operator+(const Exact& a, const Exact& b) { return {a.q + b.q}; }
+inline Exact operator-(const Exact& a, const Exact& b) { return {a.q - b.q}; }
+inline Exact operator*(const Exact& a, const Exact& b) { return {a.q * b.q}; }
+inline int sgn(const Exact& a) { return ::sgn(a.q); }
+
+inline Exact lift(double x) { return {rational_from_double(x)}; }
+inline Exact difference(double v, double w) { return {rational_from_double(v) - rational_from_double(w)}; }
+
+}  // namespace raykernel::detail::exact
