@@ -12,6 +12,11 @@ What it regenerates (each documented with a marker the reader does not see, in R
   - <!-- docs: output of `CMD` --> before a fenced block: the block is CMD's standard output.
   - <!-- docs: watertight FILE... --> before a table: the table of `raykernel watertight FILE` for each file
     (10,000 lines, seed 1).
+  - <!-- docs: spawn-audit FILE@E... --> before a table: the table of `raykernel spawn-audit FILE
+    --scale-exponent E` for each (200 hits, seed 1).
+  - Files under meshes/ are real meshes fetched by tools/fetch-audit-meshes.sh into build/audit-meshes (not
+    in the repository; the network is needed once): a table or picture that names one is regenerated when
+    they are there and left as it is (said on stderr) when they are not, so --check passes without them.
   - <!-- docs: pictures `CMD` --> : CMD writes pictures under docs/ (in the scratch directory, docs/ is a
     fresh directory that is then copied over the repository's, or compared with it byte for byte).
 
@@ -53,6 +58,10 @@ class Scratch:
         os.symlink(os.path.abspath(build), os.path.join(self.dir, "build"))
         for name in ("scenes", "tests", "examples"):
             os.symlink(os.path.join(ROOT, name), os.path.join(self.dir, name))
+        self.meshes = os.path.join(os.path.abspath(build), "audit-meshes")
+        self.have_meshes = os.path.isdir(self.meshes)
+        if self.have_meshes:
+            os.symlink(self.meshes, os.path.join(self.dir, "meshes"))
         os.mkdir(os.path.join(self.dir, "docs"))
         self.env = dict(os.environ, PATH=os.path.join(os.path.abspath(build), "bin") + os.pathsep + os.environ["PATH"],
                         LC_ALL="C.UTF-8")
@@ -113,8 +122,35 @@ def watertight_table(scratch, files):
     return rows
 
 
+def spawn_audit_table(scratch, runs):
+    """The README's table of `raykernel spawn-audit FILE --scale-exponent E` (200 hits, seed 1) for each FILE@E."""
+    rows = ["| mesh (triangles), scale | method | format | new rays | self-hits | wrong side | first hit differs | offset, ulps (median / max) |",
+            "|---|---|---|---:|---:|---:|---:|---:|"]
+    for run in runs:
+        f, e = run.rsplit("@", 1)
+        lines = scratch.output_of("build/bin/raykernel spawn-audit %s --hits 200 --seed 1 --scale-exponent %s" % (f, e))
+        m = re.match(r"mesh \S+: (\d+) triangles", lines[0])
+        first = "%s (%s), 2^%s" % (os.path.splitext(os.path.basename(f))[0], format(int(m.group(1)), ","), e)
+        for line in lines[3:]:
+            cells = line.split()
+            if len(cells) != 8:
+                continue
+            name, fmt, rays, self_hits, side, differs, median, most = cells
+            bold = (lambda x: "**%s**" % x) if name.startswith("raykernel") else (lambda x: x)
+            rows.append("| %s | %s | %s | %s | %s | %s | %s | %s / %s |" % (
+                first, bold(name), fmt, format(int(rays), ","), bold(format(int(self_hits), ",")),
+                bold(format(int(side), ",")), bold(format(int(differs), ",")), format(int(median), ","),
+                format(int(most), ",")))
+            first = ""
+    return rows
+
+
+def needs_missing_meshes(scratch, text):
+    return "meshes/" in text and not scratch.have_meshes
+
+
 FENCE = re.compile(r"^```")
-MARKER = re.compile(r"^<!-- docs: (output of|watertight|pictures) (.*?) -->$")
+MARKER = re.compile(r"^<!-- docs: (output of|watertight|spawn-audit|pictures) (.*?) -->$")
 
 
 def regenerate(path, scratch):
@@ -144,6 +180,18 @@ def regenerate(path, scratch):
                 while i < len(lines) and lines[i].startswith("|"):
                     i += 1
                 out.extend(watertight_table(scratch, argument.split()))
+            elif kind == "spawn-audit":
+                start = i
+                while i < len(lines) and lines[i].startswith("|"):
+                    i += 1
+                if needs_missing_meshes(scratch, argument):
+                    print("docs.py: kept the spawn-audit table of %s as it is (no build/audit-meshes: "
+                          "tools/fetch-audit-meshes.sh fetches them)" % argument, file=sys.stderr)
+                    out.extend(lines[start:i])
+                else:
+                    out.extend(spawn_audit_table(scratch, argument.split()))
+            elif needs_missing_meshes(scratch, argument):
+                print("docs.py: kept the pictures of %s (no build/audit-meshes)" % argument, file=sys.stderr)
             else:
                 pictures.append(argument.strip("`"))
             continue

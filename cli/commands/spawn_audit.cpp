@@ -20,6 +20,7 @@
 #include "commands/mesh_file.hpp"
 #include "common/exit_status.hpp"
 #include "common/io.hpp"
+#include "common/limits.hpp"
 #include "common/options.hpp"
 #include "common/text_format.hpp"
 #include "rendering/legend.hpp"
@@ -29,6 +30,7 @@
 #include "offset_methods.hpp"
 
 #include <raykernel/mesh_queries.hpp>
+#include <raykernel/parallel.hpp>
 #include <raykernel/spawn.hpp>
 
 #include <algorithm>
@@ -38,6 +40,8 @@
 #include <cstdint>
 #include <iomanip>
 #include <iostream>
+#include <mutex>
+#include <atomic>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -78,14 +82,16 @@ struct Arguments {
   std::string png_path;
   std::uint64_t hits = 200, seed = 1;
   std::int64_t scale_exponent = 0;
+  unsigned threads = 0;
 };
 
 CommandLine command_line(Arguments& a) {
   return {.command = "spawn-audit",
           .options = {{"--hits", integer(a.hits, 1, 1000000), "number of primary hits (default 200)"},
                       {"--seed", integer(a.seed, 0, UINT64_MAX, "S"), "random seed (default 1)"},
-                      {"--scale-exponent", integer(a.scale_exponent, -100, 100, "E"),
+                      {"--scale-exponent", signed_integer(a.scale_exponent, -100, 100, "E"),
                        "scale the mesh by 2^E after rounding it to binary32 (default 0)"},
+                      {"--threads", integer(a.threads, 1, limits::max_threads), "worker threads (default: every core)"},
                       {"--png", file(a.png_path, "OUT"),
                        "write one panel per method: the mesh, and the hits where the method failed marked (red: "
                        "self-hit, orange: wrong side, blue: first hit differs)"}},
@@ -219,15 +225,19 @@ int run_spawn_audit(const std::vector<std::string>& args) {
   const Vec3 centre = scaled(plus(box.lo, box.hi), 0.5);
   const double radius = 2 * std::sqrt(dot(minus(box.hi, box.lo), minus(box.hi, box.lo))) + 1e-300;
 
+  // The samples, drawn in order from the seed: each hit and its new directions.
+  struct Sample {
+    Ray primary;
+    std::uint32_t source;
+    baseline::OffsetHit hit;
+    std::vector<Vec3> directions;
+  };
   std::mt19937_64 rng(arguments.seed);
-  std::array<Tally, method_count> tally{};
   std::array<std::uint64_t, kind_count> by_kind{};
-  std::uint64_t hits = 0, attempts = 0, no_reference_hit = 0, skipped_directions = 0;
-  std::vector<Mark> marks;
-  std::vector<Vec3> hit_points;
-  const bool show_progress = isatty(STDERR_FILENO);
+  std::uint64_t attempts = 0, skipped_directions = 0;
+  std::vector<Sample> samples;
   const std::uint64_t max_attempts = 50 * arguments.hits + 1000;
-  while (hits < arguments.hits && attempts < max_attempts) {
+  while (samples.size() < arguments.hits && attempts < max_attempts) {
     ++attempts;
     const std::uint32_t k = std::uniform_int_distribution<std::uint32_t>(
         0, static_cast<std::uint32_t>(mesh.triangles.size() - 1))(rng);
@@ -240,19 +250,18 @@ int run_spawn_audit(const std::vector<std::string>& args) {
     if (validate(primary)) continue;  // a zero direction (the target at the origin)
     const std::optional<MeshHit> hit = nearest_hit(primary, prepared);
     if (!hit) continue;
-    const std::uint32_t s = hit->triangle;
-    const Triangle tri = mesh.triangle(s);
-    const TriangleIntersection x = intersect(primary, tri, TriangleOptions{.rule = TriangleRule::closed, .t = true, .barycentric = true});
+    Sample sample{primary, hit->triangle, {}, {}};
+    const Triangle tri = mesh.triangle(sample.source);
+    const TriangleIntersection x =
+        intersect(primary, tri, TriangleOptions{.rule = TriangleRule::closed, .t = true, .barycentric = true});
     const HitPoint at_p = HitPoint::crossing(primary);
-    baseline::OffsetHit in{};
+    baseline::OffsetHit& in = sample.hit;
     try {
       in.p64 = rounded_hit_point(at_p, tri, OriginFormat::binary64);
       in.p32 = rounded_hit_point(at_p, tri, OriginFormat::binary32);
     } catch (const invalid_input&) {
       continue;
     }
-    ++hits;
-    hit_points.push_back(in.p64);
     in.triangle = tri;
     in.barycentric = {x.barycentric.a, x.barycentric.b, x.barycentric.c};
     in.primary_origin = origin;
@@ -260,16 +269,43 @@ int run_spawn_audit(const std::vector<std::string>& args) {
     const Vec3 normal = unit(cross(minus(tri.b, tri.a), minus(tri.c, tri.a)));
     for (int kind = 0; kind < kind_count; ++kind) {
       const Vec3 w = to_binary32(outgoing(static_cast<Kind>(kind), primary.direction, normal, rng));
-      if (!std::isfinite(w.x) || (w.x == 0 && w.y == 0 && w.z == 0) || direction_side(w, tri) == 0) {
+      if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z) || (w.x == 0 && w.y == 0 && w.z == 0) ||
+          direction_side(w, tri) == 0) {
         ++skipped_directions;
         continue;
       }
       ++by_kind[static_cast<std::size_t>(kind)];
+      sample.directions.push_back(w);
+    }
+    samples.push_back(std::move(sample));
+  }
+
+  // Each sample checked exactly, on every thread; the results kept per sample, then summed in order.
+  struct Check {
+    bool ran = false, self = false, wrong = false, differs = false;
+    std::uint64_t ulps = 0;
+  };
+  struct Result {
+    std::vector<std::array<Check, method_count>> checks;  // per direction
+    std::uint64_t no_reference_hit = 0;
+  };
+  std::vector<Result> results(samples.size());
+  const bool show_progress = isatty(STDERR_FILENO);
+  std::atomic<std::uint64_t> done{0};
+  std::mutex progress;
+  run_parts(samples.size(), thread_count(arguments.threads), [&](std::size_t n) {
+    const Sample& sample = samples[n];
+    const Triangle tri = mesh.triangle(sample.source);
+    const HitPoint at_p = HitPoint::crossing(sample.primary);
+    Result& result = results[n];
+    for (const Vec3& w : sample.directions) {
+      baseline::OffsetHit in = sample.hit;
       in.direction = w;
       const int side = direction_side(w, tri);
       const std::vector<std::uint32_t> reference =
-          first_hits_exact(at_p, tri, w, mesh, SecondaryInterval{0, false}, s);
-      no_reference_hit += reference.empty();
+          first_hits_exact(at_p, tri, w, mesh, SecondaryInterval{0, false}, sample.source);
+      result.no_reference_hit += reference.empty();
+      std::array<Check, method_count>& checks = result.checks.emplace_back();
       for (std::size_t m = 0; m < method_count; ++m) {
         baseline::OffsetRay ray{};
         if (m < baseline::offset_methods.size()) {
@@ -283,25 +319,44 @@ int run_spawn_audit(const std::vector<std::string>& args) {
           }
         }
         if (!std::isfinite(ray.origin.x) || !std::isfinite(ray.origin.y) || !std::isfinite(ray.origin.z)) continue;
-        Tally& t = tally[m];
-        ++t.rays;
         const SecondaryInterval interval{ray.t_min, ray.t_min_included};
         const HitPoint from = HitPoint::at(ray.origin);
-        const bool self = hits_exact(from, tri, w, tri, interval);
-        const bool wrong = plane_side(ray.origin, tri) != side;
         const std::vector<std::uint32_t> first = first_hits_exact(from, tri, w, mesh, interval);
         bool agree = first.empty() && reference.empty();
         for (std::uint32_t f : first) agree = agree || std::binary_search(reference.begin(), reference.end(), f);
-        t.self_hits += self;
-        t.wrong_side += wrong;
-        t.differs += !agree;
-        t.ulps.push_back(offset_ulps(ray.origin, method_binary32(m) ? in.p32 : in.p64, method_binary32(m)));
-        if (self || wrong || !agree) marks.push_back({in.p64, m, self ? 0 : wrong ? 1 : 2});
+        checks[m] = {true, hits_exact(from, tri, w, tri, interval), plane_side(ray.origin, tri) != side, !agree,
+                     offset_ulps(ray.origin, method_binary32(m) ? in.p32 : in.p64, method_binary32(m))};
       }
     }
-    if (show_progress) std::cerr << "\rspawn-audit: " << hits << " of " << arguments.hits << " hits" << std::flush;
-  }
+    const std::uint64_t finished = ++done;
+    if (show_progress) {
+      const std::lock_guard<std::mutex> lock(progress);
+      std::cerr << "\rspawn-audit: " << finished << " of " << samples.size() << " hits checked" << std::flush;
+    }
+  });
   if (show_progress) std::cerr << '\n';
+
+  std::array<Tally, method_count> tally{};
+  std::uint64_t no_reference_hit = 0;
+  std::vector<Mark> marks;
+  std::vector<Vec3> hit_points;
+  for (std::size_t n = 0; n < samples.size(); ++n) {
+    hit_points.push_back(samples[n].hit.p64);
+    no_reference_hit += results[n].no_reference_hit;
+    for (const auto& checks : results[n].checks)
+      for (std::size_t m = 0; m < method_count; ++m) {
+        const Check& c = checks[m];
+        if (!c.ran) continue;
+        Tally& t = tally[m];
+        ++t.rays;
+        t.self_hits += c.self;
+        t.wrong_side += c.wrong;
+        t.differs += c.differs;
+        t.ulps.push_back(c.ulps);
+        if (c.self || c.wrong || c.differs) marks.push_back({samples[n].hit.p64, m, c.self ? 0 : c.wrong ? 1 : 2});
+      }
+  }
+  const std::uint64_t hits = samples.size();
 
   const std::uint64_t directions = by_kind[0] + by_kind[1] + by_kind[2];
   std::cout << "mesh " << printable(mesh_path) << ": " << mesh.triangles.size() << " triangles, vertices rounded to binary32 ("

@@ -141,6 +141,27 @@ template <class T>
   return v;
 }
 
+// A decimal integer from `min` to `max` that may be negative: an optional '-', then digits only.
+[[nodiscard]] inline Value signed_integer(std::int64_t& destination, std::int64_t min, std::int64_t max,
+                                          std::string metavar = "N") {
+  Value v;
+  v.takes = Value::Takes::value;
+  v.metavar = std::move(metavar);
+  v.range = std::to_string(min) + " to " + std::to_string(max);
+  v.accepts = "an integer from " + v.range;
+  v.store = [&destination, min, max](const std::string& text) {
+    const bool negative = text.starts_with('-');
+    const std::uint64_t limit = negative ? static_cast<std::uint64_t>(-(min < 0 ? min : 0)) : static_cast<std::uint64_t>(max < 0 ? 0 : max);
+    const std::optional<std::uint64_t> n = parse_integer(negative ? text.substr(1) : text, 0, limit);
+    if (!n) return false;
+    const std::int64_t value = negative ? -static_cast<std::int64_t>(*n) : static_cast<std::int64_t>(*n);
+    if (value < min || value > max) return false;
+    destination = value;
+    return true;
+  };
+  return v;
+}
+
 // One of the named choices ("owned", "closed"): the help shows owned|closed, messages "owned or closed".
 template <class T>
 using Choices = std::vector<std::pair<std::string, T>>;
