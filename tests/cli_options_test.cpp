@@ -191,18 +191,24 @@ TEST(Options, OutOfRangeIsABadValue) {
     if (option.value.range.empty()) continue;
     const std::string where = std::string(command->name) + " " + option.name;
     const std::string max = option.value.range.substr(option.value.range.rfind(' ') + 1);
-    // max + 1, written out (max may be 2^64 − 1): the last digit raised, carrying.
-    std::string above = max;
-    for (std::size_t k = above.size(); k-- > 0;) {
-      if (above[k] != '9') {
-        ++above[k];
-        break;
+    const std::string min = option.value.range.substr(0, option.value.range.find(' '));
+    // The magnitude + 1, written out (max may be 2^64 − 1): the last digit raised, carrying.
+    const auto raised = [](std::string digits) {
+      for (std::size_t k = digits.size(); k-- > 0;) {
+        if (digits[k] != '9') {
+          ++digits[k];
+          break;
+        }
+        digits[k] = '0';
+        if (k == 0) digits.insert(0, "1");
       }
-      above[k] = '0';
-      if (k == 0) above.insert(0, "1");
-    }
+      return digits;
+    };
+    const std::string above = raised(max);
+    // Below the range: −1 for an unsigned range, min − 1 for a signed one (signed_integer).
+    const std::string below = min.starts_with('-') ? "-" + raised(min.substr(1)) : std::string("-1");
     for (const std::string& bad :
-         {above, std::string("-1"), std::string("+1"), std::string("1e3"), std::string(" 1")}) {
+         {above, below, std::string("+1"), std::string("1e3"), std::string(" 1")}) {
       const Parse p = parse(*command, {option.name, bad});
       EXPECT_EQ(p.status, exit_usage) << where << " " << bad;
       EXPECT_EQ(p.err, prefix(*command) + "bad value for " + option.name + ": '" + bad + "' (an integer from " +

@@ -8,7 +8,8 @@
 // `spawn` in binary32 and binary64 gives the new ray's origin (and its interval's start), from the same hit.
 // Each is then checked exactly (<raykernel/spawn.hpp>'s ground truth, GMP rationals):
 //   self-hits          the new ray meets the triangle it leaves, with t in its own interval (closed rule);
-//   wrong-side         the origin is not strictly on the side of the triangle's plane the direction leaves to;
+//   behind, on-plane   the origin is on the other side of the triangle's plane than the direction leaves to,
+//                      or on the plane itself (σ = −s or σ = 0: not strictly on side s);
 //   first-hit-differs  the first triangles the new ray meets (closed rule, its own interval) are not those the
 //                      exact ray from the exact hit point P meets first (t > 0, the source triangle left out):
 //                      a surface skipped (light leaks through a near surface) or one that is not there;
@@ -67,7 +68,7 @@ leave it; each method gives the new ray's origin (and where its interval starts)
   raykernel-32/64  raykernel spawn in binary32 and binary64 (t >= 0)
 and every new ray is checked exactly (GMP rationals):
   self-hits          it meets the triangle it leaves, with t in its own interval
-  wrong-side         its origin is not strictly on the side the direction leaves towards
+  behind, on-plane   its origin is on the other side of the plane, or on it
   first-hit-differs  its first hit is not the exact ray's from the exact hit point (source left out)
   offset             the origin's distance from the rounded hit point, in ulps of its format
 The vertices are rounded to binary32 first (every method sees the same surface), then scaled by
@@ -94,7 +95,7 @@ CommandLine command_line(Arguments& a) {
                       {"--threads", integer(a.threads, 1, limits::max_threads), "worker threads (default: every core)"},
                       {"--png", file(a.png_path, "OUT"),
                        "write one panel per method: the mesh, and the hits where the method failed marked (red: "
-                       "self-hit, orange: wrong side, blue: first hit differs)"}},
+                       "self-hit, orange: behind or on the plane, blue: first hit differs)"}},
           .operand = Operand{.metavar = "FILE", .what = "mesh file", .destination = &a.mesh_path},
           .help_before = help_before,
           .help_after = help_after};
@@ -136,7 +137,7 @@ std::uint64_t offset_ulps(const Vec3& origin, const Vec3& rounded, bool binary32
 }
 
 struct Tally {
-  std::uint64_t rays = 0, self_hits = 0, wrong_side = 0, differs = 0;
+  std::uint64_t rays = 0, self_hits = 0, behind = 0, on_plane = 0, differs = 0;
   std::vector<std::uint64_t> ulps;
 };
 
@@ -282,7 +283,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
 
   // Each sample checked exactly, on every thread; the results kept per sample, then summed in order.
   struct Check {
-    bool ran = false, self = false, wrong = false, differs = false;
+    bool ran = false, self = false, behind = false, on_plane = false, differs = false;
     std::uint64_t ulps = 0;
   };
   struct Result {
@@ -324,7 +325,8 @@ int run_spawn_audit(const std::vector<std::string>& args) {
         const std::vector<std::uint32_t> first = first_hits_exact(from, tri, w, mesh, interval);
         bool agree = first.empty() && reference.empty();
         for (std::uint32_t f : first) agree = agree || std::binary_search(reference.begin(), reference.end(), f);
-        checks[m] = {true, hits_exact(from, tri, w, tri, interval), plane_side(ray.origin, tri) != side, !agree,
+        const int sigma = plane_side(ray.origin, tri);
+        checks[m] = {true, hits_exact(from, tri, w, tri, interval), sigma == -side, sigma == 0, !agree,
                      offset_ulps(ray.origin, method_binary32(m) ? in.p32 : in.p64, method_binary32(m))};
       }
     }
@@ -350,10 +352,12 @@ int run_spawn_audit(const std::vector<std::string>& args) {
         Tally& t = tally[m];
         ++t.rays;
         t.self_hits += c.self;
-        t.wrong_side += c.wrong;
+        t.behind += c.behind;
+        t.on_plane += c.on_plane;
         t.differs += c.differs;
         t.ulps.push_back(c.ulps);
-        if (c.self || c.wrong || c.differs) marks.push_back({samples[n].hit.p64, m, c.self ? 0 : c.wrong ? 1 : 2});
+        if (c.self || c.behind || c.on_plane || c.differs)
+          marks.push_back({samples[n].hit.p64, m, c.self ? 0 : (c.behind || c.on_plane) ? 1 : 2});
       }
   }
   const std::uint64_t hits = samples.size();
@@ -366,7 +370,8 @@ int run_spawn_audit(const std::vector<std::string>& args) {
             << " grazing; " << skipped_directions << " parallel to the surface left out); the exact ray from P meets nothing for "
             << no_reference_hit << "\n";
   std::cout << std::left << std::setw(17) << "method" << std::setw(10) << "format" << std::right << std::setw(7) << "rays"
-            << std::setw(11) << "self-hits" << std::setw(12) << "wrong-side" << std::setw(19) << "first-hit-differs"
+            << std::setw(11) << "self-hits" << std::setw(8) << "behind" << std::setw(10) << "on-plane" << std::setw(19)
+            << "first-hit-differs"
             << std::setw(15) << "offset-median" << std::setw(12) << "offset-max" << '\n';
   for (std::size_t m = 0; m < method_count; ++m) {
     Tally& t = tally[m];
@@ -374,7 +379,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
     const std::uint64_t median = t.ulps.empty() ? 0 : t.ulps[t.ulps.size() / 2];
     const std::uint64_t most = t.ulps.empty() ? 0 : t.ulps.back();
     std::cout << std::left << std::setw(17) << method_name(m) << std::setw(10) << (method_binary32(m) ? "binary32" : "binary64")
-              << std::right << std::setw(7) << t.rays << std::setw(11) << t.self_hits << std::setw(12) << t.wrong_side
+              << std::right << std::setw(7) << t.rays << std::setw(11) << t.self_hits << std::setw(8) << t.behind << std::setw(10) << t.on_plane
               << std::setw(19) << t.differs << std::setw(15) << median << std::setw(12) << most << '\n';
   }
 
@@ -395,7 +400,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
       const Tally& t = tally[m];
       std::vector<LegendItem> legend = {{std::nullopt, method_name(m)},
                                         {colours[0], std::to_string(t.self_hits) + " self"},
-                                        {colours[1], std::to_string(t.wrong_side) + " side"},
+                                        {colours[1], std::to_string(t.behind + t.on_plane) + " side"},
                                         {colours[2], std::to_string(t.differs) + " differ"}};
       draw_legend(p, legend);
       const std::uint32_t x0 = static_cast<std::uint32_t>(m % columns) * panel, y0 = static_cast<std::uint32_t>(m / columns) * panel;
