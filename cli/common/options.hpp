@@ -126,40 +126,43 @@ template <class T>
 struct Stored<std::optional<T>> {
   using type = T;
 };
-template <class T>
-[[nodiscard]] Value integer(T& destination, std::uint64_t min, std::uint64_t max, std::string metavar = "N") {
+// An integer value: its range for the help and the messages, and how the text is stored.
+[[nodiscard]] inline Value integer_value(std::string metavar, std::string range,
+                                         std::function<bool(const std::string&)> store) {
   Value v;
   v.takes = Value::Takes::value;
   v.metavar = std::move(metavar);
-  v.range = std::to_string(min) + " to " + std::to_string(max);
+  v.range = std::move(range);
   v.accepts = "an integer from " + v.range;
-  v.store = [&destination, min, max](const std::string& text) {
-    const std::optional<std::uint64_t> n = parse_integer(text, min, max);
-    if (n) destination = static_cast<typename Stored<T>::type>(*n);
-    return n.has_value();
-  };
+  v.store = std::move(store);
   return v;
+}
+template <class T>
+[[nodiscard]] Value integer(T& destination, std::uint64_t min, std::uint64_t max, std::string metavar = "N") {
+  return integer_value(std::move(metavar), std::to_string(min) + " to " + std::to_string(max),
+                       [&destination, min, max](const std::string& text) {
+                         const std::optional<std::uint64_t> n = parse_integer(text, min, max);
+                         if (n) destination = static_cast<typename Stored<T>::type>(*n);
+                         return n.has_value();
+                       });
 }
 
 // A decimal integer from `min` to `max` that may be negative: an optional '-', then digits only.
 [[nodiscard]] inline Value signed_integer(std::int64_t& destination, std::int64_t min, std::int64_t max,
                                           std::string metavar = "N") {
-  Value v;
-  v.takes = Value::Takes::value;
-  v.metavar = std::move(metavar);
-  v.range = std::to_string(min) + " to " + std::to_string(max);
-  v.accepts = "an integer from " + v.range;
-  v.store = [&destination, min, max](const std::string& text) {
-    const bool negative = text.starts_with('-');
-    const std::uint64_t limit = negative ? static_cast<std::uint64_t>(-(min < 0 ? min : 0)) : static_cast<std::uint64_t>(max < 0 ? 0 : max);
-    const std::optional<std::uint64_t> n = parse_integer(negative ? text.substr(1) : text, 0, limit);
-    if (!n) return false;
-    const std::int64_t value = negative ? -static_cast<std::int64_t>(*n) : static_cast<std::int64_t>(*n);
-    if (value < min || value > max) return false;
-    destination = value;
-    return true;
-  };
-  return v;
+  return integer_value(std::move(metavar), std::to_string(min) + " to " + std::to_string(max),
+                       [&destination, min, max](const std::string& text) {
+                         const bool negative = text.starts_with('-');
+                         const std::uint64_t limit = negative ? static_cast<std::uint64_t>(-(min < 0 ? min : 0))
+                                                              : static_cast<std::uint64_t>(max < 0 ? 0 : max);
+                         const std::optional<std::uint64_t> n = parse_integer(negative ? text.substr(1) : text, 0, limit);
+                         if (!n) return false;
+                         const std::int64_t value =
+                             negative ? -static_cast<std::int64_t>(*n) : static_cast<std::int64_t>(*n);
+                         if (value < min || value > max) return false;
+                         destination = value;
+                         return true;
+                       });
 }
 
 // One of the named choices ("owned", "closed"): the help shows owned|closed, messages "owned or closed".

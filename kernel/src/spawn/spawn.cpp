@@ -72,9 +72,14 @@ double from_ordinal(std::int64_t n, OriginFormat f) {
   return n < 0 ? -x : x;
 }
 
-SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int side_of, const Vec3& w_or_q,
-                            OriginFormat format) {
-  // side_of: 0 for spawn (s = sign(w·N)), 1 for spawn_to (s = σ(q)).
+// The source's a and N and the hit point P, exactly, after the checks every entry point makes, in the order
+// the reasons are reported: non-finite values (the hit, the triangle, then `extra`: w or q), a zero ray
+// direction, a zero w (`zero_extra`), a degenerate triangle, a ray parallel to the plane.
+struct ExactHit {
+  Q3 a, normal, p;
+};
+ExactHit exact_hit(const HitPoint& hit, const Triangle& source, const Vec3* extra = nullptr,
+                   const char* extra_name = nullptr, bool zero_extra = false) {
   if (hit.kind == HitPoint::Kind::ray_crossing) {
     require_finite(hit.ray.origin, "ray origin");
     require_finite(hit.ray.direction, "ray direction");
@@ -84,20 +89,30 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
   require_finite(source.a, "triangle a");
   require_finite(source.b, "triangle b");
   require_finite(source.c, "triangle c");
-  require_finite(w_or_q, side_of == 0 ? "direction w" : "target q");
+  if (extra != nullptr) require_finite(*extra, extra_name);
   if (hit.kind == HitPoint::Kind::ray_crossing && hit.ray.direction.x == 0 && hit.ray.direction.y == 0 &&
       hit.ray.direction.z == 0)
     invalid("ray direction is the zero vector");
-  if (side_of == 0 && w_or_q.x == 0 && w_or_q.y == 0 && w_or_q.z == 0) invalid("direction w is the zero vector");
+  if (zero_extra && extra->x == 0 && extra->y == 0 && extra->z == 0) invalid("direction w is the zero vector");
 
-  const Q3 a = exact(source.a);
-  const Q3 normal = cross(minus(exact(source.b), a), minus(exact(source.c), a));
-  if (sgn(normal[0]) == 0 && sgn(normal[1]) == 0 && sgn(normal[2]) == 0)
+  ExactHit h;
+  h.a = exact(source.a);
+  h.normal = cross(minus(exact(source.b), h.a), minus(exact(source.c), h.a));
+  if (sgn(h.normal[0]) == 0 && sgn(h.normal[1]) == 0 && sgn(h.normal[2]) == 0)
     invalid("the triangle is degenerate (N = (b - a) x (c - a) = 0)");
-
-  // P, exactly.
-  const std::optional<Q3> p = detail::exact::hit_point(hit, a, normal);
+  std::optional<Q3> p = detail::exact::hit_point(hit, h.a, h.normal);
   if (!p) invalid("the ray is parallel to the triangle's plane (den = d.N = 0)");
+  h.p = std::move(*p);
+  return h;
+}
+
+SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int side_of, const Vec3& w_or_q,
+                            OriginFormat format) {
+  // side_of: 0 for spawn (s = sign(w·N)), 1 for spawn_to (s = σ(q)).
+  const ExactHit h = exact_hit(hit, source, &w_or_q, side_of == 0 ? "direction w" : "target q", side_of == 0);
+  const Q3& a = h.a;
+  const Q3& normal = h.normal;
+  const Q3* const p = &h.p;
 
   // The side s.
   const int s = side_of == 0 ? sgn(dot(exact(w_or_q), normal)) : sgn(dot(minus(exact(w_or_q), a), normal));
@@ -156,22 +171,10 @@ SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& 
 
 Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source, OriginFormat format) {
   return detail::in_default_fp_environment([&] {
-    if (hit.kind == HitPoint::Kind::ray_crossing) {
-      require_finite(hit.ray.origin, "ray origin");
-      require_finite(hit.ray.direction, "ray direction");
-    } else {
-      require_finite(hit.point, "point");
-    }
-    require_finite(source.a, "triangle a");
-    require_finite(source.b, "triangle b");
-    require_finite(source.c, "triangle c");
-    const Q3 a = exact(source.a);
-    const Q3 normal = cross(minus(exact(source.b), a), minus(exact(source.c), a));
-    const std::optional<Q3> p = detail::exact::hit_point(hit, a, normal);
-    if (!p) invalid("the ray is parallel to the triangle's plane (den = d.N = 0), or the triangle is degenerate");
+    const ExactHit h = exact_hit(hit, source);
     Vec3 r{};
     double* c = &r.x;
-    for (std::size_t k = 0; k < 3; ++k) c[k] = detail::exact::round_rational((*p)[k], format_of(format), MPFR_RNDN);
+    for (std::size_t k = 0; k < 3; ++k) c[k] = detail::exact::round_rational(h.p[k], format_of(format), MPFR_RNDN);
     return r;
   });
 }
