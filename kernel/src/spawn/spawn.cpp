@@ -179,27 +179,23 @@ Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source, OriginFormat
   });
 }
 
-int plane_side(const Vec3& point, const Triangle& triangle) {
+namespace {
+// sign(v·N), v = x − a for a point (`point`), or x itself for a direction; exactly, after the finiteness checks.
+int side_of(const Vec3& x, bool point, const Triangle& triangle) {
   return detail::in_default_fp_environment([&] {
-    require_finite(point, "point");
+    require_finite(x, point ? "point" : "direction");
     require_finite(triangle.a, "triangle a");
     require_finite(triangle.b, "triangle b");
     require_finite(triangle.c, "triangle c");
     const Q3 a = exact(triangle.a);
-    return sgn(dot(minus(exact(point), a), cross(minus(exact(triangle.b), a), minus(exact(triangle.c), a))));
+    const Q3 v = point ? minus(exact(x), a) : exact(x);
+    return sgn(dot(v, cross(minus(exact(triangle.b), a), minus(exact(triangle.c), a))));
   });
 }
+}  // namespace
 
-int direction_side(const Vec3& direction, const Triangle& triangle) {
-  return detail::in_default_fp_environment([&] {
-    require_finite(direction, "direction");
-    require_finite(triangle.a, "triangle a");
-    require_finite(triangle.b, "triangle b");
-    require_finite(triangle.c, "triangle c");
-    const Q3 a = exact(triangle.a);
-    return sgn(dot(exact(direction), cross(minus(exact(triangle.b), a), minus(exact(triangle.c), a))));
-  });
-}
+int plane_side(const Vec3& point, const Triangle& triangle) { return side_of(point, true, triangle); }
+int direction_side(const Vec3& direction, const Triangle& triangle) { return side_of(direction, false, triangle); }
 
 std::string_view to_string(OriginFormat format) noexcept {
   return format == OriginFormat::binary32 ? "binary32" : "binary64";
