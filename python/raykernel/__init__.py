@@ -49,6 +49,7 @@ from ._types import (
     Ray,
     Relation,
     RelationArrays,
+    SpawnedOrigin,
     Stage,
     TracedIntersection,
     TracedTriangleIntersection,
@@ -88,6 +89,8 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     relation_batch,
     relation_triangle_batch,
     round_rational_to_double,
+    spawn,
+    spawn_to,
     validate,
     version,
 )
@@ -115,6 +118,7 @@ __all__ = [
     "Ray",
     "Relation",
     "RelationArrays",
+    "SpawnedOrigin",
     "Stage",
     "TracedIntersection",
     "TracedTriangleIntersection",
@@ -147,6 +151,8 @@ __all__ = [
     "relation_batch",
     "relation_triangle_batch",
     "round_rational_to_double",
+    "spawn",
+    "spawn_to",
     "validate",
     "version",
 ]

@@ -24,6 +24,7 @@ from ._types import (
     RayLike,
     Relation,
     RelationArrays,
+    SpawnedOrigin,
     RuleLike,
     TracedIntersection,
     TracedTriangleIntersection,
@@ -33,6 +34,7 @@ from ._types import (
     TriangleIntersectionArrays,
     Triangle,
     TriangleLike,
+    Vec3Like,
 )
 
 __version__: str
@@ -85,6 +87,12 @@ def intersect_traced(
 def round_rational_to_double(value: Union[Fraction, int], denominator: None = None) -> float: ...
 @overload
 def round_rational_to_double(value: int, denominator: int) -> float: ...
+def spawn(
+    hit: Union[RayLike, Vec3Like], triangle: TriangleLike, direction: Vec3Like, *, format: str = "binary64"
+) -> SpawnedOrigin: ...
+def spawn_to(
+    hit: Union[RayLike, Vec3Like], triangle: TriangleLike, target: Vec3Like, *, format: str = "binary64"
+) -> SpawnedOrigin: ...
 def floating_point_environment_is_default() -> bool: ...
 def version() -> str: ...
 

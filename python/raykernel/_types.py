@@ -270,6 +270,15 @@ class MeshHit(NamedTuple):
     barycentric: Barycentric
 
 
+class SpawnedOrigin(NamedTuple):
+    """The origin of a secondary ray (``spawn``, ``spawn_to``; docs/contract.md §9): ``origin`` (values of the
+    format asked for: binary32 values are exact floats) and ``steps``, k, the steps it took from the rounded hit
+    point (an exact int; it can exceed 2**53)."""
+
+    origin: Vec3
+    steps: int
+
+
 class IntersectionArrays(NamedTuple):
     """The answers of ``intersect_batch``, one row per query.
 

@@ -103,6 +103,7 @@ void load_types() {
   t->mesh_hit = m.attr("MeshHit");
   t->mesh_hit_arrays = m.attr("MeshHitArrays");
   t->point_location_arrays = m.attr("PointLocationArrays");
+  t->spawned_origin = m.attr("SpawnedOrigin");
   // The Python enums list their members in the C++ enums' order, and their codes are those values.
   for (std::size_t k = 0; k < 6; ++k) t->triangle_relation[k] = m.attr("TriangleRelation").attr("from_code")(k);
   for (std::size_t k = 0; k < 9; ++k) t->triangle_location[k] = m.attr("TriangleLocation").attr("from_code")(k);

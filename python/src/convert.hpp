@@ -43,6 +43,7 @@ struct PythonTypes {
   py::object barycentric, triangle_intersection, triangle_classification, traced_triangle_intersection,
       exact_triangle_intersection, triangle_intersection_arrays, triangle_classification_arrays;
   py::object mesh_hit, mesh_hit_arrays, point_location_arrays;
+  py::object spawned_origin;
   std::array<py::object, 3> point_location;
   std::array<py::object, 4> relation;  // indexed by the C++ enum's value
   std::array<py::object, 6> triangle_relation;

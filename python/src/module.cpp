@@ -25,6 +25,7 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_batch(m);
   bind_triangle(m);
   bind_mesh(m);
+  bind_spawn(m);
   bind_testkit(m);
 
   m.attr("__version__") = std::string(raykernel::version());

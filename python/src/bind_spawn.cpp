@@ -1,0 +1,85 @@
+// spawn and spawn_to (docs/contract.md §9): the origin of a secondary ray that never re-hits the triangle it
+// leaves, in binary64 or binary32.
+#include "bindings.hpp"
+#include "convert.hpp"
+
+#include <raykernel/spawn.hpp>
+
+#include <string>
+
+namespace raykernel::python {
+namespace {
+
+// The hit point: a ray (two vectors: P is where its line crosses the triangle's plane, exactly) or a point
+// (three numbers).
+HitPoint hit_from(py::handle hit) {
+  if (py::len(hit) == 2) return HitPoint::crossing(ray_from(hit, "hit"));
+  return HitPoint::at(vec3_from(hit, "hit"));
+}
+
+OriginFormat format_from(const std::string& format) {
+  if (format == "binary64") return OriginFormat::binary64;
+  if (format == "binary32") return OriginFormat::binary32;
+  throw py::value_error("format: expected 'binary64' or 'binary32', got '" + format + "'");
+}
+
+py::object to_python(const SpawnedOrigin& o) {
+  return types().spawned_origin(::raykernel::python::to_python(o.origin), py::int_(o.steps));
+}
+
+constexpr const char* hit_doc = R"doc(
+
+``hit`` is a ray ``(origin, direction)`` — P is where its line crosses the triangle's plane, exactly (a rational
+point, whatever the sign of t) — or a point of three numbers (P itself). ``triangle`` is ``(a, b, c)`` with
+N = (b − a) × (c − a) ≠ 0. ``format`` is "binary64" or "binary32" (a float renderer's origin, rounded straight
+from the exact P). Returns ``SpawnedOrigin(origin, steps)``: P rounded to nearest in the format when that point
+is strictly on side s, else moved the fewest steps through consecutive values of the format along the axis of
+the largest |N_i| until it is (``steps`` = k, exact). Raises ``ValueError`` (``raykernel.InvalidInput``) naming
+the reason: a non-finite number, a zero direction, a degenerate triangle, a ray parallel to the plane, )doc";
+
+}  // namespace
+
+void bind_spawn(py::module_& m) {
+  static const std::string spawn_doc =
+      std::string(R"doc(The origin of a new ray along ``direction`` leaving the triangle at the hit point P, on the side s = sign(w·N) it leaves
+towards: the ray from it never hits the triangle (docs/contract.md §9).)doc") +
+      hit_doc + "w parallel to the plane, a rounded point that overflows the format, or no origin on the side.";
+  static const std::string spawn_to_doc =
+      std::string(R"doc(The origin of a shadow ray towards the point ``target`` q, on q's side of the triangle's plane: the segment from it to
+q never meets the triangle (docs/contract.md §9).)doc") +
+      hit_doc + "q on the plane, a rounded point that overflows the format, or no origin on the side.";
+  m.def(
+      "spawn",
+      [](py::handle hit, py::handle triangle, py::handle direction, const std::string& format) {
+        const HitPoint h = hit_from(hit);
+        const Triangle t = triangle_from(triangle);
+        const Vec3 w = vec3_from(direction, "direction");
+        const OriginFormat f = format_from(format);
+        SpawnedOrigin o{};
+        {
+          py::gil_scoped_release release;
+          o = spawn(h, t, w, f);
+        }
+        return to_python(o);
+      },
+      py::arg("hit"), py::arg("triangle"), py::arg("direction"), py::kw_only(), py::arg("format") = "binary64",
+      spawn_doc.c_str());
+  m.def(
+      "spawn_to",
+      [](py::handle hit, py::handle triangle, py::handle target, const std::string& format) {
+        const HitPoint h = hit_from(hit);
+        const Triangle t = triangle_from(triangle);
+        const Vec3 q = vec3_from(target, "target");
+        const OriginFormat f = format_from(format);
+        SpawnedOrigin o{};
+        {
+          py::gil_scoped_release release;
+          o = spawn_to(h, t, q, f);
+        }
+        return to_python(o);
+      },
+      py::arg("hit"), py::arg("triangle"), py::arg("target"), py::kw_only(), py::arg("format") = "binary64",
+      spawn_to_doc.c_str());
+}
+
+}  // namespace raykernel::python
