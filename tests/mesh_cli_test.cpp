@@ -255,16 +255,17 @@ TEST(MeshCli, SpawnAudit) {
   EXPECT_NE(r.out.find("hits: 20 "), std::string::npos) << r.out;
   for (const char* m : {"raykernel-32", "raykernel-64"}) {
     const auto cells = row(r.out, m);
-    ASSERT_EQ(cells.size(), 8u) << r.out;
+    ASSERT_EQ(cells.size(), 9u) << r.out;
     EXPECT_EQ(cells[1], "60") << r.out;  // 20 hits, 3 directions each
-    EXPECT_EQ(cells[2], "0") << r.out;   // self-hits
-    EXPECT_EQ(cells[3], "0") << r.out;   // behind
-    EXPECT_EQ(cells[4], "0") << r.out;   // on the plane
-    EXPECT_EQ(cells[5], "0") << r.out;   // first hit differs
+    EXPECT_EQ(cells[2], "0") << r.out;   // no origin
+    EXPECT_EQ(cells[3], "0") << r.out;   // self-hits
+    EXPECT_EQ(cells[4], "0") << r.out;   // behind
+    EXPECT_EQ(cells[5], "0") << r.out;   // on the plane
+    EXPECT_EQ(cells[6], "0") << r.out;   // first hit differs
   }
   const auto weekend = row(r.out, "one-weekend");
-  ASSERT_EQ(weekend.size(), 8u) << r.out;
-  EXPECT_GT(std::stoi(weekend[3]) + std::stoi(weekend[4]), 10) << r.out;
+  ASSERT_EQ(weekend.size(), 9u) << r.out;
+  EXPECT_GT(std::stoi(weekend[4]) + std::stoi(weekend[5]), 10) << r.out;
   const std::optional<cli::Image> image = cli::read_png(png);
   ASSERT_TRUE(image.has_value());
   EXPECT_EQ(image->width, 4u * 320);

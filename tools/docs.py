@@ -124,8 +124,8 @@ def watertight_table(scratch, files):
 
 def spawn_audit_table(scratch, runs):
     """The README's table of `raykernel spawn-audit FILE --scale-exponent E` (200 hits, seed 1) for each FILE@E."""
-    rows = ["| mesh (triangles), scale | method | format | new rays | self-hits | behind | on the plane | first hit differs | offset, ulps (median / max) |",
-            "|---|---|---|---:|---:|---:|---:|---:|---:|"]
+    rows = ["| mesh (triangles), scale | method | format | new rays | no origin | self-hits | behind | on the plane | first hit differs | offset, ulps (median / max) |",
+            "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for run in runs:
         f, e = run.rsplit("@", 1)
         lines = scratch.output_of("build/bin/raykernel spawn-audit %s --hits 200 --seed 1 --scale-exponent %s" % (f, e))
@@ -133,12 +133,13 @@ def spawn_audit_table(scratch, runs):
         first = "%s (%s), 2^%s" % (os.path.splitext(os.path.basename(f))[0], format(int(m.group(1)), ","), e)
         for line in lines[3:]:
             cells = line.split()
-            if len(cells) != 9:
+            if len(cells) != 10:
                 continue
-            name, fmt, rays, self_hits, behind, on_plane, differs, median, most = cells
+            name, fmt, rays, no_origin, self_hits, behind, on_plane, differs, median, most = cells
             bold = (lambda x: "**%s**" % x) if name.startswith("raykernel") else (lambda x: x)
-            rows.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s / %s |" % (
-                first, bold(name), fmt, format(int(rays), ","), bold(format(int(self_hits), ",")),
+            rows.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s / %s |" % (
+                first, bold(name), fmt, format(int(rays), ","), bold(format(int(no_origin), ",")),
+                bold(format(int(self_hits), ",")),
                 bold(format(int(behind), ",")), bold(format(int(on_plane), ",")), bold(format(int(differs), ",")),
                 format(int(median), ","), format(int(most), ",")))
             first = ""

@@ -7,6 +7,8 @@
 // Gems as Cycles ships it, Mitsuba 3, Embree's path tracer tutorial, Ray Tracing in One Weekend) and raykernel's
 // `spawn` in binary32 and binary64 gives the new ray's origin (and its interval's start), from the same hit.
 // Each is then checked exactly (<raykernel/spawn.hpp>'s ground truth, GMP rationals):
+//   no-origin          the method gave no finite origin (an overflow or a NaN in its arithmetic; for spawn: no
+//                      value of the format on the side, beyond its range);
 //   self-hits          the new ray meets the triangle it leaves, with t in its own interval (closed rule);
 //   behind, on-plane   the origin is on the other side of the triangle's plane than the direction leaves to,
 //                      or on the plane itself (σ = −s or σ = 0: not strictly on side s);
@@ -24,6 +26,7 @@
 #include "common/limits.hpp"
 #include "common/options.hpp"
 #include "common/text_format.hpp"
+#include "common/text_input.hpp"
 #include "rendering/legend.hpp"
 #include "rendering/mesh_view.hpp"
 #include "rendering/png_image.hpp"
@@ -67,6 +70,7 @@ leave it; each method gives the new ray's origin (and where its interval starts)
   one-weekend      Ray Tracing in One Weekend: the hit point, t > 0.001 (double)
   raykernel-32/64  raykernel spawn in binary32 and binary64 (t >= 0)
 and every new ray is checked exactly (GMP rationals):
+  no-origin          the method gave no finite origin (an overflow or NaN in its arithmetic)
   self-hits          it meets the triangle it leaves, with t in its own interval
   behind, on-plane   its origin is on the other side of the plane, or on it
   first-hit-differs  its first hit is not the exact ray's from the exact hit point (source left out)
@@ -137,7 +141,7 @@ std::uint64_t offset_ulps(const Vec3& origin, const Vec3& rounded, bool binary32
 }
 
 struct Tally {
-  std::uint64_t rays = 0, self_hits = 0, behind = 0, on_plane = 0, differs = 0;
+  std::uint64_t rays = 0, no_origin = 0, self_hits = 0, behind = 0, on_plane = 0, differs = 0;
   std::vector<std::uint64_t> ulps;
 };
 
@@ -205,16 +209,17 @@ int run_spawn_audit(const std::vector<std::string>& args) {
   }
   // Vertices to binary32, then scaled by 2^E exactly.
   std::uint64_t changed = 0;
-  for (Vec3& v : read->vertices) {
-    double* c = &v.x;
+  for (std::size_t n = 0; n < read->vertices.size(); ++n) {
+    double* c = &read->vertices[n].x;
     for (int k = 0; k < 3; ++k) {
       const double f = static_cast<float>(c[k]);
       changed += f != c[k];
       const double s = std::ldexp(f, static_cast<int>(arguments.scale_exponent));
       if (!std::isfinite(static_cast<float>(s)) || static_cast<float>(s) != s ||
           (f != 0 && std::fabs(s) < 0x1p-126)) {
-        std::cerr << "raykernel: " << printable(mesh_path) << ": scaled by 2^" << arguments.scale_exponent
-                  << ", a coordinate leaves the normal binary32 range\n";
+        std::cerr << "raykernel: " << printable(mesh_path) << ": vertex " << n + 1 << ": " << "xyz"[k] << " = "
+                  << format_shortest(c[k]) << " rounded to binary32 and scaled by 2^" << arguments.scale_exponent
+                  << " leaves the normal binary32 range (the audit's float methods need it)\n";
         return exit_usage;
       }
       c[k] = s;
@@ -283,7 +288,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
 
   // Each sample checked exactly, on every thread; the results kept per sample, then summed in order.
   struct Check {
-    bool ran = false, self = false, behind = false, on_plane = false, differs = false;
+    bool ran = false, no_origin = false, self = false, behind = false, on_plane = false, differs = false;
     std::uint64_t ulps = 0;
   };
   struct Result {
@@ -316,17 +321,21 @@ int run_spawn_audit(const std::vector<std::string>& args) {
             const OriginFormat f = method_binary32(m) ? OriginFormat::binary32 : OriginFormat::binary64;
             ray = {spawn(at_p, tri, w, f).origin, 0, true};
           } catch (const invalid_input&) {
-            continue;  // no origin on the side in the format (beyond its range): not a ray to check
+            checks[m] = {.ran = true, .no_origin = true};  // no origin on the side in the format (beyond its range)
+            continue;
           }
         }
-        if (!std::isfinite(ray.origin.x) || !std::isfinite(ray.origin.y) || !std::isfinite(ray.origin.z)) continue;
+        if (!std::isfinite(ray.origin.x) || !std::isfinite(ray.origin.y) || !std::isfinite(ray.origin.z)) {
+          checks[m] = {.ran = true, .no_origin = true};  // an overflow or a NaN in the method's arithmetic
+          continue;
+        }
         const SecondaryInterval interval{ray.t_min, ray.t_min_included};
         const HitPoint from = HitPoint::at(ray.origin);
         const std::vector<std::uint32_t> first = first_hits_exact(from, tri, w, mesh, interval);
         bool agree = first.empty() && reference.empty();
         for (std::uint32_t f : first) agree = agree || std::binary_search(reference.begin(), reference.end(), f);
         const int sigma = plane_side(ray.origin, tri);
-        checks[m] = {true, hits_exact(from, tri, w, tri, interval), sigma == -side, sigma == 0, !agree,
+        checks[m] = {true, false, hits_exact(from, tri, w, tri, interval), sigma == -side, sigma == 0, !agree,
                      offset_ulps(ray.origin, method_binary32(m) ? in.p32 : in.p64, method_binary32(m))};
       }
     }
@@ -351,6 +360,10 @@ int run_spawn_audit(const std::vector<std::string>& args) {
         if (!c.ran) continue;
         Tally& t = tally[m];
         ++t.rays;
+        if (c.no_origin) {
+          ++t.no_origin;
+          continue;
+        }
         t.self_hits += c.self;
         t.behind += c.behind;
         t.on_plane += c.on_plane;
@@ -370,7 +383,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
             << " grazing; " << skipped_directions << " parallel to the surface left out); the exact ray from P meets nothing for "
             << no_reference_hit << "\n";
   std::cout << std::left << std::setw(17) << "method" << std::setw(10) << "format" << std::right << std::setw(7) << "rays"
-            << std::setw(11) << "self-hits" << std::setw(8) << "behind" << std::setw(10) << "on-plane" << std::setw(19)
+            << std::setw(11) << "no-origin" << std::setw(11) << "self-hits" << std::setw(8) << "behind" << std::setw(10) << "on-plane" << std::setw(19)
             << "first-hit-differs"
             << std::setw(15) << "offset-median" << std::setw(12) << "offset-max" << '\n';
   for (std::size_t m = 0; m < method_count; ++m) {
@@ -379,7 +392,7 @@ int run_spawn_audit(const std::vector<std::string>& args) {
     const std::uint64_t median = t.ulps.empty() ? 0 : t.ulps[t.ulps.size() / 2];
     const std::uint64_t most = t.ulps.empty() ? 0 : t.ulps.back();
     std::cout << std::left << std::setw(17) << method_name(m) << std::setw(10) << (method_binary32(m) ? "binary32" : "binary64")
-              << std::right << std::setw(7) << t.rays << std::setw(11) << t.self_hits << std::setw(8) << t.behind << std::setw(10) << t.on_plane
+              << std::right << std::setw(7) << t.rays << std::setw(11) << t.no_origin << std::setw(11) << t.self_hits << std::setw(8) << t.behind << std::setw(10) << t.on_plane
               << std::setw(19) << t.differs << std::setw(15) << median << std::setw(12) << most << '\n';
   }
 
