@@ -44,6 +44,11 @@ int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& se
   return (c > 0) - (c < 0);
 }
 
+Rational rational_of_double(double x) {
+  const mpq_class q = rational_from_double(x);  // canonical: lowest terms, denominator ≥ 1
+  return {q.get_num().get_str(), q.get_den().get_str()};
+}
+
 int compare_rationals(const Rational& x, const Rational& y) {
   mpq_class a(x.numerator + "/" + x.denominator), b(y.numerator + "/" + y.denominator);
   a.canonicalize();

@@ -22,6 +22,9 @@ namespace raykernel::detail::exact {
 // nonzero: t = ((a − o)·N)/(d·N), N = (b − a) × (c − a). For nearest_hit(ray, mesh) when the rounded t tie.
 [[nodiscard]] int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& second);
 
+// The exact value of a finite double as a rational in lowest terms (from its bits).
+[[nodiscard]] Rational rational_of_double(double x);
+
 // The sign of x − y for two exact rationals (lowest terms or not, denominators nonzero).
 [[nodiscard]] int compare_rationals(const Rational& x, const Rational& y);
 
