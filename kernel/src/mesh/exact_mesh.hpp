@@ -2,6 +2,7 @@
 // header exposes no GMP type; exact_mesh.cpp is the only translation unit that sees them. No CGAL.
 #pragma once
 
+#include <raykernel/interval.hpp>
 #include <raykernel/raykernel.hpp>
 
 namespace raykernel::detail::exact {
@@ -24,6 +25,10 @@ namespace raykernel::detail::exact {
 
 // The exact value of a finite double as a rational in lowest terms (from its bits).
 [[nodiscard]] Rational rational_of_double(double x);
+
+// Whether the exact rational t lies in the valid interval [t_min, t_max] (docs/contract.md §8), the bounds taken
+// as the rationals of their bits (t_max = +inf: no upper test). For the references.
+[[nodiscard]] bool rational_in_interval(const Rational& t, const RayInterval& interval);
 
 // The sign of x − y for two exact rationals (lowest terms or not, denominators nonzero).
 [[nodiscard]] int compare_rationals(const Rational& x, const Rational& y);

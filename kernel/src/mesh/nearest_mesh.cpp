@@ -121,23 +121,18 @@ std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh, Trian
   return nearest_hit_exact(ray, RayInterval{}, mesh, rule);
 }
 
-// Every triangle in rationals; a hit counts when its rational t lies in the interval, the bounds converted to
-// rationals from their bits (t_max = +inf: no upper test).
+// Every triangle in rationals; a hit counts when its rational t lies in the interval (exact::rational_in_interval).
 std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval, const Mesh& mesh,
                                          TriangleRule rule) {
   throw_if_invalid(ray);
   detail::throw_if_invalid_interval(interval);
   if (const auto problem = validate(mesh)) throw invalid_input("mesh: " + *problem);
-  const Rational t_min = detail::exact::rational_of_double(interval.t_min);
-  const bool bounded = detail::is_finite(interval.t_max);
-  const Rational t_max = bounded ? detail::exact::rational_of_double(interval.t_max) : Rational{"0", "1"};
   std::optional<MeshHit> best;
   Rational best_t;
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const ExactTriangleIntersection e = intersect_exact_rational(ray, mesh.triangle(k), rule);
     if (e.intersection.relation != TriangleRelation::hit) continue;
-    if (detail::exact::compare_rationals(*e.t, t_min) < 0) continue;
-    if (bounded && detail::exact::compare_rationals(*e.t, t_max) > 0) continue;
+    if (!detail::exact::rational_in_interval(*e.t, interval)) continue;
     if (best && detail::exact::compare_rationals(*e.t, best_t) >= 0) continue;  // ties: the smaller index, found first
     best_t = *e.t;
     best = MeshHit{static_cast<std::uint32_t>(k), e.intersection};

@@ -161,9 +161,6 @@ MeshHits all_hits_exact(const Ray& ray, const RayInterval& interval, const Mesh&
   throw_if_invalid(ray);
   detail::throw_if_invalid_interval(interval);
   if (const auto problem = validate(mesh)) throw invalid_input("mesh: " + *problem);
-  const Rational t_min = detail::exact::rational_of_double(interval.t_min);
-  const bool bounded = detail::is_finite(interval.t_max);
-  const Rational t_max = bounded ? detail::exact::rational_of_double(interval.t_max) : Rational{"0", "1"};
   struct Found {
     MeshHit hit;
     Rational t;
@@ -173,8 +170,7 @@ MeshHits all_hits_exact(const Ray& ray, const RayInterval& interval, const Mesh&
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const ExactTriangleIntersection e = intersect_exact_rational(ray, mesh.triangle(k), rule);
     if (e.intersection.relation != TriangleRelation::hit) continue;
-    if (detail::exact::compare_rationals(*e.t, t_min) < 0) continue;
-    if (bounded && detail::exact::compare_rationals(*e.t, t_max) > 0) continue;
+    if (!detail::exact::rational_in_interval(*e.t, interval)) continue;
     if (e.intersection.owned) answer.crossings += e.den.numerator.starts_with("-") ? -1 : 1;
     found.push_back({MeshHit{static_cast<std::uint32_t>(k), e.intersection}, *e.t});
   }
