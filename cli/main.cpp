@@ -24,10 +24,17 @@ commands:
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
   nearest --mesh FILE [RAYS|-]
-                      the first triangle of a mesh (OBJ, PLY, STL, OFF) each ray hits, exactly
+                      the first triangle of a mesh (OBJ, PLY, STL, OFF) each ray hits, exactly,
+                      within the ray's interval when a line gives one
   inside --mesh FILE [POINTS|-]
                       whether each point is inside, outside or on a closed mesh, exactly
                       (raykernel inside --help)
+  occluded --mesh FILE [--segment] [RAYS|-]
+                      whether anything blocks each ray within its interval, or each open
+                      segment between two points, exactly (raykernel occluded --help)
+  hits --mesh FILE [RAYS|-]
+                      every triangle each ray hits within its interval, in exact order, and the
+                      signed count of its owned crossings (raykernel hits --help)
   watertight FILE [--rays N] [--seed S] [--png OUT]
                       count leaks, double hits and missed vertices along random lines: owned
                       and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)

@@ -4,12 +4,12 @@
 # sanitizer report, leak, timeout or disagreement; prints execs/s and the fraction of executions each
 # certified stage decided. .ci/run calls it after the tests.
 #
-#   fuzz/ci-run-fuzzers.sh                        # CI: 20 s per harness (8 harnesses: about 4 min in all)
+#   fuzz/ci-run-fuzzers.sh                        # CI: 20 s per harness (9 harnesses: about 4 min in all)
 #   FUZZ_SECONDS=3600 fuzz/ci-run-fuzzers.sh      # longer, locally
 #   FUZZ_HARNESSES="plane nearest" fuzz/ci-run-fuzzers.sh
 #
 # The harnesses are those fuzz/CMakeLists.txt registers (the manifest $FUZZ_BUILD_DIR/fuzz/harnesses.txt):
-# plane, triangle, batch, cli, nearest, nearest_cli, scene, mesh_reader.
+# plane, triangle, batch, cli, nearest, nearest_cli, scene, mesh_reader, occlusion.
 #
 # Environment: FUZZ_SECONDS (per harness, default 20: CI's budget is the whole .ci/run in 45 min on 2 cores),
 # FUZZ_HARNESSES (default: all in the manifest), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default

@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <vector>
 #include <string>
@@ -316,6 +317,63 @@ TEST(MeshCli, StreamPaths) {
     EXPECT_EQ(counts.misses, 1u);
     EXPECT_EQ(counts.invalid, 2u);
   }
+}
+
+// docs/contract.md §8 through the binary, answers derived by hand on the octahedron above: (2,0,0) + t(−1,0,0) meets
+// the vertex (1,0,0) at t = 1 (triangles 0, 3, 4, 7 hold it) and leaves through (−1,0,0) at t = 3 (triangles 1, 2,
+// 5, 6); the owned rule gives each vertex to exactly one of its triangles. Entering, d·N < 0 for every outward
+// normal there (N_x > 0): −1; leaving, +1.
+TEST(MeshCli, OccludedRaysWithIntervalsAndSegments) {
+  const std::string path = temp_path("occ.obj");
+  write_file(path, octahedron_obj);
+  const CliRun r = run("occluded --mesh " + path,
+                       "2 0 0 -1 0 0\n2 0 0 -1 0 0 0 1\n2 0 0 -1 0 0 0 0x1.fffffffffffffp-1\n"
+                       "2 0 0 -1 0 0 1.5 infinity\n2 0 0 -1 0 0 0x1.8000000000001p+1 INF\n"
+                       "2 0 0 -1 0 0 2 1\n2 0 0 -1 0 0 inf inf\n2 0 0 -1 0 0 0\n2 0 0 -1 0 0 0 1e400\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out,
+            "occluded\noccluded\nclear\noccluded\nclear\n"
+            "invalid t_min is greater than t_max\ninvalid field 7 (t_min): 'inf' is not finite\n"
+            "invalid expected 6 or 8 numbers, found 7\ninvalid field 8 (t_max): '1e400' overflows the double range\n");
+  EXPECT_NE(r.err.find("raykernel: line 6: t_min is greater than t_max"), std::string::npos) << r.err;
+  // Segments: through the vertex (1,0,0); ending exactly on the face x + y + z = 1; an ulp beyond it; p = q.
+  const CliRun s = run("occluded --segment --mesh " + path,
+                       "0 0 0 2 0 0\n0 0 0 0.25 0.25 0.5\n0 0 0 0.25 0.25 0x1.0000000000001p-1\n1 1 1 1 1 1\n");
+  EXPECT_EQ(s.status, 1);
+  EXPECT_EQ(s.out, "occluded\nclear\noccluded\ninvalid segment endpoints are equal (p = q)\n");
+  EXPECT_EQ(run("occluded --segment --rule=closed --mesh " + path, "0 0 0 0.25 0.25 0.5\n").out, "clear\n");
+  // Usage: --mesh is required (exit 2, nothing on stdout).
+  const CliRun u = run("occluded", "0 0 0 1 0 0\n");
+  EXPECT_EQ(u.status, 2);
+  EXPECT_EQ(u.out, "");
+  EXPECT_NE(u.err.find("--mesh FILE is required"), std::string::npos);
+  auto one_of = [](const std::string& k, std::initializer_list<const char*> ks) {
+    for (const char* x : ks)
+      if (k == x) return true;
+    return false;
+  };
+  // nearest --mesh with an interval: the exit vertex at t = 3 when the entry is excluded.
+  std::istringstream n(run("nearest --mesh " + path, "2 0 0 -1 0 0 1.5 inf\n2 0 0 -1 0 0 3.5 inf\n").out);
+  std::string word, k, t;
+  n >> word >> k >> t;
+  EXPECT_EQ(word, "hit");
+  EXPECT_TRUE(one_of(k, {"1", "2", "5", "6"})) << k;
+  EXPECT_EQ(t, "3");
+  n >> word;
+  EXPECT_EQ(word, "miss");
+  // hits: both vertices in order, the signed count −1 + 1 = 0; in [0, 2] the entry alone, −1.
+  const CliRun h = run("hits --mesh " + path, "2 0 0 -1 0 0\n2 0 0 -1 0 0 0 2\n");
+  EXPECT_EQ(h.status, 0);
+  std::istringstream lines(h.out);
+  std::string hits, count, crossings, c, k1, t1, k2, t2;
+  lines >> hits >> count >> crossings >> c >> k1 >> t1 >> k2 >> t2;
+  EXPECT_EQ(hits + " " + count + " " + crossings + " " + c, "hits 2 crossings 0");
+  EXPECT_TRUE(one_of(k1, {"0", "3", "4", "7"})) << k1;
+  EXPECT_TRUE(one_of(k2, {"1", "2", "5", "6"})) << k2;
+  EXPECT_EQ(t1 + " " + t2, "1 3");
+  lines >> hits >> count >> crossings >> c >> k1 >> t1;
+  EXPECT_EQ(hits + " " + count + " " + crossings + " " + c + " " + t1, "hits 1 crossings -1 1");
+  EXPECT_TRUE(one_of(k1, {"0", "3", "4", "7"})) << k1;
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include "common/stream_command.hpp"
 #include "common/text_input.hpp"
 
+#include <raykernel/occlusion.hpp>
+
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -17,14 +19,18 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
   LineReader lines(rays);
   std::string line, answer;
   while (out && lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 6);
+    const NumberLineOf parsed_line = parse_ray_line_with_interval(line);  // t_max may be inf
+    const NumberLine& parsed = parsed_line.line;
     if (parsed.status == LineStatus::skip) continue;
     ++counts.lines_answered;
     std::string reason = parsed.reason;
     const auto& v = parsed.value;
     const Ray ray{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    RayInterval interval;
     if (parsed.status == LineStatus::numbers) {
+      if (parsed_line.count == 8) interval = RayInterval{v[6], v[7]};
       if (std::optional<std::string> invalid = validate(ray)) reason = *invalid;
+      else if (std::optional<std::string> bad = validate(interval)) reason = *bad;
     }
     if (!reason.empty()) {
       ++counts.invalid;
@@ -34,7 +40,7 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
     std::optional<MeshHit> hit;
     switch (options.method) {
       case Method::certified: {
-        const TracedMeshHit traced = nearest_hit_traced(ray, mesh, options.rule);
+        const TracedMeshHit traced = nearest_hit_traced(ray, interval, mesh, options.rule);
         hit = traced.hit;
         counts.candidates += traced.candidates;
         counts.repeats += traced.repeats;
@@ -46,8 +52,8 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
         }
         break;
       }
-      case Method::exact: hit = nearest_hit_exact(ray, mesh.mesh(), options.rule); break;
-      case Method::naive: hit = nearest_hit_naive(ray, mesh); break;
+      case Method::exact: hit = nearest_hit_exact(ray, interval, mesh.mesh(), options.rule); break;
+      case Method::naive: hit = nearest_hit_naive(ray, interval, mesh); break;
     }
     if (!hit) {
       ++counts.misses;

@@ -45,6 +45,9 @@ or OFF; triangle K counted from 0 in file order, polygons fanned) whose relation
 is hit (raykernel triangle --help), the one with the smallest exact t, ties to the smallest K;
 the answer is hit K T or miss. A file that is not a mesh is exit status 2, reported as
 raykernel: FILE:LINE: REASON (or FILE: byte N: REASON), with nothing on standard output.
+With --mesh a ray line may carry an interval: ox oy oz dx dy dz t_min t_max (0 <= t_min <=
+t_max, t_min finite, t_max may be inf); only the triangles whose exact t lies in [t_min, t_max]
+count, compared exactly (never a rounded t). Without one the interval is [0, inf].
 )";
 
 constexpr const char* help_after = R"(exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error (an unreadable

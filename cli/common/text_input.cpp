@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <istream>
+#include <limits>
 #include <string>
 
 namespace raykernel::cli {
@@ -70,48 +71,90 @@ struct Token {
 
 }  // namespace
 
+namespace {
+
+// strtod's spellings of +inf: "inf" or "infinity", any case, with an optional '+'.
+bool is_positive_infinity(std::string_view token) {
+  if (token.starts_with('+')) token.remove_prefix(1);
+  auto equal_ignoring_case = [](std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if ((a[i] | 0x20) != b[i]) return false;
+    return true;
+  };
+  return equal_ignoring_case(token, "inf") || equal_ignoring_case(token, "infinity");
+}
+
+}  // namespace
+
 NumberLine parse_number_line(std::string_view line, int expected) {
-  NumberLine result;
+  return parse_number_line(line, expected, expected, 0).line;
+}
+
+NumberLineOf parse_number_line(std::string_view line, int expected, int alternative, int infinity_field) {
+  NumberLineOf parsed;
+  NumberLine& result = parsed.line;
+  const int longest = expected > alternative ? expected : alternative;
   Token tokens[max_numbers_per_line + 1];
   int count = 0;
   for (std::size_t i = 0;;) {
     while (i < line.size() && is_blank(line[i])) ++i;
     if (i == line.size()) break;
-    if (count == 0 && line[i] == '#') return result;  // a comment line
+    if (count == 0 && line[i] == '#') return parsed;  // a comment line
     const std::size_t start = i;
     while (i < line.size() && !is_blank(line[i])) ++i;
-    if (count <= expected) tokens[count] = {line.substr(start, i - start), start + 1};
+    if (count <= longest) tokens[count] = {line.substr(start, i - start), start + 1};
     ++count;
   }
-  if (count == 0) return result;  // a blank line
+  if (count == 0) return parsed;  // a blank line
 
   result.status = LineStatus::invalid;
+  // The count the line is read against: its own when it is one of the two, else the nearest one above it (or
+  // the longest), so that the extra tokens are named from there.
+  const int against = count == expected || count == alternative
+                          ? count
+                          : (count < expected && (count > alternative || expected < alternative) ? expected
+                             : count < alternative                                             ? alternative
+                                                                                                : longest);
   // A bad token first (it explains a wrong count too: "1,2,3"), then the count.
-  const int checked = count < expected ? count : expected;
+  const int checked = count < against ? count : against;
   for (int k = 0; k < checked; ++k) {
     double value = 0;
-    if (std::string problem = number_problem(tokens[k].text, value); !problem.empty()) {
+    if (k + 1 == infinity_field && is_positive_infinity(tokens[k].text)) {
+      value = std::numeric_limits<double>::infinity();
+    } else if (std::string problem = number_problem(tokens[k].text, value); !problem.empty()) {
       result.reason = "field " + std::to_string(k + 1) + ": " + problem;
-      return result;
+      return parsed;
     }
     result.value[static_cast<std::size_t>(k)] = value;
   }
-  if (count != expected) {
-    result.reason = "expected " + std::to_string(expected) + " numbers, found " + std::to_string(count);
-    if (count > expected) {
-      const Token& extra = tokens[expected];
+  if (count != against) {
+    result.reason = "expected " + std::to_string(expected) +
+                    (alternative != expected ? " or " + std::to_string(alternative) : std::string()) +
+                    " numbers, found " + std::to_string(count);
+    if (count > against) {
+      const Token& extra = tokens[against];
       std::string_view rest = line.substr(extra.column - 1);
       rest = rest.substr(0, rest.find_last_not_of(" \t\r\v\f") + 1);
-      result.reason += "; the extra ones start at token " + std::to_string(expected + 1) + ", column " +
+      result.reason += "; the extra ones start at token " + std::to_string(against + 1) + ", column " +
                        std::to_string(extra.column) + ": " +
                        quote(rest, limits::quoted_token_bytes);
       if (extra.text.starts_with("#")) result.reason += " (a # comment must be on a line of its own)";
     }
     result.value = {};
-    return result;
+    return parsed;
   }
   result.status = LineStatus::numbers;
-  return result;
+  parsed.count = count;
+  return parsed;
+}
+
+NumberLineOf parse_ray_line_with_interval(std::string_view line) {
+  NumberLineOf parsed = parse_number_line(line, 6, 8, 8);
+  std::string& reason = parsed.line.reason;
+  if (reason.starts_with("field 7:")) reason.insert(7, " (t_min)");
+  else if (reason.starts_with("field 8:")) reason.insert(7, " (t_max)");
+  return parsed;
 }
 
 std::string format_shortest(double x) {

@@ -48,6 +48,20 @@ struct NumberLine {
 // wrong count, where the extra tokens start.
 [[nodiscard]] NumberLine parse_number_line(std::string_view line, int expected);
 
+// The same for a line of `expected` or `alternative` numbers (a ray alone, or with its interval: docs/contract.md
+// §8); `count` says which. Field `infinity_field` (counted from 1; 0 for none) may also be +inf, in any spelling
+// strtod reads as +inf ("inf", "+INF", "infinity"): a ray's t_max. A wrong count is "expected 6 or 8 numbers,
+// found 7".
+struct NumberLineOf {
+  NumberLine line;
+  int count = 0;
+};
+[[nodiscard]] NumberLineOf parse_number_line(std::string_view line, int expected, int alternative, int infinity_field);
+
+// A ray line of docs/contract.md §8: `ox oy oz dx dy dz`, or with its interval `... t_min t_max` (t_max may be +inf
+// in any strtod spelling); a bad bound's field is named ("field 8 (t_max): '1e400' overflows the double range").
+[[nodiscard]] NumberLineOf parse_ray_line_with_interval(std::string_view line);
+
 // The shortest decimal text that strtod reads back as exactly x ("inf", "-inf", "-0" included).
 [[nodiscard]] std::string format_shortest(double x);
 // A hexadecimal float ("0x1.8p+1", "-0x0p+0", "inf"), exact by construction.

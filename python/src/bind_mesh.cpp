@@ -7,6 +7,7 @@
 #include "convert.hpp"
 
 #include <raykernel/io/mesh_file.hpp>
+#include <raykernel/occlusion.hpp>
 
 #include <array>
 #include <cmath>
@@ -310,6 +311,43 @@ closed, consistently oriented mesh it does not depend on the ray, and the answer
       py::arg("point"), py::arg("mesh"),
       R"doc(The reference ``inside``: every triangle in exact rationals (the on-surface test and the crossings of
 the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. Releases the GIL.)doc");
+
+  m.def(
+      "occluded",
+      [](py::handle ray, const PythonMesh& mesh, double t_min, double t_max, py::handle rule,
+         const std::string& path) {
+        const Ray r = ray_from(ray);
+        const RayInterval interval{t_min, t_max};
+        const TriangleRule chosen = rule_or_owned(rule);
+        const bool exact = path_from(path, false) == Path::exact;
+        py::gil_scoped_release release;
+        return exact ? occluded_exact(r, interval, mesh.mesh(), chosen) : occluded(r, interval, mesh.prepared(), chosen);
+      },
+      py::arg("ray"), py::arg("mesh"), py::kw_only(), py::arg("t_min") = 0.0,
+      py::arg("t_max") = std::numeric_limits<double>::infinity(), py::arg("rule") = py::none(),
+      py::arg("path") = "certified",
+      R"doc(Whether some triangle of ``mesh`` blocks ``ray`` within ``[t_min, t_max]`` (docs/contract.md §8): a
+triangle whose relation under ``rule`` (owned by default) is hit at an exact t with ``t_min <= t <= t_max``,
+compared exactly (never a rounded t); coplanar and degenerate triangles never block. Any-hit: stops at the first
+blocker. ``path``: "certified" (through the BVH) or "exact" (every triangle in rationals). Raises ``ValueError``
+for an invalid ray or interval, naming the bound ("t_min is greater than t_max"). Releases the GIL.)doc");
+
+  m.def(
+      "occluded_segment",
+      [](py::handle p, py::handle q, const PythonMesh& mesh, py::handle rule, const std::string& path) {
+        const Vec3 a = vec3_from(p, "p"), b = vec3_from(q, "q");
+        const TriangleRule chosen = rule_or_owned(rule);
+        const bool exact = path_from(path, false) == Path::exact;
+        py::gil_scoped_release release;
+        return exact ? occluded_exact(a, b, mesh.mesh(), chosen) : occluded(a, b, mesh.prepared(), chosen);
+      },
+      py::arg("p"), py::arg("q"), py::arg("mesh"), py::kw_only(), py::arg("rule") = py::none(),
+      py::arg("path") = "certified",
+      R"doc(Whether some triangle of ``mesh`` meets the open segment between the points ``p`` and ``q``
+(docs/contract.md §8): 0 < t < 1 along the exact direction ``q - p``, which is not rounded; the endpoints never
+count, and under the owned rule (the default) a segment through a shared edge or vertex of a closed mesh is
+blocked by exactly one triangle. ``path``: "certified" or "exact". Raises ``ValueError`` for a non-finite
+coordinate or ``p == q``. Releases the GIL.)doc");
 
   m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
         py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),

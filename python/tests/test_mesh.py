@@ -256,3 +256,30 @@ def test_the_gil_is_released_during_an_inside_batch():
     longest, total = longest_pause_of_this_thread_while(lambda: rk.inside_batch(points, mesh, path="exact", threads=1))
     assert total > 0.05, "the batch was too short to tell"
     assert longest < total / 4, f"this thread stopped for {longest:.3f} s of a {total:.3f} s batch"
+
+
+def test_occluded_rays_with_intervals_and_segments_on_the_octahedron():
+    """docs/contract.md §8, hand-derived: the vertex +x at t = 1 from (2, 0, 0) along −x; t = 1/3 along −3x, just
+    above RN(1/3); segments through a vertex, ending exactly on a face, and invalid input named."""
+    octahedron = testkit.make_octahedron()
+    ray = ((2, 0, 0), (-1, 0, 0))
+    assert rk.occluded(ray, octahedron)
+    assert rk.occluded(ray, octahedron, t_min=1.0, t_max=1.0)
+    assert not rk.occluded(ray, octahedron, t_max=np.nextafter(1.0, 0))
+    assert not rk.occluded(ray, octahedron, t_min=np.nextafter(3.0, 4), rule="closed")  # the exit is at t = 3
+    third = 1.0 / 3.0
+    slow = ((2, 0, 0), (-3, 0, 0))
+    from fractions import Fraction
+    assert Fraction(third) < Fraction(1, 3) < Fraction(float(np.nextafter(third, 1)))
+    for path in ("certified", "exact"):
+        assert not rk.occluded(slow, octahedron, t_max=third, path=path)
+        assert rk.occluded(slow, octahedron, t_max=float(np.nextafter(third, 1)), path=path)
+        assert rk.occluded_segment((0, 0, 0), (2, 0, 0), octahedron, path=path)
+        assert not rk.occluded_segment((0, 0, 0), (0.25, 0.25, 0.5), octahedron, path=path)  # ends on a face
+        assert rk.occluded_segment((0, 0, 0), (0.25, 0.25, float(np.nextafter(0.5, 1))), octahedron, path=path)
+    with pytest.raises(ValueError, match="t_min is greater than t_max"):
+        rk.occluded(ray, octahedron, t_min=2.0, t_max=1.0)
+    with pytest.raises(ValueError, match="t_min is NaN"):
+        rk.occluded(ray, octahedron, t_min=float("nan"))
+    with pytest.raises(ValueError, match="segment endpoints are equal"):
+        rk.occluded_segment((1, 2, 3), (1, 2, 3), octahedron)

@@ -3,6 +3,7 @@
 
 #include "core/fp_environment.hpp"
 
+#include <raykernel/occlusion.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <bit>
@@ -23,7 +24,38 @@ std::optional<std::string> non_finite_reason(const char* name, const Vec3& v) {
   return std::nullopt;
 }
 
+void throw_if_invalid_interval(const RayInterval& interval) {
+  if (is_valid(interval)) [[likely]]
+    return;
+  throw invalid_input(*validate(interval));
+}
+
 }  // namespace detail
+
+// Each bound's own problem first (t_min, then t_max), then their order; from the bits, as is_valid.
+std::optional<std::string> validate(const RayInterval& interval) {
+  auto problem = [](double x) -> const char* {
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    if (!detail::is_finite(x)) return (bits << 12) != 0 ? "is NaN" : ((bits >> 63) == 0 ? nullptr : "is -inf");
+    return (bits >> 63) != 0 && !detail::is_zero(x) ? "is negative" : nullptr;
+  };
+  if (const char* p = problem(interval.t_min)) return std::string("t_min ") + p;
+  if (!detail::is_finite(interval.t_min)) return std::string("t_min is +inf");
+  if (const char* p = problem(interval.t_max)) return std::string("t_max ") + p;
+  if (!detail::is_valid(interval)) return std::string("t_min is greater than t_max");
+  return std::nullopt;
+}
+
+std::optional<std::string> validate_segment(const Vec3& p, const Vec3& q) {
+  if (auto reason = detail::non_finite_reason("segment p", p)) return reason;
+  if (auto reason = detail::non_finite_reason("segment q", q)) return reason;
+  // Equal as values (0 equals −0), from the bits: equal patterns, or both zeros.
+  auto same = [](double x, double y) {
+    return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y) || (detail::is_zero(x) && detail::is_zero(y));
+  };
+  if (same(p.x, q.x) && same(p.y, q.y) && same(p.z, q.z)) return std::string("segment endpoints are equal (p = q)");
+  return std::nullopt;
+}
 
 std::optional<std::string> validate(const Ray& ray) {
   if (auto reason = detail::non_finite_reason("ray origin", ray.origin)) return reason;

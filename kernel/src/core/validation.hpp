@@ -5,6 +5,7 @@
 // give the reason in words; the inline predicates here say only yes or no, for the entry points' fast checks.
 #pragma once
 
+#include <raykernel/interval.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <bit>
@@ -33,6 +34,20 @@ namespace raykernel::detail {
 [[nodiscard]] inline bool is_valid(const Triangle& t) noexcept {
   return is_finite(t.a) & is_finite(t.b) & is_finite(t.c);
 }
+
+// A ray's interval (docs/contract.md §8): 0 ≤ t_min ≤ t_max ≤ +inf, t_min finite, no NaN; −0 is 0. From the bits:
+// for doubles that are not NaN and not negative, the order of the values is the order of their bit patterns
+// (−0 is read as +0 first), whatever the floating-point environment.
+[[nodiscard]] inline bool is_valid(const RayInterval& interval) noexcept {
+  const std::uint64_t magnitude_mask = 0x7FFFFFFFFFFFFFFFULL, infinity = 0x7FF0000000000000ULL;
+  const std::uint64_t lo = std::bit_cast<std::uint64_t>(interval.t_min), hi = std::bit_cast<std::uint64_t>(interval.t_max);
+  const std::uint64_t lo_magnitude = lo & magnitude_mask, hi_magnitude = hi & magnitude_mask;
+  const bool lo_negative = (lo >> 63) != 0 && lo_magnitude != 0, hi_negative = (hi >> 63) != 0 && hi_magnitude != 0;
+  return lo_magnitude < infinity && hi_magnitude <= infinity && !lo_negative && !hi_negative &&
+         lo_magnitude <= hi_magnitude;
+}
+// Throws invalid_input with validate(interval)'s reason (raykernel/occlusion.hpp).
+void throw_if_invalid_interval(const RayInterval& interval);
 
 // The reason a vector named `name` is not finite ("ray origin y is NaN", "plane normal x is -inf"), or
 // nothing.

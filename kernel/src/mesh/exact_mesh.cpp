@@ -7,6 +7,8 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <bit>
+#include <cstdint>
 
 namespace raykernel::detail::exact {
 namespace {
@@ -42,6 +44,17 @@ int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& se
   const Point o = point(ray.origin), d = point(ray.direction);
   const int c = cmp(triangle_t(o, d, first), triangle_t(o, d, second));
   return (c > 0) - (c < 0);
+}
+
+Rational rational_of_double(double x) {
+  const mpq_class q = rational_from_double(x);  // canonical: lowest terms, denominator ≥ 1
+  return {q.get_num().get_str(), q.get_den().get_str()};
+}
+
+bool rational_in_interval(const Rational& t, const RayInterval& interval) {
+  if (compare_rationals(t, rational_of_double(interval.t_min)) < 0) return false;
+  const bool bounded = (std::bit_cast<std::uint64_t>(interval.t_max) & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+  return !bounded || compare_rationals(t, rational_of_double(interval.t_max)) <= 0;
 }
 
 int compare_rationals(const Rational& x, const Rational& y) {

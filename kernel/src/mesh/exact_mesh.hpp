@@ -2,6 +2,7 @@
 // header exposes no GMP type; exact_mesh.cpp is the only translation unit that sees them. No CGAL.
 #pragma once
 
+#include <raykernel/interval.hpp>
 #include <raykernel/raykernel.hpp>
 
 namespace raykernel::detail::exact {
@@ -21,6 +22,13 @@ namespace raykernel::detail::exact {
 // The sign of t1 − t2 for the exact t = num/den of docs/contract.md §6 of `ray` against two triangles whose den are
 // nonzero: t = ((a − o)·N)/(d·N), N = (b − a) × (c − a). For nearest_hit(ray, mesh) when the rounded t tie.
 [[nodiscard]] int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& second);
+
+// The exact value of a finite double as a rational in lowest terms (from its bits).
+[[nodiscard]] Rational rational_of_double(double x);
+
+// Whether the exact rational t lies in the valid interval [t_min, t_max] (docs/contract.md §8), the bounds taken
+// as the rationals of their bits (t_max = +inf: no upper test). For the references.
+[[nodiscard]] bool rational_in_interval(const Rational& t, const RayInterval& interval);
 
 // The sign of x − y for two exact rationals (lowest terms or not, denominators nonzero).
 [[nodiscard]] int compare_rationals(const Rational& x, const Rational& y);

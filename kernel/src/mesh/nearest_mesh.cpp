@@ -9,6 +9,7 @@
 // stage-2 or stage-3 comparison otherwise; rationals only when those cannot decide (exact ties whose expansions
 // exceed the proved length, or an underflow).
 #include <raykernel/mesh_queries.hpp>
+#include <raykernel/occlusion.hpp>
 
 #include "core/fp_environment.hpp"
 #include "core/fp_requirements.hpp"
@@ -42,9 +43,10 @@ void throw_if_invalid(const Ray& ray) {
 // t was not rounded yet).
 template <class Tracer>
 [[gnu::always_inline]] inline std::optional<MeshHit> nearest_in_mesh(const Ray& ray, const PreparedMesh& mesh,
-                                                                     TriangleRule rule, Tracer tracer) noexcept {
+                                                                     TriangleRule rule, const RayInterval& interval,
+                                                                     Tracer tracer) noexcept {
   detail::NearestSearch<Tracer> search(ray, tracer);
-  search.mesh(mesh, rule);
+  search.mesh(mesh, rule, interval);
   if (!search.found()) return std::nullopt;
   detail::TriangleCandidate& winner = search.triangle_winner();
   const TriangleClassification& c = winner.classification;
@@ -63,15 +65,17 @@ template <class Tracer>
 }
 
 RAYKERNEL_MULTIVERSION
-std::optional<MeshHit> mesh_untraced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) noexcept {
-  return nearest_in_mesh(ray, mesh, rule, detail::NoTrace{});
+std::optional<MeshHit> mesh_untraced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule,
+                                     const RayInterval& interval) noexcept {
+  return nearest_in_mesh(ray, mesh, rule, interval, detail::NoTrace{});
 }
 
 RAYKERNEL_MULTIVERSION
-TracedMeshHit mesh_traced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) noexcept {
+TracedMeshHit mesh_traced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule,
+                          const RayInterval& interval) noexcept {
   TracedMeshHit traced;
   detail::SearchCounts counts;
-  traced.hit = nearest_in_mesh(ray, mesh, rule, detail::Trace{&counts});
+  traced.hit = nearest_in_mesh(ray, mesh, rule, interval, detail::Trace{&counts});
   traced.candidates = counts.candidates;
   traced.relations = counts.relations;
   traced.repeats = counts.repeats;
@@ -86,12 +90,26 @@ TracedMeshHit mesh_traced(const Ray& ray, const PreparedMesh& mesh, TriangleRule
 
 std::optional<MeshHit> nearest_hit(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) {
   throw_if_invalid(ray);
-  return detail::in_default_fp_environment([&] { return mesh_untraced(ray, mesh, rule); });
+  return detail::in_default_fp_environment([&] { return mesh_untraced(ray, mesh, rule, RayInterval{}); });
+}
+
+std::optional<MeshHit> nearest_hit(const Ray& ray, const RayInterval& interval, const PreparedMesh& mesh,
+                                   TriangleRule rule) {
+  throw_if_invalid(ray);
+  detail::throw_if_invalid_interval(interval);
+  return detail::in_default_fp_environment([&] { return mesh_untraced(ray, mesh, rule, interval); });
 }
 
 TracedMeshHit nearest_hit_traced(const Ray& ray, const PreparedMesh& mesh, TriangleRule rule) {
   throw_if_invalid(ray);
-  return detail::in_default_fp_environment([&] { return mesh_traced(ray, mesh, rule); });
+  return detail::in_default_fp_environment([&] { return mesh_traced(ray, mesh, rule, RayInterval{}); });
+}
+
+TracedMeshHit nearest_hit_traced(const Ray& ray, const RayInterval& interval, const PreparedMesh& mesh,
+                                 TriangleRule rule) {
+  throw_if_invalid(ray);
+  detail::throw_if_invalid_interval(interval);
+  return detail::in_default_fp_environment([&] { return mesh_traced(ray, mesh, rule, interval); });
 }
 
 std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh, TriangleRule rule) {
@@ -100,13 +118,21 @@ std::optional<MeshHit> nearest_hit(const Ray& ray, const Mesh& mesh, TriangleRul
 }
 
 std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh, TriangleRule rule) {
+  return nearest_hit_exact(ray, RayInterval{}, mesh, rule);
+}
+
+// Every triangle in rationals; a hit counts when its rational t lies in the interval (exact::rational_in_interval).
+std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval, const Mesh& mesh,
+                                         TriangleRule rule) {
   throw_if_invalid(ray);
+  detail::throw_if_invalid_interval(interval);
   if (const auto problem = validate(mesh)) throw invalid_input("mesh: " + *problem);
   std::optional<MeshHit> best;
   Rational best_t;
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const ExactTriangleIntersection e = intersect_exact_rational(ray, mesh.triangle(k), rule);
     if (e.intersection.relation != TriangleRelation::hit) continue;
+    if (!detail::exact::rational_in_interval(*e.t, interval)) continue;
     if (best && detail::exact::compare_rationals(*e.t, best_t) >= 0) continue;  // ties: the smaller index, found first
     best_t = *e.t;
     best = MeshHit{static_cast<std::uint32_t>(k), e.intersection};
@@ -115,15 +141,21 @@ std::optional<MeshHit> nearest_hit_exact(const Ray& ray, const Mesh& mesh, Trian
 }
 
 std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const PreparedMesh& mesh) {
+  return nearest_hit_naive(ray, RayInterval{}, mesh);
+}
+
+// The baseline with an interval: the walk from t_min to t_max, and the computed t compared with the bounds.
+std::optional<MeshHit> nearest_hit_naive(const Ray& ray, const RayInterval& interval, const PreparedMesh& mesh) {
   throw_if_invalid(ray);
-  BvhRayTraversal walk(mesh.bvh(), ray);
+  detail::throw_if_invalid_interval(interval);
+  BvhRayTraversal walk(mesh.bvh(), ray, interval.t_min, interval.t_max);
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
   std::optional<MeshHit> best;
   double bound = inf;
   while (const auto leaf = walk.next(bound)) {
     for (std::size_t n = 0; n < leaf->triangles.size(); ++n) {
       const TriangleIntersection x = intersect_naive(ray, triangles[leaf->position + n]);
-      if (x.relation != TriangleRelation::hit) continue;
+      if (x.relation != TriangleRelation::hit || x.t < interval.t_min || x.t > interval.t_max) continue;
       const std::uint32_t k = leaf->triangles[n];
       if (best && (x.t > best->intersection.t || (x.t == best->intersection.t && k > best->triangle))) continue;
       best = MeshHit{k, x};

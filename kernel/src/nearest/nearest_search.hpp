@@ -23,6 +23,7 @@
 
 #include "mesh/bvh_walk.hpp"
 #include "nearest/exact_nearest.hpp"
+#include "nearest/interval_bound.hpp"
 #include "nearest/nearest_candidates.hpp"
 #include "nearest/nearest_screen.hpp"
 #include "nearest/plane_candidate.hpp"
@@ -226,15 +227,18 @@ class NearestSearch {
   }
 
   // Every triangle of `mesh` the BVH walk returns, nearest leaf first, pruned by the best t so far; each
-  // classified once under `rule` (or reused, repeats()) and each hit offered.
-  [[gnu::always_inline]] void mesh(const PreparedMesh& mesh, TriangleRule rule) noexcept {
+  // classified once under `rule` (or reused, repeats()) and each hit whose exact t lies in `interval` (a valid
+  // one, docs/contract.md §8: the walk starts and ends at its bounds, within_interval decides each hit) offered.
+  [[gnu::always_inline]] void mesh(const PreparedMesh& mesh, TriangleRule rule,
+                                   const RayInterval& interval = {}) noexcept {
     const MeshBvh& bvh = mesh.bvh();
     if (bvh.nodes().empty()) return;
     constexpr double inf = std::numeric_limits<double>::infinity();
     triangle_[0].emplace();
     triangle_[1].emplace();
     BvhWalk walk;
-    mesh_detail::start_walk(walk, bvh, ray_, 0, inf);
+    mesh_detail::start_walk(walk, bvh, ray_, interval.t_min, interval.t_max);
+    const bool whole_ray = interval.t_min == 0 && interval.t_max == inf;
     const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
     const std::span<const Triangle> triangles = mesh.leaf_triangles();
     double bound = inf;
@@ -242,6 +246,7 @@ class NearestSearch {
     TriangleCandidate* previous = nullptr;  // the last candidate classified (repeats reuse it)
     int previous_order = 0;                 // sign(t_previous − t_best), when the previous candidate is a hit
     bool previous_near_tie = false;         // and whether the filter could not order it against the best
+    bool previous_in_interval = true;       // whether the previous candidate's t lies in the interval, for a hit
     BvhLeaf leaf;
     for (;;) {
       if (!bound_current_ && walk.stack_size > 0) {  // with no pending box, the walk ends whatever the bound
@@ -255,7 +260,7 @@ class NearestSearch {
         const std::uint32_t k = leaf.triangles[n];
         if (previous != nullptr && repeats(tri, *previous->source, previous->classification.location)) {
           tracer_.repeat();
-          if (previous->classification.relation != TriangleRelation::hit) continue;
+          if (previous->classification.relation != TriangleRelation::hit || !previous_in_interval) continue;
           tracer_.triangle_hit();
           if (previous_order > 0) {  // its t is the previous one's: farther than the best
             if (previous_near_tie) tracer_.comparison(DistanceOrder{1, Stage::filter, true});  // as near, seen without arithmetic
@@ -275,6 +280,8 @@ class NearestSearch {
         tracer_.triangle_candidate(c.relation_stage);
         previous = &c;
         if (c.classification.relation != TriangleRelation::hit) continue;
+        previous_in_interval = whole_ray || within_interval(ray_, c, interval);
+        if (!previous_in_interval) continue;
         tracer_.triangle_hit();
         const DistanceOrder order = offer(c, slot);
         previous_order = order.sign;

@@ -87,17 +87,31 @@ template <class Leaf, class Lift, class Difference>
   return ray_triangle_terms(ray_triangle_leaves<Leaf>(ray, triangle, lift, difference));
 }
 
+// The vector q − p as leaves, each component one difference of doubles (exact for an exact Leaf): an edge of a
+// triangle, or the exact direction of the segment from p to q (docs/contract.md §8, which is not rounded).
+template <class Leaf, class Difference>
+[[nodiscard]] [[gnu::always_inline]] inline std::array<Leaf, 3> difference_leaves(const Vec3& p, const Vec3& q,
+                                                                                  Difference difference) {
+  return {difference(q.x, p.x), difference(q.y, p.y), difference(q.z, p.z)};
+}
+
+// The owned rule's tie-break vector d × (q − p) of the directed edge p → q, for a direction given as leaves: the
+// ray's d lifted (triangle_tie_breaks), or a segment's exact q − p as differences (occlusion/segment_triangle.hpp).
+// Each component is a degree-2 polynomial in the doubles: d_i (q_j − p_j) − d_j (q_i − p_i).
+template <class Leaf, class Difference>
+[[nodiscard]] auto edge_tie_break(const std::array<Leaf, 3>& d, const Vec3& p, const Vec3& q, Difference difference) {
+  return cross_terms(d, difference_leaves<Leaf>(p, q, difference));
+}
+
 // The degree-2 values: the tie-break vector d × (q − p) of each directed edge p → q (b → c for πa, c → a
 // for πb, a → b for πc), and N = (b − a) × (c − a).
 template <class Leaf, class Lift, class Difference>
 [[nodiscard]] auto triangle_tie_breaks(const Ray& ray, const Triangle& triangle, Lift lift, Difference difference) {
   const std::array<Leaf, 3> d{lift(ray.direction.x), lift(ray.direction.y), lift(ray.direction.z)};
-  auto edge = [&](const Vec3& p, const Vec3& q) {
-    return std::array<Leaf, 3>{difference(q.x, p.x), difference(q.y, p.y), difference(q.z, p.z)};
-  };
   const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c;
   using C = decltype(cross_terms(d, d));
-  return std::array<C, 3>{cross_terms(d, edge(b, c)), cross_terms(d, edge(c, a)), cross_terms(d, edge(a, b))};
+  return std::array<C, 3>{edge_tie_break(d, b, c, difference), edge_tie_break(d, c, a, difference),
+                          edge_tie_break(d, a, b, difference)};
 }
 
 template <class Leaf, class Difference>

@@ -278,6 +278,24 @@ struct TriangleQuotientStage2 {
                          det3_absolute_term(d.x, d.y, d.z))};
 }
 
+// The tie-break vector d × (q − p) of the directed edge p → q (ray_triangle_formula.hpp's edge_tie_break) in exact
+// expansions, for a direction given as expansion leaves — a ray's d lifted, or a segment's exact q − p as TwoDiff
+// pairs (docs/contract.md §8) — as exact signs of its x, y, z components, or nothing when an expansion was not
+// exact (an underflow or overflow) or its sign not certain. Each component is leaf·leaf − leaf·leaf: at most 16
+// components (expansion_value.hpp's capacities; exact by proofs/core/Expansions.v, `scale_gen_exact` and
+// `sum_gen_exact`, its sign by `expansion_sign_sound`).
+[[nodiscard]] inline std::optional<std::array<int, 3>> edge_tie_break_signs_by_expansion(
+    const std::array<ExpansionValue<2>, 3>& d, const Vec3& p, const Vec3& q) noexcept {
+  const auto v = edge_tie_break(d, p, q, expansion_difference);
+  std::array<int, 3> s{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Sign sign = v[i].sign();
+    if (!is_certain(sign)) return std::nullopt;
+    s[i] = static_cast<int>(sign);
+  }
+  return s;
+}
+
 // The tie-break vector d × (q − p) of π's edge (0: b → c, 1: c → a, 2: a → b) as exact signs of its x, y, z
 // components, or nothing when an expansion was not exact or its sign not certain.
 [[nodiscard]] inline std::optional<std::array<int, 3>> tie_break_signs_by_expansion(const Ray& ray,
@@ -287,17 +305,7 @@ struct TriangleQuotientStage2 {
   const Vec3& p = k == 0 ? triangle.b : k == 1 ? triangle.c : triangle.a;
   const Vec3& q = k == 0 ? triangle.c : k == 1 ? triangle.a : triangle.b;
   const Vec3& d = ray.direction;
-  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
-  const std::array<ExpansionValue<2>, 3> edge{expansion_difference(q.x, p.x), expansion_difference(q.y, p.y),
-                                              expansion_difference(q.z, p.z)};
-  const auto v = cross_terms(dl, edge);
-  std::array<int, 3> s{};
-  for (std::size_t i = 0; i < 3; ++i) {
-    const Sign sign = v[i].sign();
-    if (!is_certain(sign)) return std::nullopt;
-    s[i] = static_cast<int>(sign);
-  }
-  return s;
+  return edge_tie_break_signs_by_expansion({expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)}, p, q);
 }
 
 // Whether N = (b − a) × (c − a) is the zero vector, exactly, or nothing when an expansion was not exact or its sign not certain.
