@@ -47,7 +47,7 @@ struct SurfaceHit {
   SurfaceKind kind;
   std::size_t index;
   double t;
-  std::array<double, 3> barycentric;
+  Barycentric barycentric;
 };
 
 // The certified nearest hit of the scene, or nothing when no surface is hit. Throws invalid_input for an

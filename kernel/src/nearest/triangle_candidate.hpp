@@ -284,7 +284,7 @@ class TriangleCandidate {
 };
 
 // RN(πa/den), RN(πb/den), RN(πc/den) of a triangle the ray hits (the fast path, else the cascade).
-[[nodiscard]] inline std::array<double, 3> triangle_barycentric(const Ray& ray, const Triangle& tri,
+[[nodiscard]] inline Barycentric triangle_barycentric(const Ray& ray, const Triangle& tri,
                                                                 TriangleRule rule) noexcept {
   const TriangleOptions barycentric{.rule = rule, .t = false, .barycentric = true};
   if (const auto x = fast_triangle_intersection(ray, tri, barycentric)) [[likely]]
