@@ -11,7 +11,8 @@ program="$build/bin/raykernel_instruction_counts"
 [ -x "$program" ] || { echo "instruction-counts: build the target raykernel_instruction_counts first ($program)" >&2; exit 2; }
 entries=("$@")
 if [ ${#entries[@]} -eq 0 ]; then
-  entries=(plane/naive/random plane/certified/random plane/relation/random nearest/certified/random64
+  entries=(plane/naive/random plane/certified/random plane/relation/random plane/naive/degenerate plane/certified/degenerate
+           nearest/certified/random64
            triangle/naive/random triangle/certified/random triangle/relation/random
            triangle/naive/degenerate triangle/certified/degenerate triangle/relation/degenerate)
 fi
@@ -27,6 +28,6 @@ for e in "${entries[@]}"; do
   a=$(collected "$e" "$n")
   b=$(collected "$e" $((2 * n)))
   clone=$(grep -o '^fn=([0-9]*) [^ ]*\.\(arch_x86_64_v3\|fma\|default\)[^ ]*' "$out/cg.$((2 * n))" | sed 's/^fn=([0-9]*) //' |
-          sed 's/.*\.\(arch_x86_64_v3\|fma\|default\).*/\1/' | sort -u | tr '\n' ' ')
+          sed 's/.*\.\(arch_x86_64_v3\|fma\|default\).*/\1/' | sort -u | tr '\n' ' ' || true)
   awk -v a="$a" -v b="$b" -v n="$n" -v e="$e" -v c="$clone" 'BEGIN { printf "%-32s %12.1f   %s\n", e, (b - a) / n, c }'
 done

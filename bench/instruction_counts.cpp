@@ -4,7 +4,7 @@
 //
 //   bench/instruction-counts.sh build        # valgrind --tool=callgrind, every entry point, per call
 //
-// Entries: plane/{naive,certified,relation}/random, nearest/certified/random64 (per ray, 64 planes, a
+// Entries: plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, nearest/certified/random64 (per ray, 64 planes, a
 // PlaneSet), triangle/{naive,certified,relation}/{random,degenerate}. Hardware counters do not work on this
 // VM and timings are shared with other jobs; instruction counts are exact and repeatable.
 #include <raykernel/nearest_hit.hpp>
@@ -33,6 +33,16 @@ std::vector<testkit::Query> plane_queries() {
   const testkit::BitSource bits = [&rng] { return rng(); };
   std::vector<testkit::Query> q(buffer_size);
   for (auto& x : q) x = testkit::make_query(testkit::QueryKind::random, bits);
+  return q;
+}
+
+// bench/workloads.cpp's degenerate mix: near-parallel and near-coplanar alternately, seed 3.
+std::vector<testkit::Query> plane_degenerate_queries() {
+  testkit::SplitMix64 rng(3);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  std::vector<testkit::Query> q(buffer_size);
+  for (std::size_t i = 0; i < q.size(); ++i)
+    q[i] = testkit::make_query(i % 2 == 0 ? testkit::QueryKind::near_parallel : testkit::QueryKind::near_coplanar, bits);
   return q;
 }
 
@@ -69,6 +79,12 @@ int main(int argc, char** argv) {
   const std::map<std::string, std::function<void()>> entries = {
       {"plane/naive/random", [&] { run(plane_queries(), count, [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane).t; }); }},
       {"plane/certified/random", [&] { run(plane_queries(), count, [](const testkit::Query& q) { return intersect(q.ray, q.plane).t; }); }},
+      {"plane/naive/degenerate", [&] {
+         run(plane_degenerate_queries(), count, [](const testkit::Query& q) { return intersect_naive(q.ray, q.plane).t; });
+       }},
+      {"plane/certified/degenerate", [&] {
+         run(plane_degenerate_queries(), count, [](const testkit::Query& q) { return intersect(q.ray, q.plane).t; });
+       }},
       {"plane/relation/random", [&] {
          run(plane_queries(), count, [](const testkit::Query& q) { return static_cast<double>(relation(q.ray, q.plane)); });
        }},

@@ -666,3 +666,19 @@ Definition orient_liveness :=
    OrientLiveness.orient3d_range_witness).
 Goal True. idtac "@@ orient2d_filter_live orient2d_filter_b_fwd orient2d_filter_twin_live orient3d_filter_live orient2d_live_witness orient2d_live_witness_in_class orient2d_uncertain_witness orient3d_live_witness orient3d_range_witness". Abort.
 Print Assumptions orient_liveness.
+(** core/: the rounding of a quotient at its rounding boundaries (quotient_boundary.hpp): the decision over the
+    reals, the twin's soundness, liveness on ties *)
+From Raykernel Require MidpointRounding QuotientBoundary.
+Definition boundary_results :=
+  (MidpointRounding.rn_between_midpoints,
+   MidpointRounding.rn_at_midpoint_above,
+   MidpointRounding.rn_at_midpoint_below,
+   MidpointRounding.boundary_decision_correct,
+   MidpointRounding.b754_canonical,
+   QuotientBoundary.side_of_midpoint_sound,
+   QuotientBoundary.round_quotient_at_boundaries_sound,
+   QuotientBoundary.round_quotient_at_boundaries_tie_even,
+   QuotientBoundary.round_quotient_at_boundaries_tie_odd,
+   QuotientBoundary.round_quotient_at_boundaries_between).
+Goal True. idtac "@@ rn_between_midpoints rn_at_midpoint_above rn_at_midpoint_below boundary_decision_correct b754_canonical side_of_midpoint_sound round_quotient_at_boundaries_sound round_quotient_at_boundaries_tie_even round_quotient_at_boundaries_tie_odd round_quotient_at_boundaries_between". Abort.
+Print Assumptions boundary_results.

@@ -13,7 +13,7 @@
 // - Hand-derived: a plane holding a facet ties with it and wins; moved by 2^-20 behind it, the facet wins; a
 //   triangle before a plane by less than an ulp.
 // - Rounding ties of a triangle's t (t exactly halfway between two doubles), decided at the rounding boundaries in
-//   expansions (nearest/quotient_boundary.hpp), never in rationals: the octahedron scene's rays, and
+//   expansions (core/quotient_boundary.hpp), never in rationals: the octahedron scene's rays, and
 //   round_quotient_at_boundaries itself against exact rounding on random quotients near and on midpoints.
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_hit.hpp>
@@ -21,7 +21,7 @@
 #include <raykernel/testkit/meshes.hpp>
 
 #include "core/expansion.hpp"
-#include "nearest/quotient_boundary.hpp"
+#include "core/quotient_boundary.hpp"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

@@ -22,6 +22,7 @@ From Raykernel Require PlaneCascadeTwins.
 From Raykernel Require TriangleCascadeFlowTwins.
 From Raykernel Require TriangleIntersectPublic.
 From Raykernel Require OrientTwins.
+From Raykernel Require QuotientBoundary.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -150,6 +151,17 @@ Definition run_compare_expansion_gen fts sgn (x : list Z) : list Z :=
     let '(nb, db, xb) := ray_plane_expansions_b fts o d (v3 pbx pby pbz) (v3 nbx nby nbz) in
     [sign_code (compare_quotients_expansion_gen fts sgn na da xa nb db xb)] | _ => [] end.
 Definition run_compare_expansion := run_compare_expansion_gen two_sum_b expansion_sign_b.
+
+(** quotient_boundary.hpp's [round_quotient_at_boundaries] (QuotientBoundary.v): "s q k num_1 .. num_k den_1 .."
+    (s = 0: den_sign = +1, else −1) → 1 and RN's bits, or 0 when it does not decide. *)
+Definition run_quotient_boundary (x : list Z) : list Z :=
+  match x with s :: q :: k :: rest =>
+    let num := map f (firstn (Z.to_nat k) rest) in
+    let den := map f (skipn (Z.to_nat k) rest) in
+    let ds := if Z.eqb s 0 then 1 else (-1) in
+    match QuotientBoundary.round_quotient_at_boundaries_b num den ds (f q) with
+    | Some r => [1; b r] | None => [0] end
+  | _ => [] end.
 
 (** nearest_hit.cpp's [compare_hit_distances] (NearestTwins.v): a ray, two planes and the four signs the
     candidates carry (num_a, den_a, num_b, den_b, each as the double −1, 0, +1) → order, stage (order 0
@@ -436,7 +448,7 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
   run_exp_sum run_exp_scale run_exp_sign run_round_quotient
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
-  run_build_expansions run_compare_expansion run_nearest_compare
+  run_build_expansions run_compare_expansion run_quotient_boundary run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
   run_tri_fast_relation run_tri_fast_intersect
   run_cascade_intersect run_cascade_relation

@@ -28,6 +28,7 @@
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
 #include "core/lanes.hpp"
+#include "core/quotient_boundary.hpp"
 #include "core/quotient_rounding.hpp"
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_stages.hpp"
@@ -380,6 +381,21 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          const std::vector<double> x = doubles(w);
          const RayPlaneTerms a = terms_of(x, 6), b = terms_of(x, 12);
          o.i(sign_code(compare_quotients_expansion(ray_plane_expansions(a), ray_plane_expansions(b))));
+         return true;
+       }},
+      // quotient_boundary.hpp's round_quotient_at_boundaries: "s q k num_1 .. num_k den_1 .." (s = 0: den_sign
+      // +1, else −1; at most 16 components each) → 1 and RN(Σnum/Σden), or 0 when it does not decide.
+      {"quotient_boundary",
+       [](const Words& w, Out& o) {
+         if (w.size() < 5 || w[0] > 1 || w[2] == 0 || w[2] > 16) return false;
+         const std::vector<double> x = doubles(w, 3);
+         const std::size_t k = static_cast<std::size_t>(w[2]);
+         Expansion<16> num, den;
+         if (!fill(num, x, 0, k) || !fill(den, x, k, x.size() - k)) return false;
+         const std::optional<double> r =
+             round_quotient_at_boundaries(num, den, w[0] == 0 ? 1 : -1, from_word(w[1]));
+         if (r) o.i(1), o.f(*r);
+         else o.i(0);
          return true;
        }},
       // nearest_hit.cpp's compare_hit_distances on two candidates built as nearest_hit builds them (stage 1

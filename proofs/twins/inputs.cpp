@@ -323,6 +323,42 @@ Args word_then(std::uint64_t word, const std::vector<double>& query) {
 }
 Args word_then_triangle_query(Source& s, std::uint64_t word) { return word_then(word, s.triangle_query()); }
 
+// A quotient at a rounding boundary (round_quotient_at_boundaries): a candidate q (a few significant bits,
+// a power of two, or raw), den = D_1 (+ D_2) and num = (q + δ)·den as TwoProducts, δ = 0, half the gap above
+// or below q (t on a midpoint: a tie) or a random offset, sometimes with a tiny extra component (t just off
+// the midpoint); den's sign word (mostly the true sign). "s q k num.. den..".
+Args boundary_args(Source& s) {
+  double q;
+  if (s.chance(8)) q = s.raw();
+  else {
+    const double m = s.chance(3) ? 1.0 : 1.0 + static_cast<double>(s.below(1 << 20)) * 0x1p-20;
+    q = std::ldexp(s.chance(2) ? m : -m, static_cast<int>(s.below(200)) - 100);
+  }
+  std::vector<double> den{std::ldexp(static_cast<double>(2 * s.below(1 << 10) + 1) * (s.chance(2) ? 1 : -1),
+                                     static_cast<int>(s.below(60)) - 30)};
+  if (s.chance(3)) den.push_back(std::ldexp(den[0], -60 - static_cast<int>(s.below(20))));
+  if (s.chance(16)) den[0] = s.raw();
+  const int kind = static_cast<int>(s.below(4));
+  double delta = 0;
+  if (kind == 1) delta = (std::nextafter(q, HUGE_VAL) - q) / 2;
+  if (kind == 2) delta = (std::nextafter(q, -HUGE_VAL) - q) / 2;
+  if (kind == 3) delta = s.raw();
+  std::vector<double> num;
+  for (const double d : den) {
+    const DoubleDouble a = detail::two_prod(q, d), b = detail::two_prod(delta, d);
+    for (const double c : {a.lo, a.hi, b.lo, b.hi})
+      if (c != 0) num.push_back(c);
+  }
+  if (s.chance(4)) num.push_back(std::ldexp(den[0] * q, -70 - static_cast<int>(s.below(40))) * (s.chance(2) ? 1 : -1));
+  if (num.empty()) num.push_back(s.raw());
+  const double den_sum = den.size() > 1 ? den[0] + den[1] : den[0];
+  const std::uint64_t sign_word = s.chance(16) ? s.below(2) : (den_sum < 0 ? 1 : 0);
+  Args a{std::bit_cast<double>(sign_word), q, std::bit_cast<double>(static_cast<std::uint64_t>(num.size()))};
+  a.insert(a.end(), num.begin(), num.end());
+  a.insert(a.end(), den.begin(), den.end());
+  return a;
+}
+
 using Generator = std::function<Args(Source&)>;
 
 const std::map<std::string, Generator>& generators() {
@@ -421,6 +457,7 @@ const std::map<std::string, Generator>& generators() {
       {"exp_sign", [](Source& s) { return some_expansion(s, 12); }},
       {"build_expansions", [](Source& s) { return query_args(s.query()); }},
       {"compare_expansion", [](Source& s) { return pair_args(s); }},
+      {"quotient_boundary", [](Source& s) { return boundary_args(s); }},
       // nearest_hit.cpp's compare_hit_distances: a near-tie plane pair and the signs of num and den each
       // candidate carries (the relation's, certified_signs), as doubles −1, 0, +1. Half of the pairs have
       // the second plane's point scaled by 1 ± j·2^-52 (j < 64, or < 2^20 for 1 in 4 of them), which puts

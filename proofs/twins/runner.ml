@@ -31,6 +31,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("fast_relation_pair", Twins.run_fast_relation_pair);
   ("build_expansions", Twins.run_build_expansions);
   ("compare_expansion", Twins.run_compare_expansion);
+  ("quotient_boundary", Twins.run_quotient_boundary);
   ("nearest_compare", Twins.run_nearest_compare);
   ("tri_filter", Twins.run_tri_filter);
   ("tri_relation_lanes", Twins.run_tri_relation_lanes);

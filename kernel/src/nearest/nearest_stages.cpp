@@ -7,7 +7,7 @@ namespace raykernel::detail {
 
 // RN(t) of a triangle candidate whose stage-2 rounding was not certain (`candidate` its rounded value): round_quotient
 // on stage 3's tail enclosures (den's, or stage 2's when den's expansion is too long), then the rounding
-// boundaries of the candidate in expansions (nearest/quotient_boundary.hpp), then the exact stage. As the
+// boundaries of the candidate in expansions (core/quotient_boundary.hpp), then the exact stage. As the
 // triangle cascade rounds (triangle/ray_triangle_cascade.cpp), with the boundaries before rationals.
 RAYKERNEL_MULTIVERSION
 void round_triangle_t_beyond_stage2(TriangleCandidate& c, double candidate) noexcept {

@@ -15,7 +15,7 @@
 //   t         round_quotient on stage 2, then on stage 3's tail enclosures:
 //             proofs/plane/QuotientRounding.v, `round_quotient_sound`
 //             proofs/plane/PlaneCompensated.v, `tail_sum_enclosure`
-//             then at the rounding boundaries in expansions (nearest/quotient_boundary.hpp), then exactly
+//             then at the rounding boundaries in expansions (core/quotient_boundary.hpp), then exactly
 //             (exact::round_triangle_quotients)
 //
 // The storage of stages 2 and 3 is left uninitialized until used (a search keeps two candidates per kind and must
@@ -29,7 +29,7 @@
 #include "mesh/exact_mesh.hpp"
 #include "nearest/compare_quotients.hpp"
 #include "nearest/exact_nearest.hpp"
-#include "nearest/quotient_boundary.hpp"
+#include "core/quotient_boundary.hpp"
 #include "triangle/exact_triangle.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
 #include "triangle/ray_triangle_stages.hpp"

@@ -11,22 +11,28 @@
 //     sign(t − m) = sign(2·num − (x + y)·den)·sign(den),
 //
 // the comparison of the two quotients num/den and (x + y)/2 — compare_quotients_expansion on num, den and the
-// expansions TwoSum(x, y) (exactly x + y) and {2}, exact (nearest/compare_quotients.hpp). Nothing is rounded: no
+// expansions TwoSum(x, y) (exactly x + y) and {2}, exact (core/expansion_compare.hpp). Nothing is rounded: no
 // error constant.
 //   Valid range: 2^-968 ≤ |q| < largest_finite (so that q⁻ and q⁺ are normal doubles of q's sign and the
 //   products exact unless the builder says otherwise), num and den as exact expansions of at most 16 components
 //   each; nothing (the exact stage decides) when a product is not exact, the candidate is not t's rounding or
-//   its neighbour's (t beyond m⁺ or below m⁻), or q is outside that range.
-//   Certified by: proofs/core/Expansions.v, `compare_quotients_expansion_sound` (each sign; TwoSum's exactness for the
-//   midpoint's expansion); the choice of RN(t) from the two signs is round-to-nearest-even's definition on the
-//   midpoints (no Coq theorem of its own yet).
+//   its neighbour's (t beyond m⁺ or below m⁻), q is outside that range, or q + q⁺ overflows (the top binade).
+//   Certified by: proofs/core/QuotientBoundary.v, `round_quotient_at_boundaries_sound` (a value is finite and
+//   RN(Σnum/Σden) for den_sign the sign of Σden, ±1, and at most 16 components each), from `side_of_midpoint_sound`
+//   (a certain side is the sign of t − (x + y)/2: proofs/core/Expansions.v, `compare_quotients_expansion_sound`)
+//   and proofs/core/MidpointRounding.v, `boundary_decision_correct` (the choice of RN(t) from the two sides:
+//   `rn_between_midpoints`, `rn_at_midpoint_above`, `rn_at_midpoint_below`; ties to even by the parity of the
+//   significand field, `b754_canonical`). Liveness: ties and the values between the midpoints are decided
+//   (`round_quotient_at_boundaries_tie_even`, `round_quotient_at_boundaries_tie_odd`,
+//   `round_quotient_at_boundaries_between`). The twin runs against this code in the differential runner (routine
+//   quotient_boundary).
 #pragma once
 
 #include "core/eft.hpp"
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
 #include "core/sign.hpp"
-#include "nearest/compare_quotients.hpp"
+#include "core/expansion_compare.hpp"
 
 #include <bit>
 #include <cmath>
@@ -44,8 +50,10 @@ template <std::size_t A, std::size_t B>
   // (Capacities of 16, as the triangles' comparisons: one instantiation of compare_quotients_expansion.)
   // {x, y} as the expansion TwoSum(x, y) = (s, e): nonoverlapping, so that the checked sign of the difference
   // decides, and s + e = x + y exactly.
+  const DoubleDouble s = two_sum(x, y);
+  if (!std::isfinite(s.lo)) return Sign::uncertain;  // x + y overflowed (q in the top binade)
   Expansion<16> pair;
-  ExpansionBuilder::from_pair(two_sum(x, y), pair);
+  ExpansionBuilder::from_pair(s, pair);
   Expansion<16> two;
   two.component[0] = 2;
   two.size = 1;
