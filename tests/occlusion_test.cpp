@@ -6,6 +6,8 @@
 // and the segment parity property (a segment from inside a closed mesh to outside crosses an odd number of owned
 // triangles; inside to inside or outside to outside, an even number), with inside-ness from the exact winding
 // number (inside()).
+#include "invalid_reason.hpp"
+
 #include <raykernel/occlusion.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
@@ -40,14 +42,7 @@ double down(double x) { return std::nextafter(x, -inf); }
 // The triangle (0,0,0), (1,0,0), (0,1,0) in the plane z = 0, N = (0, 0, 1).
 Mesh unit_triangle_mesh() { return Mesh{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}}; }
 
-std::string invalid_reason(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const invalid_input& e) {
-    return e.what();
-  }
-  return "(valid)";
-}
+using test::invalid_reason;
 
 // ---- Intervals: the exact t against the bounds ------------------------------------------------------------------
 

@@ -2,6 +2,8 @@
 // P̂ on the plane, ties of |N_i|, steps across zero, k beyond 2^53, binary32, no origin, overflow, every invalid
 // input), the contract's sample in both formats, and a RapidCheck property checking each answer against its
 // definition with an oracle of its own (GMP for the signs, MPFR for the roundings, nextafter for the steps).
+#include "invalid_reason.hpp"
+
 #include <raykernel/spawn.hpp>
 
 #include "commands/spawn.hpp"
@@ -38,14 +40,7 @@ void expect_origin(const SpawnedOrigin& got, const Vec3& origin, std::uint64_t s
   EXPECT_EQ(got.steps, steps);
 }
 
-std::string invalid_reason(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const invalid_input& e) {
-    return e.what();
-  }
-  return "(valid)";
-}
+using test::invalid_reason;
 
 TEST(Spawn, ARoundedPointOnTheSideNeedsNoStep) {
   // N = (3, 0, 1) × ... : the plane −x + 3z = 0 (a = 0, b = (3, 0, 1), c = (0, 1, 0): N = (−1, 0, 3)). The ray

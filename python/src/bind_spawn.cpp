@@ -48,38 +48,28 @@ towards: the ray from it never hits the triangle (docs/contract.md §9).)doc") +
       std::string(R"doc(The origin of a shadow ray towards the point ``target`` q, on q's side of the triangle's plane: the segment from it to
 q never meets the triangle (docs/contract.md §9).)doc") +
       hit_doc + "q on the plane, a rounded point that overflows the format, or no origin on the side.";
-  m.def(
-      "spawn",
-      [](py::handle hit, py::handle triangle, py::handle direction, const std::string& format) {
-        const HitPoint h = hit_from(hit);
-        const Triangle t = triangle_from(triangle);
-        const Vec3 w = vec3_from(direction, "direction");
-        const OriginFormat f = format_from(format);
-        SpawnedOrigin o{};
-        {
-          py::gil_scoped_release release;
-          o = spawn(h, t, w, f);
-        }
-        return to_python(o);
-      },
-      py::arg("hit"), py::arg("triangle"), py::arg("direction"), py::kw_only(), py::arg("format") = "binary64",
-      spawn_doc.c_str());
-  m.def(
-      "spawn_to",
-      [](py::handle hit, py::handle triangle, py::handle target, const std::string& format) {
-        const HitPoint h = hit_from(hit);
-        const Triangle t = triangle_from(triangle);
-        const Vec3 q = vec3_from(target, "target");
-        const OriginFormat f = format_from(format);
-        SpawnedOrigin o{};
-        {
-          py::gil_scoped_release release;
-          o = spawn_to(h, t, q, f);
-        }
-        return to_python(o);
-      },
-      py::arg("hit"), py::arg("triangle"), py::arg("target"), py::kw_only(), py::arg("format") = "binary64",
-      spawn_to_doc.c_str());
+  // spawn and spawn_to differ only in the kernel function and the name of their third argument.
+  const auto define = [&m](const char* name, const char* third, const std::string& doc,
+                           SpawnedOrigin (*kernel)(const HitPoint&, const Triangle&, const Vec3&, OriginFormat)) {
+    m.def(
+        name,
+        [third, kernel](py::handle hit, py::handle triangle, py::handle vector, const std::string& format) {
+          const HitPoint h = hit_from(hit);
+          const Triangle t = triangle_from(triangle);
+          const Vec3 v = vec3_from(vector, third);
+          const OriginFormat f = format_from(format);
+          SpawnedOrigin o{};
+          {
+            py::gil_scoped_release release;
+            o = kernel(h, t, v, f);
+          }
+          return to_python(o);
+        },
+        py::arg("hit"), py::arg("triangle"), py::arg(third), py::kw_only(), py::arg("format") = "binary64",
+        doc.c_str());
+  };
+  define("spawn", "direction", spawn_doc, &spawn);
+  define("spawn_to", "target", spawn_to_doc, &spawn_to);
 }
 
 }  // namespace raykernel::python
