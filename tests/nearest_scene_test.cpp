@@ -18,6 +18,7 @@
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/nearest_scene.hpp>
+#include <raykernel/testkit/mesh_rapidcheck.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
 #include "core/expansion.hpp"
@@ -135,31 +136,7 @@ Mesh draw_mesh() {
   }
 }
 
-// A point of the mesh to aim at: a vertex, an edge point, a point inside a face, or a point of the bounding box.
-Vec3 target_point(const Mesh& mesh, const Box3& bounds, int kind) {
-  const Triangle t = mesh.triangle(*rc::gen::inRange<std::size_t>(0, mesh.triangles.size()));
-  switch (kind) {
-    case 0: return *rc::gen::element(t.a, t.b, t.c);
-    case 1: {
-      const int bits = *rc::gen::inRange(1, 8);
-      const auto p = testkit::edge_point(*rc::gen::element(t.a, t.b, t.c), *rc::gen::element(t.a, t.b, t.c),
-                                         *rc::gen::inRange<std::int64_t>(0, (1LL << bits) + 1), bits);
-      return p ? *p : t.a;
-    }
-    case 2: {
-      const auto p = testkit::edge_point(t.a, t.b, *rc::gen::inRange<std::int64_t>(1, 16), 4);
-      const auto r = p ? testkit::edge_point(*p, t.c, *rc::gen::inRange<std::int64_t>(1, 16), 4) : std::nullopt;
-      return r ? *r : t.c;
-    }
-    default: {
-      auto c = [](double lo, double hi) {
-        const auto p = testkit::edge_point({lo, 0, 0}, {hi, 0, 0}, *rc::gen::inRange<std::int64_t>(-2, 19), 4);
-        return p ? p->x : lo;
-      };
-      return {c(bounds.lo.x, bounds.hi.x), c(bounds.lo.y, bounds.hi.y), c(bounds.lo.z, bounds.hi.z)};
-    }
-  }
-}
+using testkit::target_point;
 
 // A ray aimed exactly at `target` from a coarse grid point around the mesh (some coordinates shared with the
 // target: zero direction components).

@@ -1,0 +1,43 @@
+// RapidCheck generators over meshes (meshes.hpp), for RC_GTEST_PROP properties of mesh queries: points to aim
+// rays at, exactly on the mesh's vertices, edges and faces, where the hard cases are. Header-only; needs
+// <rapidcheck.h> and `rapidcheck`.
+#pragma once
+
+#include <raykernel/bvh.hpp>
+#include <raykernel/mesh.hpp>
+#include <raykernel/testkit/meshes.hpp>
+
+#include <rapidcheck.h>
+
+#include <cstdint>
+
+namespace raykernel::testkit {
+
+// kind 0: a vertex; 1: a point of an edge at k/2^bits (exactly on it when representable); 2: a point inside a
+// face (an edge point moved towards the third vertex); 3: a point of the bounding box on a grid of sixteenths.
+inline Vec3 target_point(const Mesh& mesh, const Box3& bounds, int kind) {
+  const Triangle t = mesh.triangle(*rc::gen::inRange<std::size_t>(0, mesh.triangles.size()));
+  switch (kind) {
+    case 0: return *rc::gen::element(t.a, t.b, t.c);
+    case 1: {
+      const int bits = *rc::gen::inRange(1, 8);
+      const auto p = edge_point(*rc::gen::element(t.a, t.b, t.c), *rc::gen::element(t.a, t.b, t.c),
+                                         *rc::gen::inRange<std::int64_t>(0, (1LL << bits) + 1), bits);
+      return p ? *p : t.a;
+    }
+    case 2: {
+      const auto p = edge_point(t.a, t.b, *rc::gen::inRange<std::int64_t>(1, 16), 4);
+      const auto r = p ? edge_point(*p, t.c, *rc::gen::inRange<std::int64_t>(1, 16), 4) : std::nullopt;
+      return r ? *r : t.c;
+    }
+    default: {
+      auto c = [](double lo, double hi) {
+        const auto p = edge_point({lo, 0, 0}, {hi, 0, 0}, *rc::gen::inRange<std::int64_t>(-2, 19), 4);
+        return p ? p->x : lo;
+      };
+      return {c(bounds.lo.x, bounds.hi.x), c(bounds.lo.y, bounds.hi.y), c(bounds.lo.z, bounds.hi.z)};
+    }
+  }
+}
+
+}  // namespace raykernel::testkit
