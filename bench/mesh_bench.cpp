@@ -34,6 +34,7 @@
 
 #include <raykernel/bvh.hpp>
 #include <raykernel/mesh_queries.hpp>
+#include <raykernel/occlusion.hpp>
 #include <raykernel/io/mesh_file.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
@@ -380,6 +381,14 @@ void register_all() {
           });
     })->Apply(threads);
 
+    // Any-hit (shadow rays): raykernel's occluded (owned rule, stops at the first blocker) against Embree's
+    // rtcOccluded1 below; the same rays as the nearest-hit rows.
+    benchmark::RegisterBenchmark(("mesh/occluded/certified/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) { return std::uint64_t{occluded(r, *f.prepared)}; });
+    })->Apply(threads);
+
     benchmark::RegisterBenchmark(("inside/certified/" + m).c_str(), [m](benchmark::State& state) {
       Fixture* f;
       {
@@ -444,6 +453,20 @@ void register_all() {
         std::lock_guard lock(fixture_mutex);
         state.counters["coords_changed_by_float"] =
             benchmark::Counter(static_cast<double>(current->embree[robust]->conversion().inexact), benchmark::Counter::kAvgThreads);
+      })->Apply(threads);
+    }
+    for (int robust = 0; robust < 2; ++robust) {
+      const std::string mode = robust ? "embree_robust" : "embree";
+      benchmark::RegisterBenchmark(("mesh/occluded/" + mode + "/" + m).c_str(), [m, robust](benchmark::State& state) {
+        ray_benchmark(
+            state, m,
+            [robust](Fixture& f) {
+              part(f.embree[robust], [&] {
+                return std::make_unique<baseline::EmbreeScene>(f.mesh, robust ? baseline::EmbreeScene::Mode::robust
+                                                                              : baseline::EmbreeScene::Mode::fast);
+              });
+            },
+            [robust](Fixture& f, const Ray& r) { return std::uint64_t{f.embree[robust]->occluded(r)}; });
       })->Apply(threads);
     }
     benchmark::RegisterBenchmark(("mesh/embree_robust_packet8/" + m).c_str(), [m](benchmark::State& state) {
