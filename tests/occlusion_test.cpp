@@ -172,7 +172,9 @@ TEST(AllHits, EachTriangleOnceInExactOrderWithTheSignedOwnedCrossings) {
   ASSERT_EQ(closed.hits.size(), 8u);
   for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(closed.hits[k].intersection.t, k < 4 ? 1.0 : 3.0);
   for (std::size_t k = 0; k + 1 < 8; ++k) {
-    if (k != 3) EXPECT_LT(closed.hits[k].triangle, closed.hits[k + 1].triangle);
+    if (k != 3) {
+      EXPECT_LT(closed.hits[k].triangle, closed.hits[k + 1].triangle);
+    }
   }
   EXPECT_EQ(closed.crossings, 0);
   // From the centre: one way out, +1; in [1.5, inf] from outside, the exit alone.
