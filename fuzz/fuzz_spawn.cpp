@@ -222,14 +222,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       return (u >> 63) != 0 ? -m : m;
     };
     const std::int64_t end = ordinal(oc[axis]);
-    const std::int64_t start = delta > 0 ? end - static_cast<std::int64_t>(o.steps) : end + static_cast<std::int64_t>(o.steps);
-    const std::int64_t magnitude = start < 0 ? -start : start;
+    // start = end ∓ k in two's complement (k may exceed 2^63; the true start is an ordinal, so it fits).
+    const auto u_end = static_cast<std::uint64_t>(end);
+    const auto start = static_cast<std::int64_t>(delta > 0 ? u_end - o.steps : u_end + o.steps);
+    const std::uint64_t magnitude = start < 0 ? 0 - static_cast<std::uint64_t>(start) : static_cast<std::uint64_t>(start);
     double rounded;
     if (binary32) {
       const float m = std::bit_cast<float>(static_cast<std::uint32_t>(magnitude));
       rounded = start < 0 ? -static_cast<double>(m) : static_cast<double>(m);
     } else {
-      const double m = std::bit_cast<double>(static_cast<std::uint64_t>(magnitude));
+      const double m = std::bit_cast<double>(magnitude);
       rounded = start < 0 ? -m : m;
     }
     check(is_rn(p[static_cast<std::size_t>(axis)], rounded, f), "the origin is not k steps from P rounded to nearest");
