@@ -141,10 +141,13 @@ class Builder {
     return static_cast<std::uint32_t>(mid - order_.begin());
   }
 
+  // The bin of a centroid: x = (c − lo)·factor clamped to [0, bins − 1] before it is converted (x may be +inf
+  // or NaN when the extent is subnormal or the difference overflows; converting those is undefined).
   static std::uint32_t bin_of(double c, double lo, double factor, std::uint32_t bins) {
     const double x = (c - lo) * factor;
     if (!(x > 0)) return 0;
-    return std::min(bins - 1, static_cast<std::uint32_t>(x));
+    if (!(x < static_cast<double>(bins))) return bins - 1;
+    return static_cast<std::uint32_t>(x);
   }
 
   std::vector<Item> items_;
