@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     return finish_standard_output(exit_ok);
   }
   const std::span<const Command> all = commands();
-  const auto found = std::ranges::find(all, command, &Command::name);
+  const auto found = std::find_if(all.begin(), all.end(), [&command](const Command& c) { return c.name == command; });
   if (found == all.end()) {
     std::cerr << "raykernel: unknown command " << quote(command) << "\n" << overview;
     return finish_standard_output(exit_usage);

@@ -116,7 +116,7 @@ std::optional<int> parse_command_line(const CommandLine& line, const std::vector
       value = args[++i];
     }
     if (takes != Value::Takes::nothing) {
-      if (std::ranges::find(given, option) != given.end()) return usage_error(name + " given twice");
+      if (std::find(given.begin(), given.end(), option) != given.end()) return usage_error(name + " given twice");
       given.push_back(option);
     }
     if (!option->value.store(value))
@@ -144,7 +144,7 @@ std::string help_text(const CommandLine& line) {
   // --name=FILE):".
   std::string heading = "options";
   const auto first_taking = [&line](Value::Takes t) {
-    return std::ranges::find_if(line.options, [t](const Option& o) { return o.value.takes == t; });
+    return std::find_if(line.options.begin(), line.options.end(), [t](const Option& o) { return o.value.takes == t; });
   };
   if (first_taking(Value::Takes::value) != line.options.end()) {
     heading += " (a value as --name VALUE or --name=VALUE";
