@@ -192,16 +192,6 @@ struct TieSpec {
   std::function<Ray(std::mt19937_64&)> ray;  // a ray of the workload
 };
 
-// The fan (v0, vi, vi+1) of the polygon v0 = (0, 0), vi = (i, ±1) alternately, in the plane z = 0 or z = x + 2y.
-Mesh overlapping_fan(std::uint32_t n, bool tilted) {
-  Mesh m;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const double x = i, y = i == 0 ? 0 : (i % 2 == 1 ? 1 : -1);
-    m.vertices.push_back({x, y, tilted ? x + 2 * y : 0});
-  }
-  for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
-  return m;
-}
 
 // Downwards (with a small tilt) through a point of the region 0 < x ≤ 1/2, |y| < x·2^-21 that every triangle of
 // an overlapping fan of at most 2^20 vertices contains.
@@ -248,9 +238,9 @@ const std::vector<TieSpec>& tie_specs() {
          const Vec3 o{target.x + 0.5 * (unit(rng) - 0.5), target.y + 0.5 * (unit(rng) - 0.5), 2};
          return Ray{o, {target.x - o.x, target.y - o.y, -o.z}};
        }},
-      {"overlapping-fan-1M", [] { return overlapping_fan(1000000, false); },
+      {"overlapping-fan-1M", [] { return testkit::make_overlapping_fan(1000000, false); },
        [](std::mt19937_64& rng) { return ray_through_fan_core(rng, false); }},
-      {"overlapping-fan-tilted-100k", [] { return overlapping_fan(100000, true); },
+      {"overlapping-fan-tilted-100k", [] { return testkit::make_overlapping_fan(100000, true); },
        [](std::mt19937_64& rng) { return ray_through_fan_core(rng, true); }},
   };
   return specs;

@@ -87,16 +87,7 @@ Mesh random_soup() {
       m.triangles.push_back(t);
       continue;
     }
-    std::array<std::uint32_t, 3> t{};
-    for (auto& index : t) {
-      if (!m.vertices.empty() && *rc::gen::inRange(0, 3) == 0) {
-        index = static_cast<std::uint32_t>(*rc::gen::inRange<std::size_t>(0, m.vertices.size()));
-      } else {
-        index = static_cast<std::uint32_t>(m.vertices.size());
-        m.vertices.push_back({coordinate(), coordinate(), coordinate()});
-      }
-    }
-    m.triangles.push_back(t);
+    testkit::add_random_triangle(m, coordinate);
   }
   return m;
 }
@@ -509,21 +500,11 @@ TEST(MeshNearest, DuplicatesCostNoRationalComparison) {
 // the plane z = 0 the ties are settled from the vertices (one axis-aligned plane); in the plane z = x + 2y by the
 // exact expansions (small integers: short expansions), never in rationals. Answers against nearest_hit_exact for
 // rays through the common region, through the apex v0 (every triangle at its vertex a), through vertices and
-// edge points, under both rules.
-Mesh zigzag_fan(std::uint32_t n, bool tilted) {
-  Mesh m;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const double x = i, y = i == 0 ? 0 : (i % 2 == 1 ? 1 : -1);
-    m.vertices.push_back({x, y, tilted ? x + 2 * y : 0});
-  }
-  for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
-  return m;
-}
-
+// edge points, under both rules (testkit::make_overlapping_fan).
 TEST(MeshNearest, OverlappingCoplanarFan) {
   constexpr std::uint32_t n = 300;
   for (const bool tilted : {false, true}) {
-    const Mesh m = zigzag_fan(n, tilted);
+    const Mesh m = testkit::make_overlapping_fan(n, tilted);
     const PreparedMesh prepared(m);
     auto above = [&](double x, double y) { return Vec3{x, y, (tilted ? x + 2 * y : 0) + 8}; };
     // Through the common region, straight down and obliquely.

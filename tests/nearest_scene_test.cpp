@@ -111,16 +111,7 @@ Mesh random_soup() {
   auto coordinate = [&] { return std::ldexp(static_cast<double>(*rc::gen::inRange(-16, 17)), e - 3); };
   const int count = *rc::gen::inRange(1, 10);
   for (int k = 0; k < count; ++k) {
-    std::array<std::uint32_t, 3> t{};
-    for (auto& index : t) {
-      if (!m.vertices.empty() && *rc::gen::inRange(0, 3) == 0) {
-        index = static_cast<std::uint32_t>(*rc::gen::inRange<std::size_t>(0, m.vertices.size()));
-      } else {
-        index = static_cast<std::uint32_t>(m.vertices.size());
-        m.vertices.push_back({coordinate(), coordinate(), coordinate()});
-      }
-    }
-    m.triangles.push_back(t);
+    testkit::add_random_triangle(m, coordinate);
   }
   return m;
 }

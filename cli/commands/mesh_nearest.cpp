@@ -61,10 +61,7 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
       continue;
     }
     ++counts.hits;
-    answer = "hit ";
-    answer += std::to_string(hit->triangle);
-    answer += ' ';
-    answer += options.hex ? format_hex(hit->intersection.t) : format_shortest(hit->intersection.t);
+    answer = hit_answer(hit->triangle, hit->intersection.t, options.hex);
     if (options.exact_t) {
       const ExactTriangleIntersection exact = intersect_exact_rational(ray, mesh.mesh().triangle(hit->triangle), options.rule);
       answer += ' ';

@@ -150,10 +150,7 @@ int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std
       continue;
     }
     ++counts.hits;
-    answer = "hit ";
-    answer += std::to_string(hit->plane);
-    answer += ' ';
-    answer += options.hex ? format_hex(hit->t) : format_shortest(hit->t);
+    answer = hit_answer(hit->plane, hit->t, options.hex);
     if (options.exact_t) {
       const ExactIntersection exact = intersect_exact_rational(ray, planes[hit->plane]);
       answer += ' ';

@@ -170,4 +170,8 @@ std::string format_hex(double x) {
   return buf;
 }
 
+std::string hit_answer(std::size_t index, double t, bool hex) {
+  return "hit " + std::to_string(index) + ' ' + (hex ? format_hex(t) : format_shortest(t));
+}
+
 }  // namespace raykernel::cli

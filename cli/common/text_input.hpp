@@ -64,6 +64,9 @@ struct NumberLineOf {
 
 // The shortest decimal text that strtod reads back as exactly x ("inf", "-inf", "-0" included).
 [[nodiscard]] std::string format_shortest(double x);
+// The answer line of the nearest commands for a hit, without its newline: "hit K T", T as format_shortest
+// prints it, or format_hex with `hex`.
+[[nodiscard]] std::string hit_answer(std::size_t index, double t, bool hex);
 // A hexadecimal float ("0x1.8p+1", "-0x0p+0", "inf"), exact by construction.
 [[nodiscard]] std::string format_hex(double x);
 

@@ -199,4 +199,14 @@ std::optional<Vec3> edge_point(const Vec3& a, const Vec3& b, std::int64_t k, int
   return Vec3{*x, *y, *z};
 }
 
+Mesh make_overlapping_fan(std::uint32_t n, bool tilted) {
+  Mesh m;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double x = i, y = i == 0 ? 0 : (i % 2 == 1 ? 1 : -1);
+    m.vertices.push_back({x, y, tilted ? x + 2 * y : 0});
+  }
+  for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
+  return m;
+}
+
 }  // namespace raykernel::testkit

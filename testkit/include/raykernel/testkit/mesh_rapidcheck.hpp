@@ -9,6 +9,7 @@
 
 #include <rapidcheck.h>
 
+#include <array>
 #include <cstdint>
 
 namespace raykernel::testkit {
@@ -38,6 +39,22 @@ inline Vec3 target_point(const Mesh& mesh, const Box3& bounds, int kind) {
       return {c(bounds.lo.x, bounds.hi.x), c(bounds.lo.y, bounds.hi.y), c(bounds.lo.z, bounds.hi.z)};
     }
   }
+}
+
+// Appends a triangle to `m`: each vertex an earlier one of `m` (one time in three, so that triangles share
+// vertices, edges and whole copies) or a new one of three `coordinate()` values.
+template <class Coordinate>
+void add_random_triangle(Mesh& m, Coordinate&& coordinate) {
+  std::array<std::uint32_t, 3> t{};
+  for (auto& index : t) {
+    if (!m.vertices.empty() && *rc::gen::inRange(0, 3) == 0) {
+      index = static_cast<std::uint32_t>(*rc::gen::inRange<std::size_t>(0, m.vertices.size()));
+    } else {
+      index = static_cast<std::uint32_t>(m.vertices.size());
+      m.vertices.push_back({coordinate(), coordinate(), coordinate()});
+    }
+  }
+  m.triangles.push_back(t);
 }
 
 }  // namespace raykernel::testkit

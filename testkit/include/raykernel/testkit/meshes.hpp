@@ -33,6 +33,11 @@ namespace raykernel::testkit {
 // walls: 4n² + 8n triangles. Requires n ≥ 1.
 [[nodiscard]] Mesh make_terrain(int n, std::uint64_t seed = 1);
 
+// A polygon of n ≥ 3 vertices v0 = (0, 0), vi = (i, ±1) alternately, fanned from v0 as (v0, vi, vi+1): n − 2
+// triangles that overlap, all through v0, in the plane z = 0 or (`tilted`) z = x + 2y. Every ray through the common
+// region meets all of them at one exact t: the worst case of ties for a nearest hit.
+[[nodiscard]] Mesh make_overlapping_fan(std::uint32_t n, bool tilted);
+
 // The point a + w·(b − a) for w = k/2^bits, exactly, or nothing when it is not representable (the
 // computation in doubles rounded). For aiming rays exactly at edge points of these meshes.
 [[nodiscard]] std::optional<Vec3> edge_point(const Vec3& a, const Vec3& b, std::int64_t k, int bits);
