@@ -73,8 +73,14 @@ bool limit_address_space(rlim_t room) {
   std::size_t pages = 0;
   statm >> pages;
   const rlim_t limit = static_cast<rlim_t>(pages) * static_cast<rlim_t>(sysconf(_SC_PAGESIZE)) + room;
-  const rlimit stack{rlim_t{8} << 20, rlim_t{8} << 20};
-  const rlimit address_space{limit, limit};
+  // Only the soft limits: the second call may need a larger one than the first (the first run's thread stacks
+  // and malloc arenas stay mapped, more or fewer by timing), and a soft limit may rise up to the hard limit.
+  rlimit stack{}, address_space{};
+  if (getrlimit(RLIMIT_STACK, &stack) != 0 || getrlimit(RLIMIT_AS, &address_space) != 0) return false;
+  stack.rlim_cur = rlim_t{8} << 20;
+  if (stack.rlim_max != RLIM_INFINITY && stack.rlim_max < stack.rlim_cur) stack.rlim_cur = stack.rlim_max;
+  address_space.rlim_cur = limit;
+  if (address_space.rlim_max != RLIM_INFINITY && address_space.rlim_max < limit) return false;
   return pages > 0 && setrlimit(RLIMIT_STACK, &stack) == 0 && setrlimit(RLIMIT_AS, &address_space) == 0;
 }
 

@@ -37,6 +37,10 @@ void check_promise(QueryKind kind, const testkit::Query& q, int i) {
     case QueryKind::exact_in_plane: EXPECT_TRUE(e.den == 0 && e.num == 0); break;
     case QueryKind::origin_on_plane: EXPECT_TRUE(e.num == 0); break;
     case QueryKind::rounding_tie: ASSERT_NE(e.den, 0); EXPECT_TRUE(is_midpoint(e.num / e.den)); break;
+    case QueryKind::above_power_of_two:
+      ASSERT_NE(e.den, 0);
+      EXPECT_TRUE(test_support::just_above_power_of_two(e.num / e.den));
+      break;
     case QueryKind::near_tie: {
       ASSERT_NE(e.den, 0);
       const mpq_class t = e.num / e.den;

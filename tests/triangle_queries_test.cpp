@@ -65,6 +65,14 @@ TEST_P(TriangleKinds, KeepTheirPromises) {
         ASSERT_EQ(sgn(o.num), 0) << triangle_line(q);
         special += o.answer.relation == TriangleRelation::coplanar;
         break;
+      case TriangleQueryKind::above_power_of_two:
+        // t or one barycentric coordinate just above a power of two (the relabelling moves a's coordinate).
+        if (sgn(o.den) == 0) break;
+        special += test_support::just_above_power_of_two(o.num / o.den) ||
+                   test_support::just_above_power_of_two(o.pi_a / o.den) ||
+                   test_support::just_above_power_of_two(o.pi_b / o.den) ||
+                   test_support::just_above_power_of_two(o.pi_c / o.den);
+        break;
       case TriangleQueryKind::rounding_tie: {
         // t = num/den halfway between two doubles (unless the origin was nudged, a quarter of the time): the
         // two neighbours of RN(t) around t are at equal distance.

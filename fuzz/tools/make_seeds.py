@@ -35,7 +35,8 @@ ROOT = FUZZ.parent
 CASES = ROOT / "tests" / "data" / "contract-cases"
 
 KINDS = ["random", "wide-exponents", "near-parallel", "near-coplanar", "exact-parallel", "exact-in-plane",
-         "origin-on-plane", "rounding-tie", "near-tie", "subnormal", "huge-products", "t-overflow", "t-underflow"]
+         "origin-on-plane", "rounding-tie", "near-tie", "subnormal", "huge-products", "t-overflow", "t-underflow",
+         "above-power-of-two"]
 
 NAN = float("nan")
 INF = float("inf")

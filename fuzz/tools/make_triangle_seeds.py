@@ -18,7 +18,7 @@ FUZZ = pathlib.Path(__file__).resolve().parent.parent
 ROOT = FUZZ.parent
 KINDS = ["random", "through-vertex", "through-edge", "through-interior", "near-vertex", "near-edge",
          "origin-on-triangle", "sliver", "needle", "degenerate", "parallel", "coplanar", "rounding-tie",
-         "wide-exponents", "tiny", "huge"]
+         "wide-exponents", "tiny", "huge", "above-power-of-two"]
 
 
 def strtod(token):

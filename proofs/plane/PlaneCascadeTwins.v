@@ -11,7 +11,8 @@
       signs of the expansions, when the builder says exact), else the exact stage, which the twin does not
       compute ([StExact], no answer);
     - [certified_quotient_b]: round_quotient on the first level's enclosures, on the second level's, on the
-      stage-3 tail enclosures (when exact), else the exact stage ([None]);
+      stage-3 tail enclosures (when exact), then [round_quotient_at_boundaries] on the expansions with the
+      last candidate (den's checked sign ±1), else the exact stage ([None]);
     - [intersect_cascade_b]: parallel and in-plane (t = NaN), num = 0 (t = +0), the exact stage when the
       signs came from it, else t from [certified_quotient_b];
     - [intersect_traced_b], [relation_b]: validation first, then the cascade ([intersect_traced], and
@@ -26,7 +27,7 @@
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model PlaneFilter PlaneCompensated PlaneClassification QuotientRounding PlaneCascade FloatCore
-  ConstantsCpp PlaneTwins Expansions PlaneQueryTwins PlaneRefinedTwins.
+  ConstantsCpp PlaneTwins Expansions PlaneQueryTwins PlaneRefinedTwins QuotientBoundary.
 From Raykernel Require PlaneStageTwoFinite PlaneRefinedFinite.
 Import ListNotations.
 Open Scope R_scope.
@@ -129,7 +130,15 @@ Definition certified_quotient_b : option (float * stage) :=
   let '(en, ed, ex) := expansions_b in
   if ex then
     let q3 := round_quotient_b (tail_b en) (prepare_divisor_b (tail_b ed)) in
-    if snd q3 then Some (fst q3, StExpansion) else None
+    if snd q3 then Some (fst q3, StExpansion) else
+    (* the rounding boundaries of the candidate, in the expansions *)
+    let ds := sign_to_Z (expansion_sign_b ed) in
+    if (Z.eqb ds 1 || Z.eqb ds (-1))%bool then
+      match round_quotient_at_boundaries_b en ed ds (fst q3) with
+      | Some t => Some (t, StExpansion)
+      | None => None
+      end
+    else None
   else None.
 
 End Query.
@@ -409,12 +418,29 @@ Proof.
                   (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
       destruct ex; [|discriminate].
       destruct (X eq_refl) as [_ [_ [Sd Sn]]]. destruct L as [Ln Ld].
-      destruct (snd (round_quotient_b (tail_b en) (prepare_divisor_b (tail_b ed)))) eqn:C3; [|discriminate].
-      intros E. apply some_pair_fst in E. subst q.
-      apply (round_quotient_twin_sound (tail_b en) (tail_b ed) VN VD (tail_b_nonneg _) (tail_b_nonneg _));
-        [ | | exact C3].
-      * intros Fh Fl Fr. unfold VN. rewrite (VN_eq o p n), <- Sn. apply tail_b_encloses; [lia | assumption ..].
-      * intros Fh Fl Fr. unfold VD. rewrite (VD_eq d n), <- Sd. apply tail_b_encloses; [lia | assumption ..].
+      destruct (snd (round_quotient_b (tail_b en) (prepare_divisor_b (tail_b ed)))) eqn:C3.
+      * intros E. apply some_pair_fst in E. subst q.
+        apply (round_quotient_twin_sound (tail_b en) (tail_b ed) VN VD (tail_b_nonneg _) (tail_b_nonneg _));
+          [ | | exact C3].
+        -- intros Fh Fl Fr. unfold VN. rewrite (VN_eq o p n), <- Sn. apply tail_b_encloses; [lia | assumption ..].
+        -- intros Fh Fl Fr. unfold VD. rewrite (VD_eq d n), <- Sd. apply tail_b_encloses; [lia | assumption ..].
+      * (* the rounding boundaries: den's checked sign is ±1, hence den's sign (expansion_sign_sound) *)
+        destruct (X eq_refl) as [_ [Fd _]].
+        assert (Cd := expansion_sign_sound ed Fd ltac:(lia)).
+        assert (VDe : VD = sumR ed) by (unfold VD; rewrite (VD_eq d n), <- Sd; reflexivity).
+        assert (VNe : VN = sumR en) by (unfold VN; rewrite (VN_eq o p n), <- Sn; reflexivity).
+        destruct (expansion_sign_b ed) eqn:Sg; cbn [sign_to_Z] in *;
+          try (cbv [Z.eqb orb]; intros H; discriminate H); cbv [Z.eqb orb].
+        -- destruct (round_quotient_at_boundaries_b en ed (-1) _) as [r|] eqn:B; [|discriminate].
+           intros E. injection E as <- _. cbn [certifies] in Cd.
+           destruct (round_quotient_at_boundaries_sound en ed (-1) _ r ltac:(lia) ltac:(lia)
+                       ltac:(right; split; [reflexivity | exact Cd]) B) as [Fr Rr].
+           rewrite VDe, VNe. repeat split; [lra | exact Fr | exact Rr].
+        -- destruct (round_quotient_at_boundaries_b en ed 1 _) as [r|] eqn:B; [|discriminate].
+           intros E. injection E as <- _. cbn [certifies] in Cd.
+           destruct (round_quotient_at_boundaries_sound en ed 1 _ r ltac:(lia) ltac:(lia)
+                       ltac:(left; split; [reflexivity | exact Cd]) B) as [Fr Rr].
+           rewrite VDe, VNe. repeat split; [lra | exact Fr | exact Rr].
 Qed.
 
 End Quotient.

@@ -19,7 +19,8 @@
       exactly zero numerator gives +0); [round_quotients] on the stage-2 enclosures over one divisor (its
       fields broadcast: [shared_divisor_b]); the stage-3 tail enclosures ([expansion_enclosure]: exact and
       at most [tail_sum_max_terms] components, [PlaneCascadeTwins.tail_b]) over den's (or stage 2's) divisor,
-      [round_quotient] per quotient; else the exact stage ([QExact]: the twin computes no exact answer);
+      [round_quotient] per quotient; then [round_quotient_at_boundaries] on the candidates ([qstep_boundary]:
+      num's and den's expansions exact and at most 16 components, den's checked sign ±1); else the exact stage ([QExact]: the twin computes no exact answer);
     - [tc_relation_b]: [triangle_relation_cascade];
     - [tri_valid_b]: [is_valid(ray) & is_valid(triangle)] (finite components, d not the zero vector), by
       which the public entry points choose between the fast path's answer, invalid_input and the cascade.
@@ -32,7 +33,8 @@
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Model PlaneClassification PlaneCascade FloatCore ConstantsCpp PlaneTwins Expansions PlaneQueryTwins
-  TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleIntersectTwins.
+  TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleIntersectTwins
+  QuotientBoundary.
 From Raykernel Require PlaneCascadeTwins.
 Import ListNotations.
 
@@ -147,6 +149,12 @@ Definition tc_expansion_enclosure_b (v : Z) : option EnclosureB :=
   if (eexact e && Z.leb (Z.of_nat (length (ecomp e))) Cpp.tail_sum_max_terms)%bool
   then Some (PlaneCascadeTwins.tail_b (ecomp e)) else None.
 
+(** [short_expansion(v)]: stage 3's exact expansion of determinant v when it has at most 16 components (the
+    capacity [round_quotient_at_boundaries] is proved for). *)
+Definition tc_short_b (v : Z) : option (list float) :=
+  let e := value_ev o d a b c v in
+  if (eexact e && Nat.leb (length (ecomp e)) 16)%bool then Some (ecomp e) else None.
+
 End Query.
 
 (** A quotient of the answer: NaN (not asked, or no crossing), a value, or left to the exact stage. *)
@@ -162,6 +170,18 @@ Definition qstep (x : bool * qval) (r : float * bool) : bool * qval :=
 
 Definition qstep3 (x : bool * qval) (r : option (float * bool)) : bool * qval :=
   if fst x then x else match r with Some r => (snd r, QVal (fst r)) | None => x end.
+
+(** A quotient not yet certain, decided at the rounding boundaries of its candidate when den's sign is ±1 and
+    both expansions are short: [round_quotient_at_boundaries(num, den, den_sign, candidate)]. *)
+Definition qstep_boundary (x : bool * qval) (ds : Z) (den num : option (list float)) : bool * qval :=
+  if fst x then x else
+  match snd x, den, num with
+  | QVal q, Some ed, Some en =>
+    if (Z.eqb ds 1 || Z.eqb ds (-1))%bool then
+      match round_quotient_at_boundaries_b en ed ds q with Some r => (true, QVal r) | None => x end
+    else x
+  | _, _, _ => x
+  end.
 
 Definition qfinal (x : bool * qval) : qval := if fst x then snd x else QExact.
 
@@ -206,6 +226,11 @@ Definition tc_intersect_b (want_t want_u owned_rule : bool) (o d a b c : TVec) :
   let x1 := if fst x1 then x1 else qstep3 x1 (r3 0%Z) in
   let x2 := if fst x2 then x2 else qstep3 x2 (r3 1%Z) in
   let x3 := if fst x3 then x3 else qstep3 x3 (r3 2%Z) in
+  if all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts else
+  (* the rounding boundaries of each candidate, in expansions ([round_quotient_at_boundaries]) *)
+  let ds := sign_to_Z (ev_sign (value_ev o d a b c 3)) in
+  let rb (v : Z) (x : bool * qval) := qstep_boundary x ds (tc_short_b o d a b c 3) (tc_short_b o d a b c v) in
+  let x0 := rb 4%Z x0 in let x1 := rb 0%Z x1 in let x2 := rb 1%Z x2 in let x3 := rb 2%Z x3 in
   if all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts
   else TCDecided cl rs (qfinal x0) (qfinal x1) (qfinal x2) (qfinal x3) StExact.
 

@@ -24,7 +24,7 @@ From Coq Require Import Reals Lra Lia ZArith Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Model PlaneClassification PlaneCascade FloatCore ConstantsCpp PlaneTwins Expansions PlaneQueryTwins
   TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleIntersectTwins
-  TriangleCascadeFlowTwins.
+  TriangleCascadeFlowTwins QuotientBoundary.
 From Raykernel Require TriangleCascadeFlowCorrect TriangleIntersectTheorem.
 From Raykernel Require PlaneCascadeTwins.
 Open Scope R_scope.
@@ -58,20 +58,27 @@ Definition tc_all (x0 x1 x2 x3 : bool * qval) : bool := (fst x0 && fst x1 && fst
 Definition tc_start (w : bool) (n : Z) : bool * qval := (negb w || Z.eqb n 0, if w then QVal fzero else QNaN)%bool.
 Definition tc_qs3 (x : bool * qval) (r : option (float * bool)) : bool * qval := if fst x then x else qstep3 x r.
 
-Definition tc_quot_tail3 (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval) : tc_answer :=
+Definition tc_quot_tail4 (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval) : tc_answer :=
   if tc_all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts
   else TCDecided cl rs (qfinal x0) (qfinal x1) (qfinal x2) (qfinal x3) StExact.
 
-Definition tc_quot_tail2 (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval)
-  (p0 p1 p2 p3 : option (float * bool)) : tc_answer :=
+Definition tc_quot_tail3 (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval) (ds : Z)
+  (dn b0 b1 b2 b3 : option (list float)) : tc_answer :=
   if tc_all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts
-  else tc_quot_tail3 cl rs (later ts StExpansion) (tc_qs3 x0 p0) (tc_qs3 x1 p1) (tc_qs3 x2 p2) (tc_qs3 x3 p3).
+  else tc_quot_tail4 cl rs ts (qstep_boundary x0 ds dn b0) (qstep_boundary x1 ds dn b1)
+                     (qstep_boundary x2 ds dn b2) (qstep_boundary x3 ds dn b3).
+
+Definition tc_quot_tail2 (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval)
+  (p0 p1 p2 p3 : option (float * bool)) (ds : Z) (dn b0 b1 b2 b3 : option (list float)) : tc_answer :=
+  if tc_all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts
+  else tc_quot_tail3 cl rs (later ts StExpansion) (tc_qs3 x0 p0) (tc_qs3 x1 p1) (tc_qs3 x2 p2) (tc_qs3 x3 p3)
+                     ds dn b0 b1 b2 b3.
 
 Definition tc_quot_tail (cl : TClass) (rs ts : stage) (x0 x1 x2 x3 : bool * qval) (q0 q1 q2 q3 : float * bool)
-  (p0 p1 p2 p3 : option (float * bool)) : tc_answer :=
+  (p0 p1 p2 p3 : option (float * bool)) (ds : Z) (dn b0 b1 b2 b3 : option (list float)) : tc_answer :=
   if tc_all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts
   else tc_quot_tail2 cl rs (later ts StCompensated) (qstep x0 q0) (qstep x1 q1) (qstep x2 q2) (qstep x3 q3)
-                     p0 p1 p2 p3.
+                     p0 p1 p2 p3 ds dn b0 b1 b2 b3.
 
 (** Stage 3's rounding of quotient v, as [tc_intersect_b]'s [r3] forms it. *)
 Definition tc_r3 (o d a b c : TVec) (v : Z) : option (float * bool) :=
@@ -85,7 +92,7 @@ Definition tc_q2 (o d a b c : TVec) (v : Z) : float * bool :=
 (** [tc_intersect_b] with its quotients' chain named (an equation of definitions; the roundings and signs
     kept opaque to unification, so that it compares them by name instead of computing them). *)
 Opaque round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_at_boundaries_b.
 Lemma tc_intersect_b_eq : forall want_t want_u owned_rule o d a b c,
   tc_intersect_b want_t want_u owned_rule o d a b c =
   let '(cl, f) := tc_classify_b o d a b c owned_rule in
@@ -103,14 +110,17 @@ Lemma tc_intersect_b_eq : forall want_t want_u owned_rule o d a b c,
   else
   tc_quot_tail cl rs (tf_stage f) (tc_start want_t n0) (tc_start want_u n1) (tc_start want_u n2) (tc_start want_u n3)
     (tc_q2 o d a b c 4) (tc_q2 o d a b c 0) (tc_q2 o d a b c 1) (tc_q2 o d a b c 2)
-    (tc_r3 o d a b c 4) (tc_r3 o d a b c 0) (tc_r3 o d a b c 1) (tc_r3 o d a b c 2).
+    (tc_r3 o d a b c 4) (tc_r3 o d a b c 0) (tc_r3 o d a b c 1) (tc_r3 o d a b c 2)
+    (sign_to_Z (ev_sign (value_ev o d a b c 3))) (tc_short_b o d a b c 3)
+    (tc_short_b o d a b c 4) (tc_short_b o d a b c 0) (tc_short_b o d a b c 1) (tc_short_b o d a b c 2).
 Proof.
-  intros. unfold tc_intersect_b, tc_quot_tail, tc_quot_tail2, tc_quot_tail3, tc_all, tc_start, tc_qs3, tc_q2, tc_r3.
+  intros. unfold tc_intersect_b, tc_quot_tail, tc_quot_tail2, tc_quot_tail3, tc_quot_tail4, tc_all, tc_start, tc_qs3,
+    tc_q2, tc_r3.
   reflexivity.
 Qed.
 
 Transparent round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_at_boundaries_b.
 
 (** The invariant of a quotient's progress: once certain, a value is RN(V/VD). *)
 Definition tc_qinv (x : bool * qval) (V VD : R) : Prop := fst x = true -> tc_quotient_means (snd x) V VD.
@@ -131,6 +141,59 @@ Proof.
   intros S x E. injection E as <-. exact (R _ eq_refl S).
 Qed.
 
+(** The rounding boundaries: a value of [round_quotient_at_boundaries] is RN(V/VD) when den's sign ds is
+    VD's and the expansions sum to VD and V (at most 16 components each). *)
+Lemma tc_qinv_boundary : forall x ds dn bn V VD, tc_qinv x V VD ->
+  ((ds = 1%Z \/ ds = (-1)%Z) -> (ds = 1%Z /\ 0 < VD) \/ (ds = (-1)%Z /\ VD < 0)) ->
+  (forall l, dn = Some l -> (length l <= 16)%nat /\ sumR l = VD) ->
+  (forall l, bn = Some l -> (length l <= 16)%nat /\ sumR l = V) ->
+  tc_qinv (qstep_boundary x ds dn bn) V VD.
+Proof.
+  intros [c q] ds dn bn V VD I S D B. unfold qstep_boundary, tc_qinv, tc_quotient_means in *. cbn [fst snd] in *.
+  destruct c; [exact I|].
+  destruct q as [| y |]; cbn [fst snd]; try (intros H; discriminate H).
+  destruct dn as [ed|]; [|intros H; discriminate H].
+  destruct bn as [en|]; [|intros H; discriminate H].
+  destruct (Z.eqb ds 1 || Z.eqb ds (-1))%bool eqn:Ds; [|intros H; discriminate H].
+  destruct (round_quotient_at_boundaries_b en ed ds y) as [r|] eqn:R; [|intros H; discriminate H].
+  intros _ x E. injection E as <-.
+  destruct (D ed eq_refl) as [Ld Sd]. destruct (B en eq_refl) as [Ln Sn].
+  assert (Dsc : (ds = 1%Z /\ 0 < sumR ed) \/ (ds = (-1)%Z /\ sumR ed < 0)).
+  { rewrite Sd. apply S. apply orb_true_iff in Ds. destruct Ds as [Ds|Ds]; apply Z.eqb_eq in Ds; tauto. }
+  destruct (round_quotient_at_boundaries_sound en ed ds y r Ln Ld Dsc R) as [Fr Rr].
+  split; [exact Fr|]. rewrite Rr, Sn, Sd. reflexivity.
+Qed.
+
+(** [tc_short_b v]: at most 16 components summing to determinant v. *)
+Lemma tc_short_means : forall o d a b c v l, tc_short_b o d a b c v = Some l ->
+  (length l <= 16)%nat /\ sumR l = value_model o d a b c v.
+Proof.
+  intros o d a b c v l. unfold tc_short_b. cbv zeta.
+  destruct (eexact (value_ev o d a b c v) && Nat.leb (length (ecomp (value_ev o d a b c v))) 16)%bool eqn:C;
+    [|intros H; discriminate H].
+  intros H. injection H as <-. apply andb_prop in C. destruct C as [X L]. apply Nat.leb_le in L.
+  split; [exact L | exact (proj2 (value_ev_exact o d a b c v X))].
+Qed.
+
+(** den's checked sign in stage 3, when ±1, is den's sign. *)
+Lemma tc_den_sign_means : forall o d a b c,
+  let ds := sign_to_Z (ev_sign (value_ev o d a b c 3)) in
+  (ds = 1%Z \/ ds = (-1)%Z) ->
+  (ds = 1%Z /\ 0 < value_model o d a b c 3) \/ (ds = (-1)%Z /\ value_model o d a b c 3 < 0).
+Proof.
+  intros o d a b c ds H. unfold ds in *.
+  destruct (value_ev_ok o d a b c 3) as [L Ex].
+  unfold ev_sign in *. destruct (eexact (value_ev o d a b c 3)) eqn:X;
+    [| exfalso; destruct H as [H|H]; discriminate H].
+  destruct (Ex eq_refl) as [F Sm].
+  pose proof (expansion_sign_sound _ F ltac:(lia)) as C. rewrite Sm in C.
+  destruct (expansion_sign_b (ecomp (value_ev o d a b c 3))); cbn [sign_to_Z certifies] in *.
+  - right. split; [reflexivity | exact C].
+  - exfalso; destruct H as [H|H]; discriminate H.
+  - left. split; [reflexivity | exact C].
+  - exfalso; destruct H as [H|H]; discriminate H.
+Qed.
+
 Lemma tc_qinv_final : forall x V VD, tc_qinv x V VD -> tc_quotient_means (qfinal x) V VD.
 Proof.
   intros [c q] V VD I. unfold qfinal, tc_qinv in *. cbn [fst snd] in *.
@@ -142,8 +205,8 @@ Lemma tc_all_fst : forall x0 x1 x2 x3, tc_all x0 x1 x2 x3 = true ->
 Proof. intros x0 x1 x2 x3 H. unfold tc_all in H. rewrite !andb_true_iff in H. tauto. Qed.
 
 (** The chain: every quotient the tail answers with a value is one its rounding certified. *)
-Theorem tc_quot_tail_correct : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 V0 V1 V2 V3 VD
-  cl' rs' t ua ub uc ts',
+Theorem tc_quot_tail_correct : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3
+  V0 V1 V2 V3 VD cl' rs' t ua ub uc ts',
   tc_qinv x0 V0 VD -> tc_qinv x1 V1 VD -> tc_qinv x2 V2 VD -> tc_qinv x3 V3 VD ->
   (snd q0 = true -> fin (fst q0) = true /\ B2R (fst q0) = RN (V0 / VD)) ->
   (snd q1 = true -> fin (fst q1) = true /\ B2R (fst q1) = RN (V1 / VD)) ->
@@ -153,12 +216,18 @@ Theorem tc_quot_tail_correct : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 
   (forall r, p1 = Some r -> snd r = true -> fin (fst r) = true /\ B2R (fst r) = RN (V1 / VD)) ->
   (forall r, p2 = Some r -> snd r = true -> fin (fst r) = true /\ B2R (fst r) = RN (V2 / VD)) ->
   (forall r, p3 = Some r -> snd r = true -> fin (fst r) = true /\ B2R (fst r) = RN (V3 / VD)) ->
-  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 = TCDecided cl' rs' t ua ub uc ts' ->
+  ((ds = 1%Z \/ ds = (-1)%Z) -> (ds = 1%Z /\ 0 < VD) \/ (ds = (-1)%Z /\ VD < 0)) ->
+  (forall l, dn = Some l -> (length l <= 16)%nat /\ sumR l = VD) ->
+  (forall l, b0 = Some l -> (length l <= 16)%nat /\ sumR l = V0) ->
+  (forall l, b1 = Some l -> (length l <= 16)%nat /\ sumR l = V1) ->
+  (forall l, b2 = Some l -> (length l <= 16)%nat /\ sumR l = V2) ->
+  (forall l, b3 = Some l -> (length l <= 16)%nat /\ sumR l = V3) ->
+  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 = TCDecided cl' rs' t ua ub uc ts' ->
   cl' = cl /\ tc_quotient_means t V0 VD /\ tc_quotient_means ua V1 VD /\ tc_quotient_means ub V2 VD /\
   tc_quotient_means uc V3 VD.
 Proof.
-  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 V0 V1 V2 V3 VD cl' rs' t ua ub uc ts'
-    I0 I1 I2 I3 Q0 Q1 Q2 Q3 P0 P1 P2 P3.
+  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 V0 V1 V2 V3 VD cl' rs' t ua ub uc ts'
+    I0 I1 I2 I3 Q0 Q1 Q2 Q3 P0 P1 P2 P3 HS HD B0 B1 B2 B3.
   assert (Done : forall y0 y1 y2 y3 s, tc_qinv y0 V0 VD -> tc_qinv y1 V1 VD -> tc_qinv y2 V2 VD -> tc_qinv y3 V3 VD ->
             tc_all y0 y1 y2 y3 = true ->
             TCDecided cl rs (snd y0) (snd y1) (snd y2) (snd y3) s = TCDecided cl' rs' t ua ub uc ts' ->
@@ -178,9 +247,15 @@ Proof.
   unfold tc_quot_tail3.
   destruct (tc_all (tc_qs3 (qstep x0 q0) p0) (tc_qs3 (qstep x1 q1) p1) (tc_qs3 (qstep x2 q2) p2)
                    (tc_qs3 (qstep x3 q3) p3)) eqn:A3; [exact (Done _ _ _ _ _ K0 K1 K2 K3 A3)|].
+  pose proof (tc_qinv_boundary _ _ _ _ _ _ K0 HS HD B0) as L0. pose proof (tc_qinv_boundary _ _ _ _ _ _ K1 HS HD B1) as L1.
+  pose proof (tc_qinv_boundary _ _ _ _ _ _ K2 HS HD B2) as L2. pose proof (tc_qinv_boundary _ _ _ _ _ _ K3 HS HD B3) as L3.
+  unfold tc_quot_tail4.
+  destruct (tc_all (qstep_boundary (tc_qs3 (qstep x0 q0) p0) ds dn b0) (qstep_boundary (tc_qs3 (qstep x1 q1) p1) ds dn b1)
+                   (qstep_boundary (tc_qs3 (qstep x2 q2) p2) ds dn b2) (qstep_boundary (tc_qs3 (qstep x3 q3) p3) ds dn b3))
+    eqn:A4; [exact (Done _ _ _ _ _ L0 L1 L2 L3 A4)|].
   intros E. injection E as <- _ <- <- <- <- _.
-  exact (conj eq_refl (conj (tc_qinv_final _ _ _ K0) (conj (tc_qinv_final _ _ _ K1)
-           (conj (tc_qinv_final _ _ _ K2) (tc_qinv_final _ _ _ K3))))).
+  exact (conj eq_refl (conj (tc_qinv_final _ _ _ L0) (conj (tc_qinv_final _ _ _ L1)
+           (conj (tc_qinv_final _ _ _ L2) (tc_qinv_final _ _ _ L3))))).
 Qed.
 
 (** ** The pieces of the cascade *)
@@ -257,14 +332,17 @@ Proof.
   destruct (tc_opt_sign_step o d a b c 0 wu f1 n1 f2 ltac:(unfold F.tc_index; lia) N1 X2) as [S1 X1].
   destruct (tc_opt_sign_step o d a b c 4 wt f0 n0 f1 ltac:(unfold F.tc_index; lia) N0 X1) as [S0 _].
   intros E.
-  destruct (tc_quot_tail_correct _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _
+  destruct (tc_quot_tail_correct _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _
               (tc_start_inv _ _ _ _ S0) (tc_start_inv _ _ _ _ S1) (tc_start_inv _ _ _ _ S2) (tc_start_inv _ _ _ _ S3)
               (tc_q2_correct o d a b c 4 ltac:(unfold F.tc_index; lia))
               (tc_q2_correct o d a b c 0 ltac:(unfold F.tc_index; lia))
               (tc_q2_correct o d a b c 1 ltac:(unfold F.tc_index; lia))
               (tc_q2_correct o d a b c 2 ltac:(unfold F.tc_index; lia))
               (tc_r3_correct o d a b c 4) (tc_r3_correct o d a b c 0)
-              (tc_r3_correct o d a b c 1) (tc_r3_correct o d a b c 2) E) as [_ R].
+              (tc_r3_correct o d a b c 1) (tc_r3_correct o d a b c 2)
+              (tc_den_sign_means o d a b c) (tc_short_means o d a b c 3)
+              (tc_short_means o d a b c 4) (tc_short_means o d a b c 0)
+              (tc_short_means o d a b c 1) (tc_short_means o d a b c 2) E) as [_ R].
   exact R.
 Qed.
 
@@ -276,23 +354,32 @@ Proof. intros [c v] q F. cbn [fst] in F. subst c. reflexivity. Qed.
 Lemma tc_certain_qs3 : forall x p, fst x = true -> tc_qs3 x p = x.
 Proof. intros [c v] p F. cbn [fst] in F. subst c. reflexivity. Qed.
 
-Lemma tc_quot_tail_nan : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts',
-  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 = TCDecided cl' rs' t ua ub uc ts' ->
+Lemma tc_certain_boundary : forall x ds dn bn, fst x = true -> qstep_boundary x ds dn bn = x.
+Proof. intros [c v] ds dn bn F. cbn [fst] in F. subst c. reflexivity. Qed.
+
+Lemma tc_certain_chain2 : forall x q p, fst x = true -> tc_qs3 (qstep x q) p = x.
+Proof. intros x q p F. rewrite (tc_certain_qstep x q F). exact (tc_certain_qs3 x p F). Qed.
+
+Lemma tc_certain_chain3 : forall x q p ds dn bn, fst x = true -> qstep_boundary (tc_qs3 (qstep x q) p) ds dn bn = x.
+Proof. intros x q p ds dn bn F. rewrite (tc_certain_chain2 x q p F). exact (tc_certain_boundary x ds dn bn F). Qed.
+
+Lemma tc_quot_tail_nan : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 cl' rs' t ua ub uc ts',
+  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 = TCDecided cl' rs' t ua ub uc ts' ->
   (fst x0 = true /\ snd x0 = QNaN -> t = QNaN) /\ (fst x1 = true /\ snd x1 = QNaN -> ua = QNaN) /\
   (fst x2 = true /\ snd x2 = QNaN -> ub = QNaN) /\ (fst x3 = true /\ snd x3 = QNaN -> uc = QNaN).
 Proof.
-  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts'.
-  unfold tc_quot_tail, tc_quot_tail2, tc_quot_tail3.
+  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 cl' rs' t ua ub uc ts'.
+  unfold tc_quot_tail, tc_quot_tail2, tc_quot_tail3, tc_quot_tail4.
   destruct (tc_all x0 x1 x2 x3).
   { intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [_ S]; exact S. }
   destruct (tc_all (qstep x0 q0) (qstep x1 q1) (qstep x2 q2) (qstep x3 q3)).
   { intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [F S]; rewrite tc_certain_qstep; assumption. }
+  destruct (tc_all (tc_qs3 _ _) _ _ _).
+  { intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [F S]; rewrite tc_certain_chain2; assumption. }
   destruct (tc_all _ _ _ _).
+  - intros E. injection E as _ _ <- <- <- <- _. tsplit; intros [F S]; rewrite tc_certain_chain3; assumption.
   - intros E. injection E as _ _ <- <- <- <- _.
-    tsplit; intros [F S]; rewrite tc_certain_qs3, tc_certain_qstep; try rewrite tc_certain_qstep; assumption.
-  - intros E. injection E as _ _ <- <- <- <- _.
-    tsplit; intros [F S]; rewrite tc_certain_qs3, tc_certain_qstep; try rewrite tc_certain_qstep; try assumption;
-      unfold qfinal; rewrite F; exact S.
+    tsplit; intros [F S]; (rewrite tc_certain_chain3; [unfold qfinal; rewrite F; exact S | exact F]).
 Qed.
 
 (** [triangle_intersection_cascade] through its twin: a quotient not asked is NaN, in every answer. *)
@@ -310,7 +397,7 @@ Proof.
   destruct (if wu then tc_sign_b o d a b c 2 f3 else (0%Z, f3)) as [n3 f4].
   destruct (tf_exact f4).
   { intros E. injection E as _ _ <- <- <- <- _. split; intros ->; tsplit; reflexivity. }
-  intros E. destruct (tc_quot_tail_nan _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ E) as [T0 [T1 [T2 T3]]].
+  intros E. destruct (tc_quot_tail_nan _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ E) as [T0 [T1 [T2 T3]]].
   split.
   - intros ->. apply T0. split; reflexivity.
   - intros ->. tsplit; [apply T1 | apply T2 | apply T3]; split; reflexivity.

@@ -43,12 +43,14 @@ Qed.
 
 (** ** The cascade: no location, no quotient *)
 
-Lemma tc_quot_tail_class : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts',
-  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 = TCDecided cl' rs' t ua ub uc ts' -> cl' = cl.
+Lemma tc_quot_tail_class : forall cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 cl' rs' t ua ub uc ts',
+  tc_quot_tail cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 = TCDecided cl' rs' t ua ub uc ts' ->
+  cl' = cl.
 Proof.
-  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 cl' rs' t ua ub uc ts'.
-  unfold tc_quot_tail, tc_quot_tail2, tc_quot_tail3.
+  intros cl rs ts x0 x1 x2 x3 q0 q1 q2 q3 p0 p1 p2 p3 ds dn b0 b1 b2 b3 cl' rs' t ua ub uc ts'.
+  unfold tc_quot_tail, tc_quot_tail2, tc_quot_tail3, tc_quot_tail4.
   destruct (tc_all x0 x1 x2 x3); [intros E; injection E as <- _; reflexivity|].
+  destruct (tc_all _ _ _ _); [intros E; injection E as <- _; reflexivity|].
   destruct (tc_all _ _ _ _); [intros E; injection E as <- _; reflexivity|].
   destruct (tc_all _ _ _ _); intros E; injection E as <- _; reflexivity.
 Qed.
@@ -69,7 +71,7 @@ Proof.
   destruct (if wu then tc_sign_b o d a b c 2 f3 else (0%Z, f3)) as [n3 f4].
   destruct (tf_exact f4).
   { intros E. injection E as <- _. intros N. contradiction. }
-  intros E. rewrite (tc_quot_tail_class _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ E). intros N. contradiction.
+  intros E. rewrite (tc_quot_tail_class _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ E). intros N. contradiction.
 Qed.
 
 (** What a quotient of the answer means, den ≠ 0 included: a value is finite and RN(V/VD), VD ≠ 0. *)

@@ -132,6 +132,22 @@ Query tie_query(Draw& draw, int near_tie_bits) {
   return q;
 }
 
+// t = ±(2^m + j)/2^m·2^(s−u) with j in (2^(m−54), 2^(m−53)): t lies in (2^e + ulp/4, 2^e + ulp/2) for e = s − u
+// and rounds down to ±2^e, where the gap below 2^e is half the gap above (round_quotient's conservative rule
+// cannot certify it; the rounding boundaries can). num = (p − o)·n = (2^m + j)·2^s with p_x = 2^(m+s),
+// o_x = −j·2^s and o, p equal in y and z; den = d·n = ±2^(m+u) with d along x and n_x = 1.
+Query above_power_of_two_query(Draw& draw) {
+  const int m = draw.integer(55, 100);
+  const std::uint64_t low = std::uint64_t{1} << (m - 54);
+  const double j = static_cast<double>(low + 1 + draw.word() % (low - 1));  // in (2^(m−54), 2^(m−53))
+  const int s = draw.integer(-60, 60), u = draw.integer(-60, 60);
+  const double same_y = draw.unit(), same_z = draw.unit();
+  Query q{{{-std::ldexp(j, s), same_y, same_z}, {std::ldexp(draw.coin() ? 1.0 : -1.0, m + u), 0, 0}},
+          {{std::ldexp(1.0, m + s), same_y, same_z},
+           {1, static_cast<double>(draw.integer(-9, 9)), static_cast<double>(draw.integer(-9, 9))}}};
+  return q;
+}
+
 Query build(QueryKind kind, Draw& draw) {
   switch (kind) {
     case QueryKind::random:
@@ -165,6 +181,7 @@ Query build(QueryKind kind, Draw& draw) {
     case QueryKind::origin_on_plane: return integer_plane_query(draw, false, 0, 40);
     case QueryKind::rounding_tie: return tie_query(draw, 0);
     case QueryKind::near_tie: return tie_query(draw, draw.integer(20, 60));
+    case QueryKind::above_power_of_two: return above_power_of_two_query(draw);
     case QueryKind::subnormal:
       return {{draw.scaled_vector(-1074, -400), draw.scaled_vector(-1074, -400)},
               {draw.scaled_vector(-1074, -400), draw.scaled_vector(-1074, -400)}};
@@ -205,6 +222,7 @@ std::string_view to_string(QueryKind kind) noexcept {
     case QueryKind::huge_products: return "huge-products";
     case QueryKind::t_overflow: return "t-overflow";
     case QueryKind::t_underflow: return "t-underflow";
+    case QueryKind::above_power_of_two: return "above-power-of-two";
   }
   return "?";
 }

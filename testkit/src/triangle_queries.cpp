@@ -211,6 +211,32 @@ TriangleQuery build(TriangleQueryKind kind, Draw& draw) {
       }
       return from_integers(q, draw.small(-60, 20), draw.small(-8, 8));
     }
+    case TriangleQueryKind::above_power_of_two: {
+      // A quotient in (2^e + ulp/4, 2^e + ulp/2), which rounds down to 2^e where the gap below is half the gap
+      // above: round_quotient's rule (the half gap to the nearer neighbour) cannot certify it, the rounding
+      // boundaries can. j is drawn in (2^(m−54), 2^(m−53)) so that j·2^-m lies in (2^-54, 2^-53).
+      const int m = draw.small(56, 100);
+      const std::uint64_t low = std::uint64_t{1} << (m - 54);
+      const double j = static_cast<double>(low + 1 + draw.word() % (low - 1));
+      if (draw.coin()) {
+        // t: the triangle in the plane z = 2^(m+s), o_z = −j·2^s, d_z = ±2^(m+u): t = ±(1 + j·2^-m)·2^(s−u).
+        const int s = draw.small(-60, 60), u = draw.small(-60, 60), e = draw.small(-30, 10);
+        const double Z = std::ldexp(1.0, m + s);
+        auto grid_point = [&] { return std::ldexp(static_cast<double>(draw.integer(-grid, grid)), e); };
+        auto xy = [&] { return Vec3{grid_point(), grid_point(), Z}; };
+        const Vec3 a = xy(), b = xy(), c = xy();
+        const Vec3 o{grid_point(), grid_point(), -std::ldexp(j, s)};
+        const Vec3 d{grid_point(), grid_point(), std::ldexp(draw.coin() ? 1.0 : -1.0, m + u)};
+        return TriangleQuery{{o, d}, {a, b, c}};
+      }
+      // u_a: a = 0, b = 2^k·x, c = 2^k·y, the ray along z through (−j·2^(k−m−1), −j·2^(k−m−1)):
+      // u_a = 1 − x/2^k − y/2^k = 1 + j·2^-m.
+      const int k = draw.small(-40, 40);
+      const double x = -std::ldexp(j, k - m - 1);
+      const Vec3 o{x, x, std::ldexp(static_cast<double>(draw.integer(1, grid)) * (draw.coin() ? 1 : -1), k)};
+      const Vec3 d{0, 0, std::ldexp(draw.coin() ? 1.0 : -1.0, draw.small(-40, 40))};
+      return TriangleQuery{{o, d}, {Vec3{0, 0, 0}, Vec3{std::ldexp(1.0, k), 0, 0}, Vec3{0, std::ldexp(1.0, k), 0}}};
+    }
     case TriangleQueryKind::rounding_tie: {
       // The triangle in the plane z = Z, d = (dx, dy, D·2^g) with D odd: N = (0, 0, N_z) and t = (Z − o_z)/d_z.
       // Z − o_z = D·M·2^(s+g) with M odd in (2^53, 2^54): t = M·2^s lies halfway between two doubles. The
@@ -294,6 +320,7 @@ std::string_view to_string(TriangleQueryKind kind) noexcept {
     case TriangleQueryKind::parallel: return "parallel";
     case TriangleQueryKind::coplanar: return "coplanar";
     case TriangleQueryKind::rounding_tie: return "rounding-tie";
+    case TriangleQueryKind::above_power_of_two: return "above-power-of-two";
     case TriangleQueryKind::wide_exponents: return "wide-exponents";
     case TriangleQueryKind::tiny: return "tiny";
     case TriangleQueryKind::huge: return "huge";

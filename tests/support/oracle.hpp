@@ -35,6 +35,17 @@ inline ExactTerms exact_terms(const Ray& r, const Plane& p) {
           q(d.x) * q(n.x) + q(d.y) * q(n.y) + q(d.z) * q(n.z)};
 }
 
+// Whether |q| lies in (2^e + ulp/4, 2^e + ulp/2) for the ulp of [2^e, 2^(e+1)): it rounds down to 2^e, where the gap
+// below is half the gap above (the testkit's above-power-of-two kinds).
+inline bool just_above_power_of_two(mpq_class q) {
+  q = abs(q);
+  if (q == 0) return false;
+  while (q < 1) q *= 2;
+  while (q >= 2) q /= 2;
+  const mpq_class excess = q - 1;
+  return excess > mpq_class(1, mpz_class(1) << 54) && excess < mpq_class(1, mpz_class(1) << 53);
+}
+
 // RN(q), ties to even, gradual underflow, overflow to ±inf; a nonzero q that rounds to 0 keeps its sign.
 // By integer division: q = I·2^k + rest with the quantum 2^k of q's binade (or 2^-1074 below 2^-1022).
 inline double round_by_integer_division(const mpq_class& q) {

@@ -1,6 +1,13 @@
 // The ray–plane cascade beyond the fast path, for one valid query: the relation from the signs of num and
 // den, each stage asked only for what the cheaper ones left open, and t rounded by the first stage whose
-// enclosures certify it (plane/ray_plane_stages.hpp has the stages and the per-query state).
+// enclosures certify it, then at the rounding boundaries of stage 3's candidate in the exact expansions (a t
+// just above a power of two, or on a midpoint), then by the exact stage (plane/ray_plane_stages.hpp has the
+// stages and the per-query state).
+//   Certified by: proofs/plane/PlaneCascadeTwins.v, `certified_quotient_twin_sound` (every t certified_quotient
+//   returns is RN(num/den), den ≠ 0; the boundary step by proofs/core/QuotientBoundary.v,
+//   `round_quotient_at_boundaries_sound`, with den's sign from `expansion_sign_sound`), `cascade_twin_correct`;
+//   the control flow twinned there and run against this code by the differential runner (routines
+//   cascade_intersect, cascade_relation).
 //
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt): the proofs model each
 // + − × / as one correctly rounded operation and each std::fma as one rounding. Each function is cloned
@@ -10,6 +17,7 @@
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/exact_plane.hpp"
 #include "plane/exact_plane_compare.hpp"
+#include "core/quotient_boundary.hpp"
 
 #include <limits>
 
@@ -49,9 +57,15 @@ std::pair<double, Stage> certified_quotient(RayPlaneCascade& query) noexcept {
   if (const auto t = round_quotient_if_certain(query.num_refined(), prepare_divisor(query.den_refined())))
     return {*t, Stage::compensated};
   if (const ExactExpansions& e = query.expansions(); e.exact) {
-    if (const auto t = round_quotient_if_certain(expansion_tail_enclosure(e.num),
-                                                 prepare_divisor(expansion_tail_enclosure(e.den))))
-      return {*t, Stage::expansion};
+    const QuotientRounding r =
+        round_quotient(expansion_tail_enclosure(e.num), prepare_divisor(expansion_tail_enclosure(e.den)));
+    if (r.certain) return {r.t, Stage::expansion};
+    // The rounding boundaries of the candidate, exactly in the expansions (core/quotient_boundary.hpp).
+    const Sign den_sign = e.den.sign();
+    if (den_sign == Sign::positive || den_sign == Sign::negative) {
+      if (const auto t = round_quotient_at_boundaries(e.num, e.den, static_cast<int>(den_sign), r.t))
+        return {*t, Stage::expansion};
+    }
   }
   return {exact::intersect(query.ray(), query.plane()).t, Stage::exact};
 }

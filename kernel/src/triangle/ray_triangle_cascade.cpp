@@ -26,7 +26,10 @@
 //                        proofs/triangle/TriangleCompensated.v, `stage2_filter_view`
 //   quotients, stage 2:  proofs/triangle/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/triangle/TriangleCascade.v, `triangle_quotient_expansion_correct`
-//                        (tail_sum_enclosure)
+//                        (tail_sum_enclosure); then at the rounding boundaries of the candidate, in the
+//                        expansions: proofs/core/QuotientBoundary.v, `round_quotient_at_boundaries_sound`, in the
+//                        cascade proofs/triangle/TriangleCascadeQuotients.v, `tc_qinv_boundary`, `tc_short_means`,
+//                        `tc_den_sign_means`
 //   the full cascade:    proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`
 //                        proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_stage3_quotient_correct`
 //                        proofs/triangle/TriangleCascadeQuotients.v, `tc_intersect_b_correct` (classification and every
@@ -48,6 +51,7 @@
 #include "core/fp_requirements.hpp"
 #include "core/multiversion.hpp"
 #include "core/quotient_rounding.hpp"
+#include "core/quotient_boundary.hpp"
 #include "triangle/exact_triangle.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
@@ -148,6 +152,16 @@ class TriangleCascade {
     for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
     short_form.size = value.e.size;
     return expansion_tail_enclosure(short_form);
+  }
+  // Stage 3's exact expansion of determinant v in the capacity round_quotient_at_boundaries is proved for
+  // (at most 16 components), when it is exact and that short.
+  std::optional<Expansion<16>> short_expansion(int v) {
+    const ExpansionValue<192>& value = expansion(v);
+    if (!value.exact || value.e.size > 16) return std::nullopt;
+    Expansion<16> short_form{};
+    for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
+    short_form.size = value.e.size;
+    return short_form;
   }
   const TriangleCompensatedValues& compensated() {
     if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
@@ -314,6 +328,26 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
       certain[k] = e.certain;
     }
     all_certain = all_certain && certain[k];
+  }
+  // Then the rounding boundaries of each candidate, exactly in expansions (core/quotient_boundary.hpp): a
+  // quotient on or next to a midpoint between two doubles (ties, roundings near powers of two).
+  if (!all_certain) {
+    const std::optional<Expansion<16>> den_short = query.short_expansion(value_den);
+    const Sign den_sign = query.expansion(value_den).sign();
+    all_certain = true;
+    for (int k = 0; k < 4; ++k) {
+      if (certain[k]) continue;
+      if (den_short && (den_sign == Sign::positive || den_sign == Sign::negative)) {
+        if (const std::optional<Expansion<16>> n = query.short_expansion(numerator_value[k])) {
+          if (const std::optional<double> q =
+                  round_quotient_at_boundaries(*n, *den_short, static_cast<int>(den_sign), value[k])) {
+            value[k] = *q;
+            certain[k] = true;
+          }
+        }
+      }
+      all_certain = all_certain && certain[k];
+    }
   }
   if (!all_certain) {
     r.rounding_stage = Stage::exact;

@@ -35,13 +35,14 @@ enum class QueryKind : std::uint8_t {
   huge_products,     // components up to 2^1023: products and differences overflow binary64
   t_overflow,        // |num/den| near or beyond the largest double (2^900 .. 2^1120)
   t_underflow,       // |num/den| in or below the subnormal range
+  above_power_of_two,  // |num/den| in (2^e + ulp/4, 2^e + ulp/2): rounds down to 2^e, where the gap below is half
 };
-inline constexpr int query_kind_count = 13;
+inline constexpr int query_kind_count = 14;
 inline constexpr std::array<QueryKind, query_kind_count> all_query_kinds = {
     QueryKind::random,         QueryKind::wide_exponents, QueryKind::near_parallel, QueryKind::near_coplanar,
     QueryKind::exact_parallel, QueryKind::exact_in_plane, QueryKind::origin_on_plane, QueryKind::rounding_tie,
     QueryKind::near_tie,       QueryKind::subnormal,      QueryKind::huge_products,  QueryKind::t_overflow,
-    QueryKind::t_underflow};
+    QueryKind::t_underflow,    QueryKind::above_power_of_two};
 
 [[nodiscard]] std::string_view to_string(QueryKind kind) noexcept;
 

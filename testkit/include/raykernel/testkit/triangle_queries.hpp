@@ -42,15 +42,16 @@ enum class TriangleQueryKind : std::uint8_t {
   wide_exponents,      // components ±(1 + f)·2^e, e uniform in [-300, 300]
   tiny,                // a vertex/edge construction scaled into the subnormal range: every product underflows
   huge,                // the same scaled to 2^900..2^1019: products overflow
+  above_power_of_two,  // t or a barycentric coordinate in (2^e + ulp/4, 2^e + ulp/2): rounds down to 2^e
 };
-inline constexpr int triangle_query_kind_count = 16;
+inline constexpr int triangle_query_kind_count = 17;
 inline constexpr std::array<TriangleQueryKind, triangle_query_kind_count> all_triangle_query_kinds = {
     TriangleQueryKind::random,           TriangleQueryKind::through_vertex, TriangleQueryKind::through_edge,
     TriangleQueryKind::through_interior, TriangleQueryKind::near_vertex,    TriangleQueryKind::near_edge,
     TriangleQueryKind::origin_on_triangle, TriangleQueryKind::sliver,       TriangleQueryKind::needle,
     TriangleQueryKind::degenerate,       TriangleQueryKind::parallel,       TriangleQueryKind::coplanar,
     TriangleQueryKind::rounding_tie,     TriangleQueryKind::wide_exponents, TriangleQueryKind::tiny,
-    TriangleQueryKind::huge};
+    TriangleQueryKind::huge,             TriangleQueryKind::above_power_of_two};
 
 [[nodiscard]] std::string_view to_string(TriangleQueryKind kind) noexcept;
 
