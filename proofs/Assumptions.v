@@ -184,9 +184,10 @@ Definition twin_results_3 :=
    multiply_gen_exact,
    build_expansions_exact,
    expansion_sign_sound,
+   sum_list_weakly_signed,
    certified_signs_expansion_sound,
    compare_quotients_expansion_sound).
-Goal True. idtac "@@ sum_gen_exact scale_gen_exact multiply_gen_exact build_expansions_exact expansion_sign_sound certified_signs_expansion_sound compare_quotients_expansion_sound". Abort.
+Goal True. idtac "@@ sum_gen_exact scale_gen_exact multiply_gen_exact build_expansions_exact expansion_sign_sound sum_list_weakly_signed certified_signs_expansion_sound compare_quotients_expansion_sound". Abort.
 Print Assumptions twin_results_3.
 
 (** PlaneLiveness.v *)
@@ -411,6 +412,12 @@ Print Assumptions twin_results_triangle_flow.
 From Raykernel Require TriangleCascadeQuotients.
 Goal True. idtac "@@ tc_intersect_b_correct". Abort.
 Print Assumptions TriangleCascadeQuotients.tc_intersect_b_correct.
+Definition triangle_cascade_boundary_results :=
+  (TriangleCascadeQuotients.tc_qinv_boundary,
+   TriangleCascadeQuotients.tc_short_means,
+   TriangleCascadeQuotients.tc_den_sign_means).
+Goal True. idtac "@@ tc_qinv_boundary tc_short_means tc_den_sign_means". Abort.
+Print Assumptions triangle_cascade_boundary_results.
 Definition twin_results_triangle_cascade_quotients :=
   (TriangleCascadeQuotients.tc_stage2_quotient_correct,
    TriangleCascadeQuotients.tc_quot_tail_correct,
@@ -677,8 +684,9 @@ Definition boundary_results :=
    MidpointRounding.b754_canonical,
    QuotientBoundary.side_of_midpoint_sound,
    QuotientBoundary.round_quotient_at_boundaries_sound,
+   QuotientBoundary.round_quotient_near_sound,
    QuotientBoundary.round_quotient_at_boundaries_tie_even,
    QuotientBoundary.round_quotient_at_boundaries_tie_odd,
    QuotientBoundary.round_quotient_at_boundaries_between).
-Goal True. idtac "@@ rn_between_midpoints rn_at_midpoint_above rn_at_midpoint_below boundary_decision_correct b754_canonical side_of_midpoint_sound round_quotient_at_boundaries_sound round_quotient_at_boundaries_tie_even round_quotient_at_boundaries_tie_odd round_quotient_at_boundaries_between". Abort.
+Goal True. idtac "@@ rn_between_midpoints rn_at_midpoint_above rn_at_midpoint_below boundary_decision_correct b754_canonical side_of_midpoint_sound round_quotient_at_boundaries_sound round_quotient_near_sound round_quotient_at_boundaries_tie_even round_quotient_at_boundaries_tie_odd round_quotient_at_boundaries_between". Abort.
 Print Assumptions boundary_results.

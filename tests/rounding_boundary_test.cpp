@@ -63,24 +63,22 @@ std::vector<std::string> lines_of(const std::string& path) {
 
 bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
-// Checks the certified answer against the exact path; with `without_gmp`, also that no stage was the exact one.
-// Returns whether the exact stage was reached.
-bool check_triangle(const Ray& ray, const Triangle& triangle, TriangleRule rule, const std::string& where,
-                    bool without_gmp = true) {
-  if (validate(ray, triangle).has_value()) return false;
+// Checks the certified answer against the exact path, and that no stage was the exact one.
+void check_triangle(const Ray& ray, const Triangle& triangle, TriangleRule rule, const std::string& where) {
+  if (validate(ray, triangle).has_value()) return;
   const TracedTriangleIntersection c = intersect_traced(ray, triangle, {rule, true, true});
   const TriangleIntersection e = intersect_exact(ray, triangle, {rule, true, true});
   const bool gmp = c.relation_stage == Stage::exact || c.rounding_stage == Stage::exact;
-  if (without_gmp) EXPECT_FALSE(gmp) << where;
+  EXPECT_FALSE(gmp) << where;
   EXPECT_EQ(c.intersection.relation, e.relation) << where;
   EXPECT_TRUE(same(c.intersection.t, e.t) || (std::isnan(c.intersection.t) && std::isnan(e.t))) << where;
   for (int k = 0; k < 3; ++k)
     EXPECT_TRUE(same(c.intersection.barycentric[k], e.barycentric[k]) ||
                 (std::isnan(c.intersection.barycentric[k]) && std::isnan(e.barycentric[k])))
         << where << " coordinate " << k;
-  return gmp;
 }
 
+// With `without_gmp` false, the exact stage is allowed; returns whether it was reached.
 bool check_plane(const Ray& ray, const Plane& plane, const std::string& where, bool without_gmp = true) {
   if (validate(ray, plane).has_value()) return false;
   const TracedIntersection c = intersect_traced(ray, plane);
@@ -146,25 +144,38 @@ TEST(RoundingBoundary, AbovePowerOfTwoNeverReachesGmp) {
   }
 }
 
-// Rounding ties (and near ties): right, and mostly decided before GMP. Not all: at an exact tie the difference
-// N·2 − (x + y)·D can come out of the expansion sum as two same-signed adjacent components ({−2^-64, −2^-63}),
-// which the checked sign (top > 2·Σ lower) leaves uncertain, so the exact stage decides. The share is recorded.
-TEST(RoundingBoundary, RoundingTiesAreRightAndMostlyWithoutGmp) {
+// Rounding ties (and near ties, the origin nudged by a few ulps): every rounding decided before GMP, and right.
+// (Two things made this hold: the stage-3 candidate of a near tie can be t's neighbour, so the boundaries of both
+// neighbours are tried — round_quotient_near —; and at an exact tie the difference N·2 − (x + y)·D can come out of
+// the expansion sum as same-signed adjacent components such as {−2^-64, −2^-63}, whose sign the checked rule
+// top > 2·Σ lower cannot read but the one-sign rule can. Before them, 2.9% of these roundings reached GMP.)
+TEST(RoundingBoundary, RoundingTiesNeverReachGmp) {
   testkit::SplitMix64 rng(20261130);
   const testkit::BitSource bits = [&rng] { return rng(); };
-  int gmp = 0, total = 0;
   for (int i = 0; i < 3000; ++i) {
     const testkit::TriangleQuery t = testkit::make_triangle_query(testkit::TriangleQueryKind::rounding_tie, bits);
-    for (TriangleRule rule : {TriangleRule::owned, TriangleRule::closed}) {
-      gmp += check_triangle(t.ray, t.triangle, rule, testkit::triangle_line(t), false);
-      ++total;
-    }
+    for (TriangleRule rule : {TriangleRule::owned, TriangleRule::closed})
+      check_triangle(t.ray, t.triangle, rule, testkit::triangle_line(t));
     const testkit::Query p = testkit::make_query(testkit::QueryKind::rounding_tie, bits);
-    gmp += check_plane(p.ray, p.plane, plane_line(p), false);
-    ++total;
+    check_plane(p.ray, p.plane, plane_line(p));
   }
-  RecordProperty("share_reaching_gmp", std::to_string(static_cast<double>(gmp) / total));
-  EXPECT_LT(gmp, total / 10);
+}
+
+// Near ties (t within 2^-20..2^-60 ulp of a midpoint): right, and almost always decided before GMP. Not always:
+// the sign of N·2 − (x + y)·D at the boundary can come out of the expansion sum with a top component that is not
+// twice the others and components of both signs ({2^-98, −2^-97}-like), which the checked sign leaves uncertain;
+// 15 of 3,000 here (0.5%). Reading such signs (a renormalizing pass, or a tighter proved factor than 2) is open.
+TEST(RoundingBoundary, NearTiesAreRightAndRarelyReachGmp) {
+  testkit::SplitMix64 rng(20261131);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  int gmp = 0;
+  const int n = 3000;
+  for (int i = 0; i < n; ++i) {
+    const testkit::Query q = testkit::make_query(testkit::QueryKind::near_tie, bits);
+    gmp += check_plane(q.ray, q.plane, plane_line(q), false);
+  }
+  RecordProperty("share_reaching_gmp", std::to_string(static_cast<double>(gmp) / n));
+  EXPECT_LT(gmp, n / 100);
 }
 
 }  // namespace

@@ -139,11 +139,17 @@ Definition check_finite (ex : bool) (e : list float) : bool := (ex && forallb fi
 Definition lower_magnitude (e : list float) : float :=
   fold_left (fun acc x => fadd acc (fabs x)) (removelast e) fzero.
 
+(** [top > 0 ? x >= 0 : x <= 0]: x not of the sign opposite to top's. *)
+Definition weakly_signed (pos : bool) (x : float) : bool := if pos then fle fzero x else fle x fzero.
+
 Definition expansion_sign_b (e : list float) : sign :=
   let top := last e fzero in
   let a := lower_magnitude e in
   if flt (fadd a a) (fabs top) then (if flt fzero top then Positive else Negative)
-  else if (Nat.eqb (length e) 1 && feq top fzero)%bool then Zero else Uncertain.
+  else if (Nat.eqb (length e) 1 && feq top fzero)%bool then Zero
+  else if (negb (feq top fzero) && forallb (weakly_signed (flt fzero top)) (removelast e))%bool
+  then (if flt fzero top then Positive else Negative)
+  else Uncertain.
 
 (** [ray_plane_expansions(q)] (ray_plane_query.hpp): den = Σ d_i n_i and num = Σ (p_i − o_i) n_i. *)
 Definition build_expansions_gen (fts : float -> float -> float * float)
@@ -470,6 +476,19 @@ Qed.
 Lemma sum_list_app : forall l1 l2, sum_list (l1 ++ l2) = sum_list l1 + sum_list l2.
 Proof. induction l1 as [|x l IH]; intros; simpl; [ring | rewrite IH; ring]. Qed.
 
+(** A list of finite doubles none of which has the sign opposite to [pos]'s sums to that (weak) sign. *)
+Lemma sum_list_weakly_signed : forall (pos : bool) l, Forall (fun x => fin x = true) l ->
+  forallb (weakly_signed pos) l = true ->
+  if pos then 0 <= sum_list (map B2R l) else sum_list (map B2R l) <= 0.
+Proof.
+  intros pos l F W. induction l as [|x l IH]; [simpl; destruct pos; lra|].
+  inversion F as [|? ? Fx Fl]; subst. simpl in W. apply andb_prop in W. destruct W as [Wx Wl].
+  specialize (IH Fl Wl). simpl. unfold weakly_signed in Wx.
+  destruct pos; rewrite fle_val in Wx by (reflexivity || assumption).
+  - destruct (Rle_bool_spec (B2R fzero) (B2R x)) as [H|H]; [|discriminate]. change (B2R fzero) with 0 in H. lra.
+  - destruct (Rle_bool_spec (B2R x) (B2R fzero)) as [H|H]; [|discriminate]. change (B2R fzero) with 0 in H. lra.
+Qed.
+
 (** The certified sign is the sign of the exact sum, for any list of finite doubles (at most 2^20 of
     them; the C++ expansions have at most 288). *)
 Theorem expansion_sign_sound : forall e, all_fin e -> (Z.of_nat (length e) <= 1048576)%Z ->
@@ -526,10 +545,29 @@ Proof.
         assert (B2R top <> 0).
         { intros Z. rewrite Z, Rabs_R0 in C'. pose proof (RN_nonneg (B2R A + B2R A) ltac:(lra)). lra. }
         rewrite Rabs_left in Bd by lra. destruct Bd as [B1 B2]. clear - B2. lra.
-    + destruct (Nat.eqb (length e) 1 && feq top fzero)%bool eqn:Z; [|exact I].
-      apply andb_prop in Z. destruct Z as [L Z]. apply Nat.eqb_eq in L.
-      destruct (feq_zero _ Z) as [_ V]. cbn.
-      destruct e as [|x [|y l]]; try (simpl in L; discriminate). unfold sumR. simpl. cbn in V. rewrite V. ring.
+    + destruct (Nat.eqb (length e) 1 && feq top fzero)%bool eqn:Z.
+      * apply andb_prop in Z. destruct Z as [L Z]. apply Nat.eqb_eq in L.
+        destruct (feq_zero _ Z) as [_ V]. cbn.
+        destruct e as [|x [|y l]]; try (simpl in L; discriminate). unfold sumR. simpl. cbn in V. rewrite V. ring.
+      * (* no lower component of the sign opposite to the nonzero top's *)
+        destruct (negb (feq top fzero) && forallb (weakly_signed (flt fzero top)) (removelast e))%bool eqn:W;
+          [|exact I].
+        apply andb_prop in W. destruct W as [NZ W]. apply negb_true_iff in NZ.
+        rewrite feq_val in NZ by (reflexivity || assumption).
+        destruct (Req_bool_spec (B2R top) (B2R fzero)) as [E|E]; [discriminate|]. change (B2R fzero) with 0 in E.
+        assert (Fl : Forall (fun x => fin x = true) (removelast e)).
+        { unfold all_fin in F. rewrite D in F. apply Forall_app in F. tauto. }
+        pose proof (sum_list_weakly_signed (flt fzero top) (removelast e) Fl W) as Sg.
+        assert (Sum : sumR e = sum_list (map B2R (removelast e)) + B2R top).
+        { unfold sumR. rewrite D at 1. rewrite map_app, sum_list_app. simpl. ring. }
+        rewrite Sum. clearbody top A.
+        destruct (flt fzero top) eqn:P.
+        -- rewrite flt_val in P by (reflexivity || assumption).
+           destruct (Rlt_bool_spec (B2R fzero) (B2R top)) as [P'|P']; [clear P | discriminate].
+           change (B2R fzero) with 0 in P'. cbn [certifies]. lra.
+        -- rewrite flt_val in P by (reflexivity || assumption).
+           destruct (Rlt_bool_spec (B2R fzero) (B2R top)) as [P'|P']; [discriminate | clear P].
+           change (B2R fzero) with 0 in P'. cbn [certifies]. lra.
 Qed.
 
 (** ** Lengths (the C++ capacities: num ≤ 12, den ≤ 6, products ≤ 2·12·6, Δ ≤ 2·2·12·6) *)

@@ -77,15 +77,19 @@ Proof.
   - destruct (Rlt_or_le X 0) as [L|L]; [exact L|]. nra.
 Qed.
 
+(** The hypothesis of the theorems below: den_sign is ±1, the sign of Σden (the callers' checked sign of den). *)
+Definition den_sign_is (ds : Z) (den : list float) : Prop :=
+  (ds = 1%Z /\ 0 < sumR den) \/ (ds = (-1)%Z /\ sumR den < 0).
+
 (** A certain side is the sign of t − (x + y)/2, t = Σnum/Σden, for den_sign ±1 the sign of Σden. *)
 Theorem side_of_midpoint_sound : forall num den ds x y,
   (length num <= 16)%nat -> (length den <= 16)%nat ->
-  ((ds = 1%Z /\ 0 < sumR den) \/ (ds = (-1)%Z /\ sumR den < 0)) ->
+  den_sign_is ds den ->
   side_of_midpoint_b num den ds x y <> Uncertain ->
   fin x = true /\ fin y = true /\
   certifies (side_of_midpoint_b num den ds x y) (sumR num / sumR den - (B2R x + B2R y) / 2).
 Proof.
-  intros num den ds x y Ln Ld Ds NU. unfold side_of_midpoint_b in *.
+  intros num den ds x y Ln Ld Ds NU. unfold den_sign_is in Ds. unfold side_of_midpoint_b in *.
   destruct (fin (snd (two_sum_b x y))) eqn:Fl; [|simpl in NU; congruence]. simpl in *.
   destruct (two_sum_b_inv x y Fl) as [Fx [Fy [Fh _]]].
   destruct (two_sum_b_exact x y Fl) as [_ [_ S]].
@@ -123,7 +127,7 @@ Qed.
 (** A value of [round_quotient_at_boundaries] is finite and RN(Σnum/Σden). *)
 Theorem round_quotient_at_boundaries_sound : forall num den ds q r,
   (length num <= 16)%nat -> (length den <= 16)%nat ->
-  ((ds = 1%Z /\ 0 < sumR den) \/ (ds = (-1)%Z /\ sumR den < 0)) ->
+  den_sign_is ds den ->
   round_quotient_at_boundaries_b num den ds q = Some r ->
   fin r = true /\ B2R r = RN (sumR num / sumR den).
 Proof.
@@ -172,6 +176,32 @@ Qed.
 (** Liveness: ties are decided (no exact stage). t = (2^-53 + 1)/1 is the midpoint of 1 and its successor:
     RN(t) = 1 (even); t = 3·2^-53 + 1 is the midpoint of 1 + 2^-52 (odd) and 1 + 2^-51: RN(t) = 1 + 2^-51;
     and a t strictly between the midpoints of q = 1, t = 1 + 2^-60, gives q. *)
+(** [round_quotient_near(num, den, den_sign, q)]: the candidate, then its neighbours (nextafter towards ±max is
+    [Bsucc], [Bpred] wherever the guard of [round_quotient_at_boundaries] lets a candidate through). *)
+Definition round_quotient_near_b (num den : list float) (den_sign : Z) (q : float) : option float :=
+  match round_quotient_at_boundaries_b num den den_sign q with
+  | Some r => Some r
+  | None =>
+    match round_quotient_at_boundaries_b num den den_sign (Bsucc q) with
+    | Some r => Some r
+    | None => round_quotient_at_boundaries_b num den den_sign (Bpred q)
+    end
+  end.
+
+Theorem round_quotient_near_sound : forall num den ds q r,
+  (length num <= 16)%nat -> (length den <= 16)%nat ->
+  den_sign_is ds den ->
+  round_quotient_near_b num den ds q = Some r ->
+  fin r = true /\ B2R r = RN (sumR num / sumR den).
+Proof.
+  intros num den ds q r Ln Ld Ds. unfold round_quotient_near_b.
+  destruct (round_quotient_at_boundaries_b num den ds q) as [x|] eqn:A.
+  - intros E. injection E as <-. exact (round_quotient_at_boundaries_sound _ _ _ _ _ Ln Ld Ds A).
+  - destruct (round_quotient_at_boundaries_b num den ds (Bsucc q)) as [x|] eqn:B.
+    + intros E. injection E as <-. exact (round_quotient_at_boundaries_sound _ _ _ _ _ Ln Ld Ds B).
+    + intros C. exact (round_quotient_at_boundaries_sound _ _ _ _ _ Ln Ld Ds C).
+Qed.
+
 Lemma round_quotient_at_boundaries_tie_even :
   option_map to_bits (round_quotient_at_boundaries_b [of_bits 4368491638549381120; of_bits 4607182418800017408]
                         [of_bits 4607182418800017408] 1 (of_bits 4607182418800017408)) = Some 4607182418800017408%Z.

@@ -11,7 +11,7 @@
       signs of the expansions, when the builder says exact), else the exact stage, which the twin does not
       compute ([StExact], no answer);
     - [certified_quotient_b]: round_quotient on the first level's enclosures, on the second level's, on the
-      stage-3 tail enclosures (when exact), then [round_quotient_at_boundaries] on the expansions with the
+      stage-3 tail enclosures (when exact), then [round_quotient_near] (the boundaries of the candidate or a neighbour) on the expansions with the
       last candidate (den's checked sign ±1), else the exact stage ([None]);
     - [intersect_cascade_b]: parallel and in-plane (t = NaN), num = 0 (t = +0), the exact stage when the
       signs came from it, else t from [certified_quotient_b];
@@ -134,7 +134,7 @@ Definition certified_quotient_b : option (float * stage) :=
     (* the rounding boundaries of the candidate, in the expansions *)
     let ds := sign_to_Z (expansion_sign_b ed) in
     if (Z.eqb ds 1 || Z.eqb ds (-1))%bool then
-      match round_quotient_at_boundaries_b en ed ds (fst q3) with
+      match round_quotient_near_b en ed ds (fst q3) with
       | Some t => Some (t, StExpansion)
       | None => None
       end
@@ -431,14 +431,14 @@ Proof.
         assert (VNe : VN = sumR en) by (unfold VN; rewrite (VN_eq o p n), <- Sn; reflexivity).
         destruct (expansion_sign_b ed) eqn:Sg; cbn [sign_to_Z] in *;
           try (cbv [Z.eqb orb]; intros H; discriminate H); cbv [Z.eqb orb].
-        -- destruct (round_quotient_at_boundaries_b en ed (-1) _) as [r|] eqn:B; [|discriminate].
+        -- destruct (round_quotient_near_b en ed (-1) _) as [r|] eqn:B; [|discriminate].
            intros E. injection E as <- _. cbn [certifies] in Cd.
-           destruct (round_quotient_at_boundaries_sound en ed (-1) _ r ltac:(lia) ltac:(lia)
+           destruct (round_quotient_near_sound en ed (-1) _ r ltac:(lia) ltac:(lia)
                        ltac:(right; split; [reflexivity | exact Cd]) B) as [Fr Rr].
            rewrite VDe, VNe. repeat split; [lra | exact Fr | exact Rr].
-        -- destruct (round_quotient_at_boundaries_b en ed 1 _) as [r|] eqn:B; [|discriminate].
+        -- destruct (round_quotient_near_b en ed 1 _) as [r|] eqn:B; [|discriminate].
            intros E. injection E as <- _. cbn [certifies] in Cd.
-           destruct (round_quotient_at_boundaries_sound en ed 1 _ r ltac:(lia) ltac:(lia)
+           destruct (round_quotient_near_sound en ed 1 _ r ltac:(lia) ltac:(lia)
                        ltac:(left; split; [reflexivity | exact Cd]) B) as [Fr Rr].
            rewrite VDe, VNe. repeat split; [lra | exact Fr | exact Rr].
 Qed.

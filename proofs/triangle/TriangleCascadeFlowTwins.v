@@ -19,7 +19,7 @@
       exactly zero numerator gives +0); [round_quotients] on the stage-2 enclosures over one divisor (its
       fields broadcast: [shared_divisor_b]); the stage-3 tail enclosures ([expansion_enclosure]: exact and
       at most [tail_sum_max_terms] components, [PlaneCascadeTwins.tail_b]) over den's (or stage 2's) divisor,
-      [round_quotient] per quotient; then [round_quotient_at_boundaries] on the candidates ([qstep_boundary]:
+      [round_quotient] per quotient; then [round_quotient_near] on the candidates ([qstep_boundary]:
       num's and den's expansions exact and at most 16 components, den's checked sign ±1); else the exact stage ([QExact]: the twin computes no exact answer);
     - [tc_relation_b]: [triangle_relation_cascade];
     - [tri_valid_b]: [is_valid(ray) & is_valid(triangle)] (finite components, d not the zero vector), by
@@ -172,13 +172,13 @@ Definition qstep3 (x : bool * qval) (r : option (float * bool)) : bool * qval :=
   if fst x then x else match r with Some r => (snd r, QVal (fst r)) | None => x end.
 
 (** A quotient not yet certain, decided at the rounding boundaries of its candidate when den's sign is ±1 and
-    both expansions are short: [round_quotient_at_boundaries(num, den, den_sign, candidate)]. *)
+    both expansions are short: [round_quotient_near(num, den, den_sign, candidate)] (the boundaries of the candidate, else of its neighbours). *)
 Definition qstep_boundary (x : bool * qval) (ds : Z) (den num : option (list float)) : bool * qval :=
   if fst x then x else
   match snd x, den, num with
   | QVal q, Some ed, Some en =>
     if (Z.eqb ds 1 || Z.eqb ds (-1))%bool then
-      match round_quotient_at_boundaries_b en ed ds q with Some r => (true, QVal r) | None => x end
+      match round_quotient_near_b en ed ds q with Some r => (true, QVal r) | None => x end
     else x
   | _, _, _ => x
   end.

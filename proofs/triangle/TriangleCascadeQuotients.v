@@ -92,7 +92,7 @@ Definition tc_q2 (o d a b c : TVec) (v : Z) : float * bool :=
 (** [tc_intersect_b] with its quotients' chain named (an equation of definitions; the roundings and signs
     kept opaque to unification, so that it compares them by name instead of computing them). *)
 Opaque round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_at_boundaries_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b.
 Lemma tc_intersect_b_eq : forall want_t want_u owned_rule o d a b c,
   tc_intersect_b want_t want_u owned_rule o d a b c =
   let '(cl, f) := tc_classify_b o d a b c owned_rule in
@@ -120,7 +120,7 @@ Proof.
 Qed.
 
 Transparent round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_at_boundaries_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b.
 
 (** The invariant of a quotient's progress: once certain, a value is RN(V/VD). *)
 Definition tc_qinv (x : bool * qval) (V VD : R) : Prop := fst x = true -> tc_quotient_means (snd x) V VD.
@@ -141,7 +141,7 @@ Proof.
   intros S x E. injection E as <-. exact (R _ eq_refl S).
 Qed.
 
-(** The rounding boundaries: a value of [round_quotient_at_boundaries] is RN(V/VD) when den's sign ds is
+(** The rounding boundaries: a value of [round_quotient_near] is RN(V/VD) when den's sign ds is
     VD's and the expansions sum to VD and V (at most 16 components each). *)
 Lemma tc_qinv_boundary : forall x ds dn bn V VD, tc_qinv x V VD ->
   ((ds = 1%Z \/ ds = (-1)%Z) -> (ds = 1%Z /\ 0 < VD) \/ (ds = (-1)%Z /\ VD < 0)) ->
@@ -155,12 +155,12 @@ Proof.
   destruct dn as [ed|]; [|intros H; discriminate H].
   destruct bn as [en|]; [|intros H; discriminate H].
   destruct (Z.eqb ds 1 || Z.eqb ds (-1))%bool eqn:Ds; [|intros H; discriminate H].
-  destruct (round_quotient_at_boundaries_b en ed ds y) as [r|] eqn:R; [|intros H; discriminate H].
+  destruct (round_quotient_near_b en ed ds y) as [r|] eqn:R; [|intros H; discriminate H].
   intros _ x E. injection E as <-.
   destruct (D ed eq_refl) as [Ld Sd]. destruct (B en eq_refl) as [Ln Sn].
   assert (Dsc : (ds = 1%Z /\ 0 < sumR ed) \/ (ds = (-1)%Z /\ sumR ed < 0)).
   { rewrite Sd. apply S. apply orb_true_iff in Ds. destruct Ds as [Ds|Ds]; apply Z.eqb_eq in Ds; tauto. }
-  destruct (round_quotient_at_boundaries_sound en ed ds y r Ln Ld Dsc R) as [Fr Rr].
+  destruct (round_quotient_near_sound en ed ds y r Ln Ld Dsc R) as [Fr Rr].
   split; [exact Fr|]. rewrite Rr, Sn, Sd. reflexivity.
 Qed.
 

@@ -33,17 +33,25 @@ struct Expansion {
   std::size_t size = 0;        // ≥ 1 once built; the zero expansion is {0}
 
   // The sign of the exact sum, or `uncertain`: the last component decides when its magnitude exceeds twice the
-  // rounded sum of the others' magnitudes (then it exceeds their exact sum); the single component 0 is zero.
+  // rounded sum of the others' magnitudes (then it exceeds their exact sum); the single component 0 is zero; and
+  // a nonzero last component decides when no other component has the opposite sign (a sum of terms of one sign:
+  // {−2^-64, −2^-63}, which TwoSum chains leave at exact ties, is negative though its top is not twice the rest).
   //   Valid range: finite components (callers check `exact()` first), at most 2^20 of them.
   //   Certified by: proofs/core/Expansions.v, `expansion_sign_sound` (any list of finite doubles, nonoverlapping
-  //   or not); `uncertain` sends the caller to the exact stage.
+  //   or not; the last rule by `sum_list_weakly_signed`); `uncertain` sends the caller to the exact stage.
   [[nodiscard]] Sign sign() const noexcept {
     static_assert(Capacity <= (std::size_t{1} << 20));
     const double top = component[size - 1];
     double lower = 0;
-    for (std::size_t i = 0; i + 1 < size; ++i) lower += std::fabs(component[i]);
+    bool one_sign = true;  // no lower component of the sign opposite to top's
+    for (std::size_t i = 0; i + 1 < size; ++i) {
+      lower += std::fabs(component[i]);
+      one_sign = one_sign && (top > 0 ? component[i] >= 0 : component[i] <= 0);
+    }
     if (lower + lower < std::fabs(top)) return top > 0 ? Sign::positive : Sign::negative;
-    return (size == 1 && top == 0) ? Sign::zero : Sign::uncertain;
+    if (size == 1 && top == 0) return Sign::zero;
+    if (top != 0 && one_sign) return top > 0 ? Sign::positive : Sign::negative;
+    return Sign::uncertain;
   }
 };
 

@@ -84,4 +84,19 @@ template <std::size_t A, std::size_t B>
   return q;
 }
 
+// RN(num/den) from the candidate q or, when q is one ulp off (a stage's enclosure rounded to t's neighbour: a t
+// just past a midpoint), from either neighbour of q: round_quotient_at_boundaries for q, then for
+// nextafter(q, +max), then for nextafter(q, −max). Each value is certified on its own.
+//   Certified by: proofs/core/QuotientBoundary.v, `round_quotient_near_sound` (from
+//   `round_quotient_at_boundaries_sound` for each of the three candidates).
+template <std::size_t A, std::size_t B>
+[[nodiscard]] inline std::optional<double> round_quotient_near(const Expansion<A>& num, const Expansion<B>& den,
+                                                                int den_sign, double q) noexcept {
+  if (const std::optional<double> r = round_quotient_at_boundaries(num, den, den_sign, q)) return r;
+  if (const std::optional<double> r =
+          round_quotient_at_boundaries(num, den, den_sign, std::nextafter(q, bounds::largest_finite)))
+    return r;
+  return round_quotient_at_boundaries(num, den, den_sign, std::nextafter(q, -bounds::largest_finite));
+}
+
 }  // namespace raykernel::detail

@@ -5,7 +5,7 @@
 // stages and the per-query state).
 //   Certified by: proofs/plane/PlaneCascadeTwins.v, `certified_quotient_twin_sound` (every t certified_quotient
 //   returns is RN(num/den), den ≠ 0; the boundary step by proofs/core/QuotientBoundary.v,
-//   `round_quotient_at_boundaries_sound`, with den's sign from `expansion_sign_sound`), `cascade_twin_correct`;
+//   `round_quotient_near_sound`, with den's sign from `expansion_sign_sound`), `cascade_twin_correct`;
 //   the control flow twinned there and run against this code by the differential runner (routines
 //   cascade_intersect, cascade_relation).
 //
@@ -63,7 +63,7 @@ std::pair<double, Stage> certified_quotient(RayPlaneCascade& query) noexcept {
     // The rounding boundaries of the candidate, exactly in the expansions (core/quotient_boundary.hpp).
     const Sign den_sign = e.den.sign();
     if (den_sign == Sign::positive || den_sign == Sign::negative) {
-      if (const auto t = round_quotient_at_boundaries(e.num, e.den, static_cast<int>(den_sign), r.t))
+      if (const auto t = round_quotient_near(e.num, e.den, static_cast<int>(den_sign), r.t))
         return {*t, Stage::expansion};
     }
   }

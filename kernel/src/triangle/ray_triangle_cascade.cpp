@@ -27,7 +27,8 @@
 //   quotients, stage 2:  proofs/triangle/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/triangle/TriangleCascade.v, `triangle_quotient_expansion_correct`
 //                        (tail_sum_enclosure); then at the rounding boundaries of the candidate, in the
-//                        expansions: proofs/core/QuotientBoundary.v, `round_quotient_at_boundaries_sound`, in the
+//                        expansions: proofs/core/QuotientBoundary.v, `round_quotient_near_sound` (from
+//                        `round_quotient_at_boundaries_sound`, for the candidate or a neighbour), in the
 //                        cascade proofs/triangle/TriangleCascadeQuotients.v, `tc_qinv_boundary`, `tc_short_means`,
 //                        `tc_den_sign_means`
 //   the full cascade:    proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_classify_b_correct`
@@ -340,7 +341,7 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
       if (den_short && (den_sign == Sign::positive || den_sign == Sign::negative)) {
         if (const std::optional<Expansion<16>> n = query.short_expansion(numerator_value[k])) {
           if (const std::optional<double> q =
-                  round_quotient_at_boundaries(*n, *den_short, static_cast<int>(den_sign), value[k])) {
+                  round_quotient_near(*n, *den_short, static_cast<int>(den_sign), value[k])) {
             value[k] = *q;
             certain[k] = true;
           }
