@@ -13,6 +13,7 @@
 #include <bit>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -131,34 +132,34 @@ std::string plane_line(const testkit::Query& q) {
   return line;
 }
 
-// The testkit's kind built for the powers of two: every rounding decided before GMP, and right.
-TEST(RoundingBoundary, AbovePowerOfTwoNeverReachesGmp) {
-  testkit::SplitMix64 rng(20261129);
+// 3,000 queries of a triangle kind (under both rules) and of a plane kind: every rounding decided before GMP,
+// and right.
+void expect_kinds_never_reach_gmp(std::uint64_t seed, testkit::TriangleQueryKind triangle_kind,
+                                  testkit::QueryKind plane_kind) {
+  testkit::SplitMix64 rng(seed);
   const testkit::BitSource bits = [&rng] { return rng(); };
   for (int i = 0; i < 3000; ++i) {
-    const testkit::TriangleQuery t = testkit::make_triangle_query(testkit::TriangleQueryKind::above_power_of_two, bits);
+    const testkit::TriangleQuery t = testkit::make_triangle_query(triangle_kind, bits);
     for (TriangleRule rule : {TriangleRule::owned, TriangleRule::closed})
       check_triangle(t.ray, t.triangle, rule, testkit::triangle_line(t));
-    const testkit::Query p = testkit::make_query(testkit::QueryKind::above_power_of_two, bits);
+    const testkit::Query p = testkit::make_query(plane_kind, bits);
     check_plane(p.ray, p.plane, plane_line(p));
   }
 }
 
-// Rounding ties (and near ties, the origin nudged by a few ulps): every rounding decided before GMP, and right.
-// (Two things made this hold: the stage-3 candidate of a near tie can be t's neighbour, so the boundaries of both
-// neighbours are tried — round_quotient_near —; and at an exact tie the difference N·2 − (x + y)·D can come out of
-// the expansion sum as same-signed adjacent components such as {−2^-64, −2^-63}, whose sign the checked rule
-// top > 2·Σ lower cannot read but the one-sign rule can. Before them, 2.9% of these roundings reached GMP.)
+// The testkit's kinds built for the powers of two.
+TEST(RoundingBoundary, AbovePowerOfTwoNeverReachesGmp) {
+  expect_kinds_never_reach_gmp(20261129, testkit::TriangleQueryKind::above_power_of_two,
+                               testkit::QueryKind::above_power_of_two);
+}
+
+// Rounding ties (and, for triangles, near ties: the origin nudged by a few ulps). Two things made this hold: the
+// stage-3 candidate of a near tie can be t's neighbour, so the boundaries of both neighbours are tried
+// (round_quotient_near); and at an exact tie the difference N·2 − (x + y)·D can come out of the expansion sum
+// as same-signed adjacent components such as {−2^-64, −2^-63}, whose sign the checked rule top > 2·Σ lower
+// cannot read but the one-sign rule can. Before them, 2.9% of these roundings reached GMP.
 TEST(RoundingBoundary, RoundingTiesNeverReachGmp) {
-  testkit::SplitMix64 rng(20261130);
-  const testkit::BitSource bits = [&rng] { return rng(); };
-  for (int i = 0; i < 3000; ++i) {
-    const testkit::TriangleQuery t = testkit::make_triangle_query(testkit::TriangleQueryKind::rounding_tie, bits);
-    for (TriangleRule rule : {TriangleRule::owned, TriangleRule::closed})
-      check_triangle(t.ray, t.triangle, rule, testkit::triangle_line(t));
-    const testkit::Query p = testkit::make_query(testkit::QueryKind::rounding_tie, bits);
-    check_plane(p.ray, p.plane, plane_line(p));
-  }
+  expect_kinds_never_reach_gmp(20261130, testkit::TriangleQueryKind::rounding_tie, testkit::QueryKind::rounding_tie);
 }
 
 // Near ties (t within 2^-20..2^-60 ulp of a midpoint): right, and almost always decided before GMP. Not always:
