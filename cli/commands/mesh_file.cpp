@@ -39,4 +39,19 @@ PreparedMesh prepare_mesh(Mesh&& mesh, const std::string& path) {
   return PreparedMesh(std::move(mesh));  // valid: the readers return valid meshes
 }
 
+std::optional<PreparedMesh> load_prepared_mesh(std::string_view command, const std::string& path, std::ostream& err) {
+  std::optional<Mesh> mesh = read_mesh_file(command, path, err);
+  if (!mesh) return std::nullopt;
+  return prepare_mesh(std::move(*mesh), path);
+}
+
+std::optional<PreparedMesh> load_mesh_option(std::string_view command, const std::optional<std::string>& path,
+                                             std::ostream& err) {
+  if (!path) {
+    err << "raykernel " << command << ": --mesh FILE is required (see raykernel " << command << " --help)\n";
+    return std::nullopt;
+  }
+  return load_prepared_mesh(command, *path, err);
+}
+
 }  // namespace raykernel::cli

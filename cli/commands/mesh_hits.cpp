@@ -68,13 +68,9 @@ OwnedCommandLine hits_command_line() { return owned_command_line(command_line); 
 int run_hits(const std::vector<std::string>& args) {
   Arguments a;
   if (const std::optional<int> status = parse_command_line(command_line(a), args)) return *status;
-  if (!a.mesh_path) {
-    std::cerr << "raykernel hits: --mesh FILE is required (see raykernel hits --help)\n";
-    return exit_usage;
-  }
-  std::optional<Mesh> mesh = read_mesh_file("hits", *a.mesh_path, std::cerr);
-  if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *a.mesh_path);
+  const std::optional<PreparedMesh> loaded = load_mesh_option("hits", a.mesh_path, std::cerr);
+  if (!loaded) return exit_usage;
+  const PreparedMesh& prepared = *loaded;
   const std::string path = a.rays_path.value_or("-");
   Input rays(path);
   if (!check_opened("hits", "rays file", path, rays)) return exit_usage;

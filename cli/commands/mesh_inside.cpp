@@ -70,13 +70,9 @@ OwnedCommandLine inside_command_line() { return owned_command_line(command_line)
 int run_inside(const std::vector<std::string>& args) {
   Arguments arguments;
   if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
-  if (!arguments.mesh_path) {
-    std::cerr << "raykernel inside: --mesh FILE is required (see raykernel inside --help)\n";
-    return exit_usage;
-  }
-  std::optional<Mesh> mesh = read_mesh_file("inside", *arguments.mesh_path, std::cerr);
-  if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *arguments.mesh_path);
+  const std::optional<PreparedMesh> loaded = load_mesh_option("inside", arguments.mesh_path, std::cerr);
+  if (!loaded) return exit_usage;
+  const PreparedMesh& prepared = *loaded;
 
   const std::string path = arguments.points_path.value_or("-");
   Input points(path);

@@ -73,9 +73,9 @@ int mesh_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err
 }
 
 int run_mesh_nearest(const std::string& mesh_path, const std::string& rays_path, const MeshNearestOptions& options) {
-  std::optional<Mesh> mesh = read_mesh_file("nearest", mesh_path, std::cerr);
-  if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), mesh_path);
+  const std::optional<PreparedMesh> loaded = load_prepared_mesh("nearest", mesh_path, std::cerr);
+  if (!loaded) return exit_usage;
+  const PreparedMesh& prepared = *loaded;
   Input rays(rays_path);
   if (!check_opened("nearest", "rays file", rays_path, rays)) return exit_usage;
   MeshNearestCounts counts;

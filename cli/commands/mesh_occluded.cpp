@@ -109,13 +109,9 @@ OwnedCommandLine occluded_command_line() { return owned_command_line(command_lin
 int run_occluded(const std::vector<std::string>& args) {
   Arguments arguments;
   if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
-  if (!arguments.mesh_path) {
-    std::cerr << "raykernel occluded: --mesh FILE is required (see raykernel occluded --help)\n";
-    return exit_usage;
-  }
-  std::optional<Mesh> mesh = read_mesh_file("occluded", *arguments.mesh_path, std::cerr);
-  if (!mesh) return exit_usage;
-  const PreparedMesh prepared = prepare_mesh(std::move(*mesh), *arguments.mesh_path);
+  const std::optional<PreparedMesh> loaded = load_mesh_option("occluded", arguments.mesh_path, std::cerr);
+  if (!loaded) return exit_usage;
+  const PreparedMesh& prepared = *loaded;
 
   const std::string path = arguments.input_path.value_or("-");
   Input input(path);

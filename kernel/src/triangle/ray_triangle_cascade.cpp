@@ -147,19 +147,17 @@ class TriangleCascade {
   // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
   // and has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
   std::optional<Enclosure> expansion_enclosure(int v) {
-    const ExpansionValue<192>& value = expansion(v);
-    if (!value.exact || value.e.size > bounds::tail_sum_max_terms) return std::nullopt;
-    Expansion<bounds::tail_sum_max_terms> short_form{};
-    for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
-    short_form.size = value.e.size;
-    return expansion_tail_enclosure(short_form);
+    const std::optional<Expansion<bounds::tail_sum_max_terms>> e = short_expansion<bounds::tail_sum_max_terms>(v);
+    if (!e) return std::nullopt;
+    return expansion_tail_enclosure(*e);
   }
-  // Stage 3's exact expansion of determinant v in the capacity round_quotient_at_boundaries is proved for
-  // (at most 16 components), when it is exact and that short.
-  std::optional<Expansion<16>> short_expansion(int v) {
+  // Stage 3's exact expansion of determinant v in capacity K, when it is exact and has at most K components
+  // (16: the capacity round_quotient_near is proved for).
+  template <std::size_t K>
+  std::optional<Expansion<K>> short_expansion(int v) {
     const ExpansionValue<192>& value = expansion(v);
-    if (!value.exact || value.e.size > 16) return std::nullopt;
-    Expansion<16> short_form{};
+    if (!value.exact || value.e.size > K) return std::nullopt;
+    Expansion<K> short_form{};
     for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
     short_form.size = value.e.size;
     return short_form;
@@ -333,13 +331,13 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
   // Then the rounding boundaries of each candidate, exactly in expansions (core/quotient_boundary.hpp): a
   // quotient on or next to a midpoint between two doubles (ties, roundings near powers of two).
   if (!all_certain) {
-    const std::optional<Expansion<16>> den_short = query.short_expansion(value_den);
+    const std::optional<Expansion<16>> den_short = query.short_expansion<16>(value_den);
     const Sign den_sign = query.expansion(value_den).sign();
     all_certain = true;
     for (int k = 0; k < 4; ++k) {
       if (certain[k]) continue;
       if (den_short && (den_sign == Sign::positive || den_sign == Sign::negative)) {
-        if (const std::optional<Expansion<16>> n = query.short_expansion(numerator_value[k])) {
+        if (const std::optional<Expansion<16>> n = query.short_expansion<16>(numerator_value[k])) {
           if (const std::optional<double> q =
                   round_quotient_near(*n, *den_short, static_cast<int>(den_sign), value[k])) {
             value[k] = *q;
