@@ -15,7 +15,7 @@
 
 namespace {
 
-constexpr const char* overview = R"(raykernel: exact ray casting for binary64 inputs (planes, triangles, meshes), certified fast
+constexpr const char* overview = R"(raykernel: exact ray casting for binary64 inputs (planes, triangles, spheres, meshes), certified fast
 
 usage: raykernel <command> [options]
 
@@ -40,6 +40,8 @@ commands:
                       and closed rules, Moller-Trumbore, Embree (raykernel watertight --help)
   triangle [FILE|-]   intersect rays with triangles exactly, one query per line; owned or closed
                       rule (raykernel triangle --help)
+  sphere [FILE|-]     intersect rays with spheres exactly, one query per line: where the origin
+                      lies, miss/tangent/cross, correctly rounded roots (raykernel sphere --help)
   spawn [FILE|-]      the origin of a secondary ray that never re-hits the triangle it leaves,
                       in binary64 or binary32 (raykernel spawn --help)
   spawn-audit FILE [--hits N] [--seed S] [--scale-exponent E] [--png OUT]

@@ -11,6 +11,7 @@ std::span<const Command> commands() {
       {"hits", run_hits, hits_command_line},
       {"watertight", run_watertight, watertight_command_line},
       {"triangle", run_triangle, triangle_command_line},
+      {"sphere", run_sphere, sphere_command_line},
       {"spawn", run_spawn, spawn_command_line},
       {"spawn-audit", run_spawn_audit, spawn_audit_command_line},
       {"render", run_render, render_command_line},

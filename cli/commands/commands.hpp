@@ -39,6 +39,8 @@ int run_watertight(const std::vector<std::string>& args);  // watertight.cpp
 OwnedCommandLine watertight_command_line();
 int run_triangle(const std::vector<std::string>& args);  // triangle.cpp
 OwnedCommandLine triangle_command_line();
+int run_sphere(const std::vector<std::string>& args);  // sphere.cpp
+OwnedCommandLine sphere_command_line();
 int run_spawn(const std::vector<std::string>& args);  // spawn.cpp
 OwnedCommandLine spawn_command_line();
 int run_spawn_audit(const std::vector<std::string>& args);  // spawn_audit.cpp

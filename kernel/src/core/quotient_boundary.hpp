@@ -66,22 +66,69 @@ template <std::size_t A, std::size_t B>
 
 }  // namespace boundary_internal
 
+// RN(t) for the candidate q from `side(x, y)`, the sign of t − (x + y)/2 (or uncertain), for any exact value t:
+// the one decision of the quotients below and of the sphere's roots (sphere/ray_sphere_stages.hpp). Nothing when
+// the sides do not decide, q is outside [2^-968, largest_finite), or q is not RN(t).
+//   Certified by: proofs/core/MidpointRounding.v, `boundary_decision_correct` (the choice of RN(t) from the two
+//   sides), for the quotients through `round_quotient_at_boundaries_sound` (proofs/core/QuotientBoundary.v).
+template <class Side>
+[[nodiscard]] inline std::optional<double> round_at_midpoints(const Side& side, double q) noexcept {
+  const double magnitude = std::fabs(q);
+  if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
+  const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
+  const Sign above = side(q, up);  // t against m⁺
+  if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
+  if (above != Sign::negative) return std::nullopt;  // t > m⁺ (or undecided): q is not RN(t)
+  const Sign below = side(down, q);  // t against m⁻
+  if (below == Sign::zero) return boundary_internal::even(q) ? q : down;
+  if (below != Sign::positive) return std::nullopt;
+  return q;
+}
+
+// round_at_midpoints for q, then for nextafter(q, +max), then for nextafter(q, −max): RN(t) when q is t's
+// rounding or one of its neighbours.
+template <class Side>
+[[nodiscard]] inline std::optional<double> round_near_midpoints(const Side& side, double q) noexcept {
+  if (const std::optional<double> r = round_at_midpoints(side, q)) return r;
+  if (const std::optional<double> r = round_at_midpoints(side, std::nextafter(q, bounds::largest_finite))) return r;
+  return round_at_midpoints(side, std::nextafter(q, -bounds::largest_finite));
+}
+
+// RN(t) from a candidate q a few doubles off: the decision of round_at_midpoints at q, moving to q's neighbour on
+// the side t lies on (t > m⁺: up; t < m⁻: down) at most `steps` times. Each answer is round_at_midpoints' at the
+// q it stops at, so certified as that one; the walk only chooses where to look.
+template <class Side>
+[[nodiscard]] inline std::optional<double> round_walking_to_midpoints(const Side& side, double q, int steps) noexcept {
+  for (int step = 0; step <= steps; ++step) {
+    const double magnitude = std::fabs(q);
+    if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
+    const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
+    const Sign above = side(q, up);
+    if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
+    if (above == Sign::positive) {
+      q = up;
+      continue;
+    }
+    if (above != Sign::negative) return std::nullopt;
+    const Sign below = side(down, q);
+    if (below == Sign::zero) return boundary_internal::even(q) ? q : down;
+    if (below == Sign::negative) {
+      q = down;
+      continue;
+    }
+    if (below != Sign::positive) return std::nullopt;
+    return q;
+  }
+  return std::nullopt;
+}
+
 // RN(num/den), ties to even, for the candidate q; nothing when the signs do not decide (see above).
 template <std::size_t A, std::size_t B>
 [[nodiscard]] inline std::optional<double> round_quotient_at_boundaries(const Expansion<A>& num,
                                                                          const Expansion<B>& den, int den_sign,
                                                                          double q) noexcept {
-  using boundary_internal::side_of_midpoint;
-  const double magnitude = std::fabs(q);
-  if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
-  const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
-  const Sign above = side_of_midpoint(num, den, den_sign, q, up);  // t against m⁺
-  if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
-  if (above != Sign::negative) return std::nullopt;  // t > m⁺ (or undecided): q is not RN(t)
-  const Sign below = side_of_midpoint(num, den, den_sign, down, q);  // t against m⁻
-  if (below == Sign::zero) return boundary_internal::even(q) ? q : down;
-  if (below != Sign::positive) return std::nullopt;
-  return q;
+  return round_at_midpoints(
+      [&](double x, double y) { return boundary_internal::side_of_midpoint(num, den, den_sign, x, y); }, q);
 }
 
 // RN(num/den) from the candidate q or, when q is one ulp off (a stage's enclosure rounded to t's neighbour: a t
@@ -92,11 +139,8 @@ template <std::size_t A, std::size_t B>
 template <std::size_t A, std::size_t B>
 [[nodiscard]] inline std::optional<double> round_quotient_near(const Expansion<A>& num, const Expansion<B>& den,
                                                                 int den_sign, double q) noexcept {
-  if (const std::optional<double> r = round_quotient_at_boundaries(num, den, den_sign, q)) return r;
-  if (const std::optional<double> r =
-          round_quotient_at_boundaries(num, den, den_sign, std::nextafter(q, bounds::largest_finite)))
-    return r;
-  return round_quotient_at_boundaries(num, den, den_sign, std::nextafter(q, -bounds::largest_finite));
+  return round_near_midpoints(
+      [&](double x, double y) { return boundary_internal::side_of_midpoint(num, den, den_sign, x, y); }, q);
 }
 
 }  // namespace raykernel::detail

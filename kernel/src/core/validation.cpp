@@ -4,6 +4,7 @@
 #include "core/fp_environment.hpp"
 
 #include <raykernel/occlusion.hpp>
+#include <raykernel/sphere.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <bit>
@@ -91,6 +92,23 @@ std::optional<std::string> validate(const Ray& ray, const Triangle& triangle) {
     if (auto reason = detail::non_finite_reason("triangle vertex a", triangle.a)) return reason;
     if (auto reason = detail::non_finite_reason("triangle vertex b", triangle.b)) return reason;
     if (auto reason = detail::non_finite_reason("triangle vertex c", triangle.c)) return reason;
+    return std::nullopt;
+  });
+}
+
+// Every non-finite component first, in the order of the query's text (docs/contract.md §10: o, d, c, r), then
+// the zero direction, then a radius that is not positive (0, −0 and negative values, subnormals included).
+std::optional<std::string> validate(const Ray& ray, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&]() -> std::optional<std::string> {
+    if (auto reason = detail::non_finite_reason("ray origin", ray.origin)) return reason;
+    if (auto reason = detail::non_finite_reason("ray direction", ray.direction)) return reason;
+    if (auto reason = detail::non_finite_reason("sphere center", sphere.center)) return reason;
+    if (!detail::is_finite(sphere.radius)) {
+      const std::uint64_t bits = std::bit_cast<std::uint64_t>(sphere.radius);
+      return std::string("sphere radius is ") + ((bits << 12) != 0 ? "NaN" : ((bits >> 63) == 0 ? "+inf" : "-inf"));
+    }
+    if (detail::is_zero(ray.direction)) return std::string("ray direction is the zero vector");
+    if (!detail::is_positive(sphere.radius)) return std::string("sphere radius is not positive");
     return std::nullopt;
   });
 }

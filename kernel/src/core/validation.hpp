@@ -7,6 +7,7 @@
 
 #include <raykernel/interval.hpp>
 #include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
 
 #include <bit>
 #include <cstdint>
@@ -33,6 +34,15 @@ namespace raykernel::detail {
 // §6).
 [[nodiscard]] inline bool is_valid(const Triangle& t) noexcept {
   return is_finite(t.a) & is_finite(t.b) & is_finite(t.c);
+}
+
+// From the bits: positive and not zero (a positive subnormal counts; −0 does not).
+[[nodiscard]] inline bool is_positive(double x) noexcept {
+  return (std::bit_cast<std::uint64_t>(x) >> 63) == 0 && !is_zero(x);
+}
+// A sphere is valid when its centre is finite and its radius finite and positive (docs/contract.md §10).
+[[nodiscard]] inline bool is_valid(const Sphere& s) noexcept {
+  return is_finite(s.center) & is_finite(s.radius) & is_positive(s.radius);
 }
 
 // A ray's interval (docs/contract.md §8): 0 ≤ t_min ≤ t_max ≤ +inf, t_min finite, no NaN; −0 is 0. From the bits:

@@ -1,0 +1,105 @@
+// raykernel/sphere.hpp: exact ray–sphere intersection (docs/contract.md §10), with correctly rounded roots.
+//
+// For a ray (origin o, direction d) and a sphere (centre c, radius r), every answer is exact for the doubles
+// given. Over the reals, with f = o − c:
+//
+//     A = d·d,   B = d·f,   C = f·f − r²,   D = B² − A·C   (a quarter of the discriminant),
+//
+// the origin is inside (C < 0), on the surface (C = 0) or outside (C > 0); the line misses (D < 0), touches
+// (D = 0: one root t0 = −B/A) or crosses (D > 0: t1 = (−B − √D)/A < t2 = (−B + √D)/A). Each root is the exact,
+// generally irrational value rounded to the nearest double, ties to even (an exact zero is +0; a nonzero root
+// that rounds to zero keeps its sign; overflow gives ±inf). The exact roots are U ∓ √V with the rationals
+// U = −B/A and V = D/A².
+//
+// `intersect` answers through a certified cascade (exact floating-point expansions for the signs of C and D
+// and for the sides of each root against its rounding boundaries, exact rationals last); `intersect_exact`
+// uses exact rationals and MPFR only (the reference); `intersect_naive` is the textbook quadratic formula in
+// plain doubles (the baseline, without guarantees); `relation` decides the origin and the relation without
+// rounding anything.
+//
+// This header needs neither CGAL nor GMP.
+#pragma once
+
+#include <raykernel/core.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace raykernel {
+
+// The sphere with centre `center` and radius `radius` (> 0, finite): a closed surface (docs/contract.md §10).
+struct Sphere {
+  Vec3 center;
+  double radius;
+};
+
+// Where the ray's origin lies: the sign of C = |o − c|² − r².
+enum class SphereOrigin : std::uint8_t {
+  inside,      // C < 0
+  on_surface,  // C = 0
+  outside,     // C > 0
+};
+
+// How the ray's line meets the sphere: the sign of D = B² − A·C.
+enum class SphereRelation : std::uint8_t {
+  miss,     // D < 0: no real root
+  tangent,  // D = 0: one root t0 = −B/A
+  cross,    // D > 0: two roots t1 < t2
+};
+
+// The relation-only answer: no root, no rounding.
+struct SphereClassification {
+  SphereOrigin origin;
+  SphereRelation relation;
+};
+
+struct SphereIntersection {
+  SphereOrigin origin;
+  SphereRelation relation;
+  double t1;  // RN(t1) for cross, RN(t0) for tangent; NaN for miss
+  double t2;  // RN(t2) for cross, RN(t0) for tangent; NaN for miss
+};
+
+// The exact roots U ∓ √V (docs/contract.md §10): U = −B/A, V = D/A² (0 for tangent); absent for miss.
+struct ExactSphereIntersection {
+  SphereOrigin origin;
+  SphereRelation relation;
+  std::optional<Rational> u;
+  std::optional<Rational> v;
+};
+
+// The reason `ray`/`sphere` are invalid input (a NaN or infinite component, a zero direction, a radius that
+// is not positive), or nothing.
+[[nodiscard]] std::optional<std::string> validate(const Ray& ray, const Sphere& sphere);
+
+// The certified answer of docs/contract.md §10. Thread-safe; answers in the default floating-point
+// environment whatever the caller's. Throws invalid_input.
+[[nodiscard]] SphereIntersection intersect(const Ray& ray, const Sphere& sphere);
+
+// The origin's location and the line's relation alone (certified, nothing rounded).
+[[nodiscard]] SphereClassification relation(const Ray& ray, const Sphere& sphere);
+
+// The reference: exact rationals for A, B, C, D, each root rounded from an enclosure MPFR narrows until
+// both ends round alike (a rational root, √V rational, is rounded directly). Throws invalid_input.
+[[nodiscard]] SphereIntersection intersect_exact(const Ray& ray, const Sphere& sphere);
+[[nodiscard]] ExactSphereIntersection intersect_exact_rational(const Ray& ray, const Sphere& sphere);
+
+// The textbook formula in plain doubles (h = d·f, disc = h² − a·c, t = (−h ∓ √disc)/a), in the caller's
+// environment: the baseline users compare, without guarantees, never throws (NaN in, NaN out).
+[[nodiscard]] SphereIntersection intersect_naive(const Ray& ray, const Sphere& sphere) noexcept;
+
+// `intersect` plus the stages that decided: the relation (the signs of C and D), and the roots (the latest
+// stage any root needed; the relation's stage for miss).
+struct TracedSphereIntersection {
+  SphereIntersection intersection;
+  Stage relation_stage;
+  Stage rounding_stage;
+};
+[[nodiscard]] TracedSphereIntersection intersect_traced(const Ray& ray, const Sphere& sphere);
+
+[[nodiscard]] std::string_view to_string(SphereOrigin origin) noexcept;      // "inside", "on-surface", "outside"
+[[nodiscard]] std::string_view to_string(SphereRelation relation) noexcept;  // "miss", "tangent", "cross"
+
+}  // namespace raykernel

@@ -1,0 +1,118 @@
+// The certified ray–sphere cascade. Each answer comes from the cheapest stage that decides it:
+//   - the relation: the signs of C and D read from their exact expansions (ray_sphere_stages.hpp), or exact
+//     rationals when a product was not exact or a sign could not be read;
+//   - each root: a candidate from the expansions' rounded values (the stable form: the root of larger magnitude
+//     from −B ∓ √D, the other as C over it), decided at its rounding boundaries (core/quotient_boundary.hpp's
+//     round_walking_to_midpoints on the root's side, ray_sphere_stages.hpp); a rational root (C = 0: 0 and −2B/A; the
+//     tangent root −B/A) as a quotient of expansions (round_quotient_near); otherwise exact rationals and MPFR.
+// Every stage's answer is exact: there is no error bound to check, only the builder's exactness and the signs.
+#include "sphere/ray_sphere_cascade.hpp"
+
+#include "core/quotient_boundary.hpp"
+#include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_stages.hpp"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace raykernel::detail {
+namespace {
+
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+// How many doubles a root's candidate may be off before the exact stage rounds it (the candidate's few roundings
+// leave it within a few ulps unless a product underflows).
+constexpr int max_walk = 8;
+
+// The expansion's value rounded (the components summed from the smallest: close to its rounding; a candidate
+// only, never a decision).
+template <std::size_t N>
+double approximate(const Expansion<N>& e) noexcept {
+  double s = 0;
+  for (std::size_t i = 0; i < e.size; ++i) s += e.component[i];
+  return s;
+}
+
+// RN(num/den) for num = scale·B·(−1) and den = A > 0, from the candidate num ⊘ den; nothing when undecided.
+std::optional<double> round_b_over_a(const SphereExpansions& s, double scale) noexcept {
+  ExpansionBuilder builder;
+  Expansion<24> num;
+  builder.scale(s.b, -scale, num);
+  builder.check_finite(num);
+  if (!builder.exact() || num.size > 16) return std::nullopt;  // the quotient rounding's valid range
+  Expansion<16> short_num;
+  for (std::size_t i = 0; i < num.size; ++i) short_num.component[i] = num.component[i];
+  short_num.size = num.size;
+  const double candidate = approximate(num) / approximate(s.a);
+  if (!std::isfinite(candidate)) return std::nullopt;
+  return round_quotient_near(short_num, s.a, 1, candidate);
+}
+
+// RN of the root (−1: t1, +1: t2) for D > 0 and C ≠ 0, from the candidate; nothing when undecided.
+std::optional<double> round_irrational_candidate(const SphereExpansions& s, int root, double candidate) noexcept {
+  if (!std::isfinite(candidate)) return std::nullopt;
+  return round_walking_to_midpoints([&](double x, double y) { return sphere_root_side(s, root, x, y); }, candidate,
+                                    max_walk);
+}
+
+struct Roots {
+  double t1, t2;
+};
+
+// Both roots from the expansion stage, or nothing (then the exact stage rounds them).
+std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClassification& c) noexcept {
+  if (c.relation == SphereRelation::tangent) {
+    if (c.origin == SphereOrigin::on_surface) return Roots{0.0, 0.0};  // C = 0 and D = B² = 0: t0 = 0 exactly
+    const std::optional<double> t0 = round_b_over_a(s, 1.0);
+    if (!t0) return std::nullopt;
+    return Roots{*t0, *t0};
+  }
+  const Sign b_sign = s.b.sign();
+  if (!is_certain(b_sign)) return std::nullopt;
+  if (c.origin == SphereOrigin::on_surface) {  // roots 0 and −2B/A (B ≠ 0, as D = B² > 0)
+    const std::optional<double> other = round_b_over_a(s, 2.0);
+    if (!other) return std::nullopt;
+    return b_sign == Sign::negative ? Roots{0.0, *other} : Roots{*other, 0.0};
+  }
+  // The root of larger magnitude is (−B − sign(B)·√D)/A, the other C/(−B − sign(B)·√D): no cancellation.
+  const double a = approximate(s.a), b = approximate(s.b), cc = approximate(s.c), d = approximate(s.d);
+  const double w = b >= 0 ? -(b + std::sqrt(d)) : -b + std::sqrt(d);
+  const double large = w / a, small = cc / w;
+  const double t1_candidate = b >= 0 ? large : small, t2_candidate = b >= 0 ? small : large;
+  const std::optional<double> t1 = round_irrational_candidate(s, -1, t1_candidate);
+  if (!t1) return std::nullopt;
+  const std::optional<double> t2 = round_irrational_candidate(s, +1, t2_candidate);
+  if (!t2) return std::nullopt;
+  return Roots{*t1, *t2};
+}
+
+std::optional<SphereClassification> expansion_classification(const SphereExpansions& s) noexcept {
+  if (!s.builder.exact()) return std::nullopt;
+  const Sign c = s.c.sign(), d = s.d.sign();
+  if (!is_certain(c) || !is_certain(d)) return std::nullopt;
+  return SphereClassification{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))};
+}
+
+}  // namespace
+
+TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
+  SphereExpansions s;
+  sphere_expansions(ray, sphere, s);
+  if (const std::optional<SphereClassification> c = expansion_classification(s)) return {*c, Stage::expansion};
+  return {exact::classify_sphere(ray, sphere), Stage::exact};
+}
+
+TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
+  SphereExpansions s;
+  sphere_expansions(ray, sphere, s);
+  const std::optional<SphereClassification> c = expansion_classification(s);
+  if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
+  if (c->relation == SphereRelation::miss)
+    return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
+  if (const std::optional<Roots> r = expansion_roots(s, *c))
+    return {{c->origin, c->relation, r->t1, r->t2}, Stage::expansion, Stage::expansion};
+  const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
+  return {{c->origin, c->relation, exact.t1, exact.t2}, Stage::expansion, Stage::exact};
+}
+
+}  // namespace raykernel::detail

@@ -1,0 +1,92 @@
+// The public ray–sphere entry points (raykernel/sphere.hpp), as the triangle's: the default floating-point
+// environment for the call (core/fp_environment.hpp), validation at the boundary (core/validation.hpp), then the
+// certified cascade (ray_sphere_cascade.hpp) or the exact reference (exact_sphere.hpp). The textbook formula
+// runs in the caller's environment, as the baseline it is.
+#include <raykernel/sphere.hpp>
+
+#include "core/fp_environment.hpp"
+#include "core/validation.hpp"
+#include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_cascade.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace raykernel {
+namespace {
+
+void throw_if_invalid(const Ray& ray, const Sphere& sphere) {
+  if (detail::is_valid(ray) & detail::is_valid(sphere)) [[likely]]
+    return;
+  throw invalid_input(*validate(ray, sphere));
+}
+
+}  // namespace
+
+TracedSphereIntersection intersect_traced(const Ray& ray, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, sphere);
+    return detail::sphere_intersection_cascade(ray, sphere);
+  });
+}
+
+SphereIntersection intersect(const Ray& ray, const Sphere& sphere) { return intersect_traced(ray, sphere).intersection; }
+
+SphereClassification relation(const Ray& ray, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, sphere);
+    return detail::sphere_relation_cascade(ray, sphere).classification;
+  });
+}
+
+SphereIntersection intersect_exact(const Ray& ray, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, sphere);
+    return detail::exact::intersect_sphere(ray, sphere);
+  });
+}
+
+ExactSphereIntersection intersect_exact_rational(const Ray& ray, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid(ray, sphere);
+    return detail::exact::intersect_sphere_rational(ray, sphere);
+  });
+}
+
+// The textbook quadratic ("Ray Tracing in One Weekend", with the half b): no guard against cancellation.
+SphereIntersection intersect_naive(const Ray& ray, const Sphere& sphere) noexcept {
+  const Vec3& o = ray.origin;
+  const Vec3& d = ray.direction;
+  const Vec3& c = sphere.center;
+  const double fx = o.x - c.x, fy = o.y - c.y, fz = o.z - c.z;
+  const double a = d.x * d.x + d.y * d.y + d.z * d.z;
+  const double h = d.x * fx + d.y * fy + d.z * fz;
+  const double cc = fx * fx + fy * fy + fz * fz - sphere.radius * sphere.radius;
+  const double disc = h * h - a * cc;
+  const SphereOrigin origin = cc < 0 ? SphereOrigin::inside : cc == 0 ? SphereOrigin::on_surface : SphereOrigin::outside;
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (disc < 0) return {origin, SphereRelation::miss, nan, nan};
+  if (disc == 0) return {origin, SphereRelation::tangent, -h / a, -h / a};
+  const double root = std::sqrt(disc);
+  return {origin, SphereRelation::cross, (-h - root) / a, (-h + root) / a};
+}
+
+std::string_view to_string(SphereOrigin origin) noexcept {
+  switch (origin) {
+    case SphereOrigin::inside: return "inside";
+    case SphereOrigin::on_surface: return "on-surface";
+    case SphereOrigin::outside: return "outside";
+  }
+  return "?";
+}
+
+std::string_view to_string(SphereRelation relation) noexcept {
+  switch (relation) {
+    case SphereRelation::miss: return "miss";
+    case SphereRelation::tangent: return "tangent";
+    case SphereRelation::cross: return "cross";
+  }
+  return "?";
+}
+
+}  // namespace raykernel
