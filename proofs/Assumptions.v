@@ -690,3 +690,11 @@ Definition boundary_results :=
    QuotientBoundary.round_quotient_at_boundaries_between).
 Goal True. idtac "@@ rn_between_midpoints rn_at_midpoint_above rn_at_midpoint_below boundary_decision_correct b754_canonical side_of_midpoint_sound round_quotient_at_boundaries_sound round_quotient_near_sound round_quotient_at_boundaries_tie_even round_quotient_at_boundaries_tie_odd round_quotient_at_boundaries_between". Abort.
 Print Assumptions boundary_results.
+(** sphere/: the side of a ray–sphere root against a rounding boundary (ray_sphere_formula.hpp, root_side_of):
+    sign(t_k − m) from the signs of q(m) and of the slope A·m + B, for every real m, A > 0, D ≥ 0 *)
+From Raykernel Require SphereRoots.
+Definition main_results_17 :=
+  (@SphereRoots.root_side_of_smaller_correct,
+   @SphereRoots.root_side_of_larger_correct).
+Goal True. idtac "@@ root_side_of_smaller_correct root_side_of_larger_correct". Abort.
+Print Assumptions main_results_17.

@@ -6,6 +6,8 @@
 
 #include <raykernel/testkit/plane_reference_check.hpp>
 
+#include "construction.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -14,40 +16,7 @@
 namespace raykernel::testkit {
 namespace {
 
-struct IVec {
-  std::int64_t x, y, z;
-};
-IVec operator+(IVec a, IVec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-IVec operator-(IVec a, IVec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-IVec operator*(std::int64_t s, IVec a) { return {s * a.x, s * a.y, s * a.z}; }
-IVec cross(IVec a, IVec b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-bool is_zero(IVec a) { return a.x == 0 && a.y == 0 && a.z == 0; }
-
-class Draw {
- public:
-  explicit Draw(const BitSource& bits) : bits_(bits) {}
-  std::uint64_t word() { return bits_(); }
-  bool coin() { return (word() & 1) != 0; }
-  // Uniform in [lo, hi], hi − lo < 2^62.
-  std::int64_t integer(std::int64_t lo, std::int64_t hi) {
-    return lo + static_cast<std::int64_t>(word() % static_cast<std::uint64_t>(hi - lo + 1));
-  }
-  int small(int lo, int hi) { return static_cast<int>(integer(lo, hi)); }
-  IVec ivec(std::int64_t limit) { return {integer(-limit, limit), integer(-limit, limit), integer(-limit, limit)}; }
-  // A multiple of 2^-53 uniform in [-1, 1).
-  double unit() {
-    return static_cast<double>(static_cast<std::int64_t>(word() >> 10) - (std::int64_t{1} << 53)) * 0x1p-53;
-  }
-  Vec3 unit_vector() { return {unit(), unit(), unit()}; }
-  double scaled(int emin, int emax) {
-    const double significand = 1.0 + static_cast<double>(word() >> 12) * 0x1p-52;
-    const double magnitude = std::ldexp(significand, small(emin, emax));
-    return coin() ? -magnitude : magnitude;
-  }
-
- private:
-  const BitSource& bits_;
-};
+using namespace construction;
 
 constexpr std::int64_t grid = std::int64_t{1} << 20;  // vertex and origin coordinates in [−2^20, 2^20]
 
@@ -120,12 +89,6 @@ TriangleQuery from_integers(const IQuery& q, int point_exponent, int direction_e
           {to_vec(q.a, point_exponent), to_vec(q.b, point_exponent), to_vec(q.c, point_exponent)}};
 }
 
-double nudge(double x, int k) {
-  for (; k > 0; --k) x = std::nextafter(x, HUGE_VAL);
-  for (; k < 0; ++k) x = std::nextafter(x, -HUGE_VAL);
-  return x;
-}
-double& component(Vec3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
 
 int nonzero_steps(Draw& draw) {
   const int k = draw.small(1, 4);

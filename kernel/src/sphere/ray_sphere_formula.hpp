@@ -43,6 +43,8 @@ template <class T, class Lift, class Difference>
 //   q(m) < 0: t1 < m < t2;
 //   q(m) > 0: m lies outside [t1, t2], below both when m < U (slope < 0), above both when m > U;
 //   q(m) = 0: m is t1 when m ≤ U, t2 when m ≥ U (both, the tangent root, when m = U).
+//   Certified by: proofs/sphere/SphereRoots.v, `root_side_of_smaller_correct` and `root_side_of_larger_correct`
+//   (for every real m, A > 0 and D ≥ 0; the Coq definition is this case analysis, line by line).
 [[nodiscard]] constexpr int root_side_of(int root, int sign_q, int sign_slope) noexcept {
   if (sign_q < 0) return root < 0 ? -1 : 1;
   if (sign_q > 0) return sign_slope < 0 ? 1 : -1;
