@@ -32,6 +32,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "rotate.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -42,22 +44,6 @@
 
 namespace raykernel::bench {
 namespace {
-
-constexpr int chunk = 256;  // queries per benchmark iteration
-
-template <class Item, class F>
-void rotate_through(benchmark::State& state, const std::vector<Item>& items, F&& f) {
-  std::size_t i = 0;
-  const std::size_t n = items.size();
-  for (auto _ : state) {
-    for (int k = 0; k < chunk; ++k) {
-      auto r = f(items[i]);
-      benchmark::DoNotOptimize(r);
-      if (++i == n) i = 0;
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * chunk);
-}
 
 // The fraction of the buffer's queries whose relation and whose t each stage of the cascade decided.
 void add_stage_counters(benchmark::State& state, const std::vector<testkit::Query>& queries) {

@@ -26,6 +26,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "rotate.hpp"
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -40,7 +42,6 @@ using testkit::TriangleQuery;
 using testkit::TriangleQueryKind;
 
 constexpr std::size_t l2_size = 4096;
-constexpr int chunk = 256;
 
 std::vector<TriangleQuery> generate(std::initializer_list<TriangleQueryKind> kinds, std::uint64_t seed) {
   testkit::SplitMix64 rng(seed);
@@ -85,20 +86,6 @@ const std::vector<TriangleQuery>& degenerate_workload() {
     return q;
   }();
   return w;
-}
-
-template <class F>
-void rotate_through(benchmark::State& state, const std::vector<TriangleQuery>& queries, F&& f) {
-  std::size_t i = 0;
-  const std::size_t n = queries.size();
-  for (auto _ : state) {
-    for (int k = 0; k < chunk; ++k) {
-      auto r = f(queries[i]);
-      benchmark::DoNotOptimize(r);
-      if (++i == n) i = 0;
-    }
-  }
-  state.SetItemsProcessed(state.iterations() * chunk);
 }
 
 void add_stage_counters(benchmark::State& state, const std::vector<TriangleQuery>& queries) {
