@@ -698,3 +698,11 @@ Definition main_results_17 :=
    @SphereRoots.root_side_of_larger_correct).
 Goal True. idtac "@@ root_side_of_smaller_correct root_side_of_larger_correct". Abort.
 Print Assumptions main_results_17.
+(** core/: the compression of an expansion (expansion.hpp, ExpansionBuilder::compress, which ray_sphere_stages.hpp
+    applies to A, B, C): Σh = Σe when h is finite, and h fits in e's capacity *)
+From Raykernel Require ExpansionCompress.
+Definition main_results_18 :=
+  (@ExpansionCompress.compress_gen_exact,
+   @ExpansionCompress.compress_length).
+Goal True. idtac "@@ compress_gen_exact compress_length". Abort.
+Print Assumptions main_results_18.

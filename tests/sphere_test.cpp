@@ -265,6 +265,35 @@ TEST(SphereQueries, KeepTheirPromises) {
   EXPECT_GT(ties, 300);  // most tie constructions have an odd chord (the rest give exact roots)
 }
 
+// Where the expansion stage is exact (README, "Ray–sphere"): every query of the kinds whose inputs have exponents
+// in [−150, 150] and no subnormal component is decided without GMP, relation and roots; a near-tangent query
+// reaches GMP only when its nudge made a zero component subnormal (a product below 2^-969). The kinds scaled out
+// of range (tiny, huge, and the directions scaled by 2^±400..600) may reach it.
+TEST(SphereStages, InRangeKindsNeverReachTheExactStage) {
+  testkit::SplitMix64 rng(7);
+  const testkit::BitSource source = [&rng] { return rng(); };
+  auto has_subnormal = [](const testkit::SphereQuery& q) {
+    for (double x : {q.ray.origin.x, q.ray.origin.y, q.ray.origin.z, q.ray.direction.x, q.ray.direction.y,
+                     q.ray.direction.z, q.sphere.center.x, q.sphere.center.y, q.sphere.center.z, q.sphere.radius})
+      if (x != 0 && std::fabs(x) < 0x1p-1022) return true;
+    return false;
+  };
+  using K = testkit::SphereQueryKind;
+  std::size_t with_roots = 0;
+  for (K kind : {K::random, K::tangent, K::near_tangent, K::on_surface, K::near_surface, K::rounding_tie,
+                 K::far_cancel, K::wide_exponents}) {
+    for (int i = 0; i < 1000; ++i) {
+      const testkit::SphereQuery q = testkit::make_sphere_query(kind, source);
+      const TracedSphereIntersection t = intersect_traced(q.ray, q.sphere);
+      with_roots += t.intersection.relation != SphereRelation::miss;
+      if (kind == K::near_tangent && has_subnormal(q)) continue;
+      EXPECT_NE(t.relation_stage, Stage::exact) << testkit::to_string(kind) << ": " << testkit::sphere_line(q);
+      EXPECT_NE(t.rounding_stage, Stage::exact) << testkit::to_string(kind) << ": " << testkit::sphere_line(q);
+    }
+  }
+  EXPECT_GT(with_roots, 4000u);
+}
+
 // The decision of root_side_of against the roots' order, over exact small cases: for the roots 1 and 3
 // (A = 1, B = −2, C = 3) and the tangent root 2 (A = 1, B = −2, C = 4), every m in {0, 1, 2, 3, 4} (exactly on a
 // root, between, outside).

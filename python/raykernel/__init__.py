@@ -1,4 +1,4 @@
-"""raykernel: exact ray–plane, ray–triangle and ray–mesh intersection for binary64 inputs, from Python.
+"""raykernel: exact ray–plane, ray–triangle, ray–sphere and ray–mesh intersection for binary64 inputs, from Python.
 
 Every answer is exact for the doubles given (docs/contract.md §1): the relation comes from the exact signs
 of ``den = d·n`` and ``num = (p − o)·n``, and ``t`` is the exact ``num/den`` rounded to the nearest double,
@@ -9,10 +9,15 @@ ties to even. The C++ kernel does the work; this package converts values and arr
     Intersection(relation=<Relation.HIT: 'hit'>, t=0.1)
     >>> rk.intersect_exact_rational(((0, 0, 0), (10, 0, 0)), ((1, 0, 0), (1, 0, 0))).exact_t
     Fraction(1, 10)
+    >>> x = rk.intersect(((0, 0, 0), (1, 0, 0)), rk.Sphere((5, 0, 0), 1))   # roots 5 ∓ 1
+    >>> x.origin, x.relation, x.t1, x.t2
+    (<SphereOrigin.OUTSIDE: 'outside'>, <SphereRelation.CROSS: 'cross'>, 4.0, 6.0)
 
-Scalar functions take a ray as ``(origin, direction)`` and a plane as ``(point, normal)`` or a triangle as
-``(a, b, c)`` (docs/contract.md §6; keyword ``rule="owned"|"closed"``), vectors as any sequence of three
-numbers: ``intersect`` (certified), ``relation`` (the relation alone), ``intersect_exact`` (rational
+Scalar functions take a ray as ``(origin, direction)`` and a plane as ``(point, normal)``, a triangle as
+``(a, b, c)`` (docs/contract.md §6; keyword ``rule="owned"|"closed"``) or a sphere as ``Sphere(center,
+radius)`` (§10: the origin inside, on the surface or outside, the line missing, tangent or crossing, and both
+roots correctly rounded; ``intersect_exact_rational`` gives them exactly as U ∓ √V), vectors as any sequence of
+three numbers: ``intersect`` (certified), ``relation`` (the relation alone), ``intersect_exact`` (rational
 reference), ``intersect_exact_rational`` (the exact values as Fractions), ``intersect_naive`` (the textbook
 formula / Möller–Trumbore, no guarantee), ``intersect_traced``, ``validate``; ``nearest_hit`` /
 ``nearest_hit_exact`` over a ``PlaneSet``, a list of planes or a ``Mesh`` (``load_mesh(path)``: OBJ, PLY, STL,
@@ -23,7 +28,8 @@ Vectorized functions take (n, 3) arrays of real numbers (integer or floating dty
 bool, str, object, datetime, structured and masked arrays raise ``TypeError``) and loop in C++ with the GIL
 released:
 ``intersect_batch`` / ``relation_batch(origins, directions, points, normals)``,
-``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)`` and
+``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)``,
+``intersect_sphere_batch(origins, directions, centers, radii)`` and
 ``nearest_hit_batch(origins, directions, scene)``, ``inside_batch(points, mesh)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
 the row: "query 17: ray direction is the zero vector".
 
@@ -36,6 +42,7 @@ from __future__ import annotations
 from ._types import (
     Barycentric,
     ExactIntersection,
+    ExactSphereIntersection,
     ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
@@ -50,8 +57,15 @@ from ._types import (
     Relation,
     RelationArrays,
     SpawnedOrigin,
+    Sphere,
+    SphereClassification,
+    SphereIntersection,
+    SphereIntersectionArrays,
+    SphereOrigin,
+    SphereRelation,
     Stage,
     TracedIntersection,
+    TracedSphereIntersection,
     TracedTriangleIntersection,
     Triangle,
     TriangleClassification,
@@ -78,6 +92,7 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     intersect_exact,
     intersect_exact_rational,
     intersect_naive,
+    intersect_sphere_batch,
     intersect_traced,
     intersect_triangle_batch,
     load_mesh,
@@ -102,6 +117,7 @@ __version__ = version()
 __all__ = [
     "Barycentric",
     "ExactIntersection",
+    "ExactSphereIntersection",
     "ExactTriangleIntersection",
     "INVALID_RELATION_CODE",
     "Intersection",
@@ -121,8 +137,15 @@ __all__ = [
     "Relation",
     "RelationArrays",
     "SpawnedOrigin",
+    "Sphere",
+    "SphereClassification",
+    "SphereIntersection",
+    "SphereIntersectionArrays",
+    "SphereOrigin",
+    "SphereRelation",
     "Stage",
     "TracedIntersection",
+    "TracedSphereIntersection",
     "TracedTriangleIntersection",
     "Triangle",
     "TriangleClassification",
@@ -142,6 +165,7 @@ __all__ = [
     "intersect_exact",
     "intersect_exact_rational",
     "intersect_naive",
+    "intersect_sphere_batch",
     "intersect_traced",
     "intersect_triangle_batch",
     "load_mesh",

@@ -9,6 +9,7 @@ import numpy.typing as npt
 
 from ._types import (
     ExactIntersection,
+    ExactSphereIntersection,
     ExactTriangleIntersection,
     Intersection,
     IntersectionArrays,
@@ -26,7 +27,13 @@ from ._types import (
     RelationArrays,
     SpawnedOrigin,
     RuleLike,
+    Sphere,
+    SphereClassification,
+    SphereIntersection,
+    SphereIntersectionArrays,
+    SphereLike,
     TracedIntersection,
+    TracedSphereIntersection,
     TracedTriangleIntersection,
     TriangleClassification,
     TriangleClassificationArrays,
@@ -48,9 +55,12 @@ class MeshFileError(ValueError): ...
 # numpy.ma.MaskedArray (its mask would be ignored) raise TypeError naming the argument and the dtype.
 ArrayLike3 = npt.ArrayLike
 
-# The scalar queries take a plane (point, normal) or a triangle (a, b, c) as `primitive`; the triangle options
-# (rule "owned" or "closed", t, barycentric) are keyword-only and for triangles only.
-def validate(ray: RayLike, primitive: Union[PlaneLike, TriangleLike]) -> Optional[str]: ...
+# The scalar queries take a plane (point, normal), a triangle (a, b, c) or a Sphere (only that type: a bare pair is
+# a plane) as `primitive`; the triangle options (rule "owned" or "closed", t, barycentric) are keyword-only and for
+# triangles only. The Sphere overloads come first: a Sphere is also a pair.
+def validate(ray: RayLike, primitive: Union[SphereLike, PlaneLike, TriangleLike]) -> Optional[str]: ...
+@overload
+def intersect(ray: RayLike, primitive: SphereLike) -> SphereIntersection: ...
 @overload
 def intersect(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
 @overload
@@ -58,9 +68,13 @@ def intersect(
     ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
 ) -> TriangleIntersection: ...
 @overload
+def relation(ray: RayLike, primitive: SphereLike) -> SphereClassification: ...
+@overload
 def relation(ray: RayLike, primitive: PlaneLike) -> Relation: ...
 @overload
 def relation(ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None) -> TriangleClassification: ...
+@overload
+def intersect_exact(ray: RayLike, primitive: SphereLike) -> SphereIntersection: ...
 @overload
 def intersect_exact(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
 @overload
@@ -68,15 +82,21 @@ def intersect_exact(
     ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None, t: bool = True, barycentric: bool = True
 ) -> TriangleIntersection: ...
 @overload
+def intersect_exact_rational(ray: RayLike, primitive: SphereLike) -> ExactSphereIntersection: ...
+@overload
 def intersect_exact_rational(ray: RayLike, primitive: PlaneLike) -> ExactIntersection: ...
 @overload
 def intersect_exact_rational(
     ray: RayLike, primitive: TriangleLike, *, rule: Optional[RuleLike] = None
 ) -> ExactTriangleIntersection: ...
 @overload
+def intersect_naive(ray: RayLike, primitive: SphereLike) -> SphereIntersection: ...
+@overload
 def intersect_naive(ray: RayLike, primitive: PlaneLike) -> Intersection: ...
 @overload
 def intersect_naive(ray: RayLike, primitive: TriangleLike) -> TriangleIntersection: ...
+@overload
+def intersect_traced(ray: RayLike, primitive: SphereLike) -> TracedSphereIntersection: ...
 @overload
 def intersect_traced(ray: RayLike, primitive: PlaneLike) -> TracedIntersection: ...
 @overload
@@ -206,6 +226,17 @@ def relation_triangle_batch(
     errors: str = "raise",
     threads: Optional[int] = None,
 ) -> TriangleClassificationArrays: ...
+# centers (n, 3) with radii (n,), or centers one 3-vector with radii one number (one sphere for every ray).
+def intersect_sphere_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    centers: ArrayLike3,
+    radii: Union[npt.ArrayLike, float],
+    *,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+) -> SphereIntersectionArrays: ...
 @overload
 def nearest_hit_batch(
     origins: ArrayLike3,
@@ -252,6 +283,13 @@ class testkit:  # the submodule raykernel._raykernel.testkit
     def make_triangle_query_arrays(
         kinds: Sequence[str], count: int, seed: int
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
+    SPHERE_QUERY_KINDS: Tuple[str, ...]
+    @staticmethod
+    def make_sphere_query(kind: str, words: Words) -> Tuple[Ray, Sphere]: ...
+    @staticmethod
+    def make_sphere_query_arrays(
+        kinds: Sequence[str], count: int, seed: int
+    ) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]: ...
     @staticmethod
     def check_triangle_against_reference(
         ray: RayLike,

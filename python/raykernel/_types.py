@@ -1,9 +1,9 @@
 """The value types of raykernel's Python API: plain NamedTuples and str-valued enums.
 
 Inputs need not be these types: every function takes a vector as any sequence of three numbers, a ray as
-any ``(origin, direction)`` pair and a plane as any ``(point, normal)`` pair. Results are these types, so
-they unpack like tuples, compare by value, and print readably. The compiled extension builds its results
-from the classes defined here.
+any ``(origin, direction)`` pair and a plane as any ``(point, normal)`` pair; a sphere is a ``Sphere``
+(which tells it from a plane). Results are these types, so they unpack like tuples, compare by value, and
+print readably. The compiled extension builds its results from the classes defined here.
 """
 
 from __future__ import annotations
@@ -49,6 +49,16 @@ class Triangle(NamedTuple):
     a: Vec3
     b: Vec3
     c: Vec3
+
+
+class Sphere(NamedTuple):
+    """The sphere {x : |x − center| = radius} (docs/contract.md §10), a closed surface; radius > 0, finite.
+
+    Only this type is taken as a sphere by ``intersect(ray, primitive)`` and its sisters: a bare pair
+    ``(point, normal)`` is a plane."""
+
+    center: Vec3
+    radius: float
 
 
 class Relation(_StrEnum):
@@ -260,6 +270,92 @@ class ExactTriangleIntersection(NamedTuple):
     exact_barycentric: Optional[Tuple[Fraction, Fraction, Fraction]]
 
 
+# Ray–sphere (docs/contract.md §10) ----------------------------------------------------------------------------
+
+
+class SphereOrigin(_StrEnum):
+    """Where the ray's origin lies against the sphere: the sign of C = |o − c|² − r² (docs/contract.md §10).
+    Members are strings: ``SphereOrigin.ON_SURFACE == "on-surface"``. ``code`` is the value of
+    ``intersect_sphere_batch``'s uint8 ``origin`` array (the C++ enum's)."""
+
+    INSIDE = "inside"  # C < 0
+    ON_SURFACE = "on-surface"  # C = 0: a root is exactly 0
+    OUTSIDE = "outside"  # C > 0
+
+    @property
+    def code(self) -> int:
+        return _SPHERE_ORIGIN_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "SphereOrigin":
+        return _SPHERE_ORIGINS_BY_CODE[int(code)]
+
+
+class SphereRelation(_StrEnum):
+    """How the ray's line meets the sphere: the sign of D = B² − A·C (docs/contract.md §10). Members are strings:
+    ``SphereRelation.CROSS == "cross"``. ``code`` is the value of ``intersect_sphere_batch``'s uint8
+    ``relation`` array (the C++ enum's)."""
+
+    MISS = "miss"  # D < 0: no real root
+    TANGENT = "tangent"  # D = 0: one root t0 = −B/A
+    CROSS = "cross"  # D > 0: two roots t1 < t2
+
+    @property
+    def code(self) -> int:
+        return _SPHERE_RELATION_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "SphereRelation":
+        return _SPHERE_RELATIONS_BY_CODE[int(code)]
+
+
+_SPHERE_ORIGINS_BY_CODE = tuple(SphereOrigin)
+_SPHERE_ORIGIN_CODES = {r: k for k, r in enumerate(_SPHERE_ORIGINS_BY_CODE)}
+_SPHERE_RELATIONS_BY_CODE = tuple(SphereRelation)
+_SPHERE_RELATION_CODES = {r: k for k, r in enumerate(_SPHERE_RELATIONS_BY_CODE)}
+
+
+class SphereIntersection(NamedTuple):
+    """The answer to one ray–sphere query (docs/contract.md §10): the origin's location, the line's relation, and
+    the roots U ∓ √V each rounded to the nearest double, ties to even: ``t1 < t2`` for CROSS, ``t1 == t2`` the
+    root t0 for TANGENT, both NaN for MISS. Roots may be negative (behind the origin)."""
+
+    origin: SphereOrigin
+    relation: SphereRelation
+    t1: float
+    t2: float
+
+
+class SphereClassification(NamedTuple):
+    """The origin's location and the line's relation alone (``relation(ray, sphere)``): nothing rounded."""
+
+    origin: SphereOrigin
+    relation: SphereRelation
+
+
+class TracedSphereIntersection(NamedTuple):
+    """``SphereIntersection`` plus the stages that decided the relation (the signs of C and D) and the roots
+    (the latest stage any root needed; the relation's stage for MISS)."""
+
+    origin: SphereOrigin
+    relation: SphereRelation
+    t1: float
+    t2: float
+    relation_stage: Stage
+    rounding_stage: Stage
+
+
+class ExactSphereIntersection(NamedTuple):
+    """The exact roots of ``intersect_exact_rational(ray, sphere)``: U ∓ √V with the rationals U = −B/A and
+    V = D/A² (V = 0 for TANGENT), where f = o − c, A = d·d, B = d·f, C = f·f − r², D = B² − A·C; ``u`` and ``v``
+    are None for MISS."""
+
+    origin: SphereOrigin
+    relation: SphereRelation
+    u: Optional[Fraction]
+    v: Optional[Fraction]
+
+
 class MeshHit(NamedTuple):
     """The nearest hit of a ray on a mesh (docs/contract.md §7): the index of the triangle, and its ``t``,
     ``location`` and ``barycentric`` coordinates as ``intersect(ray, triangle)`` gives them."""
@@ -393,8 +489,30 @@ class TriangleClassificationArrays(NamedTuple):
         return _names(_TRIANGLE_LOCATIONS_BY_CODE, self.location)
 
 
+class SphereIntersectionArrays(NamedTuple):
+    """The answers of ``intersect_sphere_batch``, one row per query: ``origin`` (uint8 ``SphereOrigin.code``)
+    and ``relation`` (uint8 ``SphereRelation.code``), ``INVALID_RELATION_CODE`` (255) where the query is
+    invalid; ``t1``, ``t2`` (float64): the rounded roots as in ``SphereIntersection``, NaN for MISS and for
+    invalid rows; ``valid`` (bool)."""
+
+    origin: np.ndarray
+    relation: np.ndarray
+    t1: np.ndarray
+    t2: np.ndarray
+    valid: np.ndarray
+
+    def origins(self) -> np.ndarray:
+        """The origins' locations as strings ("inside", "on-surface", "outside"; "invalid")."""
+        return _names(_SPHERE_ORIGINS_BY_CODE, self.origin)
+
+    def relations(self) -> np.ndarray:
+        """The relations as strings ("miss", "tangent", "cross"; "invalid")."""
+        return _names(_SPHERE_RELATIONS_BY_CODE, self.relation)
+
+
 Vec3Like = Union[Vec3, Tuple[float, float, float], "np.ndarray", "list[float]"]
 RayLike = Union[Ray, Tuple[Vec3Like, Vec3Like]]
 PlaneLike = Union[Plane, Tuple[Vec3Like, Vec3Like]]
 TriangleLike = Union[Triangle, Tuple[Vec3Like, Vec3Like, Vec3Like]]
+SphereLike = Sphere  # a bare (center, radius) pair is not taken for a sphere where a plane is also possible
 RuleLike = Union[TriangleRule, str]

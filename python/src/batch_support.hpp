@@ -1,6 +1,7 @@
 // What every vectorized binding shares: the choice of path, the error policy, threads over a C++ loop, and
-// the walk through arrays that must be gathered into columns. The loops themselves are in bind_batch.cpp
-// (planes), bind_triangle.cpp and bind_mesh.cpp; none of them runs Python code, so they run with the GIL
+// the walk through arrays that must be gathered into columns, the rows answered one by one through a scalar
+// entry point, and the message naming an invalid row. The loops themselves are in bind_batch.cpp (planes),
+// bind_triangle.cpp, bind_sphere.cpp and bind_mesh.cpp; none of them runs Python code, so they run with the GIL
 // released.
 #pragma once
 
@@ -81,6 +82,41 @@ void in_chunks(std::size_t n, std::initializer_list<const ColumnsView*> views, W
   const auto it = std::find(valid.begin(), valid.end(), false);
   if (it == valid.end()) return std::nullopt;
   return static_cast<std::size_t>(it - valid.begin());
+}
+
+// The message of invalid row i: "query 17: REASON" (query i is ray i against primitive i), or "ray 17: REASON"
+// (every ray against one primitive).
+[[nodiscard]] inline std::string row_error(std::size_t i, bool one_primitive, const std::string& reason) {
+  return (one_primitive ? "ray " : "query ") + std::to_string(i) + ": " + reason;
+}
+
+// row_error for the first row whose valid[i] is false, if any; reason(i) is validate's answer for row i.
+template <class Reason>
+[[nodiscard]] std::optional<std::string> first_row_error(std::span<const bool> valid, bool one_primitive,
+                                                         Reason&& reason) {
+  const std::optional<std::size_t> i = first_invalid_row(valid);
+  if (!i) return std::nullopt;
+  return row_error(*i, one_primitive, reason(*i).value_or("invalid input"));
+}
+
+// Runs answer(i) for every row of [0, n) on up to `threads` threads (parallel_for), each row's valid[i] set
+// true first. Where answer(i) throws invalid_input — the certified and exact entry points validate as they
+// answer, so invalid input costs only where it occurs — valid[i] is set false and mark(i) gives the row its
+// invalid answer. (A path that answers invalid input too, the naive one, sets valid[i] itself.)
+template <class Answer, class Mark>
+void answer_rows(std::size_t n, unsigned threads, std::size_t grain, std::span<bool> valid, Answer&& answer,
+                 Mark&& mark) {
+  parallel_for(n, threads, grain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      valid[i] = true;
+      try {
+        answer(i);
+      } catch (const invalid_input&) {
+        valid[i] = false;
+        mark(i);
+      }
+    }
+  });
 }
 
 }  // namespace raykernel::python

@@ -101,8 +101,7 @@ struct PlaneQueries {
       }
     }
     if (first_invalid && policy == ErrorPolicy::raise)
-      throw invalid_input((one_plane ? "ray " : "query ") + std::to_string(first_invalid->first) + ": " +
-                          first_invalid->second);
+      throw invalid_input(row_error(first_invalid->first, one_plane, first_invalid->second));
   }
 };
 

@@ -10,6 +10,7 @@
 #include <raykernel/testkit/meshes.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
 #include <raykernel/testkit/plane_reference_check.hpp>
+#include <raykernel/testkit/sphere_queries.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/testkit/triangle_reference_check.hpp>
 
@@ -26,21 +27,44 @@ namespace {
 using testkit::PlaneTieKind;
 using testkit::QueryKind;
 
-QueryKind query_kind_from(const std::string& name) {
-  for (QueryKind k : testkit::all_query_kinds)
-    if (testkit::to_string(k) == name) return k;
+// The kind named `name` among `all` (one of testkit's all_*_kinds), or ValueError naming `what` ("query",
+// "triangle query") and listing the kinds.
+template <class Kind, std::size_t N>
+Kind kind_from(const std::array<Kind, N>& all, const std::string& name, std::string_view what) {
   std::string known;
-  for (QueryKind k : testkit::all_query_kinds) known += (known.empty() ? "" : ", ") + std::string(testkit::to_string(k));
-  throw py::value_error("unknown query kind '" + name + "' (kinds: " + known + ")");
-}
-
-testkit::TriangleQueryKind triangle_kind_from(const std::string& name) {
-  std::string known;
-  for (testkit::TriangleQueryKind k : testkit::all_triangle_query_kinds) {
+  for (Kind k : all) {
     if (testkit::to_string(k) == name) return k;
     known += (known.empty() ? "" : ", ") + std::string(testkit::to_string(k));
   }
-  throw py::value_error("unknown triangle query kind '" + name + "' (kinds: " + known + ")");
+  throw py::value_error("unknown " + std::string(what) + " kind '" + name + "' (kinds: " + known + ")");
+}
+
+// The kinds named `names` (at least one), for the *_arrays constructions.
+template <class Kind, std::size_t N>
+std::vector<Kind> kinds_from(const std::array<Kind, N>& all, const std::vector<std::string>& names,
+                             std::string_view what) {
+  if (names.empty()) throw py::value_error("kinds: give at least one query kind");
+  std::vector<Kind> chosen;
+  for (const std::string& name : names) chosen.push_back(kind_from(all, name, what));
+  return chosen;
+}
+
+// The names of `all`, as the tuple of kinds the submodule exports (QUERY_KINDS, ...).
+template <class Kind, std::size_t N>
+py::tuple kind_names(const std::array<Kind, N>& all) {
+  py::list names;
+  for (Kind k : all) names.append(std::string(testkit::to_string(k)));
+  return py::tuple(names);
+}
+
+QueryKind query_kind_from(const std::string& name) { return kind_from(testkit::all_query_kinds, name, "query"); }
+
+testkit::TriangleQueryKind triangle_kind_from(const std::string& name) {
+  return kind_from(testkit::all_triangle_query_kinds, name, "triangle query");
+}
+
+testkit::SphereQueryKind sphere_kind_from(const std::string& name) {
+  return kind_from(testkit::all_sphere_query_kinds, name, "sphere query");
 }
 
 // A TriangleIntersection from what Python code answered: (relation, location, owned, t, barycentric), each a
@@ -72,9 +96,7 @@ TriangleIntersection triangle_answer_from(py::handle relation, py::handle locati
 }
 
 PlaneTieKind plane_tie_kind_from(const std::string& name) {
-  for (PlaneTieKind k : testkit::all_plane_tie_kinds)
-    if (testkit::to_string(k) == name) return k;
-  throw py::value_error("unknown plane tie kind '" + name + "'");
+  return kind_from(testkit::all_plane_tie_kinds, name, "plane tie");
 }
 
 // The words a construction draws: from bytes (8 at a time, little-endian, then zero words: the fuzz decoder's
@@ -104,10 +126,47 @@ py::bytes to_bytes(const std::vector<std::uint8_t>& v) {
   return {reinterpret_cast<const char*>(v.data()), v.size()};
 }
 
-py::tuple kind_names() {
-  py::list names;
-  for (QueryKind k : testkit::all_query_kinds) names.append(std::string(testkit::to_string(k)));
-  return py::tuple(names);
+// `count` queries of kinds drawn from `chosen`, reproducibly from `seed` (SplitMix64: for each query the index of
+// its kind, then the words of its construction), as arrays: `make(kind, bits)` builds a query and `fields(query)`
+// gives its V vectors and S numbers. Returns a tuple of V (count, 3) float64 arrays, S (count,) float64 arrays,
+// and the int32 index into `chosen` of each query's kind.
+template <std::size_t V, std::size_t S, class Kind, class Make, class Fields>
+py::tuple query_arrays(const std::vector<Kind>& chosen, std::size_t count, std::uint64_t seed, Make&& make,
+                       Fields&& fields) {
+  std::array<py::array_t<double>, V> vectors;
+  std::array<py::array_t<double>, S> numbers;
+  std::array<double*, V> vectors_out{};
+  std::array<double*, S> numbers_out{};
+  for (std::size_t a = 0; a < V; ++a) {
+    vectors[a] = py::array_t<double>({count, std::size_t{3}});
+    vectors_out[a] = vectors[a].mutable_data();
+  }
+  for (std::size_t a = 0; a < S; ++a) {
+    numbers[a] = py::array_t<double>(static_cast<py::ssize_t>(count));
+    numbers_out[a] = numbers[a].mutable_data();
+  }
+  py::array_t<std::int32_t> kind_index(static_cast<py::ssize_t>(count));
+  std::int32_t* const kinds_out = kind_index.mutable_data();
+  {
+    py::gil_scoped_release release;
+    testkit::SplitMix64 rng(seed);
+    const testkit::BitSource bits = [&rng] { return rng(); };
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t which = static_cast<std::size_t>(rng() % chosen.size());
+      const auto [vs, xs] = fields(make(chosen[which], bits));
+      for (std::size_t a = 0; a < V; ++a) {
+        const Vec3& v = vs[a];
+        vectors_out[a][3 * i] = v.x, vectors_out[a][3 * i + 1] = v.y, vectors_out[a][3 * i + 2] = v.z;
+      }
+      for (std::size_t a = 0; a < S; ++a) numbers_out[a][i] = xs[a];
+      kinds_out[i] = static_cast<std::int32_t>(which);
+    }
+  }
+  py::list out;
+  for (auto& a : vectors) out.append(a);
+  for (auto& a : numbers) out.append(a);
+  out.append(kind_index);
+  return py::tuple(out);
 }
 
 }  // namespace
@@ -115,12 +174,8 @@ py::tuple kind_names() {
 void bind_testkit(py::module_& parent) {
   py::module_ m = parent.def_submodule("testkit", "raykernel::testkit: hard queries, reference check, fuzz decoder.");
 
-  m.attr("QUERY_KINDS") = kind_names();
-  {
-    py::list names;
-    for (PlaneTieKind k : testkit::all_plane_tie_kinds) names.append(std::string(testkit::to_string(k)));
-    m.attr("PLANE_TIE_KINDS") = py::tuple(names);
-  }
+  m.attr("QUERY_KINDS") = kind_names(testkit::all_query_kinds);
+  m.attr("PLANE_TIE_KINDS") = kind_names(testkit::all_plane_tie_kinds);
 
   m.def(
       "make_query",
@@ -137,29 +192,13 @@ smaller words give simpler queries (all zero words: the simplest of the kind).)d
   m.def(
       "make_query_arrays",
       [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
-        if (kinds.empty()) throw py::value_error("kinds: give at least one query kind");
-        std::vector<QueryKind> chosen;
-        for (const std::string& k : kinds) chosen.push_back(query_kind_from(k));
-        py::array_t<double> o({count, std::size_t{3}}), d({count, std::size_t{3}}), p({count, std::size_t{3}}),
-            n({count, std::size_t{3}});
-        py::array_t<std::int32_t> kind_index(static_cast<py::ssize_t>(count));
-        double* const out[4] = {o.mutable_data(), d.mutable_data(), p.mutable_data(), n.mutable_data()};
-        std::int32_t* const kinds_out = kind_index.mutable_data();
-        {
-          py::gil_scoped_release release;
-          testkit::SplitMix64 rng(seed);
-          const testkit::BitSource bits = [&rng] { return rng(); };
-          for (std::size_t i = 0; i < count; ++i) {
-            const std::size_t which = static_cast<std::size_t>(rng() % chosen.size());
-            const testkit::Query q = make_query(chosen[which], bits);
-            const Vec3* vs[4] = {&q.ray.origin, &q.ray.direction, &q.plane.point, &q.plane.normal};
-            for (int a = 0; a < 4; ++a) {
-              out[a][3 * i] = vs[a]->x, out[a][3 * i + 1] = vs[a]->y, out[a][3 * i + 2] = vs[a]->z;
-            }
-            kinds_out[i] = static_cast<std::int32_t>(which);
-          }
-        }
-        return py::make_tuple(o, d, p, n, kind_index);
+        return query_arrays<4, 0>(
+            kinds_from(testkit::all_query_kinds, kinds, "query"), count, seed,
+            [](QueryKind kind, const testkit::BitSource& bits) { return make_query(kind, bits); },
+            [](const testkit::Query& q) {
+              return std::pair{std::array{q.ray.origin, q.ray.direction, q.plane.point, q.plane.normal},
+                               std::array<double, 0>{}};
+            });
       },
       py::arg("kinds"), py::arg("count"), py::arg("seed"),
       R"doc(``count`` hard queries as arrays, reproducibly from ``seed`` (SplitMix64): ``(origins, directions,
@@ -212,12 +251,7 @@ kind. For benchmarks and for vectorized code.)doc");
 and ``t``, as a dict (expected, got, exact_num, exact_den, exact_t, relation_matches, t_compared, t_ulps,
 t_direction, passed, report). Raises ValueError for invalid input: it has no answer to compare with.)doc");
 
-  {
-    py::list names;
-    for (testkit::TriangleQueryKind k : testkit::all_triangle_query_kinds)
-      names.append(std::string(testkit::to_string(k)));
-    m.attr("TRIANGLE_QUERY_KINDS") = py::tuple(names);
-  }
+  m.attr("TRIANGLE_QUERY_KINDS") = kind_names(testkit::all_triangle_query_kinds);
 
   m.def(
       "make_triangle_query",
@@ -234,34 +268,48 @@ testkit::make_triangle_query with its words read as in make_query (bytes or a ca
   m.def(
       "make_triangle_query_arrays",
       [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
-        if (kinds.empty()) throw py::value_error("kinds: give at least one query kind");
-        std::vector<testkit::TriangleQueryKind> chosen;
-        for (const std::string& k : kinds) chosen.push_back(triangle_kind_from(k));
-        std::array<py::array_t<double>, 5> arrays;
-        for (auto& a : arrays) a = py::array_t<double>({count, std::size_t{3}});
-        std::array<double*, 5> out;
-        for (std::size_t k = 0; k < 5; ++k) out[k] = arrays[k].mutable_data();
-        py::array_t<std::int32_t> kind_index(static_cast<py::ssize_t>(count));
-        std::int32_t* const kinds_out = kind_index.mutable_data();
-        {
-          py::gil_scoped_release release;
-          testkit::SplitMix64 rng(seed);
-          const testkit::BitSource bits = [&rng] { return rng(); };
-          for (std::size_t i = 0; i < count; ++i) {
-            const std::size_t which = static_cast<std::size_t>(rng() % chosen.size());
-            const testkit::TriangleQuery q = make_triangle_query(chosen[which], bits);
-            const Vec3* vs[5] = {&q.ray.origin, &q.ray.direction, &q.triangle.a, &q.triangle.b, &q.triangle.c};
-            for (std::size_t a = 0; a < 5; ++a) {
-              out[a][3 * i] = vs[a]->x, out[a][3 * i + 1] = vs[a]->y, out[a][3 * i + 2] = vs[a]->z;
-            }
-            kinds_out[i] = static_cast<std::int32_t>(which);
-          }
-        }
-        return py::make_tuple(arrays[0], arrays[1], arrays[2], arrays[3], arrays[4], kind_index);
+        return query_arrays<5, 0>(
+            kinds_from(testkit::all_triangle_query_kinds, kinds, "triangle query"), count, seed,
+            [](testkit::TriangleQueryKind kind, const testkit::BitSource& bits) {
+              return make_triangle_query(kind, bits);
+            },
+            [](const testkit::TriangleQuery& q) {
+              return std::pair{std::array{q.ray.origin, q.ray.direction, q.triangle.a, q.triangle.b, q.triangle.c},
+                               std::array<double, 0>{}};
+            });
       },
       py::arg("kinds"), py::arg("count"), py::arg("seed"),
       R"doc(``count`` hard ray–triangle queries as arrays, reproducibly from ``seed``: ``(origins, directions,
 a, b, c, kind_index)``.)doc");
+
+  m.attr("SPHERE_QUERY_KINDS") = kind_names(testkit::all_sphere_query_kinds);
+
+  m.def(
+      "make_sphere_query",
+      [](const std::string& kind, py::handle words) {
+        std::string storage;
+        const testkit::SphereQuery q = make_sphere_query(sphere_kind_from(kind), python_bits(words, storage));
+        return py::make_tuple(to_python(q.ray), to_python(q.sphere));
+      },
+      py::arg("kind"), py::arg("words"),
+      R"doc(A hard ray–sphere query of ``kind`` (one of SPHERE_QUERY_KINDS), as ``(Ray, Sphere)``:
+testkit::make_sphere_query with its words read as in make_query (bytes or a callable). Always valid input.)doc");
+
+  m.def(
+      "make_sphere_query_arrays",
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+        return query_arrays<3, 1>(
+            kinds_from(testkit::all_sphere_query_kinds, kinds, "sphere query"), count, seed,
+            [](testkit::SphereQueryKind kind, const testkit::BitSource& bits) { return make_sphere_query(kind, bits); },
+            [](const testkit::SphereQuery& q) {
+              return std::pair{std::array{q.ray.origin, q.ray.direction, q.sphere.center},
+                               std::array{q.sphere.radius}};
+            });
+      },
+      py::arg("kinds"), py::arg("count"), py::arg("seed"),
+      R"doc(``count`` hard ray–sphere queries as arrays, reproducibly from ``seed``: ``(origins, directions,
+centers, radii, kind_index)``, three (count, 3) float64 arrays, a (count,) float64 array and the index into
+``kinds`` of each query's kind.)doc");
 
   m.def(
       "check_triangle_against_reference",

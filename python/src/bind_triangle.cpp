@@ -2,8 +2,9 @@
 // and triangle i) or against one triangle, over NumPy arrays, with no Python loop and the GIL released.
 //
 // The kernel has no ray–triangle batch API: each row goes through the scalar entry point of the path asked
-// for (intersect, intersect_exact, intersect_naive, relation), rows spread over threads. Invalid rows raise
-// ValueError naming the first one, or with errors="mask" are marked in `valid` while the others are answered.
+// for (intersect, intersect_exact, intersect_naive, relation), rows spread over threads (answer_rows). Invalid
+// rows raise ValueError naming the first one, or with errors="mask" are marked in `valid` while the others are
+// answered.
 #include "batch_support.hpp"
 #include "bindings.hpp"
 #include "convert.hpp"
@@ -42,10 +43,7 @@ struct TriangleQueries {
   }
   // "query 17: ..." (or "ray 17: ..." against one triangle) for the first invalid row, if any.
   [[nodiscard]] std::optional<std::string> first_error(std::span<const bool> valid) const {
-    const std::optional<std::size_t> i = first_invalid_row(valid);
-    if (!i) return std::nullopt;
-    return (one_triangle ? "ray " : "query ") + std::to_string(*i) + ": " +
-           validate(ray(*i), triangle(*i)).value_or("invalid input");
+    return first_row_error(valid, one_triangle, [&](std::size_t i) { return validate(ray(i), triangle(i)); });
   }
 };
 
@@ -74,34 +72,28 @@ py::object intersect_triangle_batch_py(py::handle origins, py::handle directions
   std::optional<std::string> error;
   {
     py::gil_scoped_release release;
-    parallel_for(n, threads_from(threads), grain_of(path), [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const Ray ray = q.ray(i);
-        const Triangle triangle = q.triangle(i);
-        // The certified and exact paths validate as they answer (invalid input throws, and only then costs);
-        // the naive path answers everything and validates for `valid` alone.
-        TriangleIntersection x{};
-        valid_out[i] = true;
-        try {
-          x = path == Path::certified ? intersect(ray, triangle, options)
-              : path == Path::exact   ? intersect_exact(ray, triangle, options)
-                                      : intersect_naive(ray, triangle);
+    answer_rows(
+        n, threads_from(threads), grain_of(path), valid_out,
+        [&](std::size_t i) {
+          const Ray ray = q.ray(i);
+          const Triangle triangle = q.triangle(i);
+          // The naive path answers everything and validates for `valid` alone.
+          const TriangleIntersection x = path == Path::certified ? intersect(ray, triangle, options)
+                                         : path == Path::exact   ? intersect_exact(ray, triangle, options)
+                                                                 : intersect_naive(ray, triangle);
           if (path == Path::naive) valid_out[i] = !validate(ray, triangle).has_value();
-        } catch (const invalid_input&) {
-          valid_out[i] = false;
+          relation_out[i] = static_cast<std::uint8_t>(x.relation);
+          location_out[i] = static_cast<std::uint8_t>(x.location);
+          owned_out[i] = x.owned;
+          t_out[i] = x.t;
+          for (std::size_t k = 0; k < 3; ++k) barycentric_out[3 * i + k] = x.barycentric[k];
+        },
+        [&](std::size_t i) {
           relation_out[i] = location_out[i] = invalid_code;
           owned_out[i] = false;
           t_out[i] = nan;
           for (int k = 0; k < 3; ++k) barycentric_out[3 * i + k] = nan;
-          continue;
-        }
-        relation_out[i] = static_cast<std::uint8_t>(x.relation);
-        location_out[i] = static_cast<std::uint8_t>(x.location);
-        owned_out[i] = x.owned;
-        t_out[i] = x.t;
-        for (std::size_t k = 0; k < 3; ++k) barycentric_out[3 * i + k] = x.barycentric[k];
-      }
-    });
+        });
     error = q.first_error(valid_out);
   }
   if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
@@ -126,30 +118,26 @@ py::object relation_triangle_batch_py(py::handle origins, py::handle directions,
   std::optional<std::string> error;
   {
     py::gil_scoped_release release;
-    parallel_for(n, threads_from(threads), grain_of(path), [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const Ray ray = q.ray(i);
-        const Triangle triangle = q.triangle(i);
-        TriangleClassification x{};
-        valid_out[i] = true;
-        try {  // validated as it answers: invalid input throws
+    answer_rows(
+        n, threads_from(threads), grain_of(path), valid_out,
+        [&](std::size_t i) {
+          const Ray ray = q.ray(i);
+          const Triangle triangle = q.triangle(i);
+          TriangleClassification x{};
           if (path == Path::certified) {
             x = raykernel::relation(ray, triangle, chosen);
           } else {  // the exact classification: intersect_exact without roundings
             const TriangleIntersection e = intersect_exact(ray, triangle, {chosen, false, false});
             x = {e.relation, e.location, e.owned};
           }
-        } catch (const invalid_input&) {
-          valid_out[i] = false;
+          relation_out[i] = static_cast<std::uint8_t>(x.relation);
+          location_out[i] = static_cast<std::uint8_t>(x.location);
+          owned_out[i] = x.owned;
+        },
+        [&](std::size_t i) {
           relation_out[i] = location_out[i] = invalid_code;
           owned_out[i] = false;
-          continue;
-        }
-        relation_out[i] = static_cast<std::uint8_t>(x.relation);
-        location_out[i] = static_cast<std::uint8_t>(x.location);
-        owned_out[i] = x.owned;
-      }
-    });
+        });
     error = q.first_error(valid_out);
   }
   if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);

@@ -7,10 +7,11 @@
 
 namespace raykernel::python {
 
-void bind_ray_plane(pybind11::module_& m);  // scalar ray–plane and ray–triangle queries (§1, §6)
+void bind_ray_plane(pybind11::module_& m);  // scalar ray–plane, ray–triangle and ray–sphere queries (§1, §6, §10)
 void bind_nearest(pybind11::module_& m);    // PlaneSet and the scalar nearest hit (docs/contract.md §4)
 void bind_batch(pybind11::module_& m);      // the vectorized ray–plane forms over NumPy arrays
 void bind_triangle(pybind11::module_& m);   // the vectorized ray–triangle forms (docs/contract.md §6)
+void bind_sphere(pybind11::module_& m);     // the vectorized ray–sphere form (docs/contract.md §10)
 void bind_mesh(pybind11::module_& m);       // Mesh, load_mesh, the mesh nearest hit (docs/contract.md §7)
 void bind_spawn(pybind11::module_& m);      // spawn and spawn_to: secondary rays (docs/contract.md §9)
 void bind_testkit(pybind11::module_& m);    // raykernel::testkit: hard queries, reference check, fuzz decoder

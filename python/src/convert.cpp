@@ -86,6 +86,7 @@ void load_types() {
   t->ray = m.attr("Ray");
   t->plane = m.attr("Plane");
   t->triangle = m.attr("Triangle");
+  t->sphere = m.attr("Sphere");
   t->intersection = m.attr("Intersection");
   t->traced_intersection = m.attr("TracedIntersection");
   t->exact_intersection = m.attr("ExactIntersection");
@@ -100,6 +101,11 @@ void load_types() {
   t->exact_triangle_intersection = m.attr("ExactTriangleIntersection");
   t->triangle_intersection_arrays = m.attr("TriangleIntersectionArrays");
   t->triangle_classification_arrays = m.attr("TriangleClassificationArrays");
+  t->sphere_intersection = m.attr("SphereIntersection");
+  t->sphere_classification = m.attr("SphereClassification");
+  t->traced_sphere_intersection = m.attr("TracedSphereIntersection");
+  t->exact_sphere_intersection = m.attr("ExactSphereIntersection");
+  t->sphere_intersection_arrays = m.attr("SphereIntersectionArrays");
   t->mesh_hit = m.attr("MeshHit");
   t->mesh_hit_arrays = m.attr("MeshHitArrays");
   t->point_location_arrays = m.attr("PointLocationArrays");
@@ -118,6 +124,12 @@ void load_types() {
     t->point_location[k] = m.attr("PointLocation").attr("from_code")(k);
     if (t->point_location[k].attr("value").cast<std::string>() != to_string(static_cast<PointLocation>(k)))
       throw std::logic_error("raykernel._types.PointLocation differs from the C++ enum");
+    t->sphere_origin[k] = m.attr("SphereOrigin").attr("from_code")(k);
+    if (t->sphere_origin[k].attr("value").cast<std::string>() != to_string(static_cast<SphereOrigin>(k)))
+      throw std::logic_error("raykernel._types.SphereOrigin differs from the C++ enum");
+    t->sphere_relation[k] = m.attr("SphereRelation").attr("from_code")(k);
+    if (t->sphere_relation[k].attr("value").cast<std::string>() != to_string(static_cast<SphereRelation>(k)))
+      throw std::logic_error("raykernel._types.SphereRelation differs from the C++ enum");
   }
   const py::object relation = m.attr("Relation");
   t->relation = {relation.attr("HIT"), relation.attr("BEHIND"), relation.attr("PARALLEL"), relation.attr("IN_PLANE")};
@@ -151,10 +163,18 @@ Triangle triangle_from(py::handle value, std::string_view name) {
           vec3_from(items[2], str(name) + " c")};
 }
 
-bool is_triangle(py::handle primitive) {
-  if (py::isinstance(primitive, types().triangle)) return true;
-  if (py::isinstance(primitive, types().plane)) return false;
-  const std::string wanted = "primitive: expected a plane (point, normal) or a triangle (a, b, c), got ";
+Sphere sphere_from(py::handle value, std::string_view name) {
+  const py::object seq = fast_sequence(value, name, 2, "(center, radius)");
+  PyObject** items = PySequence_Fast_ITEMS(seq.ptr());
+  return {vec3_from(items[0], str(name) + " center"), double_from(items[1], str(name) + " radius")};
+}
+
+PrimitiveKind primitive_kind(py::handle primitive) {
+  if (py::isinstance(primitive, types().sphere)) return PrimitiveKind::sphere;
+  if (py::isinstance(primitive, types().triangle)) return PrimitiveKind::triangle;
+  if (py::isinstance(primitive, types().plane)) return PrimitiveKind::plane;
+  const std::string wanted =
+      "primitive: expected a plane (point, normal), a triangle (a, b, c) or a raykernel.Sphere, got ";
   if (!PySequence_Check(primitive.ptr()) || PyUnicode_Check(primitive.ptr()))
     throw py::type_error(wanted + type_name(primitive));
   const Py_ssize_t n = PySequence_Size(primitive.ptr());
@@ -162,8 +182,8 @@ bool is_triangle(py::handle primitive) {
     PyErr_Clear();
     throw py::type_error(wanted + type_name(primitive));
   }
-  if (n == 3) return true;
-  if (n == 2) return false;
+  if (n == 3) return PrimitiveKind::triangle;
+  if (n == 2) return PrimitiveKind::plane;
   throw py::value_error(wanted + "a sequence of " + std::to_string(n) + (n == 1 ? " item" : " items"));
 }
 
@@ -306,6 +326,29 @@ py::object to_python(const ExactTriangleIntersection& x) {
       x.t ? to_fraction(*x.t) : py::none(), exact_barycentric);
 }
 
+py::object to_python(const Sphere& s) { return types().sphere(to_python(s.center), s.radius); }
+py::object to_python(SphereOrigin o) { return types().sphere_origin[static_cast<std::size_t>(o)]; }
+py::object to_python(SphereRelation r) { return types().sphere_relation[static_cast<std::size_t>(r)]; }
+
+py::object to_python(const SphereIntersection& x) {
+  return types().sphere_intersection(to_python(x.origin), to_python(x.relation), x.t1, x.t2);
+}
+
+py::object to_python(const SphereClassification& x) {
+  return types().sphere_classification(to_python(x.origin), to_python(x.relation));
+}
+
+py::object to_python(const TracedSphereIntersection& x) {
+  const SphereIntersection& i = x.intersection;
+  return types().traced_sphere_intersection(to_python(i.origin), to_python(i.relation), i.t1, i.t2,
+                                            to_python(x.relation_stage), to_python(x.rounding_stage));
+}
+
+py::object to_python(const ExactSphereIntersection& x) {
+  return types().exact_sphere_intersection(to_python(x.origin), to_python(x.relation),
+                                           x.u ? to_fraction(*x.u) : py::none(), x.v ? to_fraction(*x.v) : py::none());
+}
+
 py::array numeric_array(py::handle value, std::string_view name, Numbers numbers, std::string_view wanted) {
   const std::string expected = str(name) + ": expected " + str(wanted) + ", got ";
   // Before numpy.asarray, which would give the masked array's data alone.
@@ -371,10 +414,44 @@ std::array<std::span<const double>, 3> ColumnsView::columns(std::size_t begin, s
   return out;
 }
 
-void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name) {
-  if (view.single() || view.rows() == rows) return;
-  throw py::value_error(str(name) + " has " + std::to_string(view.rows()) + " rows, " + str(reference_name) + " has " +
+ValuesView::ValuesView(py::handle value, std::string_view name, bool allow_single) {
+  const std::string shape_wanted = allow_single ? "an array of shape (n,) or a number" : "an array of shape (n,)";
+  array_ = py::array_t<double, py::array::forcecast>::ensure(
+      numeric_array(value, name, Numbers::real, shape_wanted + " of real numbers (an integer or floating dtype)"));
+  if (!array_) throw py::type_error(str(name) + ": the array cannot be read as float64");  // out of memory
+  first_ = reinterpret_cast<const char*>(array_.data());
+  if (allow_single && array_.ndim() == 0) {
+    single_ = true;
+    rows_ = 1;
+    return;
+  }
+  if (array_.ndim() != 1)
+    throw py::value_error(str(name) + ": expected " + shape_wanted + ", got shape " + shape_string(array_));
+  rows_ = static_cast<std::size_t>(array_.shape(0));
+  stride_ = array_.strides(0);
+}
+
+double ValuesView::value(std::size_t i) const noexcept {
+  double x;
+  std::memcpy(&x, first_ + static_cast<py::ssize_t>(i) * stride_, sizeof(double));  // may be unaligned
+  return x;
+}
+
+namespace {
+void require_rows(bool single, std::size_t view_rows, std::string_view name, std::size_t rows,
+                  std::string_view reference_name) {
+  if (single || view_rows == rows) return;
+  throw py::value_error(str(name) + " has " + std::to_string(view_rows) + " rows, " + str(reference_name) + " has " +
                         std::to_string(rows));
+}
+}  // namespace
+
+void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name) {
+  require_rows(view.single(), view.rows(), name, rows, reference_name);
+}
+
+void require_rows(const ValuesView& view, std::string_view name, std::size_t rows, std::string_view reference_name) {
+  require_rows(view.single(), view.rows(), name, rows, reference_name);
 }
 
 ErrorPolicy error_policy_from(std::string_view errors) {

@@ -9,12 +9,13 @@
 // column is contiguous (an F-ordered array, e.g. `soa.T` for a (3, n) structure of arrays), copying it
 // otherwise.
 //
-// Adding a primitive (triangles, meshes) means adding its `*_from` reader and its result builders here, and a
-// bind_*.cpp beside the others; nothing else changes.
+// Adding a primitive (triangles, spheres, meshes) means adding its `*_from` reader and its result builders here
+// (and, for the scalar functions, a PrimitiveKind), and a bind_*.cpp beside the others; nothing else changes.
 #pragma once
 
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <pybind11/numpy.h>
@@ -37,11 +38,13 @@ namespace py = pybind11;
 // Python objects the extension builds its results from (raykernel._types), loaded by load_types().
 
 struct PythonTypes {
-  py::object vec3, ray, plane, triangle;
+  py::object vec3, ray, plane, triangle, sphere;
   py::object intersection, traced_intersection, exact_intersection, nearest_hit;
   py::object intersection_arrays, nearest_hit_arrays, relation_arrays;
   py::object barycentric, triangle_intersection, triangle_classification, traced_triangle_intersection,
       exact_triangle_intersection, triangle_intersection_arrays, triangle_classification_arrays;
+  py::object sphere_intersection, sphere_classification, traced_sphere_intersection, exact_sphere_intersection,
+      sphere_intersection_arrays;
   py::object mesh_hit, mesh_hit_arrays, point_location_arrays;
   py::object spawned_origin;
   std::array<py::object, 3> point_location;
@@ -49,6 +52,8 @@ struct PythonTypes {
   std::array<py::object, 6> triangle_relation;
   std::array<py::object, 9> triangle_location;
   std::array<py::object, 2> triangle_rule;
+  std::array<py::object, 3> sphere_origin;
+  std::array<py::object, 3> sphere_relation;
   std::array<py::object, stage_count> stage;
   py::object fraction;                 // fractions.Fraction
   py::object masked_array;             // numpy.ma.MaskedArray
@@ -69,9 +74,13 @@ void load_types();
 [[nodiscard]] Plane plane_from(py::handle value, std::string_view name = "plane");
 // (a, b, c): a raykernel.Triangle or any triple of 3-sequences.
 [[nodiscard]] Triangle triangle_from(py::handle value, std::string_view name = "triangle");
-// Whether the second argument of intersect(ray, primitive) & co. is a triangle (a raykernel.Triangle or any
-// 3-sequence) rather than a plane (a raykernel.Plane or any 2-sequence); TypeError for anything else.
-[[nodiscard]] bool is_triangle(py::handle primitive);
+// (center, radius): a raykernel.Sphere or any pair of a 3-sequence and a number.
+[[nodiscard]] Sphere sphere_from(py::handle value, std::string_view name = "sphere");
+// What the second argument of intersect(ray, primitive) & co. is: a sphere only as a raykernel.Sphere (a bare
+// pair stays a plane), a triangle as a raykernel.Triangle or any 3-sequence, a plane as a raykernel.Plane or any
+// 2-sequence; TypeError or ValueError for anything else.
+enum class PrimitiveKind { plane, triangle, sphere };
+[[nodiscard]] PrimitiveKind primitive_kind(py::handle primitive);
 // A TriangleRule from a raykernel.TriangleRule or its value ("owned", "closed").
 [[nodiscard]] TriangleRule rule_from(py::handle value);
 // A finite double from a Python number (for round_rational_to_double's sister functions, t values...).
@@ -104,6 +113,13 @@ void load_types();
 [[nodiscard]] py::object to_python(const TriangleClassification& x);
 [[nodiscard]] py::object to_python(const TracedTriangleIntersection& x);
 [[nodiscard]] py::object to_python(const ExactTriangleIntersection& x);
+[[nodiscard]] py::object to_python(const Sphere& s);
+[[nodiscard]] py::object to_python(SphereOrigin o);
+[[nodiscard]] py::object to_python(SphereRelation r);
+[[nodiscard]] py::object to_python(const SphereIntersection& x);
+[[nodiscard]] py::object to_python(const SphereClassification& x);
+[[nodiscard]] py::object to_python(const TracedSphereIntersection& x);
+[[nodiscard]] py::object to_python(const ExactSphereIntersection& x);
 // An exact rational (decimal strings in lowest terms) as a fractions.Fraction, whatever the number of digits and
 // sys.set_int_max_str_digits() (the digits are converted in pieces CPython always converts).
 [[nodiscard]] py::object to_fraction(const Rational& r);
@@ -157,8 +173,29 @@ class ColumnsView {
   std::vector<double> scratch_;                      // gathered columns of a non-contiguous array
 };
 
+// The values of a 1-D array of n real numbers (numeric_array; read as float64, any stride), or of a single number
+// (a Python number or a 0-d array), a broadcast value, when allowed: the radii of spheres. Construct with the GIL
+// held; value(i) needs no GIL.
+class ValuesView {
+ public:
+  ValuesView(py::handle value, std::string_view name, bool allow_single = false);
+
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] bool single() const noexcept { return single_; }
+  // Value i (value 0 when single()).
+  [[nodiscard]] double value(std::size_t i) const noexcept;
+
+ private:
+  py::array_t<double, py::array::forcecast> array_;  // keeps the data alive
+  const char* first_ = nullptr;
+  py::ssize_t stride_ = 0;                           // bytes from one value to the next (0 for a single value)
+  std::size_t rows_ = 0;
+  bool single_ = false;
+};
+
 // Checks that `view` has `rows` rows (or is a single row when that is allowed), naming both arrays.
 void require_rows(const ColumnsView& view, std::string_view name, std::size_t rows, std::string_view reference_name);
+void require_rows(const ValuesView& view, std::string_view name, std::size_t rows, std::string_view reference_name);
 
 // A fresh 1-D NumPy array of n elements (uninitialized).
 template <class T>

@@ -16,7 +16,8 @@ PYBIND11_MODULE(_raykernel, m) {
   // invalid_input derives from std::invalid_argument: Python sees a ValueError subclass whose message names
   // the field ("ray direction is the zero vector").
   py::register_exception<raykernel::invalid_input>(m, "InvalidInput", PyExc_ValueError)
-      .attr("__doc__") = "Input that has no answer: a NaN or infinite component, a zero direction or normal.\n\n"
+      .attr("__doc__") = "Input that has no answer: a NaN or infinite component, a zero direction or normal, a sphere "
+                         "radius that is not positive.\n\n"
                          "A ValueError whose message names the field, and for arrays the row: \"query 17: ray "
                          "direction is the zero vector\".";
 
@@ -24,6 +25,7 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_nearest(m);
   bind_batch(m);
   bind_triangle(m);
+  bind_sphere(m);
   bind_mesh(m);
   bind_spawn(m);
   bind_testkit(m);

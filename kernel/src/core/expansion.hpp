@@ -126,6 +126,49 @@ class ExpansionBuilder {
     finish(h, q);
   }
 
+  // h = e with fewer components (Shewchuk's compress, with TwoSum for his Fast2Sum): one pass from the largest
+  // component down, keeping each nonzero error term's partner, then one pass back up. Every step is a TwoSum, so
+  // Σh = Σe exactly whatever e's components (no nonoverlapping invariant is needed); on the nonoverlapping
+  // expansions scale and sum produce, h is nonoverlapping with at most as many components as the value's bits
+  // need (two or three for the sphere's A, B, C), which is what makes later products short.
+  //   Certified by: proofs/core/ExpansionCompress.v, `compress_gen_exact` (Σh = Σe when e's components are finite and h's
+  //   are: every TwoSum exact).
+  template <std::size_t N>
+  static void compress(const Expansion<N>& e, Expansion<N>& h) noexcept {
+    std::size_t kept = e.size;  // the first pass keeps its large parts in h[kept, e.size)
+    double q = e.component[e.size - 1];
+    for (std::size_t i = e.size - 1; i-- > 0;) {
+      const DoubleDouble s = two_sum(q, e.component[i]);
+      if (s.lo != 0) {
+        h.component[--kept] = s.hi;
+        q = s.lo;
+      } else {
+        q = s.hi;
+      }
+    }
+    std::size_t top = 0;  // the second pass writes h[0, top) below what it reads (top ≤ i − kept)
+    for (std::size_t i = kept; i < e.size; ++i) {
+      const DoubleDouble s = two_sum(h.component[i], q);
+      if (s.lo != 0) h.component[top++] = s.lo;
+      q = s.hi;
+    }
+    h.component[top] = q;
+    h.size = top + 1;
+  }
+
+  // e's sign: Expansion::sign, or when it cannot read it (a sum of expansions that overlap, as after a heavy
+  // cancellation), the sign of e compressed, whose top component dominates the rest.
+  //   Certified by: proofs/core/Expansions.v, `expansion_sign_sound` (on e, or on its compression) and
+  //   proofs/core/ExpansionCompress.v, `compress_gen_exact` (the compression has e's exact sum).
+  template <std::size_t N>
+  [[nodiscard]] static Sign sign_or_compressed(const Expansion<N>& e) noexcept {
+    const Sign direct = e.sign();
+    if (is_certain(direct)) return direct;
+    Expansion<N> h;
+    compress(e, h);
+    return h.sign();
+  }
+
   template <std::size_t N>
   static void from_pair(const DoubleDouble& p, Expansion<N>& h) noexcept {
     static_assert(N >= 2);

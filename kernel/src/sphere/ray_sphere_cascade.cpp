@@ -67,7 +67,7 @@ std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClas
     if (!t0) return std::nullopt;
     return Roots{*t0, *t0};
   }
-  const Sign b_sign = s.b.sign();
+  const Sign b_sign = ExpansionBuilder::sign_or_compressed(s.b);
   if (!is_certain(b_sign)) return std::nullopt;
   if (c.origin == SphereOrigin::on_surface) {  // roots 0 and −2B/A (B ≠ 0, as D = B² > 0)
     const std::optional<double> other = round_b_over_a(s, 2.0);
@@ -88,7 +88,7 @@ std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClas
 
 std::optional<SphereClassification> expansion_classification(const SphereExpansions& s) noexcept {
   if (!s.builder.exact()) return std::nullopt;
-  const Sign c = s.c.sign(), d = s.d.sign();
+  const Sign c = ExpansionBuilder::sign_or_compressed(s.c), d = ExpansionBuilder::sign_or_compressed(s.d);
   if (!is_certain(c) || !is_certain(d)) return std::nullopt;
   return SphereClassification{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))};
 }

@@ -3,15 +3,18 @@
 // exact signs of 4·q(m) = A·M² + 4B·M + 4C and 2·(A·m + B) = A·M + 2B with M = x + y = TwoSum(x, y).
 //
 //   f_i = TwoDiff(o_i, c_i) (2 components, exact), A = Σ d_i·d_i (6), B = Σ f_i·d_i (12), C = Σ f_i·f_i − r² (26),
-//   D = B·B − C·A (600): exact products and sums of expansions.
+//   D = B·B − C·A (600): exact products and sums of expansions, A, B and C compressed first (a few components
+//   each, so that D's products are short).
 //   Valid range: every TwoProduct of the products exact (|a·b| ≥ 2^-969 or a zero factor) and every component
 //   finite — ExpansionBuilder::exact(); otherwise the exact stage decides.
-//   Certified by: proofs/core/Expansions.v — `scale_gen_exact`, `sum_gen_exact` and `multiply_gen_exact` (each
-//   expansion's exact sum is the polynomial's value when the builder stays exact), `expansion_sign_sound` (a
-//   certain sign is the sign of the exact sum); the root's side by ray_sphere_formula.hpp's root_side_of (its
-//   derivation beside it), the rounding by core/quotient_boundary.hpp's round_at_midpoints
-//   (proofs/core/MidpointRounding.v, `boundary_decision_correct`). The stage's composition has no twin in
-//   proofs/ yet (docs/contract.md, "Spheres"); tests/sphere_test.cpp checks it against the exact stage.
+//   Certified by: proofs/core/Expansions.v, `scale_gen_exact`, `sum_gen_exact` and `multiply_gen_exact` (each
+//   expansion's exact sum is the polynomial's value when the builder stays exact) and `expansion_sign_sound` (a
+//   certain sign is the sign of the exact sum); proofs/core/ExpansionCompress.v, `compress_gen_exact` (the
+//   compression keeps the exact sum); the root's side: proofs/sphere/SphereRoots.v,
+//   `root_side_of_smaller_correct` and `root_side_of_larger_correct`; the rounding from the sides:
+//   proofs/core/MidpointRounding.v, `boundary_decision_correct`. The stage's composition (which polynomial each
+//   expansion is) has no Coq twin yet, unlike the plane's and the triangle's (docs/contract.md §10, "Decided
+//   here"); tests/sphere_test.cpp and fuzz_sphere check it against the exact stage and an oracle of their own.
 #pragma once
 
 #include "core/eft.hpp"
@@ -74,14 +77,24 @@ inline void sphere_expansions(const Ray& ray, const Sphere& sphere, SphereExpans
     builder.scale(f[i], dv[i], fd[i]);
     multiply_expansions(builder, f[i], f[i], ff[i]);
   }
-  sum3(dd[0], dd[1], dd[2], s.a);
-  sum3(fd[0], fd[1], fd[2], s.b);
+  Expansion<6> a;
+  Expansion<12> b;
+  Expansion<26> c;
+  sum3(dd[0], dd[1], dd[2], a);
+  sum3(fd[0], fd[1], fd[2], b);
   Expansion<24> f_squared;
   sum3(ff[0], ff[1], ff[2], f_squared);
   Expansion<2> r_squared;
   ExpansionBuilder::from_pair(builder.product(sphere.radius, sphere.radius), r_squared);
   negate(r_squared);
-  ExpansionBuilder::sum(f_squared, r_squared, s.c);
+  ExpansionBuilder::sum(f_squared, r_squared, c);
+  builder.check_finite(a);
+  builder.check_finite(b);
+  builder.check_finite(c);
+  // Compressed (exact: every step a TwoSum of finite components), so that D's products and the roots' are short.
+  ExpansionBuilder::compress(a, s.a);
+  ExpansionBuilder::compress(b, s.b);
+  ExpansionBuilder::compress(c, s.c);
   Expansion<288> b_squared;
   multiply_expansions(builder, s.b, s.b, b_squared);
   Expansion<312> a_c;
@@ -125,7 +138,7 @@ inline Sign sphere_root_side(const SphereExpansions& s, int root, double x, doub
   builder.check_finite(q4);
   builder.check_finite(slope2);
   if (!builder.exact()) return Sign::uncertain;
-  const Sign q = q4.sign(), slope = slope2.sign();
+  const Sign q = ExpansionBuilder::sign_or_compressed(q4), slope = ExpansionBuilder::sign_or_compressed(slope2);
   if (!is_certain(q) || !is_certain(slope)) return Sign::uncertain;
   return sign_from_int(root_side_of(root, static_cast<int>(q), static_cast<int>(slope)));
 }

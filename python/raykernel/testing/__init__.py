@@ -14,8 +14,10 @@
 - ``check_triangle_hit_against_reference`` / ``assert_triangle_hit_matches_reference``: a bare hit/miss and t
   (what a Möller–Trumbore test computes), checked in Fractions by ``raykernel.testing.exact``;
 - ``ulp_distance``, ``ulp_difference``, ``ulp_distances`` (arrays), ``hex_string``;
-- ``raykernel.testing.exact``: the contract in pure-Python Fractions, an oracle sharing no code with the kernel;
-- ``raykernel.testing.hypothesis``: Hypothesis strategies for the hard queries (imports Hypothesis).
+- ``raykernel.testing.exact``: the contract in pure-Python Fractions, an oracle sharing no code with the kernel
+  (ray–plane, ray–triangle, and ray–sphere with its irrational roots rounded by exact comparisons);
+- ``raykernel.testing.hypothesis``: Hypothesis strategies for the hard queries, planes, triangles and spheres
+  (imports Hypothesis).
 """
 
 from .reference import (

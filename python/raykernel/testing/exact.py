@@ -7,16 +7,20 @@ Thousands of times slower than the kernel; meant for tests.
 
 ``exact_ray_plane`` follows §1 (what ``raykernel.intersect_exact`` computes, by other means);
 ``exact_ray_triangle`` follows §6 (ray–triangle, both rules), which the C++ kernel does not implement yet:
-until it does, this is the reference ``raykernel.testing`` checks triangle code against.
+until it does, this is the reference ``raykernel.testing`` checks triangle code against;
+``exact_ray_sphere`` follows §10 (ray–sphere): its irrational roots U ∓ √V are rounded by ``round_root``, a
+search over the doubles that compares the root with rationals exactly (w = U − m against √V by w² against V).
 """
 
 from __future__ import annotations
 
 import math
+import struct
+import sys
 from fractions import Fraction
 from typing import NamedTuple, Optional, Sequence, Tuple
 
-from .._types import Relation
+from .._types import Relation, SphereOrigin, SphereRelation
 
 Q3 = Tuple[Fraction, Fraction, Fraction]
 
@@ -160,3 +164,93 @@ def exact_ray_triangle(ray, triangle) -> ExactTriangleAnswer:
     owned = forward if all(x == s for x in owned_signs) else "miss"
     barycentric = (pa / den, pb / den, pc / den)
     return ExactTriangleAnswer("crossing", location, closed, owned, round_to_double(t), t, barycentric, num, den)
+
+
+# Ray–sphere (docs/contract.md §10) --------------------------------------------------------------------------
+
+_LARGEST = sys.float_info.max
+_OVERFLOW = Fraction(2) ** 1024 - Fraction(2) ** 970  # halfway between the largest double and 2^1024
+
+
+def root_side(u: Fraction, v: Fraction, upper: bool, m: Fraction) -> int:
+    """The sign of r − m for the root r = U − √V (``upper`` False) or U + √V (``upper`` True), V ≥ 0, exactly:
+    with w = U − m, r − m = w ∓ √V, whose sign is w's when the other term cannot outweigh it, else that of
+    ±(w² − V)."""
+    w = u - m
+    if not upper:  # w − √V
+        return sign(w * w - v) if w > 0 else -1 if (w < 0 or v > 0) else 0
+    return sign(v - w * w) if w < 0 else 1 if (w > 0 or v > 0) else 0  # w + √V
+
+
+def _double_of_key(k: int) -> float:
+    """The finite doubles in increasing order: key k ≥ 0 is the double whose bits are k, −k its negation."""
+    x = struct.unpack("<d", struct.pack("<Q", abs(k)))[0]
+    return -x if k < 0 else x
+
+
+def round_root(u: Fraction, v: Fraction, upper: bool) -> float:
+    """U ∓ √V (``root_side``) rounded to the nearest double, ties to even, ±inf beyond the double range; a
+    nonzero root that rounds to zero keeps its sign, an exact zero is +0 (docs/contract.md §10)."""
+    side = lambda m: root_side(u, v, upper, Fraction(m))  # noqa: E731
+    if side(_OVERFLOW) >= 0:
+        return math.inf
+    if side(-_OVERFLOW) <= 0:
+        return -math.inf
+    if side(_LARGEST) >= 0:
+        return _LARGEST
+    if side(-_LARGEST) <= 0:
+        return -_LARGEST
+    # The largest key whose double is ≤ r: double(lo) ≤ r < double(hi) throughout.
+    top = struct.unpack("<Q", struct.pack("<d", _LARGEST))[0]
+    lo, hi = -top, top
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if side(_double_of_key(mid)) >= 0:
+            lo = mid
+        else:
+            hi = mid
+    below, above = _double_of_key(lo), _double_of_key(hi)
+    halfway = side((Fraction(below) + Fraction(above)) / 2)
+    nearest = below if halfway < 0 or (halfway == 0 and lo % 2 == 0) else above  # an even key: an even significand
+    if nearest == 0:
+        exact_zero = side(0) == 0
+        return 0.0 if exact_zero or side(0) > 0 else -0.0
+    return nearest
+
+
+class ExactSphereAnswer(NamedTuple):
+    """§10's answer: where the origin is, how the line meets the sphere, the roots rounded (t1 ≤ t2; both the
+    root for TANGENT, NaN for MISS), and the exact values A = d·d, B = d·f, C = f·f − r², D = B² − A·C (f = o − c)
+    and U = −B/A, V = D/A² (None for MISS), the roots being U ∓ √V."""
+
+    origin: SphereOrigin
+    relation: SphereRelation
+    t1: float
+    t2: float
+    a: Fraction
+    b: Fraction
+    c: Fraction
+    d: Fraction
+    u: Optional[Fraction]
+    v: Optional[Fraction]
+
+
+def exact_ray_sphere(ray, sphere) -> ExactSphereAnswer:
+    """docs/contract.md §10 in rationals. ``ray`` is (origin, direction) with a nonzero direction, ``sphere``
+    is (center, radius) with a positive radius; all finite (else ValueError)."""
+    o, d = vec(ray[0]), vec(ray[1])
+    center, radius = vec(sphere[0]), to_fraction(float(sphere[1]))
+    if d == (0, 0, 0):
+        raise ValueError("ray direction is the zero vector")
+    if radius <= 0:
+        raise ValueError("sphere radius is not positive")
+    f = sub(o, center)
+    a, b = dot(d, d), dot(d, f)
+    c = dot(f, f) - radius * radius
+    disc = b * b - a * c
+    origin = SphereOrigin.INSIDE if c < 0 else SphereOrigin.ON_SURFACE if c == 0 else SphereOrigin.OUTSIDE
+    if disc < 0:
+        return ExactSphereAnswer(origin, SphereRelation.MISS, math.nan, math.nan, a, b, c, disc, None, None)
+    u, v = -b / a, disc / (a * a)
+    relation = SphereRelation.TANGENT if disc == 0 else SphereRelation.CROSS
+    return ExactSphereAnswer(origin, relation, round_root(u, v, False), round_root(u, v, True), a, b, c, disc, u, v)

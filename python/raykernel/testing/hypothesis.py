@@ -25,8 +25,13 @@ moderate, subnormal or huge scales; each carries the location and the exact t it
 coplanar triangles, origins on the triangle, rounding ties of t, wide exponents, tiny and huge scales.
 ``raykernel.testing.assert_triangle_matches_reference`` checks an answer against them, in ulps.
 
-Every strategy has an array form for vectorized code: ``query_arrays`` and ``triangle_query_arrays`` give
-(n, 3) float64 arrays built from lists of such queries (the lists shrink too).
+Ray–sphere queries (``hard_sphere_queries``) come from the C++ toolkit too (testkit/sphere_queries.hpp,
+``SPHERE_QUERY_KINDS``): lines exactly tangent and an ulp or a few beside, origins exactly on the sphere and a
+few ulps off, roots that are rounding ties, far-away spheres where |o − c|² − r² cancels, wide exponents, tiny
+and huge directions, tiny and huge scales (docs/contract.md §10).
+
+Every strategy has an array form for vectorized code: ``query_arrays``, ``triangle_query_arrays`` and
+``hard_sphere_query_arrays`` give float64 arrays built from lists of such queries (the lists shrink too).
 """
 
 from __future__ import annotations
@@ -39,7 +44,7 @@ from hypothesis import strategies as st
 from hypothesis.strategies import SearchStrategy
 
 from .. import _raykernel
-from .._types import Plane, Ray, Triangle, Vec3
+from .._types import Plane, Ray, Sphere, Triangle, Vec3
 
 _tk = _raykernel.testkit
 
@@ -67,6 +72,11 @@ HARD_TRIANGLE_QUERY_KINDS: Tuple[str, ...] = tuple(_tk.TRIANGLE_QUERY_KINDS)
 """The kinds of ``hard_triangle_queries``, as testkit names them: "random", "through-vertex", "through-edge",
 "through-interior", "near-vertex", "near-edge", "origin-on-triangle", "sliver", "needle", "degenerate",
 "parallel", "coplanar", "rounding-tie", "wide-exponents", "tiny", "huge"."""
+
+SPHERE_QUERY_KINDS: Tuple[str, ...] = tuple(_tk.SPHERE_QUERY_KINDS)
+"""The kinds of ``hard_sphere_queries``, as testkit names them: "random", "tangent", "near-tangent",
+"on-surface", "near-surface", "rounding-tie", "far-cancel", "wide-exponents", "tiny-direction",
+"huge-direction", "tiny", "huge"."""
 
 WORDS_PER_QUERY = 32
 """Random words drawn for one construction: more than any kind uses (the most is about 24)."""
@@ -472,3 +482,73 @@ def hard_triangle_query_arrays(
 ) -> SearchStrategy[TriangleQueryArrays]:
     """Lists of ``hard_triangle_queries(kinds)`` as arrays."""
     return st.lists(hard_triangle_queries(kinds), min_size=min_size, max_size=max_size).map(_to_triangle_arrays)
+
+
+# Ray–sphere --------------------------------------------------------------------------------------------------
+
+
+class SphereQuery(NamedTuple):
+    """A ray–sphere query and the kind of construction it came from."""
+
+    kind: str
+    ray: Ray
+    sphere: Sphere
+
+
+@st.composite
+def _hard_sphere_query(draw, kind: str) -> SphereQuery:
+    ray, sphere = _tk.make_sphere_query(kind, draw(words))
+    return SphereQuery(kind, ray, sphere)
+
+
+def hard_sphere_queries(kinds: Optional[Iterable[str]] = None) -> SearchStrategy[SphereQuery]:
+    """Ray–sphere queries from the C++ toolkit's constructions, of a kind drawn from ``kinds`` (default: all of
+    SPHERE_QUERY_KINDS), their random words drawn as bytes (so they shrink toward the simplest query of the
+    kind). Always valid input; check answers against ``raykernel.intersect`` (or ``raykernel.testing.exact``)."""
+    chosen = _check_kinds(kinds, SPHERE_QUERY_KINDS, "hard_sphere_queries")
+    return st.sampled_from(chosen).flatmap(_hard_sphere_query)
+
+
+def sphere_tangencies() -> SearchStrategy[SphereQuery]:
+    """Lines exactly tangent to the sphere (D = 0), or with the radius or a component of o or d moved by 1–4
+    ulps: tangent, a miss or two roots an ulp apart, decided by the last bits."""
+    return hard_sphere_queries(["tangent", "near-tangent"])
+
+
+def origins_on_spheres() -> SearchStrategy[SphereQuery]:
+    """Origins exactly on the sphere (C = 0: a root exactly 0), or with the radius or a component of o moved by
+    1–4 ulps: a root near 0 whose sign is decided by the last bits."""
+    return hard_sphere_queries(["on-surface", "near-surface"])
+
+
+class SphereQueryArrays(NamedTuple):
+    """n ray–sphere queries as float64 arrays ((n, 3), and (n,) radii; exact repr), with each query."""
+
+    origins: np.ndarray
+    directions: np.ndarray
+    centers: np.ndarray
+    radii: np.ndarray
+    queries: Tuple[SphereQuery, ...]
+
+    def __repr__(self) -> str:
+        fields = [(k, getattr(self, k)) for k in ("origins", "directions", "centers", "radii")]
+        kinds = tuple(q.kind for q in self.queries)
+        return _exact_repr("SphereQueryArrays", fields)[:-1] + f", kinds={kinds!r})"
+
+
+def _to_sphere_arrays(qs: Sequence[SphereQuery]) -> SphereQueryArrays:
+    rows = lambda f: np.array([f(q) for q in qs], dtype=np.float64).reshape(-1, 3)  # noqa: E731
+    return SphereQueryArrays(
+        rows(lambda q: q.ray.origin),
+        rows(lambda q: q.ray.direction),
+        rows(lambda q: q.sphere.center),
+        np.array([q.sphere.radius for q in qs], dtype=np.float64),
+        tuple(qs),
+    )
+
+
+def hard_sphere_query_arrays(
+    kinds: Optional[Iterable[str]] = None, *, min_size: int = 1, max_size: int = 16
+) -> SearchStrategy[SphereQueryArrays]:
+    """Lists of ``hard_sphere_queries(kinds)`` as arrays, for vectorized sphere code."""
+    return st.lists(hard_sphere_queries(kinds), min_size=min_size, max_size=max_size).map(_to_sphere_arrays)
