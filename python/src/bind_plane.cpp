@@ -59,7 +59,8 @@ void bind_ray_plane(py::module_& m) {
         return for_primitive(primitive, ray, reason, reason, reason);
       },
       py::arg("ray"), py::arg("primitive"),
-      R"doc(The reason ``ray`` and ``primitive`` (a plane, a triangle or a ``raykernel.Sphere``) are invalid input, or None when they are valid.
+      R"doc(The reason ``ray`` and ``primitive`` (a plane, a triangle or a ``raykernel.Sphere``) are invalid input,
+or None when they are valid.
 
 Invalid input has no answer: a NaN or infinite component, a zero direction or a zero normal, a sphere radius
 that is not positive. The reason names the field, e.g. ``"ray direction is the zero vector"``, ``"plane point

@@ -14,6 +14,7 @@ from raykernel.testing import assert_triangle_matches_reference, exact
 from raykernel.testing.hypothesis import (
     HARD_TRIANGLE_QUERY_KINDS,
     QUERY_KINDS,
+    SPHERE_QUERY_KINDS,
     TRIANGLE_QUERY_KINDS,
     TRIANGLE_SCALES,
     hard_triangle_queries,
@@ -21,6 +22,8 @@ from raykernel.testing.hypothesis import (
     arbitrary_queries,
     exact_degeneracies,
     hard_queries,
+    hard_sphere_queries,
+    hard_sphere_query_arrays,
     plane_pairs,
     query_arrays,
     queries,
@@ -200,7 +203,65 @@ def test_every_kind_is_reachable():
                 "huge": biggest >= 2.0**900}[scale], (scale, q)
     for kind in HARD_TRIANGLE_QUERY_KINDS:
         assert find(hard_triangle_queries([kind]), lambda q: True).kind == kind
+    for kind in SPHERE_QUERY_KINDS:
+        assert find(hard_sphere_queries([kind]), lambda q: True).kind == kind
     assert {find(hard_queries(), lambda q, k=k: q.kind == k).kind for k in QUERY_KINDS} == set(QUERY_KINDS)
+
+
+def same_sphere(x, y) -> bool:
+    return x.origin is y.origin and x.relation is y.relation and same(x.t1, y.t1) and same(x.t2, y.t2)
+
+
+@given(hard_sphere_queries())
+def test_certified_sphere_equals_exact_and_the_fraction_oracle(q):
+    event(q.kind)
+    x = rk.intersect(q.ray, q.sphere)
+    assert same_sphere(x, rk.intersect_exact(q.ray, q.sphere))
+    assert tuple(rk.relation(q.ray, q.sphere)) == (x.origin, x.relation)
+    oracle = exact.exact_ray_sphere(q.ray, q.sphere)  # no code shared with the kernel
+    assert same_sphere(x, oracle)
+    rational = rk.intersect_exact_rational(q.ray, q.sphere)
+    assert (rational.u, rational.v) == (oracle.u, oracle.v)
+
+
+def _exact_sqrt(v: Fraction):
+    """√v when it is rational, else None."""
+    p, q = math.isqrt(v.numerator), math.isqrt(v.denominator)
+    return Fraction(p, q) if p * p == v.numerator and q * q == v.denominator else None
+
+
+@given(hard_sphere_queries(["tangent", "on-surface", "rounding-tie"]))
+def test_sphere_queries_keep_their_promises(q):
+    # Checked in the Fraction oracle: tangent D = 0, an origin on the surface C = 0, and a root exactly halfway
+    # between two doubles.
+    event(q.kind)
+    answer = exact.exact_ray_sphere(q.ray, q.sphere)
+    if q.kind == "tangent":
+        assert answer.d == 0 and answer.relation is rk.SphereRelation.TANGENT
+    elif q.kind == "on-surface":
+        assert answer.c == 0 and answer.origin is rk.SphereOrigin.ON_SURFACE
+    else:
+        s = _exact_sqrt(answer.v)
+        assert s is not None and s > 0  # rational roots U ∓ √V
+
+        def is_tie(root: Fraction) -> bool:
+            nearest = float(root)  # correctly rounded
+            return any(root == (Fraction(nearest) + Fraction(math.nextafter(nearest, side))) / 2
+                       for side in (math.inf, -math.inf))
+
+        assert is_tie(answer.u - s) or is_tie(answer.u + s)
+
+
+@given(hard_sphere_query_arrays(max_size=8))
+def test_vectorized_spheres_equal_scalar(q):
+    for path, scalar in (("certified", rk.intersect), ("exact", rk.intersect_exact), ("naive", rk.intersect_naive)):
+        arrays = rk.intersect_sphere_batch(q.origins, q.directions, q.centers, q.radii, path=path)
+        assert arrays.valid.all()
+        for i, query in enumerate(q.queries):
+            x = scalar(query.ray, query.sphere)
+            assert arrays.origin[i] == x.origin.code and arrays.relation[i] == x.relation.code
+            assert same(arrays.t1[i], x.t1) and same(arrays.t2[i], x.t2)
+            assert tuple(q.centers[i]) == query.sphere.center and q.radii[i] == query.sphere.radius
 
 
 OCTAHEDRON = testkit.make_octahedron()  # |x| + |y| + |z| ≤ 1: vertices ±1 on the axes

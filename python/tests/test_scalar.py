@@ -124,7 +124,8 @@ def test_malformed_values_name_the_field():
         rk.intersect(SEED_RAY, ((0, "5", 0), (0, 0, 1)))
     with pytest.raises(ValueError, match=r"^ray: expected \(origin, direction\), got a sequence of 3 items$"):
         rk.intersect(((0, 0, 0), (0, 0, 1), (0, 0, 1)), SEED_PLANE)
-    with pytest.raises(TypeError, match=r"^primitive: expected a plane \(point, normal\) or a triangle \(a, b, c\), got NoneType$"):
+    with pytest.raises(TypeError, match=r"^primitive: expected a plane \(point, normal\), a triangle \(a, b, c\) or a "
+                                        r"raykernel\.Sphere, got NoneType$"):
         rk.intersect(SEED_RAY, None)
     with pytest.raises(ValueError, match="^primitive: expected .*, got a sequence of 4 items$"):
         rk.intersect(SEED_RAY, ((0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)))
