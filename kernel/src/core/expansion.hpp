@@ -159,7 +159,9 @@ class ExpansionBuilder {
   // e's sign: Expansion::sign, or when it cannot read it (a sum of expansions that overlap, as after a heavy
   // cancellation), the sign of e compressed, whose top component dominates the rest.
   //   Certified by: proofs/core/Expansions.v, `expansion_sign_sound` (on e, or on its compression) and
-  //   proofs/core/ExpansionCompress.v, `compress_gen_exact` (the compression has e's exact sum).
+  //   proofs/core/ExpansionCompress.v, `compress_gen_exact` (the compression has e's exact sum); the two tries
+  //   composed: proofs/sphere/SphereStages.v, `sphere_sign_or_compressed_sound` and `compress_finite_or_uncertain`
+  //   (a certain answer is the sign of e's exact sum; compress(e), not checked, is finite or its sign uncertain).
   template <std::size_t N>
   [[nodiscard]] static Sign sign_or_compressed(const Expansion<N>& e) noexcept {
     const Sign direct = e.sign();

@@ -13,8 +13,10 @@
 //   compression keeps the exact sum); the root's side: proofs/sphere/SphereRoots.v,
 //   `root_side_of_smaller_correct` and `root_side_of_larger_correct`; the rounding from the sides:
 //   proofs/core/MidpointRounding.v, `boundary_decision_correct`. The stage's composition (which polynomial each
-//   expansion is) has no Coq twin yet, unlike the plane's and the triangle's (docs/contract.md §10, "Decided
-//   here"); tests/sphere_test.cpp and fuzz_sphere check it against the exact stage and an oracle of their own.
+//   expansion is), on twins that thread the builder's flag as the plane's and the triangle's do: a, b, c, d are
+//   A, B, C, D when the builder says exact: proofs/sphere/SphereStages.v, `sphere_expansions_exact` (capacities:
+//   proofs/sphere/SphereStages.v, `sphere_expansions_length`); a certain sphere_root_side is sign(t_k − m):
+//   proofs/sphere/SphereStages.v, `sphere_root_side_sound` and `sphere_root_side_expansions_sound`.
 #pragma once
 
 #include "core/eft.hpp"
