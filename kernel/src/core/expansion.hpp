@@ -24,6 +24,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 
 namespace raykernel::detail {
 
@@ -54,6 +55,16 @@ struct Expansion {
     return Sign::uncertain;
   }
 };
+
+// e in capacity K, when it has at most K components (round_quotient_near is proved for 16); nothing otherwise.
+template <std::size_t K, std::size_t N>
+[[nodiscard]] std::optional<Expansion<K>> shortened(const Expansion<N>& e) noexcept {
+  if (e.size > K) return std::nullopt;
+  Expansion<K> short_form;
+  for (std::size_t i = 0; i < e.size; ++i) short_form.component[i] = e.component[i];
+  short_form.size = e.size;
+  return short_form;
+}
 
 // Builds expansions and keeps the one condition exactness depends on besides round-to-nearest: that no
 // TwoProduct underflowed and nothing overflowed.

@@ -39,13 +39,11 @@ std::optional<double> round_b_over_a(const SphereExpansions& s, double scale) no
   Expansion<24> num;
   builder.scale(s.b, -scale, num);
   builder.check_finite(num);
-  if (!builder.exact() || num.size > 16) return std::nullopt;  // the quotient rounding's valid range
-  Expansion<16> short_num;
-  for (std::size_t i = 0; i < num.size; ++i) short_num.component[i] = num.component[i];
-  short_num.size = num.size;
+  const std::optional<Expansion<16>> short_num = shortened<16>(num);  // the quotient rounding's valid range
+  if (!builder.exact() || !short_num) return std::nullopt;
   const double candidate = approximate(num) / approximate(s.a);
   if (!std::isfinite(candidate)) return std::nullopt;
-  return round_quotient_near(short_num, s.a, 1, candidate);
+  return round_quotient_near(*short_num, s.a, 1, candidate);
 }
 
 // RN of the root (−1: t1, +1: t2) for D > 0 and C ≠ 0, from the candidate; nothing when undecided.

@@ -156,11 +156,8 @@ class TriangleCascade {
   template <std::size_t K>
   std::optional<Expansion<K>> short_expansion(int v) {
     const ExpansionValue<192>& value = expansion(v);
-    if (!value.exact || value.e.size > K) return std::nullopt;
-    Expansion<K> short_form{};
-    for (std::size_t i = 0; i < value.e.size; ++i) short_form.component[i] = value.e.component[i];
-    short_form.size = value.e.size;
-    return short_form;
+    if (!value.exact) return std::nullopt;
+    return shortened<K>(value.e);
   }
   const TriangleCompensatedValues& compensated() {
     if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
