@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 
 namespace raykernel::testkit::construction {
 
@@ -52,5 +53,21 @@ inline double nudge(double x, int k) {
   return x;
 }
 inline double& component(Vec3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
+
+// One random permutation and reflection of the axes (a permutation, then three coins), applied to every vector
+// given: differences, dot and cross products keep their magnitudes exactly (a reflection flips the orientation).
+inline void permute_and_reflect_axes(Draw& draw, std::initializer_list<Vec3*> vectors) {
+  const int permutation[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const int* perm = permutation[draw.small(0, 5)];
+  const bool flip[3] = {draw.coin(), draw.coin(), draw.coin()};
+  for (Vec3* v : vectors) {
+    Vec3 s{};
+    for (int i = 0; i < 3; ++i) {
+      const double c = component(*v, perm[i]);
+      component(s, i) = flip[i] ? -c : c;
+    }
+    *v = s;
+  }
+}
 
 }  // namespace raykernel::testkit::construction

@@ -186,17 +186,7 @@ SphereQuery build(SphereQueryKind kind, Draw& draw) {
 
 // The same permutation and reflection of the axes for o, d and c: every distance and dot product survives.
 SphereQuery shuffle(Draw& draw, SphereQuery q) {
-  const int permutation[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  const int* perm = permutation[draw.small(0, 5)];
-  const bool flip[3] = {draw.coin(), draw.coin(), draw.coin()};
-  for (Vec3* v : {&q.ray.origin, &q.ray.direction, &q.sphere.center}) {
-    Vec3 s{};
-    for (int i = 0; i < 3; ++i) {
-      const double c = component(*v, perm[i]);
-      component(s, i) = flip[i] ? -c : c;
-    }
-    *v = s;
-  }
+  permute_and_reflect_axes(draw, {&q.ray.origin, &q.ray.direction, &q.sphere.center});
   return q;
 }
 

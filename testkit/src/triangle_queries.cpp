@@ -245,17 +245,7 @@ TriangleQuery build(TriangleQueryKind kind, Draw& draw) {
 // The same permutation and reflection of the axes for all five vectors, and a relabelling of the vertices:
 // every incidence, zero and tie survives exactly (a reflection or a reversal flips N and the π's together).
 TriangleQuery shuffle(Draw& draw, TriangleQuery q) {
-  const int permutation[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  const int* perm = permutation[draw.small(0, 5)];
-  const bool flip[3] = {draw.coin(), draw.coin(), draw.coin()};
-  for (Vec3* v : {&q.ray.origin, &q.ray.direction, &q.triangle.a, &q.triangle.b, &q.triangle.c}) {
-    Vec3 s{};
-    for (int i = 0; i < 3; ++i) {
-      const double c = component(*v, perm[i]);
-      component(s, i) = flip[i] ? -c : c;
-    }
-    *v = s;
-  }
+  permute_and_reflect_axes(draw, {&q.ray.origin, &q.ray.direction, &q.triangle.a, &q.triangle.b, &q.triangle.c});
   Triangle& t = q.triangle;
   switch (draw.small(0, 3)) {
     case 1: t = {t.b, t.c, t.a}; break;

@@ -6,6 +6,8 @@
 
 #include "core/rational_from_double.hpp"
 
+#include <raykernel/core.hpp>
+
 #include <gmpxx.h>
 
 namespace raykernel::detail::exact {
@@ -20,5 +22,9 @@ inline int sgn(const Exact& a) { return ::sgn(a.q); }
 
 inline Exact lift(double x) { return {rational_from_double(x)}; }
 inline Exact difference(double v, double w) { return {rational_from_double(v) - rational_from_double(w)}; }
+
+// An exact rational as the public API gives it (raykernel::Rational: decimal strings in lowest terms; mpq_class is
+// kept canonical, den ≥ 1).
+inline ::raykernel::Rational to_public(const mpq_class& q) { return {q.get_num().get_str(), q.get_den().get_str()}; }
 
 }  // namespace raykernel::detail::exact

@@ -2,6 +2,7 @@
 // doubles' bits (rational_from_double.hpp), so the answers do not depend on the floating-point environment.
 #include "mesh/exact_mesh.hpp"
 
+#include "core/exact_value.hpp"
 #include "core/rational_from_double.hpp"
 
 #include <gmpxx.h>
@@ -46,10 +47,7 @@ int compare_triangle_t(const Ray& ray, const Triangle& first, const Triangle& se
   return (c > 0) - (c < 0);
 }
 
-Rational rational_of_double(double x) {
-  const mpq_class q = rational_from_double(x);  // canonical: lowest terms, denominator ≥ 1
-  return {q.get_num().get_str(), q.get_den().get_str()};
-}
+Rational rational_of_double(double x) { return to_public(rational_from_double(x)); }
 
 bool rational_in_interval(const Rational& t, const RayInterval& interval) {
   if (compare_rationals(t, rational_of_double(interval.t_min)) < 0) return false;

@@ -10,6 +10,7 @@
 #include "plane/exact_plane.hpp"
 
 #include "core/binary64_rounding.hpp"
+#include "core/exact_value.hpp"
 #include "core/rational_from_double.hpp"
 #include "core/fp_environment.hpp"
 #include "plane/ray_plane_formula.hpp"
@@ -44,10 +45,6 @@ Intersection decide(const RayPlaneValues<Rational>& terms, Rational* exact_t) {
   const double rounded = round_rational_to_nearest_even(t);
   if (exact_t != nullptr) *exact_t = std::move(t);
   return {relation, rounded};
-}
-
-::raykernel::Rational to_public(const Rational& q) {
-  return {q.get_num().get_str(), q.get_den().get_str()};  // mpq_class is kept canonical: den ≥ 1, lowest terms
 }
 
 }  // namespace

@@ -30,10 +30,6 @@ RaySphereTerms<Exact> exact_terms(const Ray& ray, const Sphere& sphere) {
   return ray_sphere_terms<Exact>(ray, sphere, lift, difference);
 }
 
-::raykernel::Rational to_public(const mpq_class& q) {
-  return {q.get_num().get_str(), q.get_den().get_str()};  // mpq_class is kept canonical: den ≥ 1, lowest terms
-}
-
 // √v when v ≥ 0 is the square of a rational.
 std::optional<mpq_class> rational_sqrt(const mpq_class& v) {
   if (!mpz_perfect_square_p(v.get_num_mpz_t()) || !mpz_perfect_square_p(v.get_den_mpz_t())) return std::nullopt;

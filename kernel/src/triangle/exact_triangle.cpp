@@ -21,10 +21,6 @@ RayTriangleTerms<Exact> exact_terms(const Ray& ray, const Triangle& triangle) {
   return ray_triangle_terms<Exact>(ray, triangle, lift, difference);
 }
 
-::raykernel::Rational to_public(const mpq_class& q) {
-  return {q.get_num().get_str(), q.get_den().get_str()};  // mpq_class is kept canonical: den ≥ 1, lowest terms
-}
-
 TriangleClassification classify(const Ray& ray, const Triangle& triangle, const RayTriangleTerms<Exact>& t,
                                 TriangleRule rule) {
   return detail::classify_triangle(
