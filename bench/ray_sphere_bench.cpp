@@ -40,12 +40,7 @@ using testkit::SphereQueryKind;
 constexpr std::size_t l2_size = 4096;
 
 std::vector<SphereQuery> generate(std::initializer_list<SphereQueryKind> kinds, std::uint64_t seed) {
-  testkit::SplitMix64 rng(seed);
-  const testkit::BitSource bits = [&rng] { return rng(); };
-  const std::vector<SphereQueryKind> k(kinds);
-  std::vector<SphereQuery> out(l2_size);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = testkit::make_sphere_query(k[i % k.size()], bits);
-  return out;
+  return hard_query_buffer(kinds, seed, l2_size, testkit::make_sphere_query);
 }
 
 bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b); }

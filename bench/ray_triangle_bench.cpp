@@ -44,12 +44,7 @@ using testkit::TriangleQueryKind;
 constexpr std::size_t l2_size = 4096;
 
 std::vector<TriangleQuery> generate(std::initializer_list<TriangleQueryKind> kinds, std::uint64_t seed) {
-  testkit::SplitMix64 rng(seed);
-  const testkit::BitSource bits = [&rng] { return rng(); };
-  const std::vector<TriangleQueryKind> k(kinds);
-  std::vector<TriangleQuery> out(l2_size);
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = testkit::make_triangle_query(k[i % k.size()], bits);
-  return out;
+  return hard_query_buffer(kinds, seed, l2_size, testkit::make_triangle_query);
 }
 
 bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b); }
