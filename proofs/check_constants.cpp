@@ -275,6 +275,12 @@ std::vector<Row> table() {
        {}},
       {"triangle_compensated_den_relative", "256 * (u * u)", 256 * Dyadic::pow2(-106),
        b::triangle_compensated_den_relative, {}},
+      // Ray–sphere, stage 1 (ray_sphere_filter.hpp; sphere/SphereFilter.v).
+      {"sphere_filter_c_relative", "8 * u", 8 * Dyadic::pow2(-53), b::sphere_filter_c_relative, {}},
+      {"sphere_filter_c_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::sphere_filter_c_absolute, {}},
+      {"sphere_filter_d_relative", "4 * u", 4 * Dyadic::pow2(-53), b::sphere_filter_d_relative, {}},
+      {"sphere_filter_d_factor", "1 + bpow radix2 (-40)", 1 + Dyadic::pow2(-40), b::sphere_filter_d_factor, {}},
+      {"sphere_filter_d_absolute", "64 * mu", 64 * Dyadic::pow2(-1074), b::sphere_filter_d_absolute, {}},
       // The BVH's ray–box test (ray_box.hpp; box/RayBox.v): K = 1 ∓ 2^-50, τ = 2^-1022, case B's range.
       // 1 − 2^-50 = (2^50 − 1)·2^-50
       {"ray_box_near_factor", "1125899906842623 * bpow radix2 (-50)",

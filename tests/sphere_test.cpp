@@ -8,6 +8,7 @@
 #include "common/exit_status.hpp"
 
 #include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_filter.hpp"
 #include "sphere/ray_sphere_formula.hpp"
 
 #include <raykernel/sphere.hpp>
@@ -22,6 +23,7 @@
 #include <cfenv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -292,6 +294,26 @@ TEST(SphereStages, InRangeKindsNeverReachTheExactStage) {
     }
   }
   EXPECT_GT(with_roots, 4000u);
+}
+
+// Stage 1 (sphere/ray_sphere_filter.hpp, not wired yet): the binary64 filter of the signs of C and D decides the
+// relation of nearly every random query, and each sign it certifies is the exact one.
+TEST(SphereStages, FilterDecidesRandomQueries) {
+  testkit::SplitMix64 rng(11);
+  const testkit::BitSource source = [&rng] { return rng(); };
+  int filtered = 0;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    const testkit::SphereQuery q = testkit::make_sphere_query(testkit::SphereQueryKind::random, source);
+    const detail::SphereFilterSigns f = detail::sphere_filter(q.ray, q.sphere);
+    if (!detail::is_certain(f.c) || !detail::is_certain(f.d)) continue;
+    ++filtered;
+    const SphereIntersection exact = detail::exact::intersect_sphere(q.ray, q.sphere);
+    EXPECT_EQ(detail::sphere_relation(static_cast<int>(f.d)), exact.relation) << testkit::sphere_line(q);
+    EXPECT_EQ(detail::sphere_origin(static_cast<int>(f.c)), exact.origin) << testkit::sphere_line(q);
+  }
+  std::printf("sphere filter: %d of %d random queries\n", filtered, n);
+  EXPECT_GE(filtered, n * 99 / 100);
 }
 
 // The decision of root_side_of against the roots' order, over exact small cases: for the roots 1 and 3

@@ -96,3 +96,11 @@ Definition orient2d_filter_absolute : R := bpow radix2 (-1071).
 Definition orient3d_filter_relative : R := bpow radix2 (-49).
 Definition orient3d_filter_min_difference : R := bpow radix2 (-300).
 Definition orient3d_filter_max_difference : R := bpow radix2 (300).
+
+(** ** Ray–sphere (kernel/src/sphere/ray_sphere_filter.hpp; sphere/SphereFilter.v): E_C = (κ_C ⊗ P_C) ⊕ μ_C and
+    E_D = (... ⊗ φ_D) ⊕ μ_D, the bounds of stage 1's signs of C and D. *)
+Definition sphere_filter_c_relative : R := 8 * unit_roundoff.
+Definition sphere_filter_c_absolute : R := 8 * min_subnormal.
+Definition sphere_filter_d_relative : R := 4 * unit_roundoff.
+Definition sphere_filter_d_factor : R := 1 + bpow radix2 (-40).
+Definition sphere_filter_d_absolute : R := 64 * min_subnormal.

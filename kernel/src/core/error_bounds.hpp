@@ -318,4 +318,38 @@ inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den =
 // expansions (expansion.hpp; proofs/core/Expansions.v) whenever no TwoProduct underflowed and nothing overflowed:
 // no constant. Stage 4 (exact rationals) decides the rest.
 
+// =========================================================================================================
+// Ray–sphere (kernel/src/sphere/, docs/contract.md §10): stage 1, sphere_filter (sphere/ray_sphere_filter.hpp),
+// the signs of C = f·f − r² and D = B² − A·C (the origin and the relation; the roots stay in the expansion stage).
+//
+//   f_i = o_i ⊖ c_i;  Â, E_A: dot3_rounded(d, d) and its dot3_filter_bound (filter_den_relative);
+//   B̂, E_B: dot3_rounded(f, d) and its bound (filter_num_relative: B is num's shape (p − o)·n with p = o,
+//   o = c, n = d);  S = dot3_rounded(f, f), q = r ⊗ r,  Ĉ = S.value ⊖ q,  P_C = S.magnitude ⊕ q,
+//   E_C = (κ_C ⊗ P_C) ⊕ μ_C;
+//   D̂ = (B̂ ⊗ B̂) ⊖ (Â ⊗ Ĉ),
+//   E_D = ((((κ_D ⊗ (|B̂ ⊗ B̂| ⊕ |Â ⊗ Ĉ|)) ⊕ (E_B ⊗ ((|B̂| ⊕ |B̂|) ⊕ E_B))) ⊕ ((E_A ⊗ |Ĉ|) ⊕ ((|Â| ⊕ E_A) ⊗ E_C)))
+//         ⊗ φ_D) ⊕ μ_D;
+//   Ĉ > E_C ⇒ C > 0,  Ĉ < −E_C ⇒ C < 0;  D̂ > E_D ⇒ D > 0,  D̂ < −E_D ⇒ D < 0;  otherwise uncertain.
+//
+// Derivation. C: with f̂_i = f_i(1 + δ_i), |δ_i| ≤ u (a difference of doubles: no absolute error),
+// |f̂_i² − f_i²| ≤ (2u + u²)f̂_i², so each product q_i = f̂_i ⊗ f̂_i is within (3u + 3u² + u³)|q_i| + (1+u)²η of
+// f_i², and (dot3_value_error) |S − f·f| ≤ (5u + 4u² + u³)Σ|q_i| + 3(1+u)²η, Σ|q_i| ≤ (1+u)²·m_S; the
+// rounding of r² adds u·q + η and the subtraction u(|S| + q) ≤ u(m_S + q); m_S + q ≤ (1+u)P_C. So
+//   |Ĉ − C| ≤ (6u + O(u²))·P_C + 4.1η,  and κ_C = 8u, μ_C = 8μ = 16η cover it with the two roundings of E_C.
+// D: exactly D̂ − D = (D̂ − (b − a)) + (b − B̂²) − (a − ÂĈ) + (B̂² − B²) − (ÂĈ − AC), b = B̂ ⊗ B̂, a = Â ⊗ Ĉ:
+//   |D̂ − (b − a)| ≤ u(|b| + |a|),  |b − B̂²| + |a − ÂĈ| ≤ u(|b| + |a|) + 2η,
+//   |B̂² − B²| ≤ E_B(2|B̂| + E_B),  |ÂĈ − AC| ≤ E_A|Ĉ| + (|Â| + E_A)E_C,
+// so |D̂ − D| ≤ 2u(|b| + |a|) + E_B(2|B̂| + E_B) + E_A|Ĉ| + (|Â| + E_A)E_C + 2η. κ_D = 4u ≥ 2u(1+u)^k; every
+// other operation of E_D is on non-negative doubles and loses at most a factor (1 − u) and an η; seven of
+// them deep, φ_D = 1 + 2^-40 ≥ (1 − u)^-8, and μ_D = 64μ covers the η's (at most ~12η, times φ_D).
+// Valid for all finite inputs (subnormal included); uncertain (never wrong) when anything overflows: every
+// intermediate is dominated by P_C, m_A, m_B or the terms of E_D, whose overflow makes a bound +inf or NaN,
+// and every certifying comparison (value > bound, value < −bound) is then false. Never certifies a zero.
+// NOT CERTIFIED YET (proofs/sphere/SphereFilter.v is unfinished; the filter is not wired into the cascade).
+inline constexpr double sphere_filter_c_relative = 0x1p-50;          // κ_C = 8u
+inline constexpr double sphere_filter_c_absolute = 0x1p-1071;        // μ_C = 8μ
+inline constexpr double sphere_filter_d_relative = 0x1p-51;          // κ_D = 4u
+inline constexpr double sphere_filter_d_factor = 0x1.0000000001p+0;  // φ_D = 1 + 2^-40
+inline constexpr double sphere_filter_d_absolute = 0x1p-1068;        // μ_D = 64μ
+
 }  // namespace raykernel::detail::bounds

@@ -1,5 +1,6 @@
 // The certified ray–sphere cascade. Each answer comes from the cheapest stage that decides it:
-//   - the relation: the signs of C and D read from their exact expansions (ray_sphere_stages.hpp), or exact
+//   - the relation: first the binary64 filter of the signs of C and D (ray_sphere_filter.hpp; a miss it decides
+//     returns at once, without expansions); then the signs of C and D read from their exact expansions (ray_sphere_stages.hpp), or exact
 //     rationals when a product was not exact or a sign could not be read;
 //   - each root: a candidate from the expansions' rounded values (the stable form: the root of larger magnitude
 //     from −B ∓ √D, the other as C over it), decided at its rounding boundaries (core/quotient_boundary.hpp's
@@ -10,6 +11,7 @@
 
 #include "core/quotient_boundary.hpp"
 #include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_filter.hpp"
 #include "sphere/ray_sphere_stages.hpp"
 
 #include <cmath>
@@ -91,9 +93,22 @@ std::optional<SphereClassification> expansion_classification(const SphereExpansi
   return SphereClassification{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))};
 }
 
+// Off until proofs/sphere/SphereFilter.v proves the filter's bounds (sphere_filter_c_sound, sphere_filter_d_sound
+// are not finished): the cascade is then unchanged.
+constexpr bool use_sphere_filter = false;
+
+// Both signs from the filter, or nothing.
+std::optional<SphereClassification> filter_classification(const Ray& ray, const Sphere& sphere) noexcept {
+  if constexpr (!use_sphere_filter) return std::nullopt;
+  const SphereFilterSigns f = sphere_filter(ray, sphere);
+  if (!is_certain(f.c) || !is_certain(f.d)) return std::nullopt;
+  return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
+}
+
 }  // namespace
 
 TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
+  if (const std::optional<SphereClassification> c = filter_classification(ray, sphere)) return {*c, Stage::filter};
   SphereExpansions s;
   sphere_expansions(ray, sphere, s);
   if (const std::optional<SphereClassification> c = expansion_classification(s)) return {*c, Stage::expansion};
@@ -101,16 +116,20 @@ TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere&
 }
 
 TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
+  const std::optional<SphereClassification> filtered = filter_classification(ray, sphere);
+  if (filtered && filtered->relation == SphereRelation::miss)
+    return {{filtered->origin, filtered->relation, not_a_number, not_a_number}, Stage::filter, Stage::filter};
   SphereExpansions s;
   sphere_expansions(ray, sphere, s);
-  const std::optional<SphereClassification> c = expansion_classification(s);
+  const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
+  const std::optional<SphereClassification> c = filtered ? filtered : expansion_classification(s);
   if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
   if (c->relation == SphereRelation::miss)
     return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
   if (const std::optional<Roots> r = expansion_roots(s, *c))
-    return {{c->origin, c->relation, r->t1, r->t2}, Stage::expansion, Stage::expansion};
+    return {{c->origin, c->relation, r->t1, r->t2}, relation_stage, Stage::expansion};
   const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
-  return {{c->origin, c->relation, exact.t1, exact.t2}, Stage::expansion, Stage::exact};
+  return {{c->origin, c->relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
 }
 
 }  // namespace raykernel::detail

@@ -1,0 +1,57 @@
+// Stage 1 of the ray–sphere cascade: the signs of C = f·f − r² (the origin) and D = B² − A·C (the relation) in
+// binary64 with semi-static error bounds (docs/contract.md §10; the formula: ray_sphere_formula.hpp). The roots
+// are not computed here: the expansion stage rounds them.
+//   Error bound: |Ĉ − C| ≤ E_C = (κ_C ⊗ P_C) ⊕ μ_C and |D̂ − D| ≤ E_D, as derived in core/error_bounds.hpp
+//   (the ray–sphere section), from the enclosures of Â and B̂ by dot3_filter_bound (core/dot3_filter.hpp).
+//   Valid range: all finite inputs (subnormal included); uncertain (never wrong) when anything overflows (a
+//   bound is then +inf or NaN and no comparison holds). A zero C or D is never certified.
+//   NOT CERTIFIED YET: proofs/sphere/SphereFilter.v has the model of this code and the error of f·f, but not yet
+//   the theorems that a certain sign is the sign of the exact C, resp. D; so ray_sphere_cascade.cpp does not call
+//   it (use_sphere_filter = false).
+#pragma once
+
+#include "core/dot3_filter.hpp"
+#include "core/error_bounds.hpp"
+#include "core/sign.hpp"
+
+#include <raykernel/sphere.hpp>
+
+#include <cmath>
+
+namespace raykernel::detail {
+
+struct SphereFilterSigns {
+  Sign c, d;  // sign(C), sign(D), or uncertain
+};
+
+[[nodiscard]] inline Sign sphere_filter_sign(double value, double bound) noexcept {
+  if (value > bound) return Sign::positive;
+  if (value < -bound) return Sign::negative;
+  return Sign::uncertain;
+}
+
+[[nodiscard]] inline SphereFilterSigns sphere_filter(const Ray& ray, const Sphere& sphere) noexcept {
+  const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const double f[3] = {ray.origin.x - sphere.center.x, ray.origin.y - sphere.center.y,
+                       ray.origin.z - sphere.center.z};
+  const Dot3Rounded ra = dot3_rounded(d, d);  // A = d·d
+  const Dot3Rounded rb = dot3_rounded(f, d);  // B = f·d
+  const Dot3Rounded rs = dot3_rounded(f, f);  // f·f
+  const double ea = dot3_filter_bound(ra, bounds::filter_den_relative);
+  const double eb = dot3_filter_bound(rb, bounds::filter_num_relative);
+  const double q = sphere.radius * sphere.radius;
+  const double c = rs.value - q;
+  const double pc = rs.magnitude + q;
+  const double ec = bounds::sphere_filter_c_relative * pc + bounds::sphere_filter_c_absolute;
+  const double a = ra.value, b = rb.value;
+  const double bb = b * b, ac = a * c;
+  const double dv = bb - ac;
+  const double t1 = bounds::sphere_filter_d_relative * (std::abs(bb) + std::abs(ac));
+  const double t2 = eb * ((std::abs(b) + std::abs(b)) + eb);  // 2|B̂| exactly
+  const double t3 = ea * std::abs(c);
+  const double t4 = (std::abs(a) + ea) * ec;
+  const double ed = ((t1 + t2) + (t3 + t4)) * bounds::sphere_filter_d_factor + bounds::sphere_filter_d_absolute;
+  return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed)};
+}
+
+}  // namespace raykernel::detail
