@@ -149,6 +149,107 @@ Proof.
   unfold F2R; simpl. ring.
 Qed.
 
-(** Unfinished (not in this file yet): the enclosures |Ĉ − C| ≤ E_C and |D̂ − D| ≤ E_D and the theorems
-    [sphere_filter_c_sound] and [sphere_filter_d_sound]; ray_sphere_filter.hpp's filter is therefore not wired
-    into the cascade (ray_sphere_cascade.cpp, use_sphere_filter). *)
+(** A rounding of a non-negative real is non-negative and at least x(1 − u) − η; a rounded sum of
+    non-negative doubles is at least (a + b)(1 − u).  The lower bounds of the computed bounds below are chains of
+    these. *)
+
+Lemma binary64_sphere_c_bound_nonneg : forall o0 o1 o2 c0 c1 c2 r,
+  0 <= sphere_c_bound o0 o1 o2 c0 c1 c2 r.
+Proof.
+  intros. unfold sphere_c_bound. pose proof u_pos as Hu.
+  set (S := sphere_s o0 o1 o2 c0 c1 c2).
+  assert (Pm : 0 <= magnitude S) by (apply (magnitude_bound (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)
+                                             (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2))).
+  assert (Pq : 0 <= RN (r * r)) by (apply RN_nonneg; nra).
+  assert (P1 : 0 <= RN (magnitude S + RN (r * r))) by (apply RN_nonneg; lra).
+  assert (P2 : 0 <= RN (sphere_filter_c_relative * RN (magnitude S + RN (r * r)))).
+  { apply RN_nonneg. apply Rmult_le_pos; [unfold sphere_filter_c_relative; lra | exact P1]. }
+  apply RN_nonneg. unfold sphere_filter_c_absolute, min_subnormal. pose proof (bpow_ge_0 radix2 (-1074)). lra.
+Qed.
+
+(** |Ĉ − C| ≤ E_C for every binary64 input: with m = S.magnitude and q = r ⊗ r,
+    |Ĉ − C| ≤ ((6u + u²)(1 + u)² + u)(m + q) + 7η, and E_C ≥ 8u(1 − u)³(m + q) + 15η(1 − u). *)
+Theorem sphere_c_encloses : forall o0 o1 o2 c0 c1 c2 r,
+  binary64 o0 -> binary64 o1 -> binary64 o2 -> binary64 c0 -> binary64 c1 -> binary64 c2 -> binary64 r ->
+  Rabs (sphere_c_value o0 o1 o2 c0 c1 c2 r -
+        ((o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2) - r * r)) <=
+    sphere_c_bound o0 o1 o2 c0 c1 c2 r.
+Proof.
+  intros o0 o1 o2 c0 c1 c2 r B0 B1 B2 C0 C1 C2 Br.
+  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof u_val as Uv.
+  pose proof (sphere_s_error o0 o1 o2 c0 c1 c2 B0 B1 B2 C0 C1 C2) as ES. cbv zeta in ES.
+  destruct (magnitude_bound (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)
+                            (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)) as [Pm Qm].
+  destruct (dot3_rounded_dominated (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)
+                            (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)) as [_ [_ [_ [_ Dm]]]].
+  unfold sphere_c_value, sphere_c_bound. fold (sphere_s o0 o1 o2 c0 c1 c2) in *.
+  set (S := sphere_s o0 o1 o2 c0 c1 c2) in *.
+  set (F := (o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2)) in *.
+  set (Q := Rabs (product0 S) + Rabs (product1 S) + Rabs (product2 S)) in *.
+  set (s := value S) in *. set (m := magnitude S) in *.
+  set (q := RN (r * r)).
+  assert (Bs : binary64 s) by apply binary64_RN.
+  assert (Bm : binary64 m) by apply binary64_RN.
+  assert (Bq : binary64 q) by apply binary64_RN.
+  assert (Pq : 0 <= q) by (apply RN_nonneg; nra).
+  (* the three errors *)
+  assert (Eq : Rabs (q - r * r) <= u * q + eta).
+  { pose proof (RN_err_round (r * r)) as H. fold q in H. rewrite (Rabs_nonneg_eq q Pq) in H. exact H. }
+  assert (Ec : Rabs (RN (s - q) - (s - q)) <= u * (m + q)).
+  { eapply Rle_trans; [apply RN_minus_err; assumption|].
+    apply Rmult_le_compat_l; [lra|]. unfold Rminus. eapply Rle_trans; [apply Rabs_triang|].
+    rewrite Rabs_Ropp, (Rabs_nonneg_eq q Pq). lra. }
+  assert (EQ : (6 * u + u * u) * Q <= (6 * u + u * u) * ((1 + u) * (1 + u) * m))
+    by (apply Rmult_le_compat_l; nra).
+  set (K := (6 * u + u * u) * ((1 + u) * (1 + u)) + u).
+  assert (Err : Rabs (RN (s - q) - (F - r * r)) <= K * (m + q) + 7 * eta).
+  { replace (RN (s - q) - (F - r * r)) with ((RN (s - q) - (s - q)) + (s - F) - (q - r * r)) by ring.
+    set (x := RN (s - q) - (s - q)) in *. set (y := s - F) in *. set (z := q - r * r) in *.
+    assert (T3 : Rabs (x + y - z) <= Rabs x + Rabs y + Rabs z).
+    { unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp.
+      pose proof (Rabs_triang x y). lra. }
+    assert (Ku : u <= (6 * u + u * u) * ((1 + u) * (1 + u))) by (rewrite Uv; lra).
+    assert (Kq : u * q <= (6 * u + u * u) * ((1 + u) * (1 + u)) * q) by (apply Rmult_le_compat_r; assumption).
+    unfold K. lra. }
+  (* the lower bound of E_C *)
+  set (P := RN (m + q)). set (T := RN (sphere_filter_c_relative * P)).
+  assert (LP : (m + q) * (1 - u) <= P) by (apply RN_plus_lower; auto; lra).
+  assert (Pk : 0 <= sphere_filter_c_relative) by (unfold sphere_filter_c_relative; lra).
+  assert (LT : sphere_filter_c_relative * P * (1 - u) - eta <= T)
+    by (apply RN_lower; apply Rmult_le_pos; [lra | apply RN_nonneg; lra]).
+  assert (PT : 0 <= T) by (apply RN_nonneg; apply Rmult_le_pos; [lra | apply RN_nonneg; lra]).
+  assert (Babs : binary64 sphere_filter_c_absolute) by apply binary64_sphere_filter_c_absolute.
+  assert (Mu : sphere_filter_c_absolute = 16 * eta)
+    by (unfold sphere_filter_c_absolute; rewrite min_subnormal_eta; ring).
+  assert (LE : (T + sphere_filter_c_absolute) * (1 - u) <= RN (T + sphere_filter_c_absolute))
+    by (apply RN_plus_lower; [apply binary64_RN | exact Babs | lra]).
+  (* K (m + q) ≤ κ (1 − u)³ (m + q) *)
+  assert (KK : K <= sphere_filter_c_relative * (1 - u) * (1 - u) * (1 - u))
+    by (unfold K, sphere_filter_c_relative; rewrite Uv; lra).
+  assert (Pmq : 0 <= m + q) by lra.
+  assert (S1 : K * (m + q) <= sphere_filter_c_relative * (1 - u) * (1 - u) * (1 - u) * (m + q))
+    by (apply Rmult_le_compat_r; assumption).
+  assert (S2 : sphere_filter_c_relative * ((m + q) * (1 - u)) * (1 - u) <= sphere_filter_c_relative * P * (1 - u)).
+  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_l; assumption. }
+  assert (S3 : (sphere_filter_c_relative * P * (1 - u) - eta + 16 * eta) * (1 - u) <=
+               (T + sphere_filter_c_absolute) * (1 - u)) by (apply Rmult_le_compat_r; lra).
+  assert (S4 : (sphere_filter_c_relative * ((m + q) * (1 - u)) * (1 - u) - eta + 16 * eta) * (1 - u) <=
+               (sphere_filter_c_relative * P * (1 - u) - eta + 16 * eta) * (1 - u)) by (apply Rmult_le_compat_r; lra).
+  assert (S5 : 7 * eta <= 15 * eta * (1 - u)) by (rewrite Uv; lra).
+  assert (S6 : (sphere_filter_c_relative * ((m + q) * (1 - u)) * (1 - u) - eta + 16 * eta) * (1 - u) =
+               sphere_filter_c_relative * (1 - u) * (1 - u) * (1 - u) * (m + q) + 15 * eta * (1 - u)) by ring.
+  lra.
+Qed.
+
+(** The certified sign of Ĉ against E_C is the sign of the exact C = (o − c)·(o − c) − r². *)
+Theorem sphere_filter_c_sound : forall o0 o1 o2 c0 c1 c2 r,
+  binary64 o0 -> binary64 o1 -> binary64 o2 -> binary64 c0 -> binary64 c1 -> binary64 c2 -> binary64 r ->
+  certifies (sphere_filter_c o0 o1 o2 c0 c1 c2 r)
+    ((o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2) - r * r).
+Proof.
+  intros. unfold sphere_filter_c. apply filter_sign_sound. now apply sphere_c_encloses.
+Qed.
+
+(** Unfinished (not in this file yet): the enclosure |D̂ − D| ≤ E_D and the theorem [sphere_filter_d_sound];
+    ray_sphere_filter.hpp's filter is therefore not wired into the cascade (ray_sphere_cascade.cpp,
+    use_sphere_filter). *)
