@@ -153,7 +153,7 @@ Qed.
     non-negative doubles is at least (a + b)(1 − u).  The lower bounds of the computed bounds below are chains of
     these. *)
 
-Lemma binary64_sphere_c_bound_nonneg : forall o0 o1 o2 c0 c1 c2 r,
+Lemma sphere_c_bound_nonneg : forall o0 o1 o2 c0 c1 c2 r,
   0 <= sphere_c_bound o0 o1 o2 c0 c1 c2 r.
 Proof.
   intros. unfold sphere_c_bound. pose proof u_pos as Hu.
@@ -250,6 +250,180 @@ Proof.
   intros. unfold sphere_filter_c. apply filter_sign_sound. now apply sphere_c_encloses.
 Qed.
 
-(** Unfinished (not in this file yet): the enclosure |D̂ − D| ≤ E_D and the theorem [sphere_filter_d_sound];
-    ray_sphere_filter.hpp's filter is therefore not wired into the cascade (ray_sphere_cascade.cpp,
-    use_sphere_filter). *)
+(** ** D. *)
+
+(** The error of D̂ from enclosures of Â, B̂, Ĉ: with b = B̂ ⊗ B̂ and a = Â ⊗ Ĉ,
+    |D̂ − D| ≤ 2u(|b| + |a|) + E_B(2|B̂| + E_B) + E_A|Ĉ| + (|Â| + E_A)E_C + 2η. *)
+Lemma d_value_error : forall A B C a b c ea eb ec,
+  Rabs (a - A) <= ea -> Rabs (b - B) <= eb -> Rabs (c - C) <= ec ->
+  Rabs (d_value a b c - (B * B - A * C)) <=
+    2 * u * (Rabs (RN (b * b)) + Rabs (RN (a * c))) + eb * (2 * Rabs b + eb) + ea * Rabs c
+    + (Rabs a + ea) * ec + 2 * eta.
+Proof.
+  intros A B C a b c ea eb ec HA HB HC.
+  pose proof u_pos as Hu. pose proof eta_pos as He.
+  unfold d_value. set (bb := RN (b * b)). set (ac := RN (a * c)).
+  assert (E1 : Rabs (RN (bb - ac) - (bb - ac)) <= u * (Rabs bb + Rabs ac)).
+  { eapply Rle_trans; [apply RN_minus_err; apply binary64_RN|]. apply Rmult_le_compat_l; [lra|].
+    unfold Rminus. eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp. lra. }
+  pose proof (RN_err_round (b * b)) as E2. fold bb in E2.
+  pose proof (RN_err_round (a * c)) as E3. fold ac in E3.
+  assert (E4 : Rabs (b * b - B * B) <= eb * (2 * Rabs b + eb)).
+  { replace (b * b - B * B) with ((b - B) * (b + B)) by ring. rewrite Rabs_mult.
+    assert (S : Rabs (b + B) <= 2 * Rabs b + eb).
+    { replace (b + B) with (2 * b + - (b - B)) by ring.
+      eapply Rle_trans; [apply Rabs_triang|]. rewrite Rabs_Ropp, Rabs_mult, (Rabs_nonneg_eq 2) by lra. lra. }
+    apply Rmult_le_compat; [apply Rabs_pos | apply Rabs_pos | exact HB | exact S]. }
+  assert (E5 : Rabs (a * c - A * C) <= ea * Rabs c + (Rabs a + ea) * ec).
+  { replace (a * c - A * C) with ((a - A) * c + A * (c - C)) by ring.
+    eapply Rle_trans; [apply Rabs_triang|]. rewrite !Rabs_mult.
+    assert (HA' : Rabs A <= Rabs a + ea) by (apply (Rabs_close' a A); exact HA).
+    apply Rplus_le_compat.
+    - apply Rmult_le_compat_r; [apply Rabs_pos | exact HA].
+    - apply Rmult_le_compat; [apply Rabs_pos | apply Rabs_pos | exact HA' | exact HC]. }
+  pose proof (Rabs_sum5 (RN (bb - ac) - (bb - ac)) (bb - b * b) (- (ac - a * c)) (b * b - B * B)
+                        (- (a * c - A * C))) as T.
+  replace (RN (bb - ac) - (bb - ac) + (bb - b * b) + - (ac - a * c) + (b * b - B * B) + - (a * c - A * C))
+    with (RN (bb - ac) - (B * B - A * C)) in T by ring.
+  rewrite !Rabs_Ropp in T. lra.
+Qed.
+
+(** The computed E_D is at least that error bound, for non-negative binary64 E_A, E_B, E_C: every operation of
+    E_D loses at most a factor (1 − u) and an η; φ_D(1 − u)⁷ ≥ 1 and μ_D = 128η cover them. *)
+Lemma d_bound_lower : forall a b c ea eb ec,
+  binary64 a -> binary64 b -> binary64 ea -> binary64 eb -> binary64 ec -> 0 <= ea -> 0 <= eb -> 0 <= ec ->
+  2 * u * (Rabs (RN (b * b)) + Rabs (RN (a * c))) + eb * (2 * Rabs b + eb) + ea * Rabs c
+    + (Rabs a + ea) * ec + 2 * eta <= d_bound a b c ea eb ec.
+Proof.
+  intros a b c ea eb ec Bain Bbin Bea Beb Bec Pea Peb Pec.
+  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof u_val as Uv.
+  unfold d_bound. cbv zeta.
+  set (w := 1 - u).
+  assert (Hw : 1 / 2 <= w <= 1) by (unfold w; rewrite Uv; lra).
+  assert (Lo : forall x, 0 <= x -> x * w - eta <= RN x /\ 0 <= RN x)
+    by (intros x Hx; split; [apply RN_lower; exact Hx | apply RN_nonneg; exact Hx]).
+  assert (Lp : forall x y, binary64 x -> binary64 y -> 0 <= x -> 0 <= y -> (x + y) * w <= RN (x + y) /\ 0 <= RN (x + y))
+    by (intros x y Bx By Px Py; split; [apply RN_plus_lower; auto; lra | apply RN_nonneg; lra]).
+  assert (W3 : forall Z, 0 <= Z -> Z * (w * w * w) <= Z * (w * w) /\ Z * (w * w * w) <= Z * w).
+  { intros Z PZ. split; apply Rmult_le_compat_l; try exact PZ; nra. }
+  set (kd := sphere_filter_d_relative). assert (Kd : kd = 4 * u) by reflexivity.
+  set (phi := sphere_filter_d_factor).
+  assert (Phi : 1 <= phi * (w * w * w * w * w * w * w) /\ phi * (w * w * w * w) <= 2).
+  { unfold phi, sphere_filter_d_factor, w. rewrite Uv.
+    replace (bpow radix2 (-40)) with (/ 1099511627776) by (simpl; lra). split; lra. }
+  set (mu := sphere_filter_d_absolute).
+  assert (Mu : mu = 128 * eta) by (unfold mu, sphere_filter_d_absolute; rewrite min_subnormal_eta; ring).
+  assert (Bmu : binary64 mu) by apply binary64_sphere_filter_d_absolute.
+  set (bb := RN (b * b)). set (ac := RN (a * c)).
+  assert (Bbb : binary64 (Rabs bb)) by (apply binary64_abs, binary64_RN).
+  assert (Bac : binary64 (Rabs ac)) by (apply binary64_abs, binary64_RN).
+  pose proof (Rabs_pos bb) as Pbb. pose proof (Rabs_pos ac) as Pac. pose proof (Rabs_pos a) as Pa.
+  pose proof (Rabs_pos b) as Pb. pose proof (Rabs_pos c) as Pc.
+  (* t1 *)
+  destruct (Lp _ _ Bbb Bac Pbb Pac) as [X1 PX1]. set (x1 := RN (Rabs bb + Rabs ac)) in *.
+  destruct (Lo (kd * x1)) as [T1 Pt1]; [rewrite Kd; nra|]. set (t1 := RN (kd * x1)) in *.
+  assert (A1 : kd * ((Rabs bb + Rabs ac) * w) * w <= kd * x1 * w).
+  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_l; [rewrite Kd; lra | exact X1]. }
+  (* t2 *)
+  assert (Bab : binary64 (Rabs b)) by (apply binary64_abs; exact Bbin).
+  destruct (Lp _ _ Bab Bab Pb Pb) as [Y PY]. set (y := RN (Rabs b + Rabs b)) in *.
+  destruct (Lp _ _ (binary64_RN _) Beb PY Peb) as [Y2 PY2]. fold y in Y2, PY2. set (y2 := RN (y + eb)) in *.
+  destruct (Lo (eb * y2)) as [T2 Pt2]; [nra|]. set (t2 := RN (eb * y2)) in *.
+  assert (A2 : eb * (((Rabs b + Rabs b) * w + eb) * w) * w <= eb * y2 * w).
+  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_l; [lra|].
+    eapply Rle_trans; [|exact Y2]. apply Rmult_le_compat_r; lra. }
+  (* t3 *)
+  destruct (Lo (ea * Rabs c)) as [T3 Pt3]; [nra|]. set (t3 := RN (ea * Rabs c)) in *.
+  (* t4 *)
+  assert (Baa : binary64 (Rabs a)) by (apply binary64_abs; exact Bain).
+  destruct (Lp _ _ Baa Bea Pa Pea) as [X4 PX4]. set (x4 := RN (Rabs a + ea)) in *.
+  destruct (Lo (x4 * ec)) as [T4 Pt4]; [nra|]. set (t4 := RN (x4 * ec)) in *.
+  assert (A4 : (Rabs a + ea) * w * ec * w <= x4 * ec * w).
+  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_r; lra. }
+  (* T = t1 + t2 + t3 + t4 ≥ w³V − 4η *)
+  set (V := kd * (Rabs bb + Rabs ac) + eb * (2 * Rabs b + eb) + ea * Rabs c + (Rabs a + ea) * ec).
+  assert (PV : 0 <= V) by (unfold V; rewrite Kd; nra).
+  destruct (W3 (kd * (Rabs bb + Rabs ac))) as [W1 _]; [rewrite Kd; nra|].
+  destruct (W3 (eb * eb)) as [W2 _]; [nra|].
+  destruct (W3 (eb * (2 * Rabs b))) as [W2' _]; [nra|].
+  destruct (W3 (ea * Rabs c)) as [_ W3c]; [nra|].
+  destruct (W3 ((Rabs a + ea) * ec)) as [W4 _]; [nra|].
+  assert (TT : w * w * w * V - 4 * eta <= t1 + t2 + t3 + t4) by (unfold V; lra).
+  (* the sums *)
+  assert (Bt : forall x, binary64 (RN x)) by apply binary64_RN.
+  destruct (Lp t1 t2 (Bt _) (Bt _) Pt1 Pt2) as [S12 PS12]. set (s12 := RN (t1 + t2)) in *.
+  destruct (Lp t3 t4 (Bt _) (Bt _) Pt3 Pt4) as [S34 PS34]. set (s34 := RN (t3 + t4)) in *.
+  destruct (Lp s12 s34 (Bt _) (Bt _) PS12 PS34) as [S PS]. set (sd := RN (s12 + s34)) in *.
+  assert (A5 : (t1 + t2 + t3 + t4) * (w * w) <= sd).
+  { eapply Rle_trans; [|exact S]. replace ((t1 + t2 + t3 + t4) * (w * w)) with (((t1 + t2) * w + (t3 + t4) * w) * w)
+      by ring. apply Rmult_le_compat_r; lra. }
+  assert (A6 : (w * w * w * V - 4 * eta) * (w * w) <= (t1 + t2 + t3 + t4) * (w * w))
+    by (apply Rmult_le_compat_r; nra).
+  assert (Pphi : 0 <= phi) by (unfold phi, sphere_filter_d_factor; pose proof (bpow_ge_0 radix2 (-40)); lra).
+  destruct (Lo (sd * phi)) as [P1 PP1]; [nra|]. set (pd := RN (sd * phi)) in *.
+  assert (A7 : (w * w * w * V - 4 * eta) * (w * w) * phi * w <= sd * phi * w).
+  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_r; lra. }
+  destruct (Lp pd mu (Bt _) Bmu PP1 ltac:(rewrite Mu; lra)) as [E PE].
+  assert (A8 : ((w * w * w * V - 4 * eta) * (w * w) * phi * w - eta + mu) * w <= (pd + mu) * w)
+    by (apply Rmult_le_compat_r; lra).
+  assert (A9 : V * 1 <= V * (phi * (w * w * w * w * w * w * w))) by (apply Rmult_le_compat_l; lra).
+  assert (A10 : 4 * eta * (phi * (w * w * w * w)) <= 4 * eta * 2) by (apply Rmult_le_compat_l; lra).
+  assert (A11 : 2 * u * (Rabs bb + Rabs ac) <= kd * (Rabs bb + Rabs ac)) by (rewrite Kd; nra).
+  assert (A12 : eta * w <= eta) by nra.
+  assert (A13 : mu * (1 / 2) <= mu * w) by (apply Rmult_le_compat_l; [rewrite Mu|]; lra).
+  assert (EQ : ((w * w * w * V - 4 * eta) * (w * w) * phi * w - eta + mu) * w =
+               V * (phi * (w * w * w * w * w * w * w)) - 4 * eta * (phi * (w * w * w * w)) - eta * w + mu * w)
+    by ring.
+  destruct Phi as [Phi1 Phi2].
+  assert (VV : V = kd * (Rabs bb + Rabs ac) + eb * (2 * Rabs b + eb) + ea * Rabs c + (Rabs a + ea) * ec) by reflexivity.
+  lra.
+Qed.
+
+Lemma filter_bound_nonneg : forall a0 a1 a2 b0 b1 b2 K, 0 <= K ->
+  0 <= filter_bound (dot3_rounded a0 a1 a2 b0 b1 b2) K.
+Proof.
+  intros a0 a1 a2 b0 b1 b2 K HK. unfold filter_bound.
+  destruct (magnitude_bound a0 a1 a2 b0 b1 b2) as [Pm _].
+  apply RN_nonneg. rewrite filter_absolute_eta. pose proof eta_pos.
+  assert (0 <= RN (K * magnitude (dot3_rounded a0 a1 a2 b0 b1 b2))) by (apply RN_nonneg; nra). lra.
+Qed.
+
+(** |D̂ − D| ≤ E_D for every binary64 input, D = B² − A·C with A = d·d, B = (o − c)·d,
+    C = (o − c)·(o − c) − r². *)
+Theorem sphere_d_encloses : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
+  binary64 o0 -> binary64 o1 -> binary64 o2 -> binary64 c0 -> binary64 c1 -> binary64 c2 -> binary64 r ->
+  let ra := dot3_rounded d0 d1 d2 d0 d1 d2 in
+  let rb := dot3_rounded (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2) d0 d1 d2 in
+  let A := d0 * d0 + d1 * d1 + d2 * d2 in
+  let B := (o0 - c0) * d0 + (o1 - c1) * d1 + (o2 - c2) * d2 in
+  let C := (o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2) - r * r in
+  Rabs (d_value (value ra) (value rb) (sphere_c_value o0 o1 o2 c0 c1 c2 r) - (B * B - A * C)) <=
+    d_bound (value ra) (value rb) (sphere_c_value o0 o1 o2 c0 c1 c2 r)
+      (filter_bound ra filter_den_relative) (filter_bound rb filter_num_relative)
+      (sphere_c_bound o0 o1 o2 c0 c1 c2 r).
+Proof.
+  intros o0 o1 o2 d0 d1 d2 c0 c1 c2 r B0 B1 B2 C0 C1 C2 Br ra rb A B C.
+  pose proof u_pos as Hu. pose proof u_val as Uv.
+  assert (HA : Rabs (value ra - A) <= filter_bound ra filter_den_relative) by apply den_filter_encloses.
+  assert (HB : Rabs (value rb - B) <= filter_bound rb filter_num_relative)
+    by (apply (num_filter_encloses o0 o1 o2 c0 c1 c2 d0 d1 d2); assumption).
+  assert (HC : Rabs (sphere_c_value o0 o1 o2 c0 c1 c2 r - C) <= sphere_c_bound o0 o1 o2 c0 c1 c2 r)
+    by (apply sphere_c_encloses; assumption).
+  eapply Rle_trans; [apply (d_value_error _ _ _ _ _ _ _ _ _ HA HB HC)|].
+  apply d_bound_lower; try apply binary64_RN.
+  - apply filter_bound_nonneg. unfold filter_den_relative. nra.
+  - apply filter_bound_nonneg. unfold filter_num_relative. nra.
+  - apply sphere_c_bound_nonneg.
+Qed.
+
+(** The certified sign of D̂ against E_D is the sign of the exact D = B² − A·C. *)
+Theorem sphere_filter_d_sound : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
+  binary64 o0 -> binary64 o1 -> binary64 o2 -> binary64 c0 -> binary64 c1 -> binary64 c2 -> binary64 r ->
+  certifies (sphere_filter_d o0 o1 o2 d0 d1 d2 c0 c1 c2 r)
+    (((o0 - c0) * d0 + (o1 - c1) * d1 + (o2 - c2) * d2) * ((o0 - c0) * d0 + (o1 - c1) * d1 + (o2 - c2) * d2)
+     - (d0 * d0 + d1 * d1 + d2 * d2) *
+       ((o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2) - r * r)).
+Proof.
+  intros. unfold sphere_filter_d. cbv zeta. apply filter_sign_sound.
+  apply (sphere_d_encloses o0 o1 o2 d0 d1 d2 c0 c1 c2 r); assumption.
+Qed.
