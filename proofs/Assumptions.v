@@ -719,3 +719,13 @@ Definition main_results_19 :=
    @SphereStages.sphere_root_side_expansions_sound).
 Goal True. idtac "@@ sphere_expansions_exact sphere_expansions_length compress_finite_or_uncertain sphere_sign_or_compressed_sound sphere_root_side_sound sphere_root_side_expansions_sound". Abort.
 Print Assumptions main_results_19.
+(** sphere/: stage 1 of the ray–sphere query (ray_sphere_filter.hpp, sphere_filter): |Ĉ − C| ≤ E_C and
+    |D̂ − D| ≤ E_D for every binary64 input, so a certain sign of C or D is the exact sign *)
+From Raykernel Require SphereFilter.
+Definition main_results_20 :=
+  (@SphereFilter.sphere_c_encloses,
+   @SphereFilter.sphere_filter_c_sound,
+   @SphereFilter.sphere_d_encloses,
+   @SphereFilter.sphere_filter_d_sound).
+Goal True. idtac "@@ sphere_c_encloses sphere_filter_c_sound sphere_d_encloses sphere_filter_d_sound". Abort.
+Print Assumptions main_results_20.

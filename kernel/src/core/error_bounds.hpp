@@ -345,7 +345,8 @@ inline constexpr double triangle_compensated_den_relative = 0x1p-98;  // K_den =
 // Valid for all finite inputs (subnormal included); uncertain (never wrong) when anything overflows: every
 // intermediate is dominated by P_C, m_A, m_B or the terms of E_D, whose overflow makes a bound +inf or NaN,
 // and every certifying comparison (value > bound, value < −bound) is then false. Never certifies a zero.
-// NOT CERTIFIED YET (proofs/sphere/SphereFilter.v is unfinished; the filter is not wired into the cascade).
+// Certified by: proofs/sphere/SphereFilter.v, `sphere_c_encloses` and `sphere_d_encloses` (the filter is not wired
+// into the cascade yet: ray_sphere_cascade.cpp, use_sphere_filter).
 inline constexpr double sphere_filter_c_relative = 0x1p-50;          // κ_C = 8u
 inline constexpr double sphere_filter_c_absolute = 0x1p-1071;        // μ_C = 8μ
 inline constexpr double sphere_filter_d_relative = 0x1p-51;          // κ_D = 4u

@@ -5,9 +5,9 @@
 //   (the ray–sphere section), from the enclosures of Â and B̂ by dot3_filter_bound (core/dot3_filter.hpp).
 //   Valid range: all finite inputs (subnormal included); uncertain (never wrong) when anything overflows (a
 //   bound is then +inf or NaN and no comparison holds). A zero C or D is never certified.
-//   NOT CERTIFIED YET: proofs/sphere/SphereFilter.v has the model of this code and the error of f·f, but not yet
-//   the theorems that a certain sign is the sign of the exact C, resp. D; so ray_sphere_cascade.cpp does not call
-//   it (use_sphere_filter = false).
+//   Certified by: proofs/sphere/SphereFilter.v, `sphere_filter_c_sound` and `sphere_filter_d_sound` (from
+//   `sphere_c_encloses` and `sphere_d_encloses`), in the model (RN on the reals) for every binary64 input.
+//   Not yet wired: ray_sphere_cascade.cpp keeps use_sphere_filter = false until the C++ tests are run with it on.
 #pragma once
 
 #include "core/dot3_filter.hpp"
