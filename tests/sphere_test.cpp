@@ -296,8 +296,8 @@ TEST(SphereStages, InRangeKindsNeverReachTheExactStage) {
   EXPECT_GT(with_roots, 4000u);
 }
 
-// Stage 1 (sphere/ray_sphere_filter.hpp, not wired yet): the binary64 filter of the signs of C and D decides the
-// relation of nearly every random query, and each sign it certifies is the exact one.
+// Stage 1 (sphere/ray_sphere_filter.hpp): the binary64 filter of the signs of C and D decides the relation of nearly
+// every random query, each sign it certifies is the exact one, and the cascade takes it (relation_stage filter).
 TEST(SphereStages, FilterDecidesRandomQueries) {
   testkit::SplitMix64 rng(11);
   const testkit::BitSource source = [&rng] { return rng(); };
@@ -306,7 +306,10 @@ TEST(SphereStages, FilterDecidesRandomQueries) {
   for (int i = 0; i < n; ++i) {
     const testkit::SphereQuery q = testkit::make_sphere_query(testkit::SphereQueryKind::random, source);
     const detail::SphereFilterSigns f = detail::sphere_filter(q.ray, q.sphere);
-    if (!detail::is_certain(f.c) || !detail::is_certain(f.d)) continue;
+    const TracedSphereIntersection traced = intersect_traced(q.ray, q.sphere);
+    const bool decided = detail::is_certain(f.c) && detail::is_certain(f.d);
+    EXPECT_EQ(traced.relation_stage == Stage::filter, decided) << testkit::sphere_line(q);
+    if (!decided) continue;
     ++filtered;
     const SphereIntersection exact = detail::exact::intersect_sphere(q.ray, q.sphere);
     EXPECT_EQ(detail::sphere_relation(static_cast<int>(f.d)), exact.relation) << testkit::sphere_line(q);

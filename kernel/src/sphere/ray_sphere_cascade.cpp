@@ -93,13 +93,9 @@ std::optional<SphereClassification> expansion_classification(const SphereExpansi
   return SphereClassification{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))};
 }
 
-// Off for now: proofs/sphere/SphereFilter.v proves the filter sound (sphere_filter_c_sound, sphere_filter_d_sound),
-// but the cascade has not been built and tested with it on (tests/sphere_test.cpp); the cascade is then unchanged.
-constexpr bool use_sphere_filter = false;
-
-// Both signs from the filter, or nothing.
+// Both signs from the binary64 filter (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound),
+// or nothing.
 std::optional<SphereClassification> filter_classification(const Ray& ray, const Sphere& sphere) noexcept {
-  if constexpr (!use_sphere_filter) return std::nullopt;
   const SphereFilterSigns f = sphere_filter(ray, sphere);
   if (!is_certain(f.c) || !is_certain(f.d)) return std::nullopt;
   return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
