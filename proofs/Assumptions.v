@@ -729,3 +729,17 @@ Definition main_results_20 :=
    @SphereFilter.sphere_filter_d_sound).
 Goal True. idtac "@@ sphere_c_encloses sphere_filter_c_sound sphere_d_encloses sphere_filter_d_sound". Abort.
 Print Assumptions main_results_20.
+(** core/: the order of two roundings to nearest (nearest/sphere_candidate.hpp, compare_candidates: a sphere's
+    correctly rounded root against another candidate's RN(t)): RN(a) < RN(b) implies a < b, for any tie rule
+    and with IEEE overflow to ±inf; equal roundings decide nothing *)
+From Raykernel Require RoundOrder.
+Definition main_results_21 :=
+  (@RoundOrder.rn_strict_order,
+   @RoundOrder.rn_equal_or_ordered,
+   @RoundOrder.rn_compare_distinct,
+   @RoundOrder.rne_strict_order,
+   @RoundOrder.rne_compare_distinct,
+   @RoundOrder.binary_normalize_ieee_rn,
+   @RoundOrder.ieee_rn_strict_order).
+Goal True. idtac "@@ rn_strict_order rn_equal_or_ordered rn_compare_distinct rne_strict_order rne_compare_distinct binary_normalize_ieee_rn ieee_rn_strict_order". Abort.
+Print Assumptions main_results_21.

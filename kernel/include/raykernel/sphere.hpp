@@ -24,8 +24,10 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace raykernel {
 
@@ -73,6 +75,8 @@ struct ExactSphereIntersection {
 // The reason `ray`/`sphere` are invalid input (a NaN or infinite component, a zero direction, a radius that
 // is not positive), or nothing.
 [[nodiscard]] std::optional<std::string> validate(const Ray& ray, const Sphere& sphere);
+// The reason a sphere alone is invalid (a non-finite centre or radius, a radius that is not positive), or nothing.
+[[nodiscard]] std::optional<std::string> validate(const Sphere& sphere);
 
 // The certified answer of docs/contract.md §10. Thread-safe; answers in the default floating-point
 // environment whatever the caller's. Throws invalid_input.
@@ -98,6 +102,19 @@ struct TracedSphereIntersection {
   Stage rounding_stage;
 };
 [[nodiscard]] TracedSphereIntersection intersect_traced(const Ray& ray, const Sphere& sphere);
+
+// Spheres prepared for the nearest hit of a scene (raykernel/nearest_scene.hpp): validated once, in order.
+class SphereSet {
+ public:
+  // Throws invalid_input naming the first invalid sphere ("sphere 3: sphere radius is not positive").
+  explicit SphereSet(std::span<const Sphere> spheres);
+
+  [[nodiscard]] std::size_t size() const noexcept { return spheres_.size(); }
+  [[nodiscard]] std::span<const Sphere> spheres() const noexcept { return spheres_; }
+
+ private:
+  std::vector<Sphere> spheres_;
+};
 
 [[nodiscard]] std::string_view to_string(SphereOrigin origin) noexcept;      // "inside", "on-surface", "outside"
 [[nodiscard]] std::string_view to_string(SphereRelation relation) noexcept;  // "miss", "tangent", "cross"

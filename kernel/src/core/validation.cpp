@@ -96,18 +96,37 @@ std::optional<std::string> validate(const Ray& ray, const Triangle& triangle) {
   });
 }
 
+namespace detail {
+namespace {
+// The centre's and the radius's non-finite components, in that order.
+std::optional<std::string> sphere_non_finite_reason(const Sphere& sphere) {
+  if (auto reason = non_finite_reason("sphere center", sphere.center)) return reason;
+  if (!is_finite(sphere.radius)) {
+    const std::uint64_t bits = std::bit_cast<std::uint64_t>(sphere.radius);
+    return std::string("sphere radius is ") + ((bits << 12) != 0 ? "NaN" : ((bits >> 63) == 0 ? "+inf" : "-inf"));
+  }
+  return std::nullopt;
+}
+}  // namespace
+}  // namespace detail
+
 // Every non-finite component first, in the order of the query's text (docs/contract.md §10: o, d, c, r), then
 // the zero direction, then a radius that is not positive (0, −0 and negative values, subnormals included).
 std::optional<std::string> validate(const Ray& ray, const Sphere& sphere) {
   return detail::in_default_fp_environment([&]() -> std::optional<std::string> {
     if (auto reason = detail::non_finite_reason("ray origin", ray.origin)) return reason;
     if (auto reason = detail::non_finite_reason("ray direction", ray.direction)) return reason;
-    if (auto reason = detail::non_finite_reason("sphere center", sphere.center)) return reason;
-    if (!detail::is_finite(sphere.radius)) {
-      const std::uint64_t bits = std::bit_cast<std::uint64_t>(sphere.radius);
-      return std::string("sphere radius is ") + ((bits << 12) != 0 ? "NaN" : ((bits >> 63) == 0 ? "+inf" : "-inf"));
-    }
+    if (auto reason = detail::sphere_non_finite_reason(sphere)) return reason;
     if (detail::is_zero(ray.direction)) return std::string("ray direction is the zero vector");
+    if (!detail::is_positive(sphere.radius)) return std::string("sphere radius is not positive");
+    return std::nullopt;
+  });
+}
+
+// The sphere alone (a scene's spheres, SphereSet): the same reasons, in the same order.
+std::optional<std::string> validate(const Sphere& sphere) {
+  return detail::in_default_fp_environment([&]() -> std::optional<std::string> {
+    if (auto reason = detail::sphere_non_finite_reason(sphere)) return reason;
     if (!detail::is_positive(sphere.radius)) return std::string("sphere radius is not positive");
     return std::nullopt;
   });

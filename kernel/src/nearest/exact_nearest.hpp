@@ -4,6 +4,7 @@
 #pragma once
 
 #include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
 #include <raykernel/triangle.hpp>
 
 namespace raykernel::detail::exact {
@@ -11,6 +12,13 @@ namespace raykernel::detail::exact {
 // The sign of t_plane − t_triangle along `ray` for a plane and a triangle whose den are nonzero (t = num/den of
 // docs/contract.md §1 and §6).
 [[nodiscard]] int compare_plane_triangle_t(const Ray& ray, const Plane& plane, const Triangle& triangle);
+
+// The sign of t_sphere − t_other for a sphere's root (`root` −1: t1 = U − √V, +1: t2 = U + √V, 0: the tangent
+// root t0 = U; docs/contract.md §10) against a plane's or a triangle's t = num/den (den ≠ 0), or against another
+// sphere's root. The sphere's relation must not be miss.
+[[nodiscard]] int compare_sphere_plane_t(const Ray& ray, const Sphere& sphere, int root, const Plane& plane);
+[[nodiscard]] int compare_sphere_triangle_t(const Ray& ray, const Sphere& sphere, int root, const Triangle& triangle);
+[[nodiscard]] int compare_sphere_sphere_t(const Ray& ray, const Sphere& a, int root_a, const Sphere& b, int root_b);
 
 // The exact signs (−1, 0, +1) of a triangle's num = (a − o)·N and den = d·N, N = (b − a) × (c − a).
 struct QuotientSigns {

@@ -1,12 +1,14 @@
-// The nearest-hit module: one search over every kind of surface (planes, the triangles of a mesh; spheres
-// next), nearest/nearest_search.hpp, on the candidates defined here and in plane_candidate.hpp and
-// triangle_candidate.hpp.
+// The nearest-hit module: one search over every kind of surface (planes, the triangles of a mesh, spheres),
+// nearest/nearest_search.hpp, on the candidates defined here and in plane_candidate.hpp, triangle_candidate.hpp and
+// sphere_candidate.hpp.
 //
 // A candidate is a surface whose relation to the ray is hit, with what its relation was decided from, kept
 // for as long as it may win: its kind (SurfaceKind, the order of exact ties between kinds), its index within
-// its kind, the exact signs of num and den (den ≠ 0; num zero — t = 0 — or with den's sign), the stage that
-// certified them, and the stages of its exact t = num/den, each computed the first time a comparison or the
-// rounding asks for it and then kept:
+// its kind, and what orders its t against the others'.
+//
+// The quotient kinds (planes, triangles: t = num/den) keep the exact signs of num and den (den ≠ 0; num zero —
+// t = 0 — or with den's sign), the stage that certified them, and the stages of their exact t, each computed the
+// first time a comparison or the rounding asks for it and then kept:
 //
 //   stage 1  num_filter(), den_filter()              RoundedEnclosure: the relation's own stage-1 values
 //   stage 2  num_compensated(), den_compensated()    Enclosure (double-double)
@@ -18,21 +20,14 @@
 // then sign(t_a − t_b) = sign(Δ)·sign(den_a)·sign(den_b), Δ = num_a·den_b − num_b·den_a, by
 // compare_quotients_filter, [a kind pair's shortcut without arithmetic], compare_quotients_compensated,
 // compare_quotients_expansion (nearest/compare_quotients.hpp, each proved for any enclosures or expansions of
-// the four values) and the exact stage, each asked only when the cheaper ones cannot decide. Nothing is rounded
-// to compare: rounded t are never compared.
+// the four values) and the exact stage, each asked only when the cheaper ones cannot decide. Two quotients are
+// never ordered by their rounded t.
 //
-// A new kind (a sphere: t = U ∓ √V, a root, not a quotient) plugs in without rewriting the module:
-//   1. its candidate type (sphere_candidate.hpp): kind, index, its relation's certified state, round_t();
-//   2. its comparisons: overloads compare_candidates(SphereCandidate&, B&) and (A&, SphereCandidate&) for the
-//      other kinds — against a quotient N/D the sign of U ∓ √V − N/D is the sign of a polynomial (of
-//      U·D − N and of (U·D − N)² − V·D², with the signs of D and of U·D − N), decided by its own stages — and
-//      exact_order overloads; the search dispatches on the pair of kinds (NearestSearch::order);
-//   3. its slots and its feeder in NearestSearch (a loop over a sphere set, or a BVH of spheres, as planes()
-//      and mesh() are), and its SurfaceKind (after triangle: exact ties go to planes, then triangles);
-//   4. the public query: NearestScene gains the sphere set; nearest_hit(ray, SphereSet) is the search on
-//      that kind alone.
-// Nothing else changes: the best-so-far bookkeeping, the tie rule, the pruning bound, the tracing and the
-// rounding of the winner are written once, in the search.
+// A sphere's t is a root U ∓ √V, not a quotient (sphere_candidate.hpp): its cascade rounds it correctly with the
+// relation, and a pair with a sphere in it is ordered by the two correctly rounded t when they differ (RN is
+// monotone: proofs/core/RoundOrder.v, `rn_strict_order`), otherwise in rationals (exact_order overloads). The
+// search dispatches on the pair of kinds; the best-so-far bookkeeping, the tie rule, the pruning bound, the
+// tracing and the rounding of the winner are written once, in the search.
 #pragma once
 
 #include "core/enclosure.hpp"

@@ -1,4 +1,4 @@
-// nearest_hit over a PlaneSet (docs/contract.md §4) and over a scene of planes and a mesh
+// nearest_hit over a PlaneSet (docs/contract.md §4) and over a scene of planes, a mesh and spheres
 // (raykernel/nearest_scene.hpp): the nearest-hit search (nearest/nearest_search.hpp) on those surfaces, then
 // the winner's t rounded once. The mesh alone is mesh/nearest_mesh.cpp, on the same search.
 //
@@ -100,6 +100,7 @@ template <class Tracer>
                                                                          Stage& t_stage) noexcept {
   NearestSearch<Tracer> search(ray, tracer);
   if (scene.planes != nullptr) search.planes(*scene.planes, screen_for(*scene.planes));
+  if (scene.spheres != nullptr) search.spheres(*scene.spheres);  // before the mesh: its walk prunes by the best
   if (scene.mesh != nullptr) search.mesh(*scene.mesh, scene.rule);
   if (!search.found()) return std::nullopt;
   const double t = search.winner_t();
@@ -107,6 +108,8 @@ template <class Tracer>
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   if (search.winner_kind() == SurfaceKind::plane)
     return SurfaceHit{SurfaceKind::plane, search.plane_winner().index, t, {nan, nan, nan}};
+  if (search.winner_kind() == SurfaceKind::sphere)
+    return SurfaceHit{SurfaceKind::sphere, search.sphere_winner().index, t, {nan, nan, nan}};
   const TriangleCandidate& winner = search.triangle_winner();
   SurfaceHit hit{SurfaceKind::triangle, winner.index, t, {nan, nan, nan}};
   if (options.barycentric) hit.barycentric = triangle_barycentric(ray, *winner.triangle, scene.rule);
@@ -194,7 +197,14 @@ std::optional<NearestHit> nearest_hit_naive(const Ray& ray, std::span<const Plan
   return best;
 }
 
-std::string_view to_string(SurfaceKind kind) noexcept { return kind == SurfaceKind::plane ? "plane" : "triangle"; }
+std::string_view to_string(SurfaceKind kind) noexcept {
+  switch (kind) {
+    case SurfaceKind::plane: return "plane";
+    case SurfaceKind::triangle: return "triangle";
+    case SurfaceKind::sphere: return "sphere";
+  }
+  return "?";
+}
 
 std::optional<SurfaceHit> nearest_hit(const Ray& ray, const NearestScene& scene, const NearestOptions& options) {
   detail::throw_if_invalid(ray);

@@ -27,6 +27,7 @@
 #include "nearest/nearest_candidates.hpp"
 #include "nearest/nearest_screen.hpp"
 #include "nearest/plane_candidate.hpp"
+#include "nearest/sphere_candidate.hpp"
 #include "nearest/triangle_candidate.hpp"
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_formula.hpp"
@@ -51,6 +52,19 @@ namespace raykernel::detail {
 }
 [[nodiscard]] inline int exact_order(const Ray& ray, const TriangleCandidate& a, const HitCandidate& b) {
   return -exact::compare_plane_triangle_t(ray, *b.plane, *a.source);
+}
+// A sphere's root against a plane's or a triangle's t, in rationals.
+[[nodiscard]] inline int exact_order(const Ray& ray, const SphereCandidate& a, const HitCandidate& b) {
+  return exact::compare_sphere_plane_t(ray, *a.sphere, a.root, *b.plane);
+}
+[[nodiscard]] inline int exact_order(const Ray& ray, const HitCandidate& a, const SphereCandidate& b) {
+  return -exact::compare_sphere_plane_t(ray, *b.sphere, b.root, *a.plane);
+}
+[[nodiscard]] inline int exact_order(const Ray& ray, const SphereCandidate& a, const TriangleCandidate& b) {
+  return exact::compare_sphere_triangle_t(ray, *a.sphere, a.root, *b.source);
+}
+[[nodiscard]] inline int exact_order(const Ray& ray, const TriangleCandidate& a, const SphereCandidate& b) {
+  return -exact::compare_sphere_triangle_t(ray, *b.sphere, b.root, *a.source);
 }
 
 // The candidate planes of a set as columns (PlaneSet's friend).
@@ -250,7 +264,7 @@ class NearestSearch {
     BvhLeaf leaf;
     for (;;) {
       if (!bound_current_ && walk.stack_size > 0) {  // with no pending box, the walk ends whatever the bound
-        bound = best_ == Best::plane ? upper_bound_t(plane_winner()) : upper_bound_t(triangle_winner());
+        bound = best_upper_bound();
         bound_current_ = true;
       }
       if (!next_leaf(walk, bound, leaf)) break;
@@ -290,28 +304,60 @@ class NearestSearch {
     }
   }
 
+  // Every sphere of `set` the ray meets at t ≥ 0 (its smallest root there, docs/contract.md §10), each
+  // classified and its roots rounded by the certified ray–sphere cascade (a miss the cascade's filter decides
+  // costs that filter alone), offered as a candidate.
+  void spheres(const SphereSet& set) noexcept {
+    const std::span<const Sphere> spheres = set.spheres();
+    for (std::size_t k = 0; k < spheres.size(); ++k) {
+      const int slot = best_ == Best::sphere && sphere_best_ == 0 ? 1 : 0;
+      SphereCandidate& c = sphere_[slot].emplace();
+      const bool hit = c.classify(ray_, spheres[k], k);
+      tracer_.plane_relation(c.relation_stage);  // the relation stage, whatever the kind
+      if (hit) offer(c, slot);
+    }
+  }
+
   [[nodiscard]] bool found() const noexcept { return best_ != Best::none; }
   [[nodiscard]] SurfaceKind winner_kind() const noexcept {
-    return best_ == Best::plane ? SurfaceKind::plane : SurfaceKind::triangle;
+    return best_ == Best::plane ? SurfaceKind::plane : best_ == Best::triangle ? SurfaceKind::triangle : SurfaceKind::sphere;
   }
   [[nodiscard]] [[gnu::always_inline]] HitCandidate& plane_winner() noexcept { return *plane_[plane_best_]; }
   [[nodiscard]] [[gnu::always_inline]] TriangleCandidate& triangle_winner() noexcept { return *triangle_[triangle_best_]; }
+  [[nodiscard]] [[gnu::always_inline]] SphereCandidate& sphere_winner() noexcept { return *sphere_[sphere_best_]; }
 
   // The winner's t, rounded once (or taken from the rounding the walk made for its bound), and the stage that
   // rounded it.
   [[gnu::always_inline]] double winner_t() noexcept { return best_t(); }
   [[nodiscard]] Stage winner_t_stage() noexcept {
-    return best_ == Best::plane ? plane_winner().t_stage : triangle_winner().t_stage;
+    return best_ == Best::plane      ? plane_winner().t_stage
+           : best_ == Best::triangle ? triangle_winner().t_stage
+                                     : sphere_winner().t_stage;
   }
 
  private:
-  enum class Best : std::uint8_t { none, plane, triangle };
+  enum class Best : std::uint8_t { none, plane, triangle, sphere };
 
   [[nodiscard]] SurfaceKind best_kind() const noexcept { return winner_kind(); }
   [[nodiscard]] [[gnu::always_inline]] std::size_t best_index() noexcept {
-    return best_ == Best::plane ? plane_winner().index : triangle_winner().index;
+    return best_ == Best::plane      ? plane_winner().index
+           : best_ == Best::triangle ? triangle_winner().index
+                                     : sphere_winner().index;
   }
-  [[gnu::always_inline]] double best_t() noexcept { return best_ == Best::plane ? plane_winner().round_t() : triangle_winner().round_t(); }
+  [[gnu::always_inline]] double best_t() noexcept {
+    return best_ == Best::plane      ? plane_winner().round_t()
+           : best_ == Best::triangle ? triangle_winner().round_t()
+                                     : sphere_winner().round_t();
+  }
+  // A double strictly above the sphere's exact t: nextup(RN(t)) (t ≤ RN(t) + ulp/2 < nextup(RN(t))).
+  [[gnu::always_inline]] static double upper_bound_t(SphereCandidate& c) noexcept {
+    return std::nextafter(c.t, std::numeric_limits<double>::infinity());
+  }
+  [[gnu::always_inline]] double best_upper_bound() noexcept {
+    return best_ == Best::plane      ? upper_bound_t(plane_winner())
+           : best_ == Best::triangle ? upper_bound_t(triangle_winner())
+                                     : upper_bound_t(sphere_winner());
+  }
 
   // A double strictly above the exact t of a hit, for the walk's pruning: b = (|N| + 2e)/(|D| − 2f) from the
   // stage-1 enclosures N ± e of num and D ± f of den (rounded as it comes: a guess, not a bound), certified above t
@@ -338,8 +384,9 @@ class NearestSearch {
       make_best(c, slot);
       return DistanceOrder{0, Stage::filter};
     }
-    const DistanceOrder order =
-        best_ == Best::plane ? compare_candidates(ray_, c, plane_winner()) : compare_candidates(ray_, c, triangle_winner());
+    const DistanceOrder order = best_ == Best::plane      ? compare_candidates(ray_, c, plane_winner())
+                                : best_ == Best::triangle ? compare_candidates(ray_, c, triangle_winner())
+                                                          : compare_candidates(ray_, c, sphere_winner());
     tracer_.comparison(order);
     if (order.sign < 0 || (order.sign == 0 && wins_tie(C::kind, c.index, best_kind(), best_index()))) make_best(c, slot);
     return order;
@@ -349,9 +396,12 @@ class NearestSearch {
     if constexpr (C::kind == SurfaceKind::plane) {
       best_ = Best::plane;
       plane_best_ = slot;
-    } else {
+    } else if constexpr (C::kind == SurfaceKind::triangle) {
       best_ = Best::triangle;
       triangle_best_ = slot;
+    } else {
+      best_ = Best::sphere;
+      sphere_best_ = slot;
     }
     bound_current_ = false;
   }
@@ -359,10 +409,11 @@ class NearestSearch {
   const Ray& ray_;
   Tracer tracer_;
   Best best_ = Best::none;
-  int plane_best_ = 0, triangle_best_ = 0;
+  int plane_best_ = 0, triangle_best_ = 0, sphere_best_ = 0;
   bool bound_current_ = true;
   Slot<HitCandidate> plane_[2];
   Slot<TriangleCandidate> triangle_[2];
+  Slot<SphereCandidate> sphere_[2];
 };
 
 }  // namespace raykernel::detail

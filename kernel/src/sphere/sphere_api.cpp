@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace raykernel {
 namespace {
@@ -51,6 +52,11 @@ ExactSphereIntersection intersect_exact_rational(const Ray& ray, const Sphere& s
     throw_if_invalid(ray, sphere);
     return detail::exact::intersect_sphere_rational(ray, sphere);
   });
+}
+
+SphereSet::SphereSet(std::span<const Sphere> spheres) : spheres_(spheres.begin(), spheres.end()) {
+  for (std::size_t k = 0; k < spheres_.size(); ++k)
+    if (!detail::is_valid(spheres_[k])) throw invalid_input("sphere " + std::to_string(k) + ": " + *validate(spheres_[k]));
 }
 
 // The textbook quadratic ("Ray Tracing in One Weekend", with the half b): no guard against cancellation.

@@ -1,0 +1,199 @@
+// Spheres in the nearest-hit module (docs/contract.md §10, "Scenes and nearest hits"): a sphere's hit is its
+// smallest root t ≥ 0; among kinds the exact t decides, an exact tie goes to the plane, then the triangle, then
+// the sphere, then the smaller index. Hand-derived cases (each expected answer worked out in the comment above
+// it, in integers or in rationals computed here, never by the code under test), then a property: the certified
+// scene query equals the exact reference (nearest_hit_exact with spheres) bit for bit, on scenes built to tie.
+#include <raykernel/mesh_queries.hpp>
+#include <raykernel/nearest_scene.hpp>
+#include <raykernel/sphere.hpp>
+
+#include <gmpxx.h>
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace raykernel {
+namespace {
+
+bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+
+std::string describe(const std::optional<SurfaceHit>& h) {
+  if (!h) return "miss";
+  char t[64];
+  std::snprintf(t, sizeof t, "%a", h->t);
+  return std::string(to_string(h->kind)) + " " + std::to_string(h->index) + " t=" + t;
+}
+
+bool same_answer(const std::optional<SurfaceHit>& x, const std::optional<SurfaceHit>& y) {
+  if (!x || !y) return !x && !y;
+  return x->kind == y->kind && x->index == y->index && same_bits(x->t, y->t);
+}
+
+// The scene query on planes, a mesh and spheres, checked against the exact reference; returns the answer.
+std::optional<SurfaceHit> nearest_checked(const Ray& ray, const std::vector<Plane>& planes, const Mesh* mesh,
+                                          const std::vector<Sphere>& spheres) {
+  const PlaneSet plane_set(planes);
+  const SphereSet sphere_set(spheres);
+  std::optional<PreparedMesh> prepared;
+  if (mesh != nullptr) prepared.emplace(*mesh);
+  const NearestScene scene{&plane_set, prepared ? &*prepared : nullptr, TriangleRule::owned, &sphere_set};
+  const std::optional<SurfaceHit> hit = nearest_hit(ray, scene);
+  const std::optional<SurfaceHit> exact = nearest_hit_exact(ray, planes, mesh, spheres);
+  EXPECT_TRUE(same_answer(hit, exact)) << describe(hit) << " vs exact " << describe(exact);
+  return hit;
+}
+
+const Ray along_x{{0, 0, 0}, {1, 0, 0}};
+
+// Sphere (5, 0, 0) r 1 on the x axis: roots 4 and 6, the hit t = 4. The plane x = 4 meets the ray at t = 4 too:
+// an exact tie, which the plane wins; a triangle in x = 4 around the axis also ties, and beats the sphere.
+TEST(SphereNearest, ExactTiesGoToPlaneThenTriangleThenSphere) {
+  const std::vector<Sphere> spheres{{{5, 0, 0}, 1}};
+  const std::vector<Plane> plane{{{4, 0, 0}, {1, 0, 0}}};
+  Mesh mesh;
+  mesh.vertices = {{4, -1, -1}, {4, 3, -1}, {4, -1, 3}};
+  mesh.triangles = {{0, 1, 2}};
+
+  auto hit = nearest_checked(along_x, {}, nullptr, spheres);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->kind, SurfaceKind::sphere);
+  EXPECT_EQ(hit->t, 4.0);
+  hit = nearest_checked(along_x, plane, nullptr, spheres);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->kind, SurfaceKind::plane);
+  hit = nearest_checked(along_x, {}, &mesh, spheres);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->kind, SurfaceKind::triangle);
+  EXPECT_EQ(hit->t, 4.0);
+}
+
+// Two unit spheres touching at (4, 0, 0), centres (5, 0, 0) and (3, 0, 0). The ray x = 4, z = 0 from y = −5
+// upwards is tangent to both at t = 5: an exact tie of two tangent roots, won by the smaller index. Along the
+// x axis from 0 the sphere at 3 is first (t = 2), whatever its index.
+TEST(SphereNearest, TouchingSpheres) {
+  const std::vector<Sphere> spheres{{{5, 0, 0}, 1}, {{3, 0, 0}, 1}};
+  const Ray up{{4, -5, 0}, {0, 1, 0}};
+  auto hit = nearest_checked(up, {}, nullptr, spheres);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->kind, SurfaceKind::sphere);
+  EXPECT_EQ(hit->index, 0u);
+  EXPECT_EQ(hit->t, 5.0);
+  hit = nearest_checked(up, {}, nullptr, {spheres[1], spheres[0]});
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->index, 0u);
+  hit = nearest_checked(along_x, {}, nullptr, spheres);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->index, 1u);
+  EXPECT_EQ(hit->t, 2.0);
+}
+
+// Which root is the hit: from inside (origin at the centre of a sphere of radius 2) the far root t2 = 2; a sphere
+// behind the ray (centre (−5, 0, 0)) is not hit; from a point of the surface, leaving outwards (origin (1, 0, 0)
+// on the unit sphere at 0, direction +x: roots −2 and 0) the hit is t = 0, and entering (direction −x: roots 0
+// and 2) also t = 0.
+TEST(SphereNearest, TheSmallestRootAtOrBeyondTheOrigin) {
+  auto hit = nearest_checked(along_x, {}, nullptr, {{{0, 0, 0}, 2}});
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->t, 2.0);
+  EXPECT_FALSE(nearest_checked(along_x, {}, nullptr, {{{-5, 0, 0}, 1}}));
+  for (const double dx : {1.0, -1.0}) {
+    hit = nearest_checked(Ray{{1, 0, 0}, {dx, 0, 0}}, {}, nullptr, {{{0, 0, 0}, 1}});
+    ASSERT_TRUE(hit);
+    EXPECT_TRUE(same_bits(hit->t, 0.0));
+  }
+}
+
+// A plane at x = RN(t1), t1 = 3 − √(5/4) the sphere's nearer root (centre (3, 1, 0), r = 3/2: A = 1, B = −3,
+// C = 31/4, D = 5/4): both t round to the same double, so only the exact comparison can order them. Which is
+// nearer is the sign of t1 − RN(t1), i.e. of (3 − RN(t1))² − 5/4 (3 − RN(t1) > 0), computed here in rationals.
+// Moved by one ulp either way, the plane is ordered by the roundings alone.
+TEST(SphereNearest, APlaneWithinHalfAnUlpOfARoot) {
+  const std::vector<Sphere> spheres{{{3, 1, 0}, 1.5}};
+  const SphereIntersection s = intersect(along_x, spheres[0]);
+  ASSERT_EQ(s.relation, SphereRelation::cross);
+  const mpq_class r(s.t1), gap = (3 - r) * (3 - r) - mpq_class(5, 4);
+  ASSERT_NE(sgn(gap), 0);  // t1 is irrational
+  const bool sphere_nearer = sgn(gap) < 0;  // t1 < RN(t1) ⟺ √(5/4) > 3 − RN(t1) ⟺ (3 − RN(t1))² < 5/4
+  for (const double x : {s.t1, std::nextafter(s.t1, 0.0), std::nextafter(s.t1, 4.0)}) {
+    const auto hit = nearest_checked(along_x, {{{x, 0, 0}, {1, 0, 0}}}, nullptr, spheres);
+    ASSERT_TRUE(hit);
+    if (x < s.t1) {
+      EXPECT_EQ(hit->kind, SurfaceKind::plane);
+    } else if (x > s.t1) {
+      EXPECT_EQ(hit->kind, SurfaceKind::sphere);
+    } else {
+      EXPECT_EQ(hit->kind, sphere_nearer ? SurfaceKind::sphere : SurfaceKind::plane);
+    }
+  }
+}
+
+// An invalid sphere is named with its index; an empty sphere set changes nothing.
+TEST(SphereNearest, InvalidSpheresAreNamed) {
+  const std::vector<Sphere> spheres{{{0, 0, 0}, 1}, {{0, 0, 0}, -0.0}};
+  try {
+    const SphereSet set(spheres);
+    ADD_FAILURE() << "no error";
+  } catch (const invalid_input& e) {
+    EXPECT_EQ(std::string(e.what()), "sphere 1: sphere radius is not positive");
+  }
+  const SphereSet none(std::vector<Sphere>{});
+  EXPECT_FALSE(nearest_hit(along_x, NearestScene{nullptr, nullptr, TriangleRule::owned, &none}));
+  EXPECT_EQ(validate(Sphere{{0, NAN, 0}, 1}), std::optional<std::string>("sphere center y is NaN"));
+}
+
+// Scenes built to tie: spheres through a common point of the ray (the same hit point on several spheres of
+// different radii and centres along the normal), planes through RN of a sphere's root and one ulp off, a small
+// sphere tangent to the ray, all in random order; the certified answer is the reference's bit for bit.
+RC_GTEST_PROP(SphereNearest, CertifiedEqualsExactOnTiedScenes, ()) {
+  const int ox = *rc::gen::inRange(-8, 8), oy = *rc::gen::inRange(-8, 8), oz = *rc::gen::inRange(-8, 8);
+  const int dx = *rc::gen::inRange(-4, 5), dy = *rc::gen::inRange(-4, 5), dz = *rc::gen::inRange(1, 5);
+  const Ray ray{{double(ox), double(oy), double(oz)}, {double(dx), double(dy), double(dz)}};
+  std::vector<Sphere> spheres;
+  const int n = *rc::gen::inRange(1, 6);
+  for (int k = 0; k < n; ++k) {
+    // A point of the ray at t = s/4 and a centre beyond it along an integer normal: the sphere through that point.
+    const int s = *rc::gen::inRange(0, 40);
+    const double px = ox + dx * (s / 4.0), py = oy + dy * (s / 4.0), pz = oz + dz * (s / 4.0);
+    const int nx = *rc::gen::inRange(-3, 4), ny = *rc::gen::inRange(-3, 4), nz = *rc::gen::inRange(-3, 4);
+    const int scale = *rc::gen::inRange(1, 4);
+    const Vec3 c{px + nx * scale, py + ny * scale, pz + nz * scale};
+    const double r2 = double(nx * nx + ny * ny + nz * nz) * scale * scale;
+    if (r2 == 0) continue;
+    const bool perturb = *rc::gen::arbitrary<bool>();
+    double r = std::sqrt(r2);  // RN(√r2): exact for perfect squares, else an ulp from the exact point
+    if (perturb) r = std::nextafter(r, *rc::gen::arbitrary<bool>() ? 0.0 : 1e9);
+    spheres.push_back({c, r});
+  }
+  if (spheres.empty()) spheres.push_back({{double(ox + 3), double(oy), double(oz + 3)}, 1.5});
+  std::vector<Plane> planes;
+  // A plane through RN of a sphere's hit, perpendicular to an axis, and one a few ulps off.
+  const SphereIntersection first = intersect(ray, spheres[*rc::gen::inRange<std::size_t>(0, spheres.size())]);
+  if (first.relation != SphereRelation::miss && first.t1 >= 0) {
+    const Vec3 p{ray.origin.x + first.t1 * ray.direction.x, ray.origin.y + first.t1 * ray.direction.y,
+                 ray.origin.z + first.t1 * ray.direction.z};
+    planes.push_back({p, {0, 0, 1}});
+    const int ulps = *rc::gen::inRange(-2, 3);
+    double z = p.z;
+    for (int i = 0; i < std::abs(ulps); ++i) z = std::nextafter(z, ulps < 0 ? -1e9 : 1e9);
+    planes.push_back({{p.x, p.y, z}, {double(dx), double(dy), double(dz)}});
+  }
+  const PlaneSet plane_set(planes);
+  const SphereSet sphere_set(spheres);
+  const NearestScene scene{&plane_set, nullptr, TriangleRule::owned, &sphere_set};
+  const TracedSceneHit traced = nearest_hit_traced(ray, scene);
+  const std::optional<SurfaceHit> exact = nearest_hit_exact(ray, planes, nullptr, spheres);
+  RC_TAG(traced.comparison_stage == Stage::exact ? "a tie of roundings, ordered in rationals" : "ordered by roundings");
+  RC_ASSERT(same_answer(traced.hit, exact));
+  RC_ASSERT(same_answer(nearest_hit(ray, scene), exact));
+}
+
+}  // namespace
+}  // namespace raykernel
