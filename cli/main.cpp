@@ -48,9 +48,9 @@ commands:
                       check exactly how renderers' ray-offset methods (pbrt-v4, Ray Tracing
                       Gems/Cycles, Mitsuba 3, Embree, One Weekend) and spawn fare on a mesh:
                       self-hits, wrong side, first hits that differ (raykernel spawn-audit --help)
-  render [SCENE.json] render a scene of planes and meshes to PNG, or the built-in demo scene; can mark
-                      where the exact answer needed slower stages and where plain doubles pick
-                      another plane (raykernel render --help)
+  render [SCENE.json] render a scene of planes, meshes and spheres to PNG, or the built-in demo scene;
+                      can mark where the exact answer needed slower stages and where plain doubles
+                      pick another surface (raykernel render --help)
   demo                run the built-in batch of hard queries and summarize it
   --version           print the version
   --help              this text

@@ -664,7 +664,7 @@ TEST(RenderCommand, WritesTheImagesAndPrintsTheCounts) {
     EXPECT_EQ(image->height, 54u);
   }
   for (const char* text : {"96x54, 1 sample per pixel, 6 planes", "rays/s", "pixels by the slowest stage they needed: filter",
-                           "naive loop", "picks another plane than the exact answer at", "-stages.png", "-naive-diff.png"})
+                           "naive loop", "picks another surface than the exact answer at", "-stages.png", "-naive-diff.png"})
     EXPECT_NE(r.out.find(text), std::string::npos) << text << " in:\n" << r.out;
 }
 

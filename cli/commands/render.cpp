@@ -30,9 +30,9 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel render [options] [--] [SCENE.json|-]
 
-Renders a scene of infinite planes by ray casting: for every pixel and sample, the plane the ray
-hits first, decided exactly (the same nearest_hit as `raykernel nearest`), coloured by plane or
-checker, darkened at grazing angles and faded with distance. Without SCENE.json it renders the
+Renders a scene of infinite planes, meshes and spheres by ray casting: for every pixel and sample,
+the surface the ray hits first, decided exactly (the same nearest_hit as `raykernel nearest`),
+coloured by plane, checker, mesh or sphere, darkened at grazing angles and faded with distance. Without SCENE.json it renders the
 built-in demo scene (planes meeting at shallow angles, a far checkered floor, coincident planes);
 with - it reads the scene from standard input.
 Rows are rendered in parallel on every core. Prints what it renders before it starts, then the
@@ -42,7 +42,8 @@ render time, rays per second and how many pixels needed which stage.
 constexpr const char* help_after = R"(Two outputs may not be the same file.
 
 Scene file (JSON; unknown fields and keys given twice are errors; examples in scenes/). Only
-"camera" (eye, target) and "planes" (point, normal) are required; the defaults are shown:
+"camera" (eye, target) and "planes" (point, normal) are required ("planes" may be left out when
+"spheres" are given); the defaults are shown:
   {"image":  {"width": 960, "height": 540, "samples_per_pixel": 1, "seed": 1},
    "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [0,1,0],
               "perspective": {"fov_degrees": 60, "near": 0.1, "ray_start": "near_plane"}
@@ -56,11 +57,13 @@ Scene file (JSON; unknown fields and keys given twice are errors; examples in sc
    "meshes": [{"file": "PATH" (OBJ/PLY/STL/OFF, relative to the scene file's directory),
                "transform": [16 numbers, row-major; only ±2^k scales and translations, applied exactly],
                "color": [r,g,b]}, ...],
+   "spheres": [{"name": "ball", "center": [x,y,z], "radius": r (positive), "color": [r,g,b]}, ...],
    "description": "..."}
 Integers may be written as any JSON number with an integer value (1e3). Colours are display
 (sRGB) values in [0, 1]; a plane without a colour gets one from a built-in palette. Planes are
 numbered from 0 in file order; on an exact tie the smaller number wins.
-A plane wins an exact tie with a mesh triangle; among triangles the smaller index (docs/contract.md §7).
+A plane wins an exact tie with a mesh triangle, a triangle with a sphere; within a kind the smaller
+index (docs/contract.md §7, §10). A sphere is hit at its smallest root t >= 0.
 
 Perspective cameras: fov_degrees is the VERTICAL field of view (the horizontal one follows from
 the image's aspect ratio). Rays start on the near plane, at distance near in front of the eye
@@ -167,7 +170,7 @@ CommandLine command_line(Arguments& a) {
             "expansions), crimson exact (rationals) (default FILE: OUTPUT with -stages.png for its .png)"},
            {"--compare-naive", optional_file(a.naive_diff_path),
             "also run the textbook loop in plain doubles on the same rays and write an image marking in "
-            "magenta the pixels where it picks another plane than the exact answer, with the counts "
+            "magenta the pixels where it picks another surface than the exact answer, with the counts "
             "(default FILE: OUTPUT with -naive-diff.png)"},
            {"--naive-image", optional_file(a.naive_image_path),
             "also write the scene as the plain-double loop renders it (default FILE: OUTPUT with "

@@ -40,7 +40,7 @@ Image naive_difference_image(const Image& render, const std::vector<std::uint8_t
         store_grey(px, render.pixel(i, row));
     }
   if (legend) {
-    (void)draw_legend(image, {{naive_difference_color, "plain doubles pick another plane: " +
+    (void)draw_legend(image, {{naive_difference_color, "plain doubles pick another surface: " +
                                                            count_of(stats.naive_pixels_differ, "pixel") + " (" +
                                                            percent(stats.naive_pixels_differ, stats.pixels) + ")"}});
   }

@@ -16,6 +16,7 @@
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/nearest_scene.hpp>
+#include <raykernel/sphere.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -33,6 +34,7 @@ struct Pass {
   const std::vector<Plane>& geometry;
   const NearestScene& surfaces;
   const PreparedMesh* mesh;  // the scene's meshes in one, or null when it has none
+  const std::vector<Sphere>& spheres;  // as given, for the naive loop
   const Shader& shader;
   unsigned threads;
   const std::function<void(double)>& progress;
@@ -59,9 +61,30 @@ struct Pass {
 };
 
 // A ray's winner as the passes record it: plane k is k, triangle m of the scene's mesh is (number of
-// planes) + m, a miss −1.
+// planes) + m, sphere k is (number of planes) + (number of triangles) + k, a miss −1.
 std::int64_t triangle_winner(const Pass& pass, std::uint32_t triangle) noexcept {
   return static_cast<std::int64_t>(pass.geometry.size()) + triangle;
+}
+std::int64_t sphere_winner(const Pass& pass, std::size_t sphere) noexcept {
+  return static_cast<std::int64_t>(pass.geometry.size() + pass.scene.mesh.triangles.size() + sphere);
+}
+
+// The textbook nearest sphere (Ray Tracing in One Weekend's loop): intersect_naive for each sphere, its smaller
+// computed root at or beyond 0 (else the larger), the smallest computed t winning.
+struct NaiveSphereHit {
+  std::size_t sphere;
+  double t;
+};
+std::optional<NaiveSphereHit> nearest_sphere_naive(const Ray& ray, const std::vector<Sphere>& spheres) noexcept {
+  std::optional<NaiveSphereHit> best;
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const SphereIntersection r = intersect_naive(ray, spheres[k]);
+    if (r.relation == SphereRelation::miss) continue;
+    const double t = r.t1 >= 0 ? r.t1 : r.t2;
+    if (!(t >= 0)) continue;
+    if (!best || t < best->t) best = NaiveSphereHit{k, t};
+  }
+  return best;
 }
 
 // The certified pass: the image, each pixel's slowest stage, each ray's winner (plane index, or −1 for a
@@ -90,7 +113,10 @@ CertifiedPass certified_pass(const Pass& pass, bool keep_winners, Image& image, 
       // The exact nearest of the planes and the mesh's triangles (a plane wins an exact tie), t rounded once.
       const TracedSceneHit traced = nearest_hit_traced(ray, pass.surfaces);
       std::int64_t winner = -1;
-      if (traced.hit && traced.hit->kind == SurfaceKind::triangle) {
+      if (traced.hit && traced.hit->kind == SurfaceKind::sphere) {
+        sum += pass.shader.shade_sphere(ray, traced.hit->index, traced.hit->t);
+        winner = sphere_winner(pass, traced.hit->index);
+      } else if (traced.hit && traced.hit->kind == SurfaceKind::triangle) {
         const auto triangle = static_cast<std::uint32_t>(traced.hit->index);
         sum += pass.shader.shade_triangle(ray, triangle, traced.hit->t);
         winner = triangle_winner(pass, triangle);
@@ -143,15 +169,22 @@ std::vector<std::uint8_t> naive_pass(const Pass& pass, const std::vector<std::in
       std::optional<MeshHit> naive_mesh;
       if (pass.mesh != nullptr) naive_mesh = nearest_hit_naive(ray, *pass.mesh);
       if (naive_mesh && naive && !(naive_mesh->intersection.t < naive->t)) naive_mesh.reset();
-      const std::int64_t picked = naive_mesh ? triangle_winner(pass, naive_mesh->triangle)
-                                  : naive    ? static_cast<std::int64_t>(naive->plane)
-                                             : -1;
+      // The textbook spheres last: a sphere wins only with a strictly smaller computed t.
+      std::optional<NaiveSphereHit> naive_sphere;
+      if (!pass.spheres.empty()) naive_sphere = nearest_sphere_naive(ray, pass.spheres);
+      if (naive_sphere && naive_mesh && !(naive_sphere->t < naive_mesh->intersection.t)) naive_sphere.reset();
+      if (naive_sphere && naive && !naive_mesh && !(naive_sphere->t < naive->t)) naive_sphere.reset();
+      const std::int64_t picked = naive_sphere ? sphere_winner(pass, naive_sphere->sphere)
+                                  : naive_mesh ? triangle_winner(pass, naive_mesh->triangle)
+                                  : naive      ? static_cast<std::int64_t>(naive->plane)
+                                               : -1;
       if (picked != winners[pass.ray_index(row, i, s)]) {
         differs[std::size_t{row} * width + i] = 1;
         ++rays_differ[row];
       }
-      sum += naive_mesh ? pass.shader.shade_triangle(ray, naive_mesh->triangle, naive_mesh->intersection.t)
-                        : pass.shader.shade(ray, naive);
+      sum += naive_sphere ? pass.shader.shade_sphere(ray, naive_sphere->sphere, naive_sphere->t)
+             : naive_mesh ? pass.shader.shade_triangle(ray, naive_mesh->triangle, naive_mesh->intersection.t)
+                          : pass.shader.shade(ray, naive);
     }
     if (naive_image) store(naive_image->pixel(i, row), sum * (1.0 / spp));
   });
@@ -169,9 +202,11 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& options) {
   const PlaneSet prepared(geometry);  // validated once, coincident planes set aside once
   std::optional<PreparedMesh> mesh;  // validated once, its BVH built once
   if (!scene.mesh.triangles.empty()) mesh.emplace(scene.mesh);
+  const std::vector<Sphere> spheres = scene.sphere_geometry();
+  const SphereSet prepared_spheres(spheres);  // validated once
   const Shader shader(scene);
-  const NearestScene surfaces{&prepared, mesh ? &*mesh : nullptr, TriangleRule::owned};
-  const Pass pass{scene,  geometry, surfaces, mesh ? &*mesh : nullptr, shader, thread_count(options.threads),
+  const NearestScene surfaces{&prepared, mesh ? &*mesh : nullptr, TriangleRule::owned, &prepared_spheres};
+  const Pass pass{scene,  geometry, surfaces, mesh ? &*mesh : nullptr, spheres, shader, thread_count(options.threads),
                   options.progress};
 
   RenderResult result;

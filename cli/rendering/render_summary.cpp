@@ -26,6 +26,7 @@ std::string render_header(std::string_view scene_name, const Scene& scene, unsig
          (scene.mesh_files.empty() ? std::string()
                                    : count_of(scene.mesh_files.size(), "mesh", "meshes") + " (" +
                                          count_of(scene.mesh.triangles.size(), "triangle") + "), ") +
+         (scene.spheres.empty() ? std::string() : count_of(scene.spheres.size(), "sphere") + ", ") +
          count_of(threads, "thread") + "\n";
 }
 
@@ -47,7 +48,7 @@ std::string stage_image_line(std::string_view path, const RenderStats& s) {
 }
 
 std::string naive_comparison_line(const RenderStats& s) {
-  return "naive loop (plain doubles, " + duration(s.naive_seconds) + "): picks another plane than the exact " +
+  return "naive loop (plain doubles, " + duration(s.naive_seconds) + "): picks another surface than the exact " +
          "answer at " + count_of(s.naive_pixels_differ, "pixel") + " (" + percent(s.naive_pixels_differ, s.pixels) +
          "), " + with_thousands(s.naive_rays_differ) + " of " + count_of(s.rays, "ray") + "\n";
 }

@@ -33,6 +33,7 @@ Shader::Shader(const Scene& s)
     : scene_(s), horizon_(linear(s.background.horizon)), zenith_(linear(s.background.zenith)) {
   for (const ScenePlane& p : s.planes) planes_.push_back(prepare(p));
   for (const SceneMeshReference& m : s.mesh_files) mesh_colors_.push_back(linear(m.color));
+  for (const SceneSphere& sp : s.spheres) sphere_colors_.push_back(linear(sp.color));
 }
 
 Linear Shader::sky(const Vec3& unit_direction) const noexcept {
@@ -85,6 +86,19 @@ Linear Shader::shade_triangle(const Ray& ray, std::uint32_t triangle, double t) 
   const std::size_t mesh = scene_.mesh_of_triangle(triangle);
   const Linear base = mesh < mesh_colors_.size() ? mesh_colors_[mesh] : linear(scene_defaults::plane_colors[0]);
   return lit(unit, length, t, base, unit_normal);
+}
+
+Linear Shader::shade_sphere(const Ray& ray, std::size_t sphere, double t) const noexcept {
+  const Vec3& d = ray.direction;
+  const double length = std::sqrt(dot(d, d));
+  const Vec3 unit{d.x / length, d.y / length, d.z / length};
+  if (!std::isfinite(t) || sphere >= scene_.spheres.size()) return sky(unit);
+  const Sphere& s = scene_.spheres[sphere].sphere;
+  const Vec3 n{ray.origin.x + t * d.x - s.center.x, ray.origin.y + t * d.y - s.center.y, ray.origin.z + t * d.z - s.center.z};
+  const double n_length = std::sqrt(dot(n, n));
+  const Vec3 unit_normal = n_length > 0 && std::isfinite(n_length) ? Vec3{n.x / n_length, n.y / n_length, n.z / n_length}
+                                                                   : Vec3{-unit.x, -unit.y, -unit.z};
+  return lit(unit, length, t, sphere_colors_[sphere], unit_normal);
 }
 
 }  // namespace raykernel::cli

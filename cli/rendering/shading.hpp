@@ -23,6 +23,8 @@ class Shader {
   // The colour of `ray` hitting triangle `triangle` of scene.mesh at `t`: the mesh's colour, lit by the
   // triangle's normal as a plane is by its own.
   [[nodiscard]] Linear shade_triangle(const Ray& ray, std::uint32_t triangle, double t) const noexcept;
+  // The colour of `ray` hitting sphere `sphere` of scene.spheres at `t`: its colour, lit by the normal at the hit.
+  [[nodiscard]] Linear shade_sphere(const Ray& ray, std::size_t sphere, double t) const noexcept;
 
  private:
   // A plane's shading data: unit normal, checker axes in the plane, its one or two colours.
@@ -41,6 +43,7 @@ class Shader {
   const Scene& scene_;
   std::vector<PreparedPlane> planes_;
   std::vector<Linear> mesh_colors_;
+  std::vector<Linear> sphere_colors_;
   Linear horizon_, zenith_;
 };
 

@@ -374,10 +374,26 @@ SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std:
   return m;
 }
 
+SceneSphere read_sphere(const json& v, const std::string& p, std::size_t index) {
+  expect_object(v, p);
+  only_fields(v, p, {"name", "center", "radius", "color"});
+  SceneSphere sphere;
+  sphere.name = "sphere " + std::to_string(index);
+  if (const json* name = optional_field(v, "name")) {
+    if (!name->is_string()) fail(child(p, "name"), "expected a string, found " + describe_type(*name));
+    sphere.name = name->get<std::string>();
+  }
+  sphere.sphere.center = vec3(required_field(v, p, "center"), child(p, "center"));
+  sphere.sphere.radius = positive_number(required_field(v, p, "radius"), child(p, "radius"));
+  sphere.color = scene_defaults::plane_colors[(index + 1) % scene_defaults::plane_colors.size()];
+  if (const json* c = optional_field(v, "color")) sphere.color = color(*c, child(p, "color"));
+  return sphere;
+}
+
 Scene read_scene(const json& doc, const SceneOverrides& overrides) {
   const std::string root;
   expect_object(doc, root);
-  only_fields(doc, root, {"description", "image", "camera", "background", "fog", "planes", "meshes"});
+  only_fields(doc, root, {"description", "image", "camera", "background", "fog", "planes", "meshes", "spheres"});
   Scene scene;
   if (const json* d = optional_field(doc, "description"); d && !d->is_string())
     fail("/description", "expected a string, found " + describe_type(*d));
@@ -390,9 +406,18 @@ Scene read_scene(const json& doc, const SceneOverrides& overrides) {
     only_fields(*f, "/fog", {"distance"});
     scene.fog_distance = positive_number(required_field(*f, "/fog", "distance"), "/fog/distance");
   }
-  const json& planes = required_field(doc, root, "planes");
-  if (!planes.is_array()) fail("/planes", "expected an array of planes, found " + describe_type(planes));
-  for (std::size_t k = 0; k < planes.size(); ++k) scene.planes.push_back(read_plane(planes[k], child("/planes", k), k));
+  const json* spheres = optional_field(doc, "spheres");
+  if (spheres != nullptr) {
+    if (!spheres->is_array()) fail("/spheres", "expected an array of spheres, found " + describe_type(*spheres));
+    for (std::size_t k = 0; k < spheres->size(); ++k)
+      scene.spheres.push_back(read_sphere((*spheres)[k], child("/spheres", k), k));
+  }
+  const json* planes = spheres != nullptr ? optional_field(doc, "planes") : &required_field(doc, root, "planes");
+  if (planes != nullptr) {
+    if (!planes->is_array()) fail("/planes", "expected an array of planes, found " + describe_type(*planes));
+    for (std::size_t k = 0; k < planes->size(); ++k)
+      scene.planes.push_back(read_plane((*planes)[k], child("/planes", k), k));
+  }
   if (const json* meshes = optional_field(doc, "meshes")) {
     if (!meshes->is_array()) fail("/meshes", "expected an array of meshes, found " + describe_type(*meshes));
     for (std::size_t k = 0; k < meshes->size(); ++k)
@@ -402,6 +427,13 @@ Scene read_scene(const json& doc, const SceneOverrides& overrides) {
 }
 
 }  // namespace
+
+std::vector<Sphere> Scene::sphere_geometry() const {
+  std::vector<Sphere> g;
+  g.reserve(spheres.size());
+  for (const SceneSphere& s : spheres) g.push_back(s.sphere);
+  return g;
+}
 
 std::vector<Plane> Scene::geometry() const {
   std::vector<Plane> g;

@@ -4,7 +4,8 @@
 // share it.
 //
 // Format (every field is described in `raykernel render --help`, examples in scenes/; only "camera" with
-// its eye and target, and "planes" with point and normal, are required):
+// its eye and target, and "planes" with point and normal, are required — "planes" may be left out when the
+// scene has "spheres"):
 //
 //   {
 //     "image":  {"width": 960, "height": 540, "samples_per_pixel": 4, "seed": 1},
@@ -23,6 +24,7 @@
 #include <raykernel/camera.hpp>
 #include <raykernel/mesh.hpp>
 #include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
 
 #include <array>
 #include <cstdint>
@@ -69,6 +71,14 @@ struct SceneMeshReference {
   Rgb color;
 };
 
+// A sphere of the scene: "spheres": [{"name": "...", "center": [x, y, z], "radius": r, "color": [r, g, b]}]
+// (the centre and radius as doubles, taken exactly; the radius finite and positive).
+struct SceneSphere {
+  std::string name;  // for messages; "sphere K" when the file gives none
+  Sphere sphere;
+  Rgb color;
+};
+
 // The sky: `zenith` straight up (+y), `horizon` at and below the horizon, blended by the ray's elevation.
 struct Background {
   Rgb horizon;
@@ -84,12 +94,14 @@ struct Scene {
   double fog_distance = 0;  // distance at which the fog hides half of a colour; 0: no fog
   std::vector<ScenePlane> planes;
   std::vector<SceneMeshReference> mesh_files;
+  std::vector<SceneSphere> spheres;
   // Every mesh of mesh_files, transformed, in order, in one Mesh (filled by load_scene_meshes; empty until
   // then): mesh K's triangles start at mesh_first_triangle[K].
   Mesh mesh;
   std::vector<std::uint32_t> mesh_first_triangle;
 
   [[nodiscard]] std::vector<Plane> geometry() const;
+  [[nodiscard]] std::vector<Sphere> sphere_geometry() const;  // the spheres, in order
   [[nodiscard]] std::size_t mesh_of_triangle(std::uint32_t triangle) const noexcept;  // K  // the planes, in order, for nearest_hit
 };
 
