@@ -998,5 +998,43 @@ TEST(RenderMesh, TheCommandRendersMeshesAndReportsBadOnesWithExitTwo) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/out.png"));
 }
 
+// Spheres in scenes: errors name their pointer; "planes" may be left out only when spheres are given.
+TEST(RenderSphere, SceneSpheresAreValidatedWithTheirPointer) {
+  const std::string camera = R"({"eye": [0, 1, 5], "target": [0, 0, 0]})";
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": [{"center": [0, 0, 0], "radius": 1}]})"), "(valid)");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + "}"), "/planes: missing field");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": [{"center": [0, 0, 0], "radius": 0}]})"),
+            "/spheres/0/radius: must be positive");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": [{"center": [0, 0], "radius": 1}]})").substr(0, 19),
+            "/spheres/0/center: ");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": [{"center": [0, 0, 0]}]})"),
+            "/spheres/0/radius: missing field");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": [{"centre": [0, 0, 0], "radius": 1}]})"),
+            "/spheres/0/centre: unknown field (expected one of: name, center, radius, color)");
+  EXPECT_EQ(error_of(R"({"camera": )" + camera + R"(, "spheres": {}})"), "/spheres: expected an array of spheres, found an object");
+}
+
+// Twins: a red unit sphere and a blue one with the same centre and a radius one ulp larger (listed second). Every
+// ray that meets them meets the blue one first (its roots enclose the red one's), so every pixel showing them is
+// blue; seen from straight above (orthographic, every ray along −z), the centre pixels all hit. Plain doubles
+// compute the same t for the two on some rays and then keep the first listed: the naive loop differs there.
+TEST(RenderSphere, TwinsShowTheOuterSphereAndFoolThePlainDoubles) {
+  const std::string text = R"({"image": {"width": 8, "height": 8},
+    "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "up": [0, 1, 0], "orthographic": {"height": 1}},
+    "spheres": [{"center": [0, 0, 0], "radius": 1, "color": [1, 0, 0]},
+                {"center": [0, 0, 0], "radius": 1.0000000000000002, "color": [0, 0, 1]}]})";
+  RenderOptions options;
+  options.compare_naive = true;
+  const RenderResult r = render_scene(parsed(text), options);
+  EXPECT_EQ(r.stats.hit_rays, 64u);
+  for (std::uint32_t row = 0; row < 8; ++row)
+    for (std::uint32_t x = 0; x < 8; ++x) {
+      const std::uint8_t* px = r.image.pixel(x, row);
+      EXPECT_EQ(px[0], 0) << x << " " << row;
+      EXPECT_GT(px[2], 0) << x << " " << row;
+    }
+  EXPECT_GT(r.stats.naive_rays_differ, 0u);
+}
+
 }  // namespace
 }  // namespace raykernel::cli
