@@ -195,5 +195,102 @@ RC_GTEST_PROP(SphereNearest, CertifiedEqualsExactOnTiedScenes, ()) {
   RC_ASSERT(same_answer(nearest_hit(ray, scene), exact));
 }
 
+// ---- intervals (docs/contract.md §8 and §10) ------------------------------------------------------------------
+
+double below(double x) { return std::nextafter(x, -INFINITY); }
+double above(double x) { return std::nextafter(x, INFINITY); }
+
+std::optional<SphereHit> in_interval_checked(const Ray& ray, const RayInterval& interval, const std::vector<Sphere>& spheres) {
+  const SphereSet set(spheres);
+  const std::optional<SphereHit> hit = nearest_hit(ray, interval, set);
+  const std::optional<SphereHit> exact = nearest_hit_exact(ray, interval, spheres);
+  EXPECT_EQ(hit.has_value(), exact.has_value());
+  if (hit && exact) {
+    EXPECT_EQ(hit->sphere, exact->sphere);
+    EXPECT_TRUE(same_bits(hit->t, exact->t));
+  }
+  EXPECT_EQ(occluded(ray, interval, set), exact.has_value());
+  return hit;
+}
+
+// Sphere (5, 0, 0) r 1 along the x axis: roots 4 and 6. The interval is closed: [0, 4] holds 4, [0, 4⁻] nothing,
+// [4.5, 10] the far root 6, [6, 6] 6, [6⁺, inf] nothing. The ray x = 4 from y = −5 is tangent at t = 5: [5, 5]
+// holds it, [5⁺, 9] not.
+TEST(SphereInterval, ClosedBoundsHandDerived) {
+  const std::vector<Sphere> s{{{5, 0, 0}, 1}};
+  struct Case {
+    RayInterval interval;
+    std::optional<double> t;
+  };
+  for (const Case& c : {Case{{0, 4}, 4.0}, Case{{0, below(4)}, std::nullopt}, Case{{4.5, 10}, 6.0}, Case{{6, 6}, 6.0},
+                        Case{{above(6), INFINITY}, std::nullopt}, Case{{0, INFINITY}, 4.0}}) {
+    const auto hit = in_interval_checked(along_x, c.interval, s);
+    EXPECT_EQ(hit.has_value(), c.t.has_value()) << c.interval.t_min << " " << c.interval.t_max;
+    if (hit && c.t) EXPECT_EQ(hit->t, *c.t);
+    const auto root = nearest_root(along_x, c.interval, s[0]);
+    EXPECT_EQ(root.has_value(), c.t.has_value());
+  }
+  const Ray up{{4, -5, 0}, {0, 1, 0}};
+  EXPECT_TRUE(in_interval_checked(up, {5, 5}, s));
+  EXPECT_FALSE(in_interval_checked(up, {above(5), 9}, s));
+  EXPECT_FALSE(in_interval_checked(up, {0, below(5)}, s));
+}
+
+// A bound equal to RN of an irrational root (centre (3, 1, 0), r 3/2: t1 = 3 − √(5/4)): whether [RN(t1), inf]
+// holds t1 is the sign of t1 − RN(t1), decided from (3 − RN(t1))² − 5/4 in rationals here; [0, RN(t1)] holds it
+// exactly when the other does not (t1 ≠ RN(t1)), then the far root t2 = 3 + √(5/4) is the hit of [RN(t1), inf]
+// when t1 is below it.
+TEST(SphereInterval, ABoundWithinHalfAnUlpOfAnIrrationalRoot) {
+  const std::vector<Sphere> s{{{3, 1, 0}, 1.5}};
+  const SphereIntersection r = intersect(along_x, s[0]);
+  const mpq_class b(r.t1), gap = (3 - b) * (3 - b) - mpq_class(5, 4);
+  ASSERT_NE(sgn(gap), 0);
+  const bool root_above_bound = sgn(gap) > 0;  // t1 > RN(t1) ⟺ √(5/4) < 3 − RN(t1) ⟺ (3 − RN(t1))² > 5/4
+  const auto from = in_interval_checked(along_x, {r.t1, INFINITY}, s);
+  ASSERT_TRUE(from);
+  EXPECT_EQ(from->t, root_above_bound ? r.t1 : r.t2);
+  EXPECT_EQ(in_interval_checked(along_x, {0, r.t1}, s).has_value(), !root_above_bound);
+  EXPECT_THROW((void)nearest_root(along_x, {2, 1}, s[0]), invalid_input);
+}
+
+// Random rays and spheres of the testkit's hard kinds' spirit — roots on doubles, tangents, the origin on the
+// surface — with interval bounds at a root's rounding and an ulp either side: the certified answer is the
+// reference's bit for bit.
+RC_GTEST_PROP(SphereInterval, CertifiedEqualsExactAtTheBounds, ()) {
+  const Ray ray{{double(*rc::gen::inRange(-6, 6)), double(*rc::gen::inRange(-6, 6)), 0.5 * *rc::gen::inRange(-6, 6)},
+                {double(*rc::gen::inRange(-3, 4)), double(*rc::gen::inRange(-3, 4)), double(*rc::gen::inRange(1, 4))}};
+  std::vector<Sphere> spheres;
+  const int n = *rc::gen::inRange(1, 5);
+  for (int k = 0; k < n; ++k) {
+    // Near the ray: o + s·d plus a small offset of quarter units (the ray's line meets most of them).
+    const double along = 0.5 * *rc::gen::inRange(-2, 12);
+    const Vec3 c{ray.origin.x + along * ray.direction.x + 0.25 * *rc::gen::inRange(-4, 5),
+                 ray.origin.y + along * ray.direction.y + 0.25 * *rc::gen::inRange(-4, 5),
+                 ray.origin.z + along * ray.direction.z + 0.25 * *rc::gen::inRange(-4, 5)};
+    const double r = *rc::gen::element(0.5, 1.0, 1.5, 2.0, std::sqrt(2.0), std::sqrt(3.0), 0.3);
+    spheres.push_back({c, r});
+  }
+  const SphereIntersection first = intersect(ray, spheres[0]);
+  std::vector<double> bounds{0.0, 0.5, 3.0};
+  if (first.relation != SphereRelation::miss)
+    for (const double t : {first.t1, first.t2})
+      if (t >= 0 && std::isfinite(t))
+        for (const double b : {t, below(t), above(t)})
+          if (!std::signbit(b)) bounds.push_back(b);  // an interval starts at 0 or beyond
+  const double lo = *rc::gen::elementOf(bounds);
+  const double hi = *rc::gen::elementOf(bounds);
+  const RayInterval interval{std::min(lo, hi), *rc::gen::arbitrary<bool>() ? INFINITY : std::max(lo, hi)};
+  const SphereSet set(spheres);
+  const std::optional<SphereHit> hit = nearest_hit(ray, interval, set);
+  const std::optional<SphereHit> exact = nearest_hit_exact(ray, interval, spheres);
+  RC_TAG(exact ? "hit" : "no hit");
+  RC_ASSERT(hit.has_value() == exact.has_value());
+  if (hit) {
+    RC_ASSERT(hit->sphere == exact->sphere);
+    RC_ASSERT(same_bits(hit->t, exact->t));
+  }
+  RC_ASSERT(occluded(ray, interval, set) == exact.has_value());
+}
+
 }  // namespace
 }  // namespace raykernel

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <raykernel/core.hpp>
+#include <raykernel/interval.hpp>
 
 #include <cstdint>
 #include <optional>
@@ -115,6 +116,29 @@ class SphereSet {
  private:
   std::vector<Sphere> spheres_;
 };
+
+// ---- rays with an interval (docs/contract.md §8 and §10) ------------------------------------------------------
+// A sphere is closed: it blocks a ray when a root (the tangent root included) lies in the ray's interval
+// [t_min, t_max], compared exactly (each root's rounding against the bound, and when they are equal the sign of
+// the quadratic and its slope at the bound); its hit is the smallest such root.
+
+// RN of the smallest root of `sphere` in `interval`, or nothing. Throws invalid_input (the ray, the sphere, the
+// interval). Right in any floating-point environment.
+[[nodiscard]] std::optional<double> nearest_root(const Ray& ray, const RayInterval& interval, const Sphere& sphere);
+
+// The nearest sphere of a set within an interval: its index and RN of its root, an exact tie to the smaller index.
+struct SphereHit {
+  std::size_t sphere;
+  double t;
+};
+[[nodiscard]] std::optional<SphereHit> nearest_hit(const Ray& ray, const RayInterval& interval, const SphereSet& spheres);
+
+// Whether some sphere of the set has a root in the interval (any-hit: stops at the first).
+[[nodiscard]] bool occluded(const Ray& ray, const RayInterval& interval, const SphereSet& spheres);
+
+// The references: every root and bound in rationals (roots as U ∓ √V; no rounding before the answer).
+[[nodiscard]] std::optional<SphereHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval,
+                                                         std::span<const Sphere> spheres);
 
 [[nodiscard]] std::string_view to_string(SphereOrigin origin) noexcept;      // "inside", "on-surface", "outside"
 [[nodiscard]] std::string_view to_string(SphereRelation relation) noexcept;  // "miss", "tangent", "cross"

@@ -115,6 +115,38 @@ QuotientSigns triangle_quotient_signs(const Ray& ray, const Triangle& triangle) 
 
 namespace raykernel {
 
+std::optional<SphereHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval, std::span<const Sphere> spheres) {
+  using detail::exact::Root;
+  return detail::in_default_fp_environment([&]() -> std::optional<SphereHit> {
+    if (auto reason = validate(ray)) throw invalid_input(*reason);
+    if (auto reason = validate(interval)) throw invalid_input(*reason);
+    for (std::size_t k = 0; k < spheres.size(); ++k)
+      if (auto reason = validate(spheres[k])) throw invalid_input("sphere " + std::to_string(k) + ": " + *reason);
+    const Root lo = detail::exact::rational_root(detail::exact::rational_from_double(interval.t_min));
+    const bool bounded = interval.t_max != std::numeric_limits<double>::infinity();
+    const Root hi = detail::exact::rational_root(bounded ? detail::exact::rational_from_double(interval.t_max) : mpq_class(0));
+    std::optional<SphereHit> best;
+    Root best_t;
+    for (std::size_t k = 0; k < spheres.size(); ++k) {
+      const SphereIntersection e = intersect_exact(ray, spheres[k]);
+      if (e.relation == SphereRelation::miss) continue;
+      const bool tangent = e.relation == SphereRelation::tangent;
+      for (const int root : {-1, +1}) {
+        if (tangent && root > 0) break;
+        const Root t = detail::exact::sphere_root(ray, spheres[k], tangent ? 0 : root);
+        if (detail::exact::compare_roots(t, lo) < 0) continue;
+        if (bounded && detail::exact::compare_roots(t, hi) > 0) break;
+        if (!best || detail::exact::compare_roots(t, best_t) < 0) {
+          best_t = t;
+          best = SphereHit{k, root < 0 ? e.t1 : e.t2};
+        }
+        break;  // the smaller root in the interval is this sphere's hit
+      }
+    }
+    return best;
+  });
+}
+
 std::optional<SurfaceHit> nearest_hit_exact(const Ray& ray, std::span<const Plane> planes, const Mesh* mesh,
                                             TriangleRule rule, const NearestOptions& options) {
   return nearest_hit_exact(ray, planes, mesh, {}, rule, options);

@@ -206,6 +206,17 @@ std::string_view to_string(SurfaceKind kind) noexcept {
   return "?";
 }
 
+std::optional<SphereHit> nearest_hit(const Ray& ray, const RayInterval& interval, const SphereSet& spheres) {
+  detail::throw_if_invalid(ray);
+  detail::throw_if_invalid_interval(interval);
+  return detail::in_default_fp_environment([&]() -> std::optional<SphereHit> {
+    detail::NearestSearch<detail::NoTrace> search(ray, detail::NoTrace{});
+    search.spheres(spheres, interval);
+    if (!search.found()) return std::nullopt;
+    return SphereHit{search.sphere_winner().index, search.winner_t()};
+  });
+}
+
 std::optional<SurfaceHit> nearest_hit(const Ray& ray, const NearestScene& scene, const NearestOptions& options) {
   detail::throw_if_invalid(ray);
   return detail::in_default_fp_environment([&] { return detail::scene_untraced(ray, scene, options); });

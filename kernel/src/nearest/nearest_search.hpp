@@ -304,15 +304,15 @@ class NearestSearch {
     }
   }
 
-  // Every sphere of `set` the ray meets at t ≥ 0 (its smallest root there, docs/contract.md §10), each
+  // Every sphere of `set` with a root in `interval` (its smallest root there, docs/contract.md §8 and §10), each
   // classified and its roots rounded by the certified ray–sphere cascade (a miss the cascade's filter decides
   // costs that filter alone), offered as a candidate.
-  void spheres(const SphereSet& set) noexcept {
+  void spheres(const SphereSet& set, const RayInterval& interval = {}) noexcept {
     const std::span<const Sphere> spheres = set.spheres();
     for (std::size_t k = 0; k < spheres.size(); ++k) {
       const int slot = best_ == Best::sphere && sphere_best_ == 0 ? 1 : 0;
       SphereCandidate& c = sphere_[slot].emplace();
-      const bool hit = c.classify(ray_, spheres[k], k);
+      const bool hit = c.classify(ray_, spheres[k], k, interval);
       tracer_.plane_relation(c.relation_stage);  // the relation stage, whatever the kind
       if (hit) offer(c, slot);
     }

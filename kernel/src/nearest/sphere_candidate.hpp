@@ -1,7 +1,7 @@
-// The sphere kind of the nearest-hit module (nearest/nearest_candidates.hpp): a sphere the ray meets at t ≥ 0,
-// with the root that is its hit (docs/contract.md §10: the smallest root in [0, +inf]) and that root correctly
-// rounded by the certified ray–sphere cascade (sphere/ray_sphere_cascade.hpp), which decides the relation and
-// rounds both roots with its own certificates.
+// The sphere kind of the nearest-hit module (nearest/nearest_candidates.hpp): a sphere with a root in the ray's
+// interval, with the root that is its hit (docs/contract.md §8 and §10: the smallest root in the interval,
+// [0, +inf] by default; sphere/ray_sphere_cascade.hpp, sphere_hit_in_interval) and that root correctly rounded by
+// the certified ray–sphere cascade, which decides the relation and rounds both roots with its own certificates.
 //
 // Its t is U ∓ √V, a root and not a quotient, so it is not ordered by the quotient stages. It is ordered by the
 // roundings, then exactly:
@@ -10,8 +10,6 @@
 //     RN(t) (their own certified rounding, then kept for the answer).
 //   - Equal roundings (a near tie within half an ulp, or an exact tie) go to the exact stage: the sign of
 //     U ∓ √V − N/D or of (U_a ∓ √V_a) − (U_b ∓ √V_b) in rationals (nearest/exact_nearest.hpp).
-// Which root is the hit, from the rounded roots: RN keeps the sign of a nonzero root (a negative one rounds to a
-// negative double or to −0) and an exact zero rounds to +0, so t ≥ 0 exactly when RN(t) has its sign bit clear.
 #pragma once
 
 #include "nearest/exact_nearest.hpp"
@@ -21,7 +19,6 @@
 #include <raykernel/nearest_scene.hpp>
 #include <raykernel/sphere.hpp>
 
-#include <cmath>
 #include <cstddef>
 #include <optional>
 
@@ -30,26 +27,18 @@ namespace raykernel::detail {
 struct SphereCandidate {
   static constexpr SurfaceKind kind = SurfaceKind::sphere;
 
-  // Classifies sphere k; true when the ray meets it at t ≥ 0 (then this is its candidate).
-  bool classify(const Ray& ray, const Sphere& s, std::size_t k) noexcept {
+  // Classifies sphere k; true when a root lies in `interval` (then this is its candidate, the smallest such root).
+  bool classify(const Ray& ray, const Sphere& s, std::size_t k, const RayInterval& interval) noexcept {
     const TracedSphereIntersection traced = sphere_intersection_cascade(ray, s);
-    const SphereIntersection& r = traced.intersection;
     relation_stage = traced.relation_stage;
-    if (r.relation == SphereRelation::miss) return false;
+    const std::optional<SphereRootHit> hit = sphere_hit_in_interval(ray, s, traced.intersection, interval);
+    if (!hit) return false;
     index = k;
     sphere = &s;
     t_stage = traced.rounding_stage;
-    if (r.relation == SphereRelation::tangent) {
-      root = 0;
-      t = r.t1;
-    } else if (!std::signbit(r.t1)) {
-      root = -1;
-      t = r.t1;
-    } else {
-      root = +1;
-      t = r.t2;
-    }
-    return !std::signbit(t);
+    root = traced.intersection.relation == SphereRelation::tangent ? 0 : hit->root;
+    t = hit->t;
+    return true;
   }
 
   // RN(t), rounded by the cascade with the relation.

@@ -128,4 +128,30 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
   return {{c->origin, c->relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
 }
 
+int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b) {
+  SphereExpansions s;
+  sphere_expansions(ray, sphere, s);
+  if (s.builder.exact()) {
+    const Sign side = sphere_root_side(s, root < 0 ? -1 : +1, b, b);
+    if (is_certain(side)) return static_cast<int>(side);
+  }
+  return exact::root_side_of_midpoint(ray, sphere, root < 0 ? -1 : +1, b, b);
+}
+
+std::optional<SphereRootHit> sphere_hit_in_interval(const Ray& ray, const Sphere& sphere, const SphereIntersection& r,
+                                                    const RayInterval& interval) {
+  if (r.relation == SphereRelation::miss) return std::nullopt;
+  const auto within = [&](int root, double rounded) {
+    const auto side = [&](double b) {
+      return rounded < b ? -1 : rounded > b ? 1 : sphere_root_side_of(ray, sphere, root, b);
+    };
+    if (side(interval.t_min) < 0) return false;
+    // Every root is below +inf (a root beyond the doubles rounds to +inf but is finite).
+    return interval.t_max == std::numeric_limits<double>::infinity() || side(interval.t_max) <= 0;
+  };
+  if (within(-1, r.t1)) return SphereRootHit{-1, r.t1};
+  if (r.relation == SphereRelation::cross && within(+1, r.t2)) return SphereRootHit{+1, r.t2};
+  return std::nullopt;
+}
+
 }  // namespace raykernel::detail

@@ -3,7 +3,10 @@
 // Valid input, the default floating-point environment (the entry points in sphere_api.cpp see to both).
 #pragma once
 
+#include <raykernel/interval.hpp>
 #include <raykernel/sphere.hpp>
+
+#include <optional>
 
 namespace raykernel::detail {
 
@@ -14,5 +17,24 @@ struct TracedSphereClassification {
   Stage stage;
 };
 [[nodiscard]] TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere);
+
+// sign(t_root − b) for a root of a sphere the ray's line meets (root −1: t1, or the tangent root t0; +1: t2) and a
+// double b: the expansion stage's side of b (sphere_root_side with the boundary m = (b + b)/2 = b), else the exact
+// stage's (exact::root_side_of_midpoint).
+[[nodiscard]] int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b);
+
+// The hit of a sphere within a ray's interval (docs/contract.md §8 and §10: the smallest root t with
+// t_min ≤ t ≤ t_max, the tangent root included), from the cascade's answer `r` (its roots correctly rounded):
+// which root (−1: t1 or t0, +1: t2) and RN of it; nothing when no root lies in the interval. Each root is
+// compared with a bound b by its rounding first — RN is monotone and RN(b) = b, so RN(t) < b implies t < b and
+// RN(t) > b implies t > b (proofs/core/RoundOrder.v, `rn_strict_order`) — and by sphere_root_side_of only when
+// RN(t) = b. A valid interval (the caller validates it).
+struct SphereRootHit {
+  int root;
+  double t;
+};
+[[nodiscard]] std::optional<SphereRootHit> sphere_hit_in_interval(const Ray& ray, const Sphere& sphere,
+                                                                  const SphereIntersection& r,
+                                                                  const RayInterval& interval);
 
 }  // namespace raykernel::detail

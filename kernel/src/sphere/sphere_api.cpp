@@ -59,6 +59,30 @@ SphereSet::SphereSet(std::span<const Sphere> spheres) : spheres_(spheres.begin()
     if (!detail::is_valid(spheres_[k])) throw invalid_input("sphere " + std::to_string(k) + ": " + *validate(spheres_[k]));
 }
 
+std::optional<double> nearest_root(const Ray& ray, const RayInterval& interval, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&]() -> std::optional<double> {
+    throw_if_invalid(ray, sphere);
+    detail::throw_if_invalid_interval(interval);
+    const TracedSphereIntersection r = detail::sphere_intersection_cascade(ray, sphere);
+    const std::optional<detail::SphereRootHit> hit = detail::sphere_hit_in_interval(ray, sphere, r.intersection, interval);
+    if (!hit) return std::nullopt;
+    return hit->t;
+  });
+}
+
+bool occluded(const Ray& ray, const RayInterval& interval, const SphereSet& spheres) {
+  return detail::in_default_fp_environment([&] {
+    if (!detail::is_valid(ray)) [[unlikely]]
+      throw invalid_input(*validate(ray));
+    detail::throw_if_invalid_interval(interval);
+    for (const Sphere& sphere : spheres.spheres())
+      if (detail::sphere_hit_in_interval(ray, sphere, detail::sphere_intersection_cascade(ray, sphere).intersection,
+                                         interval))
+        return true;
+    return false;
+  });
+}
+
 // The textbook quadratic ("Ray Tracing in One Weekend", with the half b): no guard against cancellation.
 SphereIntersection intersect_naive(const Ray& ray, const Sphere& sphere) noexcept {
   const Vec3& o = ray.origin;
