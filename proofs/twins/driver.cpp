@@ -37,6 +37,7 @@
 #include "core/det3_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
+#include "sphere/ray_sphere_stages.hpp"
 #include "core/validation.hpp"
 #include <raykernel/triangle.hpp>
 
@@ -419,6 +420,30 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          const std::vector<double> x = doubles(w);
          const raykernel::Vec3 p{x[0], x[1], x[2]}, a{x[3], x[4], x[5]}, b{x[6], x[7], x[8]}, c{x[9], x[10], x[11]};
          o.i(raykernel::mesh_detail::orient3d_filter(p, a, b, c));
+         return true;
+       }},
+      // sphere/ray_sphere_stages.hpp: sphere_expansions on "ox oy oz dx dy dz cx cy cz r" (the flag, then s.a,
+      // s.b, s.c, s.d), and sphere_root_side on the same query's expansions, the root (word 0: −1, else +1) and
+      // the boundary's doubles x, y (the side's sign code).
+      {"sphere_expansions",
+       [](const Words& w, Out& o) {
+         if (w.size() != 10) return false;
+         const std::vector<double> x = doubles(w);
+         SphereExpansions s;
+         sphere_expansions(raykernel::Ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}},
+                           raykernel::Sphere{{x[6], x[7], x[8]}, x[9]}, s);
+         o.i(s.builder.exact());
+         expansion_out(o, s.a), expansion_out(o, s.b), expansion_out(o, s.c), expansion_out(o, s.d);
+         return true;
+       }},
+      {"sphere_root_side",
+       [](const Words& w, Out& o) {
+         if (w.size() != 13) return false;
+         const std::vector<double> x = doubles(w);
+         SphereExpansions s;
+         sphere_expansions(raykernel::Ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}},
+                           raykernel::Sphere{{x[6], x[7], x[8]}, x[9]}, s);
+         o.i(sign_code(sphere_root_side(s, w[10] == 0 ? -1 : 1, x[11], x[12])));
          return true;
        }},
       {"nearest_compare",

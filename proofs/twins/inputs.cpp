@@ -20,7 +20,9 @@
 
 #include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
+#include <raykernel/testkit/sphere_queries.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
+#include <raykernel/sphere.hpp>
 
 #include <array>
 #include <bit>
@@ -103,6 +105,38 @@ class Source {
     if (chance(8))  // every zero component's sign flipped: the lanes' broadcast maps −0 to +0 (TriangleTwins.v, bcast)
       for (double& c : x)
         if (c == 0) c = -c;
+    return x;
+  }
+  // A hard ray–sphere query (testkit/sphere_queries.hpp: tangents and an ulp off, origins on the surface,
+  // rounding ties, cancelling far-away spheres, extreme exponents), as the 10 inputs "o d c r"; 1 in 8 with a raw
+  // special value in one component, 1 in 16 wholly raw.
+  std::vector<double> sphere_query() {
+    if (chance(16)) {
+      std::vector<double> x;
+      for (int i = 0; i < 10; ++i) x.push_back(raw());
+      return x;
+    }
+    const auto kind = testkit::all_sphere_query_kinds[below(testkit::all_sphere_query_kinds.size())];
+    const testkit::SphereQuery q = testkit::make_sphere_query(kind, [this] { return word(); });
+    std::vector<double> x = {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z,   q.ray.direction.x,
+                             q.ray.direction.y, q.ray.direction.z, q.sphere.center.x, q.sphere.center.y,
+                             q.sphere.center.z, q.sphere.radius};
+    if (chance(8)) x[below(10)] = raw();
+    return x;
+  }
+  // A sphere query, a root (word 0: t1, 1: t2) and a boundary x, y beside that root: the textbook root and the
+  // next double (a rounding boundary), the root twice (a bound of an interval), or raw.
+  std::vector<double> sphere_root_side_args() {
+    std::vector<double> x = sphere_query();
+    const std::uint64_t root = below(2);
+    const SphereIntersection r = intersect_naive(Ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}},
+                                                 Sphere{{x[6], x[7], x[8]}, x[9]});
+    double m = root == 0 ? r.t1 : r.t2;
+    if (!std::isfinite(m) || chance(8)) m = raw();
+    const double n = chance(3) ? m : std::nextafter(m, chance(2) ? INFINITY : -INFINITY);
+    x.push_back(std::bit_cast<double>(root));
+    x.push_back(m);
+    x.push_back(n);
     return x;
   }
   // A ray–triangle query whose origin is just off the plane above a point well inside the triangle, at a
@@ -561,6 +595,10 @@ const std::map<std::string, Generator>& generators() {
          return word_then(s.below(3), points);
        }},
       {"orient3d", [](Source& s) { return s.orientation_points(); }},
+      // the sphere's expansion stage (proofs/sphere/SphereStages.v): a hard sphere query; and the side of a root
+      // at a boundary beside it
+      {"sphere_expansions", [](Source& s) { return s.sphere_query(); }},
+      {"sphere_root_side", [](Source& s) { return s.sphere_root_side_args(); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -46,6 +46,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("tri_cascade_relation", Twins.run_tri_cascade_relation);
   ("orient2d", Twins.run_orient2d);
   ("orient3d", Twins.run_orient3d);
+  ("sphere_expansions", Twins.run_sphere_expansions);
+  ("sphere_root_side", Twins.run_sphere_root_side);
 ]
 
 let () =
