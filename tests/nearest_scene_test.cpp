@@ -21,6 +21,8 @@
 #include <raykernel/testkit/mesh_rapidcheck.hpp>
 #include <raykernel/testkit/meshes.hpp>
 
+#include "surface_hits.hpp"
+
 #include "core/expansion.hpp"
 #include "core/quotient_boundary.hpp"
 
@@ -43,21 +45,9 @@ namespace {
 
 constexpr int kBatch = 20;  // rays per property case
 
-bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
-
-std::string describe(const std::optional<SurfaceHit>& h) {
-  if (!h) return "miss";
-  char t[64];
-  std::snprintf(t, sizeof t, "%a", h->t);
-  return std::string(to_string(h->kind)) + " " + std::to_string(h->index) + " t=" + t;
-}
-
-bool same_answer(const std::optional<SurfaceHit>& x, const std::optional<SurfaceHit>& y) {
-  if (!x || !y) return !x && !y;
-  return x->kind == y->kind && x->index == y->index && same_bits(x->t, y->t) &&
-         same_bits(x->barycentric[0], y->barycentric[0]) && same_bits(x->barycentric[1], y->barycentric[1]) &&
-         same_bits(x->barycentric[2], y->barycentric[2]);
-}
+using test::describe;
+using test::same_answer;
+using test::same_bits;
 
 std::string describe(const Ray& r) {
   char s[256];

@@ -7,6 +7,8 @@
 #include <raykernel/nearest_scene.hpp>
 #include <raykernel/sphere.hpp>
 
+#include "surface_hits.hpp"
+
 #include <gmpxx.h>
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
@@ -23,19 +25,9 @@
 namespace raykernel {
 namespace {
 
-bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
-
-std::string describe(const std::optional<SurfaceHit>& h) {
-  if (!h) return "miss";
-  char t[64];
-  std::snprintf(t, sizeof t, "%a", h->t);
-  return std::string(to_string(h->kind)) + " " + std::to_string(h->index) + " t=" + t;
-}
-
-bool same_answer(const std::optional<SurfaceHit>& x, const std::optional<SurfaceHit>& y) {
-  if (!x || !y) return !x && !y;
-  return x->kind == y->kind && x->index == y->index && same_bits(x->t, y->t);
-}
+using test::describe;
+using test::same_answer;
+using test::same_bits;
 
 // The scene query on planes, a mesh and spheres, checked against the exact reference; returns the answer.
 std::optional<SurfaceHit> nearest_checked(const Ray& ray, const std::vector<Plane>& planes, const Mesh* mesh,

@@ -287,15 +287,19 @@ Vec3 default_u_axis(const Vec3& n) {
   return {1, 0, 0};                            // a wall facing z: x and y
 }
 
+// A surface's optional "name" (a string), or `fallback`.
+std::string name_field(const json& v, const std::string& p, std::string fallback) {
+  const json* name = optional_field(v, "name");
+  if (name == nullptr) return fallback;
+  if (!name->is_string()) fail(child(p, "name"), "expected a string, found " + describe_type(*name));
+  return name->get<std::string>();
+}
+
 ScenePlane read_plane(const json& v, const std::string& p, std::size_t index) {
   expect_object(v, p);
   only_fields(v, p, {"name", "point", "normal", "color", "checker"});
   ScenePlane plane;
-  plane.name = "plane " + std::to_string(index);
-  if (const json* name = optional_field(v, "name")) {
-    if (!name->is_string()) fail(child(p, "name"), "expected a string, found " + describe_type(*name));
-    plane.name = name->get<std::string>();
-  }
+  plane.name = name_field(v, p, "plane " + std::to_string(index));
   plane.plane.point = vec3(required_field(v, p, "point"), child(p, "point"));
   plane.plane.normal = nonzero_vec3(required_field(v, p, "normal"), child(p, "normal"));
   const json* solid = optional_field(v, "color");
@@ -378,11 +382,7 @@ SceneSphere read_sphere(const json& v, const std::string& p, std::size_t index) 
   expect_object(v, p);
   only_fields(v, p, {"name", "center", "radius", "color"});
   SceneSphere sphere;
-  sphere.name = "sphere " + std::to_string(index);
-  if (const json* name = optional_field(v, "name")) {
-    if (!name->is_string()) fail(child(p, "name"), "expected a string, found " + describe_type(*name));
-    sphere.name = name->get<std::string>();
-  }
+  sphere.name = name_field(v, p, "sphere " + std::to_string(index));
   sphere.sphere.center = vec3(required_field(v, p, "center"), child(p, "center"));
   sphere.sphere.radius = positive_number(required_field(v, p, "radius"), child(p, "radius"));
   sphere.color = scene_defaults::plane_colors[(index + 1) % scene_defaults::plane_colors.size()];

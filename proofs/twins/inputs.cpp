@@ -74,6 +74,13 @@ class Source {
     return std::bit_cast<double>(word());
   }
 
+  // n raw inputs.
+  std::vector<double> raws(int n) {
+    std::vector<double> x;
+    for (int i = 0; i < n; ++i) x.push_back(raw());
+    return x;
+  }
+
   testkit::Query query() {
     const auto kind = testkit::all_query_kinds[below(testkit::all_query_kinds.size())];
     testkit::Query q = testkit::make_query(kind, [this] { return word(); });
@@ -90,11 +97,7 @@ class Source {
   // inputs "o d a b c"; 1 in 8 with a raw special value in one component, 1 in 8 with the signs of its zeros
   // flipped, 1 in 16 wholly raw.
   std::vector<double> triangle_query() {
-    if (chance(16)) {
-      std::vector<double> x;
-      for (int i = 0; i < 15; ++i) x.push_back(raw());
-      return x;
-    }
+    if (chance(16)) return raws(15);
     const auto kind = testkit::all_triangle_query_kinds[below(testkit::all_triangle_query_kinds.size())];
     const testkit::TriangleQuery q = testkit::make_triangle_query(kind, [this] { return word(); });
     std::vector<double> x = {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z, q.ray.direction.x,
@@ -111,11 +114,7 @@ class Source {
   // rounding ties, cancelling far-away spheres, extreme exponents), as the 10 inputs "o d c r"; 1 in 8 with a raw
   // special value in one component, 1 in 16 wholly raw.
   std::vector<double> sphere_query() {
-    if (chance(16)) {
-      std::vector<double> x;
-      for (int i = 0; i < 10; ++i) x.push_back(raw());
-      return x;
-    }
+    if (chance(16)) return raws(10);
     const auto kind = testkit::all_sphere_query_kinds[below(testkit::all_sphere_query_kinds.size())];
     const testkit::SphereQuery q = testkit::make_sphere_query(kind, [this] { return word(); });
     std::vector<double> x = {q.ray.origin.x,    q.ray.origin.y,    q.ray.origin.z,   q.ray.direction.x,
