@@ -12,6 +12,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -123,7 +124,7 @@ std::optional<SphereHit> nearest_hit_exact(const Ray& ray, const RayInterval& in
     for (std::size_t k = 0; k < spheres.size(); ++k)
       if (auto reason = validate(spheres[k])) throw invalid_input("sphere " + std::to_string(k) + ": " + *reason);
     const Root lo = detail::exact::rational_root(detail::exact::rational_from_double(interval.t_min));
-    const bool bounded = interval.t_max != std::numeric_limits<double>::infinity();
+    const bool bounded = !std::isinf(interval.t_max);  // a valid t_max is +inf or finite
     const Root hi = detail::exact::rational_root(bounded ? detail::exact::rational_from_double(interval.t_max) : mpq_class(0));
     std::optional<SphereHit> best;
     Root best_t;

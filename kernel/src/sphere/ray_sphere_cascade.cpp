@@ -147,7 +147,7 @@ std::optional<SphereRootHit> sphere_hit_in_interval(const Ray& ray, const Sphere
     };
     if (side(interval.t_min) < 0) return false;
     // Every root is below +inf (a root beyond the doubles rounds to +inf but is finite).
-    return interval.t_max == std::numeric_limits<double>::infinity() || side(interval.t_max) <= 0;
+    return std::isinf(interval.t_max) || side(interval.t_max) <= 0;  // a valid t_max is +inf or finite
   };
   if (within(-1, r.t1)) return SphereRootHit{-1, r.t1};
   if (r.relation == SphereRelation::cross && within(+1, r.t2)) return SphereRootHit{+1, r.t2};
