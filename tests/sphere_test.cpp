@@ -119,6 +119,16 @@ TEST(SphereHandDerived, RootsOnRoundingTies) {
               {SphereOrigin::outside, SphereRelation::cross, -0x1p-1073, -0.0});
 }
 
+TEST(SphereHandDerived, SubnormalCentreCoordinateBreaksATie) {
+  // c = (4, 0, ε) with ε = 3·2^-1074, r = 1 + 3·2^-52: roots 4 ∓ √(r² − ε²). Without ε, t1 = 3 − 3·2^-52 is the
+  // midpoint of 3 − 2^-50 (even significand) and 3 − 2^-51 (odd): ties to even would give 3 − 2^-50. With ε > 0,
+  // √(r² − ε²) < r, so t1 lies just above the midpoint: 3 − 2^-51. (ε² underflows in binary64: the expansions
+  // are not exact here, and must not decide; found by fuzz_sphere.) t2 = 5 + 3·2^-52 − δ with 0 < δ < ε²/r, i.e.
+  // 5 + 0.75 ulp(5) minus a hair: 5 + 2^-50.
+  expect_both(x_axis, Sphere{{4, 0, 0x3p-1074}, 1 + 0x3p-52},
+              {SphereOrigin::outside, SphereRelation::cross, 3 - 0x1p-51, 5 + 0x1p-50});
+}
+
 TEST(SphereHandDerived, RootsBeyondTheDoubleRange) {
   // c = (M, 0, 0) with M = 2^1024 − 2^971 the largest double, r = 2^970: roots M ∓ 2^970, each the midpoint of
   // M and a neighbour. M − 2^970 lies between M − 2^971 (even significand) and M (odd): M − 2^971. M + 2^970 =
@@ -265,6 +275,18 @@ TEST(SphereQueries, KeepTheirPromises) {
     }
   }
   EXPECT_GT(ties, 300);  // most tie constructions have an odd chord (the rest give exact roots)
+  // A subnormal offset breaks every tie: no root lies on a midpoint of its neighbours.
+  for (int i = 0; i < 400; ++i) {
+    const testkit::SphereQuery o = testkit::make_sphere_query(testkit::SphereQueryKind::subnormal_offset, source);
+    const SphereIntersection e = intersect_exact(o.ray, o.sphere);
+    ASSERT_EQ(e.relation, SphereRelation::cross) << testkit::sphere_line(o);
+    for (int root : {-1, 1}) {
+      const double x = root < 0 ? e.t1 : e.t2;
+      for (const double y : {std::nextafter(x, inf), std::nextafter(x, -inf)})
+        EXPECT_NE(detail::exact::root_side_of_midpoint(o.ray, o.sphere, root, std::min(x, y), std::max(x, y)), 0)
+            << testkit::sphere_line(o);
+    }
+  }
 }
 
 // Where the expansion stage is exact (README, "Ray–sphere"): every query of the kinds whose inputs have exponents
@@ -336,6 +358,13 @@ TEST(SphereRootSide, AgreesWithTheRootsOrder) {
 
 std::string certified_text(const testkit::SphereQuery& q) { return text(intersect(q.ray, q.sphere)); }
 std::string exact_text(const testkit::SphereQuery& q) { return text(intersect_exact(q.ray, q.sphere)); }
+
+// The same, deterministic: 300 queries of every kind, so that each kind is tried many times in every run (the
+// property above samples a kind about eight times).
+TEST(SphereCertified, AgreesWithExactOnEveryKind) {
+  for (const testkit::SphereQuery& q : queries_of_every_kind(300, 13))
+    EXPECT_EQ(certified_text(q), exact_text(q)) << testkit::sphere_line(q);
+}
 
 RC_GTEST_PROP(SphereCertified, AgreesWithExact, ()) {
   const auto kind = *rc::gen::elementOf(testkit::all_sphere_query_kinds);

@@ -123,6 +123,21 @@ SphereQuery nudged(Draw& draw, SphereQuery q, bool direction_too) {
   return q;
 }
 
+// Along ±x, the foot of the perpendicular s = ±(2^53 + 2j) (even, so exact) before the origin o = 0: the roots
+// −s ∓ a are odd integers beyond 2^53 in magnitude, midpoints of two doubles, when a is odd (the quadruple is
+// turned so that it is, where it has an odd component).
+SphereQuery rounding_tie_construction(Draw& draw) {
+  Quadruple q = quadruple(draw);
+  for (int turn = 0; turn < 2 && q.a % 2 == 0; ++turn) q = {q.b, q.c, q.a, q.n};
+  const std::int64_t s = ((std::int64_t{1} << 53) + 2 * draw.integer(0, 1 << 20)) * (draw.coin() ? 1 : -1);
+  IQuery result{};
+  result.d = {draw.coin() ? 1 : -1, 0, 0};
+  result.o = {0, 0, 0};
+  result.c = IVec{-s * result.d.x, -q.b, -q.c};  // o − c = (0, b, c) + s·d
+  result.r = q.n;
+  return from_integers(result, draw.small(-30, 30), 0);
+}
+
 SphereQuery build(SphereQueryKind kind, Draw& draw) {
   switch (kind) {
     case SphereQueryKind::random: {
@@ -137,20 +152,7 @@ SphereQuery build(SphereQueryKind kind, Draw& draw) {
       return from_integers(surface_construction(draw), draw.small(-20, 20), draw.small(-8, 8));
     case SphereQueryKind::near_surface:
       return nudged(draw, from_integers(surface_construction(draw), draw.small(-20, 20), draw.small(-8, 8)), false);
-    case SphereQueryKind::rounding_tie: {
-      // Along ±x, the foot of the perpendicular s = ±(2^53 + 2j) (even, so exact) before the origin: the roots
-      // −s ∓ a are odd integers beyond 2^53 in magnitude, midpoints of two doubles, when a is odd (the quadruple is turned so
-      // that it is, where it has an odd component).
-      Quadruple q = quadruple(draw);
-      for (int turn = 0; turn < 2 && q.a % 2 == 0; ++turn) q = {q.b, q.c, q.a, q.n};
-      const std::int64_t s = ((std::int64_t{1} << 53) + 2 * draw.integer(0, 1 << 20)) * (draw.coin() ? 1 : -1);
-      IQuery result{};
-      result.d = {draw.coin() ? 1 : -1, 0, 0};
-      result.o = {0, 0, 0};
-      result.c = IVec{-s * result.d.x, -q.b, -q.c};  // o − c = (0, b, c) + s·d
-      result.r = q.n;
-      return from_integers(result, draw.small(-30, 30), 0);
-    }
+    case SphereQueryKind::rounding_tie: return rounding_tie_construction(draw);
     case SphereQueryKind::far_cancel: {
       // The origin near the unit box, the centre up to 2^50 away, r = |o − c| rounded and moved by 0–2 ulps.
       const Vec3 o = draw.unit_vector();
@@ -173,6 +175,25 @@ SphereQuery build(SphereQueryKind kind, Draw& draw) {
       const bool tiny = kind == SphereQueryKind::tiny_direction;
       const int de = tiny ? draw.small(-600, -400) : draw.small(400, 600);
       return from_integers(line_construction(draw, draw.coin()), draw.small(-20, 20), de);
+    }
+    case SphereQueryKind::subnormal_offset: {
+      // Ties without cancellation: o = 0, d = (±1, 0, 0), c = (X·d_x, 0, 0), r = R with R odd in [2^40, 2^51]
+      // and X = 2^53 + R + 1 + 2j even: the roots X ∓ R are odd integers in [2^53, 2^54), midpoints of two
+      // doubles, and D = R² is far from B² − A·C's rounding error. Then ε = ±k·2^-1074 goes into one of o_x, o_y,
+      // o_z, c_y, c_z: across the ray, C grows by ε² (a square that underflows in binary64) and nothing else
+      // changes; along it, the roots move by ε. Either way they leave their midpoints by less than any double.
+      const std::int64_t r = 2 * draw.integer(std::int64_t{1} << 39, std::int64_t{1} << 50) + 1;
+      const std::int64_t x = (std::int64_t{1} << 53) + r + 1 + 2 * draw.integer(0, std::int64_t{1} << 40);
+      IQuery tie{};
+      tie.d = {draw.coin() ? 1 : -1, 0, 0};
+      tie.c = {x * tie.d.x, 0, 0};
+      tie.r = r;
+      SphereQuery q = from_integers(tie, draw.small(-30, 30), 0);
+      const double offset = static_cast<double>(draw.integer(1, 1 << 20)) * 0x1p-1074 * (draw.coin() ? 1 : -1);
+      const int where = draw.small(0, 4);
+      if (where < 3) component(q.ray.origin, where) = offset;
+      else component(q.sphere.center, where - 2) = offset;
+      return q;
     }
     case SphereQueryKind::tiny:
     case SphereQueryKind::huge: {
@@ -206,6 +227,7 @@ std::string_view to_string(SphereQueryKind kind) noexcept {
     case SphereQueryKind::huge_direction: return "huge-direction";
     case SphereQueryKind::tiny: return "tiny";
     case SphereQueryKind::huge: return "huge";
+    case SphereQueryKind::subnormal_offset: return "subnormal-offset";
   }
   return "?";
 }

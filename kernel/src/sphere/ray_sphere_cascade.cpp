@@ -61,6 +61,9 @@ struct Roots {
 
 // Both roots from the expansion stage, or nothing (then the exact stage rounds them).
 std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClassification& c) noexcept {
+  // The relation may come from the filter; the roots are read from the expansions only when they are exact (a
+  // product that underflowed, such as a subnormal centre coordinate squared, leaves them approximate).
+  if (!s.builder.exact()) return std::nullopt;
   if (c.relation == SphereRelation::tangent) {
     if (c.origin == SphereOrigin::on_surface) return Roots{0.0, 0.0};  // C = 0 and D = B² = 0: t0 = 0 exactly
     const std::optional<double> t0 = round_b_over_a(s, 1.0);

@@ -76,7 +76,7 @@ HARD_TRIANGLE_QUERY_KINDS: Tuple[str, ...] = tuple(_tk.TRIANGLE_QUERY_KINDS)
 SPHERE_QUERY_KINDS: Tuple[str, ...] = tuple(_tk.SPHERE_QUERY_KINDS)
 """The kinds of ``hard_sphere_queries``, as testkit names them: "random", "tangent", "near-tangent",
 "on-surface", "near-surface", "rounding-tie", "far-cancel", "wide-exponents", "tiny-direction",
-"huge-direction", "tiny", "huge"."""
+"huge-direction", "tiny", "huge", "subnormal-offset"."""
 
 WORDS_PER_QUERY = 32
 """Random words drawn for one construction: more than any kind uses (the most is about 24)."""

@@ -4,7 +4,7 @@
 // Each kind aims at one weakness: lines exactly tangent (D = 0) and an ulp or a few beside, origins exactly on
 // the sphere (C = 0: a root at 0) and a few ulps off, roots that are rounding ties, far-away spheres where
 // |o − c|² − r² cancels, wide exponents, tiny and huge directions (roots scaled by 2^±500), and constructions
-// scaled into the range where products underflow or overflow. Where a construction promises an exact property
+// scaled into the range where products underflow or overflow, and ties broken by a subnormal coordinate. Where a construction promises an exact property
 // (D = 0, C = 0, a tie), every coordinate is an integer times a power of two, so the doubles hold it exactly;
 // tests/sphere_test.cpp checks each promise with exact rationals. A construction draws its randomness from a
 // BitSource (plane_queries.hpp), so the same construction serves a seeded SplitMix64, RapidCheck and fuzzer
@@ -39,13 +39,16 @@ enum class SphereQueryKind : std::uint8_t {
   huge_direction,  // ... d scaled by 2^400..2^600: roots near 2^-500
   tiny,            // a tangent or on-surface construction scaled to 2^-1000..2^-900: products underflow
   huge,            // ... scaled to 2^900..2^980: products overflow
+  subnormal_offset,  // roots on rounding ties, then one subnormal coordinate (origin or centre): the ties broken by less than any
+                     // double, through a square or a product that underflows in binary64
 };
-inline constexpr int sphere_query_kind_count = 12;
+inline constexpr int sphere_query_kind_count = 13;
 inline constexpr std::array<SphereQueryKind, sphere_query_kind_count> all_sphere_query_kinds = {
     SphereQueryKind::random,         SphereQueryKind::tangent,        SphereQueryKind::near_tangent,
     SphereQueryKind::on_surface,     SphereQueryKind::near_surface,   SphereQueryKind::rounding_tie,
     SphereQueryKind::far_cancel,     SphereQueryKind::wide_exponents, SphereQueryKind::tiny_direction,
-    SphereQueryKind::huge_direction, SphereQueryKind::tiny,           SphereQueryKind::huge};
+    SphereQueryKind::huge_direction, SphereQueryKind::tiny,           SphereQueryKind::huge,
+    SphereQueryKind::subnormal_offset};
 
 [[nodiscard]] std::string_view to_string(SphereQueryKind kind) noexcept;
 
