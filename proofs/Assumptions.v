@@ -706,18 +706,20 @@ Definition main_results_18 :=
    @ExpansionCompress.compress_length).
 Goal True. idtac "@@ compress_gen_exact compress_length". Abort.
 Print Assumptions main_results_18.
-(** sphere/: the expansion stage of the ray–sphere query (ray_sphere_stages.hpp, sphere_expansions and
-    sphere_root_side; expansion.hpp, ExpansionBuilder::sign_or_compressed): A, B, C, D exact when the builder
+(** sphere/: the expansion stage of the ray–sphere query (ray_sphere_stages.hpp, sphere_abc_expansions,
+    sphere_expansions and sphere_root_side; expansion.hpp, ExpansionBuilder::sign_or_compressed): A, B, C, D exact when the builder
     says exact, the two-try sign sound, the side of a root sound *)
 From Raykernel Require SphereStages.
 Definition main_results_19 :=
-  (@SphereStages.sphere_expansions_exact,
+  (@SphereStages.sphere_abc_expansions_exact,
+   @SphereStages.sphere_expansions_exact,
+   @SphereStages.sphere_abc_expansions_length,
    @SphereStages.sphere_expansions_length,
    @SphereStages.compress_finite_or_uncertain,
    @SphereStages.sphere_sign_or_compressed_sound,
    @SphereStages.sphere_root_side_sound,
    @SphereStages.sphere_root_side_expansions_sound).
-Goal True. idtac "@@ sphere_expansions_exact sphere_expansions_length compress_finite_or_uncertain sphere_sign_or_compressed_sound sphere_root_side_sound sphere_root_side_expansions_sound". Abort.
+Goal True. idtac "@@ sphere_abc_expansions_exact sphere_expansions_exact sphere_abc_expansions_length sphere_expansions_length compress_finite_or_uncertain sphere_sign_or_compressed_sound sphere_root_side_sound sphere_root_side_expansions_sound". Abort.
 Print Assumptions main_results_19.
 (** sphere/: stage 1 of the ray–sphere query (ray_sphere_filter.hpp, sphere_filter): |Ĉ − C| ≤ E_C and
     |D̂ − D| ≤ E_D for every binary64 input, so a certain sign of C or D is the exact sign *)

@@ -8,10 +8,13 @@
     - [sphere_coord_b]: the body of [sphere_expansions]' loop for coordinate i: f_i = from_pair(TwoDiff(o_i,
       c_i)) (PlaneTwins.v's [two_diff_b] is TwoSum(o_i, −c_i), eft.hpp's two_diff), check_finite(f_i),
       dd_i = from_pair(builder.product(d_i, d_i)), fd_i = builder.scale(f_i, d_i), ff_i = f_i·f_i;
-    - [sphere_expansions_b]: the three coordinates, then sum3 ([sum3_b]: ((x + y) + z)) of the dd_i, of the
-      fd_i and of the ff_i, r² = from_pair(builder.product(r, r)) negated ([map fneg]), c = Σff + (−r²), the
-      checks of a, b, c, their compressions s.a, s.b, s.c, b_squared = s.b·s.b, a_c = s.c·s.a negated,
-      s.d = b_squared + (−a_c) and the six final checks; it returns the flag and (s.a, s.b, s.c, s.d);
+    - [sphere_abc_expansions_b]: [sphere_abc_expansions]: the three coordinates, then sum3 ([sum3_b]:
+      ((x + y) + z)) of the dd_i, of the fd_i and of the ff_i, r² = from_pair(builder.product(r, r)) negated
+      ([map fneg]), c = Σff + (−r²), the checks of a, b, c, their compressions s.a, s.b, s.c and their
+      checks; it returns the flag and (s.a, s.b, s.c);
+    - [sphere_d_expansion_b]: [sphere_d_expansion]: b_squared = s.b·s.b, a_c = s.c·s.a negated,
+      s.d = b_squared + (−a_c) and the three final checks;
+    - [sphere_expansions_b]: [sphere_expansions], the two in turn: the flag and (s.a, s.b, s.c, s.d);
     - [sign_or_compressed_b]: ExpansionBuilder::sign_or_compressed (expansion.hpp): the checked sign of e, or
       when it is uncertain the checked sign of compress(e);
     - [sphere_root_side_b]: [sphere_root_side]: M = from_pair(TwoSum(x, y)), its check, mm = M·M,
@@ -22,10 +25,12 @@
       their bits.
 
     What is proved, for every bit pattern of the inputs:
-    - [sphere_expansions_exact]: when the returned flag is true (the C++ caller's [builder.exact()]), every
-      component of s.a, s.b, s.c, s.d is finite and their exact sums are A = Σ d_i², B = Σ d_i·(o_i − c_i),
-      C = Σ (o_i − c_i)² − r² and D = B² − A·C of the inputs' real values; [sphere_expansions_length]: they
-      fit the capacities 6, 12, 26, 600 of [SphereExpansions];
+    - [sphere_abc_expansions_exact]: when the flag of [sphere_abc_expansions_b] is true (the C++ caller's
+      [builder.exact()]), every component of s.a, s.b, s.c is finite and their exact sums are A = Σ d_i²,
+      B = Σ d_i·(o_i − c_i) and C = Σ (o_i − c_i)² − r² of the inputs' real values;
+      [sphere_expansions_exact]: the same for [sphere_expansions_b], and s.d's exact sum is D = B² − A·C;
+      [sphere_abc_expansions_length], [sphere_expansions_length]: they fit the capacities 6, 12, 26, 600 of
+      [SphereExpansions];
     - [sphere_sign_or_compressed_sound]: a certain answer of the two-try sign is the sign of the exact sum,
       for any list of finite doubles (at most 2^20): [expansion_sign_sound] on e, or on compress(e) with
       [compress_gen_exact]; the compression is not checked for finiteness by the C++, and need not be:
@@ -37,7 +42,7 @@
       t_k the smaller root t1 of SphereRoots.v when root < 0 and the larger t2 otherwise (the C++ passes
       −1 or +1): the sums of q4 and slope2 are 4·q(m) and 2·(A·m + B) for m = (x + y)/2, whose signs
       [root_side_of_smaller_correct] and [root_side_of_larger_correct] turn into sign(t_k − m);
-    - [sphere_root_side_expansions_sound]: the two composed, on the expansions of [sphere_expansions_b]. *)
+    - [sphere_root_side_expansions_sound]: the two composed, on the expansions of [sphere_abc_expansions_b]. *)
 
 From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
@@ -68,9 +73,9 @@ Definition sphere_coord_b (ex : bool) (o d c : float)
   let ff := multiply_b (fst fd) f f in
   (fst ff, (f, dd, snd fd, snd ff)).
 
-(** [sphere_expansions(ray, sphere, s)]: the builder's flag and s.a, s.b, s.c, s.d. *)
-Definition sphere_expansions_b (o d c : float * float * float) (r : float)
-  : bool * list float * list float * list float * list float :=
+(** [sphere_abc_expansions(ray, sphere, s)]: the builder's flag and s.a, s.b, s.c. *)
+Definition sphere_abc_expansions_b (o d c : float * float * float) (r : float)
+  : bool * list float * list float * list float :=
   let '(o0, o1, o2) := o in
   let '(d0, d1, d2) := d in
   let '(c0, c1, c2) := c in
@@ -87,13 +92,22 @@ Definition sphere_expansions_b (o d c : float * float * float) (r : float)
   let sa := compress_b a in
   let sb := compress_b b in
   let sc := compress_b c in
-  let b_squared := multiply_b ex3 sb sb in
+  (check_finite (check_finite (check_finite ex3 sa) sb) sc, sa, sb, sc).
+
+(** [sphere_d_expansion(s)]: from the flag and s.a, s.b, s.c, the flag after it and s.d. *)
+Definition sphere_d_expansion_b (ex : bool) (sa sb sc : list float) : bool * list float :=
+  let b_squared := multiply_b ex sb sb in
   let a_c := multiply_b (fst b_squared) sc sa in
   let neg_a_c := map fneg (snd a_c) in
   let sd := sum_b (snd b_squared) neg_a_c in
-  let ex4 := check_finite (check_finite (check_finite (check_finite (check_finite (check_finite
-               (fst a_c) sa) sb) sc) (snd b_squared)) neg_a_c) sd in
-  (ex4, sa, sb, sc, sd).
+  (check_finite (check_finite (check_finite (fst a_c) (snd b_squared)) neg_a_c) sd, sd).
+
+(** [sphere_expansions(ray, sphere, s)]: the two above; the builder's flag and s.a, s.b, s.c, s.d. *)
+Definition sphere_expansions_b (o d c : float * float * float) (r : float)
+  : bool * list float * list float * list float * list float :=
+  let '(ex, sa, sb, sc) := sphere_abc_expansions_b o d c r in
+  let '(ex', sd) := sphere_d_expansion_b ex sa sb sc in
+  (ex', sa, sb, sc, sd).
 
 (** [ExpansionBuilder::sign_or_compressed(e)]. *)
 Definition sign_or_compressed_b (e : list float) : sign :=
@@ -377,41 +391,31 @@ Proof.
   - rewrite Sff, Sf. reflexivity.
 Qed.
 
-(** [sphere_expansions]: when the builder says exact, s.a, s.b, s.c, s.d are finite and their exact sums
-    are A, B, C and D = B² − A·C of the query, whatever the 64-bit patterns of its inputs. *)
-Theorem sphere_expansions_exact : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
+(** [sphere_abc_expansions]: when the builder says exact, s.a, s.b, s.c are finite and their exact sums are A,
+    B and C of the query, whatever the 64-bit patterns of its inputs. *)
+Theorem sphere_abc_expansions_exact : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
   let A := sphere_A (B2R d0) (B2R d1) (B2R d2) in
   let B := sphere_B (B2R o0) (B2R o1) (B2R o2) (B2R d0) (B2R d1) (B2R d2) (B2R c0) (B2R c1) (B2R c2) in
   let C := sphere_C (B2R o0) (B2R o1) (B2R o2) (B2R c0) (B2R c1) (B2R c2) (B2R r) in
-  let '(ex, a, b, c, d) := sphere_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r in
+  let '(ex, a, b, c) := sphere_abc_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r in
   ex = true ->
-  all_fin a /\ all_fin b /\ all_fin c /\ all_fin d /\
-  sumR a = A /\ sumR b = B /\ sumR c = C /\ sumR d = sphere_disc A B C.
+  all_fin a /\ all_fin b /\ all_fin c /\ sumR a = A /\ sumR b = B /\ sumR c = C.
 Proof.
   intros o0 o1 o2 d0 d1 d2 c0 c1 c2 r A B C.
-  destruct (sphere_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as [[[[ex a] b] c] d] eqn:E.
-  intros Ex. unfold sphere_expansions_b in E.
+  destruct (sphere_abc_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as [[[ex a] b] c] eqn:E.
+  intros Ex. unfold sphere_abc_expansions_b in E.
   destruct (sphere_coord_b true o0 d0 c0) as [ex0 [[[f0 dd0] fd0] ff0]] eqn:E0.
   destruct (sphere_coord_b ex0 o1 d1 c1) as [ex1 [[[f1 dd1] fd1] ff1]] eqn:E1.
   destruct (sphere_coord_b ex1 o2 d2 c2) as [ex2 [[[f2 dd2] fd2] ff2]] eqn:E2.
-  injection E as Eex Ea Eb Ec Ed. subst ex a b c d.
+  injection E as Eex Ea Eb Ec. subst ex a b c.
   set (pr := product_b ex2 r r) in *.
   set (ua := sum3_b dd0 dd1 dd2) in *. set (ub := sum3_b fd0 fd1 fd2) in *.
   set (uc := sum_b (sum3_b ff0 ff1 ff2) (map fneg (from_pair (snd pr)))) in *.
   set (ex3 := check_finite (check_finite (check_finite (fst pr) ua) ub) uc) in *.
-  set (b_squared := multiply_b ex3 (compress_b ub) (compress_b ub)) in *.
-  set (a_c := multiply_b (fst b_squared) (compress_b uc) (compress_b ua)) in *.
   (* the final checks *)
-  apply check_finite_true in Ex. destruct Ex as [Ex Fd].
-  apply check_finite_true in Ex. destruct Ex as [Ex Fnac].
-  apply check_finite_true in Ex. destruct Ex as [Ex Fbb].
   apply check_finite_true in Ex. destruct Ex as [Ex Fc].
   apply check_finite_true in Ex. destruct Ex as [Ex Fb].
-  apply check_finite_true in Ex. destruct Ex as [Xac Fa].
-  (* D *)
-  destruct (sum_gen_exact _ _ Fd) as [_ [_ Sd]]. rewrite sumR_neg in Sd.
-  destruct (multiply_gen_exact _ _ _ Xac (all_fin_neg _ Fnac)) as [Xbb Sac]. fold a_c in Sac.
-  destruct (multiply_gen_exact _ _ _ Xbb Fbb) as [X3 Sbb]. fold b_squared in Sbb.
+  apply check_finite_true in Ex. destruct Ex as [X3 Fa].
   (* the compressions *)
   destruct (compress_gen_exact _ Fa) as [Fua Sa]. destruct (compress_gen_exact _ Fb) as [Fub Sb].
   destruct (compress_gen_exact _ Fc) as [Fuc Sc].
@@ -430,14 +434,41 @@ Proof.
   destruct (sphere_coord_exact _ _ _ _ _ _ _ _ _ E2 X2 Fdd2 Ffd2 Fff2) as [X1 [Sdd2 [Sfd2 Sff2]]].
   destruct (sphere_coord_exact _ _ _ _ _ _ _ _ _ E1 X1 Fdd1 Ffd1 Fff1) as [X0 [Sdd1 [Sfd1 Sff1]]].
   destruct (sphere_coord_exact _ _ _ _ _ _ _ _ _ E0 X0 Fdd0 Ffd0 Fff0) as [_ [Sdd0 [Sfd0 Sff0]]].
-  assert (SA : sumR (compress_b ua) = A).
-  { rewrite Sa. unfold ua. rewrite Sua, Sdd0, Sdd1, Sdd2. unfold A, sphere_A. ring. }
-  assert (SB : sumR (compress_b ub) = B).
-  { rewrite Sb. unfold ub. rewrite Sub, Sfd0, Sfd1, Sfd2. unfold B, sphere_B. ring. }
-  assert (SC : sumR (compress_b uc) = C).
-  { unfold uc, pr in *. cbn [product_b fst snd] in *. rewrite Sc, Suc, Sff, Sff0, Sff1, Sff2, Sr. unfold C, sphere_C. cbn [product_b snd] in Pr. lra. }
   repeat split; auto.
-  unfold uc, pr in SC. cbn [product_b fst snd] in SC.
+  - rewrite Sa. unfold ua. rewrite Sua, Sdd0, Sdd1, Sdd2. unfold A, sphere_A. ring.
+  - rewrite Sb. unfold ub. rewrite Sub, Sfd0, Sfd1, Sfd2. unfold B, sphere_B. ring.
+  - unfold uc, pr in *. cbn [product_b fst snd] in *. rewrite Sc, Suc, Sff, Sff0, Sff1, Sff2, Sr.
+    unfold C, sphere_C. cbn [product_b snd] in Pr. lra.
+Qed.
+
+(** [sphere_expansions]: when the builder says exact, s.a, s.b, s.c, s.d are finite and their exact sums
+    are A, B, C and D = B² − A·C of the query, whatever the 64-bit patterns of its inputs. *)
+Theorem sphere_expansions_exact : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
+  let A := sphere_A (B2R d0) (B2R d1) (B2R d2) in
+  let B := sphere_B (B2R o0) (B2R o1) (B2R o2) (B2R d0) (B2R d1) (B2R d2) (B2R c0) (B2R c1) (B2R c2) in
+  let C := sphere_C (B2R o0) (B2R o1) (B2R o2) (B2R c0) (B2R c1) (B2R c2) (B2R r) in
+  let '(ex, a, b, c, d) := sphere_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r in
+  ex = true ->
+  all_fin a /\ all_fin b /\ all_fin c /\ all_fin d /\
+  sumR a = A /\ sumR b = B /\ sumR c = C /\ sumR d = sphere_disc A B C.
+Proof.
+  intros o0 o1 o2 d0 d1 d2 c0 c1 c2 r A B C.
+  pose proof (sphere_abc_expansions_exact o0 o1 o2 d0 d1 d2 c0 c1 c2 r) as X.
+  cbv zeta in X. fold A B C in X.
+  unfold sphere_expansions_b.
+  destruct (sphere_abc_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as [[[ex3 a] b] c].
+  unfold sphere_d_expansion_b.
+  set (b_squared := multiply_b ex3 b b).
+  set (a_c := multiply_b (fst b_squared) c a).
+  intros Ex.
+  apply check_finite_true in Ex. destruct Ex as [Ex Fd].
+  apply check_finite_true in Ex. destruct Ex as [Ex Fnac].
+  apply check_finite_true in Ex. destruct Ex as [Xac Fbb].
+  destruct (sum_gen_exact _ _ Fd) as [_ [_ Sd]]. rewrite sumR_neg in Sd.
+  destruct (multiply_gen_exact _ _ _ Xac (all_fin_neg _ Fnac)) as [Xbb Sac]. fold a_c in Sac.
+  destruct (multiply_gen_exact _ _ _ Xbb Fbb) as [X3 Sbb]. fold b_squared in Sbb.
+  destruct (X X3) as [Fa [Fb [Fc [SA [SB SC]]]]].
+  repeat split; auto.
   rewrite Sd, Sbb, Sac, SA, SB, SC. unfold sphere_disc. ring.
 Qed.
 
@@ -455,11 +486,11 @@ Proof.
   - eapply Nat.le_trans; [apply length_multiply|]. nia.
 Qed.
 
-Theorem sphere_expansions_length : forall o d c r,
-  let '(_, a, b, c, d) := sphere_expansions_b o d c r in
-  (length a <= 6)%nat /\ (length b <= 12)%nat /\ (length c <= 26)%nat /\ (length d <= 600)%nat.
+Theorem sphere_abc_expansions_length : forall o d c r,
+  let '(_, a, b, c) := sphere_abc_expansions_b o d c r in
+  (length a <= 6)%nat /\ (length b <= 12)%nat /\ (length c <= 26)%nat.
 Proof.
-  intros [[o0 o1] o2] [[d0 d1] d2] [[c0 c1] c2] r. unfold sphere_expansions_b.
+  intros [[o0 o1] o2] [[d0 d1] d2] [[c0 c1] c2] r. unfold sphere_abc_expansions_b.
   destruct (sphere_coord_b true o0 d0 c0) as [ex0 [[[f0 dd0] fd0] ff0]] eqn:E0.
   destruct (sphere_coord_b ex0 o1 d1 c1) as [ex1 [[[f1 dd1] fd1] ff1]] eqn:E1.
   destruct (sphere_coord_b ex1 o2 d2 c2) as [ex2 [[[f2 dd2] fd2] ff2]] eqn:E2.
@@ -467,15 +498,22 @@ Proof.
   pose proof (length_sphere_coord _ _ _ _ _ _ _ _ _ E1) as L1.
   pose proof (length_sphere_coord _ _ _ _ _ _ _ _ _ E2) as L2.
   cbv beta iota zeta.
-  assert (La : (length (compress_b (sum3_b dd0 dd1 dd2)) <= 6)%nat).
-  { eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum3|]. lia. }
-  assert (Lb : (length (compress_b (sum3_b fd0 fd1 fd2)) <= 12)%nat).
-  { eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum3|]. lia. }
-  assert (Lc : (length (compress_b (sum_b (sum3_b ff0 ff1 ff2) (map fneg (from_pair (snd (product_b ex2 r r))))))
-                <= 26)%nat).
-  { eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum_gen|].
+  repeat split.
+  - eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum3|]. lia.
+  - eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum3|]. lia.
+  - eapply Nat.le_trans; [apply compress_length|]. eapply Nat.le_trans; [apply length_sum_gen|].
     rewrite map_length. pose proof (length_sum3 ff0 ff1 ff2). pose proof (length_from_pair (snd (product_b ex2 r r))).
-    lia. }
+    lia.
+Qed.
+
+Theorem sphere_expansions_length : forall o d c r,
+  let '(_, a, b, c, d) := sphere_expansions_b o d c r in
+  (length a <= 6)%nat /\ (length b <= 12)%nat /\ (length c <= 26)%nat /\ (length d <= 600)%nat.
+Proof.
+  intros o d c r. pose proof (sphere_abc_expansions_length o d c r) as L.
+  unfold sphere_expansions_b.
+  destruct (sphere_abc_expansions_b o d c r) as [[[ex a] b] cc].
+  destruct L as [La [Lb Lc]]. unfold sphere_d_expansion_b. cbv beta iota zeta.
   repeat split; try assumption.
   eapply Nat.le_trans; [apply length_sum_gen|]. rewrite map_length.
   match goal with |- (length (snd (multiply_gen _ ?e1 ?x ?y)) + length (snd (multiply_gen _ ?e2 ?z ?w)) <= _)%nat =>
@@ -568,24 +606,25 @@ Proof.
   exact (root_side_decision A B C m root _ _ HA HD Cq Cs).
 Qed.
 
-(** The stage end to end: on the expansions of [sphere_expansions_b] when the builder says exact, for a ray
-    that meets the sphere (D ≥ 0) with a nonzero direction (A > 0), a certain [sphere_root_side_b] is
+(** The stage end to end: on the expansions of [sphere_abc_expansions_b] (what sphere_root_side_of and the
+    cascade build before a root's side; [sphere_expansions_b] begins with the same) when the builder says exact,
+    for a ray that meets the sphere (D ≥ 0) with a nonzero direction (A > 0), a certain [sphere_root_side_b] is
     sign(t_k − (x + y)/2) for the roots t1 ≤ t2 of the query's A·t² + 2B·t + C. *)
 Theorem sphere_root_side_expansions_sound : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r root x y,
   let A := sphere_A (B2R d0) (B2R d1) (B2R d2) in
   let B := sphere_B (B2R o0) (B2R o1) (B2R o2) (B2R d0) (B2R d1) (B2R d2) (B2R c0) (B2R c1) (B2R c2) in
   let C := sphere_C (B2R o0) (B2R o1) (B2R o2) (B2R c0) (B2R c1) (B2R c2) (B2R r) in
-  let '(ex, a, b, c, _) := sphere_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r in
+  let '(ex, a, b, c) := sphere_abc_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r in
   ex = true -> 0 < A -> 0 <= sphere_disc A B C ->
   certifies (sphere_root_side_b a b c root x y)
     ((if Z.ltb root 0 then sphere_t1 A B C else sphere_t2 A B C) - (B2R x + B2R y) / 2).
 Proof.
   intros o0 o1 o2 d0 d1 d2 c0 c1 c2 r root x y A B C.
-  pose proof (sphere_expansions_exact o0 o1 o2 d0 d1 d2 c0 c1 c2 r) as X.
-  pose proof (sphere_expansions_length (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as L.
+  pose proof (sphere_abc_expansions_exact o0 o1 o2 d0 d1 d2 c0 c1 c2 r) as X.
+  pose proof (sphere_abc_expansions_length (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as L.
   cbv zeta in X. fold A B C in X.
-  destruct (sphere_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as [[[[ex a] b] c] d].
-  intros Ex HA HD. destruct (X Ex) as [_ [_ [_ [_ [SA [SB [SC _]]]]]]]. destruct L as [La [Lb [Lc _]]].
+  destruct (sphere_abc_expansions_b (o0, o1, o2) (d0, d1, d2) (c0, c1, c2) r) as [[[ex a] b] c].
+  intros Ex HA HD. destruct (X Ex) as [_ [_ [_ [SA [SB SC]]]]]. destruct L as [La [Lb Lc]].
   pose proof (sphere_root_side_sound a b c root x y La Lb Lc) as R.
   rewrite SA, SB, SC in R. exact (R HA HD).
 Qed.

@@ -445,19 +445,26 @@ Definition run_orient3d (x : list Z) : list Z :=
   | _ => [] end.
 
 (** sphere/ray_sphere_stages.hpp (SphereStages.v): [sphere_expansions] on "ox oy oz dx dy dz cx cy cz r" — the
-    builder's flag, then s.a, s.b, s.c, s.d (each its length and components); [sphere_root_side] on the same
-    query, the root (−1 or +1, as a signed integer word: 0 reads as −1, anything else as +1) and the boundary's
-    doubles x, y — the expansions built by [sphere_expansions] first, as the cascade calls it — the side as a
-    sign code (2: uncertain). *)
+    builder's flag, then s.a, s.b, s.c, s.d (each its length and components); [sphere_abc_expansions] on the same
+    — the flag, then s.a, s.b, s.c; [sphere_root_side] on the same query, the root (−1 or +1, as a signed integer
+    word: 0 reads as −1, anything else as +1) and the boundary's doubles x, y — the expansions built by
+    [sphere_abc_expansions] first, as the cascade and sphere_root_side_of call it — the side as a sign code
+    (2: uncertain). *)
 Definition sphere_query (ox oy oz dx dy dz cx cy cz r : Z) :=
   SphereStages.sphere_expansions_b (f ox, f oy, f oz) (f dx, f dy, f dz) (f cx, f cy, f cz) (f r).
+Definition sphere_abc_query (ox oy oz dx dy dz cx cy cz r : Z) :=
+  SphereStages.sphere_abc_expansions_b (f ox, f oy, f oz) (f dx, f dy, f dz) (f cx, f cy, f cz) (f r).
 Definition run_sphere_expansions (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; cx; cy; cz; r] =>
     let '(ex, a, b, c, d) := sphere_query ox oy oz dx dy dz cx cy cz r in
     bool_code ex :: list_bits a ++ list_bits b ++ list_bits c ++ list_bits d | _ => [] end.
+Definition run_sphere_abc_expansions (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; cx; cy; cz; r] =>
+    let '(ex, a, b, c) := sphere_abc_query ox oy oz dx dy dz cx cy cz r in
+    bool_code ex :: list_bits a ++ list_bits b ++ list_bits c | _ => [] end.
 Definition run_sphere_root_side (x : list Z) : list Z :=
   match x with [ox; oy; oz; dx; dy; dz; cx; cy; cz; r; root; mx; my] =>
-    let '(_, a, b, c, _) := sphere_query ox oy oz dx dy dz cx cy cz r in
+    let '(_, a, b, c) := sphere_abc_query ox oy oz dx dy dz cx cy cz r in
     [sign_code (SphereStages.sphere_root_side_b a b c (if root =? 0 then (-1) else 1) (f mx) (f my))]
   | _ => [] end.
 
@@ -472,4 +479,4 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_cascade_intersect run_cascade_relation
   run_tri_cascade_intersect run_tri_cascade_relation
   run_orient2d run_orient3d
-  run_sphere_expansions run_sphere_root_side.
+  run_sphere_expansions run_sphere_abc_expansions run_sphere_root_side.

@@ -243,10 +243,9 @@ bool fill(Expansion<N>& e, const std::vector<double>& x, std::size_t from, std::
 }
 int sign_code(Sign s) { return static_cast<int>(s); }
 
-// sphere_expansions of the query "ox oy oz dx dy dz cx cy cz r" (the first 10 of x).
-void sphere_expansions_of(const std::vector<double>& x, SphereExpansions& s) {
-  sphere_expansions(raykernel::Ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}}, raykernel::Sphere{{x[6], x[7], x[8]}, x[9]}, s);
-}
+// The ray and the sphere of the query "ox oy oz dx dy dz cx cy cz r" (the first 10 of x).
+raykernel::Ray sphere_query_ray(const std::vector<double>& x) { return {{x[0], x[1], x[2]}, {x[3], x[4], x[5]}}; }
+raykernel::Sphere sphere_query_sphere(const std::vector<double>& x) { return {{x[6], x[7], x[8]}, x[9]}; }
 
 // A ray and a plane from "ox oy oz dx dy dz px py pz nx ny nz".
 raykernel::Ray ray_of(const std::vector<double>& x, std::size_t at = 0) { return {{x[at], x[at + 1], x[at + 2]}, {x[at + 3], x[at + 4], x[at + 5]}}; }
@@ -428,15 +427,27 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          return true;
        }},
       // sphere/ray_sphere_stages.hpp: sphere_expansions on "ox oy oz dx dy dz cx cy cz r" (the flag, then s.a,
-      // s.b, s.c, s.d), and sphere_root_side on the same query's expansions, the root (word 0: −1, else +1) and
-      // the boundary's doubles x, y (the side's sign code).
+      // s.b, s.c, s.d); sphere_abc_expansions on the same (the flag, then s.a, s.b, s.c); and sphere_root_side on
+      // the same query's sphere_abc_expansions (as the cascade calls it), the root (word 0: −1, else +1) and the
+      // boundary's doubles x, y (the side's sign code).
       {"sphere_expansions",
        [](const Words& w, Out& o) {
          if (w.size() != 10) return false;
+         const std::vector<double> x = doubles(w);
          SphereExpansions s;
-         sphere_expansions_of(doubles(w), s);
+         sphere_expansions(sphere_query_ray(x), sphere_query_sphere(x), s);
          o.i(s.builder.exact());
          expansion_out(o, s.a), expansion_out(o, s.b), expansion_out(o, s.c), expansion_out(o, s.d);
+         return true;
+       }},
+      {"sphere_abc_expansions",
+       [](const Words& w, Out& o) {
+         if (w.size() != 10) return false;
+         const std::vector<double> x = doubles(w);
+         SphereExpansions s;
+         sphere_abc_expansions(sphere_query_ray(x), sphere_query_sphere(x), s);
+         o.i(s.builder.exact());
+         expansion_out(o, s.a), expansion_out(o, s.b), expansion_out(o, s.c);
          return true;
        }},
       {"sphere_root_side",
@@ -444,7 +455,7 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          if (w.size() != 13) return false;
          const std::vector<double> x = doubles(w);
          SphereExpansions s;
-         sphere_expansions_of(x, s);
+         sphere_abc_expansions(sphere_query_ray(x), sphere_query_sphere(x), s);
          o.i(sign_code(sphere_root_side(s, w[10] == 0 ? -1 : 1, x[11], x[12])));
          return true;
        }},

@@ -597,6 +597,7 @@ const std::map<std::string, Generator>& generators() {
       // the sphere's expansion stage (proofs/sphere/SphereStages.v): a hard sphere query; and the side of a root
       // at a boundary beside it
       {"sphere_expansions", [](Source& s) { return s.sphere_query(); }},
+      {"sphere_abc_expansions", [](Source& s) { return s.sphere_query(); }},
       {"sphere_root_side", [](Source& s) { return s.sphere_root_side_args(); }},
       {"tail_enclosure",
        [](Source& s) {

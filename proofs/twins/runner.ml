@@ -47,6 +47,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("orient2d", Twins.run_orient2d);
   ("orient3d", Twins.run_orient3d);
   ("sphere_expansions", Twins.run_sphere_expansions);
+  ("sphere_abc_expansions", Twins.run_sphere_abc_expansions);
   ("sphere_root_side", Twins.run_sphere_root_side);
 ]
 

@@ -1,11 +1,12 @@
 // The certified ray–sphere cascade. Each answer comes from the cheapest stage that decides it:
 //   - the relation: first the binary64 filter of the signs of C and D (ray_sphere_filter.hpp; a miss it decides
-//     returns at once, without expansions); then the signs of C and D read from their exact expansions (ray_sphere_stages.hpp), or exact
-//     rationals when a product was not exact or a sign could not be read;
+//     returns at once, without expansions); then the signs of C and D read from their exact expansions
+//     (ray_sphere_stages.hpp), or exact rationals when a product was not exact or a sign could not be read;
 //   - each root: a candidate from the expansions' rounded values (the stable form: the root of larger magnitude
-//     from −B ∓ √D, the other as C over it), decided at its rounding boundaries (core/quotient_boundary.hpp's
-//     round_walking_to_midpoints on the root's side, ray_sphere_stages.hpp); a rational root (C = 0: 0 and −2B/A; the
-//     tangent root −B/A) as a quotient of expansions (round_quotient_near); otherwise exact rationals and MPFR.
+//     from −B ∓ √D, the other as C over it), decided at its rounding boundaries from the exact expansions of A,
+//     B, C (core/quotient_boundary.hpp's round_walking_to_midpoints on the root's side, ray_sphere_stages.hpp);
+//     a rational root (C = 0: 0 and −2B/A; the tangent root −B/A) as a quotient of expansions
+//     (round_quotient_near); otherwise exact rationals and MPFR.
 // Every stage's answer is exact: there is no error bound to check, only the builder's exactness and the signs.
 #include "sphere/ray_sphere_cascade.hpp"
 
@@ -98,8 +99,7 @@ std::optional<SphereClassification> expansion_classification(const SphereExpansi
 
 // Both signs from the binary64 filter (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound),
 // or nothing.
-std::optional<SphereClassification> filter_classification(const Ray& ray, const Sphere& sphere) noexcept {
-  const SphereFilterSigns f = sphere_filter(ray, sphere);
+std::optional<SphereClassification> filter_classification(const SphereFilterSigns& f) noexcept {
   if (!is_certain(f.c) || !is_certain(f.d)) return std::nullopt;
   return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
 }
@@ -107,7 +107,8 @@ std::optional<SphereClassification> filter_classification(const Ray& ray, const 
 }  // namespace
 
 TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
-  if (const std::optional<SphereClassification> c = filter_classification(ray, sphere)) return {*c, Stage::filter};
+  if (const std::optional<SphereClassification> c = filter_classification(sphere_filter(ray, sphere)))
+    return {*c, Stage::filter};
   SphereExpansions s;
   sphere_expansions(ray, sphere, s);
   if (const std::optional<SphereClassification> c = expansion_classification(s)) return {*c, Stage::expansion};
@@ -115,14 +116,17 @@ TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere&
 }
 
 TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
-  const std::optional<SphereClassification> filtered = filter_classification(ray, sphere);
+  const std::optional<SphereClassification> filtered = filter_classification(sphere_filter(ray, sphere));
   if (filtered && filtered->relation == SphereRelation::miss)
     return {{filtered->origin, filtered->relation, not_a_number, not_a_number}, Stage::filter, Stage::filter};
+  // D's expansion is built even when the filter decided the relation: its rounded value makes the roots'
+  // candidates a rounding or two from the roots (the filter's D̂ can be far off where B² − A·C cancels, and
+  // a candidate further off costs a boundary sign per ulp; measured in bench/README.md).
   SphereExpansions s;
   sphere_expansions(ray, sphere, s);
-  const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
   const std::optional<SphereClassification> c = filtered ? filtered : expansion_classification(s);
   if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
+  const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
   if (c->relation == SphereRelation::miss)
     return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
   if (const std::optional<Roots> r = expansion_roots(s, *c))
@@ -133,7 +137,7 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
 
 int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b) {
   SphereExpansions s;
-  sphere_expansions(ray, sphere, s);
+  sphere_abc_expansions(ray, sphere, s);  // the side of a root needs A, B, C only
   if (s.builder.exact()) {
     const Sign side = sphere_root_side(s, root < 0 ? -1 : +1, b, b);
     if (is_certain(side)) return static_cast<int>(side);

@@ -7,7 +7,6 @@
 //   bound is then +inf or NaN and no comparison holds). A zero C or D is never certified.
 //   Certified by: proofs/sphere/SphereFilter.v, `sphere_filter_c_sound` and `sphere_filter_d_sound` (from
 //   `sphere_c_encloses` and `sphere_d_encloses`), in the model (RN on the reals) for every binary64 input.
-//   Not yet wired: ray_sphere_cascade.cpp keeps use_sphere_filter = false until the C++ tests are run with it on.
 #pragma once
 
 #include "core/dot3_filter.hpp"

@@ -13,9 +13,10 @@
 //   compression keeps the exact sum); the root's side: proofs/sphere/SphereRoots.v,
 //   `root_side_of_smaller_correct` and `root_side_of_larger_correct`; the rounding from the sides:
 //   proofs/core/MidpointRounding.v, `boundary_decision_correct`. The stage's composition (which polynomial each
-//   expansion is), on twins that thread the builder's flag as the plane's and the triangle's do: a, b, c, d are
-//   A, B, C, D when the builder says exact: proofs/sphere/SphereStages.v, `sphere_expansions_exact` (capacities:
-//   proofs/sphere/SphereStages.v, `sphere_expansions_length`); a certain sphere_root_side is sign(t_k − m):
+//   expansion is), on twins that thread the builder's flag as the plane's and the triangle's do: a, b, c are A,
+//   B, C after sphere_abc_expansions, and d is D after sphere_expansions, when the builder says exact:
+//   proofs/sphere/SphereStages.v, `sphere_abc_expansions_exact` and `sphere_expansions_exact` (capacities:
+//   `sphere_abc_expansions_length`, `sphere_expansions_length`); a certain sphere_root_side is sign(t_k − m):
 //   proofs/sphere/SphereStages.v, `sphere_root_side_sound` and `sphere_root_side_expansions_sound`.
 #pragma once
 
@@ -62,8 +63,9 @@ void sum3(const Expansion<M>& x, const Expansion<N>& y, const Expansion<K>& z, E
 
 }  // namespace sphere_internal
 
-// A, B, C, D as expansions; `builder.exact()` says whether they are the exact values.
-inline void sphere_expansions(const Ray& ray, const Sphere& sphere, SphereExpansions& s) noexcept {
+// A, B, C as expansions (s.d left empty); `builder.exact()` says whether they are the exact values. The roots'
+// rounding needs only these: the cascade builds D (below) only when the filter left the relation open.
+inline void sphere_abc_expansions(const Ray& ray, const Sphere& sphere, SphereExpansions& s) noexcept {
   using namespace sphere_internal;
   ExpansionBuilder& builder = s.builder;
   const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
@@ -97,18 +99,30 @@ inline void sphere_expansions(const Ray& ray, const Sphere& sphere, SphereExpans
   ExpansionBuilder::compress(a, s.a);
   ExpansionBuilder::compress(b, s.b);
   ExpansionBuilder::compress(c, s.c);
+  builder.check_finite(s.a);
+  builder.check_finite(s.b);
+  builder.check_finite(s.c);
+}
+
+// D = B·B − C·A from the expansions of sphere_abc_expansions, on the same builder.
+inline void sphere_d_expansion(SphereExpansions& s) noexcept {
+  using namespace sphere_internal;
+  ExpansionBuilder& builder = s.builder;
   Expansion<288> b_squared;
   multiply_expansions(builder, s.b, s.b, b_squared);
   Expansion<312> a_c;
   multiply_expansions(builder, s.c, s.a, a_c);
   negate(a_c);
   ExpansionBuilder::sum(b_squared, a_c, s.d);
-  builder.check_finite(s.a);
-  builder.check_finite(s.b);
-  builder.check_finite(s.c);
   builder.check_finite(b_squared);
   builder.check_finite(a_c);
   builder.check_finite(s.d);
+}
+
+// A, B, C, D as expansions; `builder.exact()` says whether they are the exact values.
+inline void sphere_expansions(const Ray& ray, const Sphere& sphere, SphereExpansions& s) noexcept {
+  sphere_abc_expansions(ray, sphere, s);
+  sphere_d_expansion(s);
 }
 
 // sign(t_k − (x + y)/2) for the root k (−1: t1 or t0, +1: t2 or t0), D ≥ 0, from exact expansions A, B, C
