@@ -136,6 +136,16 @@ struct SphereHit {
 // Whether some sphere of the set has a root in the interval (any-hit: stops at the first).
 [[nodiscard]] bool occluded(const Ray& ray, const RayInterval& interval, const SphereSet& spheres);
 
+// ---- segments (docs/contract.md §8 and §10) --------------------------------------------------------------------
+// The open segment from p to q: the line p + t·(q − p) with q − p taken exactly (never rounded), 0 < t < 1. A
+// sphere meets it when a root (the tangent root included) lies strictly between the ends; an end on the sphere
+// does not count by itself. Throws invalid_input for non-finite coordinates, p = q (as values) or an invalid
+// sphere. Right in any floating-point environment.
+[[nodiscard]] bool segment_meets(const Vec3& p, const Vec3& q, const Sphere& sphere);
+[[nodiscard]] bool segment_meets_exact(const Vec3& p, const Vec3& q, const Sphere& sphere);  // the reference (GMP)
+// Whether some sphere of the set meets the open segment (any-hit: stops at the first).
+[[nodiscard]] bool occluded(const Vec3& p, const Vec3& q, const SphereSet& spheres);
+
 // The references: every root and bound in rationals (roots as U ∓ √V; no rounding before the answer).
 [[nodiscard]] std::optional<SphereHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval,
                                                          std::span<const Sphere> spheres);

@@ -137,4 +137,9 @@ int root_side_of_midpoint(const Ray& ray, const Sphere& sphere, int root, double
   return root_side_of(root, sgn(q), sgn(slope));
 }
 
+bool segment_meets_sphere(const Vec3& p, const Vec3& q, const Sphere& sphere) {
+  const SegmentSphereTerms<Exact> t = segment_sphere_terms<Exact>(p, q, sphere, lift, difference);
+  return segment_root_inside(sgn(t.d.q), sgn(t.c_p.q), sgn(t.b_p.q), sgn(t.c_q.q), sgn(t.b_q.q));
+}
+
 }  // namespace raykernel::detail::exact

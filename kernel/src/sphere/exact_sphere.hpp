@@ -17,4 +17,8 @@ namespace raykernel::detail::exact {
 // both roundings.
 [[nodiscard]] int root_side_of_midpoint(const Ray& ray, const Sphere& sphere, int root, double x, double y);
 
+// Whether the sphere meets the open segment from p to q (ray_sphere_formula.hpp, segment_root_inside on the exact
+// signs); p ≠ q.
+[[nodiscard]] bool segment_meets_sphere(const Vec3& p, const Vec3& q, const Sphere& sphere);
+
 }  // namespace raykernel::detail::exact

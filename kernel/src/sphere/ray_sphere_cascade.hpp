@@ -37,4 +37,10 @@ struct SphereRootHit {
                                                                   const SphereIntersection& r,
                                                                   const RayInterval& interval);
 
+// Whether the sphere meets the open segment from p to q (docs/contract.md §8 and §10; p ≠ q, valid input): the
+// binary64 filter's signs of C_p = |p − c|² − r² and C_q = |q − c|² − r² decide when they differ (the quadratic
+// changes sign between the ends: a root strictly inside) or are both negative (it is negative on all of [0, 1],
+// being convex: no root there); otherwise the exact stage (exact::segment_meets_sphere).
+[[nodiscard]] bool segment_meets_sphere(const Vec3& p, const Vec3& q, const Sphere& sphere);
+
 }  // namespace raykernel::detail

@@ -52,4 +52,44 @@ template <class T, class Lift, class Difference>
   return sign_slope >= 0 ? 0 : 1;
 }
 
+// The open segment from p to q (docs/contract.md §8 and §10): the line p + t·e with the exact direction
+// e = q − p, whose quadratic A·t² + 2B·t + C has at the ends
+//   q(0) = C_p = |p − c|² − r²,  q(1) = A + 2B + C = C_q = |q − c|² − r²,
+//   slope(0) = B = e·(p − c),     slope(1) = A + B = e·(q − c),
+// and D = B² − A·C_p. Every term is a polynomial in the doubles given (no rounded q − p).
+template <class T>
+struct SegmentSphereTerms {
+  T a, c_p, c_q, b_p, b_q, d;
+};
+
+template <class T, class Lift, class Difference>
+[[nodiscard]] SegmentSphereTerms<T> segment_sphere_terms(const Vec3& p, const Vec3& q, const Sphere& sphere, Lift lift,
+                                                         Difference difference) {
+  const Vec3& c = sphere.center;
+  const T ex = difference(q.x, p.x), ey = difference(q.y, p.y), ez = difference(q.z, p.z);
+  const T fx = difference(p.x, c.x), fy = difference(p.y, c.y), fz = difference(p.z, c.z);
+  const T gx = difference(q.x, c.x), gy = difference(q.y, c.y), gz = difference(q.z, c.z);
+  const T r = lift(sphere.radius);
+  const T r2 = r * r;
+  SegmentSphereTerms<T> t{ex * ex + ey * ey + ez * ez,
+                          fx * fx + fy * fy + fz * fz - r2,
+                          gx * gx + gy * gy + gz * gz - r2,
+                          ex * fx + ey * fy + ez * fz,
+                          ex * gx + ey * gy + ez * gz,
+                          T{}};
+  t.d = t.b_p * t.b_p - t.a * t.c_p;
+  return t;
+}
+
+// Whether a root lies strictly between the ends (0 < t_k < 1), from the signs of D, C_p, B at 0, C_q and A + B at
+// 1: D ≥ 0 and some root k with sign(t_k − 0) > 0 and sign(t_k − 1) < 0 (root_side_of at m = 0 and m = 1; A > 0
+// as p ≠ q). A tangent root counts (the sphere is closed); a root at an end does not (the segment is open).
+[[nodiscard]] constexpr bool segment_root_inside(int sign_d, int sign_c_p, int sign_b_p, int sign_c_q,
+                                                 int sign_b_q) noexcept {
+  if (sign_d < 0) return false;
+  for (int root : {-1, 1})
+    if (root_side_of(root, sign_c_p, sign_b_p) > 0 && root_side_of(root, sign_c_q, sign_b_q) < 0) return true;
+  return false;
+}
+
 }  // namespace raykernel::detail

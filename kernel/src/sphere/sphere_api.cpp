@@ -2,6 +2,7 @@
 // environment for the call (core/fp_environment.hpp), validation at the boundary (core/validation.hpp), then the
 // certified cascade (ray_sphere_cascade.hpp) or the exact reference (exact_sphere.hpp). The textbook formula
 // runs in the caller's environment, as the baseline it is.
+#include <raykernel/occlusion.hpp>
 #include <raykernel/sphere.hpp>
 
 #include "core/fp_environment.hpp"
@@ -79,6 +80,42 @@ bool occluded(const Ray& ray, const RayInterval& interval, const SphereSet& sphe
       if (detail::sphere_hit_in_interval(ray, sphere, detail::sphere_intersection_cascade(ray, sphere).intersection,
                                          interval))
         return true;
+    return false;
+  });
+}
+
+namespace {
+
+void throw_if_invalid_segment(const Vec3& p, const Vec3& q) {
+  if (const auto reason = validate_segment(p, q)) [[unlikely]]
+    throw invalid_input(*reason);
+}
+
+}  // namespace
+
+bool segment_meets(const Vec3& p, const Vec3& q, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid_segment(p, q);
+    if (!detail::is_valid(sphere)) [[unlikely]]
+      throw invalid_input(*validate(sphere));
+    return detail::segment_meets_sphere(p, q, sphere);
+  });
+}
+
+bool segment_meets_exact(const Vec3& p, const Vec3& q, const Sphere& sphere) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid_segment(p, q);
+    if (!detail::is_valid(sphere)) [[unlikely]]
+      throw invalid_input(*validate(sphere));
+    return detail::exact::segment_meets_sphere(p, q, sphere);
+  });
+}
+
+bool occluded(const Vec3& p, const Vec3& q, const SphereSet& spheres) {
+  return detail::in_default_fp_environment([&] {
+    throw_if_invalid_segment(p, q);
+    for (const Sphere& sphere : spheres.spheres())
+      if (detail::segment_meets_sphere(p, q, sphere)) return true;
     return false;
   });
 }
