@@ -4,6 +4,8 @@
 // properties: the certified answer equals the exact reference on every hard sphere kind, and, where q − p is a
 // double and neither end is on the sphere, the closed interval [0, 1] of the ray p → q (nearest_root, §8) says
 // the same — an oracle written without the segment's formula.
+#include "commands/sphere_set.hpp"
+
 #include <raykernel/occlusion.hpp>
 #include <raykernel/sphere.hpp>
 #include <raykernel/testkit/plane_rapidcheck.hpp>
@@ -16,6 +18,7 @@
 #include <cfenv>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -173,6 +176,62 @@ TEST(SphereSegment, AgreesWithExactOnEveryKindInEveryEnvironment) {
       EXPECT_EQ(segment_meets(cases[i].p, cases[i].q, cases[i].sphere), want[i]) << mode;
     std::fesetround(FE_TONEAREST);
   }
+}
+
+// The CLI's --spheres streams (docs/contract.md, "Decided here"): answers worked out by hand. The unit sphere and
+// one of radius 2 at (10, 0, 0); rays along +x from x = −5 meet the first at t = 4, 6 and the second at 13, 17.
+TEST(SphereSetCli, NearestAndOccludedLines) {
+  std::istringstream file("# two spheres\n0 0 0 1\n\n10 0 0 2\n");
+  const cli::SpheresFile spheres = cli::read_spheres(file);
+  ASSERT_TRUE(spheres.ok()) << spheres.error;
+  ASSERT_EQ(spheres.spheres.size(), 2u);
+  const SphereSet set(spheres.spheres);
+  const std::string rays =
+      "-5 0 0 1 0 0\n"           // t = 4 (sphere 0)
+      "-5 0 0 1 0 0 5 inf\n"     // [5, inf]: t = 6 (the unit sphere's far side)
+      "-5 0 0 1 0 0 6.5 13\n"    // [6.5, 13]: t = 13 (sphere 1's near side, the closed bound)
+      "-5 0 0 1 0 0 6.5 12.5\n"  // nothing in [6.5, 12.5]
+      "-5 5 0 1 0 0\n"           // y = 5 misses both
+      "0 0 0 0 0 0\n";           // invalid
+  for (cli::Method method : {cli::Method::certified, cli::Method::exact}) {
+    std::istringstream in(rays);
+    std::ostringstream out, err;
+    cli::SphereSetCounts counts;
+    const cli::SphereSetOptions options{.method = method};
+    EXPECT_EQ(cli::sphere_nearest_stream(in, out, err, set, options, counts), cli::exit_invalid_line);
+    EXPECT_EQ(out.str(), "hit 0 4\nhit 0 6\nhit 1 13\nmiss\nmiss\ninvalid ray direction is the zero vector\n");
+    std::istringstream in2(rays);
+    std::ostringstream out2, err2;
+    cli::SphereSetCounts counts2;
+    EXPECT_EQ(cli::sphere_occluded_stream(in2, out2, err2, set, options, counts2), cli::exit_invalid_line);
+    EXPECT_EQ(out2.str(), "occluded\noccluded\noccluded\nclear\nclear\ninvalid ray direction is the zero vector\n");
+  }
+  const std::string segments =
+      "-2 0 0 2 0 0\n"   // through the unit sphere
+      "-1 0 0 1 0 0\n"   // surface to surface: roots at the ends only
+      "1 0 0 -3 0 0\n"   // from the surface across: the far side at t = 1/2
+      "5 0 0 7 0 0\n"    // between the spheres
+      "1 1 1 1 1 1\n";   // p = q
+  for (cli::Method method : {cli::Method::certified, cli::Method::exact}) {
+    std::istringstream in(segments);
+    std::ostringstream out, err;
+    cli::SphereSetCounts counts;
+    const cli::SphereSetOptions options{.method = method, .segment = true};
+    EXPECT_EQ(cli::sphere_occluded_stream(in, out, err, set, options, counts), cli::exit_invalid_line);
+    EXPECT_EQ(out.str(), "occluded\nclear\noccluded\nclear\ninvalid segment endpoints are equal (p = q)\n");
+    EXPECT_EQ(err.str(), "raykernel: line 5: segment endpoints are equal (p = q)\n");
+  }
+}
+
+TEST(SphereSetCli, AnInvalidSphereLineIsNamed) {
+  std::istringstream file("0 0 0 1\n# fine so far\n1 2 3 -1\n4 5 6 1\n");
+  const cli::SpheresFile spheres = cli::read_spheres(file);
+  EXPECT_FALSE(spheres.ok());
+  EXPECT_EQ(spheres.error_line, 3u);
+  EXPECT_NE(spheres.error.find("radius"), std::string::npos) << spheres.error;
+  EXPECT_TRUE(spheres.spheres.empty());
+  std::istringstream short_line("0 0 0\n");
+  EXPECT_EQ(cli::read_spheres(short_line).error_line, 1u);
 }
 
 }  // namespace

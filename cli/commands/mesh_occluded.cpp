@@ -3,6 +3,7 @@
 
 #include "commands/commands.hpp"
 #include "commands/mesh_file.hpp"
+#include "commands/sphere_set.hpp"
 #include "common/options.hpp"
 #include "common/stream_command.hpp"
 #include "common/text_input.hpp"
@@ -17,6 +18,7 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel occluded --mesh FILE [options] [--] [RAYS|-]
        raykernel occluded --segment --mesh FILE [options] [--] [SEGMENTS|-]
+       raykernel occluded [--segment] --spheres FILE [options] [--] [RAYS|SEGMENTS|-]
 
 For each ray, whether some triangle of the mesh in FILE (OBJ, PLY, STL or OFF) blocks it within its
 interval: a triangle whose relation under the rule is hit (raykernel triangle --help) at an exact t
@@ -25,6 +27,9 @@ points p, q, whether some triangle meets the open segment between them (0 < t < 
 direction q - p, which is not rounded; the endpoints never count). Coplanar and degenerate triangles
 never block. Under the owned rule (the default) a ray or segment through a shared edge or vertex
 of a closed mesh is blocked by exactly one triangle around it: it never leaks through.
+With --spheres, the spheres in FILE (one per line: cx cy cz r) instead of a mesh: a sphere is
+closed and blocks when one of its roots (a tangent root included) lies in the ray's interval, or
+strictly inside the open segment.
 
   RAYS      one ray per line: ox oy oz dx dy dz, or ox oy oz dx dy dz t_min t_max
             (0 <= t_min <= t_max, t_min finite, t_max may be inf; without them [0, inf])
@@ -41,7 +46,8 @@ not a mesh (reported as raykernel: FILE:LINE: REASON, nothing on standard output
 // What the command line says.
 struct Arguments {
   MeshOccludedOptions options;
-  std::optional<std::string> mesh_path, input_path;
+  std::optional<std::string> mesh_path, spheres_path, input_path;
+  std::optional<TriangleRule> rule;
   bool stats = false;
 };
 
@@ -50,10 +56,12 @@ const Choices<Method> occluded_method_choices = {{"certified", Method::certified
 CommandLine command_line(Arguments& a) {
   return {.command = "occluded",
           .options = {{"--mesh", file(a.mesh_path),
-                       "the mesh (required; the format from the extension, else from the content)"},
+                       "the mesh (this or --spheres is required; the format from the extension, else from the "
+                       "content)"},
+                      {"--spheres", file(a.spheres_path), "spheres (lines cx cy cz r) instead of a mesh"},
                       {"--segment", flag(a.options.segment), "lines of two points p q: the open segment between them"},
-                      {"--rule", one_of(a.options.rule, rule_choices),
-                       "which points of a triangle count (default owned)"},
+                      {"--rule", one_of(a.rule, rule_choices),
+                       "with --mesh: which points of a triangle count (default owned)"},
                       {"--path", one_of(a.options.method, occluded_method_choices),
                        "which computation answers (default certified; exact: every triangle in rationals)"},
                       {"--stats", flag(a.stats), "print to stderr how many lines were occluded and clear"}},
@@ -109,6 +117,19 @@ OwnedCommandLine occluded_command_line() { return owned_command_line(command_lin
 int run_occluded(const std::vector<std::string>& args) {
   Arguments arguments;
   if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (arguments.spheres_path) {
+    if (arguments.mesh_path) {
+      std::cerr << "raykernel occluded: --mesh and --spheres cannot be given together\n";
+      return exit_usage;
+    }
+    if (arguments.rule) {
+      std::cerr << "raykernel occluded: --rule needs --mesh (spheres have no rule)\n";
+      return exit_usage;
+    }
+    const SphereSetOptions options{.method = arguments.options.method, .segment = arguments.options.segment};
+    return run_sphere_occluded(*arguments.spheres_path, arguments.input_path.value_or("-"), options, arguments.stats);
+  }
+  arguments.options.rule = arguments.rule.value_or(TriangleRule::owned);
   const std::optional<PreparedMesh> loaded = load_mesh_option("occluded", arguments.mesh_path, std::cerr);
   if (!loaded) return exit_usage;
   const PreparedMesh& prepared = *loaded;

@@ -3,6 +3,7 @@
 
 #include "commands/commands.hpp"
 #include "commands/mesh_nearest.hpp"
+#include "commands/sphere_set.hpp"
 #include "common/failure.hpp"
 #include "common/limits.hpp"
 #include "common/options.hpp"
@@ -23,6 +24,7 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel nearest --planes FILE [options] [--] [RAYS|-]
        raykernel nearest --mesh FILE [--rule=owned|closed] [options] [--] [RAYS|-]
+       raykernel nearest --spheres FILE [options] [--] [RAYS|-]
 
 For each ray, the plane it hits first: among the planes whose relation is hit (t >= 0), the
 one with the smallest exact t = ((p - o).n) / (d.n); ties go to the smallest index.
@@ -48,11 +50,16 @@ raykernel: FILE:LINE: REASON (or FILE: byte N: REASON), with nothing on standard
 With --mesh a ray line may carry an interval: ox oy oz dx dy dz t_min t_max (0 <= t_min <=
 t_max, t_min finite, t_max may be inf); only the triangles whose exact t lies in [t_min, t_max]
 count, compared exactly (never a rounded t). Without one the interval is [0, inf].
+
+With --spheres, the sphere it hits first: among the spheres in FILE (one per line: cx cy cz r;
+sphere K counted from 0) the one whose smallest root in the ray's interval (with --mesh's ray
+lines) is smallest, compared exactly, ties to the smallest K; T is that root rounded to nearest
+(raykernel sphere --help). An invalid sphere line is exit status 2, as an invalid plane line.
 )";
 
 constexpr const char* help_after = R"(exit status: 0 every ray valid, 1 some ray line invalid, 2 usage or I/O error (an unreadable
 file, or standard output that cannot be written: nearest then stops reading) or an invalid
-plane line (reported as raykernel: FILE:N: REASON, with nothing on standard output)
+plane or sphere line (reported as raykernel: FILE:N: REASON, with nothing on standard output)
 )";
 
 Ray ray_of(const NumberLine& line) {
@@ -63,7 +70,7 @@ Ray ray_of(const NumberLine& line) {
 // What the command line says.
 struct Arguments {
   NearestOptions options;
-  std::optional<std::string> planes_path, mesh_path, rays_path;
+  std::optional<std::string> planes_path, mesh_path, spheres_path, rays_path;
   std::optional<TriangleRule> rule;
 };
 
@@ -71,6 +78,8 @@ CommandLine command_line(Arguments& a) {
   return {.command = "nearest",
           .options = {{"--planes", file(a.planes_path), "the planes (this or --mesh is required)"},
                       {"--mesh", file(a.mesh_path), "a triangle mesh instead of planes"},
+                      {"--spheres", file(a.spheres_path),
+                       "spheres (lines cx cy cz r) instead of planes; rays may carry t_min t_max"},
                       {"--rule", one_of(a.rule, rule_choices),
                        "with --mesh: which points of a triangle count (default owned)"},
                       {"--path", one_of(a.options.method, method_choices),
@@ -179,15 +188,24 @@ OwnedCommandLine nearest_command_line() { return owned_command_line(command_line
 int run_nearest(const std::vector<std::string>& args) {
   Arguments arguments;
   if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
-  if (arguments.planes_path && arguments.mesh_path) {
-    std::cerr << "raykernel nearest: --planes and --mesh cannot be given together\n";
+  if ((arguments.planes_path.has_value() + arguments.mesh_path.has_value() + arguments.spheres_path.has_value()) > 1) {
+    std::cerr << "raykernel nearest: only one of --planes, --mesh and --spheres can be given\n";
     return exit_usage;
   }
   if (arguments.rule && !arguments.mesh_path) {
-    std::cerr << "raykernel nearest: --rule needs --mesh (planes have no rule)\n";
+    std::cerr << "raykernel nearest: --rule needs --mesh (planes and spheres have no rule)\n";
     return exit_usage;
   }
   const std::string path = arguments.rays_path.value_or("-");
+  if (arguments.spheres_path) {
+    if (arguments.options.exact_t || arguments.options.method == Method::naive) {
+      std::cerr << "raykernel nearest: --exact-t and --path=naive are not for --spheres (raykernel sphere --exact "
+                   "prints a root's exact U and V)\n";
+      return exit_usage;
+    }
+    const SphereSetOptions options{.method = arguments.options.method, .hex = arguments.options.hex};
+    return run_sphere_nearest(*arguments.spheres_path, path, options, arguments.options.stats);
+  }
   if (arguments.mesh_path) {
     const MeshNearestOptions mesh_options{.method = arguments.options.method,
                                           .rule = arguments.rule.value_or(TriangleRule::owned),
@@ -197,7 +215,8 @@ int run_nearest(const std::vector<std::string>& args) {
     return run_mesh_nearest(*arguments.mesh_path, path, mesh_options);
   }
   if (!arguments.planes_path) {
-    std::cerr << "raykernel nearest: --planes FILE or --mesh FILE is required (see raykernel nearest --help)\n";
+    std::cerr << "raykernel nearest: --planes FILE, --mesh FILE or --spheres FILE is required (see raykernel nearest "
+                 "--help)\n";
     return exit_usage;
   }
 
