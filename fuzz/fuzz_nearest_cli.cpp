@@ -132,17 +132,17 @@ ExpectedPlanes check_read_planes(std::string_view text) {
            std::to_string(got.error_line) + " ('" + got.error + "')";
   });
   if (!got.ok()) {
-    check(got.error == want.error && got.planes.empty(), [&] {
+    check(got.error == want.error && got.items.empty(), [&] {
       return "read_planes reports line " + std::to_string(want.error_line) + " with reason '" + want.error +
-             "' and no planes, got '" + got.error + "' and " + std::to_string(got.planes.size()) + " planes";
+             "' and no planes, got '" + got.error + "' and " + std::to_string(got.items.size()) + " planes";
     });
     return want;
   }
-  check(got.planes.size() == want.planes.size(), [&] {
-    return "read_planes reads " + std::to_string(want.planes.size()) + " planes, got " + std::to_string(got.planes.size());
+  check(got.items.size() == want.planes.size(), [&] {
+    return "read_planes reads " + std::to_string(want.planes.size()) + " planes, got " + std::to_string(got.items.size());
   });
   for (std::size_t k = 0; k < want.planes.size(); ++k) {
-    check(same_plane(got.planes[k], want.planes[k]),
+    check(same_plane(got.items[k], want.planes[k]),
           [&] { return "plane " + std::to_string(k) + " has the doubles strtod reads"; });
   }
   return want;

@@ -76,7 +76,7 @@ TEST(Nearest, ContractSampleOnStreams) {
   std::ifstream planes_file(cases + "/nearest-sample/planes.txt");
   const PlanesFile planes = read_planes(planes_file);
   ASSERT_TRUE(planes.ok()) << planes.error;
-  ASSERT_EQ(planes.planes.size(), 51u);
+  ASSERT_EQ(planes.items.size(), 51u);
   const auto expected = test_support::read_lines(cases + "/nearest-sample/expected.txt");
   for (Method method : {Method::certified, Method::exact}) {
     std::ifstream rays(cases + "/nearest-sample/rays.txt");
@@ -84,7 +84,7 @@ TEST(Nearest, ContractSampleOnStreams) {
     NearestOptions options;
     options.method = method;
     NearestCounts counts;
-    EXPECT_EQ(nearest_stream(rays, out, err, planes.planes, options, counts), exit_ok);
+    EXPECT_EQ(nearest_stream(rays, out, err, planes.items, options, counts), exit_ok);
     const auto got = lines_of(out.str());
     ASSERT_EQ(got.size(), expected.size());
     for (std::size_t i = 0; i < got.size(); ++i)

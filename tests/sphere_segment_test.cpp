@@ -184,8 +184,8 @@ TEST(SphereSetCli, NearestAndOccludedLines) {
   std::istringstream file("# two spheres\n0 0 0 1\n\n10 0 0 2\n");
   const cli::SpheresFile spheres = cli::read_spheres(file);
   ASSERT_TRUE(spheres.ok()) << spheres.error;
-  ASSERT_EQ(spheres.spheres.size(), 2u);
-  const SphereSet set(spheres.spheres);
+  ASSERT_EQ(spheres.items.size(), 2u);
+  const SphereSet set(spheres.items);
   const std::string rays =
       "-5 0 0 1 0 0\n"           // t = 4 (sphere 0)
       "-5 0 0 1 0 0 5 inf\n"     // [5, inf]: t = 6 (the unit sphere's far side)
@@ -229,7 +229,7 @@ TEST(SphereSetCli, AnInvalidSphereLineIsNamed) {
   EXPECT_FALSE(spheres.ok());
   EXPECT_EQ(spheres.error_line, 3u);
   EXPECT_NE(spheres.error.find("radius"), std::string::npos) << spheres.error;
-  EXPECT_TRUE(spheres.spheres.empty());
+  EXPECT_TRUE(spheres.items.empty());
   std::istringstream short_line("0 0 0\n");
   EXPECT_EQ(cli::read_spheres(short_line).error_line, 1u);
 }

@@ -96,27 +96,9 @@ CommandLine command_line(Arguments& a) {
 }  // namespace
 
 PlanesFile read_planes(std::istream& in) {
-  PlanesFile file;
-  LineReader lines(in);
-  std::string line;
-  while (lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 6);
-    if (parsed.status == LineStatus::skip) continue;
-    std::string reason = parsed.reason;
-    if (parsed.status == LineStatus::numbers) {
-      const auto& v = parsed.value;
-      const Plane plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
-      if (std::optional<std::string> invalid = validate(plane)) reason = *invalid;
-      else file.planes.push_back(plane);
-    }
-    if (!reason.empty()) {
-      file.error_line = lines.line_number();
-      file.error = reason;
-      file.planes.clear();
-      return file;
-    }
-  }
-  return file;
+  return read_primitive_file<Plane>(
+      in, 6, [](const auto& v) { return Plane{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}}; },
+      [](const Plane& plane) { return validate(plane); });
 }
 
 int nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, std::span<const Plane> planes,
@@ -241,7 +223,7 @@ int run_nearest(const std::vector<std::string>& args) {
   Input rays(path);
   if (!check_opened("nearest", "rays file", path, rays)) return exit_usage;
   NearestCounts counts;
-  const int status = nearest_stream(rays.stream(), std::cout, std::cerr, planes.planes, arguments.options, counts);
+  const int status = nearest_stream(rays.stream(), std::cout, std::cerr, planes.items, arguments.options, counts);
   return finish_stream_command("nearest", rays, input_name(path), status, arguments.options.stats,
                                describe(counts, arguments.options.method));
 }

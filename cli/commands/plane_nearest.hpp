@@ -3,6 +3,7 @@
 #pragma once
 
 #include "common/stream_command.hpp"
+#include "common/text_input.hpp"
 
 #include <raykernel/raykernel.hpp>
 
@@ -36,12 +37,7 @@ struct NearestCounts {
 // The planes of a planes file (`px py pz nx ny nz` per line; blank and # lines skipped; a byte-order mark at
 // the start skipped; plane K is the K-th plane line from 0), or the first invalid line: its number (counting
 // every line from 1) and the reason.
-struct PlanesFile {
-  std::vector<Plane> planes;
-  std::uint64_t error_line = 0;  // 0 when every line was valid
-  std::string error;
-  [[nodiscard]] bool ok() const noexcept { return error_line == 0; }
-};
+using PlanesFile = PrimitiveFile<Plane>;
 [[nodiscard]] PlanesFile read_planes(std::istream& in);
 
 // Answers every ray line of `rays` (`ox oy oz dx dy dz`) on `out` with `hit K T` or `miss` (docs/contract.md §4);

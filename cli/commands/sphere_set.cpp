@@ -80,7 +80,7 @@ std::optional<SphereSet> load_spheres(std::string_view command, const std::strin
     std::cerr << "raykernel: " << printable(path) << ":" << file.error_line << ": " << file.error << '\n';
     return std::nullopt;
   }
-  return SphereSet(file.spheres);
+  return SphereSet(file.items);
 }
 
 std::string describe(const SphereSetCounts& c, bool nearest, bool segment, std::size_t spheres) {
@@ -95,27 +95,9 @@ std::string describe(const SphereSetCounts& c, bool nearest, bool segment, std::
 }  // namespace
 
 SpheresFile read_spheres(std::istream& in) {
-  SpheresFile file;
-  LineReader lines(in);
-  std::string line;
-  while (lines.next(line)) {
-    const NumberLine parsed = parse_number_line(line, 4);
-    if (parsed.status == LineStatus::skip) continue;
-    std::string reason = parsed.reason;
-    if (parsed.status == LineStatus::numbers) {
-      const auto& v = parsed.value;
-      const Sphere sphere{{v[0], v[1], v[2]}, v[3]};
-      if (std::optional<std::string> invalid = validate(sphere)) reason = *invalid;
-      else file.spheres.push_back(sphere);
-    }
-    if (!reason.empty()) {
-      file.error_line = lines.line_number();
-      file.error = reason;
-      file.spheres.clear();
-      return file;
-    }
-  }
-  return file;
+  return read_primitive_file<Sphere>(
+      in, 4, [](const auto& v) { return Sphere{{v[0], v[1], v[2]}, v[3]}; },
+      [](const Sphere& sphere) { return validate(sphere); });
 }
 
 int sphere_nearest_stream(std::istream& rays, std::ostream& out, std::ostream& err, const SphereSet& spheres,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/stream_command.hpp"
+#include "common/text_input.hpp"
 
 #include <raykernel/sphere.hpp>
 
@@ -16,12 +17,7 @@ namespace raykernel::cli {
 
 // A spheres file: one sphere per line, `cx cy cz r` (§3's numbers; blank and # lines skipped). The first invalid
 // line stops the reading (error_line, error name it; no spheres then).
-struct SpheresFile {
-  std::vector<Sphere> spheres;
-  std::uint64_t error_line = 0;  // 0 when every line was valid
-  std::string error;
-  [[nodiscard]] bool ok() const noexcept { return error_line == 0; }
-};
+using SpheresFile = PrimitiveFile<Sphere>;
 [[nodiscard]] SpheresFile read_spheres(std::istream& in);
 
 struct SphereSetOptions {

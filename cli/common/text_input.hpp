@@ -7,8 +7,10 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace raykernel::cli {
 
@@ -69,5 +71,41 @@ struct NumberLineOf {
 [[nodiscard]] std::string hit_answer(std::size_t index, double t, bool hex);
 // A hexadecimal float ("0x1.8p+1", "-0x0p+0", "inf"), exact by construction.
 [[nodiscard]] std::string format_hex(double x);
+
+// A file of primitives (planes, spheres), one per line of `count` numbers (§3's syntax: blank and # lines skipped,
+// a byte-order mark dropped). The first invalid line — a bad number, or a primitive `validate` rejects — stops the
+// reading: error_line and error name it, and items is empty.
+template <class T>
+struct PrimitiveFile {
+  std::vector<T> items;
+  std::uint64_t error_line = 0;  // 0 when every line was valid
+  std::string error;
+  [[nodiscard]] bool ok() const noexcept { return error_line == 0; }
+};
+
+// make(value) builds the primitive from the line's numbers; validate(primitive) names why it is invalid, or nothing.
+template <class T, class Make, class Validate>
+[[nodiscard]] PrimitiveFile<T> read_primitive_file(std::istream& in, int count, Make make, Validate validate) {
+  PrimitiveFile<T> file;
+  LineReader lines(in);
+  std::string line;
+  while (lines.next(line)) {
+    const NumberLine parsed = parse_number_line(line, count);
+    if (parsed.status == LineStatus::skip) continue;
+    std::string reason = parsed.reason;
+    if (parsed.status == LineStatus::numbers) {
+      const T item = make(parsed.value);
+      if (std::optional<std::string> invalid = validate(item)) reason = *invalid;
+      else file.items.push_back(item);
+    }
+    if (!reason.empty()) {
+      file.error_line = lines.line_number();
+      file.error = reason;
+      file.items.clear();
+      return file;
+    }
+  }
+  return file;
+}
 
 }  // namespace raykernel::cli

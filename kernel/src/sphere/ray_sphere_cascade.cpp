@@ -165,7 +165,8 @@ bool segment_meets_sphere(const Vec3& p, const Vec3& q, const Sphere& sphere) {
   // sign(C) of the filter does not depend on the ray's direction (proofs/sphere/SphereFilter.v,
   // sphere_filter_c_sound, for every input): any nonzero one serves. A certain sign is never zero.
   const Vec3 any_direction{1, 0, 0};
-  const Sign c_p = sphere_filter(Ray{p, any_direction}, sphere).c, c_q = sphere_filter(Ray{q, any_direction}, sphere).c;
+  const Sign c_p = sphere_filter(Ray{p, any_direction}, sphere).c;
+  const Sign c_q = sphere_filter(Ray{q, any_direction}, sphere).c;
   if (is_certain(c_p) && is_certain(c_q)) {
     if (c_p != c_q) return true;                  // q(0)·q(1) < 0: a root in (0, 1)
     if (c_p == Sign::negative) return false;      // q < 0 at both ends, so on [0, 1]: no root there
