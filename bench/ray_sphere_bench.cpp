@@ -16,6 +16,7 @@
 // Items per second count queries. The buffers are generated before timing and checked once (certified ==
 // exact). The certified benchmarks report the fraction each stage decided (rel_*, roots_*) and
 // exact_per_million. Registered at load time: main is ray_plane_bench.cpp's.
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/sphere.hpp>
 #include <raykernel/testkit/sphere_queries.hpp>
 
@@ -154,6 +155,16 @@ void register_workload(const char* workload, const std::vector<SphereQuery>& (*q
     add_stage_counters(s, queries());
   });
   benchmark::RegisterBenchmark(name("relation").c_str(), [queries](benchmark::State& s) {
+    rotate_through(s, queries(), [](const SphereQuery& q) { return relation(q.ray, q.sphere); });
+  });
+  // The same calls inside one DefaultFpEnvironment scope (as the plane's and the triangle's *_scoped): the
+  // per-call check of the caller's floating-point environment (stmxcsr, ldmxcsr) hoisted out.
+  benchmark::RegisterBenchmark(name("certified_scoped").c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
+    rotate_through(s, queries(), [](const SphereQuery& q) { return intersect(q.ray, q.sphere); });
+  });
+  benchmark::RegisterBenchmark(name("relation_scoped").c_str(), [queries](benchmark::State& s) {
+    const DefaultFpEnvironment env;
     rotate_through(s, queries(), [](const SphereQuery& q) { return relation(q.ray, q.sphere); });
   });
   benchmark::RegisterBenchmark(name("exact").c_str(), [queries](benchmark::State& s) {

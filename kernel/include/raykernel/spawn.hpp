@@ -23,6 +23,7 @@
 
 #include <raykernel/core.hpp>
 #include <raykernel/mesh.hpp>
+#include <raykernel/sphere.hpp>
 #include <raykernel/triangle.hpp>
 
 #include <cstdint>
@@ -100,6 +101,30 @@ struct SecondaryInterval {
                                                           const Vec3& direction, const Mesh& mesh,
                                                           const SecondaryInterval& interval = {},
                                                           std::optional<std::uint32_t> skip = std::nullopt);
+
+// ---- Spawning from a sphere (docs/contract.md, "Decided here": spawning from a sphere) -----------------------
+// The sphere's rule, as the triangle's with the sphere's sides. P = p, the point of doubles the renderer holds
+// (the exact hit o + t·d of a ray is irrational in general; p need not lie on the sphere); N = p − c, the
+// outward normal there; s = sign(w·N), the side w leaves towards (+1 outward, −1 inward); σ(x) = sign(|x − c|² −
+// r²). An origin x is accepted when it is strictly on side s — σ(x) = s — and, leaving outward, also
+// w·(x − c) ≥ 0. P̂ = p rounded to nearest-even in F. If P̂ is accepted, k = 0; otherwise coordinate i of P̂ moves
+// k steps through the finite values of F in direction δ = sign(N_i)·s, for the smallest k ≥ 1 that is accepted:
+// i is the axis of the largest |N_i| (the smallest i on an exact tie), among the axes with w_i·N_i > 0 when
+// leaving outward (there is one: w·N > 0), so that each step outward raises w·(x − c).
+//
+// Guarantee (proofs/sphere/SphereSpawn.v): leaving outward, the ray from the origin along w never meets the
+// sphere (no root t ≥ 0: `spawn_outward_never_hits`); leaving inward, the origin is strictly inside, so the ray
+// meets the sphere exactly once at t ≥ 0, where it leaves it (`spawn_inward_one_exit`). k is exact (< 2^64).
+//
+// Invalid input (invalid_input, naming the reason): a non-finite component, a radius not positive, a zero w,
+// p = c (no normal), w·N = 0 (w tangent to the sphere at p), a P̂ that overflows F, or no accepted value of F
+// along axis i (leaving inward: none strictly inside the sphere on that axis, or P̂ already past it).
+[[nodiscard]] SpawnedOrigin spawn(const Vec3& point, const Sphere& source, const Vec3& direction,
+                                  OriginFormat format = OriginFormat::binary64);
+
+// σ(x) = sign(|x − c|² − r²): outside (+1), on the sphere (0) or inside (−1), exactly. Throws invalid_input for
+// a non-finite value or a radius not positive.
+[[nodiscard]] int sphere_side(const Vec3& point, const Sphere& sphere);
 
 [[nodiscard]] std::string_view to_string(OriginFormat format) noexcept;  // "binary64", "binary32"
 

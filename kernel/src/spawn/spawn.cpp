@@ -7,7 +7,7 @@
 // δ = sign(N_i)·s moves N_i·x_i towards s's side: the values of F at or before the threshold x* = −C/N_i (in
 // direction δ) have σ ≠ s, those strictly beyond it σ = s. So the origin's coordinate is v, the first value of
 // F strictly beyond x* (x* rounded towards δ, one more step when that is x* itself), and k is the number of
-// values of F from P̂_i to v: the difference of their ordinals (ordinal below). σ(P̂) ≠ s puts P̂_i at or
+// values of F from P̂_i to v: the difference of their ordinals (spawn/format_steps.hpp). σ(P̂) ≠ s puts P̂_i at or
 // before x*, so k ≥ 1 and every value before v has σ ≠ s: k is the smallest.
 #include <raykernel/spawn.hpp>
 
@@ -15,6 +15,7 @@
 #include "core/fp_environment.hpp"
 #include "core/rational_from_double.hpp"
 #include "spawn/exact_point.hpp"
+#include "spawn/format_steps.hpp"
 
 #include <gmpxx.h>
 
@@ -33,44 +34,11 @@ using detail::exact::minus;
 using detail::exact::Q3;
 using detail::exact::rational_from_double;
 using Q = mpq_class;
-
-const char* axis_name(int i) { return i == 0 ? "x" : i == 1 ? "y" : "z"; }
-
-[[noreturn]] void invalid(const std::string& reason) { throw invalid_input(reason); }
-
-// The first non-finite component of v ("WHAT x is NaN"), or nothing.
-void require_finite(const Vec3& v, const char* what) {
-  const double c[3] = {v.x, v.y, v.z};
-  for (int k = 0; k < 3; ++k)
-    if (!std::isfinite(c[k]))
-      invalid(std::string(what) + " " + axis_name(k) + " is " + (std::isnan(c[k]) ? "NaN" : c[k] > 0 ? "inf" : "-inf"));
-}
-
-const detail::exact::BinaryFormat& format_of(OriginFormat f) {
-  return f == OriginFormat::binary32 ? detail::exact::binary32_format : detail::exact::binary64_format;
-}
-
-// The position of a value of the format among its finite values in increasing order, with one zero (−0 and +0
-// are both 0): the magnitude's bits, negated for negative values. Consecutive values have consecutive ordinals,
-// in both formats (binary32 values are read from their float bits).
-// Finite values have magnitudes below 2^63 as bits, so an ordinal fits in a std::int64_t.
-std::int64_t ordinal(double x, OriginFormat f) {
-  const std::uint64_t magnitude = f == OriginFormat::binary32
-                                      ? std::bit_cast<std::uint32_t>(static_cast<float>(std::fabs(x)))
-                                      : std::bit_cast<std::uint64_t>(std::fabs(x));
-  return x < 0 ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
-}
-
-// The value of the format with ordinal n, or ±inf beyond the largest finite value.
-double from_ordinal(std::int64_t n, OriginFormat f) {
-  const std::uint64_t magnitude = n < 0 ? static_cast<std::uint64_t>(-n) : static_cast<std::uint64_t>(n);
-  double x;
-  if (f == OriginFormat::binary32)
-    x = magnitude > 0x7f7fffff ? HUGE_VAL : static_cast<double>(std::bit_cast<float>(static_cast<std::uint32_t>(magnitude)));
-  else
-    x = magnitude > 0x7fefffffffffffff ? HUGE_VAL : std::bit_cast<double>(magnitude);
-  return n < 0 ? -x : x;
-}
+using detail::spawn_steps::axis_name;
+using detail::spawn_steps::format_of;
+using detail::spawn_steps::invalid;
+using detail::spawn_steps::require_finite;
+using detail::spawn_steps::steps_between;
 
 // The source's a and N and the hit point P, exactly, after the checks every entry point makes, in the order
 // the reasons are reported: non-finite values (the hit, the triangle, then `extra`: w or q), a zero ray
@@ -147,14 +115,11 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
   const Q threshold = a[i] - rest / normal[i];
   bool on_threshold = false;
   double v = detail::exact::round_rational(threshold, f, delta > 0 ? MPFR_RNDU : MPFR_RNDD, &on_threshold);
-  if (on_threshold) v = from_ordinal(ordinal(v, format) + delta, format);  // x* itself has σ = 0: one more
+  if (on_threshold) v = detail::spawn_steps::step(v, delta, format);  // x* itself has σ = 0: one more
   if (!std::isfinite(v))
     invalid(std::string("no origin in ") + std::string(to_string(format)) + " on the side of w along axis " +
             axis_name(i) + " (beyond the largest finite value)");
-  // k = |ordinal(v) − ordinal(P̂_i)| < 2^64: the unsigned difference of the larger and the smaller is exact.
-  const std::int64_t from = ordinal(r[i], format), to = ordinal(v, format);
-  const std::uint64_t steps = to > from ? static_cast<std::uint64_t>(to) - static_cast<std::uint64_t>(from)
-                                        : static_cast<std::uint64_t>(from) - static_cast<std::uint64_t>(to);
+  const std::uint64_t steps = steps_between(r[i], v, format);
   r[i] = v;
   return {rounded, steps};
 }

@@ -7,6 +7,7 @@
 // roundings, whose two ends round to the same double gives RN(root) (rounding to nearest is monotonic), and
 // doubling the precision until they do terminates.
 #include "sphere/exact_sphere.hpp"
+#include "sphere/exact_root.hpp"
 
 #include "core/binary64_rounding.hpp"
 #include "core/exact_value.hpp"
@@ -52,16 +53,12 @@ class Big {
   mpfr_t x_;
 };
 
-double round_mpfr(mpfr_ptr x) {
-  mpq_class q;
-  mpfr_get_q(q.get_mpq_t(), x);  // exact (x is finite: the default exponent range holds every value here)
-  return round_rational_to_nearest_even(q);
-}
-
 bool same_double(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
-// RN(U + root·√V), root = ±1, V > 0 not the square of a rational (the root is irrational).
-double round_irrational_root(const mpq_class& u, const mpq_class& v, int root) {
+// U + root·√V, V > 0 not the square of a rational (the value is irrational), rounded once to the format in the
+// mode (MPFR_RNDN, MPFR_RNDU, MPFR_RNDD).
+double round_irrational_root(const mpq_class& u, const mpq_class& v, int root, const BinaryFormat& format,
+                             mpfr_rnd_t mode) {
   for (mpfr_prec_t precision = 128; precision <= (mpfr_prec_t{1} << 24); precision *= 2) {
     Big u_lo(precision), u_hi(precision), v_lo(precision), v_hi(precision), s_lo(precision), s_hi(precision),
         lo(precision), hi(precision);
@@ -78,17 +75,31 @@ double round_irrational_root(const mpq_class& u, const mpq_class& v, int root) {
       mpfr_add(lo.get(), u_lo.get(), s_lo.get(), MPFR_RNDD);
       mpfr_add(hi.get(), u_hi.get(), s_hi.get(), MPFR_RNDU);
     }
-    const double a = round_mpfr(lo.get()), b = round_mpfr(hi.get());
+    // lo ≤ root ≤ hi, both finite (the default exponent range holds every value here): rounding is monotonic,
+    // so when both ends round to the same value, so does the root.
+    mpq_class q_lo, q_hi;
+    mpfr_get_q(q_lo.get_mpq_t(), lo.get());
+    mpfr_get_q(q_hi.get_mpq_t(), hi.get());
+    const double a = round_rational(q_lo, format, mode), b = round_rational(q_hi, format, mode);
     if (same_double(a, b)) return a;
   }
   throw std::logic_error("raykernel: exact sphere root: no rounding decided at 2^24 bits");  // unreachable
 }
 
-// RN(U + root·√V), V ≥ 0.
-double round_root(const mpq_class& u, const mpq_class& v, int root) {
+}  // namespace
+
+double round_root(const mpq_class& u, const mpq_class& v, int root, const BinaryFormat& format, mpfr_rnd_t mode,
+                  bool* exact) {
   if (const std::optional<mpq_class> s = rational_sqrt(v))
-    return round_rational_to_nearest_even(root < 0 ? mpq_class(u - *s) : mpq_class(u + *s));  // exact 0: +0
-  return round_irrational_root(u, v, root);
+    return round_rational(root < 0 ? mpq_class(u - *s) : mpq_class(u + *s), format, mode, exact);  // exact 0: +0
+  if (exact != nullptr) *exact = false;
+  return round_irrational_root(u, v, root, format, mode);
+}
+
+namespace {
+
+double round_root(const mpq_class& u, const mpq_class& v, int root) {
+  return round_root(u, v, root, binary64_format, MPFR_RNDN);
 }
 
 struct Decided {
