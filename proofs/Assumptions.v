@@ -745,3 +745,14 @@ Definition main_results_21 :=
    @RoundOrder.ieee_rn_strict_order).
 Goal True. idtac "@@ rn_strict_order rn_equal_or_ordered rn_compare_distinct rne_strict_order rne_compare_distinct binary_normalize_ieee_rn ieee_rn_strict_order". Abort.
 Print Assumptions main_results_21.
+(** sphere/: spawning from a sphere (sphere/sphere_spawn.cpp, spawn): an accepted origin's guarantee — leaving
+    outward (C > 0, B ≥ 0) no root t ≥ 0; leaving inward (C < 0) exactly one, positive — and the steps' algebra *)
+From Raykernel Require SphereSpawn.
+Definition main_results_22 :=
+  (@SphereSpawn.spawn_outward_never_hits,
+   @SphereSpawn.spawn_inward_one_exit,
+   @SphereSpawn.spawn_axis_leaving_grows,
+   @SphereSpawn.spawn_axis_step_sign,
+   @SphereSpawn.spawn_axis_side).
+Goal True. idtac "@@ spawn_outward_never_hits spawn_inward_one_exit spawn_axis_leaving_grows spawn_axis_step_sign spawn_axis_side". Abort.
+Print Assumptions main_results_22.
