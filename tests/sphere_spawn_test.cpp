@@ -4,6 +4,8 @@
 // outward, w·(x − c) ≥ 0, in rationals written here), one step less is not (k is the smallest), and the guarantee
 // holds by an oracle of its own — the exact ray–sphere query from the origin (intersect_exact): outward, no root
 // at t ≥ 0; inward, the origin inside.
+#include "commands/spawn.hpp"
+
 #include <raykernel/spawn.hpp>
 #include <raykernel/sphere.hpp>
 #include <raykernel/testkit/plane_rapidcheck.hpp>
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 
 namespace raykernel {
@@ -125,6 +128,34 @@ TEST(SphereSpawnHandDerived, SphereSide) {
   EXPECT_EQ(sphere_side(Vec3{1, 0, 0}, unit), 0);
   EXPECT_EQ(sphere_side(Vec3{1 + 0x1p-52, 0, 0}, unit), 1);
   EXPECT_EQ(sphere_side(Vec3{0.6, 0.8, 0}, unit), sgn(q(0.6) * q(0.6) + q(0.8) * q(0.8) - 1));
+}
+
+// `raykernel spawn --sphere`, through the command's stream code: the hand-derived answers above, a tangent w named,
+// and a malformed line answered invalid with the batch going on.
+TEST(SphereSpawnCli, LinesOfTenNumbers) {
+  std::istringstream in(
+      "1 0 0  0 0 0 1  1 0 0\n"
+      "# inward\n"
+      "1 0 0  0 0 0 1  -1 2 3\n"
+      "1 0 0  0 0 0 1  0 1 0\n"
+      "1 0 0  0 0 0\n"
+      "2 0 0  0 0 0 1  -1 0 0\n");
+  std::ostringstream out, err;
+  cli::SpawnCommandOptions options;
+  options.sphere = true;
+  cli::SpawnCounts counts;
+  const int status = cli::spawn_stream(in, out, err, options, counts);
+  EXPECT_EQ(status, 1);
+  // 1 + 2^-52 = 1.0000000000000002, 1 − 2^-53 = 0.9999999999999999 (shortest round-trip decimals); from 2 down to
+  // 1 − 2^-53: 2^52 + 1 = 4503599627370497 steps.
+  EXPECT_EQ(out.str(),
+            "1.0000000000000002 0 0 1\n"
+            "0.9999999999999999 0 0 1\n"
+            "invalid direction w is tangent to the sphere at the point (w.(p - c) = 0)\n"
+            "invalid expected 10 numbers, found 6\n"
+            "0.9999999999999999 0 0 4503599627370497\n");
+  EXPECT_NE(err.str().find("line 5"), std::string::npos) << err.str();
+  EXPECT_EQ(counts.moved, 3u);
 }
 
 // The guarantee, by the exact ray–sphere query from the origin.

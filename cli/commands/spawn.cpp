@@ -29,11 +29,19 @@ moved k steps (through consecutive doubles) until it is, for the smallest k. So 
 hits the triangle it leaves. Numbers as for classify; blank and # lines skipped. Output per line:
   X Y Z K | invalid REASON
 X Y Z printed so that they read back exactly, K an exact integer (it may exceed 2^53).
+
+With --sphere, the new ray leaves a sphere: lines of 10 numbers
+  px py pz cx cy cz r wx wy wz
+p is the hit point as the renderer holds it (it need not lie on the sphere), w the new direction,
+N = p - c, s = sign(w.N) (outward +1, inward -1). The origin is p when it is strictly outside with
+w.(p - c) >= 0 (outward) or strictly inside (inward); otherwise the coordinate of the largest |N_i|
+(outward: among the axes with w_i N_i > 0) moved the fewest steps until it is. Leaving outward the
+new ray never meets the sphere; leaving inward it meets it once, where it leaves.
 )";
 
 constexpr const char* help_after = R"(Invalid lines: a non-finite number, a zero d or w, a degenerate triangle (N = 0), a ray parallel
 to the plane, w parallel to the plane, (--to) q in the plane, a rounded point that overflows, or no
-representable origin on the side.
+representable origin on the side; (--sphere) a radius not positive, p = c, or w tangent at p.
 
 exit status: 0 every line valid, 1 some line invalid, 2 usage or I/O error
 )";
@@ -53,7 +61,10 @@ CommandLine command_line(Arguments& a) {
                        "the hit point is given as a point: lines of 15 numbers px py pz ax ... cz wx wy wz"},
                       {"--to", flag(a.options.to),
                        "a target point q in place of w (a shadow ray towards q; s = sign((q-a).N)): the "
-                       "segment from the origin to q never meets the triangle"}},
+                       "segment from the origin to q never meets the triangle"},
+                      {"--sphere", flag(a.options.sphere),
+                       "leaving a sphere: lines of 10 numbers px py pz cx cy cz r wx wy wz (not with --point or "
+                       "--to)"}},
           .operand = Operand{.metavar = "FILE", .what = "input file", .destination = &a.file},
           .help_before = help_before,
           .help_after = help_after};
@@ -71,15 +82,20 @@ std::string format_in(double x, OriginFormat format) {
 int spawn_stream(std::istream& in, std::ostream& out, std::ostream& err, const SpawnCommandOptions& options,
                  SpawnCounts& counts) {
   const int t = options.point ? 3 : 6;  // where the triangle starts
-  return answer_query_lines(in, out, err, options.point ? 15 : 18, counts.lines_answered, counts.invalid,
+  const int numbers = options.sphere ? 10 : options.point ? 15 : 18;
+  return answer_query_lines(in, out, err, numbers, counts.lines_answered, counts.invalid,
                             [&](const NumberLine& parsed) -> std::optional<std::string> {
     const auto& v = parsed.value;
     const auto vec = [&](int k) { return Vec3{v[k], v[k + 1], v[k + 2]}; };
-    const HitPoint hit = options.point ? HitPoint::at(vec(0)) : HitPoint::crossing({vec(0), vec(3)});
-    const Triangle triangle{vec(t), vec(t + 3), vec(t + 6)};
+    const auto answer = [&]() -> SpawnedOrigin {
+      if (options.sphere) return spawn(vec(0), Sphere{vec(3), v[6]}, vec(7), options.format);
+      const HitPoint hit = options.point ? HitPoint::at(vec(0)) : HitPoint::crossing({vec(0), vec(3)});
+      const Triangle triangle{vec(t), vec(t + 3), vec(t + 6)};
+      return options.to ? spawn_to(hit, triangle, vec(t + 9), options.format)
+                        : spawn(hit, triangle, vec(t + 9), options.format);
+    };
     try {
-      const SpawnedOrigin o = options.to ? spawn_to(hit, triangle, vec(t + 9), options.format)
-                                         : spawn(hit, triangle, vec(t + 9), options.format);
+      const SpawnedOrigin o = answer();
       if (o.steps != 0) ++counts.moved;
       out << format_in(o.origin.x, options.format) << ' ' << format_in(o.origin.y, options.format) << ' '
           << format_in(o.origin.z, options.format) << ' ' << o.steps << '\n';
@@ -95,6 +111,10 @@ OwnedCommandLine spawn_command_line() { return owned_command_line(command_line);
 int run_spawn(const std::vector<std::string>& args) {
   Arguments arguments;
   if (const std::optional<int> status = parse_command_line(command_line(arguments), args)) return *status;
+  if (arguments.options.sphere && (arguments.options.point || arguments.options.to)) {
+    std::cerr << "raykernel spawn: --sphere takes the point on every line; --point and --to are for triangles\n";
+    return exit_usage;
+  }
   if (arguments.binary32) arguments.options.format = OriginFormat::binary32;
   const std::string path = arguments.file.value_or("-");
   Input input(path);
