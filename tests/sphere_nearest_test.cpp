@@ -6,6 +6,7 @@
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/nearest_scene.hpp>
 #include <raykernel/sphere.hpp>
+#include <raykernel/testkit/plane_queries.hpp>
 
 #include "surface_hits.hpp"
 
@@ -149,7 +150,7 @@ RC_GTEST_PROP(SphereNearest, CertifiedEqualsExactOnTiedScenes, ()) {
   const int dx = *rc::gen::inRange(-4, 5), dy = *rc::gen::inRange(-4, 5), dz = *rc::gen::inRange(1, 5);
   const Ray ray{{double(ox), double(oy), double(oz)}, {double(dx), double(dy), double(dz)}};
   std::vector<Sphere> spheres;
-  const int n = *rc::gen::inRange(1, 6);
+  const int n = *rc::gen::inRange(1, 20);  // from SphereSet::bvh_min_spheres on, the set walks its hierarchy
   for (int k = 0; k < n; ++k) {
     // A point of the ray at t = s/4 and a centre beyond it along an integer normal: the sphere through that point.
     const int s = *rc::gen::inRange(0, 40);
@@ -252,7 +253,7 @@ RC_GTEST_PROP(SphereInterval, CertifiedEqualsExactAtTheBounds, ()) {
   const Ray ray{{double(*rc::gen::inRange(-6, 6)), double(*rc::gen::inRange(-6, 6)), 0.5 * *rc::gen::inRange(-6, 6)},
                 {double(*rc::gen::inRange(-3, 4)), double(*rc::gen::inRange(-3, 4)), double(*rc::gen::inRange(1, 4))}};
   std::vector<Sphere> spheres;
-  const int n = *rc::gen::inRange(1, 5);
+  const int n = *rc::gen::inRange(1, 16);  // from SphereSet::bvh_min_spheres on, the set walks its hierarchy
   for (int k = 0; k < n; ++k) {
     // Near the ray: o + s·d plus a small offset of quarter units (the ray's line meets most of them).
     const double along = 0.5 * *rc::gen::inRange(-2, 12);
@@ -282,6 +283,41 @@ RC_GTEST_PROP(SphereInterval, CertifiedEqualsExactAtTheBounds, ()) {
     RC_ASSERT(same_bits(hit->t, exact->t));
   }
   RC_ASSERT(occluded(ray, interval, set) == exact.has_value());
+}
+
+// A set large enough for its hierarchy (SphereSet::bvh): a cover in the spirit of Ray Tracing in One Weekend —
+// 300 small spheres resting on a huge one, some touching each other, some placed so rays tie between them —
+// against the exact reference for rays from above and grazing ones, with and without an interval, and occluded.
+TEST(SphereNearest, ALargeSetWalksItsHierarchyAndAgreesWithExact) {
+  testkit::SplitMix64 rng(31);
+  const auto uniform = [&rng](double lo, double hi) { return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1p-53; };
+  std::vector<Sphere> spheres{{{0, -1000, 0}, 1000}};
+  for (int k = 0; k < 300; ++k) {
+    const double r = k % 3 == 0 ? 0.5 : 0.25 * (1 + static_cast<int>(rng() % 3));
+    const double x = std::round(uniform(-20, 20) * 4) / 4, z = std::round(uniform(-20, 20) * 4) / 4;
+    spheres.push_back({{x, r, z}, r});  // touching the ground plane y = 0 (the huge sphere is just below it)
+    if (k % 10 == 0) spheres.push_back({{x + 2 * r, r, z}, r});  // touching its neighbour at x + r
+  }
+  const SphereSet set(spheres);
+  ASSERT_NE(set.bvh(), nullptr);
+  int hits = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Vec3 o{uniform(-25, 25), i % 2 == 0 ? uniform(0.1, 6) : 10.0, uniform(-25, 25)};
+    const Vec3 d{uniform(-1, 1), i % 2 == 0 ? uniform(-0.2, 0.05) : -1.0, uniform(-1, 1)};
+    const Ray ray{o, d};
+    for (const RayInterval interval : {RayInterval{}, RayInterval{0.5, 12.0}}) {
+      const std::optional<SphereHit> hit = nearest_hit(ray, interval, set);
+      const std::optional<SphereHit> exact = nearest_hit_exact(ray, interval, spheres);
+      ASSERT_EQ(hit.has_value(), exact.has_value()) << i;
+      if (hit) {
+        ++hits;
+        EXPECT_EQ(hit->sphere, exact->sphere) << i;
+        EXPECT_TRUE(same_bits(hit->t, exact->t)) << i;
+      }
+      EXPECT_EQ(occluded(ray, interval, set), exact.has_value()) << i;
+    }
+  }
+  EXPECT_GT(hits, 600);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // (RapidCheck, every hard kind), and the answers in other floating-point environments.
 #include "support/answer_lines.hpp"
 #include "commands/sphere.hpp"
+#include "sphere/ray_sphere_boundary_filter.hpp"
 #include "common/exit_status.hpp"
 
 #include "sphere/exact_sphere.hpp"
@@ -16,6 +17,7 @@
 #include <raykernel/testkit/sphere_queries.hpp>
 #include <raykernel/testkit/plane_reference_check.hpp>
 
+#include <gmpxx.h>
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
@@ -339,6 +341,86 @@ TEST(SphereStages, FilterDecidesRandomQueries) {
   }
   std::printf("sphere filter: %d of %d random queries\n", filtered, n);
   EXPECT_GE(filtered, n * 99 / 100);
+}
+
+// The roots' filter (sphere/ray_sphere_boundary_filter.hpp): at the midpoints beside each correctly rounded root
+// and a few ulps further, on every kind, each side it certifies is the exact side (exact::root_side_of_midpoint),
+// an exact tie (a root on a midpoint, q(m) = 0) is never certified, and on random queries it decides every side
+// beside the roots, so that the cascade rounds them there (rounding_stage filter).
+TEST(SphereStages, BoundaryFilterSidesAreExact) {
+  int certified = 0, compared = 0, random_sides = 0, random_decided = 0, ties = 0;
+  const std::vector<testkit::SphereQuery> queries = queries_of_every_kind(300, 41);
+  for (std::size_t n = 0; n < queries.size(); ++n) {
+    const testkit::SphereQuery& q = queries[n];
+    const SphereIntersection exact = detail::exact::intersect_sphere(q.ray, q.sphere);
+    if (exact.relation == SphereRelation::miss) continue;
+    const bool random = n < 300;  // all_sphere_query_kinds starts with random
+    for (int root : {-1, 1}) {
+      const double t = root < 0 ? exact.t1 : exact.t2;
+      if (!std::isfinite(t) || t == 0) continue;
+      double x = t;
+      for (int k = 0; k < 3; ++k) x = std::nextafter(x, -INFINITY);
+      for (int k = 0; k < 6; ++k) {
+        const double y = std::nextafter(x, INFINITY);
+        const detail::Sign side = detail::sphere_root_side_filtered(q.ray, q.sphere, root, x, y);
+        const int want = detail::exact::root_side_of_midpoint(q.ray, q.sphere, root, x, y);
+        ++compared;
+        ties += want == 0;
+        if (random && (x == t || y == t)) {
+          ++random_sides;
+          random_decided += detail::is_certain(side);
+        }
+        if (detail::is_certain(side)) {
+          ++certified;
+          EXPECT_NE(side, detail::Sign::zero);
+          EXPECT_EQ(static_cast<int>(side), want) << testkit::sphere_line(q) << " root " << root << " at "
+                                                  << testkit::hex_string(x) << " " << testkit::hex_string(y);
+        }
+        x = y;
+      }
+    }
+  }
+  std::printf("boundary filter: %d of %d sides certified, %d of %d beside random roots, %d ties\n", certified,
+              compared, random_decided, random_sides, ties);
+  EXPECT_GT(ties, 100);  // the rounding-tie kinds put roots on midpoints: never certified (checked above)
+  EXPECT_GT(certified, compared / 3);  // the hard kinds sit near ties and tangents
+  EXPECT_EQ(random_decided, random_sides);
+  EXPECT_GT(random_sides, 100);
+}
+
+// The boundary filter's error bound itself, against 4q(m) in rationals: |4q(m) − q̂| ≤ E_q on every kind at the
+// midpoints beside the roots (where q(m) is smallest and the cancellation largest), and with room: the largest
+// ratio |4q − q̂|/E_q seen is printed and must stay below 1/8 (the derivation's margin is about 1/19).
+TEST(SphereStages, BoundaryFilterErrorBoundHoldsWithRoom) {
+  double worst = 0;
+  int checked = 0;
+  for (const testkit::SphereQuery& q : queries_of_every_kind(200, 43)) {
+    const SphereIntersection exact = detail::exact::intersect_sphere(q.ray, q.sphere);
+    if (exact.relation == SphereRelation::miss) continue;
+    for (double t : {exact.t1, exact.t2}) {
+      if (!std::isfinite(t) || t == 0) continue;
+      for (double y : {std::nextafter(t, INFINITY), std::nextafter(t, -INFINITY)}) {
+        const detail::SphereBoundarySigns b = detail::sphere_boundary_filter(q.ray, q.sphere, t, y);
+        if (!std::isfinite(b.q4_bound) || !std::isfinite(b.q4)) continue;
+        const mpq_class m_twice = mpq_class(t) + mpq_class(y);
+        const double o[3] = {q.ray.origin.x, q.ray.origin.y, q.ray.origin.z};
+        const double d[3] = {q.ray.direction.x, q.ray.direction.y, q.ray.direction.z};
+        const double c[3] = {q.sphere.center.x, q.sphere.center.y, q.sphere.center.z};
+        mpq_class q4 = -4 * mpq_class(q.sphere.radius) * mpq_class(q.sphere.radius);
+        for (int i = 0; i < 3; ++i) {
+          const mpq_class g = 2 * (mpq_class(o[i]) - mpq_class(c[i])) + m_twice * mpq_class(d[i]);
+          q4 += g * g;
+        }
+        const mpq_class error = abs(q4 - mpq_class(b.q4));
+        ASSERT_LE(error, mpq_class(b.q4_bound)) << testkit::sphere_line(q) << " at " << testkit::hex_string(t);
+        if (b.q4_bound > 0) worst = std::max(worst, mpq_class(error / mpq_class(b.q4_bound)).get_d());
+        ++checked;
+      }
+    }
+  }
+  std::printf("boundary filter: %d evaluations, largest error / E_q = %g\n", checked, worst);
+  EXPECT_GT(checked, 2000);
+  EXPECT_LT(worst, 0.125);
 }
 
 // The decision of root_side_of against the roots' order, over exact small cases: for the roots 1 and 3

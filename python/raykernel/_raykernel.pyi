@@ -108,7 +108,7 @@ def round_rational_to_double(value: Union[Fraction, int], denominator: None = No
 @overload
 def round_rational_to_double(value: int, denominator: int) -> float: ...
 def spawn(
-    hit: Union[RayLike, Vec3Like], triangle: TriangleLike, direction: Vec3Like, *, format: str = "binary64"
+    hit: Union[RayLike, Vec3Like], triangle: Union[TriangleLike, Sphere], direction: Vec3Like, *, format: str = "binary64"
 ) -> SpawnedOrigin: ...
 def spawn_to(
     hit: Union[RayLike, Vec3Like], triangle: TriangleLike, target: Vec3Like, *, format: str = "binary64"

@@ -1,5 +1,5 @@
 // spawn and spawn_to (docs/contract.md §9): the origin of a secondary ray that never re-hits the triangle it
-// leaves, in binary64 or binary32.
+// leaves, in binary64 or binary32; spawn also from a sphere (docs/contract.md, "Spawning from a sphere").
 #include "bindings.hpp"
 #include "convert.hpp"
 
@@ -43,12 +43,20 @@ void bind_spawn(py::module_& m) {
   static const std::string spawn_doc =
       std::string(R"doc(The origin of a new ray along ``direction`` leaving the triangle at the hit point P, on the side s = sign(w·N) it leaves
 towards: the ray from it never hits the triangle (docs/contract.md §9).)doc") +
-      hit_doc + "w parallel to the plane, a rounded point that overflows the format, or no origin on the side.";
+      hit_doc + "w parallel to the plane, a rounded point that overflows the format, or no origin on the side." +
+      R"doc(
+
+Leaving a sphere: ``triangle`` is a ``raykernel.Sphere`` and ``hit`` the point p the renderer holds (three numbers;
+it need not lie on the sphere). With N = p − c and s = sign(w·N), the origin is strictly outside with
+w·(origin − c) ≥ 0 when w leaves outward — the new ray never meets the sphere — and strictly inside when inward —
+it meets it once, where it leaves (proofs/sphere/SphereSpawn.v); the fewest steps along the axis of the largest
+|N_i| (outward: among the axes with w_i·N_i > 0). Raises ``ValueError`` for a radius not positive, p = c, w
+tangent at p (w·N = 0), or no origin along the axis.)doc";
   static const std::string spawn_to_doc =
       std::string(R"doc(The origin of a shadow ray towards the point ``target`` q, on q's side of the triangle's plane: the segment from it to
 q never meets the triangle (docs/contract.md §9).)doc") +
       hit_doc + "q on the plane, a rounded point that overflows the format, or no origin on the side.";
-  // spawn and spawn_to differ only in the kernel function and the name of their third argument.
+  // spawn_to through the one definition a triangle's entry point of this shape needs.
   const auto define = [&m](const char* name, const char* third, const std::string& doc,
                            SpawnedOrigin (*kernel)(const HitPoint&, const Triangle&, const Vec3&, OriginFormat)) {
     m.def(
@@ -68,8 +76,32 @@ q never meets the triangle (docs/contract.md §9).)doc") +
         py::arg("hit"), py::arg("triangle"), py::arg(third), py::kw_only(), py::arg("format") = "binary64",
         doc.c_str());
   };
-  define("spawn", "direction", spawn_doc, &spawn);
   define("spawn_to", "target", spawn_to_doc, &spawn_to);
+  // spawn also leaves a sphere: the source a raykernel.Sphere and the hit a point (the sphere's rule,
+  // raykernel/spawn.hpp and docs/contract.md's "Spawning from a sphere").
+  m.def(
+      "spawn",
+      [](py::handle hit, py::handle source, py::handle direction, const std::string& format) {
+        const Vec3 w = vec3_from(direction, "direction");
+        const OriginFormat f = format_from(format);
+        SpawnedOrigin o{};
+        if (primitive_kind(source) == PrimitiveKind::sphere) {
+          if (py::len(hit) != 3)
+            throw py::value_error("hit: leaving a sphere, give the hit point (three numbers), not a ray");
+          const Vec3 p = vec3_from(hit, "hit");
+          const Sphere sphere = sphere_from(source, "sphere");
+          py::gil_scoped_release release;
+          o = spawn(p, sphere, w, f);
+        } else {
+          const HitPoint h = hit_from(hit);
+          const Triangle t = triangle_from(source);
+          py::gil_scoped_release release;
+          o = spawn(h, t, w, f);
+        }
+        return to_python(o);
+      },
+      py::arg("hit"), py::arg("triangle"), py::arg("direction"), py::kw_only(), py::arg("format") = "binary64",
+      spawn_doc.c_str());
 }
 
 }  // namespace raykernel::python

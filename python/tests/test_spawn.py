@@ -95,3 +95,17 @@ def test_the_origin_is_strictly_on_the_side(o, d, a, b, c, w, fmt):
     if fmt == "binary32":
         assert all(float(np.float32(x)) == x for x in origin)
     assert steps >= 0
+
+
+def test_spawn_from_a_sphere_hand_derived():
+    # p = (1, 0, 0) on the unit sphere: outward along x the next double above 1 (k = 1); inward the double below 1;
+    # from (2, 0, 0) inward, 2^52 + 1 steps down to 1 − 2^-53; a float renderer's origin: the float above 1.
+    unit = rk.Sphere((0, 0, 0), 1)
+    assert rk.spawn((1, 0, 0), unit, (1, 0, 0)) == ((1 + 2.0**-52, 0.0, 0.0), 1)
+    assert rk.spawn((1, 0, 0), unit, (-1, 2, 3)) == ((1 - 2.0**-53, 0.0, 0.0), 1)
+    assert rk.spawn((2, 0, 0), unit, (-1, 0, 0)) == ((1 - 2.0**-53, 0.0, 0.0), 2**52 + 1)
+    assert rk.spawn((1, 0, 0), unit, (1, 0, 0), format="binary32") == ((1 + 2.0**-23, 0.0, 0.0), 1)
+    with pytest.raises(ValueError, match="tangent"):
+        rk.spawn((1, 0, 0), unit, (0, 1, 0))
+    with pytest.raises(ValueError, match="hit point"):
+        rk.spawn(((0, 0, 0), (1, 0, 0)), unit, (1, 0, 0))

@@ -68,6 +68,10 @@ class MeshBvh {
   // validate(mesh) fails. Deterministic: the same mesh gives the same nodes. The mesh is not referenced
   // afterwards.
   explicit MeshBvh(const Mesh& mesh, const BvhBuildOptions& options = {});
+  // The same hierarchy over any primitives, given by their boxes (each must contain its primitive exactly and
+  // be finite, lo ≤ hi; a sphere set's, SphereSet): leaf ranges then index `boxes`. Throws invalid_input for a
+  // box that is not finite or is inverted.
+  explicit MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options = {});
 
   // The nodes; the root is nodes()[0] (none for a mesh without triangles).
   [[nodiscard]] std::span<const BvhNode> nodes() const noexcept { return nodes_; }
@@ -84,6 +88,8 @@ class MeshBvh {
   static constexpr int max_depth = 64;
 
  private:
+  void build(std::vector<Box3> boxes, const BvhBuildOptions& options);
+
   std::vector<BvhNode> nodes_;
   std::vector<std::uint32_t> order_;
   Box3 bounds_{};

@@ -24,6 +24,7 @@
 #include <raykernel/interval.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -104,7 +105,11 @@ struct TracedSphereIntersection {
 };
 [[nodiscard]] TracedSphereIntersection intersect_traced(const Ray& ray, const Sphere& sphere);
 
-// Spheres prepared for the nearest hit of a scene (raykernel/nearest_scene.hpp): validated once, in order.
+class MeshBvh;  // raykernel/bvh.hpp
+
+// Spheres prepared for the nearest hit of a scene (raykernel/nearest_scene.hpp): validated once, in order, and,
+// from `bvh_min_spheres` spheres on, a bounding volume hierarchy over their boxes (each box [c − r, c + r] rounded
+// outwards, so that it holds its sphere exactly), which the nearest hit and occluded walk instead of the list.
 class SphereSet {
  public:
   // Throws invalid_input naming the first invalid sphere ("sphere 3: sphere radius is not positive").
@@ -112,9 +117,14 @@ class SphereSet {
 
   [[nodiscard]] std::size_t size() const noexcept { return spheres_.size(); }
   [[nodiscard]] std::span<const Sphere> spheres() const noexcept { return spheres_; }
+  // The hierarchy (leaf ranges index spheres()), or null: fewer than bvh_min_spheres spheres, or a box that
+  // overflows (a sphere reaching beyond the doubles); then the set is searched in order.
+  [[nodiscard]] const MeshBvh* bvh() const noexcept { return bvh_.get(); }
+  static constexpr std::size_t bvh_min_spheres = 8;
 
  private:
   std::vector<Sphere> spheres_;
+  std::shared_ptr<const MeshBvh> bvh_;
 };
 
 // ---- rays with an interval (docs/contract.md §8 and §10) ------------------------------------------------------

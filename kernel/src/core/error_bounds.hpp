@@ -353,4 +353,41 @@ inline constexpr double sphere_filter_d_relative = 0x1p-51;          // κ_D = 4
 inline constexpr double sphere_filter_d_factor = 0x1.0000000001p+0;  // φ_D = 1 + 2^-40
 inline constexpr double sphere_filter_d_absolute = 0x1p-1068;        // μ_D = 64μ
 
+// =========================================================================================================
+// Ray–sphere roots (kernel/src/sphere/ray_sphere_boundary_filter.hpp): the signs of q(m) and of the slope at a
+// rounding boundary m = (x + y)/2, in double-double, before any expansion.
+//
+//   M = x + y = M₁ + M₂ (TwoSum); per axis (f̂, f̌) = TwoDiff(o_i, c_i), P = M₁ ⊗ d_i, π = fma(M₁, d_i, −P),
+//   Q = M₂ ⊗ d_i, (H, h) = TwoSum(2f̂, P), L = (h ⊕ 2f̌) ⊕ (π ⊕ Q), T = (|f̂| ⊕ |f̂|) ⊕ |P|;
+//   S_i = TwoProduct(H_i, H_i), R = TwoProduct(2r, 2r); a₁ = TwoSum(S₀, S₁), a₂ = TwoSum(a₁, S₂), a₃ = TwoSum(a₂, −R)
+//   (heads); k_i = L_i ⊗ ((H_i ⊕ H_i) ⊕ L_i); s = ((σ₀ ⊕ σ₁) ⊕ (σ₂ ⊖ ρ)) ⊕ ((a₁.lo ⊕ a₂.lo) ⊕ a₃.lo) ⊕ ((k₀ ⊕ k₁) ⊕ k₂);
+//   value = a₃.hi ⊕ s;  W = ((S₀ ⊕ S₁) ⊕ S₂) ⊕ R ⊕ Σ T_i ⊗ (|H_i| ⊕ τ ⊗ T_i);  E_q = (κ_q ⊗ W) ⊕ μ_q.
+//
+// Derivation (exact 4q(m) = Σ G_i² − (2r)², G_i = 2f_i + M·d_i). G_i = H + λ exactly, λ = h + 2f̌ + (M₁d_i − P) +
+// M₂d_i; |h| ≤ u|H| ≤ u(1+u)T, |2f̌| ≤ u·2|f̂|, |π| ≤ u|P| + η, |Q| ≤ u(1+u)²|P| + 2η, so Λ = |h| + |2f̌| + |π| + |Q|
+// ≤ 3.01u·T + 3η; L's three roundings and Q's and π's own errors leave δ = |G_i − (H + L)| ≤ 7.2u²T + 13η, and
+// |L| ≤ 3.1u·T + 7η. Then G² = H² + L(2H + L) + δ'(2H + 2L + δ') (|δ'| ≤ δ): the last term ≤ 14.4u²T|H| + O(u³T²)
+// + O(η(|H| + T)); k's two roundings ≤ 2.1u·|L|(2|H| + |L|) ≤ 13.1u²T|H| + O(u³T²); H² = S.hi + S.lo and (2r)² =
+// R.hi + R.lo exactly up to η each (TwoProduct); Σ S.hi − R.hi = a₃.hi + a₁.lo + a₂.lo + a₃.lo exactly (TwoSum);
+// the sum s (depth 4) ≤ 4.01u·Σ|terms| ≤ 16.1u²(ΣS + R) + 25.2u²ΣT|H| + O(u³T²). In all
+//   |4q(m) − (a₃.hi + s)| ≤ 53u²·ΣT|H| + 17u²(ΣS + R) + 64u³ΣT² + c·η·(1 + |H| + T),
+// and η·X ≤ η(1 + X²) puts the η terms under μ_q and under κ_q·(ΣS + τ·ΣT²) (ηX² ≪ 2^-141·X²). So κ_q = 2^-96 =
+// 1024u² (more than 19 times the u² coefficients above, which covers W's own ten roundings, (1 + u)^10 < 1.01),
+// τ = 2^-45 (u³T² ≤ u²·2^-45·T² with room), μ_q = 2^-1060 (2^15 η). The final rounding of value = RN(a₃.hi + s)
+// keeps its sign and |value| ≤ (1 + u)|a₃.hi + s| + η, which E_q's margin covers: value > E_q implies a₃.hi + s >
+// E_q(1 − u) − η > the error, so 4q(m) > 0 (and < −E_q, < 0).
+// The slope 2(A·m + B) = Σ d_i·G_i is read from Σ d_i ⊗ H_i: the dropped Σ d_i·λ_i is ≤ 3.1u·Σ|d_i|T_i + 3η·Σ|d_i|,
+// the products and sums ≤ 3.01u·Σ|d_i H_i|; κ_s = 16u, and the floor 2^-1000 per |d_i| covers the η's
+// (κ_s·2^-1000 = 2^-1049 ≫ 3η).
+// Valid for all finite inputs; uncertain when W, the value or the slope's magnitude is not finite (overflow: every
+// intermediate is below W or the magnitude up to a factor 4, so an overflow anywhere makes one of them +inf or
+// NaN). Never certifies a zero.
+// Certified by: proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound` and `sphere_boundary_slope_sound`
+// (pending, proofs/pending.txt).
+inline constexpr double sphere_boundary_q_relative = 0x1p-96;      // κ_q = 1024u²
+inline constexpr double sphere_boundary_q_absolute = 0x1p-1060;    // μ_q = 2^15·η
+inline constexpr double sphere_boundary_tail = 0x1p-45;            // τ
+inline constexpr double sphere_boundary_slope_relative = 0x1p-49;  // κ_s = 16u
+inline constexpr double sphere_boundary_slope_floor = 0x1p-1000;   // per |d_i|
+
 }  // namespace raykernel::detail::bounds

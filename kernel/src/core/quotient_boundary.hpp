@@ -98,7 +98,7 @@ template <class Side>
 // the side t lies on (t > m⁺: up; t < m⁻: down) at most `steps` times. Each answer is round_at_midpoints' at the
 // q it stops at, so certified as that one; the walk only chooses where to look.
 template <class Side>
-[[nodiscard]] inline std::optional<double> round_walking_to_midpoints(const Side& side, double q, int steps) noexcept {
+[[nodiscard]] [[gnu::always_inline]] inline std::optional<double> round_walking_to_midpoints(const Side& side, double q, int steps) noexcept {
   for (int step = 0; step <= steps; ++step) {
     const double magnitude = std::fabs(q);
     if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;

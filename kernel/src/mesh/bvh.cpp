@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace raykernel {
@@ -225,23 +226,48 @@ class Collapser {
 
 MeshBvh::MeshBvh(const Mesh& mesh, const BvhBuildOptions& options) {
   if (const auto problem = validate(mesh)) throw invalid_input("mesh: " + *problem);
+  if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
+    throw invalid_input("mesh: more than 2^32 - 1 triangles");
+  std::vector<Box3> boxes(mesh.triangles.size());
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const Triangle t = mesh.triangle(k);
+    Box3 b{t.a, t.a};
+    grow(b, {t.b, t.b});
+    grow(b, {t.c, t.c});
+    boxes[k] = b;
+  }
+  build(std::move(boxes), options);
+}
+
+MeshBvh::MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options) {
+  if (boxes.size() > std::numeric_limits<std::uint32_t>::max()) throw invalid_input("bvh: more than 2^32 - 1 boxes");
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const Box3& b = boxes[k];
+    const double c[6] = {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z};
+    for (double x : c)
+      if (!std::isfinite(x)) throw invalid_input("bvh: box " + std::to_string(k) + " is not finite");
+    if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z))
+      throw invalid_input("bvh: box " + std::to_string(k) + " has lo above hi");
+  }
+  build(std::vector<Box3>(boxes.begin(), boxes.end()), options);
+}
+
+void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   bounds_ = empty_box();
-  const std::size_t n = mesh.triangles.size();
+  const std::size_t n = boxes.size();
   if (n == 0) return;
-  if (n > std::numeric_limits<std::uint32_t>::max()) throw invalid_input("mesh: more than 2^32 - 1 triangles");
   // The scale 2^-e with 2^e above every |coordinate|: centroids and areas in scaled coordinates cannot
   // overflow (they steer the split choice only).
   double largest = 0;
-  for (const Vec3& v : mesh.vertices) largest = std::max({largest, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  for (const Box3& b : boxes)
+    largest = std::max({largest, std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
+                        std::fabs(b.hi.y), std::fabs(b.hi.z)});
   int e = 0;
   (void)std::frexp(largest, &e);
   const double scale = std::ldexp(1.0, -e);
   std::vector<Item> items(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const Triangle t = mesh.triangle(k);
-    Box3 b{t.a, t.a};
-    grow(b, {t.b, t.b});
-    grow(b, {t.c, t.c});
+    const Box3& b = boxes[k];
     items[k].box = b;
     items[k].centroid = {b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5, b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5,
                          b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5};

@@ -307,15 +307,28 @@ class NearestSearch {
   // Every sphere of `set` with a root in `interval` (its smallest root there, docs/contract.md §8 and §10), each
   // classified and its roots rounded by the certified ray–sphere cascade (a miss the cascade's filter decides
   // costs that filter alone), offered as a candidate.
+  // With the set's hierarchy (SphereSet::bvh), the leaves whose boxes the ray meets within the interval and not
+  // beyond a double above the best exact t so far, nearest first: a sphere that could win or tie is in one of them
+  // (bvh.hpp's guarantee), and the order of the offers does not change the winner (ties go by kind and index).
   void spheres(const SphereSet& set, const RayInterval& interval = {}) noexcept {
     const std::span<const Sphere> spheres = set.spheres();
-    for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const auto candidate = [&](std::size_t k) {
       const int slot = best_ == Best::sphere && sphere_best_ == 0 ? 1 : 0;
       SphereCandidate& c = sphere_[slot].emplace();
       const bool hit = c.classify(ray_, spheres[k], k, interval);
       tracer_.plane_relation(c.relation_stage);  // the relation stage, whatever the kind
       if (hit) offer(c, slot);
+    };
+    if (const MeshBvh* bvh = set.bvh()) {
+      BvhWalk walk;
+      mesh_detail::start_walk(walk, *bvh, ray_, interval.t_min, interval.t_max);
+      const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
+      BvhLeaf leaf;
+      while (next_leaf(walk, found() ? best_upper_bound() : std::numeric_limits<double>::infinity(), leaf))
+        for (const std::uint32_t k : leaf.triangles) candidate(k);
+      return;
     }
+    for (std::size_t k = 0; k < spheres.size(); ++k) candidate(k);
   }
 
   [[nodiscard]] bool found() const noexcept { return best_ != Best::none; }

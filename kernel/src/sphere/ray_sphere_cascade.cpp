@@ -10,8 +10,10 @@
 // Every stage's answer is exact: there is no error bound to check, only the builder's exactness and the signs.
 #include "sphere/ray_sphere_cascade.hpp"
 
+#include "core/multiversion.hpp"
 #include "core/quotient_boundary.hpp"
 #include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_boundary_filter.hpp"
 #include "sphere/ray_sphere_filter.hpp"
 #include "sphere/ray_sphere_stages.hpp"
 
@@ -58,10 +60,47 @@ std::optional<double> round_irrational_candidate(const SphereExpansions& s, int 
 
 struct Roots {
   double t1, t2;
+  Stage stage = Stage::expansion;  // the stage that rounded them (filter: both by the boundary filter)
 };
 
+// The candidates of both roots from approximations of A, B, C, D (D > 0, C ≠ 0): the root of larger magnitude
+// is (−B − sign(B)·√D)/A, the other C/(−B − sign(B)·√D), with no cancellation. Never a decision.
+Roots root_candidates(double a, double b, double c, double d) noexcept {
+  const double w = b >= 0 ? -(b + std::sqrt(d)) : -b + std::sqrt(d);
+  const double large = w / a, small = c / w;
+  return b >= 0 ? Roots{large, small} : Roots{small, large};
+}
+
+// RN of the root (−1: t1, +1: t2; D > 0, C ≠ 0) from the boundary filter (ray_sphere_boundary_filter.hpp): a
+// Newton step from the candidate, then the walk over the midpoints beside it; nothing when a sign it needs is
+// uncertain. Multiversioned (FMA where the CPU has it: the filter's TwoProducts are fma; the same bits either way,
+// core/multiversion.hpp); the lambda is inlined so that the FMA clone computes it with the instruction.
+RAYKERNEL_MULTIVERSION
+std::optional<double> filtered_root(const Ray& ray, const Sphere& sphere, int root, double candidate) noexcept {
+  if (!std::isfinite(candidate)) return std::nullopt;
+  const double t = sphere_root_newton_step(ray, sphere, candidate);
+  return round_walking_to_midpoints(
+      [&](double x, double y) __attribute__((always_inline)) {
+        return sphere_root_side_filtered(ray, sphere, root, x, y);
+      },
+      t, max_walk);
+}
+
+// Both roots from the boundary filter, from the relation filter's candidates (Â, B̂, Ĉ, D̂: ulps off where
+// B² − A·C cancels, which the Newton step repairs), when that filter decided D > 0 and C ≠ 0.
+std::optional<Roots> filter_roots(const Ray& ray, const Sphere& sphere, const SphereFilterSigns& f) noexcept {
+  if (f.d != Sign::positive || !is_certain(f.c)) return std::nullopt;
+  const Roots candidate = root_candidates(f.a, f.b, f.c_value, f.d_value);
+  const std::optional<double> t1 = filtered_root(ray, sphere, -1, candidate.t1);
+  if (!t1) return std::nullopt;
+  const std::optional<double> t2 = filtered_root(ray, sphere, +1, candidate.t2);
+  if (!t2) return std::nullopt;
+  return Roots{*t1, *t2, Stage::filter};
+}
+
 // Both roots from the expansion stage, or nothing (then the exact stage rounds them).
-std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClassification& c) noexcept {
+std::optional<Roots> expansion_roots(const Ray& ray, const Sphere& sphere, const SphereExpansions& s,
+                                     const SphereClassification& c) noexcept {
   // The relation may come from the filter; the roots are read from the expansions only when they are exact (a
   // product that underflowed, such as a subnormal centre coordinate squared, leaves them approximate).
   if (!s.builder.exact()) return std::nullopt;
@@ -78,16 +117,20 @@ std::optional<Roots> expansion_roots(const SphereExpansions& s, const SphereClas
     if (!other) return std::nullopt;
     return b_sign == Sign::negative ? Roots{0.0, *other} : Roots{*other, 0.0};
   }
-  // The root of larger magnitude is (−B − sign(B)·√D)/A, the other C/(−B − sign(B)·√D): no cancellation.
-  const double a = approximate(s.a), b = approximate(s.b), cc = approximate(s.c), d = approximate(s.d);
-  const double w = b >= 0 ? -(b + std::sqrt(d)) : -b + std::sqrt(d);
-  const double large = w / a, small = cc / w;
-  const double t1_candidate = b >= 0 ? large : small, t2_candidate = b >= 0 ? small : large;
-  const std::optional<double> t1 = round_irrational_candidate(s, -1, t1_candidate);
+  // Each root by the boundary filter first (cheap, and decisive unless the root is within ~2^-90 of a midpoint),
+  // then by the expansions' signs at the boundaries.
+  const Roots candidate = root_candidates(approximate(s.a), approximate(s.b), approximate(s.c), approximate(s.d));
+  bool filtered = true;
+  const auto round = [&](int root, double t) {
+    if (const std::optional<double> r = filtered_root(ray, sphere, root, t)) return r;
+    filtered = false;
+    return round_irrational_candidate(s, root, t);
+  };
+  const std::optional<double> t1 = round(-1, candidate.t1);
   if (!t1) return std::nullopt;
-  const std::optional<double> t2 = round_irrational_candidate(s, +1, t2_candidate);
+  const std::optional<double> t2 = round(+1, candidate.t2);
   if (!t2) return std::nullopt;
-  return Roots{*t1, *t2};
+  return Roots{*t1, *t2, filtered ? Stage::filter : Stage::expansion};
 }
 
 std::optional<SphereClassification> expansion_classification(const SphereExpansions& s) noexcept {
@@ -116,9 +159,13 @@ TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere&
 }
 
 TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
-  const std::optional<SphereClassification> filtered = filter_classification(sphere_filter(ray, sphere));
+  const SphereFilterSigns signs = sphere_filter(ray, sphere);
+  const std::optional<SphereClassification> filtered = filter_classification(signs);
   if (filtered && filtered->relation == SphereRelation::miss)
     return {{filtered->origin, filtered->relation, not_a_number, not_a_number}, Stage::filter, Stage::filter};
+  if (filtered)
+    if (const std::optional<Roots> r = filter_roots(ray, sphere, signs))
+      return {{filtered->origin, filtered->relation, r->t1, r->t2}, Stage::filter, Stage::filter};
   // D's expansion is built even when the filter decided the relation: its rounded value makes the roots'
   // candidates a rounding or two from the roots (the filter's D̂ can be far off where B² − A·C cancels, and
   // a candidate further off costs a boundary sign per ulp; measured in bench/README.md).
@@ -129,8 +176,8 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
   const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
   if (c->relation == SphereRelation::miss)
     return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
-  if (const std::optional<Roots> r = expansion_roots(s, *c))
-    return {{c->origin, c->relation, r->t1, r->t2}, relation_stage, Stage::expansion};
+  if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, *c))
+    return {{c->origin, c->relation, r->t1, r->t2}, relation_stage, r->stage};
   const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
   return {{c->origin, c->relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
 }

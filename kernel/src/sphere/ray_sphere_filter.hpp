@@ -21,6 +21,7 @@ namespace raykernel::detail {
 
 struct SphereFilterSigns {
   Sign c, d;  // sign(C), sign(D), or uncertain
+  double a, b, c_value, d_value;  // Â, B̂, Ĉ, D̂: the roots' candidates when D > 0 (never a decision)
 };
 
 [[nodiscard]] inline Sign sphere_filter_sign(double value, double bound) noexcept {
@@ -50,7 +51,7 @@ struct SphereFilterSigns {
   const double t3 = ea * std::abs(c);
   const double t4 = (std::abs(a) + ea) * ec;
   const double ed = ((t1 + t2) + (t3 + t4)) * bounds::sphere_filter_d_factor + bounds::sphere_filter_d_absolute;
-  return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed)};
+  return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv};
 }
 
 }  // namespace raykernel::detail

@@ -5,6 +5,9 @@
 #include <raykernel/occlusion.hpp>
 #include <raykernel/sphere.hpp>
 
+#include <raykernel/bvh.hpp>
+
+#include "core/eft.hpp"
 #include "core/fp_environment.hpp"
 #include "core/validation.hpp"
 #include "sphere/exact_sphere.hpp"
@@ -55,9 +58,39 @@ ExactSphereIntersection intersect_exact_rational(const Ray& ray, const Sphere& s
   });
 }
 
+namespace {
+
+// [c − r, c + r] rounded outwards on each axis: RN of the sum, moved one double out when TwoSum says it rounded
+// inwards; nothing when a bound overflows.
+std::optional<Box3> sphere_box(const Sphere& s) {
+  const double c[3] = {s.center.x, s.center.y, s.center.z};
+  double lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) {
+    const detail::DD<double> l = detail::two_sum(c[i], -s.radius), h = detail::two_sum(c[i], s.radius);
+    lo[i] = l.lo < 0 ? std::nextafter(l.hi, -std::numeric_limits<double>::infinity()) : l.hi;
+    hi[i] = h.lo > 0 ? std::nextafter(h.hi, std::numeric_limits<double>::infinity()) : h.hi;
+    if (!std::isfinite(lo[i]) || !std::isfinite(hi[i]) || !std::isfinite(l.lo) || !std::isfinite(h.lo))
+      return std::nullopt;
+  }
+  return Box3{{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+}
+
+}  // namespace
+
 SphereSet::SphereSet(std::span<const Sphere> spheres) : spheres_(spheres.begin(), spheres.end()) {
   for (std::size_t k = 0; k < spheres_.size(); ++k)
     if (!detail::is_valid(spheres_[k])) throw invalid_input("sphere " + std::to_string(k) + ": " + *validate(spheres_[k]));
+  if (spheres_.size() < bvh_min_spheres) return;
+  detail::in_default_fp_environment([&] {  // the boxes' roundings assume round-to-nearest
+    std::vector<Box3> boxes;
+    boxes.reserve(spheres_.size());
+    for (const Sphere& sphere : spheres_) {
+      const std::optional<Box3> box = sphere_box(sphere);
+      if (!box) return;  // a sphere beyond the doubles: the set is searched in order
+      boxes.push_back(*box);
+    }
+    bvh_ = std::make_shared<const MeshBvh>(boxes);
+  });
 }
 
 std::optional<double> nearest_root(const Ray& ray, const RayInterval& interval, const Sphere& sphere) {
@@ -76,10 +109,22 @@ bool occluded(const Ray& ray, const RayInterval& interval, const SphereSet& sphe
     if (!detail::is_valid(ray)) [[unlikely]]
       throw invalid_input(*validate(ray));
     detail::throw_if_invalid_interval(interval);
-    for (const Sphere& sphere : spheres.spheres())
-      if (detail::sphere_hit_in_interval(ray, sphere, detail::sphere_intersection_cascade(ray, sphere).intersection,
-                                         interval))
-        return true;
+    const auto blocks = [&](const Sphere& sphere) {
+      return detail::sphere_hit_in_interval(ray, sphere, detail::sphere_intersection_cascade(ray, sphere).intersection,
+                                            interval)
+          .has_value();
+    };
+    const std::span<const Sphere> list = spheres.spheres();
+    if (const MeshBvh* bvh = spheres.bvh()) {
+      // Every sphere with a root in [t_min, t_max] has its box met there: its leaf is returned (bvh.hpp).
+      BvhRayTraversal walk(*bvh, ray, interval.t_min, interval.t_max);
+      while (const std::optional<BvhLeaf> leaf = walk.next(interval.t_max))
+        for (const std::uint32_t k : leaf->triangles)
+          if (blocks(list[k])) return true;
+      return false;
+    }
+    for (const Sphere& sphere : list)
+      if (blocks(sphere)) return true;
     return false;
   });
 }

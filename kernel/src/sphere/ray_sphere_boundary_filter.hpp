@@ -1,0 +1,101 @@
+// Stage 1 of a root's rounding in the ray–sphere cascade: the signs of q(m) = A·m² + 2B·m + C and of the slope
+// A·m + B at a rounding boundary m = (x + y)/2, in double-double binary64 with a semi-static error bound, so that
+// a root's correct rounding is decided without expansions (docs/contract.md §10; the formula:
+// ray_sphere_formula.hpp; the walk over boundaries: core/quotient_boundary.hpp, round_walking_to_midpoints).
+//
+// With M = x + y = M₁ + M₂ (TwoSum, exact) and f = o − c: 4q(m) = Σ_i G_i² − (2r)², G_i = 2f_i + M·d_i = 2g_i,
+// and 2(A·m + B) = Σ_i d_i·G_i. Per axis, the parts of G_i are exact or nearly: (f̂, f̌) = TwoDiff(o_i, c_i),
+// P = M₁ ⊗ d_i and π = fma(M₁, d_i, −P) (M₁·d_i = P + π unless it underflows), Q = M₂ ⊗ d_i; then
+// (H, h) = TwoSum(2f̂, P) and L = (h ⊕ 2f̌) ⊕ (π ⊕ Q), so that G_i = H + L up to ~u²·T, T = 2|f̂| + |P| (the
+// magnitude before the cancellation of 2f and M·d near a root). 4q = Σ H² + Σ L·(2H + L) − (2r)²: each H² and
+// (2r)² as TwoProduct, their heads summed by TwoSum (the cancellation happens there, exactly), and the small rest
+// in plain binary64.
+//   Error bound: |4q(m) − (â ⊕ s)| ≤ E_q = (κ_q ⊗ W) ⊕ μ_q with W = Σ_i T_i ⊗ (|H_i| ⊕ 2^-45 ⊗ T_i) ⊕ ΣS_i ⊕ R
+//   (core/error_bounds.hpp, "Ray–sphere roots", for the derivation); the slope's from Σ d_i·H_i, |L_i| ≤ 3.1u·T_i:
+//   E_s = κ_s ⊗ Σ |d_i| ⊗ ((|H_i| ⊕ T_i) ⊕ 2^-1000).
+//   Valid range: all finite inputs; uncertain (never wrong) when anything overflows (W, or the value, not finite).
+//   Certified by: proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound` and
+//   `sphere_boundary_slope_sound` (pending: proofs/pending.txt; until then the derivation in error_bounds.hpp, and
+//   tests: certified == exact on every hard sphere kind, 10^6 cases in sphere_properties_1M, and fuzz_sphere).
+#pragma once
+
+#include "core/eft.hpp"
+#include "core/error_bounds.hpp"
+#include "core/sign.hpp"
+#include "sphere/ray_sphere_formula.hpp"
+
+#include <raykernel/sphere.hpp>
+
+#include <cmath>
+
+namespace raykernel::detail {
+
+struct SphereBoundarySigns {
+  Sign q, slope;  // sign(q(m)), sign(A·m + B), or uncertain
+  double q4, slope2;  // ≈ 4q(m) and ≈ 2(A·m + B): a Newton step's candidate, never a decision
+  double q4_bound;    // E_q: |4q(m) − q4| ≤ E_q when it is finite (tests check the margin)
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline SphereBoundarySigns sphere_boundary_filter(const Ray& ray, const Sphere& sphere, double x,
+                                                                double y) noexcept {
+  const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const double c[3] = {sphere.center.x, sphere.center.y, sphere.center.z};
+  const DD<double> m = two_sum(x, y);  // M = x + y, exactly
+  double h_head[3], low[3], t[3];
+  for (int i = 0; i < 3; ++i) {
+    const DD<double> f = two_diff(o[i], c[i]);  // o_i − c_i, exactly
+    const double p = m.hi * d[i];
+    const double pi = std::fma(m.hi, d[i], -p);  // M₁·d_i − P, exactly unless it underflows
+    const double q = m.lo * d[i];
+    const DD<double> head = two_sum(f.hi + f.hi, p);  // 2f̂ exact (a power of two)
+    h_head[i] = head.hi;
+    low[i] = (head.lo + (f.lo + f.lo)) + (pi + q);
+    t[i] = (std::fabs(f.hi) + std::fabs(f.hi)) + std::fabs(p);
+  }
+  const double two_r = sphere.radius + sphere.radius;
+  const DD<double> s0 = two_prod(h_head[0], h_head[0]), s1 = two_prod(h_head[1], h_head[1]),
+                   s2 = two_prod(h_head[2], h_head[2]), rr = two_prod(two_r, two_r);
+  const DD<double> a1 = two_sum(s0.hi, s1.hi), a2 = two_sum(a1.hi, s2.hi), a3 = two_sum(a2.hi, -rr.hi);
+  double k[3];
+  for (int i = 0; i < 3; ++i) k[i] = low[i] * ((h_head[i] + h_head[i]) + low[i]);  // L·(2H + L)
+  const double small = (((s0.lo + s1.lo) + (s2.lo - rr.lo)) + ((a1.lo + a2.lo) + a3.lo)) + ((k[0] + k[1]) + k[2]);
+  const double value = a3.hi + small;
+  double w = ((s0.hi + s1.hi) + s2.hi) + rr.hi;
+  for (int i = 0; i < 3; ++i) w += t[i] * (std::fabs(h_head[i]) + bounds::sphere_boundary_tail * t[i]);
+  const double slope = (d[0] * h_head[0] + d[1] * h_head[1]) + d[2] * h_head[2];  // 2(A·m + B) = Σ d_i·G_i
+  const double e_q = bounds::sphere_boundary_q_relative * w + bounds::sphere_boundary_q_absolute;
+  SphereBoundarySigns r{Sign::uncertain, Sign::uncertain, value, slope, e_q};
+  if (!(w <= bounds::largest_finite) || !(std::fabs(value) <= bounds::largest_finite)) return r;
+  r.q = value > e_q ? Sign::positive : value < -e_q ? Sign::negative : Sign::uncertain;
+  // The slope, from the heads alone.
+  double slope_magnitude = 0;
+  for (int i = 0; i < 3; ++i)
+    slope_magnitude += std::fabs(d[i]) * ((std::fabs(h_head[i]) + t[i]) + bounds::sphere_boundary_slope_floor);
+  if (!(slope_magnitude <= bounds::largest_finite)) return r;
+  const double e_s = bounds::sphere_boundary_slope_relative * slope_magnitude;
+  r.slope = slope > e_s ? Sign::positive : slope < -e_s ? Sign::negative : Sign::uncertain;
+  return r;
+}
+
+// A root's candidate one Newton step from t: t − q(t)/q'(t) with q(t) and q'(t) from the filter's approximations
+// (double-double residual, so a candidate ulps off lands within about an ulp); t itself when the step is not finite.
+// Never a decision: the walk over boundaries decides.
+[[nodiscard]] [[gnu::always_inline]] inline double sphere_root_newton_step(const Ray& ray, const Sphere& sphere, double t) noexcept {
+  const SphereBoundarySigns b = sphere_boundary_filter(ray, sphere, t, t);  // M = 2t: 4q(t) and 2(A·t + B)
+  const double step = b.q4 / (b.slope2 * 4);
+  const double next = t - step;
+  return std::isfinite(next) ? next : t;
+}
+
+// sign(t_k − (x + y)/2) for the root k (−1: t1 or t0, +1: t2 or t0), D ≥ 0, from the filter's signs (root_side_of
+// of ray_sphere_formula.hpp: the slope is read only when q(m) > 0); uncertain when a sign it needs is.
+[[nodiscard]] [[gnu::always_inline]] inline Sign sphere_root_side_filtered(const Ray& ray, const Sphere& sphere, int root, double x,
+                                                    double y) noexcept {
+  const SphereBoundarySigns s = sphere_boundary_filter(ray, sphere, x, y);
+  if (s.q == Sign::negative) return sign_from_int(root_side_of(root, -1, 0));
+  if (s.q != Sign::positive || !is_certain(s.slope)) return Sign::uncertain;
+  return sign_from_int(root_side_of(root, 1, static_cast<int>(s.slope)));
+}
+
+}  // namespace raykernel::detail
