@@ -14,7 +14,8 @@
 // a radius that is not positive (decided here from the bits), and then every entry point throws invalid_input
 // with validate's reason; for valid input certified == exact bit for bit, `relation` agrees, the origin and
 // relation are the signs of the oracle's C and D, U and V are the oracle's, every root is verified, and CGAL
-// agrees where its ball semantics and §10's surface agree (origin outside).
+// agrees where its ball semantics and §10's surface agree (origin outside); and a set of nine spheres derived from
+// the query (its BVH) gives nearest_hit_exact's answer, with and without an interval.
 #include "fuzz_exact.hpp"
 #include "fuzz_support.hpp"
 
@@ -34,6 +35,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -222,6 +224,30 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           [&] { return "U V: got " + (rational.u ? rational.u->str() : "-") + " " + (rational.v ? rational.v->str() : "-"); });
     check(is_rounded_root(u, v, -1, exact.t1), [&] { return "t1 is not RN(U − √V): " + raykernel::fuzz::hex(exact.t1); });
     check(is_rounded_root(u, v, +1, exact.t2), [&] { return "t2 is not RN(U + √V): " + raykernel::fuzz::hex(exact.t2); });
+  }
+
+  // A set of nine through its BVH (SphereSet::bvh, from 8 spheres on): the sphere, copies moved along the ray by
+  // multiples of r (touching, ties) and nudged by ulps, against the exact reference, with and without an interval.
+  std::vector<Sphere> set_spheres{sphere};
+  for (int k = 1; k < 9; ++k) {
+    Sphere s = sphere;
+    const double step = (k % 4) * sphere.radius;
+    s.center = {sphere.center.x + step * ray.direction.x, sphere.center.y + step * ray.direction.y,
+                sphere.center.z + step * ray.direction.z};
+    if (k >= 4) s.radius = std::nextafter(s.radius, k % 2 ? 0.0 : DBL_MAX);
+    if (!(s.radius > 0) || raykernel::validate(s)) continue;
+    set_spheres.push_back(s);
+  }
+  const raykernel::SphereSet set(set_spheres);
+  for (const raykernel::RayInterval interval :
+       {raykernel::RayInterval{}, raykernel::RayInterval{0, std::isfinite(exact.t1) && exact.t1 > 0 ? exact.t1 : 1.0}}) {
+    const std::optional<raykernel::SphereHit> hit = raykernel::nearest_hit(ray, interval, set);
+    const std::optional<raykernel::SphereHit> want = raykernel::nearest_hit_exact(ray, interval, set_spheres);
+    check(hit.has_value() == want.has_value() && (!hit || (hit->sphere == want->sphere &&
+                                                           std::bit_cast<std::uint64_t>(hit->t) ==
+                                                               std::bit_cast<std::uint64_t>(want->t))),
+          [&] { return std::string("sphere set (") + (set.bvh() ? "bvh" : "list") + "): nearest_hit differs from nearest_hit_exact"; });
+    check(raykernel::occluded(ray, interval, set) == want.has_value(), "sphere set: occluded differs from the exact hit");
   }
 
   // CGAL's ball: for an origin outside, the ray meets it exactly when the larger root is ≥ 0.
