@@ -31,7 +31,7 @@
 namespace raykernel::detail {
 
 struct SphereBoundarySigns {
-  Sign q, slope;  // sign(q(m)), sign(A·m + B), or uncertain
+  Sign q, slope;  // sign(q(m)), and sign(A·m + B) when q(m) > 0; or uncertain
   double q4, slope2;  // ≈ 4q(m) and ≈ 2(A·m + B): a Newton step's candidate, never a decision
   double q4_bound;    // E_q: |4q(m) − q4| ≤ E_q when it is finite (tests check the margin)
 };
@@ -68,7 +68,8 @@ struct SphereBoundarySigns {
   SphereBoundarySigns r{Sign::uncertain, Sign::uncertain, value, slope, e_q};
   if (!(w <= bounds::largest_finite) || !(std::fabs(value) <= bounds::largest_finite)) return r;
   r.q = value > e_q ? Sign::positive : value < -e_q ? Sign::negative : Sign::uncertain;
-  // The slope, from the heads alone.
+  // The slope's sign, from the heads alone: read by root_side_of only when q(m) > 0, so certified only then.
+  if (r.q != Sign::positive) return r;
   double slope_magnitude = 0;
   for (int i = 0; i < 3; ++i)
     slope_magnitude += std::fabs(d[i]) * ((std::fabs(h_head[i]) + t[i]) + bounds::sphere_boundary_slope_floor);

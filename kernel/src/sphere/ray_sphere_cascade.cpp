@@ -100,7 +100,7 @@ std::optional<Roots> filter_roots(const Ray& ray, const Sphere& sphere, const Sp
 
 // Both roots from the expansion stage, or nothing (then the exact stage rounds them).
 std::optional<Roots> expansion_roots(const Ray& ray, const Sphere& sphere, const SphereExpansions& s,
-                                     const SphereClassification& c) noexcept {
+                                     const SphereClassification& c, bool filter_tried) noexcept {
   // The relation may come from the filter; the roots are read from the expansions only when they are exact (a
   // product that underflowed, such as a subnormal centre coordinate squared, leaves them approximate).
   if (!s.builder.exact()) return std::nullopt;
@@ -118,11 +118,12 @@ std::optional<Roots> expansion_roots(const Ray& ray, const Sphere& sphere, const
     return b_sign == Sign::negative ? Roots{0.0, *other} : Roots{*other, 0.0};
   }
   // Each root by the boundary filter first (cheap, and decisive unless the root is within ~2^-90 of a midpoint),
-  // then by the expansions' signs at the boundaries.
+  // unless filter_roots has just tried it, then by the expansions' signs at the boundaries.
   const Roots candidate = root_candidates(approximate(s.a), approximate(s.b), approximate(s.c), approximate(s.d));
-  bool filtered = true;
+  bool filtered = !filter_tried;
   const auto round = [&](int root, double t) {
-    if (const std::optional<double> r = filtered_root(ray, sphere, root, t)) return r;
+    if (filtered)
+      if (const std::optional<double> r = filtered_root(ray, sphere, root, t)) return r;
     filtered = false;
     return round_irrational_candidate(s, root, t);
   };
@@ -176,7 +177,8 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
   const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
   if (c->relation == SphereRelation::miss)
     return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
-  if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, *c))
+  const bool filter_tried = filtered.has_value();  // filter_roots above tried the boundary filter (D > 0, C ≠ 0)
+  if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, *c, filter_tried))
     return {{c->origin, c->relation, r->t1, r->t2}, relation_stage, r->stage};
   const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
   return {{c->origin, c->relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
