@@ -38,7 +38,7 @@ cd "$work"  # nothing of the source tree on sys.path from here
 site=$("$venv_python" -c 'import raykernel, os; print(os.path.dirname(raykernel.__file__))')
 case "$site" in "$work/venv/"*) ;; *) fail "raykernel imported from $site, not from the venv" ;; esac
 for f in __init__.py _types.py _raykernel.pyi py.typed testing/__init__.py testing/reference.py testing/exact.py \
-         testing/hypothesis.py; do
+         testing/hypothesis.py dask.py; do
   [ -f "$site/$f" ] || fail "$f not installed"
 done
 ls "$site"/_raykernel*.so > /dev/null || fail "the extension is not installed"
@@ -56,7 +56,7 @@ step "the API tests against the installed package"
 PYTHONDONTWRITEBYTECODE=1 "$venv_python" -m pytest -p no:cacheprovider -q \
   "$root/python/tests/test_scalar.py" "$root/python/tests/test_nearest.py" "$root/python/tests/test_arrays.py" \
   "$root/python/tests/test_stubs.py" "$root/python/tests/test_testing.py" "$root/python/tests/test_triangles.py" \
-  "$root/python/tests/test_spheres.py" "$root/python/tests/test_mesh.py"
+  "$root/python/tests/test_spheres.py" "$root/python/tests/test_mesh.py" "$root/python/tests/test_dask.py"
 
 ok=1
 step "done"

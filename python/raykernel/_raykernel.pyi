@@ -1,6 +1,7 @@
 # Type stubs of the compiled extension raykernel._raykernel (python/src/*.cpp). The docstrings are in the
 # extension (help(raykernel.intersect)); tests/test_stubs.py checks that these names and parameters are the
 # extension's.
+import os
 from fractions import Fraction
 from typing import Callable, Iterator, Optional, Sequence, Tuple, Union, overload
 
@@ -48,7 +49,21 @@ __version__: str
 INVALID_RELATION_CODE: int
 
 class InvalidInput(ValueError): ...
-class MeshFileError(ValueError): ...
+class MeshFileError(ValueError):
+    file: Optional[str]
+    line: Optional[int]
+    byte_offset: Optional[int]
+    reason: str
+    def __init__(
+        self,
+        message: str,
+        file: Optional[str] = ...,
+        line: Optional[int] = ...,
+        byte_offset: Optional[int] = ...,
+        reason: Optional[str] = ...,
+    ) -> None: ...
+
+class MeshFileNotFoundError(MeshFileError, FileNotFoundError): ...
 
 # (n, 3), or (3,) where one plane or triangle is allowed: real numbers, an integer or floating dtype (lists of
 # numbers too), read as float64. Complex, bool, str, bytes, object, datetime64, timedelta64, structured arrays and
@@ -141,9 +156,12 @@ class Mesh:
     def triangle(self, index: int) -> Triangle: ...
     @property
     def bvh_depth(self) -> int: ...
+    # A Mesh pickles as (vertices, triangles), exactly; unpickling prepares it again (raykernel.dask sends meshes to
+    # workers this way).
 
-# Every file that cannot be read as a mesh raises MeshFileError, and so does a path containing a NUL character.
-def load_mesh(path: str) -> Mesh: ...
+# Every file that cannot be read as a mesh raises MeshFileError, and so does a path containing a NUL character; a
+# path where there is no file raises MeshFileNotFoundError (a MeshFileError and a FileNotFoundError).
+def load_mesh(path: Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]) -> Mesh: ...
 @overload
 def nearest_hit(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
 @overload

@@ -9,6 +9,8 @@ print readably. The compiled extension builds its results from the classes defin
 from __future__ import annotations
 
 import enum
+import errno as _errno
+import os
 from fractions import Fraction
 from typing import Dict, NamedTuple, Optional, Tuple, Union
 
@@ -508,6 +510,52 @@ class SphereIntersectionArrays(NamedTuple):
     def relations(self) -> np.ndarray:
         """The relations as strings ("miss", "tangent", "cross"; "invalid")."""
         return _names(_SPHERE_RELATIONS_BY_CODE, self.relation)
+
+
+class MeshFileError(ValueError):
+    """A file that cannot be read as a mesh (``load_mesh``): a ``ValueError`` whose message names the file, the
+    line or byte offset and the reason ("cube.obj:12: face with fewer than 3 vertices"), with each part as an
+    attribute: ``file`` (the path as given, str), ``line`` (counted from 1, for text) or ``byte_offset``
+    (counted from 0, for binary data), either None when the error is about the whole file, and ``reason``.
+    Pickles with its attributes (so that it travels back from a Dask worker)."""
+
+    def __init__(
+        self,
+        message: str,
+        file: Optional[str] = None,
+        line: Optional[int] = None,
+        byte_offset: Optional[int] = None,
+        reason: Optional[str] = None,
+    ) -> None:
+        super().__init__(message)
+        self.file = file
+        self.line = line
+        self.byte_offset = byte_offset
+        self.reason = message if reason is None else reason
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
+
+    def __reduce__(self):  # type: ignore[override]
+        return (type(self), (str(self), self.file, self.line, self.byte_offset, self.reason))
+
+
+class MeshFileNotFoundError(MeshFileError, FileNotFoundError):
+    """``load_mesh`` on a path where there is no file: both a ``MeshFileError`` (with its attributes) and a
+    ``FileNotFoundError`` (``errno`` ENOENT, ``filename`` the path), so that either ``except`` catches it."""
+
+    def __init__(
+        self,
+        message: str,
+        file: Optional[str] = None,
+        line: Optional[int] = None,
+        byte_offset: Optional[int] = None,
+        reason: Optional[str] = None,
+    ) -> None:
+        super().__init__(message, file, line, byte_offset, reason)
+        self.errno = _errno.ENOENT
+        self.strerror = os.strerror(_errno.ENOENT)
+        self.filename = file
 
 
 Vec3Like = Union[Vec3, Tuple[float, float, float], "np.ndarray", "list[float]"]

@@ -12,9 +12,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <exception>
+#include <filesystem>
 #include <limits>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -208,10 +212,98 @@ py::object inside_batch_py(py::handle points, const PythonMesh& mesh, const std:
 
 }  // namespace
 
+namespace {
+
+// A mesh_file_error thrown where the file does not exist (load_mesh): MeshFileNotFoundError in Python.
+class MeshFileNotFound : public io::mesh_file_error {
+ public:
+  using io::mesh_file_error::mesh_file_error;
+};
+
+// Sets the Python error raykernel._types.<type_name>(message, file, line, byte_offset, reason) for `e`.
+void raise_mesh_file_error(const io::mesh_file_error& e, const char* type_name) {
+  const py::object type = py::module_::import("raykernel._types").attr(type_name);
+  const io::FilePosition& at = e.position();
+  const py::object line = at.kind == io::FilePosition::Kind::line ? py::object(py::int_(at.value)) : py::none();
+  const py::object offset =
+      at.kind == io::FilePosition::Kind::byte_offset ? py::object(py::int_(at.value)) : py::none();
+  // The file name as the caller wrote it: the bytes of a path decoded as os.fsdecode does (surrogateescape).
+  const py::object file = py::module_::import("os").attr("fsdecode")(py::bytes(e.file()));
+  const py::object message = py::reinterpret_steal<py::object>(
+      PyUnicode_DecodeFSDefaultAndSize(e.what(), static_cast<Py_ssize_t>(std::strlen(e.what()))));
+  if (!message) throw py::error_already_set();
+  const py::object instance = type(message, file, line, offset, py::str(e.reason()));
+  PyErr_SetObject(type.ptr(), instance.ptr());
+}
+
+py::array_t<double> vertices_array(const PythonMesh& s) {
+  const auto& v = s.mesh().vertices;
+  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  double* out = a.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i) out[3 * i] = v[i].x, out[3 * i + 1] = v[i].y, out[3 * i + 2] = v[i].z;
+  return a;
+}
+
+py::array_t<std::int64_t> triangles_array(const PythonMesh& s) {
+  const auto& t = s.mesh().triangles;
+  py::array_t<std::int64_t> a({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}});
+  std::int64_t* out = a.mutable_data();
+  for (std::size_t k = 0; k < t.size(); ++k)
+    for (std::size_t j = 0; j < 3; ++j) out[3 * k + j] = t[k][j];
+  return a;
+}
+
+// The mesh in the file at `path` (str, bytes or os.PathLike), for load_mesh.
+PythonMesh load_mesh_py(const py::object& path) {
+  // os.fsencode: the path's bytes as the OS takes them (a str encoded as open() encodes it; TypeError for
+  // anything that is not a path).
+  const std::string raw = py::module_::import("os").attr("fsencode")(path).cast<std::string>();
+  // The file APIs end a path at its first NUL: "a.off\0b" would open a.off. Python's open() refuses such a path
+  // (ValueError "embedded null byte"); so does this, as the MeshFileError of a file that cannot be read, with the
+  // NUL shown as \0 (the message is a C string: a raw NUL would cut it short).
+  if (raw.find('\0') != std::string::npos) {
+    std::string shown;
+    for (const char c : raw) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
+    throw io::mesh_file_error(shown, {}, "the path contains a NUL character, which no file name can");
+  }
+  py::gil_scoped_release release;
+  const std::filesystem::path file(raw);
+  Mesh mesh;
+  try {
+    mesh = io::read_mesh(file);
+  } catch (const io::mesh_file_error& e) {
+    std::error_code ec;
+    if (e.position().kind == io::FilePosition::Kind::none &&
+        std::filesystem::status(file, ec).type() == std::filesystem::file_type::not_found)
+      throw MeshFileNotFound(e.file(), e.position(), e.reason());
+    throw;
+  }
+  try {
+    return PythonMesh(std::move(mesh));
+  } catch (const invalid_input& e) {
+    // The readers check what validating the mesh checks (indices in range, finite coordinates), so this is a
+    // reader's miss; it is still the file's problem, and reported as one: "FILE: mesh: triangle 0: ...".
+    throw io::mesh_file_error(raw, {}, e.what());
+  }
+}
+
+}  // namespace
+
 void bind_mesh(py::module_& m) {
-  py::register_exception<io::mesh_file_error>(m, "MeshFileError", PyExc_ValueError)
-      .attr("__doc__") = "A file that cannot be read as a mesh: a ValueError whose message names the file, the line "
-                         "or byte offset and the reason (\"cube.obj:12: face with fewer than 3 vertices\").";
+  // MeshFileError and MeshFileNotFoundError are Python classes (raykernel._types: attributes, pickling); every
+  // mesh_file_error that reaches Python becomes one of them.
+  const py::module_ types_module = py::module_::import("raykernel._types");
+  m.attr("MeshFileError") = types_module.attr("MeshFileError");
+  m.attr("MeshFileNotFoundError") = types_module.attr("MeshFileNotFoundError");
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const MeshFileNotFound& e) {
+      raise_mesh_file_error(e, "MeshFileNotFoundError");
+    } catch (const io::mesh_file_error& e) {
+      raise_mesh_file_error(e, "MeshFileError");
+    }
+  });
 
   py::class_<PythonMesh>(m, "Mesh", R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH built once.
 
@@ -230,27 +322,18 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
            }),
            py::arg("vertices"), py::arg("triangles"))
       .def("__len__", [](const PythonMesh& s) { return s.mesh().triangles.size(); })
-      .def_property_readonly(
-          "vertices",
-          [](const PythonMesh& s) {
-            const auto& v = s.mesh().vertices;
-            py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-            double* out = a.mutable_data();
-            for (std::size_t i = 0; i < v.size(); ++i) out[3 * i] = v[i].x, out[3 * i + 1] = v[i].y, out[3 * i + 2] = v[i].z;
-            return a;
-          },
-          "The vertices, a new (n, 3) float64 array.")
-      .def_property_readonly(
-          "triangles",
-          [](const PythonMesh& s) {
-            const auto& t = s.mesh().triangles;
-            py::array_t<std::int64_t> a({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}});
-            std::int64_t* out = a.mutable_data();
-            for (std::size_t k = 0; k < t.size(); ++k)
-              for (std::size_t j = 0; j < 3; ++j) out[3 * k + j] = t[k][j];
-            return a;
-          },
-          "The triangles' vertex indices, a new (m, 3) int64 array.")
+      .def_property_readonly("vertices", &vertices_array, "The vertices, a new (n, 3) float64 array.")
+      .def_property_readonly("triangles", &triangles_array, "The triangles' vertex indices, a new (m, 3) int64 array.")
+      // A Mesh pickles as its vertices and triangles (float64 and int64: exact), and unpickling prepares it
+      // again (the BVH is rebuilt, deterministically: the same answers), so that it travels to other processes
+      // (multiprocessing, Dask workers: raykernel.dask).
+      .def(py::pickle([](const PythonMesh& s) { return py::make_tuple(vertices_array(s), triangles_array(s)); },
+                      [](const py::tuple& state) {
+                        if (state.size() != 2) throw py::value_error("Mesh: a pickled state is (vertices, triangles)");
+                        Mesh mesh = mesh_from_arrays(state[0], state[1]);
+                        py::gil_scoped_release release;
+                        return PythonMesh(std::move(mesh));
+                      }))
       .def(
           "triangle",
           [](const PythonMesh& s, py::ssize_t k) {
@@ -269,32 +352,16 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
       });
 
   m.def(
-      "load_mesh",
-      [](const std::string& path) {
-        // The file APIs end a path at its first NUL: "a.off\0b" would open a.off. Python's open() refuses such
-        // a path (ValueError "embedded null byte"); so does this, as the MeshFileError of a file that cannot be
-        // read, with the NUL shown as \0 (the message is a C string: a raw NUL would cut it short).
-        if (path.find('\0') != std::string::npos) {
-          std::string shown;
-          for (const char c : path) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
-          throw io::mesh_file_error(shown, {}, "the path contains a NUL character, which no file name can");
-        }
-        py::gil_scoped_release release;
-        Mesh mesh = io::read_mesh(std::filesystem::path(path));
-        try {
-          return PythonMesh(std::move(mesh));
-        } catch (const invalid_input& e) {
-          // The readers check what validating the mesh checks (indices in range, finite coordinates), so this is
-          // a reader's miss; it is still the file's problem, and reported as one: "FILE: mesh: triangle 0: ...".
-          throw io::mesh_file_error(path, {}, e.what());
-        }
-      },
+      "load_mesh", &load_mesh_py,
       py::arg("path"),
       R"doc(The mesh in the file at ``path`` (OBJ, PLY, STL or OFF: the extension's format, else the content's),
 read exactly: decimal coordinates correctly rounded, binary ones widened exactly, polygons fanned from their
-first vertex (docs/contract.md §7). Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the
-line or byte offset and the reason — for every file that cannot be read as a mesh, and for a path (str or
-bytes) containing a NUL character, which ``open()`` refuses too. Releases the GIL.)doc");
+first vertex (docs/contract.md §7). ``path`` is a str, bytes or any ``os.PathLike`` (``pathlib.Path``).
+Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the line or byte offset and the reason, each
+also an attribute (``file``, ``line``, ``byte_offset``, ``reason``) — for every file that cannot be read as a
+mesh, and for a path containing a NUL character, which ``open()`` refuses too; where there is no file,
+``raykernel.MeshFileNotFoundError``, which is also a ``FileNotFoundError``; ``TypeError`` for a ``path`` that is
+not a path. Releases the GIL.)doc");
 
   m.def(
       "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },

@@ -63,6 +63,18 @@ const raykernel::PlaneSet& planes_from(py::handle value, std::optional<raykernel
   return *storage;
 }
 
+// The planes' points or normals (`member`), a new (m, 3) array.
+py::array_t<double> plane_columns(const PlaneSet& s, Vec3 Plane::*member) {
+  py::array_t<double> a({static_cast<py::ssize_t>(s.planes().size()), py::ssize_t{3}});
+  auto w = a.mutable_unchecked<2>();
+  for (std::size_t k = 0; k < s.planes().size(); ++k) {
+    const Vec3& v = s.planes()[k].*member;
+    const auto i = static_cast<py::ssize_t>(k);
+    w(i, 0) = v.x, w(i, 1) = v.y, w(i, 2) = v.z;
+  }
+  return a;
+}
+
 void bind_nearest(py::module_& m) {
   py::class_<PlaneSet>(m, "PlaneSet", R"doc(The planes of a scene, read and validated once.
 
@@ -84,32 +96,20 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
             return to_python(s.planes()[static_cast<std::size_t>(k)]);
           },
           py::arg("index"))
-      .def_property_readonly(
-          "points",
+      .def_property_readonly("points", [](const PlaneSet& s) { return plane_columns(s, &Plane::point); },
+                             "The planes' points, a new (m, 3) array.")
+      .def_property_readonly("normals", [](const PlaneSet& s) { return plane_columns(s, &Plane::normal); },
+                             "The planes' normals, a new (m, 3) array.")
+      // A PlaneSet pickles as (points, normals), exactly (float64), and is prepared again when unpickled, so that
+      // it travels to other processes (raykernel.dask).
+      .def(py::pickle(
           [](const PlaneSet& s) {
-            py::array_t<double> a({static_cast<py::ssize_t>(s.planes().size()), py::ssize_t{3}});
-            auto w = a.mutable_unchecked<2>();
-            for (std::size_t k = 0; k < s.planes().size(); ++k) {
-              const Vec3& p = s.planes()[k].point;
-              const auto i = static_cast<py::ssize_t>(k);
-              w(i, 0) = p.x, w(i, 1) = p.y, w(i, 2) = p.z;
-            }
-            return a;
+            return py::make_tuple(plane_columns(s, &Plane::point), plane_columns(s, &Plane::normal));
           },
-          "The planes' points, a new (m, 3) array.")
-      .def_property_readonly(
-          "normals",
-          [](const PlaneSet& s) {
-            py::array_t<double> a({static_cast<py::ssize_t>(s.planes().size()), py::ssize_t{3}});
-            auto w = a.mutable_unchecked<2>();
-            for (std::size_t k = 0; k < s.planes().size(); ++k) {
-              const Vec3& n = s.planes()[k].normal;
-              const auto i = static_cast<py::ssize_t>(k);
-              w(i, 0) = n.x, w(i, 1) = n.y, w(i, 2) = n.z;
-            }
-            return a;
-          },
-          "The planes' normals, a new (m, 3) array.")
+          [](const py::tuple& state) {
+            if (state.size() != 2) throw py::value_error("PlaneSet: a pickled state is (points, normals)");
+            return PlaneSet(state[0], state[1]);
+          }))
       .def_property_readonly(
           "candidates",
           [](const PlaneSet& s) {

@@ -2,6 +2,9 @@
 brute-force exact answer, inside against inside_exact; hand-derived hits and locations; errors naming the vertex,
 triangle, point, file and line."""
 
+import errno
+import pickle
+
 import numpy as np
 import pytest
 
@@ -283,3 +286,60 @@ def test_occluded_rays_with_intervals_and_segments_on_the_octahedron():
         rk.occluded(ray, octahedron, t_min=float("nan"))
     with pytest.raises(ValueError, match="segment endpoints are equal"):
         rk.occluded_segment((1, 2, 3), (1, 2, 3), octahedron)
+
+
+def test_load_mesh_takes_path_likes_and_its_errors_carry_their_parts(tmp_path):
+    good = tmp_path / "tetra.off"
+    good.write_text("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+    for path in (good, str(good), bytes(good)):
+        assert len(rk.load_mesh(path)) == 4
+    broken = tmp_path / "broken.obj"
+    broken.write_text("v 0 0 0\nv 1 0 0\nf 1 2\n")
+    with pytest.raises(rk.MeshFileError) as caught:
+        rk.load_mesh(broken)
+    e = caught.value
+    assert (e.file, e.line, e.byte_offset) == (str(broken), 3, None)
+    assert str(e) == f"{broken}:3: {e.reason}" and "3 vertices" in e.reason
+    # A binary STL cut short: the error is at a byte offset (84-byte header and count, then 50 bytes per facet).
+    stl = tmp_path / "short.stl"
+    stl.write_bytes(b"\0" * 80 + (2).to_bytes(4, "little") + b"\0" * 60)
+    with pytest.raises(rk.MeshFileError) as caught:
+        rk.load_mesh(stl)
+    assert caught.value.line is None and caught.value.byte_offset is not None and caught.value.file == str(stl)
+    with pytest.raises(TypeError):
+        rk.load_mesh(3)
+
+
+def test_a_missing_file_is_file_not_found_and_a_mesh_file_error(tmp_path):
+    missing = tmp_path / "nowhere" / "mesh.ply"
+    with pytest.raises(FileNotFoundError) as caught:
+        rk.load_mesh(missing)
+    e = caught.value
+    assert isinstance(e, rk.MeshFileError) and isinstance(e, rk.MeshFileNotFoundError)
+    assert e.errno == errno.ENOENT and e.filename == str(missing) and e.file == str(missing)
+    assert str(e).startswith(f"{missing}: ") and e.line is None
+    # A directory exists: it is not "not found" (the reader's own error).
+    with pytest.raises(rk.MeshFileError) as caught:
+        rk.load_mesh(tmp_path)
+    assert not isinstance(caught.value, FileNotFoundError)
+
+
+def test_meshes_plane_sets_and_file_errors_pickle_exactly(tmp_path):
+    vertices = np.array([[0.1, 0.2, 0.3], [1, 0, 0], [0, 1, 0], [0, 0, 1 + 2**-52]])
+    mesh = rk.Mesh(vertices, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    copy = pickle.loads(pickle.dumps(mesh))
+    assert same_bits(copy.vertices, mesh.vertices) and np.array_equal(copy.triangles, mesh.triangles)
+    rays = np.array([[0.3, 0.3, 0.3, -1, -1, -1.5], [2, 2, 2, -1, -1, -1]])
+    assert [rk.nearest_hit(((r[:3]), (r[3:])), copy) for r in rays] == [rk.nearest_hit(((r[:3]), (r[3:])), mesh)
+                                                                        for r in rays]
+    planes = rk.PlaneSet([((0, 0, 0.1), (0, 0, 1)), ((0, 0, 0.1), (0, 0, 3)), ((1, 0, 0), (1, 0, 0))])
+    planes_copy = pickle.loads(pickle.dumps(planes))
+    assert same_bits(planes_copy.points, planes.points) and same_bits(planes_copy.normals, planes.normals)
+    assert list(planes_copy.candidates) == list(planes.candidates) == [0, 2]
+    broken = tmp_path / "broken.obj"
+    broken.write_text("v 0 0 0\nf 1 1 1 x\n")
+    with pytest.raises(rk.MeshFileError) as caught:
+        rk.load_mesh(broken)
+    again = pickle.loads(pickle.dumps(caught.value))
+    assert type(again) is rk.MeshFileError
+    assert (str(again), again.file, again.line, again.reason) == (str(caught.value), str(broken), 2, caught.value.reason)

@@ -1,0 +1,212 @@
+"""raykernel.dask: raykernel's batch queries over Dask arrays, chunk by chunk, on a laptop or a cluster.
+
+Each function here is the batch function of the same name in ``raykernel``, with the same arguments and the same
+answers, bit for bit: the rows are cut into Dask's row chunks and each chunk is one call of the batch function
+(in C++, GIL released). The result is the same NamedTuple (``MeshHitArrays``, ``SphereIntersectionArrays``, ...)
+with a lazy ``dask.array.Array`` in each array field; ``dask.compute(*result)`` (or ``.compute()`` on a field)
+runs it. Fields that are not arrays (``stats``) are None: ask the plain batch function for them.
+
+    >>> import dask.array as da, raykernel as rk, raykernel.dask as rkd
+    >>> mesh = rk.load_mesh("bunny.ply")
+    >>> origins = da.from_array(o, chunks=(1_000_000, 3))       # o, d: (n, 3) float64
+    >>> hits = rkd.nearest_hit_batch(origins, d, mesh)          # lazy
+    >>> triangle, t = dask.compute(hits.triangle, hits.t)        # exact, as rk.nearest_hit_batch(o, d, mesh)
+
+- **The scene travels once.** A ``Mesh`` or ``PlaneSet`` is one node of the task graph, shared by every chunk: a
+  worker process receives it once (a ``Mesh`` pickles as its vertices and triangles and is prepared again on the
+  worker: its BVH is rebuilt, deterministically) and keeps it for all its chunks.
+- **Threads.** ``threads`` is the batch function's (threads per chunk); it defaults to 1 here, because Dask
+  already runs one chunk per worker thread. With the local threaded scheduler, chunks run in parallel threads
+  (the C++ releases the GIL); with ``distributed``, in the workers' threads and processes.
+- **Errors.** With ``errors="raise"`` (the default) a chunk with an invalid row raises the batch function's
+  ``ValueError`` when computed, its row number counted over the whole array ("ray 1000017: direction is the zero
+  vector"); ``errors="mask"`` answers the other rows and marks the bad one in ``valid``.
+- **Inputs.** Row arguments are (n, 3) arrays (NumPy or Dask; radii (n,)); they are rechunked to the first row
+  argument's row chunks. ``points`` / ``normals`` / ``a``, ``b``, ``c`` / ``centers`` may also be one (3,)
+  vector for every row, as in the batch functions; ``radii`` one number.
+
+On a cluster: start ``dask scheduler`` on one machine and ``dask worker tcp://SCHEDULER:8786`` on each of the
+others (raykernel installed on each), then ``distributed.Client("tcp://SCHEDULER:8786")`` before computing
+(README.md, "Python", "Scale-out with Dask").
+"""
+
+from __future__ import annotations
+
+import re
+import uuid
+from typing import Any, Callable, List, NamedTuple, Optional, Sequence
+
+import dask
+import dask.array as da
+import numpy as np
+
+import raykernel as _rk
+
+__all__ = [
+    "inside_batch",
+    "intersect_batch",
+    "intersect_sphere_batch",
+    "intersect_triangle_batch",
+    "map_rows",
+    "nearest_hit_batch",
+    "relation_batch",
+    "relation_triangle_batch",
+]
+
+_ROW_NAME = re.compile(r"^(\w+) (\d+): ")
+
+
+def _shift_row(error: ValueError, offset: int) -> ValueError:
+    """The batch function's error with its row number counted over the whole array."""
+    message = str(error)
+    match = _ROW_NAME.match(message)
+    if not match or offset == 0:
+        return error
+    shifted = f"{match.group(1)} {int(match.group(2)) + offset}: " + message[match.end():]
+    return type(error)(shifted)
+
+
+def _shippable(function: Callable[..., Any]) -> Any:
+    """What a task carries for ``function``: the name of a raykernel function (the extension's functions do not
+    pickle, and need not: the worker imports raykernel), else the callable itself (which must pickle)."""
+    name = getattr(function, "__name__", None)
+    return name if name is not None and getattr(_rk, name, None) is function else function
+
+
+def _run_chunk(function: Any, offset: int, shared: Sequence[Any], kwargs: dict, *blocks: Any) -> Any:
+    if isinstance(function, str):
+        function = getattr(_rk, function)
+    try:
+        return function(*blocks, *shared, **kwargs)
+    except ValueError as error:
+        raise _shift_row(error, offset) from None
+
+
+def _as_rows(value: Any, name: str, per_row_ndim: int) -> Optional[da.Array]:
+    """``value`` as a Dask array of rows, or None when it is one value for every row (a (3,) vector, a number)."""
+    if isinstance(value, da.Array):
+        array = value
+    else:
+        array = np.asarray(value)
+        if array.ndim < per_row_ndim + 1:
+            return None  # one vector (or number) for every row
+        array = da.from_array(array, chunks=-1)
+    if array.ndim != per_row_ndim + 1:
+        raise ValueError(f"{name}: expected {'an (n, 3)' if per_row_ndim else 'an (n,)'} array, got shape {array.shape}")
+    return array
+
+
+class _Empty(NamedTuple):
+    fields: List[str]
+    template: Any  # the batch function's answer on zero rows: the fields' dtypes and trailing shapes
+
+
+def map_rows(
+    function: Callable[..., Any],
+    rows: Sequence[Any],
+    shared: Sequence[Any] = (),
+    *,
+    names: Optional[Sequence[str]] = None,
+    per_row_ndims: Optional[Sequence[int]] = None,
+    **kwargs: Any,
+) -> Any:
+    """``function(*rows, *shared, **kwargs)`` chunk by chunk over the rows: the general form of this module's
+    functions, for any raykernel batch function whose first arguments are row arrays.
+
+    ``rows``: the row arguments (Dask or NumPy arrays of n rows, or one value for every row, which is passed
+    whole to each chunk); ``per_row_ndims``: for each, the dimensions of one row (1 for an (n, 3) array, 0 for
+    an (n,) array; default 1); ``shared``: arguments after them passed whole (a ``Mesh``: one graph node, sent to
+    each worker once); ``kwargs``: the keyword arguments. Returns the function's NamedTuple with a Dask array in
+    each array field and None in the others."""
+    names = list(names) if names is not None else [f"argument {k}" for k in range(len(rows))]
+    ndims = list(per_row_ndims) if per_row_ndims is not None else [1] * len(rows)
+    arrays = [_as_rows(value, name, ndim) for value, name, ndim in zip(rows, names, ndims)]
+    leading = next((a for a in arrays if a is not None), None)
+    if leading is None:
+        raise ValueError("map_rows: no argument is an array of rows")
+    n = leading.shape[0]
+    for array, name in zip(arrays, names):
+        if array is not None and array.shape[0] != n:
+            raise ValueError(f"{name}: {array.shape[0]} rows, but {names[arrays.index(leading)]} has {n}")
+    row_chunks = leading.chunks[0]
+    # Each row argument in the leading one's row chunks, whole along its other axis.
+    aligned = [None if a is None else a.rechunk({0: row_chunks, **{k: -1 for k in range(1, a.ndim)}}) for a in arrays]
+    # One graph node per shared value (a Mesh: pickled once into the graph, fetched once by each worker).
+    shared_nodes = [dask.delayed(value, name=f"raykernel-shared-{uuid.uuid4().hex}") for value in shared]
+
+    # The answer on zero rows: which fields are arrays, their dtypes and trailing shapes.
+    empty_rows = [np.asarray(value) if a is None else np.zeros((0,) + a.shape[1:], dtype=a.dtype)
+                  for value, a in zip(rows, aligned)]
+    template = function(*empty_rows, *shared, **kwargs)
+
+    blocks = [None if a is None else a.to_delayed().ravel() for a in aligned]
+    chunk_results = []
+    offset = 0
+    for i, size in enumerate(row_chunks):
+        arguments = [np.asarray(value) if b is None else b[i] for value, b in zip(rows, blocks)]
+        chunk_results.append(
+            dask.delayed(_run_chunk, pure=True)(_shippable(function), offset, shared_nodes, kwargs, *arguments))
+        offset += size
+
+    fields = {}
+    for field in template._fields:
+        value = getattr(template, field)
+        if not isinstance(value, np.ndarray):
+            fields[field] = None
+            continue
+        parts = [da.from_delayed(dask.delayed(getattr, pure=True)(result, field), shape=(size,) + value.shape[1:],
+                                 dtype=value.dtype)
+                 for result, size in zip(chunk_results, row_chunks)]
+        fields[field] = da.concatenate(parts, axis=0) if parts else da.from_array(value)
+    return type(template)(**fields)
+
+
+def _batch(function: Callable[..., Any], rows: dict, shared: Sequence[Any], per_row_ndims: Sequence[int],
+           threads: Optional[int], kwargs: dict) -> Any:
+    return map_rows(function, list(rows.values()), shared, names=list(rows), per_row_ndims=per_row_ndims,
+                    threads=threads, **kwargs)
+
+
+def intersect_batch(origins, directions, points, normals, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.intersect_batch`` over Dask arrays (ray–plane, one plane per row or one for all)."""
+    kwargs.pop("stats", None)
+    return _batch(_rk.intersect_batch, dict(origins=origins, directions=directions, points=points, normals=normals),
+                  (), (1, 1, 1, 1), threads, kwargs)
+
+
+def relation_batch(origins, directions, points, normals, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.relation_batch`` over Dask arrays."""
+    kwargs.pop("stats", None)
+    return _batch(_rk.relation_batch, dict(origins=origins, directions=directions, points=points, normals=normals),
+                  (), (1, 1, 1, 1), threads, kwargs)
+
+
+def intersect_triangle_batch(origins, directions, a, b, c, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.intersect_triangle_batch`` over Dask arrays (one triangle per row or one for all)."""
+    return _batch(_rk.intersect_triangle_batch, dict(origins=origins, directions=directions, a=a, b=b, c=c), (),
+                  (1, 1, 1, 1, 1), threads, kwargs)
+
+
+def relation_triangle_batch(origins, directions, a, b, c, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.relation_triangle_batch`` over Dask arrays."""
+    return _batch(_rk.relation_triangle_batch, dict(origins=origins, directions=directions, a=a, b=b, c=c), (),
+                  (1, 1, 1, 1, 1), threads, kwargs)
+
+
+def intersect_sphere_batch(origins, directions, centers, radii, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.intersect_sphere_batch`` over Dask arrays (radii: (n,), or one number for every row)."""
+    return _batch(_rk.intersect_sphere_batch, dict(origins=origins, directions=directions, centers=centers,
+                                                   radii=radii), (), (1, 1, 1, 0), threads, kwargs)
+
+
+def nearest_hit_batch(origins, directions, scene, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.nearest_hit_batch`` over Dask arrays; ``scene`` (a ``Mesh`` or ``PlaneSet``) goes to each
+    worker once."""
+    kwargs.pop("stats", None)
+    return _batch(_rk.nearest_hit_batch, dict(origins=origins, directions=directions), (scene,), (1, 1), threads,
+                  kwargs)
+
+
+def inside_batch(points, mesh, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.inside_batch`` over a Dask array of points; ``mesh`` goes to each worker once."""
+    return _batch(_rk.inside_batch, dict(points=points), (mesh,), (1,), threads, kwargs)
