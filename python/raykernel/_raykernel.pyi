@@ -195,6 +195,7 @@ def inside_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> PointLocationArrays: ...
 def intersect_batch(
     origins: ArrayLike3,
@@ -206,6 +207,7 @@ def intersect_batch(
     errors: str = "raise",
     threads: Optional[int] = None,
     stats: bool = False,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> IntersectionArrays: ...
 def relation_batch(
     origins: ArrayLike3,
@@ -217,6 +219,7 @@ def relation_batch(
     errors: str = "raise",
     threads: Optional[int] = None,
     stats: bool = False,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> RelationArrays: ...
 def intersect_triangle_batch(
     origins: ArrayLike3,
@@ -231,6 +234,7 @@ def intersect_triangle_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> TriangleIntersectionArrays: ...
 def relation_triangle_batch(
     origins: ArrayLike3,
@@ -243,6 +247,7 @@ def relation_triangle_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> TriangleClassificationArrays: ...
 # centers (n, 3) with radii (n,), or centers one 3-vector with radii one number (one sphere for every ray).
 def intersect_sphere_batch(
@@ -254,6 +259,7 @@ def intersect_sphere_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> SphereIntersectionArrays: ...
 @overload
 def nearest_hit_batch(
@@ -265,6 +271,7 @@ def nearest_hit_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> MeshHitArrays: ...
 @overload
 def nearest_hit_batch(
@@ -275,6 +282,7 @@ def nearest_hit_batch(
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
     stats: bool = False,
 ) -> NearestHitArrays: ...
 

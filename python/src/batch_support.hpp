@@ -11,13 +11,19 @@
 #include <raykernel/parallel.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <initializer_list>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 namespace raykernel::python {
@@ -39,13 +45,122 @@ enum class Path { certified, exact, naive };
 
 [[nodiscard]] inline unsigned threads_from(const std::optional<unsigned>& threads) { return threads.value_or(0); }
 
+namespace batch_internal {
+// The progress callback of the batch call running on this thread (ProgressScope), or none.
+inline thread_local py::handle progress_callback;
+// How often a long batch looks at Python (Ctrl-C, the progress callback) while its threads work.
+inline constexpr std::chrono::milliseconds poll_interval{20};
+inline constexpr std::chrono::milliseconds progress_interval{100};
+}  // namespace batch_internal
+
+// For the duration of a binding's call: `progress` (None, or a callable taking (done, total)) is the callback of
+// the parallel_for loops the call runs on this thread. Set it before releasing the GIL.
+class ProgressScope {
+ public:
+  explicit ProgressScope(py::handle progress) : previous_(batch_internal::progress_callback) {
+    if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+      throw py::type_error("progress: expected None or a callable taking (done, total)");
+    batch_internal::progress_callback = progress.is_none() ? py::handle() : progress;
+  }
+  ~ProgressScope() { batch_internal::progress_callback = previous_; }
+  ProgressScope(const ProgressScope&) = delete;
+  ProgressScope& operator=(const ProgressScope&) = delete;
+
+ private:
+  py::handle previous_;
+};
+
 // Runs work(begin, end) over [0, n) on up to `threads` threads (0: the hardware's; capped at
-// raykernel::max_threads), at least `grain` items each; rethrows the first exception after all have joined.
-// Threads the system will not start are no error (<raykernel/parallel.hpp>): the others do their parts.
+// raykernel::max_threads), at least `grain` items each, in blocks of grain/16; rethrows the first exception after
+// all have joined. Threads the system will not start are no error (<raykernel/parallel.hpp>): the others do their
+// parts.
+//
+// A long loop (n ≥ 8 grains, or a progress callback set) runs on its own threads while the calling thread, which
+// has released the GIL, looks at Python every 20 ms: a pending signal (Ctrl-C: KeyboardInterrupt) or an exception
+// from the progress callback stops the workers at their next block, and is raised once they have joined — within
+// a block's time of the signal (microseconds for certified rows, one row for exact ones). The callback is called
+// with (done, total) about every 0.1 s and once at the end with (total, total). The rows a stopped loop did not
+// reach keep whatever the binding initialized them to; the binding's results are then not returned at all.
 template <class Work>
 void parallel_for(std::size_t n, unsigned threads, std::size_t grain, Work&& work) {
-  const std::size_t count = std::max<std::size_t>(1, std::min<std::size_t>(thread_count(threads), n / std::max<std::size_t>(grain, 1)));
-  run_parts(count, static_cast<unsigned>(count), [&](std::size_t k) { work(n * k / count, n * (k + 1) / count); });
+  grain = std::max<std::size_t>(grain, 1);
+  const std::size_t count = std::max<std::size_t>(1, std::min<std::size_t>(thread_count(threads), n / grain));
+  const std::size_t block = std::max<std::size_t>(1, grain / 16);
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> done{0};
+  const auto run = [&] {
+    run_parts(count, static_cast<unsigned>(count), [&](std::size_t k) {
+      const std::size_t end = n * (k + 1) / count;
+      for (std::size_t begin = n * k / count; begin < end; begin += block) {
+        if (stop.load(std::memory_order_relaxed)) return;
+        const std::size_t stop_at = std::min(end, begin + block);
+        work(begin, stop_at);
+        done.fetch_add(stop_at - begin, std::memory_order_relaxed);
+      }
+    });
+  };
+  const py::handle callback = batch_internal::progress_callback;
+  if (!callback && n < 8 * grain) return run();
+
+  std::mutex mutex;
+  std::condition_variable finished_signal;
+  bool finished = false;
+  std::exception_ptr failure, interruption;
+  std::thread runner;
+  try {
+    runner = std::thread([&] {
+      try {
+        run();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      finished = true;
+      finished_signal.notify_one();
+    });
+  } catch (const std::system_error&) {
+    return run();  // no thread to spare: the loop runs here, without interruption
+  }
+  auto last_progress = std::chrono::steady_clock::now();
+  const auto look_at_python = [&](bool final) {
+    const py::gil_scoped_acquire gil;
+    try {
+      if (!final && PyErr_CheckSignals() != 0) throw py::error_already_set();
+      const auto now = std::chrono::steady_clock::now();
+      if (callback && (final || now - last_progress >= batch_internal::progress_interval)) {
+        last_progress = now;
+        callback(final ? n : done.load(std::memory_order_relaxed), n);
+      }
+    } catch (...) {
+      interruption = std::current_exception();
+      stop.store(true, std::memory_order_relaxed);
+    }
+  };
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (!finished_signal.wait_for(lock, batch_internal::poll_interval, [&] { return finished; })) {
+      lock.unlock();
+      if (!interruption) look_at_python(false);
+      lock.lock();
+    }
+  }
+  runner.join();
+  if (interruption) std::rethrow_exception(interruption);
+  if (failure) std::rethrow_exception(failure);
+  if (callback) {
+    look_at_python(true);
+    if (interruption) std::rethrow_exception(interruption);
+  }
+}
+
+// f with a trailing `progress` argument (None or a callable): f(a...) run in a ProgressScope. Every batch binding
+// whose rows go through parallel_for is registered through it, with py::arg("progress") = py::none() last.
+template <class R, class... A>
+[[nodiscard]] auto with_progress(R (*f)(A...)) {
+  return [f](A... a, py::handle progress) -> R {
+    const ProgressScope scope(progress);
+    return f(std::forward<A>(a)...);
+  };
 }
 
 // Items per thread below which a thread costs more than it saves: exact queries take microseconds, certified

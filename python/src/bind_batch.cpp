@@ -272,9 +272,9 @@ py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::h
 void bind_batch(py::module_& m) {
   m.attr("INVALID_RELATION_CODE") = invalid_code;
 
-  m.def("intersect_batch", &intersect_batch_py, py::arg("origins"), py::arg("directions"), py::arg("points"),
+  m.def("intersect_batch", with_progress(&intersect_batch_py), py::arg("origins"), py::arg("directions"), py::arg("points"),
         py::arg("normals"), py::kw_only(), py::arg("path") = "certified", py::arg("errors") = "raise",
-        py::arg("threads") = py::none(), py::arg("stats") = false,
+        py::arg("threads") = py::none(), py::arg("stats") = false, py::arg("progress") = py::none(),
         R"doc(``intersect`` over arrays: query i is (ray i, plane i), or (ray i, the one plane).
 
 ``origins``, ``directions``: (n, 3) arrays of real numbers (float64, or any integer or floating dtype, or
@@ -292,22 +292,37 @@ per row, on threads) or "naive" (``intersect_naive`` per row). ``errors``: "rais
 ``ValueError`` naming the first invalid row, "query 17: ray direction is the zero vector" ("ray 17: ..." with
 one plane); "mask" answers the valid rows and marks the others in ``valid``. ``threads``: None for all
 cores (large batches only), or a count. ``stats=True`` (certified path) adds how many rows each stage
-decided. Releases the GIL.)doc");
+decided. Releases the GIL.
 
-  m.def("relation_batch", &relation_batch_py, py::arg("origins"), py::arg("directions"), py::arg("points"),
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too); the
+certified path on planes is one vectorized C++ call, which reports nothing.)doc");
+
+  m.def("relation_batch", with_progress(&relation_batch_py), py::arg("origins"), py::arg("directions"), py::arg("points"),
         py::arg("normals"), py::kw_only(), py::arg("path") = "certified", py::arg("errors") = "raise",
-        py::arg("threads") = py::none(), py::arg("stats") = false,
+        py::arg("threads") = py::none(), py::arg("stats") = false, py::arg("progress") = py::none(),
         R"doc(``relation`` over arrays: the relation alone, no t rounded (the cheapest certified answer).
 
 Arguments as in ``intersect_batch``; ``path`` is "certified" (the C++ batch API: the binary64 filter as one
 vectorized loop, the cascade for the rest) or "exact" (rational arithmetic per row, on threads). Returns
 ``RelationArrays(relation, valid, stats)``: ``relation`` uint8 codes (``INVALID_RELATION_CODE`` where the row is
 invalid), ``valid`` bool, and with ``stats=True`` how many rows each stage decided (``{"relation": {...}}``).
-Every relation is ``relation``'s (and ``intersect``'s). Releases the GIL.)doc");
+Every relation is ``relation``'s (and ``intersect``'s). Releases the GIL.
 
-  m.def("nearest_hit_batch", &nearest_hit_batch_py, py::arg("origins"), py::arg("directions"), py::arg("scene"),
-        py::kw_only(), py::arg("rule") = py::none(), py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-        py::arg("stats") = false,
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too); the
+certified path on planes is one vectorized C++ call, which reports nothing.)doc");
+
+  // `progress` before `stats`, which only plane scenes take (the stubs' two overloads list them in this order).
+  m.def("nearest_hit_batch",
+        [](py::handle origins, py::handle directions, py::handle scene, py::handle rule, const std::string& path,
+           const std::string& errors, std::optional<unsigned> threads, py::handle progress, bool stats) {
+          const ProgressScope scope(progress);
+          return nearest_hit_batch_py(origins, directions, scene, rule, path, errors, threads, stats);
+        },
+        py::arg("origins"), py::arg("directions"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), py::arg("stats") = false,
         R"doc(``nearest_hit`` for every ray: the first plane of ``scene`` each ray meets (or triangle, for a mesh).
 
 ``origins``, ``directions``: (n, 3) arrays; ``scene``: a ``PlaneSet`` (read and validated once) or a sequence
@@ -322,7 +337,11 @@ errors="mask". Releases the GIL.
 ``MeshHitArrays(triangle, t, location, barycentric, valid)``: ``triangle`` int64 (-1 for a miss), ``t``
 float64 and ``barycentric`` (n, 3) float64 (NaN for a miss), ``location`` uint8 ``TriangleLocation`` codes
 (NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``path`` "certified" (the BVH) or "exact"
-(brute force in rationals); rays spread over threads.)doc");
+(brute force in rationals); rays spread over threads.
+
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too); the
+certified path on planes is one vectorized C++ call, which reports nothing.)doc");
 }
 
 }  // namespace raykernel::python

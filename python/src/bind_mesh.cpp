@@ -416,8 +416,8 @@ count, and under the owned rule (the default) a segment through a shared edge or
 blocked by exactly one triangle. ``path``: "certified" or "exact". Raises ``ValueError`` for a non-finite
 coordinate or ``p == q``. Releases the GIL.)doc");
 
-  m.def("inside_batch", &inside_batch_py, py::arg("points"), py::arg("mesh"), py::kw_only(),
-        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+  m.def("inside_batch", with_progress(&inside_batch_py), py::arg("points"), py::arg("mesh"), py::kw_only(),
+        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         R"doc(``inside`` over an (n, 3) array of points (real numbers, read as float64), on threads, with the GIL
 released.
 
@@ -425,7 +425,10 @@ Returns ``PointLocationArrays(location, valid)``: ``location`` uint8 ``PointLoca
 (``INVALID_RELATION_CODE`` where the point is not finite), ``valid`` bool. ``path``: "certified" (``inside``,
 through the BVH) or "exact" (``inside_exact``). ``errors``: "raise" (default) raises ``ValueError`` naming the
 first bad row, "point 17: y is not finite"; "mask" answers the others and marks it in ``valid``. ``threads``:
-None for all cores, or a count.)doc");
+None for all cores, or a count.
+
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too).)doc");
 }
 
 }  // namespace raykernel::python

@@ -94,9 +94,9 @@ py::object intersect_sphere_batch_py(py::handle origins, py::handle directions, 
 }  // namespace
 
 void bind_sphere(py::module_& m) {
-  m.def("intersect_sphere_batch", &intersect_sphere_batch_py, py::arg("origins"), py::arg("directions"),
+  m.def("intersect_sphere_batch", with_progress(&intersect_sphere_batch_py), py::arg("origins"), py::arg("directions"),
         py::arg("centers"), py::arg("radii"), py::kw_only(), py::arg("path") = "certified",
-        py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        py::arg("errors") = "raise", py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         R"doc(``intersect(ray, sphere)`` over arrays: query i is (ray i, sphere i), or (ray i, the one sphere).
 
 ``origins``, ``directions``: (n, 3) arrays of real numbers (as in ``intersect_batch``); ``centers``: an (n, 3)
@@ -112,7 +112,10 @@ is ``intersect``'s answer, bit for bit.
 ``intersect_naive``: no guarantee, and invalid rows are answered too). ``errors``: "raise" (default) raises
 ``ValueError`` naming the first invalid row ("query 17: sphere radius is not positive"; "ray 17: ..." with one
 sphere); "mask" answers the valid rows and marks the others in ``valid``. ``threads``: None for all cores
-(large batches only), or a count. Releases the GIL.)doc");
+(large batches only), or a count. Releases the GIL.
+
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too).)doc");
 }
 
 }  // namespace raykernel::python

@@ -147,10 +147,10 @@ py::object relation_triangle_batch_py(py::handle origins, py::handle directions,
 }  // namespace
 
 void bind_triangle(py::module_& m) {
-  m.def("intersect_triangle_batch", &intersect_triangle_batch_py, py::arg("origins"), py::arg("directions"),
+  m.def("intersect_triangle_batch", with_progress(&intersect_triangle_batch_py), py::arg("origins"), py::arg("directions"),
         py::arg("a"), py::arg("b"), py::arg("c"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t") = true,
         py::arg("barycentric") = true, py::arg("path") = "certified", py::arg("errors") = "raise",
-        py::arg("threads") = py::none(),
+        py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         R"doc(``intersect(ray, triangle)`` over arrays: query i is (ray i, triangle i), or (ray i, the one triangle).
 
 ``origins``, ``directions``: (n, 3) arrays of real numbers (as in ``intersect_batch``); ``a``, ``b``, ``c``: the vertices, (n, 3) arrays, or all
@@ -166,15 +166,21 @@ asked for, and for invalid rows), ``valid`` bool. Every row is ``intersect``'s a
 ``intersect_naive``: no guarantee, and invalid rows are answered too). ``errors``: "raise" (default) raises
 ``ValueError`` naming the first invalid row ("query 17: ray direction is the zero vector"; "ray 17: ..." with
 one triangle); "mask" answers the valid rows and marks the others in ``valid``. ``threads``: None for all
-cores (large batches only), or a count. Releases the GIL.)doc");
+cores (large batches only), or a count. Releases the GIL.
 
-  m.def("relation_triangle_batch", &relation_triangle_batch_py, py::arg("origins"), py::arg("directions"),
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too).)doc");
+
+  m.def("relation_triangle_batch", with_progress(&relation_triangle_batch_py), py::arg("origins"), py::arg("directions"),
         py::arg("a"), py::arg("b"), py::arg("c"), py::kw_only(), py::arg("rule") = py::none(),
-        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         R"doc(``relation(ray, triangle)`` over arrays: the classification alone, nothing rounded.
 
 Arguments as in ``intersect_triangle_batch``; ``path`` is "certified" or "exact". Returns
-``TriangleClassificationArrays(relation, location, owned, valid)``. Releases the GIL.)doc");
+``TriangleClassificationArrays(relation, location, owned, valid)``. Releases the GIL.
+
+Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
+called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too).)doc");
 }
 
 }  // namespace raykernel::python
