@@ -186,3 +186,18 @@ __all__ = [
     "validate",
     "version",
 ]
+
+
+def __dir__() -> list:
+    """The API (``__all__``), the version and the submodules ``testing`` and ``dask``: not the modules the package is
+    made of (``_raykernel``, ``_types``)."""
+    return sorted(__all__ + ["__version__", "dask", "testing"])
+
+
+def __getattr__(name: str):
+    """``raykernel.testing`` and ``raykernel.dask`` on first use (``dask`` needs Dask installed)."""
+    if name in ("testing", "dask"):
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
+    raise AttributeError(f"module 'raykernel' has no attribute '{name}'")

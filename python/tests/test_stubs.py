@@ -6,6 +6,8 @@ import doctest
 import pathlib
 import re
 
+import pytest
+
 import raykernel
 from raykernel import _raykernel
 
@@ -76,3 +78,23 @@ def test_every_public_function_has_a_docstring():
 def test_the_package_docstring_examples_run():
     failures, tried = doctest.testmod(raykernel, verbose=False)
     assert tried >= 2 and failures == 0
+
+
+def test_dir_shows_only_the_api():
+    import raykernel.testing
+    import raykernel.testing.hypothesis as strategies
+
+    shown = dir(raykernel)
+    assert "_types" not in shown and "_raykernel" not in shown and "annotations" not in shown
+    assert {"Mesh", "load_mesh", "nearest_hit_batch", "testing", "dask", "__version__"} <= set(shown)
+    assert all(hasattr(raykernel, name) for name in raykernel.__all__)
+    assert raykernel.testing is raykernel.__getattr__("testing")
+    with pytest.raises(AttributeError, match="no attribute 'nonexistent'"):
+        raykernel.nonexistent
+    hidden = {"np", "st", "Fraction", "SearchStrategy", "Optional", "annotations", "Plane", "_raykernel"}
+    assert not hidden & set(dir(strategies)) and set(dir(strategies)) == set(strategies.__all__)
+    assert all(hasattr(strategies, name) for name in strategies.__all__)
+    namespace: dict = {}
+    exec("from raykernel.testing.hypothesis import *", namespace)
+    assert set(namespace) - {"__builtins__"} == set(strategies.__all__)
+    assert "np" not in dir(raykernel.testing) and "hypothesis" in dir(raykernel.testing)

@@ -55,3 +55,8 @@ __all__ = [
     "ulp_distance",
     "ulp_distances",
 ]
+
+
+def __dir__() -> list:
+    """The API (``__all__``) and the submodules: not the modules it is made of."""
+    return sorted(__all__ + ["exact", "hypothesis", "reference"])

@@ -46,6 +46,56 @@ from hypothesis.strategies import SearchStrategy
 from .. import _raykernel
 from .._types import Plane, Ray, Sphere, Triangle, Vec3
 
+# The strategies and the types they draw: what ``from raykernel.testing.hypothesis import *`` and ``dir()`` give (the
+# imports above are not part of it).
+__all__ = [
+    "HARD_TRIANGLE_QUERY_KINDS",
+    "HardQuery",
+    "PLANE_TIE_KINDS",
+    "PlanePair",
+    "QUERY_KINDS",
+    "QueryArrays",
+    "SPHERE_QUERY_KINDS",
+    "SphereQuery",
+    "SphereQueryArrays",
+    "TRIANGLE_QUERY_KINDS",
+    "TRIANGLE_SCALES",
+    "TriangleQuery",
+    "TriangleQueryArrays",
+    "WORDS_PER_QUERY",
+    "arbitrary_queries",
+    "exact_degeneracies",
+    "hard_queries",
+    "hard_sphere_queries",
+    "hard_sphere_query_arrays",
+    "hard_triangle_queries",
+    "hard_triangle_query_arrays",
+    "huge_product_queries",
+    "near_coplanar_queries",
+    "near_parallel_queries",
+    "origins_on_spheres",
+    "plane_pairs",
+    "queries",
+    "query_arrays",
+    "rays_near_triangle_edges",
+    "rays_near_triangle_vertices",
+    "rays_through_triangle_edges",
+    "rays_through_triangle_vertices",
+    "rounding_ties",
+    "slivers",
+    "sphere_tangencies",
+    "subnormal_queries",
+    "t_overflow_queries",
+    "t_underflow_queries",
+    "triangle_queries",
+    "triangle_query_arrays",
+    "words",
+]
+
+
+def __dir__() -> list:
+    return sorted(__all__)
+
 _tk = _raykernel.testkit
 
 QUERY_KINDS: Tuple[str, ...] = tuple(_tk.QUERY_KINDS)
