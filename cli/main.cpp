@@ -24,7 +24,7 @@ commands:
   nearest --planes FILE [RAYS|-]
                       the first plane each ray hits, decided exactly (raykernel nearest --help)
   nearest --mesh FILE [RAYS|-]
-                      the first triangle of a mesh (OBJ, PLY, STL, OFF) each ray hits, exactly,
+                      the first triangle of a mesh (OBJ, PLY, STL, OFF, glTF) each ray hits, exactly,
                       within the ray's interval when a line gives one
   inside --mesh FILE [POINTS|-]
                       whether each point is inside, outside or on a closed mesh, exactly

@@ -1,6 +1,7 @@
 // fuzz_mesh_reader: arbitrary bytes as a mesh file, through every reader of <raykernel/io/mesh_file.hpp>.
 //
-// The input is read four times, as OBJ, PLY, STL and OFF (read_mesh with an explicit format). Checked:
+// The input is read five times, as OBJ, PLY, STL, OFF and glTF (read_mesh with an explicit format; glTF from
+// memory: JSON or GLB, data: URIs only, through tinygltf when it was found at configure time). Checked:
 //   - a reader either returns a mesh or throws mesh_file_error — nothing else, no crash, no sanitizer report
 //     — and the error names the file given, has a reason, and a position inside the input: a line between 1
 //     and the number of lines + 1, or a byte offset ≤ the input's size;
@@ -169,7 +170,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   raykernel::fuzz::set_input_describer(describe_current);
   const std::string_view input(reinterpret_cast<const char*>(data), size);
   current_input = input;
-  for (io::MeshFormat format : {io::MeshFormat::obj, io::MeshFormat::ply, io::MeshFormat::stl, io::MeshFormat::off}) {
+  for (io::MeshFormat format :
+       {io::MeshFormat::obj, io::MeshFormat::ply, io::MeshFormat::stl, io::MeshFormat::off, io::MeshFormat::gltf}) {
     const std::string_view name = io::to_string(format);
     Mesh mesh;
     try {

@@ -18,7 +18,7 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel hits --mesh FILE [options] [--] [RAYS|-]
 
-For each ray, every triangle of the mesh in FILE (OBJ, PLY, STL or OFF) whose relation under the rule
+For each ray, every triangle of the mesh in FILE (OBJ, PLY, STL, OFF or glTF) whose relation under the rule
 is hit (raykernel triangle --help) at an exact t within the ray's interval, each triangle once, ordered
 by exact t (ties by triangle index), and the signed count of the owned crossings there (+1 where the
 ray enters a triangle through its front, d.N > 0, -1 through its back; owned whatever the rule).

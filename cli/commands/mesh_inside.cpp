@@ -16,7 +16,7 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel inside --mesh FILE [options] [--] [POINTS|-]
 
-For each point, whether it is inside the closed triangle mesh in FILE (OBJ, PLY, STL or OFF):
+For each point, whether it is inside the closed triangle mesh in FILE (OBJ, PLY, STL, OFF or glTF):
   on-surface   the point lies on some triangle (its plane, inside or on its boundary), exactly
   inside       else, the winding number is not 0
   outside      else

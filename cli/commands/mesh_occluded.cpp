@@ -20,7 +20,7 @@ constexpr const char* help_before = R"(usage: raykernel occluded --mesh FILE [op
        raykernel occluded --segment --mesh FILE [options] [--] [SEGMENTS|-]
        raykernel occluded [--segment] --spheres FILE [options] [--] [RAYS|SEGMENTS|-]
 
-For each ray, whether some triangle of the mesh in FILE (OBJ, PLY, STL or OFF) blocks it within its
+For each ray, whether some triangle of the mesh in FILE (OBJ, PLY, STL, OFF or glTF) blocks it within its
 interval: a triangle whose relation under the rule is hit (raykernel triangle --help) at an exact t
 with t_min <= t <= t_max, compared exactly (never a rounded t). With --segment, for each pair of
 points p, q, whether some triangle meets the open segment between them (0 < t < 1 along the exact

@@ -42,8 +42,8 @@ strtod reads it back exactly. Parallel, in-plane and behind planes are never hit
 are compared exactly, never as rounded doubles: planes whose t differ by less than an ulp are
 ordered correctly, and equal t tie.
 
-With --mesh, the triangle it hits first: among the triangles of the mesh in FILE (OBJ, PLY, STL
-or OFF; triangle K counted from 0 in file order, polygons fanned) whose relation under the rule
+With --mesh, the triangle it hits first: among the triangles of the mesh in FILE (OBJ, PLY, STL,
+OFF or glTF; triangle K counted from 0 in file order, polygons fanned) whose relation under the rule
 is hit (raykernel triangle --help), the one with the smallest exact t, ties to the smallest K;
 the answer is hit K T or miss. A file that is not a mesh is exit status 2, reported as
 raykernel: FILE:LINE: REASON (or FILE: byte N: REASON), with nothing on standard output.

@@ -60,7 +60,7 @@ namespace {
 constexpr const char* help_before = R"(usage: raykernel spawn-audit FILE [--hits N] [--seed S] [--scale-exponent E] [--png OUT]
 
 Checks exactly how the ways renderers start a secondary ray at a hit point fare on the triangle
-mesh in FILE (OBJ, PLY, STL or OFF): seeded primary rays find their exact nearest hits; at each hit
+mesh in FILE (OBJ, PLY, STL, OFF or glTF): seeded primary rays find their exact nearest hits; at each hit
 a mirror, a random (both hemispheres) and a grazing (within 2^-20 rad of the surface) direction
 leave it; each method gives the new ray's origin (and where its interval starts):
   pbrt-v4          OffsetRayOrigin with the triangle's pError (float)

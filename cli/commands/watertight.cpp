@@ -49,7 +49,7 @@ namespace {
 
 constexpr const char* help_before = R"(usage: raykernel watertight FILE [--rays N] [--seed S] [--png OUT]
 
-Shoots N random lines through the triangle mesh in FILE (OBJ, PLY, STL or OFF) and counts, for
+Shoots N random lines through the triangle mesh in FILE (OBJ, PLY, STL, OFF or glTF) and counts, for
 raykernel's owned rule, the closed rule, Moller-Trumbore in doubles and Embree (default and
 robust modes, when raykernel was built with Embree; Embree intersects the mesh and the lines
 rounded to float), on how many lines each

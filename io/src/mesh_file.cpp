@@ -39,6 +39,7 @@ std::string_view to_string(MeshFormat format) noexcept {
     case MeshFormat::ply: return "ply";
     case MeshFormat::stl: return "stl";
     case MeshFormat::off: return "off";
+    case MeshFormat::gltf: return "gltf";
   }
   return "?";
 }
@@ -50,10 +51,12 @@ std::optional<MeshFormat> format_from_extension(const std::filesystem::path& pat
   if (ext == ".ply") return MeshFormat::ply;
   if (ext == ".stl") return MeshFormat::stl;
   if (ext == ".off") return MeshFormat::off;
+  if (ext == ".gltf" || ext == ".glb") return MeshFormat::gltf;
   return std::nullopt;
 }
 
 std::optional<MeshFormat> sniff_format(std::string_view bytes) noexcept {
+  if (bytes.substr(0, 4) == "glTF") return MeshFormat::gltf;  // the GLB header's magic
   if (bytes.substr(0, 4) == "ply\n" || bytes.substr(0, 5) == "ply\r\n") return MeshFormat::ply;
   if (bytes.size() >= 84) {
     std::uint32_t n = 0;
@@ -77,6 +80,7 @@ std::optional<MeshFormat> sniff_format(std::string_view bytes) noexcept {
   for (std::string_view word : {"v", "vt", "vn", "vp", "f", "o", "g", "s", "l", "p", "usemtl", "mtllib"})
     if (starts_with_word(text, word)) return MeshFormat::obj;
   if (!text.empty() && text[0] == '#') return MeshFormat::obj;  // OBJ files commonly start with a comment
+  if (!text.empty() && text[0] == '{' && text.find("\"asset\"") != std::string_view::npos) return MeshFormat::gltf;
   return std::nullopt;
 }
 
@@ -88,6 +92,7 @@ Mesh read_mesh(std::string_view bytes, std::string_view name, MeshFormat format)
     case MeshFormat::ply: return detail::read_ply(bytes, errors);
     case MeshFormat::stl: return detail::read_stl(bytes, errors);
     case MeshFormat::off: return detail::read_off(bytes, errors);
+    case MeshFormat::gltf: return detail::read_gltf(bytes, errors, nullptr);
   }
   errors.whole_file("unknown format");
 }
@@ -119,7 +124,12 @@ Mesh read_mesh(const std::filesystem::path& path) {
     if (bytes.empty()) errors.whole_file("empty file");
     format = sniff_format(bytes);
   }
-  if (!format) errors.whole_file("unknown format (not OBJ, PLY, STL or OFF by its extension or content)");
+  if (!format) errors.whole_file("unknown format (not OBJ, PLY, STL, OFF or glTF by its extension or content)");
+  if (*format == MeshFormat::gltf) {  // external buffers next to the file
+    if (bytes.empty()) errors.whole_file("empty file");
+    const std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    return detail::read_gltf(bytes, errors, &folder);
+  }
   return read_mesh(bytes, name, *format);
 }
 

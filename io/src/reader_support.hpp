@@ -5,6 +5,7 @@
 #include <raykernel/io/number.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -113,5 +114,7 @@ Mesh read_obj(std::string_view bytes, const ErrorSink& errors);
 Mesh read_ply(std::string_view bytes, const ErrorSink& errors);
 Mesh read_stl(std::string_view bytes, const ErrorSink& errors);
 Mesh read_off(std::string_view bytes, const ErrorSink& errors);
+// glTF 2.0, JSON or binary (GLB); external buffers are read from `folder` when it is given, else refused.
+Mesh read_gltf(std::string_view bytes, const ErrorSink& errors, const std::filesystem::path* folder);
 
 }  // namespace raykernel::io::detail

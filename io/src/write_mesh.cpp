@@ -132,6 +132,9 @@ std::string write_mesh(const Mesh& mesh, MeshFormat format, MeshEncoding encodin
       return format == MeshFormat::obj ? write_obj(mesh) : write_off(mesh);
     case MeshFormat::ply: return write_ply(mesh, encoding);
     case MeshFormat::stl: return write_stl(mesh, encoding);
+    case MeshFormat::gltf:
+      throw std::invalid_argument("write_mesh: glTF positions are float32, which cannot hold every double (write OBJ, "
+                                  "PLY, OFF or STL)");
   }
   throw std::invalid_argument("write_mesh: unknown format");
 }

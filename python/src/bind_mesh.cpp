@@ -354,7 +354,7 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
   m.def(
       "load_mesh", &load_mesh_py,
       py::arg("path"),
-      R"doc(The mesh in the file at ``path`` (OBJ, PLY, STL or OFF: the extension's format, else the content's),
+      R"doc(The mesh in the file at ``path`` (OBJ, PLY, STL, OFF or glTF: the extension's format, else the content's),
 read exactly: decimal coordinates correctly rounded, binary ones widened exactly, polygons fanned from their
 first vertex (docs/contract.md §7). ``path`` is a str, bytes or any ``os.PathLike`` (``pathlib.Path``).
 Raises ``raykernel.MeshFileError`` (a ValueError) naming the file, the line or byte offset and the reason, each

@@ -343,3 +343,35 @@ def test_meshes_plane_sets_and_file_errors_pickle_exactly(tmp_path):
     again = pickle.loads(pickle.dumps(caught.value))
     assert type(again) is rk.MeshFileError
     assert (str(again), again.file, again.line, again.reason) == (str(caught.value), str(broken), 2, caught.value.reason)
+
+
+def test_load_mesh_reads_gltf_and_glb_exactly(tmp_path):
+    import base64
+    import json
+    import struct
+
+    positions = [(0.1, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    buffer = b"".join(struct.pack("<3f", *p) for p in positions) + struct.pack("<6H", 0, 1, 2, 0, 2, 3)
+    document = {"asset": {"version": "2.0"}, "buffers": [{"byteLength": len(buffer)}],
+                "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                                {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+                "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                              {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+                "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}]}
+    binary = json.dumps(document).encode()
+    binary += b" " * (-len(binary) % 4)
+    glb = (b"glTF" + struct.pack("<II", 2, 12 + 8 + len(binary) + 8 + len(buffer)) + struct.pack("<I", len(binary))
+           + b"JSON" + binary + struct.pack("<I", len(buffer)) + b"BIN\0" + buffer)
+    (tmp_path / "tetra.glb").write_bytes(glb)
+    document["buffers"][0]["uri"] = "tetra.bin"  # an external buffer beside the .gltf
+    (tmp_path / "tetra.bin").write_bytes(buffer)
+    (tmp_path / "tetra.gltf").write_text(json.dumps(document))
+    expected = np.array(positions, dtype=np.float32).astype(np.float64)  # 0.1f widened: 0.100000001490116...
+    for name in ("tetra.glb", "tetra.gltf"):
+        mesh = rk.load_mesh(tmp_path / name)
+        assert same_bits(mesh.vertices, expected) and mesh.triangles.tolist() == [[0, 1, 2], [0, 2, 3]]
+    document["nodes"], document["scenes"] = [{"mesh": 0, "rotation": [0, 0, 1, 0]}], [{"nodes": [0]}]
+    (tmp_path / "rotated.gltf").write_text(json.dumps(document))
+    with pytest.raises(rk.MeshFileError, match="node 0: it rotates") as caught:
+        rk.load_mesh(tmp_path / "rotated.gltf")
+    assert caught.value.file == str(tmp_path / "rotated.gltf") and caught.value.line is None

@@ -1,4 +1,4 @@
-// raykernel/io/mesh_file.hpp: triangle meshes from the files people have — OBJ, PLY, STL, OFF — exactly.
+// raykernel/io/mesh_file.hpp: triangle meshes from the files people have — OBJ, PLY, STL, OFF, glTF — exactly.
 //
 // docs/contract.md §7: a mesh is its vertices, as the doubles the file states, and its triangles, as vertex
 // indices counted from 0 in file order; a polygon with k > 3 vertices becomes the k − 2 triangles
@@ -26,9 +26,9 @@
 
 namespace raykernel::io {
 
-enum class MeshFormat : std::uint8_t { obj, ply, stl, off };
+enum class MeshFormat : std::uint8_t { obj, ply, stl, off, gltf };  // gltf: .gltf (JSON) and .glb (binary)
 
-// "obj", "ply", "stl", "off".
+// "obj", "ply", "stl", "off", "gltf".
 [[nodiscard]] std::string_view to_string(MeshFormat format) noexcept;
 
 // Where in a file something is: a line (counted from 1) of text, or a byte offset (from 0) into binary data,
@@ -53,10 +53,11 @@ class mesh_file_error : public std::runtime_error {
   std::string reason_;
 };
 
-// The format a file name's extension names (.obj, .ply, .stl, .off, any case), or nothing.
+// The format a file name's extension names (.obj, .ply, .stl, .off, .gltf, .glb, any case), or nothing.
 [[nodiscard]] std::optional<MeshFormat> format_from_extension(const std::filesystem::path& path);
 
-// The format the bytes look like, or nothing: "ply" and an end of line first → PLY; "OFF" (or COFF, NOFF,
+// The format the bytes look like, or nothing: "glTF" first (the GLB magic), or a JSON object with an "asset"
+// member → glTF; "ply" and an end of line first → PLY; "OFF" (or COFF, NOFF,
 // CNOFF, STOFF, ...) first → OFF; a binary STL's exact size 84 + 50·n → STL (even when its header starts
 // with "solid"); "solid" first → STL; otherwise the first statement of an OBJ file (v, vt, vn, f, o, g, #,
 // ...) → OBJ.
@@ -64,10 +65,11 @@ class mesh_file_error : public std::runtime_error {
 
 // Reads the mesh in the file at `path`: the format is the extension's, or else the content's (sniff_format).
 // The error names the file as `path` is written. Throws mesh_file_error (also when the file cannot be
-// opened or read, with the system's reason).
+// opened or read, with the system's reason). A .gltf file's external buffers are read from its folder.
 [[nodiscard]] Mesh read_mesh(const std::filesystem::path& path);
 
-// Reads `bytes` as a mesh in `format`; `name` is the file name errors carry.
+// Reads `bytes` as a mesh in `format`; `name` is the file name errors carry. A glTF's external buffers are
+// refused here (only data: URIs and the GLB binary chunk): there is no folder to read them from.
 [[nodiscard]] Mesh read_mesh(std::string_view bytes, std::string_view name, MeshFormat format);
 
 // ---------------------------------------------------------------------------------------------------------
