@@ -30,6 +30,11 @@ Ray–sphere queries (``hard_sphere_queries``) come from the C++ toolkit too (te
 few ulps off, roots that are rounding ties, far-away spheres where |o − c|² − r² cancels, wide exponents, tiny
 and huge directions, tiny and huge scales (docs/contract.md §10).
 
+Meshes (``closed_meshes``, ``mesh_queries``, pure Python): closed, consistently oriented meshes with exact dyadic
+vertices (a tetrahedron, an octahedron or a cube, stretched, moved, faces dented, bumped or spiked; moderate, tiny
+or huge scales), and rays from outside aimed exactly at their vertices, edges and faces, for testing BVH,
+nearest-hit, watertightness and inside code.
+
 Every strategy has an array form for vectorized code: ``query_arrays``, ``triangle_query_arrays`` and
 ``hard_sphere_query_arrays`` give float64 arrays built from lists of such queries (the lists shrink too).
 """
@@ -49,8 +54,12 @@ from .._types import Plane, Ray, Sphere, Triangle, Vec3
 # The strategies and the types they draw: what ``from raykernel.testing.hypothesis import *`` and ``dir()`` give (the
 # imports above are not part of it).
 __all__ = [
+    "ClosedMesh",
     "HARD_TRIANGLE_QUERY_KINDS",
     "HardQuery",
+    "MESH_SHAPES",
+    "MESH_TARGETS",
+    "MeshQuery",
     "PLANE_TIE_KINDS",
     "PlanePair",
     "QUERY_KINDS",
@@ -64,6 +73,7 @@ __all__ = [
     "TriangleQueryArrays",
     "WORDS_PER_QUERY",
     "arbitrary_queries",
+    "closed_meshes",
     "exact_degeneracies",
     "hard_queries",
     "hard_sphere_queries",
@@ -71,6 +81,7 @@ __all__ = [
     "hard_triangle_queries",
     "hard_triangle_query_arrays",
     "huge_product_queries",
+    "mesh_queries",
     "near_coplanar_queries",
     "near_parallel_queries",
     "origins_on_spheres",
@@ -602,3 +613,139 @@ def hard_sphere_query_arrays(
 ) -> SearchStrategy[SphereQueryArrays]:
     """Lists of ``hard_sphere_queries(kinds)`` as arrays, for vectorized sphere code."""
     return st.lists(hard_sphere_queries(kinds), min_size=min_size, max_size=max_size).map(_to_sphere_arrays)
+
+
+# Meshes ------------------------------------------------------------------------------------------------------
+
+MESH_SHAPES: Tuple[str, ...] = ("tetrahedron", "octahedron", "cube")
+"""The base shapes of ``closed_meshes``: closed, consistently oriented (outward normals), every edge shared by
+exactly two triangles in opposite directions."""
+
+MESH_TARGETS: Tuple[str, ...] = ("vertex", "edge", "face")
+"""What ``mesh_queries`` aims rays at exactly: a vertex, a point of an edge (dyadic, not a vertex), or a point
+inside a face (barycentric (1/2, 1/4, 1/4))."""
+
+_SHAPES = {
+    "tetrahedron": ([(1, 1, 1), (1, -1, -1), (-1, 1, -1), (-1, -1, 1)], [(0, 1, 2), (0, 3, 1), (0, 2, 3), (1, 3, 2)]),
+    "octahedron": ([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)],
+                   [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]),
+    "cube": ([(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)],
+             [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6), (0, 2, 6),
+              (0, 6, 4), (1, 5, 7), (1, 7, 3)]),
+}
+_MESH_SCALES = {"moderate": (0, 0), "tiny": (-900, -860), "huge": (860, 900)}
+
+
+class ClosedMesh(NamedTuple):
+    """A closed, consistently oriented triangle mesh with dyadic vertices: ``vertices`` (n, 3) float64,
+    ``triangles`` (m, 3) int64; ``shape`` says what it was built from. ``Mesh(*closed_mesh[:2])`` makes one."""
+
+    vertices: np.ndarray
+    triangles: np.ndarray
+    shape: str
+
+
+class MeshQuery(NamedTuple):
+    """Rays aimed exactly at features of a closed mesh: ray k starts at ``origins[k]``, outside the mesh's
+    bounding box, with ``directions[k] = targets[k] - origins[k]`` exactly, so that ``origins[k] + directions[k]``
+    is ``targets[k]``, a point of the mesh's surface (``aimed_at[k]``: "vertex 3", "edge 0-2", "face 5"), at t = 1.
+    Every ray therefore has a nearest hit at an exact t <= 1 under the closed rule (edges and vertices included) —
+    a BVH that loses one is wrong. Under the owned rule a ray that only grazes the surface at a vertex or an edge
+    (touching it without crossing) may pass, and one that crosses there is hit by exactly one triangle."""
+
+    mesh: ClosedMesh
+    origins: np.ndarray
+    directions: np.ndarray
+    targets: np.ndarray
+    aimed_at: Tuple[str, ...]
+
+
+@st.composite
+def _closed_mesh(draw, shapes: Sequence[str], scales: Sequence[str]) -> ClosedMesh:
+    shape = draw(st.sampled_from(list(shapes)))
+    base_vertices, base_triangles = _SHAPES[shape]
+    # Each axis stretched by an odd factor and the whole moved on the grid 2^-4; then, optionally, faces replaced
+    # by three triangles around an apex (a+b+c)·q for q = 1/4 (a dent), 3/8 (a bump) or 1/2 (a spike): the
+    # surface stays closed and consistently oriented whatever the apex.
+    stretch = draw(st.tuples(*[st.integers(1, 15).map(lambda k: 2 * k + 1)] * 3))
+    shift = draw(st.tuples(*[st.integers(-64, 64)] * 3))
+    vertices = [tuple(Fraction(stretch[i] * v[i]) + Fraction(shift[i], 16) for i in range(3)) for v in base_vertices]
+    triangles = list(base_triangles)
+    apex_kinds = draw(st.lists(st.sampled_from([None, Fraction(1, 4), Fraction(3, 8), Fraction(1, 2)]),
+                               min_size=len(triangles), max_size=len(triangles)))
+    centre = tuple(Fraction(shift[i], 16) for i in range(3))
+    refined = []
+    for (a, b, c), q in zip(triangles, apex_kinds):
+        if q is None:
+            refined.append((a, b, c))
+            continue
+        apex = tuple(centre[i] + (vertices[a][i] + vertices[b][i] + vertices[c][i] - 3 * centre[i]) * q for i in range(3))
+        vertices.append(apex)
+        p = len(vertices) - 1
+        refined += [(a, b, p), (b, c, p), (c, a, p)]
+    low, high = _MESH_SCALES[draw(st.sampled_from(list(scales)))]
+    exponent = draw(st.integers(low, high))
+    scale = Fraction(2) ** exponent
+    as_array = np.array([[float(x * scale) for x in v] for v in vertices], dtype=np.float64)
+    return ClosedMesh(as_array, np.array(refined, dtype=np.int64), shape)
+
+
+def closed_meshes(shapes: Optional[Iterable[str]] = None, *, scales: Sequence[str] = ("moderate",)
+                  ) -> SearchStrategy[ClosedMesh]:
+    """Closed, consistently oriented meshes with exact dyadic vertices (``MESH_SHAPES``: each axis stretched, the
+    whole moved, faces optionally dented, bumped or spiked around an apex), at ``scales`` "moderate" (coordinates
+    up to about 2^6), "tiny" (times 2^-900..2^-860) or "huge" (times 2^860..2^900): for testing BVH, nearest-hit
+    and inside code. They shrink toward the plain shape."""
+    chosen = _check_kinds(shapes, MESH_SHAPES, "closed_meshes")
+    unknown = [s for s in scales if s not in _MESH_SCALES]
+    if unknown or not scales:
+        raise ValueError(f"closed_meshes: unknown or no scales {unknown or scales!r}; known: {', '.join(_MESH_SCALES)}")
+    return _closed_mesh(chosen, tuple(scales))
+
+
+@st.composite
+def _mesh_query(draw, meshes: SearchStrategy[ClosedMesh], targets: Sequence[str], max_rays: int) -> MeshQuery:
+    mesh = draw(meshes)
+    v = [tuple(Fraction(x) for x in row) for row in mesh.vertices]
+    extent = max(max(abs(x) for x in row) for row in v)
+    n = draw(st.integers(1, max_rays))
+    origins, directions, points, names = [], [], [], []
+    for _ in range(n):
+        kind = draw(st.sampled_from(list(targets)))
+        k = draw(st.integers(0, len(mesh.triangles) - 1))
+        a, b, c = (int(i) for i in mesh.triangles[k])
+        if kind == "vertex":
+            target, name = v[a], f"vertex {a}"
+        elif kind == "edge":
+            j = draw(st.integers(1, 15))  # a + (b - a)·j/16: a dyadic point of the edge, not a vertex
+            target = tuple(v[a][i] + (v[b][i] - v[a][i]) * Fraction(j, 16) for i in range(3))
+            name = f"edge {a}-{b}"
+        else:
+            target = tuple((2 * v[a][i] + v[b][i] + v[c][i]) / 4 for i in range(3))
+            name = f"face {k}"
+        # An origin outside the bounding box (coordinates 3 to 4 times the extent, on a grid of its 64ths), so that
+        # target - origin is exact in binary64.
+        sign = draw(st.tuples(*[st.sampled_from([-1, 1])] * 3))
+        grid = draw(st.tuples(*[st.integers(192, 256)] * 3))
+        origin = tuple(sign[i] * extent * Fraction(grid[i], 64) for i in range(3))
+        direction = tuple(target[i] - origin[i] for i in range(3))
+        as_float = [float(x) for x in origin + direction + target]
+        # Exactness of the construction: every value is a double, and origin + direction is the target.
+        assert all(Fraction(f) == x for f, x in zip(as_float, origin + direction + target))
+        origins.append(as_float[:3])
+        directions.append(as_float[3:6])
+        points.append(as_float[6:])
+        names.append(name)
+    to_array = lambda rows: np.array(rows, dtype=np.float64).reshape(-1, 3)  # noqa: E731
+    return MeshQuery(mesh, to_array(origins), to_array(directions), to_array(points), tuple(names))
+
+
+def mesh_queries(meshes: Optional[SearchStrategy[ClosedMesh]] = None, *, targets: Optional[Iterable[str]] = None,
+                 max_rays: int = 16) -> SearchStrategy[MeshQuery]:
+    """A closed mesh (``closed_meshes()`` by default) and up to ``max_rays`` rays from outside its bounding box
+    aimed exactly at its vertices, edges and faces (``MESH_TARGETS``): each meets the surface at t = 1 exactly, so
+    under the closed rule a nearest hit must exist with t <= 1, and the origin is outside. The rays through vertices
+    and edges are where watertightness fails: ``raykernel.nearest_hit_batch(q.origins, q.directions, Mesh(...),
+    rule=...)`` is the reference."""
+    chosen = _check_kinds(targets, MESH_TARGETS, "mesh_queries")
+    return _mesh_query(meshes if meshes is not None else closed_meshes(), chosen, max_rays)
