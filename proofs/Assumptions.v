@@ -756,3 +756,15 @@ Definition main_results_22 :=
    @SphereSpawn.spawn_axis_side).
 Goal True. idtac "@@ spawn_outward_never_hits spawn_inward_one_exit spawn_axis_leaving_grows spawn_axis_step_sign spawn_axis_side". Abort.
 Print Assumptions main_results_22.
+(** sphere/: the roots' boundary filter (sphere/ray_sphere_boundary_filter.hpp, sphere_boundary_filter): at a rounding
+    boundary m = (x + y)/2, |4q(m) − z| ≤ E_q for the value's unrounded z and |ŝ − 2(A·m + B)| ≤ E_s, so a certain
+    sign of q(m) or of the slope is the exact one, for every binary64 input (the slope's absolute term μ_s = 2^-1070
+    covers the products' underflow; without it d = (2^-1074, −2^-1074, −2^-1074) was certified wrong) *)
+From Raykernel Require SphereBoundaryFilter.
+Definition main_results_23 :=
+  (@SphereBoundaryFilter.sphere_boundary_q_encloses,
+   @SphereBoundaryFilter.sphere_boundary_q_sound,
+   @SphereBoundaryFilter.sphere_boundary_slope_encloses,
+   @SphereBoundaryFilter.sphere_boundary_slope_sound).
+Goal True. idtac "@@ sphere_boundary_q_encloses sphere_boundary_q_sound sphere_boundary_slope_encloses sphere_boundary_slope_sound". Abort.
+Print Assumptions main_results_23.

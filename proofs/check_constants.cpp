@@ -281,13 +281,16 @@ std::vector<Row> table() {
       {"sphere_filter_d_relative", "4 * u", 4 * Dyadic::pow2(-53), b::sphere_filter_d_relative, {}},
       {"sphere_filter_d_factor", "1 + bpow radix2 (-40)", 1 + Dyadic::pow2(-40), b::sphere_filter_d_factor, {}},
       {"sphere_filter_d_absolute", "64 * mu", 64 * Dyadic::pow2(-1074), b::sphere_filter_d_absolute, {}},
-      // Ray–sphere roots, the boundary filter (ray_sphere_boundary_filter.hpp; sphere/SphereBoundaryFilter.v, pending).
+      // Ray–sphere roots, the boundary filter (ray_sphere_boundary_filter.hpp; sphere/SphereBoundaryFilter.v,
+      // `sphere_boundary_q_sound` and `sphere_boundary_slope_sound`).
       {"sphere_boundary_q_relative", "bpow radix2 (-96)", Dyadic::pow2(-96), b::sphere_boundary_q_relative, {}},
       {"sphere_boundary_q_absolute", "bpow radix2 (-1060)", Dyadic::pow2(-1060), b::sphere_boundary_q_absolute, {}},
       {"sphere_boundary_tail", "bpow radix2 (-45)", Dyadic::pow2(-45), b::sphere_boundary_tail, {}},
       {"sphere_boundary_slope_relative", "bpow radix2 (-49)", Dyadic::pow2(-49), b::sphere_boundary_slope_relative,
        {}},
       {"sphere_boundary_slope_floor", "bpow radix2 (-1000)", Dyadic::pow2(-1000), b::sphere_boundary_slope_floor, {}},
+      {"sphere_boundary_slope_absolute", "bpow radix2 (-1070)", Dyadic::pow2(-1070),
+       b::sphere_boundary_slope_absolute, {}},
       // The BVH's ray–box test (ray_box.hpp; box/RayBox.v): K = 1 ∓ 2^-50, τ = 2^-1022, case B's range.
       // 1 − 2^-50 = (2^50 − 1)·2^-50
       {"ray_box_near_factor", "1125899906842623 * bpow radix2 (-50)",

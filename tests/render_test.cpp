@@ -8,6 +8,8 @@
 #include "scenes/scene.hpp"
 #include "support/answer_lines.hpp"
 
+#include <raykernel/io/mesh_file.hpp>
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -932,7 +934,7 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
     return e ? e->str() : "(valid)";
   };
   EXPECT_EQ(load_error(R"({"file": "octahedron.off"})"), "/meshes: expected an array of meshes, found an object");
-  EXPECT_EQ(load_error(R"([{"name": "x"}])"), "/meshes/0/name: unknown field (expected one of: file, transform, color)");
+  EXPECT_EQ(load_error(R"([{"name": "x"}])"), "/meshes/0/name: unknown field (expected one of: file, transform, rounding, color)");
   EXPECT_EQ(load_error(R"([{"transform": []}])"), "/meshes/0/file: missing field");
   EXPECT_EQ(load_error(R"([{"file": 3}])"), "/meshes/0/file: expected a file name (a non-empty string), found an integer");
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [1, 0, 0]}])"),
@@ -957,6 +959,14 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
   EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "transform": [8.98846567431158e307, 0, 0, 8.98846567431158e307, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])")
                 .rfind("/meshes/0/transform: the image of vertex 0 of ", 0),
             0u);
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "rounding": "round"}])"),
+            "/meshes/0/rounding: expected \"exact\" or \"nearest\", found a string");
+  // "rounding": "nearest": any affine matrix, the images correctly rounded; x = max + max·1 rounds beyond the doubles.
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "rounding": "nearest", "transform": [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])"),
+            "(valid)");
+  EXPECT_EQ(load_error(R"([{"file": "octahedron.off", "rounding": "nearest", "transform": [1.7976931348623157e308, 0, 0, 1.7976931348623157e308, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])")
+                .rfind("/meshes/0/transform: the image of vertex 0 of ", 0),
+            0u);
   // A file that is not there, or not a mesh: the reader's reason, naming the file.
   const std::string missing = load_error(R"([{"file": "no-such-mesh.off"}])");
   EXPECT_EQ(missing.rfind("/meshes/0/file: ", 0), 0u) << missing;
@@ -976,6 +986,40 @@ TEST(RenderMesh, BadMeshReferencesAreErrorsWithTheirPointer) {
   write_file(bad_obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nv 0 0 1\n");
   EXPECT_EQ(load_error(R"([{"file": ")" + bad_obj + R"("}])"),
             "/meshes/0/file: " + bad_obj + ":4: relative vertex index -9223372036854775808 is out of range (3 vertices so far)");
+}
+
+// "rounding": "nearest": each image coordinate is row·v + t exactly, rounded once. Vertex 0 = (1 + 2^-52, 1 + 2^-51,
+// 0) under the row (1 + 2^-52, −1, 0, 0): (1 + 2^-52)² − (1 + 2^-51) = 2^-104 exactly (a double), where the
+// textbook evaluation rounds the product to 1 + 2^-51 first and gives 0. A rotation by 90° about z moves the
+// octahedron's vertices exactly; shared vertices are one vertex, rounded once.
+TEST(RenderMesh, NearestRoundingGivesTheCorrectlyRoundedImages) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / ("raykernel-round-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "sliver.off") << "OFF\n3 1 0\n1.0000000000000002 1.0000000000000004 0\n0 0 0\n0 0 1\n3 0 1 2\n";
+  const auto loaded = [&](const std::string& meshes) {
+    SceneParse s = parse_scene(R"({"camera": {"eye": [0, 0, 10], "target": [0, 0, 0]}, "planes": [], "meshes": )" + meshes + "}");
+    EXPECT_TRUE(s.scene.has_value()) << s.error.str();
+    const std::optional<SceneError> e = load_scene_meshes(*s.scene, folder);
+    EXPECT_FALSE(e.has_value()) << e->str();
+    return s.scene->mesh;
+  };
+  const Mesh m = loaded(R"([{"file": "sliver.off", "rounding": "nearest", "transform": [1.0000000000000002, -1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}])");
+  ASSERT_EQ(m.vertices.size(), 3u);
+  EXPECT_EQ(m.vertices[0].x, 0x1p-104);
+  EXPECT_EQ(m.vertices[0].y, 1 + 0x1p-51);
+  EXPECT_EQ(m.vertices[1].x, 0.0);
+  std::filesystem::remove_all(folder);
+  SceneParse s = parse_scene(R"({"camera": {"eye": [0, 0, 10], "target": [0, 0, 0]}, "planes": [], "meshes": [{"file": "octahedron.off", "rounding": "nearest", "transform": [0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}]})");
+  ASSERT_TRUE(s.scene.has_value());
+  ASSERT_FALSE(load_scene_meshes(*s.scene, scenes).has_value());
+  const Mesh octahedron = io::read_mesh(std::filesystem::path(scenes) / "octahedron.off");
+  ASSERT_EQ(s.scene->mesh.vertices.size(), octahedron.vertices.size());
+  for (std::size_t v = 0; v < octahedron.vertices.size(); ++v) {  // (x, y, z) → (−y, x, z)
+    EXPECT_EQ(s.scene->mesh.vertices[v].x, -octahedron.vertices[v].y);
+    EXPECT_EQ(s.scene->mesh.vertices[v].y, octahedron.vertices[v].x);
+    EXPECT_EQ(s.scene->mesh.vertices[v].z, octahedron.vertices[v].z);
+  }
+  EXPECT_EQ(s.scene->mesh.triangles, octahedron.triangles);
 }
 
 TEST(RenderMesh, TheCommandRendersMeshesAndReportsBadOnesWithExitTwo) {

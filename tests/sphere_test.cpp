@@ -391,6 +391,29 @@ TEST(SphereStages, BoundaryFilterSidesAreExact) {
 // The boundary filter's error bound itself, against 4q(m) in rationals: |4q(m) − q̂| ≤ E_q on every kind at the
 // midpoints beside the roots (where q(m) is smallest and the cancellation largest), and with room: the largest
 // ratio |4q − q̂|/E_q seen is printed and must stay below 1/8 (the derivation's margin is about 1/19).
+// The boundary filter's slope sign, checked exactly, where the products d_i ⊗ H_i underflow: the Coq proof
+// (proofs/sphere/SphereBoundaryFilter.v) found that with d = (2^-1074, −2^-1074, −2^-1074) — and with every input a
+// normal double, d = ±2^-600 and o, r scaled by 2^-474, 2^-480 — the slope 2(A·m + B) = −0.47·2^-1074 was
+// certified positive, before the absolute term μ_s = 2^-1070 was added to its bound. A certain slope must now have
+// the exact sign.
+TEST(SphereStages, BoundaryFilterSlopeIsRightWhereItsProductsUnderflow) {
+  const auto check = [](const Ray& ray, const Sphere& sphere, double x, double y) {
+    const detail::SphereBoundarySigns b = detail::sphere_boundary_filter(ray, sphere, x, y);
+    const mpq_class m_twice = mpq_class(x) + mpq_class(y);
+    const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z}, d[3] = {ray.direction.x, ray.direction.y, ray.direction.z},
+                 c[3] = {sphere.center.x, sphere.center.y, sphere.center.z};
+    mpq_class slope = 0;
+    for (int i = 0; i < 3; ++i) slope += mpq_class(d[i]) * (2 * (mpq_class(o[i]) - mpq_class(c[i])) + m_twice * mpq_class(d[i]));
+    EXPECT_EQ(b.q, detail::Sign::positive);  // q(m) > 0 here: the slope is read
+    if (detail::is_certain(b.slope)) EXPECT_EQ(static_cast<int>(b.slope), sgn(slope));
+    EXPECT_LT(sgn(slope), 0);
+  };
+  const double o1 = 0x1.051eb851eb852p-2, o2 = 0x1.f5c28f5c28f5cp-3;
+  check(Ray{{o1, o2, o2}, {0x1p-1074, -0x1p-1074, -0x1p-1074}}, Sphere{{0, 0, 0}, 0.125}, 1, 1);
+  check(Ray{{std::ldexp(o1, -474), std::ldexp(o2, -474), std::ldexp(o2, -474)}, {0x1p-600, -0x1p-600, -0x1p-600}},
+        Sphere{{0, 0, 0}, 0x1p-480}, 1, 1);
+}
+
 TEST(SphereStages, BoundaryFilterErrorBoundHoldsWithRoom) {
   double worst = 0;
   int checked = 0;

@@ -7,6 +7,7 @@
 #include "common/text_format.hpp"
 
 #include <raykernel/io/mesh_file.hpp>
+#include <raykernel/io/transform.hpp>
 #include <raykernel/transform.hpp>
 
 #include <algorithm>
@@ -344,7 +345,7 @@ bool is_power_of_two(double s) {
 
 SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std::size_t index) {
   expect_object(v, p);
-  only_fields(v, p, {"file", "transform", "color"});
+  only_fields(v, p, {"file", "transform", "rounding", "color"});
   SceneMeshReference m;
   m.pointer = p;
   const json& file = required_field(v, p, "file");
@@ -356,6 +357,11 @@ SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std:
     fail(child(p, "file"), "the file name contains a NUL character (\\u0000), which no file name can hold");
   m.color = scene_defaults::plane_colors[(index + 3) % scene_defaults::plane_colors.size()];
   if (const json* c = optional_field(v, "color")) m.color = color(*c, child(p, "color"));
+  if (const json* r = optional_field(v, "rounding")) {
+    if (!r->is_string() || (r->get<std::string>() != "exact" && r->get<std::string>() != "nearest"))
+      fail(child(p, "rounding"), "expected \"exact\" or \"nearest\", found " + describe_type(*r));
+    m.rounded = r->get<std::string>() == "nearest";
+  }
   if (const json* t = optional_field(v, "transform")) {
     const std::string q = child(p, "transform");
     if (!t->is_array() || t->size() != 16)
@@ -365,14 +371,14 @@ SceneMeshReference read_mesh_reference(const json& v, const std::string& p, std:
     for (std::size_t k = 0; k < 16; ++k) a[k] = number((*t)[k], child(q, k));
     if (a[12] != 0 || a[13] != 0 || a[14] != 0 || a[15] != 1) fail(q, "the bottom row must be 0 0 0 1 (an affine transform)");
     for (std::size_t r = 0; r < 3; ++r) {
-      for (std::size_t c = 0; c < 3; ++c) {
+      for (std::size_t c = 0; c < 4; ++c) {
         const double x = a[4 * r + c];
-        if (r == c ? !is_power_of_two(x) : x != 0)
+        if (!m.rounded && c < 3 && (r == c ? !is_power_of_two(x) : x != 0))
           fail(child(q, 4 * r + c), "only scalings by powers of two (±2^k on the diagonal) and translations are "
-                                    "applied exactly to mesh vertices; this matrix would round them");
+                                    "applied exactly to mesh vertices; this matrix would round them (\"rounding\": "
+                                    "\"nearest\" rounds each image correctly instead)");
+        m.matrix[r][c] = x;
       }
-      m.scale[r] = a[5 * r];
-      m.translate[r] = a[4 * r + 3];
     }
   }
   return m;
@@ -447,21 +453,6 @@ std::size_t Scene::mesh_of_triangle(std::uint32_t triangle) const noexcept {
   return after == mesh_first_triangle.begin() ? 0 : static_cast<std::size_t>(after - mesh_first_triangle.begin() - 1);
 }
 
-// x·scale + translate when it is exact in doubles, else nothing. scale is ±2^k, so the product is exact
-// unless it overflows or underflows; then the division by scale (exact: a power of two scaling back up, or
-// overflowing) does not give x back. The sum is checked by Knuth's TwoSum (its error term is the exact
-// rounding error of the sum in round-to-nearest, the CLI's environment): exact when the error is 0.
-std::optional<double> exact_affine(double x, double scale, double translate) {
-  const double product = x * scale;
-  if (!std::isfinite(product) || product / scale != x) return std::nullopt;
-  const double sum = product + translate;
-  if (!std::isfinite(sum)) return std::nullopt;
-  const double b = sum - product;
-  const double error = (product - (sum - b)) + (translate - b);
-  if (error != 0) return std::nullopt;
-  return sum;
-}
-
 std::optional<SceneError> load_scene_meshes(Scene& scene, const std::filesystem::path& scene_directory) {
   scene.mesh = Mesh{};
   scene.mesh_first_triangle.clear();
@@ -484,16 +475,24 @@ std::optional<SceneError> load_scene_meshes(Scene& scene, const std::filesystem:
         triangles + mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
       return SceneError{child(reference.pointer, "file"), "the scene's meshes have more than 2^32 - 1 vertices or triangles"};
     scene.mesh_first_triangle.push_back(static_cast<std::uint32_t>(triangles));
+    const auto& m = reference.matrix;
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
       const Vec3& x = mesh.vertices[v];
-      const std::optional<double> a = exact_affine(x.x, reference.scale[0], reference.translate[0]),
-                                  b = exact_affine(x.y, reference.scale[1], reference.translate[1]),
-                                  c = exact_affine(x.z, reference.scale[2], reference.translate[2]);
-      if (!a || !b || !c)
+      std::optional<double> image[3];
+      for (std::size_t r = 0; r < 3; ++r) {
+        if (reference.rounded) {  // the exact image rounded once; ±inf when it rounds beyond the doubles
+          const double y = round_affine({m[r][0], m[r][1], m[r][2]}, x, m[r][3]);
+          if (std::isfinite(y)) image[r] = y;
+        } else {  // a diagonal of powers of two: row r scales coordinate r
+          image[r] = io::exact_affine(r == 0 ? x.x : r == 1 ? x.y : x.z, m[r][r], m[r][3]);
+        }
+      }
+      if (!image[0] || !image[1] || !image[2])
         return SceneError{child(reference.pointer, "transform"),
                           "the image of vertex " + std::to_string(v) + " of " + path.string() +
-                              " is not exact in doubles (rounded, overflows or underflows)"};
-      scene.mesh.vertices.push_back({*a, *b, *c});
+                              (reference.rounded ? " rounds beyond the doubles"
+                                                 : " is not exact in doubles (rounded, overflows or underflows)")};
+      scene.mesh.vertices.push_back({*image[0], *image[1], *image[2]});
     }
     for (const auto& t : mesh.triangles)
       scene.mesh.triangles.push_back({t[0] + static_cast<std::uint32_t>(vertices), t[1] + static_cast<std::uint32_t>(vertices),

@@ -57,17 +57,19 @@ struct ScenePlane {
 };
 
 // A triangle mesh of the scene, as the file names it: "meshes": [{"file": "PATH", "transform": [16 numbers],
-// "color": [r, g, b]}]. PATH is relative to the scene file's directory. The transform (row-major 4×4, optional)
-// is applied to the vertices exactly or not at all: only matrices whose vertex images are exact in doubles
-// are accepted — a diagonal of nonzero powers of two (±2^k: x·2^k is exact unless it leaves the double
-// range or underflows, both checked per vertex) plus a translation (each sum checked exact per vertex),
-// bottom row 0 0 0 1. A rotation or a general scale would round the vertices and move the geometry the
-// kernel answers for exactly, so it is an error.
+// "rounding": "exact" | "nearest", "color": [r, g, b]}]. PATH is relative to the scene file's directory. The
+// transform (row-major 4×4, optional; bottom row 0 0 0 1) is applied to the vertices
+//   - "exact" (the default): exactly or not at all — only a diagonal of nonzero powers of two (±2^k) plus a
+//     translation, each vertex's image checked exact in doubles (io::exact_affine); a rotation or a general
+//     scale would round the vertices and move the geometry the kernel answers for exactly, so it is an error;
+//   - "nearest": any affine matrix, each coordinate of each image correctly rounded (raykernel::round_affine:
+//     the exact value rounded once). The scene's mesh is then those rounded vertices — stated, not hidden —
+//     and equal vertices round alike, so a watertight mesh stays watertight.
 struct SceneMeshReference {
   std::string file;
-  std::string pointer;                      // "/meshes/K", for errors
-  std::array<double, 3> scale{1, 1, 1};     // each ±2^k
-  std::array<double, 3> translate{0, 0, 0};
+  std::string pointer;  // "/meshes/K", for errors
+  std::array<std::array<double, 4>, 3> matrix{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};  // rows, translation last
+  bool rounded = false;  // "rounding": "nearest"
   Rgb color;
 };
 

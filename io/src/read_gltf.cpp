@@ -14,7 +14,7 @@
 //   - Nodes: the default scene's (or the first scene's) node trees, depth first in file order, each mesh placed
 //     by the transforms from its node to the root — applied only when exact: a translation and a per-axis scale
 //     (a matrix of that form, or TRS without rotation) whose every product and sum is exact for every vertex
-//     (checked, vertex by vertex, with an FMA and TwoSum). A rotation, a shear, a projective matrix or an
+//     (checked vertex by vertex: io::exact_affine, <raykernel/io/transform.hpp>). A rotation, a shear, a projective matrix or an
 //     inexact result is refused, naming the node: a rotated vertex is irrational or needs more bits than a
 //     double, and a rounded one would not be the file's mesh. A file without scenes gives every mesh as stored.
 //     A node graph that is not a forest (a cycle, two parents) is refused.
@@ -24,6 +24,7 @@
 #include "reader_support.hpp"
 
 #include <raykernel/fp_environment.hpp>
+#include <raykernel/io/transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -274,21 +275,6 @@ class Reader {
       v = {c[0], c[1], c[2]};
     }
     return v;
-  }
-
-  // x·s + t when both the product and the sum are exact doubles (checked by an FMA and TwoSum, in the default
-  // floating-point environment read_gltf installs), else nothing. A nonzero product below 2^-969 is refused: its
-  // rounding error might not be representable, so the FMA could not show it.
-  static std::optional<double> exact_affine(double x, double s, double t) {
-    const double product = x * s;
-    if (!std::isfinite(product)) return std::nullopt;
-    if (product == 0 ? !(x == 0 || s == 0) : (std::fabs(product) < 0x1p-969 || std::fma(x, s, -product) != 0))
-      return std::nullopt;
-    const double sum = product + t;
-    const double t_part = sum - product;
-    const double error = (product - (sum - t_part)) + (t - t_part);  // TwoSum: exactly (product + t) − sum
-    if (!std::isfinite(sum) || error != 0) return std::nullopt;
-    return sum;
   }
 
   Elements elements(int accessor_index, const std::string& where, int type) const {

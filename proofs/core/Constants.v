@@ -106,10 +106,11 @@ Definition sphere_filter_d_factor : R := 1 + bpow radix2 (-40).
 Definition sphere_filter_d_absolute : R := 64 * min_subnormal.
 
 (** Ray–sphere roots (kernel/src/sphere/ray_sphere_boundary_filter.hpp): the boundary filter's E_q = (κ_q ⊗ W) ⊕ μ_q,
-    W's tail factor τ, and the slope's κ_s and floor (its proof, sphere/SphereBoundaryFilter.v, is pending:
-    proofs/pending.txt). *)
+    W's tail factor τ, and the slope's E_s = (κ_s ⊗ Σ|d_i|(… ⊕ floor)) ⊕ μ_s (proved in sphere/SphereBoundaryFilter.v:
+    `sphere_boundary_q_sound`, `sphere_boundary_slope_sound`). *)
 Definition sphere_boundary_q_relative : R := bpow radix2 (-96).
 Definition sphere_boundary_q_absolute : R := bpow radix2 (-1060).
 Definition sphere_boundary_tail : R := bpow radix2 (-45).
 Definition sphere_boundary_slope_relative : R := bpow radix2 (-49).
 Definition sphere_boundary_slope_floor : R := bpow radix2 (-1000).
+Definition sphere_boundary_slope_absolute : R := bpow radix2 (-1070).

@@ -68,6 +68,13 @@ struct Rational {
 // to zero keeps its sign. Throws std::invalid_argument on malformed text. The rounding every exact t uses.
 [[nodiscard]] double round_rational_to_double(std::string_view numerator, std::string_view denominator);
 
+// row·v + c exactly, rounded once to the nearest double (ties to even, the rounding above): one coordinate of an
+// affine map's image, correctly rounded — e.g. a mesh's vertices under a rotation (the scenes' "rounding":
+// "nearest"). Equal inputs give equal outputs, so vertices a mesh shares, or repeats, stay shared. Throws
+// std::invalid_argument when a value is not finite; the result is ±inf when the exact value rounds beyond the
+// doubles.
+[[nodiscard]] double round_affine(const Vec3& row, const Vec3& v, double c);
+
 [[nodiscard]] std::string_view to_string(Stage stage) noexcept;  // "filter", "compensated", ...
 
 // Whether this thread's floating-point environment is the one the certified stages assume: round to

@@ -377,17 +377,20 @@ inline constexpr double sphere_filter_d_absolute = 0x1p-1068;        // μ_D = 6
 // keeps its sign and |value| ≤ (1 + u)|a₃.hi + s| + η, which E_q's margin covers: value > E_q implies a₃.hi + s >
 // E_q(1 − u) − η > the error, so 4q(m) > 0 (and < −E_q, < 0).
 // The slope 2(A·m + B) = Σ d_i·G_i is read from Σ d_i ⊗ H_i: the dropped Σ d_i·λ_i is ≤ 3.1u·Σ|d_i|T_i + 3η·Σ|d_i|,
-// the products and sums ≤ 3.01u·Σ|d_i H_i|; κ_s = 16u, and the floor 2^-1000 per |d_i| covers the η's
-// (κ_s·2^-1000 = 2^-1049 ≫ 3η).
+// the products and sums ≤ 3.01u·Σ|d_i H_i| + 3η; κ_s = 16u, the floor 2^-1000 per |d_i| covers the 3η·|d_i|
+// (κ_s·2^-1000 = 2^-1049 ≫ 3η), and the absolute μ_s = 2^-1070 = 32η the three products' own underflow errors,
+// which no multiple of |d_i| covers when the d_i are tiny (found by the proof: d = (2^-1074, −2^-1074, −2^-1074)
+// once had its slope certified with the wrong sign; tests/sphere_test.cpp keeps the case).
 // Valid for all finite inputs; uncertain when W, the value or the slope's magnitude is not finite (overflow: every
 // intermediate is below W or the magnitude up to a factor 4, so an overflow anywhere makes one of them +inf or
 // NaN). Never certifies a zero.
 // Certified by: proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound` and `sphere_boundary_slope_sound`
-// (pending, proofs/pending.txt).
+// (proved for every binary64 input).
 inline constexpr double sphere_boundary_q_relative = 0x1p-96;      // κ_q = 1024u²
 inline constexpr double sphere_boundary_q_absolute = 0x1p-1060;    // μ_q = 2^15·η
 inline constexpr double sphere_boundary_tail = 0x1p-45;            // τ
 inline constexpr double sphere_boundary_slope_relative = 0x1p-49;  // κ_s = 16u
 inline constexpr double sphere_boundary_slope_floor = 0x1p-1000;   // per |d_i|
+inline constexpr double sphere_boundary_slope_absolute = 0x1p-1070;  // μ_s = 32η
 
 }  // namespace raykernel::detail::bounds
