@@ -4,7 +4,7 @@
     PYTHONPATH=build/python /usr/bin/python3 python/bench/bench_dask.py [--rays 10000000] [--repeat 3]
 
 The query is the exact nearest hit on scenes/icosphere-3.ply (rk.nearest_hit_batch, owned rule) for rays from
-points around the mesh towards the centre, 2^20 rays per chunk. Each figure is the best of --repeat runs, in
+points around the mesh towards the centre, 10^6 rays per chunk. Each figure is the best of --repeat runs, in
 wall time (run it alone: no build, test or other benchmark beside it):
 
   plain batch, 2 threads       rk.nearest_hit_batch(o, d, mesh): all cores, the baseline
@@ -12,7 +12,7 @@ wall time (run it alone: no build, test or other benchmark beside it):
                                threaded scheduler (2 threads, one chunk each at a time, threads=1 per chunk);
                                overhead = its time / the plain batch's − 1
   cluster, 1 process           a distributed.LocalCluster of 1 worker process (1 thread); the rays are generated
-                               on the workers (da.random, chunk by chunk), so no array crosses processes
+                               on the workers, one task per chunk, so no array crosses processes
   cluster, 2 processes         the same on 2 worker processes (1 thread each); scaling = 1 process / 2 processes
 
 This is a measurement script, not a test: it prints a table (bench/README.md has the figures of one run).
@@ -30,7 +30,7 @@ import raykernel as rk
 import raykernel.dask as rkd
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-CHUNK = 1 << 20
+CHUNK = 1_000_000  # 10 chunks of 10^7 rays: 5 per thread or worker
 
 
 def best(repeat, run):
@@ -42,12 +42,22 @@ def best(repeat, run):
     return min(times)
 
 
+def _ray_block(block, seed):
+    """The rays of one chunk, made where the chunk is computed: origins at distance ~3, directions to the centre."""
+    rng = np.random.default_rng([seed, int(block[0])])
+    origins = rng.normal(size=(CHUNK, 6))
+    origins[:, :3] *= 3
+    origins[:, 3:] = origins[:, 3:] * 0.2 - origins[:, :3]
+    return origins
+
+
 def rays(n, seed):
-    """Origins at distance ~3 around the mesh, directions towards the centre, as Dask arrays made chunk by chunk."""
-    state = da.random.RandomState(seed)
-    origins = state.normal(size=(n, 3), chunks=(CHUNK, 3)) * 3
-    directions = state.normal(size=(n, 3), chunks=(CHUNK, 3)) * 0.2 - origins
-    return origins, directions
+    """n rays as Dask arrays of CHUNK rows, each chunk one task (origins and directions made together, so that the
+    query's inputs never cross processes)."""
+    blocks = -(-n // CHUNK)
+    both = da.map_blocks(_ray_block, da.arange(blocks, chunks=1), seed, dtype=np.float64, chunks=((CHUNK,) * blocks, (6,)),
+                         new_axis=1)[:n]
+    return both[:, :3], both[:, 3:]
 
 
 def cluster_time(workers, mesh, n, repeat):
