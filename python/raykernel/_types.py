@@ -544,18 +544,11 @@ class MeshFileNotFoundError(MeshFileError, FileNotFoundError):
     """``load_mesh`` on a path where there is no file: both a ``MeshFileError`` (with its attributes) and a
     ``FileNotFoundError`` (``errno`` ENOENT, ``filename`` the path), so that either ``except`` catches it."""
 
-    def __init__(
-        self,
-        message: str,
-        file: Optional[str] = None,
-        line: Optional[int] = None,
-        byte_offset: Optional[int] = None,
-        reason: Optional[str] = None,
-    ) -> None:
-        super().__init__(message, file, line, byte_offset, reason)
+    def __init__(self, *args: object, **kwargs: object) -> None:  # MeshFileError's arguments
+        super().__init__(*args, **kwargs)  # type: ignore[arg-type]
         self.errno = _errno.ENOENT
         self.strerror = os.strerror(_errno.ENOENT)
-        self.filename = file
+        self.filename = self.file
 
 
 Vec3Like = Union[Vec3, Tuple[float, float, float], "np.ndarray", "list[float]"]
