@@ -261,15 +261,16 @@ class Reader {
   }
 
   // `v` placed by the nodes of `path`, innermost first, each step exact (or the error naming the node).
-  Vec3 place(Vec3 v, const std::vector<std::size_t>& path, const std::string& vertex) {
+  // `vertex` and `where` name the vertex in the error only (the message is built only then).
+  Vec3 place(Vec3 v, const std::vector<std::size_t>& path, std::size_t vertex, const std::string& where) {
     for (auto it = path.rbegin(); it != path.rend(); ++it) {
       const Placement& p = placement(*it);
       double c[3] = {v.x, v.y, v.z};
       for (std::size_t i = 0; i < 3; ++i) {
         const std::optional<double> placed = exact_affine(c[i], p.scale[i], p.translation[i]);
         if (!placed)
-          errors_.whole_file("node " + std::to_string(*it) + ": its transform of " + vertex +
-                             " is not exact in doubles; raykernel applies only exact transforms");
+          errors_.whole_file("node " + std::to_string(*it) + ": its transform of POSITION " + std::to_string(vertex) +
+                             " of " + where + " is not exact in doubles; raykernel applies only exact transforms");
         c[i] = *placed;
       }
       v = {c[0], c[1], c[2]};
@@ -345,7 +346,7 @@ class Reader {
         for (int i = 0; i < 3; ++i)
           if (!std::isfinite(f[i]))
             errors_.whole_file(where + ": POSITION " + std::to_string(v) + ": " + "xyz"[i] + " is not finite");
-        mesh_.vertices.push_back(path.empty() ? read : place(read, path, "POSITION " + std::to_string(v) + " of " + where));
+        mesh_.vertices.push_back(path.empty() ? read : place(read, path, v, where));
       }
       // The primitive's vertex indices: as stored, or 0, 1, 2, ... without an indices accessor.
       std::vector<std::uint32_t> indices;
