@@ -8,6 +8,7 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -36,6 +37,7 @@ CgalMeshQueries::CgalMeshQueries(const Mesh& mesh) : impl_(std::make_unique<Impl
   }
   impl_->tree = std::make_unique<Tree>(faces(impl_->mesh).first, faces(impl_->mesh).second, impl_->mesh);
   impl_->tree->build();
+  impl_->tree->accelerate_distance_queries();  // before timing, as a user would
   impl_->side = std::make_unique<Side>(impl_->mesh);
   (void)(*impl_->side)(K::Point_3(0, 0, 0));  // builds Side_of_triangle_mesh's own tree before timing
 }
@@ -48,6 +50,13 @@ std::optional<std::uint32_t> CgalMeshQueries::first_hit(const Ray& r) const {
   const auto hit = impl_->tree->first_intersected_primitive(ray);
   if (!hit) return std::nullopt;
   return static_cast<std::uint32_t>(static_cast<std::size_t>(*hit));
+}
+
+CgalMeshQueries::Closest CgalMeshQueries::closest(const Vec3& p) const {
+  const K::Point_3 query(p.x, p.y, p.z);
+  const auto [q, face] = impl_->tree->closest_point_and_primitive(query);
+  return {{q.x(), q.y(), q.z()}, static_cast<std::uint32_t>(static_cast<std::size_t>(face)),
+          std::sqrt(CGAL::to_double(CGAL::squared_distance(query, q)))};
 }
 
 int CgalMeshQueries::side(const Vec3& p) const {

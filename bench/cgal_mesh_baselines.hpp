@@ -1,4 +1,4 @@
-// CGAL's own mesh queries, as baselines: the AABB tree's first intersection along a ray and
+// CGAL's own mesh queries, as baselines: the AABB tree's first intersection along a ray and closest point, and
 // Side_of_triangle_mesh (inside/outside), both with Epick (filtered predicates on doubles; constructions
 // rounded). The CGAL structures are built before timing. CGAL stays in cgal_mesh_baselines.cpp.
 #pragma once
@@ -23,6 +23,14 @@ class CgalMeshQueries {
   [[nodiscard]] std::optional<std::uint32_t> first_hit(const Ray& ray) const;
   // Side_of_triangle_mesh: 1 inside, 0 on the boundary, -1 outside.
   [[nodiscard]] int side(const Vec3& point) const;
+  // AABB_tree::closest_point_and_primitive: the closest point CGAL computes (Epick: constructed in doubles), the
+  // triangle it lies on, and the distance √(squared_distance(p, q)) in doubles, as CGAL users compute it.
+  struct Closest {
+    Vec3 point;
+    std::uint32_t triangle;
+    double distance;
+  };
+  [[nodiscard]] Closest closest(const Vec3& point) const;
 
  private:
   struct Impl;

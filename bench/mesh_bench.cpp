@@ -16,6 +16,14 @@
 //   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
 //   mesh/cgal_aabb/<mesh>           rays/s of CGAL's AABB_tree::first_intersected_primitive (Epick)
 //   inside/cgal/<mesh>              points/s of CGAL's Side_of_triangle_mesh
+//   closest/{certified,naive,cgal}/<mesh>   points/s of closest_point(point, PreparedMesh) (exact: the point, the
+//                                   exact squared distance, the distance correctly rounded), closest_point_naive
+//                                   (Ericson's algorithm in doubles through the same BVH) and CGAL's
+//                                   AABB_tree::closest_point_and_primitive (Epick) with √ of its squared distance;
+//                                   counters on the naive and CGAL rows, over the first 4,096 points: the share
+//                                   whose distance differs from the correctly rounded exact one (wrong_pct), the
+//                                   largest difference in ulps (max_ulps), and the share naming another triangle
+//                                   at a different exact distance (other_triangle_pct)
 //   ties/{certified,naive}/<mesh>   nearest_hit(ray, PreparedMesh) and nearest_hit_naive (the BVH with
 //                                   Möller–Trumbore, the baseline) on meshes where one ray meets many triangles at
 //                                   one exact t or crosses many boxes: duplicates-100k (10^5 copies of one
@@ -33,6 +41,7 @@
 #include "cgal_mesh_baselines.hpp"
 
 #include <raykernel/bvh.hpp>
+#include <raykernel/closest_point.hpp>
 #include <raykernel/mesh_queries.hpp>
 #include <raykernel/occlusion.hpp>
 #include <raykernel/io/mesh_file.hpp>
@@ -131,6 +140,51 @@ template <class Part, class Make>
 const Part& part(std::unique_ptr<Part>& slot, Make&& make) {
   if (!slot) slot = make();
   return *slot;
+}
+
+// Points per second of `query` over the fixture's points (uniform in the mesh's box), after `prepare`.
+template <class Prepare, class Query>
+void point_benchmark(benchmark::State& state, const std::string& m, Prepare&& prepare, Query&& query) {
+  Fixture* f;
+  {
+    std::lock_guard lock(fixture_mutex);
+    f = &fixture(m);
+    prepare(*f);
+  }
+  std::size_t i = static_cast<std::size_t>(state.thread_index()) * 7919 % f->points.size();
+  double sum = 0;
+  for (auto _ : state) {
+    sum += query(*f, f->points[i]);
+    if (++i == f->points.size()) i = 0;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+
+// How a baseline's distances compare with the exact ones (closest_point), over the first 4,096 points: counters.
+template <class Baseline>
+void closest_accuracy(benchmark::State& state, Fixture& f, Baseline&& baseline) {
+  part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); });
+  const std::size_t n = std::min<std::size_t>(4096, f.points.size());
+  std::uint64_t wrong = 0, other = 0;
+  double max_ulps = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClosestPoint exact = closest_point(f.points[i], *f.prepared);
+    const auto [triangle, distance] = baseline(f, f.points[i]);
+    if (distance != exact.distance) {
+      ++wrong;
+      max_ulps = std::max(max_ulps, std::fabs(distance - exact.distance) /
+                                        (std::nextafter(exact.distance, INFINITY) - exact.distance));
+    }
+    if (triangle != exact.triangle) {  // another triangle: wrong unless it is at the same exact distance
+      const Triangle t = f.mesh.triangle(triangle);
+      const Mesh one{{t.a, t.b, t.c}, {{0, 1, 2}}};
+      if (closest_point_exact(f.points[i], one).squared_distance_exact.str() != exact.squared_distance_exact.str()) ++other;
+    }
+  }
+  state.counters["wrong_pct"] = 100.0 * static_cast<double>(wrong) / static_cast<double>(n);
+  state.counters["max_ulps"] = max_ulps;
+  state.counters["other_triangle_pct"] = 100.0 * static_cast<double>(other) / static_cast<double>(n);
 }
 
 // Möller–Trumbore in doubles (the baseline users compare; to be replaced by intersect_naive(Ray, Triangle)
@@ -485,6 +539,28 @@ void register_all() {
             return hit ? std::uint64_t{*hit} : 0;
           });
     })->Apply(threads);
+
+    benchmark::RegisterBenchmark(("closest/certified/" + m).c_str(), [m](benchmark::State& state) {
+      point_benchmark(state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+                      [](Fixture& f, const Vec3& p) { return closest_point(p, *f.prepared).distance; });
+    })->Apply(threads);
+    benchmark::RegisterBenchmark(("closest/naive/" + m).c_str(), [m](benchmark::State& state) {
+      point_benchmark(state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+                      [](Fixture& f, const Vec3& p) { return closest_point_naive(p, *f.prepared).distance; });
+      if (state.thread_index() == 0)
+        closest_accuracy(state, fixture(m), [](Fixture& f, const Vec3& p) {
+          const ClosestPoint c = closest_point_naive(p, *f.prepared);
+          return std::pair{c.triangle, c.distance};
+        });
+    })->Apply(threads);
+    benchmark::RegisterBenchmark(("closest/cgal/" + m).c_str(), [m](benchmark::State& state) {
+      point_benchmark(state, m, [](Fixture& f) { part(f.cgal, [&] { return std::make_unique<CgalMeshQueries>(f.mesh); }); },
+                      [](Fixture& f, const Vec3& p) { return f.cgal->closest(p).distance; });
+      closest_accuracy(state, fixture(m), [](Fixture& f, const Vec3& p) {
+        const CgalMeshQueries::Closest c = f.cgal->closest(p);
+        return std::pair{c.triangle, c.distance};
+      });
+    });  // 1 thread: the tree's distance-query accelerator is built lazily
 
     benchmark::RegisterBenchmark(("inside/cgal/" + m).c_str(), [m](benchmark::State& state) {
       Fixture* f;

@@ -29,6 +29,9 @@ commands:
   inside --mesh FILE [POINTS|-]
                       whether each point is inside, outside or on a closed mesh, exactly
                       (raykernel inside --help)
+  closest --mesh FILE [--signed] [POINTS|-]
+                      the exact closest point of a mesh to each point: triangle, point, squared
+                      distance (exact and rounded), distance correctly rounded (raykernel closest --help)
   occluded --mesh FILE [--segment] [RAYS|-]
                       whether anything blocks each ray within its interval, or each open
                       segment between two points, exactly (raykernel occluded --help)

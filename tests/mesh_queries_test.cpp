@@ -72,26 +72,6 @@ const std::vector<TestMesh>& test_meshes() {
   return meshes;
 }
 
-// A soup of triangles of one random scale: shared vertices, repeated (hence degenerate) vertices, duplicated
-// triangles (exact ties), coplanar neighbours.
-Mesh random_soup() {
-  const int e = *rc::gen::element(0, 0, -20, 40, -1000, 600);
-  const int count = *rc::gen::inRange(1, 13);
-  Mesh m;
-  auto coordinate = [&] { return std::ldexp(static_cast<double>(*rc::gen::inRange(-16, 17)), e - 3); };
-  for (int k = 0; k < count; ++k) {
-    const int kind = *rc::gen::inRange(0, 6);
-    if (kind == 0 && !m.triangles.empty()) {  // a duplicate, maybe reversed
-      auto t = m.triangles[*rc::gen::inRange<std::size_t>(0, m.triangles.size())];
-      if (*rc::gen::arbitrary<bool>()) std::swap(t[1], t[2]);
-      m.triangles.push_back(t);
-      continue;
-    }
-    testkit::add_random_triangle(m, coordinate);
-  }
-  return m;
-}
-
 double scale_of(const Box3& b) {
   return std::max({std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x), std::fabs(b.hi.y),
                    std::fabs(b.hi.z), 0x1p-1000});
@@ -143,7 +123,7 @@ struct Drawn {
 Drawn draw_mesh() {
   Drawn d;
   if (*rc::gen::inRange(0, 4) == 0) {
-    d.own = std::make_unique<PreparedMesh>(random_soup(), BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4});
+    d.own = std::make_unique<PreparedMesh>(testkit::random_soup(), BvhBuildOptions{.max_leaf_size = 1, .max_leaf_size_hard = 2, .bins = 4});
     d.mesh = d.own.get();
   } else {
     d.mesh = test_meshes()[*rc::gen::inRange<std::size_t>(0, test_meshes().size())].prepared.get();

@@ -7,6 +7,7 @@ std::span<const Command> commands() {
       {"classify", run_classify, classify_command_line},
       {"nearest", run_nearest, nearest_command_line},
       {"inside", run_inside, inside_command_line},
+      {"closest", run_closest, closest_command_line},
       {"occluded", run_occluded, occluded_command_line},
       {"hits", run_hits, hits_command_line},
       {"watertight", run_watertight, watertight_command_line},

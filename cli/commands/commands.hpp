@@ -31,6 +31,8 @@ int run_nearest(const std::vector<std::string>& args);  // plane_nearest.cpp (--
 OwnedCommandLine nearest_command_line();
 int run_inside(const std::vector<std::string>& args);  // mesh_inside.cpp
 OwnedCommandLine inside_command_line();
+int run_closest(const std::vector<std::string>& args);  // mesh_closest.cpp
+OwnedCommandLine closest_command_line();
 int run_occluded(const std::vector<std::string>& args);  // mesh_occluded.cpp
 OwnedCommandLine occluded_command_line();
 int run_hits(const std::vector<std::string>& args);  // mesh_hits.cpp

@@ -22,7 +22,9 @@ reference), ``intersect_exact_rational`` (the exact values as Fractions), ``inte
 formula / Möller–Trumbore, no guarantee), ``intersect_traced``, ``validate``; ``nearest_hit`` /
 ``nearest_hit_exact`` over a ``PlaneSet``, a list of planes or a ``Mesh`` (``load_mesh(path)``: OBJ, PLY, STL,
 OFF), ``nearest_hit_naive`` (the baseline) over either; ``inside`` / ``inside_exact(point, mesh)`` (docs/contract.md
-§7: "inside", "outside" or "on-surface" by the exact winding number); ``round_rational_to_double``.
+§7: "inside", "outside" or "on-surface" by the exact winding number); ``closest_point`` /
+``closest_point_exact(point, mesh)`` (§11: the exact closest point, its squared distance as a Fraction, the
+distance correctly rounded); ``round_rational_to_double``.
 
 Vectorized functions take (n, 3) arrays of real numbers (integer or floating dtypes, read as float64; complex,
 bool, str, object, datetime, structured and masked arrays raise ``TypeError``) and loop in C++ with the GIL
@@ -30,7 +32,8 @@ released:
 ``intersect_batch`` / ``relation_batch(origins, directions, points, normals)``,
 ``intersect_triangle_batch`` / ``relation_triangle_batch(origins, directions, a, b, c)``,
 ``intersect_sphere_batch(origins, directions, centers, radii)`` and
-``nearest_hit_batch(origins, directions, scene)``, ``inside_batch(points, mesh)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
+``nearest_hit_batch(origins, directions, scene)``, ``inside_batch(points, mesh)``,
+``closest_point_batch(points, mesh)``. Invalid input raises ``ValueError`` (``raykernel.InvalidInput``) naming the field, and for arrays
 the row: "query 17: ray direction is the zero vector".
 
 ``raykernel.testing`` checks other code against raykernel (ulps, reports); ``raykernel.testing.hypothesis``
@@ -41,6 +44,9 @@ from __future__ import annotations
 
 from ._types import (
     Barycentric,
+    ClosestFeature,
+    ClosestPoint,
+    ClosestPointArrays,
     ExactIntersection,
     ExactSphereIntersection,
     ExactTriangleIntersection,
@@ -84,6 +90,9 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     MeshFileError,
     MeshFileNotFoundError,
     PlaneSet,
+    closest_point,
+    closest_point_batch,
+    closest_point_exact,
     floating_point_environment_is_default,
     inside,
     inside_batch,
@@ -117,6 +126,9 @@ __version__ = version()
 
 __all__ = [
     "Barycentric",
+    "ClosestFeature",
+    "ClosestPoint",
+    "ClosestPointArrays",
     "ExactIntersection",
     "ExactSphereIntersection",
     "ExactTriangleIntersection",
@@ -158,6 +170,9 @@ __all__ = [
     "TriangleRelation",
     "TriangleRule",
     "Vec3",
+    "closest_point",
+    "closest_point_batch",
+    "closest_point_exact",
     "floating_point_environment_is_default",
     "inside",
     "inside_batch",

@@ -9,6 +9,8 @@ import numpy as np
 import numpy.typing as npt
 
 from ._types import (
+    ClosestPoint,
+    ClosestPointArrays,
     ExactIntersection,
     ExactSphereIntersection,
     ExactTriangleIntersection,
@@ -188,6 +190,18 @@ def occluded_segment(
 ) -> bool: ...
 def inside(point: Sequence[float], mesh: Mesh) -> PointLocation: ...
 def inside_exact(point: Sequence[float], mesh: Mesh) -> PointLocation: ...
+def closest_point(point: ArrayLike3, mesh: Mesh) -> ClosestPoint: ...
+def closest_point_exact(point: ArrayLike3, mesh: Mesh) -> ClosestPoint: ...
+def closest_point_batch(
+    points: ArrayLike3,
+    mesh: Mesh,
+    *,
+    signed: bool = False,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> ClosestPointArrays: ...
 def inside_batch(
     points: ArrayLike3,
     mesh: Mesh,

@@ -213,6 +213,27 @@ _POINT_LOCATIONS_BY_CODE = tuple(PointLocation)
 _POINT_LOCATION_CODES = {r: k for k, r in enumerate(_POINT_LOCATIONS_BY_CODE)}
 
 
+class ClosestFeature(_StrEnum):
+    """Where on its triangle a closest point lies (docs/contract.md §11). ``code`` is the value of
+    ``closest_point_batch``'s uint8 ``feature`` array."""
+
+    VERTEX = "vertex"  # a vertex of the triangle (corner 0, 1, 2: a, b, c)
+    EDGE = "edge"  # inside an edge (corner 0, 1, 2: ab, bc, ca)
+    FACE = "face"  # inside the face
+
+    @property
+    def code(self) -> int:
+        return _CLOSEST_FEATURE_CODES[self]
+
+    @classmethod
+    def from_code(cls, code: int) -> "ClosestFeature":
+        return _CLOSEST_FEATURES_BY_CODE[int(code)]
+
+
+_CLOSEST_FEATURES_BY_CODE = tuple(ClosestFeature)
+_CLOSEST_FEATURE_CODES = {r: k for k, r in enumerate(_CLOSEST_FEATURES_BY_CODE)}
+
+
 class Barycentric(NamedTuple):
     """Barycentric coordinates (πa, πb, πc)/den of the point where the line crosses the plane: the weights of
     the vertices a, b, c (they sum to 1 exactly; each is rounded on its own)."""
@@ -368,6 +389,22 @@ class MeshHit(NamedTuple):
     barycentric: Barycentric
 
 
+class ClosestPoint(NamedTuple):
+    """The exact closest point of a mesh to a point (``closest_point``; docs/contract.md §11): the ``triangle``
+    (its index; the smallest among triangles at the same exact distance), where on it the point lies
+    (``feature``, ``corner``), the ``point`` with each coordinate correctly rounded, the exact
+    ``squared_distance_exact`` (a ``Fraction``), ``squared_distance`` its rounding to nearest, and
+    ``distance``, the square root of the exact squared distance rounded once to nearest."""
+
+    triangle: int
+    feature: ClosestFeature
+    corner: int
+    point: Vec3
+    squared_distance: float
+    distance: float
+    squared_distance_exact: Fraction
+
+
 class SpawnedOrigin(NamedTuple):
     """The origin of a secondary ray (``spawn``, ``spawn_to``; docs/contract.md §9): ``origin`` (values of the
     format asked for: binary32 values are exact floats) and ``steps``, k, the steps it took from the rounded hit
@@ -430,6 +467,26 @@ class PointLocationArrays(NamedTuple):
     def locations(self) -> np.ndarray:
         """The locations as strings ("outside", "inside", "on-surface"; "invalid")."""
         return _names(_POINT_LOCATIONS_BY_CODE, self.location)
+
+
+class ClosestPointArrays(NamedTuple):
+    """The answers of ``closest_point_batch``, one row per point: ``triangle`` (int64, -1 for an invalid point),
+    ``feature`` (uint8 ``ClosestFeature.code``, ``INVALID_RELATION_CODE`` for an invalid point), ``corner``
+    (uint8), ``point`` ((n, 3) float64), ``squared_distance``, ``distance`` and, with ``signed=True``,
+    ``signed_distance`` (float64; NaN for an invalid point), ``valid`` (bool)."""
+
+    triangle: np.ndarray
+    feature: np.ndarray
+    corner: np.ndarray
+    point: np.ndarray
+    squared_distance: np.ndarray
+    distance: np.ndarray
+    signed_distance: Optional[np.ndarray]
+    valid: np.ndarray
+
+    def features(self) -> np.ndarray:
+        """The features as strings ("vertex", "edge", "face"; "invalid")."""
+        return _names(_CLOSEST_FEATURES_BY_CODE, self.feature)
 
 
 class RelationArrays(NamedTuple):

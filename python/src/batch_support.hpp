@@ -20,6 +20,7 @@
 #include <initializer_list>
 #include <limits>
 #include <mutex>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -190,6 +191,15 @@ void in_chunks(std::size_t n, std::initializer_list<const ColumnsView*> views, W
 [[nodiscard]] inline RayBatch ray_batch(ColumnsView& o, ColumnsView& d, std::size_t begin, std::size_t end) {
   const auto oc = o.columns(begin, end), dc = d.columns(begin, end);
   return {oc[0], oc[1], oc[2], dc[0], dc[1], dc[2]};
+}
+
+// Why a point row cannot be asked about, or nothing: the kernel's point queries (inside, closest_point) throw for a
+// non-finite point; a batch checks first, so that a bad row is named and, with errors="mask", skipped.
+[[nodiscard]] inline std::optional<std::string> point_problem(const Vec3& p) {
+  if (!std::isfinite(p.x)) return "x is not finite";
+  if (!std::isfinite(p.y)) return "y is not finite";
+  if (!std::isfinite(p.z)) return "z is not finite";
+  return std::nullopt;
 }
 
 // The first row whose valid[i] is false, if any.

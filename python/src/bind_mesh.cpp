@@ -161,15 +161,6 @@ namespace {
 
 py::object to_python(PointLocation location) { return types().point_location[static_cast<std::size_t>(location)]; }
 
-// Why point `row` cannot be asked about, or nothing: the kernel's inside() throws for a non-finite point; a batch
-// checks first, so that a bad row is named and, with errors="mask", skipped.
-std::optional<std::string> point_problem(const Vec3& p) {
-  if (!std::isfinite(p.x)) return "x is not finite";
-  if (!std::isfinite(p.y)) return "y is not finite";
-  if (!std::isfinite(p.z)) return "z is not finite";
-  return std::nullopt;
-}
-
 py::object inside_py(py::handle point, const PythonMesh& mesh, bool exact) {
   const Vec3 p = vec3_from(point, "point");
   PointLocation location{};

@@ -2,4 +2,5 @@
 # dot3/det3 stages, quotient rounding, the error bounds), the floating-point environment, validation, threads.
 target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/validation.cpp ${CMAKE_CURRENT_LIST_DIR}/fp_environment.cpp
                                  ${CMAKE_CURRENT_LIST_DIR}/parallel.cpp
-                                 ${CMAKE_CURRENT_LIST_DIR}/round_affine.cpp)
+                                 ${CMAKE_CURRENT_LIST_DIR}/round_affine.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/root_rounding.cpp)

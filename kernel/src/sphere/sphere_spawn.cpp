@@ -1,6 +1,6 @@
 // spawn from a sphere and sphere_side (<raykernel/spawn.hpp>; the rule: docs/contract.md, "Decided here":
 // spawning from a sphere), decided exactly: the sides, the normal and the thresholds along the stepping axis are
-// exact (GMP rationals, and the thresholds' square roots rounded by MPFR, exact_root.hpp), the roundings to the
+// exact (GMP rationals, and the thresholds' square roots rounded by MPFR, core/root_rounding.hpp), the roundings to the
 // origin's format one correct rounding each. The steps and the format's values: spawn/format_steps.hpp, shared
 // with the triangle's spawn.
 //
@@ -24,7 +24,7 @@
 #include "core/rational_from_double.hpp"
 #include "spawn/exact_point.hpp"
 #include "spawn/format_steps.hpp"
-#include "sphere/exact_root.hpp"
+#include "core/root_rounding.hpp"
 
 #include <gmpxx.h>
 

@@ -10,6 +10,8 @@
 #include <rapidcheck.h>
 
 #include <array>
+#include <cmath>
+#include <utility>
 #include <cstdint>
 
 namespace raykernel::testkit {
@@ -55,6 +57,26 @@ void add_random_triangle(Mesh& m, Coordinate&& coordinate) {
     }
   }
   m.triangles.push_back(t);
+}
+
+// A soup of triangles of one random scale: shared vertices, repeated (hence degenerate) vertices, duplicated
+// triangles (exact ties), coplanar neighbours.
+inline Mesh random_soup() {
+  const int e = *rc::gen::element(0, 0, -20, 40, -1000, 600);
+  const int count = *rc::gen::inRange(1, 13);
+  Mesh m;
+  auto coordinate = [&] { return std::ldexp(static_cast<double>(*rc::gen::inRange(-16, 17)), e - 3); };
+  for (int k = 0; k < count; ++k) {
+    const int kind = *rc::gen::inRange(0, 6);
+    if (kind == 0 && !m.triangles.empty()) {  // a duplicate, maybe reversed
+      auto t = m.triangles[*rc::gen::inRange<std::size_t>(0, m.triangles.size())];
+      if (*rc::gen::arbitrary<bool>()) std::swap(t[1], t[2]);
+      m.triangles.push_back(t);
+      continue;
+    }
+    add_random_triangle(m, coordinate);
+  }
+  return m;
 }
 
 }  // namespace raykernel::testkit

@@ -1,0 +1,85 @@
+// Interval arithmetic in round-to-nearest: each binary64 operation rounded to nearest, then widened by one ulp
+// outwards. A filter for constructions whose error analysis is not written per formula (the closest point,
+// closest/closest_formula.hpp): each interval holds the exact value of the expression it was computed from.
+//
+// Why it holds: RN(x) is within half an ulp of x, and the neighbour of RN(x) away from x is at least that far from
+// it, so x ∈ [next_down(RN(x)), next_up(RN(x))] — with gradual underflow (the absolute error of RN is at most
+// 2^-1075, below the smallest step 2^-1074) and with overflow (RN(x) = +inf gives next_down = DBL_MAX ≤ x, and
+// next_up(+inf) = +inf). Interval operations take the exact operation's extreme values at the endpoints (for a
+// product, 0 · ±inf counts as 0, the product's limit; an endpoint ±inf stands for "beyond the doubles").
+// Range: every double, inf included (NaN never arises from finite inputs: a lower end is never +inf nor an
+// upper end −inf, so sums and differences of ends never form inf − inf).
+// Assumes the default floating-point environment (round to nearest, no FTZ or DAZ; FpEnvironmentScope,
+// core/fp_environment.hpp, installs it). Tested, not proved: tests/closest_point_test.cpp checks every operation
+// against exact rationals at random, huge, tiny, subnormal and overflowing values; no Coq proof yet, so this file
+// is listed as not certified in proofs/CMakeLists.txt, and what it filters is always settled exactly.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <limits>
+
+namespace raykernel::detail {
+
+// The smallest double above x (x not NaN): +0 and −0 give 2^-1074, −inf gives −DBL_MAX, +inf stays.
+[[nodiscard]] inline double next_up(double x) noexcept {
+  auto bits = std::bit_cast<std::uint64_t>(x);
+  if ((bits << 1) == 0) return std::numeric_limits<double>::denorm_min();  // ±0
+  if (bits == 0x7FF0000000000000u) return x;                                // +inf
+  bits = (bits >> 63) != 0 ? bits - 1 : bits + 1;
+  return std::bit_cast<double>(bits);
+}
+[[nodiscard]] inline double next_down(double x) noexcept { return -next_up(-x); }
+
+struct Interval {
+  double lo, hi;  // lo ≤ exact ≤ hi
+
+  static Interval point(double x) noexcept { return {x, x}; }
+};
+
+[[nodiscard]] inline Interval operator+(const Interval& a, const Interval& b) noexcept {
+  return {next_down(a.lo + b.lo), next_up(a.hi + b.hi)};
+}
+[[nodiscard]] inline Interval operator-(const Interval& a, const Interval& b) noexcept {
+  return {next_down(a.lo - b.hi), next_up(a.hi - b.lo)};
+}
+[[nodiscard]] inline Interval operator-(const Interval& a) noexcept { return {-a.hi, -a.lo}; }
+
+namespace interval_detail {
+[[nodiscard]] inline double product(double x, double y) noexcept {
+  const double p = x * y;
+  return p == p ? p : 0.0;  // NaN only from 0 · ±inf: the product's limit is 0
+}
+}  // namespace interval_detail
+
+[[nodiscard]] inline Interval operator*(const Interval& a, const Interval& b) noexcept {
+  using interval_detail::product;
+  const double p1 = product(a.lo, b.lo), p2 = product(a.lo, b.hi), p3 = product(a.hi, b.lo),
+               p4 = product(a.hi, b.hi);
+  return {next_down(std::min(std::min(p1, p2), std::min(p3, p4))),
+          next_up(std::max(std::max(p1, p2), std::max(p3, p4)))};
+}
+
+// x² (never below 0).
+[[nodiscard]] inline Interval square(const Interval& a) noexcept {
+  const double l = a.lo * a.lo, h = a.hi * a.hi;
+  if (a.lo <= 0 && a.hi >= 0) return {0.0, next_up(std::max(l, h))};
+  return {std::max(0.0, next_down(std::min(l, h))), next_up(std::max(l, h))};
+}
+
+// a / b for a ≥ 0 and b.lo > 0 (the caller checks b.lo > 0).
+[[nodiscard]] inline Interval divide_nonnegative(const Interval& a, const Interval& b) noexcept {
+  return {std::max(0.0, next_down(std::max(a.lo, 0.0) / b.hi)), next_up(a.hi / b.lo)};
+}
+
+// The sign of every value in the interval: +1, −1, or 0 when it is the point 0; `uncertain` (2) otherwise.
+inline constexpr int interval_uncertain = 2;
+[[nodiscard]] inline int interval_sign(const Interval& a) noexcept {
+  if (a.lo > 0) return 1;
+  if (a.hi < 0) return -1;
+  if (a.lo == 0 && a.hi == 0) return 0;
+  return interval_uncertain;
+}
+
+}  // namespace raykernel::detail
