@@ -145,6 +145,33 @@ TEST(MeshCli, Inside) {
   EXPECT_EQ(ok.out, "inside\n");
 }
 
+TEST(MeshCli, Closest) {
+  const std::string path = temp_path("oct-closest.obj");
+  write_file(path, octahedron_obj);
+  // (2,0,0): the vertex (1,0,0), vertex a of triangle 0 (f 1 3 5), d² = 1. (0,0,0): every face at 1/√3, the foot
+  // on triangle 0 is (1/3,1/3,1/3), d² = 1/3, √(1/3) = 0.57735026918962576… rounds to 0.5773502691896257, inside.
+  // (1,1,0): the midpoint (1/2,1/2,0) of edge ab of triangle 0 (shared with triangle 4), d² = 1/2, √(1/2) rounds
+  // to 0.7071067811865476.
+  const CliRun r = run("closest --signed --mesh " + path, "2 0 0\n0 0 0\n1 1 0\n1 1\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.out,
+            "0 vertex 0 1 0 0 1 1 1 1/1\n"
+            "0 face 0 0.3333333333333333 0.3333333333333333 0.3333333333333333 0.3333333333333333 "
+            "0.5773502691896257 -0.5773502691896257 1/3\n"
+            "0 edge 0 0.5 0.5 0 0.5 0.7071067811865476 0.7071067811865476 1/2\n"
+            "invalid expected 3 numbers, found 2\n");
+  const CliRun plain = run("closest --mesh " + path + " --stats", "2 0 0\n");
+  EXPECT_EQ(plain.status, 0);
+  EXPECT_EQ(plain.out, "0 vertex 0 1 0 0 1 1 1/1\n");
+  EXPECT_NE(plain.err.find("1 points: 1 at a vertex, 0 on an edge, 0 on a face, 0 invalid"), std::string::npos) << plain.err;
+  const std::string empty = temp_path("empty.obj");
+  write_file(empty, "v 0 0 0\n");
+  const CliRun none = run("closest --mesh " + empty, "0 0 0\n");
+  EXPECT_EQ(none.status, 2);
+  EXPECT_EQ(none.out, "");
+  EXPECT_NE(none.err.find("no triangles"), std::string::npos) << none.err;
+}
+
 TEST(MeshCli, FilesThatAreNotMeshes) {
   struct Bad {
     const char* name;
