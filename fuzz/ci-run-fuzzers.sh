@@ -9,7 +9,7 @@
 #   FUZZ_HARNESSES="plane nearest" fuzz/ci-run-fuzzers.sh
 #
 # The harnesses are those fuzz/CMakeLists.txt registers (the manifest $FUZZ_BUILD_DIR/fuzz/harnesses.txt):
-# plane, triangle, batch, cli, nearest, nearest_cli, scene, mesh_reader, occlusion.
+# plane, triangle, sphere, spawn, batch, cli, nearest, nearest_cli, scene, mesh_reader, occlusion, closest.
 #
 # Environment: FUZZ_SECONDS (per harness, default 20: CI's budget is the whole .ci/run in 45 min on 2 cores),
 # FUZZ_HARNESSES (default: all in the manifest), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default

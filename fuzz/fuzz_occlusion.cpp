@@ -4,12 +4,10 @@
 // `segment_meets_exact`: every triangle in rationals).
 //
 // Input (structure-aware, so that vertices, edges, exact bounds and endpoints on faces are the common case):
-//   byte 0        the mesh: bit 0 octahedron or subdivided cube (testkit, closed), bits 1–3 its scale 2^(4·(b − 4)),
-//                 bits 4–5 the rule (owned twice as often), bits 6–7 how many extra triangles (0–3)
-//   then records of 8-byte little-endian words, each read as a double by `choose`:
-//                 tag < 0x40: the raw bits of the rest; 0x40..0x7F: a vertex coordinate of the mesh; 0x80..0xBF:
-//                 a multiple of a quarter of the scale in [−2, 2]; 0xC0..0xFF: a small integer times the scale
-//   the extra triangles (9 words), the ray (6 words), the interval (2 words: each the raw bits, 0, +inf, or the
+//   byte 0        the mesh (mesh_words.hpp, words_mesh: octahedron or subdivided cube, scale, extra triangles),
+//                 bits 4–5 the rule (owned twice as often)
+//   then records of 8-byte little-endian words, each read as a double by `choose` (mesh_words.hpp):
+//   the extra triangles (9 words each), the ray (6 words), the interval (2 words: each the raw bits, 0, +inf, or the
 //   rounded t of the ray against a triangle, an ulp either side), the segment (6 words).
 //
 // Checked for every input:
@@ -20,6 +18,7 @@
 //     the crossing count); for the segment, segment_meets == segment_meets_exact
 //     for every triangle, occluded(p, q) == their union == occluded_exact(p, q) == occluded(q, p).
 #include "fuzz_support.hpp"
+#include "mesh_words.hpp"
 
 #include <raykernel/occlusion.hpp>
 #include <raykernel/testkit/meshes.hpp>
@@ -43,40 +42,11 @@ using raykernel::fuzz::bits;
 using raykernel::fuzz::check;
 using raykernel::fuzz::finite_by_bits;
 using raykernel::fuzz::hex;
+using raykernel::fuzz::point;
+using raykernel::fuzz::Reader;
 using raykernel::fuzz::zero_by_bits;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
-
-struct Reader {
-  const std::uint8_t* data;
-  std::size_t size;
-  std::size_t offset = 0;
-  std::uint64_t word() {
-    std::uint64_t w = 0;
-    for (std::size_t k = 0; k < 8; ++k, ++offset)
-      if (offset < size) w |= std::uint64_t{data[offset]} << (8 * k);
-    return w;
-  }
-};
-
-// One coordinate, by the tag in the word's top byte (see the header).
-double choose(std::uint64_t w, const Mesh& mesh, int scale) {
-  const auto tag = static_cast<std::uint8_t>(w >> 56);
-  const std::uint64_t rest = w & ((std::uint64_t{1} << 56) - 1);
-  if (tag < 0x40) return std::bit_cast<double>(rest | (std::uint64_t{tag} << 58));
-  if (tag < 0x80) {
-    const Vec3& v = mesh.vertices[rest % mesh.vertices.size()];
-    const std::uint64_t axis = (rest / mesh.vertices.size()) % 3;
-    return axis == 0 ? v.x : axis == 1 ? v.y : v.z;
-  }
-  if (tag < 0xC0) return std::ldexp(static_cast<double>(static_cast<int>(rest % 17) - 8), scale - 2);
-  return std::ldexp(static_cast<double>(static_cast<int>(rest % 9) - 4), scale);
-}
-
-Vec3 point(Reader& r, const Mesh& mesh, int scale) {
-  const double x = choose(r.word(), mesh, scale), y = choose(r.word(), mesh, scale);
-  return {x, y, choose(r.word(), mesh, scale)};
-}
 
 // A bound: the raw bits, 0, +inf, or near the rounded t of the ray against a triangle.
 double bound(std::uint64_t w, const Ray& ray, const Mesh& mesh) {
@@ -122,25 +92,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   raykernel::fuzz::set_harness_name("occlusion");
   if (size == 0) return 0;
   const std::uint8_t head = data[0];
-  const int scale = 4 * (((head >> 1) & 7) - 4);
-  Mesh mesh = (head & 1) ? raykernel::testkit::make_subdivided_cube(1, 1) : raykernel::testkit::make_octahedron(1);
-  for (Vec3& v : mesh.vertices) v = {std::ldexp(v.x, scale), std::ldexp(v.y, scale), std::ldexp(v.z, scale)};
   const TriangleRule rule = ((head >> 4) & 3) == 3 ? TriangleRule::closed : TriangleRule::owned;
   Reader r{data, size, 1};
-  const int extra = (head >> 6) & 3;
-  for (int k = 0; k < extra; ++k) {
-    std::array<std::uint32_t, 3> t{};
-    for (auto& index : t) {
-      const Vec3 v = point(r, mesh, scale);
-      if (!raykernel::fuzz::finite_vector_by_bits(v)) {
-        index = 0;
-        continue;
-      }
-      mesh.vertices.push_back(v);
-      index = static_cast<std::uint32_t>(mesh.vertices.size() - 1);
-    }
-    mesh.triangles.push_back(t);
-  }
+  raykernel::fuzz::WordsMesh built = raykernel::fuzz::words_mesh(head, r);
+  const Mesh& mesh = built.mesh;
+  const int scale = built.scale;
   const raykernel::PreparedMesh prepared(mesh);
 
   const Vec3 o = point(r, mesh, scale), d = point(r, mesh, scale);

@@ -51,12 +51,12 @@ def normalized(text):
 
 class Scratch:
     """A scratch directory where the documented commands run: build/ is the build directory; scenes/, tests/
-    and examples/ are the repository's; docs/ is fresh (pictures are written there)."""
+    examples/ and python/ are the repository's; docs/ is fresh (pictures are written there)."""
 
     def __init__(self, build):
         self.dir = tempfile.mkdtemp(prefix="raykernel-docs-")
         os.symlink(os.path.abspath(build), os.path.join(self.dir, "build"))
-        for name in ("scenes", "tests", "examples"):
+        for name in ("scenes", "tests", "examples", "python"):
             os.symlink(os.path.join(ROOT, name), os.path.join(self.dir, name))
         self.meshes = os.path.join(os.path.abspath(build), "audit-meshes")
         self.have_meshes = os.path.isdir(self.meshes)

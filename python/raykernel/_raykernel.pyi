@@ -11,6 +11,9 @@ import numpy.typing as npt
 from ._types import (
     ClosestPoint,
     ClosestPointArrays,
+    CrossingArrays,
+    MeshHits,
+    OcclusionArrays,
     ExactIntersection,
     ExactSphereIntersection,
     ExactTriangleIntersection,
@@ -185,6 +188,52 @@ def occluded(
     rule: Optional[RuleLike] = None,
     path: str = "certified",
 ) -> bool: ...
+def all_hits(
+    ray: RayLike,
+    mesh: Mesh,
+    *,
+    t_min: float = 0.0,
+    t_max: float = ...,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+) -> MeshHits: ...
+def occluded_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    mesh: Mesh,
+    *,
+    t_min: Union[float, npt.ArrayLike] = 0.0,
+    t_max: Union[float, npt.ArrayLike] = ...,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> OcclusionArrays: ...
+def occluded_segment_batch(
+    p: ArrayLike3,
+    q: ArrayLike3,
+    mesh: Mesh,
+    *,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> OcclusionArrays: ...
+def crossings_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    mesh: Mesh,
+    *,
+    t_min: Union[float, npt.ArrayLike] = 0.0,
+    t_max: Union[float, npt.ArrayLike] = ...,
+    rule: Optional[RuleLike] = None,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> CrossingArrays: ...
 def occluded_segment(
     p: Sequence[float], q: Sequence[float], mesh: Mesh, *, rule: Optional[RuleLike] = None, path: str = "certified"
 ) -> bool: ...

@@ -405,6 +405,16 @@ class ClosestPoint(NamedTuple):
     squared_distance_exact: Fraction
 
 
+class MeshHits(NamedTuple):
+    """Every hit of a ray on a mesh within its interval (``all_hits``; docs/contract.md §8): ``hits``, each triangle
+    once as a ``MeshHit``, in exact order (by exact t, ties by index), and ``crossings``, the signed count of the
+    owned crossings (+1 through the front, −1 through the back): 0 for a ray from outside a closed, consistently
+    oriented mesh to infinity."""
+
+    hits: list
+    crossings: int
+
+
 class SpawnedOrigin(NamedTuple):
     """The origin of a secondary ray (``spawn``, ``spawn_to``; docs/contract.md §9): ``origin`` (values of the
     format asked for: binary32 values are exact floats) and ``steps``, k, the steps it took from the rounded hit
@@ -487,6 +497,23 @@ class ClosestPointArrays(NamedTuple):
     def features(self) -> np.ndarray:
         """The features as strings ("vertex", "edge", "face"; "invalid")."""
         return _names(_CLOSEST_FEATURES_BY_CODE, self.feature)
+
+
+class OcclusionArrays(NamedTuple):
+    """The answers of ``occluded_batch`` and ``occluded_segment_batch``, one row per ray or segment: ``occluded``
+    (bool: False for an invalid row) and ``valid`` (bool)."""
+
+    occluded: np.ndarray
+    valid: np.ndarray
+
+
+class CrossingArrays(NamedTuple):
+    """The answers of ``crossings_batch``, one row per ray: ``hits`` (int64, the triangles hit within the interval),
+    ``crossings`` (int64, the signed count of owned crossings; 0 for an invalid row) and ``valid`` (bool)."""
+
+    hits: np.ndarray
+    crossings: np.ndarray
+    valid: np.ndarray
 
 
 class RelationArrays(NamedTuple):

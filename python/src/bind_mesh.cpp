@@ -71,6 +71,8 @@ Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
   return mesh;
 }
 
+}  // namespace
+
 TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
 
 py::object to_python(const std::optional<MeshHit>& hit) {
@@ -79,8 +81,6 @@ py::object to_python(const std::optional<MeshHit>& hit) {
   return types().mesh_hit(hit->triangle, x.t, python::to_python(x.location),
                           types().barycentric(x.barycentric.a, x.barycentric.b, x.barycentric.c));
 }
-
-}  // namespace
 
 namespace {
 

@@ -13,6 +13,7 @@ void bind_batch(pybind11::module_& m);      // the vectorized ray–plane forms 
 void bind_triangle(pybind11::module_& m);   // the vectorized ray–triangle forms (docs/contract.md §6)
 void bind_sphere(pybind11::module_& m);     // the vectorized ray–sphere form (docs/contract.md §10)
 void bind_mesh(pybind11::module_& m);       // Mesh, load_mesh, the mesh nearest hit (docs/contract.md §7)
+void bind_occlusion(pybind11::module_& m);   // all hits, crossings, occluded over arrays (docs/contract.md §8)
 void bind_closest(pybind11::module_& m);     // the exact closest point of a mesh (docs/contract.md §11)
 void bind_spawn(pybind11::module_& m);      // spawn and spawn_to: secondary rays (docs/contract.md §9)
 void bind_testkit(pybind11::module_& m);    // raykernel::testkit: hard queries, reference check, fuzz decoder

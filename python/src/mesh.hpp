@@ -26,6 +26,10 @@ class PythonMesh {
   PreparedMesh prepared_;
 };
 
+// `rule` None (the owned rule) or a rule (bind_mesh.cpp); a mesh hit as the MeshHit NamedTuple, or None.
+[[nodiscard]] TriangleRule rule_or_owned(py::handle rule);
+[[nodiscard]] py::object to_python(const std::optional<MeshHit>& hit);
+
 // Which kernel query answers a mesh nearest hit from Python.
 enum class MeshPath { certified, exact, naive };
 

@@ -27,6 +27,7 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_triangle(m);
   bind_sphere(m);
   bind_mesh(m);
+  bind_occlusion(m);
   bind_closest(m);
   bind_spawn(m);
   bind_testkit(m);
