@@ -14,6 +14,7 @@ from ._types import (
     CrossingArrays,
     MeshHits,
     OcclusionArrays,
+    SpawnArrays,
     ExactIntersection,
     ExactSphereIntersection,
     ExactTriangleIntersection,
@@ -133,6 +134,32 @@ def spawn(
 def spawn_to(
     hit: Union[RayLike, Vec3Like], triangle: TriangleLike, target: Vec3Like, *, format: str = "binary64"
 ) -> SpawnedOrigin: ...
+def spawn_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    directions_out: ArrayLike3,
+    *,
+    format: str = "binary64",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> SpawnArrays: ...
+def spawn_to_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    a: ArrayLike3,
+    b: ArrayLike3,
+    c: ArrayLike3,
+    targets: ArrayLike3,
+    *,
+    format: str = "binary64",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> SpawnArrays: ...
 def floating_point_environment_is_default() -> bool: ...
 def version() -> str: ...
 

@@ -516,6 +516,15 @@ class CrossingArrays(NamedTuple):
     valid: np.ndarray
 
 
+class SpawnArrays(NamedTuple):
+    """The answers of ``spawn_batch`` and ``spawn_to_batch``, one row per hit: ``origin`` ((n, 3) float64, NaN for an
+    invalid row), ``steps`` (uint64: the steps from the rounded hit point) and ``valid`` (bool)."""
+
+    origin: np.ndarray
+    steps: np.ndarray
+    valid: np.ndarray
+
+
 class RelationArrays(NamedTuple):
     """The answers of ``relation_batch``, one row per query: ``relation`` (uint8 ``Relation.code``,
     ``INVALID_RELATION_CODE`` for invalid rows), ``valid`` (bool), ``stats`` (relation stages)."""

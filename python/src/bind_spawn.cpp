@@ -1,10 +1,14 @@
 // spawn and spawn_to (docs/contract.md §9): the origin of a secondary ray that never re-hits the triangle it
 // leaves, in binary64 or binary32; spawn also from a sphere (docs/contract.md, "Spawning from a sphere").
+#include "batch_support.hpp"
 #include "bindings.hpp"
 #include "convert.hpp"
 
 #include <raykernel/spawn.hpp>
 
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 
 namespace raykernel::python {
@@ -36,6 +40,58 @@ from the exact P). Returns ``SpawnedOrigin(origin, steps)``: P rounded to neares
 is strictly on side s, else moved the fewest steps through consecutive values of the format along the axis of
 the largest |N_i| until it is (``steps`` = k, exact). Raises ``ValueError`` (``raykernel.InvalidInput``) naming
 the reason: a non-finite number, a zero direction, a degenerate triangle, a ray parallel to the plane, )doc";
+
+using TriangleSpawn = SpawnedOrigin (*)(const HitPoint&, const Triangle&, const Vec3&, OriginFormat);
+
+// spawn or spawn_to over arrays: row i is the hit ray (origins[i], directions[i]) on the triangle (a[i], b[i],
+// c[i]) and the new direction or target vectors[i]. An invalid row (the kernel's invalid_input) is named or masked.
+py::object spawn_batch_py(TriangleSpawn kernel, const char* vectors_name, py::handle origins, py::handle directions,
+                          py::handle a, py::handle b, py::handle c, py::handle vectors, const std::string& format,
+                          const std::string& errors, std::optional<unsigned> threads) {
+  const OriginFormat f = format_from(format);
+  const ErrorPolicy policy = error_policy_from(errors);
+  const ColumnsView o(origins, "origins"), d(directions, "directions"), va(a, "a"), vb(b, "b"), vc(c, "c"),
+      w(vectors, vectors_name);
+  const std::size_t n = o.rows();
+  require_rows(d, "directions", n, "origins");
+  require_rows(va, "a", n, "origins");
+  require_rows(vb, "b", n, "origins");
+  require_rows(vc, "c", n, "origins");
+  require_rows(w, vectors_name, n, "origins");
+  py::array_t<double> origin({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  auto steps = new_array<std::uint64_t>(n);
+  auto valid = new_array<bool>(n);
+  double* const origin_out = origin.mutable_data();
+  const std::span<std::uint64_t> steps_out = span_of(steps);
+  const std::span<bool> valid_out = span_of(valid);
+  std::vector<std::string> reasons(n);  // only invalid rows hold one
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    parallel_for(n, threads_from(threads), 256, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        try {
+          const SpawnedOrigin s =
+              kernel(HitPoint::crossing(Ray{o.row(i), d.row(i)}), Triangle{va.row(i), vb.row(i), vc.row(i)}, w.row(i), f);
+          origin_out[3 * i] = s.origin.x;
+          origin_out[3 * i + 1] = s.origin.y;
+          origin_out[3 * i + 2] = s.origin.z;
+          steps_out[i] = s.steps;
+          valid_out[i] = true;
+        } catch (const invalid_input& e) {
+          for (std::size_t k = 0; k < 3; ++k) origin_out[3 * i + k] = std::numeric_limits<double>::quiet_NaN();
+          steps_out[i] = 0;
+          valid_out[i] = false;
+          reasons[i] = e.what();
+        }
+      }
+    });
+    if (const std::optional<std::size_t> i = first_invalid_row(valid_out))
+      error = "row " + std::to_string(*i) + ": " + reasons[*i];
+  }
+  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+  return py::module_::import("raykernel._types").attr("SpawnArrays")(origin, steps, valid);
+}
 
 }  // namespace
 
@@ -102,6 +158,38 @@ q never meets the triangle (docs/contract.md §9).)doc") +
       },
       py::arg("hit"), py::arg("triangle"), py::arg("direction"), py::kw_only(), py::arg("format") = "binary64",
       spawn_doc.c_str());
+
+  constexpr const char* batch_doc = R"doc( over arrays, on threads with the GIL released: row i is the hit ray
+(``origins[i]``, ``directions[i]``) — P is where its line crosses the plane of the triangle (``a[i]``, ``b[i]``,
+``c[i]``), exactly — and the row's vector. Returns ``SpawnArrays(origin, steps, valid)``: ``origin`` (n, 3) float64
+(NaN for an invalid row; binary32 values exactly with ``format="binary32"``), ``steps`` uint64, ``valid`` bool.
+``errors``: "raise" (default) raises ``ValueError`` naming the first bad row ("row 3: the triangle is
+degenerate ..."), "mask" answers the others. ``threads``, ``progress`` as ``inside_batch``.)doc";
+  static const std::string spawn_batch_doc =
+      std::string("``spawn`` (a triangle's: the new ray along ``directions_out[i]``)") + batch_doc;
+  static const std::string spawn_to_batch_doc =
+      std::string("``spawn_to`` (shadow rays towards ``targets[i]``)") + batch_doc;
+  m.def(
+      "spawn_batch",
+      with_progress(+[](py::handle origins, py::handle directions, py::handle a, py::handle b, py::handle c,
+                        py::handle directions_out, const std::string& format, const std::string& errors,
+                        std::optional<unsigned> threads) {
+        return spawn_batch_py(&spawn, "directions_out", origins, directions, a, b, c, directions_out, format, errors,
+                              threads);
+      }),
+      py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("directions_out"),
+      py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+      py::arg("progress") = py::none(), spawn_batch_doc.c_str());
+  m.def(
+      "spawn_to_batch",
+      with_progress(+[](py::handle origins, py::handle directions, py::handle a, py::handle b, py::handle c,
+                        py::handle targets, const std::string& format, const std::string& errors,
+                        std::optional<unsigned> threads) {
+        return spawn_batch_py(&spawn_to, "targets", origins, directions, a, b, c, targets, format, errors, threads);
+      }),
+      py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("targets"),
+      py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+      py::arg("progress") = py::none(), spawn_to_batch_doc.c_str());
 }
 
 }  // namespace raykernel::python

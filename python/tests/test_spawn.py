@@ -109,3 +109,37 @@ def test_spawn_from_a_sphere_hand_derived():
         rk.spawn((1, 0, 0), unit, (0, 1, 0))
     with pytest.raises(ValueError, match="hit point"):
         rk.spawn(((0, 0, 0), (1, 0, 0)), unit, (1, 0, 0))
+
+
+def test_spawn_batches_are_the_scalar_forms():
+    """spawn_batch and spawn_to_batch give, row by row, spawn's and spawn_to's answers (binary64 and binary32), and
+    name or mask a bad row."""
+    rng = np.random.default_rng(12)
+    n = 300
+    a = rng.integers(-8, 9, size=(n, 3)) / 4.0
+    b = a + rng.integers(1, 9, size=(n, 3)) / 8.0 * np.array([1, 0, 0])
+    c = a + rng.integers(1, 9, size=(n, 3)) / 8.0 * np.array([0, 1, 0.5])
+    w1, w2 = rng.uniform(0.05, 0.9, size=(2, n))
+    target = a + w1[:, None] * (b - a) + w2[:, None] * (c - a) * (1 - w1[:, None])  # a point in each triangle
+    origins = target + rng.normal(size=(n, 3))
+    directions = target - origins
+    out = rng.normal(size=(n, 3))
+    lights = rng.normal(size=(n, 3)) * 4
+    for fmt in ("binary64", "binary32"):
+        got = rk.spawn_batch(origins, directions, a, b, c, out, format=fmt, errors="mask")
+        to = rk.spawn_to_batch(origins, directions, a, b, c, lights, format=fmt, errors="mask")
+        assert got.valid.mean() > 0.9 and to.valid.mean() > 0.9  # rows w·N = 0 or q on the plane are rare
+        for i in range(n):
+            tri = (a[i], b[i], c[i])
+            for batch, fn, v in ((got, rk.spawn, out[i]), (to, rk.spawn_to, lights[i])):
+                try:
+                    want = fn((origins[i], directions[i]), tri, v, format=fmt)
+                except ValueError:
+                    assert not batch.valid[i]
+                    continue
+                assert batch.valid[i]
+                assert tuple(batch.origin[i]) == tuple(want.origin) and int(batch.steps[i]) == want.steps
+    bad = directions.copy()
+    bad[5] = 0
+    with pytest.raises(ValueError, match=r"^row 5: "):
+        rk.spawn_batch(origins, bad, a, b, c, out)
