@@ -768,3 +768,29 @@ Definition main_results_23 :=
    @SphereBoundaryFilter.sphere_boundary_slope_sound).
 Goal True. idtac "@@ sphere_boundary_q_encloses sphere_boundary_q_sound sphere_boundary_slope_encloses sphere_boundary_slope_sound". Abort.
 Print Assumptions main_results_23.
+(** core/: interval arithmetic widened by one ulp (core/interval.hpp: next_up, next_down, operator+, operator-,
+    operator*, square, divide_nonnegative, interval_sign): pred(RN z) ≤ z ≤ succ(RN z), and each computed interval
+    holds the exact result, over the reals for all ends, and on IEEE doubles for finite operand ends with overflow
+    to ±inf (of the operations and of the widening) included *)
+From Raykernel Require IntervalWidening.
+Definition main_results_24 :=
+  (@IntervalWidening.widen_encloses,
+   @IntervalWidening.interval_add_encloses,
+   @IntervalWidening.interval_sub_encloses,
+   @IntervalWidening.interval_neg_encloses,
+   @IntervalWidening.interval_mul_encloses,
+   @IntervalWidening.interval_square_encloses,
+   @IntervalWidening.interval_div_encloses,
+   @IntervalWidening.interval_sign_sound).
+Goal True. idtac "@@ widen_encloses interval_add_encloses interval_sub_encloses interval_neg_encloses interval_mul_encloses interval_square_encloses interval_div_encloses interval_sign_sound". Abort.
+Print Assumptions main_results_24.
+Definition main_results_25 :=
+  (@IntervalWidening.ieee_add_encloses,
+   @IntervalWidening.ieee_sub_encloses,
+   @IntervalWidening.ieee_neg_encloses,
+   @IntervalWidening.ieee_mul_encloses,
+   @IntervalWidening.ieee_square_encloses,
+   @IntervalWidening.ieee_div_encloses,
+   @IntervalWidening.ieee_sign_sound).
+Goal True. idtac "@@ ieee_add_encloses ieee_sub_encloses ieee_neg_encloses ieee_mul_encloses ieee_square_encloses ieee_div_encloses ieee_sign_sound". Abort.
+Print Assumptions main_results_25.

@@ -1,7 +1,9 @@
 // The closest point of a mesh (kernel/include/raykernel/closest_point.hpp, docs/contract.md §11).
 //
-// - The interval arithmetic of the filter (core/interval.hpp): every operation's interval holds the exact result,
-//   checked in GMP rationals at random, huge, tiny, subnormal and overflowing values.
+// - The interval arithmetic of the filter (core/interval.hpp, proved in proofs/core/IntervalWidening.v): every
+//   operation's interval holds the exact result, checked in GMP rationals at random, huge, tiny, subnormal and
+//   overflowing values; next_up and next_down are IEEE nextUp and nextDown (std::nextafter), bit for bit — the link
+//   the proof takes as given.
 // - An independent oracle: the squared distance to each triangle by another construction than Ericson's regions
 //   (the projection onto the plane when it falls inside the triangle, else the nearest of the three segments,
 //   all in GMP rationals), the smallest exact value winning, ties to the smallest index. closest_point (BVH,
@@ -82,6 +84,25 @@ TEST(ClosestInterval, EveryOperationHoldsTheExactResult) {
       const Interval d = detail::divide_nonnegative(detail::square(a), detail::square(b));
       ASSERT_TRUE(holds(d, (qx * qx) / (qy * qy))) << x << "^2 / " << y << "^2";
     }
+  }
+  // next_up is IEEE nextUp (Flocq's Bsucc, which proofs/core/IntervalWidening.v takes it to be), bit for bit, on
+  // every kind of double: ±0, subnormals, binade boundaries, DBL_MAX, ±inf, and at random.
+  std::vector<double> probes = {0.0, -0.0, std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::denorm_min(),
+                                0x1p-1022, -0x1p-1022, 0x1.fffffffffffffp-1023, 1.0, -1.0, 0x1.fffffffffffffp+1023,
+                                -0x1.fffffffffffffp+1023, std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity()};
+  std::uniform_int_distribution<std::uint64_t> any_bits;
+  for (int n = 0; n < 100000; ++n) {
+    const double x = std::bit_cast<double>(any_bits(rng));
+    if (!std::isnan(x)) probes.push_back(x);
+  }
+  for (const double x : probes) {
+    ASSERT_TRUE(same_bits(detail::next_up(x), std::nextafter(x, std::numeric_limits<double>::infinity())) ||
+                (x == std::numeric_limits<double>::infinity() && detail::next_up(x) == x))
+        << std::hexfloat << x;
+    ASSERT_TRUE(same_bits(detail::next_down(x), std::nextafter(x, -std::numeric_limits<double>::infinity())) ||
+                (x == -std::numeric_limits<double>::infinity() && detail::next_down(x) == x))
+        << std::hexfloat << x;
   }
   // One ulp of widening: the smallest steps.
   EXPECT_EQ(detail::next_up(0.0), std::numeric_limits<double>::denorm_min());

@@ -40,60 +40,60 @@ py::object all_hits_py(py::handle ray, const PythonMesh& mesh, double t_min, dou
   return types_attr("MeshHits")(list, hits.crossings);
 }
 
-// The rays of (origins, directions) with their intervals (t_min, t_max: one number each, or one per ray), on
-// threads: `answer(i, ray, interval)` for the valid rows; the invalid ones marked in `valid`.
-template <class Answer>
-std::optional<std::string> for_rays(const ColumnsView& o, const ColumnsView& d, const ValuesView& lo,
-                                    const ValuesView& hi, std::span<bool> valid, std::optional<unsigned> threads,
-                                    std::size_t grain, Answer&& answer) {
-  const std::size_t n = o.rows();
-  parallel_for(n, threads_from(threads), grain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const Ray ray{o.row(i), d.row(i)};
-      const RayInterval interval{lo.value(lo.single() ? 0 : i), hi.value(hi.single() ? 0 : i)};
-      valid[i] = !ray_problem(ray, interval).has_value();
-      answer(i, ray, interval, valid[i]);
-    }
-  });
-  if (const std::optional<std::size_t> i = first_invalid_row(valid)) {
-    const RayInterval interval{lo.value(lo.single() ? 0 : *i), hi.value(hi.single() ? 0 : *i)};
-    return "ray " + std::to_string(*i) + ": " + ray_problem(Ray{o.row(*i), d.row(*i)}, interval).value_or("invalid input");
-  }
-  return std::nullopt;
-}
-
-struct RayColumns {
+// The arguments every ray batch here shares, read with the GIL held: the rays (origins, directions) with their
+// intervals (t_min, t_max: one number each, or one per ray), the path, the error policy and the rule.
+struct RayBatch {
   ColumnsView o, d;
   ValuesView lo, hi;
-  RayColumns(py::handle origins, py::handle directions, py::handle t_min, py::handle t_max)
-      : o(origins, "origins"), d(directions, "directions"), lo(t_min, "t_min", true), hi(t_max, "t_max", true) {
+  bool exact;
+  ErrorPolicy policy;
+  TriangleRule rule;
+
+  RayBatch(py::handle origins, py::handle directions, py::handle t_min, py::handle t_max, py::handle rule_arg,
+           const std::string& path, const std::string& errors)
+      : o(origins, "origins"), d(directions, "directions"), lo(t_min, "t_min", true), hi(t_max, "t_max", true),
+        exact(path_from(path, false) == Path::exact), policy(error_policy_from(errors)), rule(rule_or_owned(rule_arg)) {
     require_rows(d, "directions", o.rows(), "origins");
     require_rows(lo, "t_min", o.rows(), "origins");
     require_rows(hi, "t_max", o.rows(), "origins");
+  }
+  [[nodiscard]] std::size_t rows() const noexcept { return o.rows(); }
+  [[nodiscard]] Ray ray(std::size_t i) const noexcept { return {o.row(i), d.row(i)}; }
+  [[nodiscard]] RayInterval interval(std::size_t i) const noexcept {
+    return {lo.value(lo.single() ? 0 : i), hi.value(hi.single() ? 0 : i)};
+  }
+
+  // answer(i, ray, interval, valid) for every row, on threads without the GIL; `valid` marks the rows. Then, with
+  // the GIL, raises for the first bad row when the policy says so.
+  template <class Answer>
+  void run(std::span<bool> valid, std::optional<unsigned> threads, std::size_t grain, Answer&& answer) const {
+    std::optional<std::string> error;
+    {
+      py::gil_scoped_release release;
+      parallel_for(rows(), threads_from(threads), grain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+          valid[i] = !ray_problem(ray(i), interval(i)).has_value();
+          answer(i, ray(i), interval(i), valid[i]);
+        }
+      });
+      if (const std::optional<std::size_t> i = first_invalid_row(valid))
+        error = "ray " + std::to_string(*i) + ": " + ray_problem(ray(*i), interval(*i)).value_or("invalid input");
+    }
+    if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
   }
 };
 
 py::object occluded_batch_py(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
                              py::handle t_max, py::handle rule, const std::string& path_name,
                              const std::string& errors, std::optional<unsigned> threads) {
-  const bool exact = path_from(path_name, false) == Path::exact;
-  const ErrorPolicy policy = error_policy_from(errors);
-  const TriangleRule chosen = rule_or_owned(rule);
-  const RayColumns c(origins, directions, t_min, t_max);
-  const std::size_t n = c.o.rows();
-  auto blocked = new_array<bool>(n);
-  auto valid = new_array<bool>(n);
-  const std::span<bool> blocked_out = span_of(blocked), valid_out = span_of(valid);
-  std::optional<std::string> error;
-  {
-    py::gil_scoped_release release;
-    error = for_rays(c.o, c.d, c.lo, c.hi, valid_out, threads, exact ? 4 : 256,
-                     [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-                       blocked_out[i] = ok && (exact ? occluded_exact(ray, interval, mesh.mesh(), chosen)
-                                                     : occluded(ray, interval, mesh.prepared(), chosen));
-                     });
-  }
-  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
+  auto blocked = new_array<bool>(b.rows());
+  auto valid = new_array<bool>(b.rows());
+  const std::span<bool> blocked_out = span_of(blocked);
+  b.run(span_of(valid), threads, b.exact ? 4 : 256, [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
+    blocked_out[i] = ok && (b.exact ? occluded_exact(ray, interval, mesh.mesh(), b.rule)
+                                    : occluded(ray, interval, mesh.prepared(), b.rule));
+  });
   return types_attr("OcclusionArrays")(blocked, valid);
 }
 
@@ -130,32 +130,21 @@ py::object occluded_segment_batch_py(py::handle ps, py::handle qs, const PythonM
 py::object crossings_batch_py(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
                               py::handle t_max, py::handle rule, const std::string& path_name,
                               const std::string& errors, std::optional<unsigned> threads) {
-  const bool exact = path_from(path_name, false) == Path::exact;
-  const ErrorPolicy policy = error_policy_from(errors);
-  const TriangleRule chosen = rule_or_owned(rule);
-  const RayColumns c(origins, directions, t_min, t_max);
-  const std::size_t n = c.o.rows();
-  auto hits = new_array<std::int64_t>(n);
-  auto crossings = new_array<std::int64_t>(n);
-  auto valid = new_array<bool>(n);
+  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
+  auto hits = new_array<std::int64_t>(b.rows());
+  auto crossings = new_array<std::int64_t>(b.rows());
+  auto valid = new_array<bool>(b.rows());
   const std::span<std::int64_t> hits_out = span_of(hits), crossings_out = span_of(crossings);
-  const std::span<bool> valid_out = span_of(valid);
-  std::optional<std::string> error;
-  {
-    py::gil_scoped_release release;
-    error = for_rays(c.o, c.d, c.lo, c.hi, valid_out, threads, exact ? 1 : 64,
-                     [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-                       if (!ok) {
-                         hits_out[i] = crossings_out[i] = 0;
-                         return;
-                       }
-                       const MeshHits h = exact ? all_hits_exact(ray, interval, mesh.mesh(), chosen)
-                                                : all_hits(ray, interval, mesh.prepared(), chosen);
-                       hits_out[i] = static_cast<std::int64_t>(h.hits.size());
-                       crossings_out[i] = h.crossings;
-                     });
-  }
-  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+  b.run(span_of(valid), threads, b.exact ? 1 : 64, [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
+    if (!ok) {
+      hits_out[i] = crossings_out[i] = 0;
+      return;
+    }
+    const MeshHits h = b.exact ? all_hits_exact(ray, interval, mesh.mesh(), b.rule)
+                               : all_hits(ray, interval, mesh.prepared(), b.rule);
+    hits_out[i] = static_cast<std::int64_t>(h.hits.size());
+    crossings_out[i] = h.crossings;
+  });
   return types_attr("CrossingArrays")(hits, crossings, valid);
 }
 

@@ -45,6 +45,7 @@ using detail::ClosestTerms;
 using detail::Interval;
 using detail::Vec3Of;
 using Q = mpq_class;
+using detail::exact::MpfrNumber;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -179,18 +180,6 @@ ExactMeasure measure_exact(const Vec3& query, const Triangle& tri) {
                   t.den, feature, corner);
 }
 
-// An MPFR number freed on scope exit.
-class Big {
- public:
-  explicit Big(mpfr_prec_t precision) { mpfr_init2(x_, precision); }
-  ~Big() { mpfr_clear(x_); }
-  Big(const Big&) = delete;
-  Big& operator=(const Big&) = delete;
-  mpfr_ptr get() { return x_; }
-
- private:
-  mpfr_t x_;
-};
 
 mpfr_prec_t bits_of(const Z& z) { return std::max<mpfr_prec_t>(2, static_cast<mpfr_prec_t>(mpz_sizeinbase(z.get_mpz_t(), 2))); }
 
@@ -206,7 +195,7 @@ std::optional<double> to_binary64(mpfr_ptr x) {
 // RN(n·2^e / d), d > 0: one MPFR division of exact values at 53 bits, in MPFR's wide exponent range; where the
 // quotient is subnormal or overflows (a second rounding would follow), the rational's rounding to binary64.
 double round_scaled_quotient(const Z& n, const Z& d, long e) {
-  Big num(bits_of(n)), den(bits_of(d)), x(53);
+  MpfrNumber num(bits_of(n)), den(bits_of(d)), x(53);
   mpfr_set_z(num.get(), n.get_mpz_t(), MPFR_RNDN);  // exact: precision of n
   mpfr_mul_2si(num.get(), num.get(), e, MPFR_RNDN);  // exact
   mpfr_set_z(den.get(), d.get_mpz_t(), MPFR_RNDN);
@@ -229,7 +218,7 @@ double round_distance(const ExactMeasure& m) {
     return round_scaled_quotient(root, m.denominator, m.exponent);
   }
   for (mpfr_prec_t precision = 96; precision <= 4096; precision *= 2) {
-    Big s(bits_of(m.squared)), den(bits_of(m.denominator)), lo(precision), hi(precision), lo53(53), hi53(53);
+    MpfrNumber s(bits_of(m.squared)), den(bits_of(m.denominator)), lo(precision), hi(precision), lo53(53), hi53(53);
     mpfr_set_z(s.get(), m.squared.get_mpz_t(), MPFR_RNDN);  // exact
     mpfr_set_z(den.get(), m.denominator.get_mpz_t(), MPFR_RNDN);
     mpfr_sqrt(lo.get(), s.get(), MPFR_RNDD);
@@ -298,16 +287,29 @@ IntervalMeasure measure_interval(const Vec3& query, const Triangle& tri, double 
   const Vec3Of<Interval> n{ab.y * ac.z - ab.z * ac.y, ab.z * ac.x - ab.x * ac.z, ab.x * ac.y - ab.y * ac.x};
   if (!surely_nonzero(n.x) && !surely_nonzero(n.y) && !surely_nonzero(n.z))
     return {IntervalMeasure::uncertain, ClosestRegion::uncertain, {}};
+  // The squared distance to the plane, ((p − a)·n)² / |n|²: a lower bound of the distance to the triangle, and
+  // the distance itself in the face region.
   const Interval n2 = detail::square(n.x) + detail::square(n.y) + detail::square(n.z);
-  if (n2.lo > 0 && detail::divide_nonnegative(detail::square(dot(p - a, n)), n2).lo > best)
-    return {IntervalMeasure::farther, ClosestRegion::uncertain, {}};
+  if (!(n2.lo > 0)) return {IntervalMeasure::uncertain, ClosestRegion::uncertain, {}};
+  const Interval plane = detail::divide_nonnegative(detail::square(dot(p - a, n)), n2);
+  if (plane.lo > best) return {IntervalMeasure::farther, ClosestRegion::uncertain, {}};
   const ClosestTerms<Interval> t = detail::closest_terms<Interval>(
       p, a, b, c, Interval::point(0), Interval::point(1), [](const Interval& x) { return detail::interval_sign(x); });
+  const auto squared_length = [](const Vec3Of<Interval>& v) {
+    return detail::square(v.x) + detail::square(v.y) + detail::square(v.z);
+  };
+  switch (t.region) {
+    case ClosestRegion::uncertain: return {IntervalMeasure::uncertain, t.region, {}};
+    case ClosestRegion::face: return {IntervalMeasure::measured, t.region, plane};
+    case ClosestRegion::vertex_a: return {IntervalMeasure::measured, t.region, squared_length(p - a)};
+    case ClosestRegion::vertex_b: return {IntervalMeasure::measured, t.region, squared_length(p - b)};
+    case ClosestRegion::vertex_c: return {IntervalMeasure::measured, t.region, squared_length(p - c)};
+    default: break;  // an edge: |den·ap − num_v·ab − num_w·ac|² / den²
+  }
   const Interval den2 = detail::square(t.den);
-  if (t.region == ClosestRegion::uncertain || !(den2.lo > 0)) return {IntervalMeasure::uncertain, t.region, {}};
-  const Vec3Of<Interval> r = detail::scaled_offset(t, p, a, b, c);
-  const Interval num = detail::square(r.x) + detail::square(r.y) + detail::square(r.z);
-  return {IntervalMeasure::measured, t.region, detail::divide_nonnegative(num, den2)};
+  if (!(den2.lo > 0)) return {IntervalMeasure::uncertain, t.region, {}};
+  return {IntervalMeasure::measured, t.region,
+          detail::divide_nonnegative(squared_length(detail::scaled_offset(t, p, a, b, c)), den2)};
 }
 
 // A lower bound of the squared distance from p to the box lo ≤ x ≤ hi (closed): per axis the gap, rounded to nearest
@@ -411,7 +413,16 @@ ClosestPoint search(const Vec3& query, const PreparedMesh& mesh, Counts& counts)
       const BvhNode& node = bvh.nodes()[next.first];
       for (int s = 0; s < static_cast<int>(node.children); ++s) {
         const double lower = box_lower_bound(query, node, s);
-        if (lower <= best) push({lower, node.first[static_cast<std::size_t>(s)], node.count[static_cast<std::size_t>(s)]});
+        if (lower > best) continue;
+        const std::uint32_t first = node.first[static_cast<std::size_t>(s)], count = node.count[static_cast<std::size_t>(s)];
+        // The measure of a candidate is long, so the out-of-order core does not reach the next triangle's load: fetch
+        // a leaf's triangles (and a node's children) ahead, while the heap decides what comes first.
+        if (count > 0) {
+          for (std::uint32_t k = 0; k < count; ++k) __builtin_prefetch(&leaf[first + k]);
+        } else {
+          __builtin_prefetch(&bvh.nodes()[first]);
+        }
+        push({lower, first, count});
       }
       continue;
     }

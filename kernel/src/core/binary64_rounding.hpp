@@ -27,6 +27,19 @@ struct BinaryFormat {
 inline constexpr BinaryFormat binary64_format{53, -1073, 1024};
 inline constexpr BinaryFormat binary32_format{24, -148, 128};
 
+// An MPFR number of a given precision, freed on scope exit.
+class MpfrNumber {
+ public:
+  explicit MpfrNumber(mpfr_prec_t precision) { mpfr_init2(x_, precision); }
+  ~MpfrNumber() { mpfr_clear(x_); }
+  MpfrNumber(const MpfrNumber&) = delete;
+  MpfrNumber& operator=(const MpfrNumber&) = delete;
+  [[nodiscard]] mpfr_ptr get() { return x_; }
+
+ private:
+  mpfr_t x_;
+};
+
 // Sets MPFR's exponent range to a format's for the lifetime of the object (MPFR keeps it per thread).
 class ExponentRangeGuard {
  public:

@@ -2,17 +2,20 @@
 // outwards. A filter for constructions whose error analysis is not written per formula (the closest point,
 // closest/closest_formula.hpp): each interval holds the exact value of the expression it was computed from.
 //
-// Why it holds: RN(x) is within half an ulp of x, and the neighbour of RN(x) away from x is at least that far from
+// Error bound: RN(x) is within half an ulp of x, and the neighbour of RN(x) away from x is at least that far from
 // it, so x ∈ [next_down(RN(x)), next_up(RN(x))] — with gradual underflow (the absolute error of RN is at most
 // 2^-1075, below the smallest step 2^-1074) and with overflow (RN(x) = +inf gives next_down = DBL_MAX ≤ x, and
 // next_up(+inf) = +inf). Interval operations take the exact operation's extreme values at the endpoints (for a
 // product, 0 · ±inf counts as 0, the product's limit; an endpoint ±inf stands for "beyond the doubles").
-// Range: every double, inf included (NaN never arises from finite inputs: a lower end is never +inf nor an
-// upper end −inf, so sums and differences of ends never form inf − inf).
-// Assumes the default floating-point environment (round to nearest, no FTZ or DAZ; FpEnvironmentScope,
-// core/fp_environment.hpp, installs it). Tested, not proved: tests/closest_point_test.cpp checks every operation
-// against exact rationals at random, huge, tiny, subnormal and overflowing values; no Coq proof yet, so this file
-// is listed as not certified in proofs/CMakeLists.txt, and what it filters is always settled exactly.
+// Valid range: operands whose ends are finite doubles; every operation and widening may overflow (a lower end
+// −inf, an upper end +inf, read as extended reals). Operands with an infinite end (the output of an overflow fed
+// to the next operation) are argued above, not proved: a lower end is never +inf nor an upper end −inf, so sums
+// and differences of ends never form inf − inf, and a product's 0 · ±inf is replaced by its limit 0.
+// Certified by: proofs/core/IntervalWidening.v — `widen_encloses`; on IEEE doubles with overflow `ieee_add_encloses`,
+// `ieee_sub_encloses`, `ieee_neg_encloses`, `ieee_mul_encloses`, `ieee_square_encloses`, `ieee_div_encloses`,
+// `ieee_sign_sound` (next_up is Flocq's Bsucc: checked bit for bit against std::nextafter by
+// tests/closest_point_test.cpp, not proved). Assumes the default floating-point environment (round to nearest, no
+// FTZ or DAZ; FpEnvironmentScope, core/fp_environment.hpp, installs it).
 #pragma once
 
 #include <algorithm>

@@ -21,18 +21,6 @@ std::optional<mpq_class> rational_sqrt(const mpq_class& v) {
   return mpq_class(n, d);  // lowest terms already: the roots of coprime squares are coprime
 }
 
-// An MPFR number of a given precision, freed on scope exit.
-class Big {
- public:
-  explicit Big(mpfr_prec_t precision) { mpfr_init2(x_, precision); }
-  ~Big() { mpfr_clear(x_); }
-  Big(const Big&) = delete;
-  Big& operator=(const Big&) = delete;
-  mpfr_ptr get() { return x_; }
-
- private:
-  mpfr_t x_;
-};
 
 bool same_double(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
@@ -41,7 +29,7 @@ bool same_double(double a, double b) { return std::bit_cast<std::uint64_t>(a) ==
 double round_irrational_root(const mpq_class& u, const mpq_class& v, int root, const BinaryFormat& format,
                              mpfr_rnd_t mode) {
   for (mpfr_prec_t precision = 128; precision <= (mpfr_prec_t{1} << 24); precision *= 2) {
-    Big u_lo(precision), u_hi(precision), v_lo(precision), v_hi(precision), s_lo(precision), s_hi(precision),
+    MpfrNumber u_lo(precision), u_hi(precision), v_lo(precision), v_hi(precision), s_lo(precision), s_hi(precision),
         lo(precision), hi(precision);
     mpfr_set_q(u_lo.get(), u.get_mpq_t(), MPFR_RNDD);
     mpfr_set_q(u_hi.get(), u.get_mpq_t(), MPFR_RNDU);
