@@ -112,6 +112,7 @@ from ._raykernel import (  # noqa: E402  (the extension builds its results from 
     intersect_traced,
     intersect_triangle_batch,
     load_mesh,
+    mesh_bytes,
     nearest_hit,
     nearest_hit_batch,
     nearest_hit_exact,
@@ -202,6 +203,7 @@ __all__ = [
     "intersect_traced",
     "intersect_triangle_batch",
     "load_mesh",
+    "mesh_bytes",
     "nearest_hit",
     "nearest_hit_batch",
     "nearest_hit_exact",
@@ -214,6 +216,7 @@ __all__ = [
     "relation_batch",
     "relation_triangle_batch",
     "round_rational_to_double",
+    "save_mesh",
     "spawn",
     "spawn_batch",
     "spawn_to",
@@ -236,3 +239,24 @@ def __getattr__(name: str):
 
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'raykernel' has no attribute '{name}'")
+
+
+def save_mesh(mesh: Mesh, path, *, format: "str | None" = None, encoding: str = "ascii") -> None:
+    """Writes ``mesh`` to the file at ``path`` (str, bytes or ``os.PathLike``) exactly, in ``format`` ("obj", "ply",
+    "stl", "off"; by default from the extension), as ``mesh_bytes`` gives it: ``load_mesh(path)`` reads back the
+    same vertices and triangles bit for bit (STL: unshared vertices). Every write is checked: a full disk or a
+    missing folder raises ``OSError``; an unknown extension or a format/encoding the format lacks, ``ValueError``."""
+    import os
+
+    name = os.fsdecode(os.fspath(path))
+    if format is None:
+        extension = os.path.splitext(name)[1].lower().lstrip(".")
+        if extension not in ("obj", "ply", "stl", "off"):
+            raise ValueError(f"save_mesh: {name}: cannot tell the format from the extension '.{extension}' "
+                             "(give format='obj', 'ply', 'stl' or 'off')")
+        format = extension
+    data = mesh_bytes(mesh, format, encoding=encoding)
+    with open(path, "wb") as f:
+        f.write(data)
+        f.flush()
+        os.fsync(f.fileno())

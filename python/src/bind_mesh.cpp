@@ -355,6 +355,37 @@ mesh, and for a path containing a NUL character, which ``open()`` refuses too; w
 not a path. Releases the GIL.)doc");
 
   m.def(
+      "mesh_bytes",
+      [](const PythonMesh& mesh, const std::string& format, const std::string& encoding) {
+        io::MeshFormat f{};
+        if (format == "obj") f = io::MeshFormat::obj;
+        else if (format == "ply") f = io::MeshFormat::ply;
+        else if (format == "stl") f = io::MeshFormat::stl;
+        else if (format == "off") f = io::MeshFormat::off;
+        else if (format == "gltf") f = io::MeshFormat::gltf;
+        else throw py::value_error("format: expected 'obj', 'ply', 'stl', 'off' or 'gltf', got '" + format + "'");
+        io::MeshEncoding e{};
+        if (encoding == "ascii") e = io::MeshEncoding::ascii;
+        else if (encoding == "binary") e = io::MeshEncoding::binary_little_endian;
+        else if (encoding == "binary_big_endian") e = io::MeshEncoding::binary_big_endian;
+        else throw py::value_error("encoding: expected 'ascii', 'binary' or 'binary_big_endian', got '" + encoding + "'");
+        std::string bytes;
+        {
+          py::gil_scoped_release release;
+          bytes = io::write_mesh(mesh.mesh(), f, e);  // std::invalid_argument: ValueError
+        }
+        return py::bytes(bytes);
+      },
+      py::arg("mesh"), py::arg("format"), py::kw_only(), py::arg("encoding") = "ascii",
+      R"doc(The mesh as the bytes of a file in ``format`` ("obj", "ply", "stl", "off"), exactly: text formats print each
+coordinate as the shortest decimal that reads back as the same double, PLY binary stores doubles, so
+``load_mesh`` of the written file gives the same vertices and triangles bit for bit (STL has no indices: its
+vertices come back unshared; STL binary stores floats and is refused unless every coordinate is one). ``encoding``:
+"ascii", "binary" (little-endian; PLY, STL) or "binary_big_endian" (PLY). Raises ``ValueError`` for a combination
+the format does not have, and for glTF (float32 positions cannot hold every double). ``save_mesh`` writes it to a
+file.)doc");
+
+  m.def(
       "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },
       py::arg("point"), py::arg("mesh"),
       R"doc(Where ``point`` is against ``mesh`` (docs/contract.md §7), exactly: ``PointLocation.ON_SURFACE`` if it

@@ -375,3 +375,31 @@ def test_load_mesh_reads_gltf_and_glb_exactly(tmp_path):
     with pytest.raises(rk.MeshFileError, match="node 0: it rotates") as caught:
         rk.load_mesh(tmp_path / "rotated.gltf")
     assert caught.value.file == str(tmp_path / "rotated.gltf") and caught.value.line is None
+
+
+def test_save_mesh_round_trips_exactly(tmp_path):
+    """save_mesh writes every format so that load_mesh reads back the same doubles bit for bit (STL: unshared
+    vertices); a bad extension, format or encoding is a ValueError; a write into a missing folder an OSError."""
+    vertices = np.array([[0.1, 1e-300, -0.0], [1 / 3, 2.5, 5e-324], [1e300, -7.0, 0.2], [3.0, 0.0, 1.0]])
+    triangles = np.array([[0, 1, 2], [0, 2, 3]])
+    mesh = rk.Mesh(vertices, triangles)
+    for name, kwargs in [("m.obj", {}), ("m.off", {}), ("m.ply", {}), ("b.ply", {"encoding": "binary"}),
+                         ("be.ply", {"encoding": "binary_big_endian"}), ("m.stl", {})]:
+        path = tmp_path / name
+        rk.save_mesh(mesh, path, **kwargs)
+        back = rk.load_mesh(path)
+        if name.endswith(".stl"):
+            assert np.array_equal(back.vertices.view(np.uint64), vertices[triangles.ravel()].view(np.uint64)), name
+        else:
+            assert np.array_equal(back.vertices.view(np.uint64), vertices.view(np.uint64)), name
+            assert np.array_equal(back.triangles, triangles), name
+    with pytest.raises(ValueError, match="extension"):
+        rk.save_mesh(mesh, tmp_path / "m.xyz")
+    with pytest.raises(ValueError):
+        rk.save_mesh(mesh, tmp_path / "m.obj", encoding="binary")
+    with pytest.raises(ValueError):
+        rk.save_mesh(mesh, tmp_path / "m.stl", encoding="binary")  # 0.1 is not a float
+    with pytest.raises(ValueError, match="glTF"):
+        rk.mesh_bytes(mesh, "gltf")
+    with pytest.raises(OSError):
+        rk.save_mesh(mesh, tmp_path / "missing" / "m.obj")
