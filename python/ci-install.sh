@@ -37,8 +37,8 @@ step "the installed package is complete"
 cd "$work"  # nothing of the source tree on sys.path from here
 site=$("$venv_python" -c 'import raykernel, os; print(os.path.dirname(raykernel.__file__))')
 case "$site" in "$work/venv/"*) ;; *) fail "raykernel imported from $site, not from the venv" ;; esac
-for f in __init__.py _types.py _raykernel.pyi py.typed testing/__init__.py testing/reference.py testing/exact.py \
-         testing/hypothesis.py dask.py; do
+for f in __init__.py __main__.py _types.py _raykernel.pyi py.typed testing/__init__.py testing/reference.py \
+         testing/exact.py testing/hypothesis.py dask.py; do
   [ -f "$site/$f" ] || fail "$f not installed"
 done
 ls "$site"/_raykernel*.so > /dev/null || fail "the extension is not installed"
@@ -52,11 +52,20 @@ assert (y.relation, y.location, y.barycentric) == ("hit", "edge-ab", (0.5, 0.5, 
 print(f"raykernel {rk.__version__} from {rk.__file__}: {x}")
 PY
 
+step "the console script and python -m raykernel (the C++ tool compiled into the extension)"
+[ -x "$work/venv/bin/raykernel" ] || fail "the raykernel console script is not installed"
+got=$(echo '0 0 0 1 0 0 5 0 0 1 0 0' | "$work/venv/bin/raykernel" classify --exact-t) || fail "raykernel classify failed"
+[ "$got" = "hit 5 5/1" ] || fail "raykernel classify printed '$got'"
+got=$("$venv_python" -m raykernel --version) || fail "python -m raykernel --version failed"
+[ "$got" = "raykernel $("$venv_python" -c 'import raykernel; print(raykernel.__version__)')" ] || fail "python -m raykernel --version printed '$got'"
+echo "raykernel console script: $got"
+
 step "the API tests against the installed package"
 PYTHONDONTWRITEBYTECODE=1 "$venv_python" -m pytest -p no:cacheprovider -q \
   "$root/python/tests/test_scalar.py" "$root/python/tests/test_nearest.py" "$root/python/tests/test_arrays.py" \
   "$root/python/tests/test_stubs.py" "$root/python/tests/test_testing.py" "$root/python/tests/test_triangles.py" \
-  "$root/python/tests/test_spheres.py" "$root/python/tests/test_mesh.py" "$root/python/tests/test_dask.py"
+  "$root/python/tests/test_spheres.py" "$root/python/tests/test_mesh.py" "$root/python/tests/test_dask.py" \
+  "$root/python/tests/test_console.py"
 
 ok=1
 step "done"

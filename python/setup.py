@@ -52,7 +52,7 @@ class CMakeBuild(build_ext):
             generator = ["-G", "Ninja"] if shutil.which("ninja") else []
             subprocess.check_call(
                 ["cmake", "-S", str(ROOT), "-B", str(build_dir), *generator, "-DCMAKE_BUILD_TYPE=Release",
-                 "-DRAYKERNEL_BUILD_PYTHON=ON", "-DRAYKERNEL_BUILD_TESTS=OFF", "-DRAYKERNEL_BUILD_CLI=OFF",
+                 "-DRAYKERNEL_BUILD_PYTHON=ON", "-DRAYKERNEL_BUILD_TESTS=OFF", "-DRAYKERNEL_BUILD_CLI=ON", "-DRAYKERNEL_WITH_EMBREE=OFF",
                  "-DRAYKERNEL_BUILD_BENCH=OFF", f"-DPython3_EXECUTABLE={python}"])
         jobs = os.environ.get("RAYKERNEL_BUILD_JOBS", str(os.cpu_count() or 1))
         subprocess.check_call(["cmake", "--build", str(build_dir), "--target", "raykernel_python", "-j", jobs])

@@ -25,6 +25,10 @@ struct Command {
 // Every command, in the order `raykernel --help` lists them.
 [[nodiscard]] std::span<const Command> commands();
 
+// The whole tool on its arguments (the command and its options, without the program name): the standard streams
+// switched to raykernel's checked ones, the command run, its exit status returned (cli/run_main.cpp).
+int run_main(const std::vector<std::string>& arguments);
+
 int run_classify(const std::vector<std::string>& args);  // plane_classify.cpp
 OwnedCommandLine classify_command_line();
 int run_nearest(const std::vector<std::string>& args);  // plane_nearest.cpp (--mesh: mesh_nearest.cpp)

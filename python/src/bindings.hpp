@@ -16,6 +16,7 @@ void bind_mesh(pybind11::module_& m);       // Mesh, load_mesh, the mesh nearest
 void bind_occlusion(pybind11::module_& m);   // all hits, crossings, occluded over arrays (docs/contract.md §8)
 void bind_closest(pybind11::module_& m);     // the exact closest point of a mesh (docs/contract.md §11)
 void bind_spawn(pybind11::module_& m);      // spawn and spawn_to: secondary rays (docs/contract.md §9)
-void bind_testkit(pybind11::module_& m);    // raykernel::testkit: hard queries, reference check, fuzz decoder
+void bind_testkit(pybind11::module_& m);
+void bind_cli(pybind11::module_& m);         // _cli_main: the command-line tool (when built with the CLI)    // raykernel::testkit: hard queries, reference check, fuzz decoder
 
 }  // namespace raykernel::python

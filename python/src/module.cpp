@@ -31,6 +31,7 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_closest(m);
   bind_spawn(m);
   bind_testkit(m);
+  bind_cli(m);
 
   m.attr("__version__") = std::string(raykernel::version());
 }
