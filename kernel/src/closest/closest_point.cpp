@@ -414,15 +414,7 @@ ClosestPoint search(const Vec3& query, const PreparedMesh& mesh, Counts& counts)
       for (int s = 0; s < static_cast<int>(node.children); ++s) {
         const double lower = box_lower_bound(query, node, s);
         if (lower > best) continue;
-        const std::uint32_t first = node.first[static_cast<std::size_t>(s)], count = node.count[static_cast<std::size_t>(s)];
-        // The measure of a candidate is long, so the out-of-order core does not reach the next triangle's load: fetch
-        // a leaf's triangles (and a node's children) ahead, while the heap decides what comes first.
-        if (count > 0) {
-          for (std::uint32_t k = 0; k < count; ++k) __builtin_prefetch(&leaf[first + k]);
-        } else {
-          __builtin_prefetch(&bvh.nodes()[first]);
-        }
-        push({lower, first, count});
+        push({lower, node.first[static_cast<std::size_t>(s)], node.count[static_cast<std::size_t>(s)]});
       }
       continue;
     }
@@ -555,11 +547,6 @@ ClosestPoint closest_point_naive(const Vec3& query, const PreparedMesh& mesh) {
   throw_if_invalid(query);
   const MeshBvh& bvh = mesh.bvh();
   if (bvh.nodes().empty()) throw invalid_input("mesh has no triangles: no closest point");
-  struct Pending {
-    double lower;
-    std::uint32_t first, count;
-    bool operator>(const Pending& o) const { return lower > o.lower; }
-  };
   std::priority_queue<Pending, std::vector<Pending>, std::greater<>> queue;
   queue.push({0, 0, 0});
   ClosestPoint best;
