@@ -158,7 +158,7 @@ void parallel_for(std::size_t n, unsigned threads, std::size_t grain, Work&& wor
 // whose rows go through parallel_for is registered through it, with py::arg("progress") = py::none() last.
 template <class R, class... A>
 [[nodiscard]] auto with_progress(R (*f)(A...)) {
-  return [f](A... a, py::handle progress) -> R {
+  return [f](A... a, shown::Progress progress) -> R {
     const ProgressScope scope(progress);
     return f(std::forward<A>(a)...);
   };

@@ -105,9 +105,10 @@ struct PlaneQueries {
   }
 };
 
-py::object intersect_batch_py(py::handle origins, py::handle directions, py::handle points, py::handle normals,
-                              const std::string& path_name, const std::string& errors,
-                              std::optional<unsigned> threads, bool want_stats) {
+shown::IntersectionArrays intersect_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                             shown::ArrayLike3 points, shown::ArrayLike3 normals,
+                                             const std::string& path_name, const std::string& errors,
+                                             std::optional<unsigned> threads, bool want_stats) {
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   PlaneQueries q(origins, directions, points, normals);
@@ -146,9 +147,10 @@ py::object intersect_batch_py(py::handle origins, py::handle directions, py::han
   return types().intersection_arrays(relation, t, valid, want_stats ? py::object(stats_to_python(stats)) : py::none());
 }
 
-py::object relation_batch_py(py::handle origins, py::handle directions, py::handle points, py::handle normals,
-                             const std::string& path_name, const std::string& errors, std::optional<unsigned> threads,
-                             bool want_stats) {
+shown::RelationArrays relation_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                        shown::ArrayLike3 points, shown::ArrayLike3 normals,
+                                        const std::string& path_name, const std::string& errors,
+                                        std::optional<unsigned> threads, bool want_stats) {
   const Path path = path_from(path_name, false);
   const ErrorPolicy policy = error_policy_from(errors);
   PlaneQueries q(origins, directions, points, normals);
@@ -314,16 +316,18 @@ called with (done, total) about every 0.1 s and at the end (an exception it rais
 certified path on planes is one vectorized C++ call, which reports nothing.)doc");
 
   // `progress` before `stats`, which only plane scenes take (the stubs' two overloads list them in this order).
-  m.def("nearest_hit_batch",
-        [](py::handle origins, py::handle directions, py::handle scene, py::handle rule, const std::string& path,
-           const std::string& errors, std::optional<unsigned> threads, py::handle progress, bool stats) {
-          const ProgressScope scope(progress);
-          return nearest_hit_batch_py(origins, directions, scene, rule, path, errors, threads, stats);
-        },
-        py::arg("origins"), py::arg("directions"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
-        py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-        py::arg("progress") = py::none(), py::arg("stats") = false,
-        R"doc(``nearest_hit`` for every ray: the first plane of ``scene`` each ray meets (or triangle, for a mesh).
+  m.def(
+      "nearest_hit_batch",
+      [](shown::ArrayLike3 origins, shown::ArrayLike3 directions, shown::Scene scene, shown::OptionalRule rule,
+         const std::string& path, const std::string& errors, std::optional<unsigned> threads, shown::Progress progress,
+         bool stats) -> shown::NearestHitArrays {
+        const ProgressScope scope(progress);
+        return nearest_hit_batch_py(origins, directions, scene, rule, path, errors, threads, stats);
+      },
+      py::arg("origins"), py::arg("directions"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = false,
+      R"doc(``nearest_hit`` for every ray: the first plane of ``scene`` each ray meets (or triangle, for a mesh).
 
 ``origins``, ``directions``: (n, 3) arrays; ``scene``: a ``PlaneSet`` (read and validated once) or a sequence
 of ``(point, normal)`` pairs. Returns ``NearestHitArrays(plane, t, valid, stats)``: ``plane`` int64, the

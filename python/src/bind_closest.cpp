@@ -37,8 +37,9 @@ py::object closest_point_py(py::handle point, const PythonMesh& mesh, bool exact
   return to_python(*c);
 }
 
-py::object closest_point_batch_py(py::handle points, const PythonMesh& mesh, bool with_sign, const std::string& path_name,
-                                  const std::string& errors, std::optional<unsigned> threads) {
+shown::ClosestPointArrays closest_point_batch_py(shown::ArrayLike3 points, const PythonMesh& mesh, bool with_sign,
+                                                 const std::string& path_name, const std::string& errors,
+                                                 std::optional<unsigned> threads) {
   const bool exact = path_from(path_name, false) == Path::exact;
   const ErrorPolicy policy = error_policy_from(errors);
   const ColumnsView p(points, "points");
@@ -98,7 +99,10 @@ py::object closest_point_batch_py(py::handle points, const PythonMesh& mesh, boo
 
 void bind_closest(py::module_& m) {
   m.def(
-      "closest_point", [](py::handle point, const PythonMesh& mesh) { return closest_point_py(point, mesh, false); },
+      "closest_point",
+      [](shown::Vec3Like point, const PythonMesh& mesh) -> shown::ClosestPoint {
+        return closest_point_py(point, mesh, false);
+      },
       py::arg("point"), py::arg("mesh"),
       R"doc(The point of ``mesh`` nearest to ``point`` by the exact Euclidean distance (docs/contract.md §11):
 ``ClosestPoint(triangle, feature, corner, point, squared_distance, distance, squared_distance_exact)``. Triangles
@@ -109,7 +113,10 @@ exact distance, the smallest index. ``point`` has each coordinate of the exact c
 rationals where it cannot decide: the same answer as ``closest_point_exact``. Raises ``ValueError`` for a
 non-finite point ("point x is not finite") or a mesh without triangles. Releases the GIL.)doc");
   m.def(
-      "closest_point_exact", [](py::handle point, const PythonMesh& mesh) { return closest_point_py(point, mesh, true); },
+      "closest_point_exact",
+      [](shown::Vec3Like point, const PythonMesh& mesh) -> shown::ClosestPoint {
+        return closest_point_py(point, mesh, true);
+      },
       py::arg("point"), py::arg("mesh"),
       R"doc(The reference ``closest_point``: every triangle in exact rationals, no BVH. Slow and obviously right; the
 same answer as ``closest_point``. Releases the GIL.)doc");

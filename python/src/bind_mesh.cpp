@@ -73,8 +73,6 @@ Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
 
 }  // namespace
 
-TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
-
 py::object to_python(const std::optional<MeshHit>& hit) {
   if (!hit) return py::none();
   const TriangleIntersection& x = hit->intersection;
@@ -171,8 +169,9 @@ py::object inside_py(py::handle point, const PythonMesh& mesh, bool exact) {
   return to_python(location);
 }
 
-py::object inside_batch_py(py::handle points, const PythonMesh& mesh, const std::string& path_name,
-                           const std::string& errors, std::optional<unsigned> threads) {
+shown::PointLocationArrays inside_batch_py(shown::ArrayLike3 points, const PythonMesh& mesh,
+                                           const std::string& path_name, const std::string& errors,
+                                           std::optional<unsigned> threads) {
   const bool exact = path_from(path_name, false) == Path::exact;
   const ErrorPolicy policy = error_policy_from(errors);
   const ColumnsView p(points, "points");
@@ -245,7 +244,7 @@ py::array_t<std::int64_t> triangles_array(const PythonMesh& s) {
 }
 
 // The mesh in the file at `path` (str, bytes or os.PathLike), for load_mesh.
-PythonMesh load_mesh_py(const py::object& path) {
+PythonMesh load_mesh_py(const shown::PathLike& path) {
   // os.fsencode: the path's bytes as the OS takes them (a str encoded as open() encodes it; TypeError for
   // anything that is not a path).
   const std::string raw = py::module_::import("os").attr("fsencode")(path).cast<std::string>();
@@ -296,7 +295,8 @@ void bind_mesh(py::module_& m) {
     }
   });
 
-  py::class_<PythonMesh>(m, "Mesh", R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH built once.
+  py::class_<PythonMesh>(m, "Mesh",
+                         R"doc(A triangle mesh (docs/contract.md §7), validated once, with its BVH built once.
 
 ``Mesh(vertices, triangles)``: an (n, 3) array of vertices (real numbers, read as float64: a float64 array is
 taken exactly), and an (m, 3) array of vertex indices counted from 0, of any integer dtype (int8 to uint64;
@@ -306,7 +306,7 @@ bool, complex, str, object and masked arrays; each index is checked as the integ
 Raises ``ValueError`` (``InvalidInput``) naming the first bad vertex or index ("mesh: vertex 7: y is not
 finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (10 vertices)").
 ``load_mesh(path)`` reads one from a file.)doc")
-      .def(py::init([](py::handle vertices, py::handle triangles) {
+      .def(py::init([](shown::ArrayLike3 vertices, shown::ArrayLike triangles) {
              Mesh mesh = mesh_from_arrays(vertices, triangles);
              py::gil_scoped_release release;
              return PythonMesh(std::move(mesh));
@@ -327,7 +327,7 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
                       }))
       .def(
           "triangle",
-          [](const PythonMesh& s, py::ssize_t k) {
+          [](const PythonMesh& s, py::ssize_t k) -> shown::Triangle {
             const auto m = static_cast<py::ssize_t>(s.mesh().triangles.size());
             if (k < 0) k += m;
             if (k < 0 || k >= m) throw py::index_error("triangle index out of range");
@@ -335,8 +335,8 @@ finite", "mesh: triangle 3: vertex index 12 (triangles[3, 1]) is out of range (1
             return types().triangle(python::to_python(t.a), python::to_python(t.b), python::to_python(t.c));
           },
           py::arg("index"), "Triangle ``index`` as a ``raykernel.Triangle`` (its vertices in the stored order).")
-      .def_property_readonly("bvh_depth", [](const PythonMesh& s) { return s.prepared().bvh().depth(); },
-                             "The depth of the mesh's BVH.")
+      .def_property_readonly(
+          "bvh_depth", [](const PythonMesh& s) { return s.prepared().bvh().depth(); }, "The depth of the mesh's BVH.")
       .def("__repr__", [](const PythonMesh& s) {
         return "Mesh(" + std::to_string(s.mesh().vertices.size()) + " vertices, " +
                std::to_string(s.mesh().triangles.size()) + " triangles)";
@@ -386,7 +386,10 @@ the format does not have, and for glTF (float32 positions cannot hold every doub
 file.)doc");
 
   m.def(
-      "inside", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, false); },
+      "inside",
+      [](shown::Vec3Like point, const PythonMesh& mesh) -> shown::PointLocation {
+        return inside_py(point, mesh, false);
+      },
       py::arg("point"), py::arg("mesh"),
       R"doc(Where ``point`` is against ``mesh`` (docs/contract.md §7), exactly: ``PointLocation.ON_SURFACE`` if it
 lies on some triangle (closed: edges and vertices included), else ``INSIDE`` if the exact winding number is
@@ -396,14 +399,17 @@ closed, consistently oriented mesh it does not depend on the ray, and the answer
 ``ValueError`` for a non-finite point ("point x is not finite"). Releases the GIL.)doc");
 
   m.def(
-      "inside_exact", [](py::handle point, const PythonMesh& mesh) { return inside_py(point, mesh, true); },
+      "inside_exact",
+      [](shown::Vec3Like point, const PythonMesh& mesh) -> shown::PointLocation {
+        return inside_py(point, mesh, true);
+      },
       py::arg("point"), py::arg("mesh"),
       R"doc(The reference ``inside``: every triangle in exact rationals (the on-surface test and the crossings of
 the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. Releases the GIL.)doc");
 
   m.def(
       "occluded",
-      [](py::handle ray, const PythonMesh& mesh, double t_min, double t_max, py::handle rule,
+      [](shown::RayLike ray, const PythonMesh& mesh, double t_min, double t_max, shown::OptionalRule rule,
          const std::string& path) {
         const Ray r = ray_from(ray);
         const RayInterval interval{t_min, t_max};
@@ -423,7 +429,8 @@ for an invalid ray or interval, naming the bound ("t_min is greater than t_max")
 
   m.def(
       "occluded_segment",
-      [](py::handle p, py::handle q, const PythonMesh& mesh, py::handle rule, const std::string& path) {
+      [](shown::Vec3Like p, shown::Vec3Like q, const PythonMesh& mesh, shown::OptionalRule rule,
+         const std::string& path) {
         const Vec3 a = vec3_from(p, "p"), b = vec3_from(q, "q");
         const TriangleRule chosen = rule_or_owned(rule);
         const bool exact = path_from(path, false) == Path::exact;

@@ -84,22 +84,26 @@ void bind_nearest(py::module_& m) {
 (``"plane 3: plane normal is the zero vector"``). Pass it to ``nearest_hit`` and ``nearest_hit_batch``
 instead of a list to prepare the planes once: they are validated once, and each plane that coincides exactly
 with an earlier one is set aside once (``candidates``), so a query tests only the planes that can win.)doc")
-      .def(py::init([](py::handle planes, py::handle normals) { return PlaneSet(planes, normals); }), py::arg("planes"),
-           py::arg("normals") = py::none())
+      .def(py::init([](shown::PlanesOrArray planes, shown::OptionalArrayLike3 normals) {
+             return PlaneSet(planes, normals);
+           }),
+           py::arg("planes"), py::arg("normals") = py::none())
       .def("__len__", [](const PlaneSet& s) { return s.planes().size(); })
       .def(
           "__getitem__",
-          [](const PlaneSet& s, py::ssize_t k) {
+          [](const PlaneSet& s, py::ssize_t k) -> shown::Plane {
             const auto m = static_cast<py::ssize_t>(s.planes().size());
             if (k < 0) k += m;
             if (k < 0 || k >= m) throw py::index_error("plane index out of range");
             return to_python(s.planes()[static_cast<std::size_t>(k)]);
           },
           py::arg("index"))
-      .def_property_readonly("points", [](const PlaneSet& s) { return plane_columns(s, &Plane::point); },
-                             "The planes' points, a new (m, 3) array.")
-      .def_property_readonly("normals", [](const PlaneSet& s) { return plane_columns(s, &Plane::normal); },
-                             "The planes' normals, a new (m, 3) array.")
+      .def_property_readonly(
+          "points", [](const PlaneSet& s) { return plane_columns(s, &Plane::point); },
+          "The planes' points, a new (m, 3) array.")
+      .def_property_readonly(
+          "normals", [](const PlaneSet& s) { return plane_columns(s, &Plane::normal); },
+          "The planes' normals, a new (m, 3) array.")
       // A PlaneSet pickles as (points, normals), exactly (float64), and is prepared again when unpickled, so that
       // it travels to other processes (raykernel.dask).
       .def(py::pickle(
@@ -125,8 +129,9 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
 
   m.def(
       "nearest_hit",
-      [](py::handle ray, py::handle scene, py::handle rule) {
-        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::certified);
+      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule) -> shown::NearestHit {
+        if (py::isinstance<PythonMesh>(scene))
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::certified);
         if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
       },
@@ -147,8 +152,9 @@ Raises ``ValueError`` naming the invalid ray or plane.)doc");
 
   m.def(
       "nearest_hit_exact",
-      [](py::handle ray, py::handle scene, py::handle rule) {
-        if (py::isinstance<PythonMesh>(scene)) return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::exact);
+      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule) -> shown::NearestHit {
+        if (py::isinstance<PythonMesh>(scene))
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::exact);
         if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
         const Ray r = ray_from(ray);
         std::optional<raykernel::PlaneSet> storage;
@@ -166,7 +172,7 @@ BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
 
   m.def(
       "nearest_hit_naive",
-      [](py::handle ray, py::handle scene) {
+      [](shown::RayLike ray, shown::Scene scene) -> shown::NearestHit {
         if (py::isinstance<PythonMesh>(scene))
           return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), py::none(), MeshPath::naive);
         return nearest(ray, scene,

@@ -24,8 +24,8 @@ std::optional<std::string> ray_problem(const Ray& ray, const RayInterval& interv
   return validate(interval);
 }
 
-py::object all_hits_py(py::handle ray, const PythonMesh& mesh, double t_min, double t_max, py::handle rule,
-                       const std::string& path) {
+shown::MeshHits all_hits_py(shown::RayLike ray, const PythonMesh& mesh, double t_min, double t_max,
+                            shown::OptionalRule rule, const std::string& path) {
   const Ray r = ray_from(ray);
   const RayInterval interval{t_min, t_max};
   const TriangleRule chosen = rule_or_owned(rule);
@@ -83,9 +83,10 @@ struct RayBatch {
   }
 };
 
-py::object occluded_batch_py(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
-                             py::handle t_max, py::handle rule, const std::string& path_name,
-                             const std::string& errors, std::optional<unsigned> threads) {
+shown::OcclusionArrays occluded_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                         const PythonMesh& mesh, shown::ScalarOrArray t_min, shown::ScalarOrArray t_max,
+                                         shown::OptionalRule rule, const std::string& path_name,
+                                         const std::string& errors, std::optional<unsigned> threads) {
   const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
   auto blocked = new_array<bool>(b.rows());
   auto valid = new_array<bool>(b.rows());
@@ -97,9 +98,9 @@ py::object occluded_batch_py(py::handle origins, py::handle directions, const Py
   return types_attr("OcclusionArrays")(blocked, valid);
 }
 
-py::object occluded_segment_batch_py(py::handle ps, py::handle qs, const PythonMesh& mesh, py::handle rule,
-                                     const std::string& path_name, const std::string& errors,
-                                     std::optional<unsigned> threads) {
+shown::OcclusionArrays occluded_segment_batch_py(shown::ArrayLike3 ps, shown::ArrayLike3 qs, const PythonMesh& mesh,
+                                                 shown::OptionalRule rule, const std::string& path_name,
+                                                 const std::string& errors, std::optional<unsigned> threads) {
   const bool exact = path_from(path_name, false) == Path::exact;
   const ErrorPolicy policy = error_policy_from(errors);
   const TriangleRule chosen = rule_or_owned(rule);
@@ -127,9 +128,10 @@ py::object occluded_segment_batch_py(py::handle ps, py::handle qs, const PythonM
   return types_attr("OcclusionArrays")(blocked, valid);
 }
 
-py::object crossings_batch_py(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
-                              py::handle t_max, py::handle rule, const std::string& path_name,
-                              const std::string& errors, std::optional<unsigned> threads) {
+shown::CrossingArrays crossings_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                         const PythonMesh& mesh, shown::ScalarOrArray t_min, shown::ScalarOrArray t_max,
+                                         shown::OptionalRule rule, const std::string& path_name,
+                                         const std::string& errors, std::optional<unsigned> threads) {
   const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
   auto hits = new_array<std::int64_t>(b.rows());
   auto crossings = new_array<std::int64_t>(b.rows());

@@ -17,9 +17,8 @@ namespace {
 
 // The triangle options from the keyword arguments; for a plane or a sphere they must be left at their defaults.
 TriangleOptions triangle_options(py::handle rule, bool t, bool barycentric) {
-  return {rule.is_none() ? TriangleRule::owned : rule_from(rule), t, barycentric};
+  return {rule_or_owned(rule), t, barycentric};
 }
-TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
 void require_no_triangle_options(PrimitiveKind kind, py::handle rule, bool t = true, bool barycentric = true) {
   const bool plane = kind == PrimitiveKind::plane;
   if (!rule.is_none())
@@ -54,7 +53,7 @@ auto without_gil(F&& f) {
 void bind_ray_plane(py::module_& m) {
   m.def(
       "validate",
-      [](py::handle ray, py::handle primitive) -> std::optional<std::string> {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive) -> std::optional<std::string> {
         auto reason = [](const Ray& r, const auto& p) { return validate(r, p); };
         return for_primitive(primitive, ray, reason, reason, reason);
       },
@@ -70,7 +69,8 @@ valid: its relation is DEGENERATE.)doc");
 
   m.def(
       "intersect",
-      [](py::handle ray, py::handle primitive, py::handle rule, bool t, bool barycentric) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive, shown::OptionalRule rule, bool t,
+         bool barycentric) -> shown::PrimitiveIntersection {
         return for_primitive(
             primitive, ray,
             [&](const Ray& r, const Plane& p) {
@@ -117,7 +117,7 @@ Raises ``ValueError`` (``raykernel.InvalidInput``) naming the field for invalid 
 
   m.def(
       "relation",
-      [](py::handle ray, py::handle primitive, py::handle rule) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive, shown::OptionalRule rule) -> shown::PrimitiveRelation {
         return for_primitive(
             primitive, ray,
             [&](const Ray& r, const Plane& p) {
@@ -140,7 +140,8 @@ Raises ``ValueError`` naming the field for invalid input.)doc");
 
   m.def(
       "intersect_exact",
-      [](py::handle ray, py::handle primitive, py::handle rule, bool t, bool barycentric) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive, shown::OptionalRule rule, bool t,
+         bool barycentric) -> shown::PrimitiveIntersection {
         return for_primitive(
             primitive, ray,
             [&](const Ray& r, const Plane& p) {
@@ -164,7 +165,8 @@ a sphere. Releases the GIL.)doc");
 
   m.def(
       "intersect_exact_rational",
-      [](py::handle ray, py::handle primitive, py::handle rule) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive,
+         shown::OptionalRule rule) -> shown::ExactPrimitiveIntersection {
         return for_primitive(
             primitive, ray,
             [&](const Ray& r, const Plane& p) {
@@ -194,7 +196,7 @@ Releases the GIL.)doc");
 
   m.def(
       "intersect_naive",
-      [](py::handle ray, py::handle primitive) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive) -> shown::PrimitiveIntersection {
         auto naive = [](const Ray& r, const auto& p) { return to_python(intersect_naive(r, p)); };
         return for_primitive(primitive, ray, naive, naive, naive);
       },
@@ -210,7 +212,8 @@ floating-point environment.)doc");
 
   m.def(
       "intersect_traced",
-      [](py::handle ray, py::handle primitive, py::handle rule, bool t, bool barycentric) {
+      [](shown::RayLike ray, shown::PrimitiveLike primitive, shown::OptionalRule rule, bool t,
+         bool barycentric) -> shown::TracedPrimitiveIntersection {
         return for_primitive(
             primitive, ray,
             [&](const Ray& r, const Plane& p) {
@@ -236,7 +239,7 @@ needed (the relation's for MISS).)doc");
 
   m.def(
       "round_rational_to_double",
-      [](py::handle value, py::handle denominator) {
+      [](shown::RationalLike value, shown::OptionalInt denominator) -> double {
         py::int_ num, den;
         if (denominator.is_none()) {
           if (PyLong_Check(value.ptr())) {

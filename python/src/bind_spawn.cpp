@@ -45,9 +45,10 @@ using TriangleSpawn = SpawnedOrigin (*)(const HitPoint&, const Triangle&, const 
 
 // spawn or spawn_to over arrays: row i is the hit ray (origins[i], directions[i]) on the triangle (a[i], b[i],
 // c[i]) and the new direction or target vectors[i]. An invalid row (the kernel's invalid_input) is named or masked.
-py::object spawn_batch_py(TriangleSpawn kernel, const char* vectors_name, py::handle origins, py::handle directions,
-                          py::handle a, py::handle b, py::handle c, py::handle vectors, const std::string& format,
-                          const std::string& errors, std::optional<unsigned> threads) {
+shown::SpawnArrays spawn_batch_py(TriangleSpawn kernel, const char* vectors_name, shown::ArrayLike3 origins,
+                                  shown::ArrayLike3 directions, shown::ArrayLike3 a, shown::ArrayLike3 b,
+                                  shown::ArrayLike3 c, shown::ArrayLike3 vectors, const std::string& format,
+                                  const std::string& errors, std::optional<unsigned> threads) {
   const OriginFormat f = format_from(format);
   const ErrorPolicy policy = error_policy_from(errors);
   const ColumnsView o(origins, "origins"), d(directions, "directions"), va(a, "a"), vb(b, "b"), vc(c, "c"),
@@ -117,7 +118,8 @@ q never meets the triangle (docs/contract.md §9).)doc") +
                            SpawnedOrigin (*kernel)(const HitPoint&, const Triangle&, const Vec3&, OriginFormat)) {
     m.def(
         name,
-        [third, kernel](py::handle hit, py::handle triangle, py::handle vector, const std::string& format) {
+        [third, kernel](shown::HitLike hit, shown::TriangleLike triangle, shown::Vec3Like vector,
+                        const std::string& format) -> shown::SpawnedOrigin {
           const HitPoint h = hit_from(hit);
           const Triangle t = triangle_from(triangle);
           const Vec3 v = vec3_from(vector, third);
@@ -137,7 +139,8 @@ q never meets the triangle (docs/contract.md §9).)doc") +
   // raykernel/spawn.hpp and docs/contract.md's "Spawning from a sphere").
   m.def(
       "spawn",
-      [](py::handle hit, py::handle source, py::handle direction, const std::string& format) {
+      [](shown::HitLike hit, shown::SpawnSurfaceLike source, shown::Vec3Like direction,
+         const std::string& format) -> shown::SpawnedOrigin {
         const Vec3 w = vec3_from(direction, "direction");
         const OriginFormat f = format_from(format);
         SpawnedOrigin o{};
@@ -169,27 +172,25 @@ degenerate ..."), "mask" answers the others. ``threads``, ``progress`` as ``insi
       std::string("``spawn`` (a triangle's: the new ray along ``directions_out[i]``)") + batch_doc;
   static const std::string spawn_to_batch_doc =
       std::string("``spawn_to`` (shadow rays towards ``targets[i]``)") + batch_doc;
-  m.def(
-      "spawn_batch",
-      with_progress(+[](py::handle origins, py::handle directions, py::handle a, py::handle b, py::handle c,
-                        py::handle directions_out, const std::string& format, const std::string& errors,
-                        std::optional<unsigned> threads) {
-        return spawn_batch_py(&spawn, "directions_out", origins, directions, a, b, c, directions_out, format, errors,
-                              threads);
-      }),
-      py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("directions_out"),
-      py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-      py::arg("progress") = py::none(), spawn_batch_doc.c_str());
-  m.def(
-      "spawn_to_batch",
-      with_progress(+[](py::handle origins, py::handle directions, py::handle a, py::handle b, py::handle c,
-                        py::handle targets, const std::string& format, const std::string& errors,
-                        std::optional<unsigned> threads) {
-        return spawn_batch_py(&spawn_to, "targets", origins, directions, a, b, c, targets, format, errors, threads);
-      }),
-      py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("targets"),
-      py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-      py::arg("progress") = py::none(), spawn_to_batch_doc.c_str());
+  m.def("spawn_batch",
+        with_progress(+[](shown::ArrayLike3 origins, shown::ArrayLike3 directions, shown::ArrayLike3 a,
+                          shown::ArrayLike3 b, shown::ArrayLike3 c, shown::ArrayLike3 directions_out,
+                          const std::string& format, const std::string& errors, std::optional<unsigned> threads) {
+          return spawn_batch_py(&spawn, "directions_out", origins, directions, a, b, c, directions_out, format, errors,
+                                threads);
+        }),
+        py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("directions_out"),
+        py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), spawn_batch_doc.c_str());
+  m.def("spawn_to_batch",
+        with_progress(+[](shown::ArrayLike3 origins, shown::ArrayLike3 directions, shown::ArrayLike3 a,
+                          shown::ArrayLike3 b, shown::ArrayLike3 c, shown::ArrayLike3 targets,
+                          const std::string& format, const std::string& errors, std::optional<unsigned> threads) {
+          return spawn_batch_py(&spawn_to, "targets", origins, directions, a, b, c, targets, format, errors, threads);
+        }),
+        py::arg("origins"), py::arg("directions"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("targets"),
+        py::kw_only(), py::arg("format") = "binary64", py::arg("errors") = "raise", py::arg("threads") = py::none(),
+        py::arg("progress") = py::none(), spawn_to_batch_doc.c_str());
 }
 
 }  // namespace raykernel::python

@@ -47,9 +47,10 @@ struct SphereQueries {
   }
 };
 
-py::object intersect_sphere_batch_py(py::handle origins, py::handle directions, py::handle centers, py::handle radii,
-                                     const std::string& path_name, const std::string& errors,
-                                     std::optional<unsigned> threads) {
+shown::SphereIntersectionArrays intersect_sphere_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                                          shown::ArrayLike3 centers, shown::ScalarOrArray radii,
+                                                          const std::string& path_name, const std::string& errors,
+                                                          std::optional<unsigned> threads) {
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   const SphereQueries q(origins, directions, centers, radii);

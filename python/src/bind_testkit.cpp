@@ -179,7 +179,7 @@ void bind_testkit(py::module_& parent) {
 
   m.def(
       "make_query",
-      [](const std::string& kind, py::handle words) {
+      [](const std::string& kind, shown::Words words) -> shown::PlaneQuery {
         std::string storage;
         return query_to_python(make_query(query_kind_from(kind), python_bits(words, storage)));
       },
@@ -191,7 +191,7 @@ smaller words give simpler queries (all zero words: the simplest of the kind).)d
 
   m.def(
       "make_query_arrays",
-      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) -> shown::PlaneQueryArrays {
         return query_arrays<4, 0>(
             kinds_from(testkit::all_query_kinds, kinds, "query"), count, seed,
             [](QueryKind kind, const testkit::BitSource& bits) { return make_query(kind, bits); },
@@ -207,7 +207,7 @@ kind. For benchmarks and for vectorized code.)doc");
 
   m.def(
       "make_plane_pair",
-      [](const std::optional<std::string>& kind, py::handle words) {
+      [](const std::optional<std::string>& kind, shown::Words words) -> shown::PlanePair {
         std::string storage;
         const testkit::BitSource bits = python_bits(words, storage);
         const testkit::PlanePair pp = kind ? testkit::make_plane_pair_near_tie(plane_tie_kind_from(*kind), bits)
@@ -222,7 +222,8 @@ kind. For benchmarks and for vectorized code.)doc");
 
   m.def(
       "check_against_reference",
-      [](py::handle ray, py::handle plane, py::handle relation, py::handle t, std::uint64_t max_t_ulps) {
+      [](shown::RayLike ray, shown::PlaneLike plane, shown::RelationLike relation, shown::Real t,
+         std::uint64_t max_t_ulps) {
         const testkit::Query q{ray_from(ray), plane_from(plane)};
         const Relation r = relation_from(relation);
         const double got_t = double_from(t, "t");
@@ -255,7 +256,7 @@ t_direction, passed, report). Raises ValueError for invalid input: it has no ans
 
   m.def(
       "make_triangle_query",
-      [](const std::string& kind, py::handle words) {
+      [](const std::string& kind, shown::Words words) -> shown::TriangleQuery {
         std::string storage;
         const testkit::TriangleQuery q = make_triangle_query(triangle_kind_from(kind), python_bits(words, storage));
         return py::make_tuple(to_python(q.ray),
@@ -267,7 +268,7 @@ testkit::make_triangle_query with its words read as in make_query (bytes or a ca
 
   m.def(
       "make_triangle_query_arrays",
-      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) -> shown::TriangleQueryArrays {
         return query_arrays<5, 0>(
             kinds_from(testkit::all_triangle_query_kinds, kinds, "triangle query"), count, seed,
             [](testkit::TriangleQueryKind kind, const testkit::BitSource& bits) {
@@ -286,7 +287,7 @@ a, b, c, kind_index)``.)doc");
 
   m.def(
       "make_sphere_query",
-      [](const std::string& kind, py::handle words) {
+      [](const std::string& kind, shown::Words words) -> shown::SphereQuery {
         std::string storage;
         const testkit::SphereQuery q = make_sphere_query(sphere_kind_from(kind), python_bits(words, storage));
         return py::make_tuple(to_python(q.ray), to_python(q.sphere));
@@ -297,7 +298,7 @@ testkit::make_sphere_query with its words read as in make_query (bytes or a call
 
   m.def(
       "make_sphere_query_arrays",
-      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) {
+      [](const std::vector<std::string>& kinds, std::size_t count, std::uint64_t seed) -> shown::SphereQueryArrays {
         return query_arrays<3, 1>(
             kinds_from(testkit::all_sphere_query_kinds, kinds, "sphere query"), count, seed,
             [](testkit::SphereQueryKind kind, const testkit::BitSource& bits) { return make_sphere_query(kind, bits); },
@@ -313,11 +314,12 @@ centers, radii, kind_index)``, three (count, 3) float64 arrays, a (count,) float
 
   m.def(
       "check_triangle_against_reference",
-      [](py::handle ray, py::handle triangle, py::handle relation, py::handle location, bool owned, double t,
-         py::handle barycentric, py::handle rule, std::uint64_t max_ulps, bool check_location) {
+      [](shown::RayLike ray, shown::TriangleLike triangle, shown::NameOrCode relation, shown::NameOrCode location,
+         bool owned, double t, shown::FloatSequence barycentric, shown::OptionalRule rule, std::uint64_t max_ulps,
+         bool check_location) {
         const testkit::TriangleQuery q{ray_from(ray), triangle_from(triangle)};
         const TriangleIntersection got = triangle_answer_from(relation, location, owned, t, barycentric);
-        const TriangleRule chosen = rule.is_none() ? TriangleRule::owned : rule_from(rule);
+        const TriangleRule chosen = rule_or_owned(rule);
         std::optional<testkit::TriangleReferenceCheck> c;
         {
           py::gil_scoped_release release;
@@ -382,12 +384,14 @@ DBL_MAX to inf one step): 0 exactly when a and b have the same bits. None when e
         "x in the shortest decimal that reads back to the same double.");
   m.def(
       "classify_line",
-      [](py::handle ray, py::handle plane) { return testkit::classify_line({ray_from(ray), plane_from(plane)}); },
+      [](shown::RayLike ray, shown::PlaneLike plane) {
+        return testkit::classify_line({ray_from(ray), plane_from(plane)});
+      },
       py::arg("ray"), py::arg("plane"), "The query as one line of `raykernel classify` input, in hex floats.");
 
   m.def(
       "decode_fuzz_query",
-      [](const py::bytes& data) {
+      [](const py::bytes& data) -> shown::FuzzQuery {
         const std::string s = data;
         const testkit::FuzzQuery f = testkit::decode_fuzz_query(
             {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()});
@@ -399,7 +403,10 @@ DBL_MAX to inf one step): 0 exactly when a and b have the same bits. None when e
 (possibly invalid input), else a hard query of kind QUERY_KINDS[(byte − 0x80) mod 13] built from the
 following bytes. ``(ray, plane, kind or None)``.)doc");
   m.def(
-      "encode_raw_fuzz_input", [](py::handle ray, py::handle plane) { return to_bytes(testkit::encode_raw_fuzz_input(ray_from(ray), plane_from(plane))); },
+      "encode_raw_fuzz_input",
+      [](shown::RayLike ray, shown::PlaneLike plane) {
+        return to_bytes(testkit::encode_raw_fuzz_input(ray_from(ray), plane_from(plane)));
+      },
       py::arg("ray"), py::arg("plane"), "The raw-mode fuzz input that decodes to exactly (ray, plane).");
   m.def(
       "encode_hard_query_fuzz_input",

@@ -47,12 +47,12 @@ struct TriangleQueries {
   }
 };
 
-TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
-
-py::object intersect_triangle_batch_py(py::handle origins, py::handle directions, py::handle a, py::handle b,
-                                       py::handle c, py::handle rule, bool want_t, bool want_barycentric,
-                                       const std::string& path_name, const std::string& errors,
-                                       std::optional<unsigned> threads) {
+shown::TriangleIntersectionArrays intersect_triangle_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                                              shown::ArrayLike3 a, shown::ArrayLike3 b,
+                                                              shown::ArrayLike3 c, shown::OptionalRule rule,
+                                                              bool want_t, bool want_barycentric,
+                                                              const std::string& path_name, const std::string& errors,
+                                                              std::optional<unsigned> threads) {
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   const TriangleOptions options{rule_or_owned(rule), want_t, want_barycentric};
@@ -100,9 +100,11 @@ py::object intersect_triangle_batch_py(py::handle origins, py::handle directions
   return types().triangle_intersection_arrays(relation, location, owned, t, barycentric, valid);
 }
 
-py::object relation_triangle_batch_py(py::handle origins, py::handle directions, py::handle a, py::handle b,
-                                      py::handle c, py::handle rule, const std::string& path_name,
-                                      const std::string& errors, std::optional<unsigned> threads) {
+shown::TriangleClassificationArrays relation_triangle_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
+                                                               shown::ArrayLike3 a, shown::ArrayLike3 b,
+                                                               shown::ArrayLike3 c, shown::OptionalRule rule,
+                                                               const std::string& path_name, const std::string& errors,
+                                                               std::optional<unsigned> threads) {
   const Path path = path_from(path_name, false);
   const ErrorPolicy policy = error_policy_from(errors);
   const TriangleRule chosen = rule_or_owned(rule);

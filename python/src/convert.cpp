@@ -197,6 +197,8 @@ TriangleRule rule_from(py::handle value) {
   throw py::type_error("rule: expected 'owned' or 'closed' (raykernel.TriangleRule), got " + type_name(value));
 }
 
+TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
+
 double double_from(py::handle value, std::string_view field) {
   if (PyFloat_CheckExact(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());
   const double x = PyFloat_AsDouble(value.ptr());

@@ -13,11 +13,6 @@
 // (and, for the scalar functions, a PrimitiveKind), and a bind_*.cpp beside the others; nothing else changes.
 #pragma once
 
-#include <raykernel/nearest_hit.hpp>
-#include <raykernel/raykernel.hpp>
-#include <raykernel/sphere.hpp>
-#include <raykernel/triangle.hpp>
-
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>  // std::optional, std::vector arguments and results
@@ -25,10 +20,16 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <raykernel/nearest_hit.hpp>
+#include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
+#include <raykernel/triangle.hpp>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "annotated.hpp"
 
 namespace raykernel::python {
 
@@ -81,8 +82,10 @@ void load_types();
 // 2-sequence; TypeError or ValueError for anything else.
 enum class PrimitiveKind { plane, triangle, sphere };
 [[nodiscard]] PrimitiveKind primitive_kind(py::handle primitive);
-// A TriangleRule from a raykernel.TriangleRule or its value ("owned", "closed").
+// A TriangleRule from a raykernel.TriangleRule or its value ("owned", "closed"); rule_or_owned also takes None,
+// the default of every function with a `rule` keyword: the owned rule.
 [[nodiscard]] TriangleRule rule_from(py::handle value);
+[[nodiscard]] TriangleRule rule_or_owned(py::handle rule);
 // A finite double from a Python number (for round_rational_to_double's sister functions, t values...).
 [[nodiscard]] double double_from(py::handle value, std::string_view field);
 // A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).

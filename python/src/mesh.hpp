@@ -26,8 +26,7 @@ class PythonMesh {
   PreparedMesh prepared_;
 };
 
-// `rule` None (the owned rule) or a rule (bind_mesh.cpp); a mesh hit as the MeshHit NamedTuple, or None.
-[[nodiscard]] TriangleRule rule_or_owned(py::handle rule);
+// A mesh hit as the MeshHit NamedTuple, or None (bind_mesh.cpp).
 [[nodiscard]] py::object to_python(const std::optional<MeshHit>& hit);
 
 // Which kernel query answers a mesh nearest hit from Python.

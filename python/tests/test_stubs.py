@@ -98,3 +98,86 @@ def test_dir_shows_only_the_api():
     exec("from raykernel.testing.hypothesis import *", namespace)
     assert set(namespace) - {"__builtins__"} == set(strategies.__all__)
     assert "np" not in dir(raykernel.testing) and "hypothesis" in dir(raykernel.testing)
+
+
+# --- help() states the stub's types -------------------------------------------------------------------------
+
+def flat_union(text: str) -> frozenset:
+    """The members of a type annotation written as text: Optional[X] and Union[X, Y] flattened, the module path
+    of the extension's classes (pybind11 prints raykernel._raykernel.Mesh) and of numpy.typing dropped."""
+    text = text.replace("raykernel._raykernel.", "").replace("numpy.typing.", "npt.")
+
+    def members(node) -> list:
+        if isinstance(node, ast.Subscript) and ast.unparse(node.value) in ("Union", "Optional"):
+            parts = node.slice.elts if isinstance(node.slice, ast.Tuple) else [node.slice]
+            out = [m for p in parts for m in members(p)]
+            return out + (["None"] if ast.unparse(node.value) == "Optional" else [])
+        if isinstance(node, ast.Constant) and isinstance(node.value, str):  # a forward reference
+            return members(ast.parse(node.value, mode="eval").body)
+        return [ast.unparse(node)]
+
+    return frozenset(members(ast.parse(text, mode="eval").body))
+
+
+def extension_signature(f) -> tuple:
+    """(name → annotation members, return members) from the first line of a pybind11 docstring."""
+    first = f.__doc__.splitlines()[0]
+    inside, returns = re.match(r"^\w+\((.*)\) -> (.*)$", first).groups()
+    params: dict = {}
+    depth, start = 0, 0
+    pieces = []
+    for i, ch in enumerate(inside + ","):  # split at the commas outside brackets
+        depth += ch in "[(" 
+        depth -= ch in "])"
+        if ch == "," and depth == 0:
+            pieces.append(inside[start:i].strip())
+            start = i + 1
+    for piece in pieces:
+        if not piece or piece in ("*", "/"):
+            continue
+        name, annotation = piece.split(":", 1)
+        if name == "self":
+            continue
+        # pybind11 names a std::vector argument List[...]; it takes any sequence, as the stub says
+        params[name] = flat_union(annotation.split(" = ")[0].strip().replace("List[", "Sequence["))
+    return params, flat_union(returns)
+
+
+def stub_signatures(body) -> dict:
+    """name → (parameter → annotation members, return members), the union over @overload variants."""
+    out: dict = {}
+    for node in body:
+        if isinstance(node, ast.FunctionDef):
+            params, returns = out.setdefault(node.name, ({}, set()))
+            args = node.args
+            for a in args.posonlyargs + args.args + args.kwonlyargs:
+                if a.arg != "self" and a.annotation is not None:
+                    params[a.arg] = params.get(a.arg, frozenset()) | flat_union(ast.unparse(a.annotation))
+            if node.returns is not None:
+                returns |= flat_union(ast.unparse(node.returns))
+    return out
+
+
+def test_help_shows_the_stub_types_not_handle():
+    """help(raykernel.f) prints what the stub says each parameter and result is (pybind11 would print
+    ``handle`` and ``object`` for the arguments the extension converts itself)."""
+    tree = ast.parse(STUB.read_text())
+    classes = {n.name: n for n in tree.body if isinstance(n, ast.ClassDef)}
+    scopes = [(_raykernel, tree.body), (_raykernel.testkit, classes["testkit"].body)]
+    scopes += [(getattr(_raykernel, name), node.body) for name, node in classes.items()
+               if name not in ("testkit", "InvalidInput", "MeshFileError", "MeshFileNotFoundError")]
+    checked, wrong = 0, []
+    for owner, body in scopes:
+        for name, (params, returns) in stub_signatures(body).items():
+            f = getattr(owner, name)
+            if isinstance(f, property) or f.__doc__ is None or not f.__doc__.startswith(name + "("):
+                continue  # properties, and the methods Python defines (the exception classes')
+            shown, shown_returns = extension_signature(f)
+            for param, members in params.items():
+                if shown[param] != members or {"handle", "object"} & shown[param]:
+                    wrong.append((name, param, sorted(shown[param]), sorted(members)))
+            if returns and shown_returns != returns:
+                wrong.append((name, "->", sorted(shown_returns), sorted(returns)))
+            checked += 1
+    assert not wrong, "\n".join(map(str, wrong))
+    assert checked >= 60

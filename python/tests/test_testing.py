@@ -143,18 +143,49 @@ def test_owned_rule_counts_a_shared_edge_once():
 
 def test_triangle_reference_check_reports():
     ray = down_from(0.5, 0.0)  # through the edge ab at t = 1
-    ok = check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0)
+    ok = check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0, rule="closed")
     assert ok.passed and ok.t_ulps == 0
-    missed = check_triangle_hit_against_reference(ray, (A, B, C), False, math.nan)
+    missed = check_triangle_hit_against_reference(ray, (A, B, C), False, math.nan, rule="closed")
     assert not missed
     lines = missed.report.splitlines()
     assert lines[0] == "raykernel reference check FAILED: miss, expected hit (tolerance 0 ulps)"
     assert lines[2].endswith("| raykernel triangle --rule=closed --exact")
     assert "(edge-ab, hit under the closed rule)" in lines[3]
-    off = check_triangle_hit_against_reference(ray, (A, B, C), True, np.nextafter(1.0, 0.0), max_t_ulps=0)
+    off = check_triangle_hit_against_reference(ray, (A, B, C), True, np.nextafter(1.0, 0.0), rule="closed")
     assert not off and off.t_ulps == 1 and "t is 1 ulp below the correctly rounded t" in off.report
-    assert check_triangle_hit_against_reference(ray, (A, B, C), True, 0.5, max_t_ulps=None).passed
+    assert check_triangle_hit_against_reference(ray, (A, B, C), True, 0.5, rule="closed", max_ulps=None).passed
+    assert check_triangle_hit_against_reference(ray, (A, B, C), True, np.nextafter(1.0, 0.0), rule="closed",
+                                                max_ulps=1).passed
     with pytest.raises(AssertionError, match="hit, expected miss"):
         assert_triangle_hit_matches_reference(down_from(0.75, 0.75), (A, B, C), True, 1.0)
     with pytest.raises(ValueError, match="rule"):
         check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0, rule="open")
+
+
+def test_the_triangle_checks_share_names_and_defaults():
+    """Every triangle reference check takes ``rule`` (default "owned", as ``intersect``) and ``max_ulps`` (default 0:
+    the same bits), keyword-only; the hit check's old ``max_t_ulps`` still works, with a DeprecationWarning."""
+    import inspect
+
+    from raykernel.testing import (assert_triangle_arrays_match_reference, assert_triangle_matches_reference,
+                                   check_triangle_against_reference)
+
+    checks = [check_triangle_hit_against_reference, assert_triangle_hit_matches_reference,
+              check_triangle_against_reference, assert_triangle_matches_reference,
+              assert_triangle_arrays_match_reference]
+    for f in checks:
+        params = inspect.signature(f).parameters
+        for name, default in (("rule", "owned"), ("max_ulps", 0)):
+            assert params[name].default == default, (f.__name__, name)
+            assert params[name].kind is inspect.Parameter.KEYWORD_ONLY, (f.__name__, name)
+    # The owned default decides: a lone triangle's edge ab (here not owned) is hit only under the closed rule.
+    ray = down_from(0.5, 0.0)
+    owned = check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0)
+    closed = check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0, rule="closed")
+    assert owned.rule == "owned" and closed.passed and owned.passed == (rk.intersect(ray, (A, B, C)).relation == "hit")
+    with pytest.warns(DeprecationWarning, match="max_t_ulps is now max_ulps"):
+        old = check_triangle_hit_against_reference(ray, (A, B, C), True, np.nextafter(1.0, 0.0), rule="closed",
+                                                   max_t_ulps=1)
+    assert old.passed and old.max_ulps == 1
+    with pytest.raises(TypeError, match="give max_ulps only"):
+        check_triangle_hit_against_reference(ray, (A, B, C), True, 1.0, max_ulps=2, max_t_ulps=1)

@@ -11,6 +11,7 @@ mismatching row gets the full report.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Optional, Tuple, Union
@@ -152,8 +153,11 @@ def _hex3(v) -> str:
     return "(" + ", ".join(hex_string(float(x)) for x in v) + ")"
 
 
-def _tolerance(max_t_ulps: Optional[int]) -> str:
-    return " (t not checked)" if max_t_ulps is None else f" (tolerance {max_t_ulps} ulps)"
+def _tolerance(max_ulps: Optional[int]) -> str:
+    return " (t not checked)" if max_ulps is None else f" (tolerance {max_ulps} ulps)"
+
+
+_UNSET = object()  # a keyword not given
 
 
 def _describe_t(t: float) -> str:
@@ -291,7 +295,7 @@ class TriangleHitCheck:
     rule: str
     got_hit: bool
     got_t: float
-    max_t_ulps: int
+    max_ulps: Optional[int]
     hit_matches: bool
     t_ulps: Optional[int]
     passed: bool
@@ -301,15 +305,29 @@ class TriangleHitCheck:
         return self.passed
 
 
+def _tolerance_argument(max_ulps, max_t_ulps, function: str):
+    """max_ulps, or the max_t_ulps of an older call (the triangle checks' one name is max_ulps)."""
+    if max_t_ulps is _UNSET:
+        return max_ulps
+    if max_ulps != 0:
+        raise TypeError(f"{function}: give max_ulps only (max_t_ulps is its old name)")
+    warnings.warn(f"{function}: max_t_ulps is now max_ulps, as in the other triangle checks", DeprecationWarning,
+                  stacklevel=3)
+    return max_t_ulps
+
+
 def check_triangle_hit_against_reference(
-    ray, triangle, hit: bool, t: float, *, rule: str = "closed", max_t_ulps: Optional[int] = 0
+    ray, triangle, hit: bool, t: float, *, rule: str = "owned", max_ulps: Optional[int] = 0, max_t_ulps=_UNSET
 ) -> TriangleHitCheck:
     """Is ``hit`` (and, when it is a hit, ``t``) the exact answer for the ray and the triangle (a, b, c)?
 
-    The exact hit is §6's relation "hit" under ``rule`` ("closed": the triangle with its boundary; "owned":
-    the watertight tie-break), i.e. the ray meets the triangle at t ≥ 0; degenerate, parallel and coplanar
-    triangles are never hit. t must be within ``max_t_ulps`` of the correctly rounded exact t (None: t is
-    not checked, only the hit)."""
+    The exact hit is §6's relation "hit" under ``rule`` ("owned", the default of every triangle check and of
+    ``intersect``: the watertight tie-break; "closed": the triangle with its boundary, what Möller–Trumbore's
+    u ≥ 0, v ≥ 0, u + v ≤ 1 tests), i.e. the ray meets the triangle at t ≥ 0; degenerate, parallel and coplanar
+    triangles are never hit. t must be within ``max_ulps`` of the correctly rounded exact t (None: t is not
+    checked, only the hit). ``max_t_ulps``, the old name of ``max_ulps``, still works with a
+    DeprecationWarning."""
+    max_ulps = _tolerance_argument(max_ulps, max_t_ulps, "check_triangle_hit_against_reference")
     if rule not in ("closed", "owned"):
         raise ValueError(f"rule: expected 'closed' or 'owned', got {rule!r}")
     answer = exact.exact_ray_triangle(ray, triangle)
@@ -317,7 +335,7 @@ def check_triangle_hit_against_reference(
     expected_hit = relation == "hit"
     hit_matches = bool(hit) == expected_hit
     t_ulps = ulp_distance(answer.t, t) if expected_hit and hit else None
-    t_ok = not (expected_hit and hit) or max_t_ulps is None or (t_ulps is not None and t_ulps <= max_t_ulps)
+    t_ok = not (expected_hit and hit) or max_ulps is None or (t_ulps is not None and t_ulps <= max_ulps)
     passed = hit_matches and t_ok
 
     problems = []
@@ -335,7 +353,7 @@ def check_triangle_hit_against_reference(
     line = " ".join(hex_string(float(x)) for v in (o, d, a, b, c) for x in v)
     lines = [
         "raykernel reference check "
-        + ("passed" if passed else "FAILED: " + "; ".join(problems) + _tolerance(max_t_ulps)),
+        + ("passed" if passed else "FAILED: " + "; ".join(problems) + _tolerance(max_ulps)),
         f"  query     o = {_hex3(o)}  d = {_hex3(d)}  a = {_hex3(a)}  b = {_hex3(b)}  c = {_hex3(c)}",
         f"  replay    echo '{line}' | raykernel triangle --rule={rule} --exact",
         f"  expected  {'hit ' if expected_hit else 'miss'}  ({where})"
@@ -348,15 +366,16 @@ def check_triangle_hit_against_reference(
     else:
         lines.append(f"  exact     num = (a − o)·N = {answer.num}, den = d·N = {answer.den}")
     if t_ulps is not None:
-        lines.append(f"  t error   {t_ulps} ulps" + _tolerance(max_t_ulps))
-    return TriangleHitCheck(answer, rule, bool(hit), float(t), max_t_ulps, hit_matches, t_ulps, passed,
+        lines.append(f"  t error   {t_ulps} ulps" + _tolerance(max_ulps))
+    return TriangleHitCheck(answer, rule, bool(hit), float(t), max_ulps, hit_matches, t_ulps, passed,
                                   "\n".join(lines) + "\n")
 
 
 def assert_triangle_hit_matches_reference(
-    ray, triangle, hit: bool, t: float, *, rule: str = "closed", max_t_ulps: Optional[int] = 0
+    ray, triangle, hit: bool, t: float, *, rule: str = "owned", max_ulps: Optional[int] = 0, max_t_ulps=_UNSET
 ) -> None:
     """``check_triangle_hit_against_reference``, raising AssertionError with the report on a mismatch."""
-    check = check_triangle_hit_against_reference(ray, triangle, hit, t, rule=rule, max_t_ulps=max_t_ulps)
+    max_ulps = _tolerance_argument(max_ulps, max_t_ulps, "assert_triangle_hit_matches_reference")
+    check = check_triangle_hit_against_reference(ray, triangle, hit, t, rule=rule, max_ulps=max_ulps)
     if not check.passed:
         raise AssertionError("\n" + check.report)
