@@ -72,6 +72,52 @@ def test_inside_planes_spheres_and_triangles_are_the_batch_answers(mesh, rays):
     same(rkd.relation_triangle_batch(chunked, d, o, o[::-1], d), rk.relation_triangle_batch(o, d, o, o[::-1], d))
 
 
+def test_the_queries_after_the_first_hit_are_the_batch_answers(mesh, rays):
+    """§8, §9 and §11 over Dask arrays: intervals one number or one per ray (chunked with the rays)."""
+    o, d = rays
+    chunked = da.from_array(o, chunks=(3_000, 3))
+    rng = np.random.default_rng(8)
+    t_max = rng.uniform(0.5, 3.0, size=len(o))
+    t_max[::7] = np.inf
+    same(rkd.occluded_batch(chunked, d, mesh), rk.occluded_batch(o, d, mesh))
+    same(rkd.occluded_batch(chunked, d, mesh, t_min=0.5, t_max=t_max), rk.occluded_batch(o, d, mesh, t_min=0.5, t_max=t_max))
+    t_min = np.where(np.isinf(t_max), 1.0, t_max / 2)
+    lazy_t_min = da.from_array(t_min, chunks=5_000)  # a Dask array of other chunks: rechunked to the rays'
+    same(rkd.crossings_batch(chunked, d, mesh, t_min=lazy_t_min, rule="closed"),
+         rk.crossings_batch(o, d, mesh, t_min=t_min, rule="closed"))
+    same(rkd.occluded_segment_batch(chunked, -o, mesh), rk.occluded_segment_batch(o, -o, mesh))
+    same(rkd.closest_point_batch(chunked[:4_000], mesh, signed=True), rk.closest_point_batch(o[:4_000], mesh, signed=True))
+    hit = rk.nearest_hit_batch(o, d, mesh)
+    rows = np.flatnonzero(hit.triangle >= 0)[:5_000]
+    tri = mesh.triangles[hit.triangle[rows]]
+    a, b, c = (mesh.vertices[tri[:, k]] for k in range(3))
+    lazy_o = da.from_array(o[rows], chunks=(1_000, 3))
+    same(rkd.spawn_batch(lazy_o, d[rows], a, b, c, -d[rows]), rk.spawn_batch(o[rows], d[rows], a, b, c, -d[rows]))
+    same(rkd.spawn_to_batch(lazy_o, d[rows], a, b, c, o[rows], format="binary32"),
+         rk.spawn_to_batch(o[rows], d[rows], a, b, c, o[rows], format="binary32"))
+
+
+def test_compute_writes_the_batch_answer_in_place(mesh, rays):
+    """rkd.compute: the plain batch answer bit for bit (NumPy arrays, None where the batch gives stats), on the
+    threaded and the synchronous scheduler; an invalid row raises as with dask.compute."""
+    o, d = rays
+    chunked = da.from_array(o, chunks=(3_000, 3))
+    plain = rk.nearest_hit_batch(o, d, mesh)
+    for kwargs in ({}, {"scheduler": "threads", "num_workers": 2}, {"scheduler": "sync"}):
+        got = rkd.compute(rkd.nearest_hit_batch(chunked, d, mesh), **kwargs)
+        assert type(got) is type(plain)
+        for name, g, p in zip(plain._fields, got, plain):
+            assert isinstance(g, np.ndarray) and g.dtype == p.dtype and g.shape == p.shape, name
+            assert np.array_equal(g.view(np.uint8), np.ascontiguousarray(p).view(np.uint8)), name
+    planes = rk.PlaneSet(np.eye(3), np.eye(3))
+    got = rkd.compute(rkd.nearest_hit_batch(chunked, d, planes))
+    assert got.stats is None and np.array_equal(got.t, rk.nearest_hit_batch(o, d, planes).t, equal_nan=True)
+    bad = d.copy()
+    bad[4_321] = np.inf
+    with pytest.raises(ValueError, match=r"^ray 4321: "):
+        rkd.compute(rkd.nearest_hit_batch(chunked, bad, mesh))
+
+
 def test_an_invalid_row_is_named_over_the_whole_array_or_masked(mesh, rays):
     o, d = rays
     d = d.copy()
@@ -105,6 +151,7 @@ def test_on_a_local_cluster_of_two_worker_processes(mesh, rays):
                                   silence_logs=40) as cluster, distributed.Client(cluster) as client:
         lazy = rkd.nearest_hit_batch(da.from_array(o, chunks=(2_500, 3)), d, mesh)
         computed = client.compute(list(lazy), sync=True)
+        assert all(np.array_equal(x, y, equal_nan=True) for x, y in zip(rkd.compute(lazy), computed))
         plain = rk.nearest_hit_batch(o, d, mesh)
         for name, got, want in zip(plain._fields, computed, plain):
             assert np.array_equal(got, want, equal_nan=True), name
