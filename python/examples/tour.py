@@ -27,6 +27,7 @@ CALLS = [
     "rk.all_hits(((0.25, 0.25, 3), (0, 0, -1)), mesh)",
     "rk.occluded_batch([[2, 0, 0], [2, 0, 0]], [[-1, 0, 0], [-1, 0, 0]], mesh, t_max=[0.5, 1.0]).occluded",
     "rk.crossings_batch([[0.25, 0.25, 3], [0.25, 0.25, 0]], [[0, 0, -1], [0, 0, -1]], mesh).crossings",
+    "rk.nearest_hit(ray, mesh, t_min=1.5)",
     # §9 spawning: an origin from which the new ray provably never meets the triangle it leaves
     "rk.spawn(((0.1, 0.2, 1), (0, 0, -3)), tri, (1, 1, 1))",
     "rk.spawn(((0.1, 0.2, 1), (0, 0, -3)), tri, (1, 1, 1), format='binary32').origin",
@@ -37,6 +38,8 @@ CALLS = [
     "rk.intersect(((0, 0.5, 0), (1, 0, 0)), sphere)",
     "rk.intersect_exact_rational(((0, 0.5, 0), (1, 0, 0)), sphere)",
     "rk.spawn((4, 0, 0), sphere, (-1, 0, 0))",
+    "rk.nearest_hit(((0, 0, 0), (1, 0, 0)), rk.SphereSet([[5, 0, 0], [5, 0.5, 0]], [1, 0.5]), t_min=4.5)",
+    "rk.occluded_segment((0, 0, 0), (4, 0, 0), rk.SphereSet([sphere]))",
     # §11 closest points, signed
     "rk.closest_point((1, 1, 1), mesh)",
     "rk.closest_point_batch([[2, 0, 0], [0, 0, 0.5]], mesh, signed=True).signed_distance",

@@ -36,6 +36,8 @@ from ._types import (
     RuleLike,
     Sphere,
     SphereClassification,
+    SphereHit,
+    SphereHitArrays,
     SphereIntersection,
     SphereIntersectionArrays,
     SphereLike,
@@ -195,21 +197,45 @@ class Mesh:
 # Every file that cannot be read as a mesh raises MeshFileError, and so does a path containing a NUL character; a
 # path where there is no file raises MeshFileNotFoundError (a MeshFileError and a FileNotFoundError).
 def load_mesh(path: Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]) -> Mesh: ...
+class SphereSet:
+    # centers (m, 3) with radii (m,), or a sequence of Sphere (radii None). Pickles as (centers, radii).
+    def __init__(self, centers: Union[ArrayLike3, Sequence[Sphere]], radii: Optional[npt.ArrayLike] = None) -> None: ...
+    def __len__(self) -> int: ...
+    def __getitem__(self, index: int) -> Sphere: ...
+    @property
+    def centers(self) -> np.ndarray: ...
+    @property
+    def radii(self) -> np.ndarray: ...
+
+# Planes take the whole ray (t_min 0, t_max inf; another interval raises ValueError); meshes and sphere sets an
+# interval [t_min, t_max], compared exactly; only meshes a rule.
 @overload
 def nearest_hit(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
 @overload
-def nearest_hit(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
+def nearest_hit(
+    ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None, t_min: float = 0.0, t_max: float = ...
+) -> Optional[MeshHit]: ...
+@overload
+def nearest_hit(ray: RayLike, scene: SphereSet, *, t_min: float = 0.0, t_max: float = ...) -> Optional[SphereHit]: ...
 @overload
 def nearest_hit_exact(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
 @overload
-def nearest_hit_exact(ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None) -> Optional[MeshHit]: ...
+def nearest_hit_exact(
+    ray: RayLike, scene: Mesh, *, rule: Optional[RuleLike] = None, t_min: float = 0.0, t_max: float = ...
+) -> Optional[MeshHit]: ...
+@overload
+def nearest_hit_exact(
+    ray: RayLike, scene: SphereSet, *, t_min: float = 0.0, t_max: float = ...
+) -> Optional[SphereHit]: ...
 @overload
 def nearest_hit_naive(ray: RayLike, scene: Planes) -> Optional[NearestHit]: ...
 @overload
-def nearest_hit_naive(ray: RayLike, scene: Mesh) -> Optional[MeshHit]: ...
+def nearest_hit_naive(ray: RayLike, scene: Mesh, *, t_min: float = 0.0, t_max: float = ...) -> Optional[MeshHit]: ...
+@overload  # no naive form for a SphereSet: TypeError
+def nearest_hit_naive(ray: RayLike, scene: SphereSet, *, t_min: float = 0.0, t_max: float = ...) -> Optional[SphereHit]: ...
 def occluded(
     ray: RayLike,
-    mesh: Mesh,
+    scene: Union[Mesh, SphereSet],
     *,
     t_min: float = 0.0,
     t_max: float = ...,
@@ -228,7 +254,7 @@ def all_hits(
 def occluded_batch(
     origins: ArrayLike3,
     directions: ArrayLike3,
-    mesh: Mesh,
+    scene: Union[Mesh, SphereSet],
     *,
     t_min: Union[float, npt.ArrayLike] = 0.0,
     t_max: Union[float, npt.ArrayLike] = ...,
@@ -241,7 +267,7 @@ def occluded_batch(
 def occluded_segment_batch(
     p: ArrayLike3,
     q: ArrayLike3,
-    mesh: Mesh,
+    scene: Union[Mesh, SphereSet],
     *,
     rule: Optional[RuleLike] = None,
     path: str = "certified",
@@ -263,7 +289,7 @@ def crossings_batch(
     progress: Optional[Callable[[int, int], object]] = None,
 ) -> CrossingArrays: ...
 def occluded_segment(
-    p: Vec3Like, q: Vec3Like, mesh: Mesh, *, rule: Optional[RuleLike] = None, path: str = "certified"
+    p: Vec3Like, q: Vec3Like, scene: Union[Mesh, SphereSet], *, rule: Optional[RuleLike] = None, path: str = "certified"
 ) -> bool: ...
 def inside(point: Vec3Like, mesh: Mesh) -> PointLocation: ...
 def inside_exact(point: Vec3Like, mesh: Mesh) -> PointLocation: ...
@@ -359,11 +385,26 @@ def nearest_hit_batch(
     scene: Mesh,
     *,
     rule: Optional[RuleLike] = None,
+    t_min: Union[float, npt.ArrayLike] = 0.0,
+    t_max: Union[float, npt.ArrayLike] = ...,
     path: str = "certified",
     errors: str = "raise",
     threads: Optional[int] = None,
     progress: Optional[Callable[[int, int], object]] = None,
 ) -> MeshHitArrays: ...
+@overload
+def nearest_hit_batch(
+    origins: ArrayLike3,
+    directions: ArrayLike3,
+    scene: SphereSet,
+    *,
+    t_min: Union[float, npt.ArrayLike] = 0.0,
+    t_max: Union[float, npt.ArrayLike] = ...,
+    path: str = "certified",
+    errors: str = "raise",
+    threads: Optional[int] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
+) -> SphereHitArrays: ...
 @overload
 def nearest_hit_batch(
     origins: ArrayLike3,

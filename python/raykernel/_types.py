@@ -452,6 +452,23 @@ class NearestHitArrays(NamedTuple):
     stats: Optional[StageCounts] = None
 
 
+class SphereHit(NamedTuple):
+    """The nearest sphere of a ``SphereSet`` a ray meets within its interval (docs/contract.md §8, §10): its index
+    (an exact tie to the smaller) and its root t, the smallest in the interval, rounded to nearest."""
+
+    sphere: int
+    t: float
+
+
+class SphereHitArrays(NamedTuple):
+    """The answers of ``nearest_hit_batch`` on a ``SphereSet``, one row per ray: ``sphere`` (int64, -1 for a miss and
+    for invalid rays), ``t`` (float64, NaN for a miss), ``valid`` (bool)."""
+
+    sphere: np.ndarray
+    t: np.ndarray
+    valid: np.ndarray
+
+
 class MeshHitArrays(NamedTuple):
     """The answers of ``nearest_hit_batch`` on a mesh, one row per ray: ``triangle`` (int64, -1 for a miss and
     for invalid rays), ``t`` (float64) and ``barycentric`` ((n, 3) float64), NaN for a miss; ``location``

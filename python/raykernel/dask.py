@@ -228,12 +228,12 @@ def intersect_sphere_batch(origins, directions, centers, radii, *, threads: Opti
                                                    radii=radii), (), (1, 1, 1, 0), threads, kwargs)
 
 
-def nearest_hit_batch(origins, directions, scene, *, threads: Optional[int] = 1, **kwargs):
-    """``raykernel.nearest_hit_batch`` over Dask arrays; ``scene`` (a ``Mesh`` or ``PlaneSet``) goes to each
-    worker once."""
+def nearest_hit_batch(origins, directions, scene, *, t_min=0.0, t_max=np.inf, threads: Optional[int] = 1,
+                      **kwargs):
+    """``raykernel.nearest_hit_batch`` over Dask arrays; ``scene`` (a ``Mesh``, ``SphereSet`` or ``PlaneSet``) goes
+    to each worker once; ``t_min``, ``t_max`` one number, or an (n,) array chunked with the rays."""
     kwargs.pop("stats", None)
-    return _batch(_rk.nearest_hit_batch, dict(origins=origins, directions=directions), (scene,), (1, 1), threads,
-                  kwargs)
+    return _interval_rows(_rk.nearest_hit_batch, origins, directions, scene, t_min, t_max, threads, kwargs)
 
 
 def inside_batch(points, mesh, *, threads: Optional[int] = 1, **kwargs):

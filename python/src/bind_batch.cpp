@@ -5,15 +5,6 @@
 // threads for large batches); the exact and naive paths loop over the scalar functions in C++, on threads.
 // Invalid rows either raise ValueError naming the first one ("query 17: ray direction is the zero vector")
 // or, with errors="mask", are marked in the `valid` array while the others are answered.
-#include "bindings.hpp"
-#include "convert.hpp"
-#include "batch_support.hpp"
-#include "mesh.hpp"
-#include "plane_set.hpp"
-
-#include <raykernel/batch.hpp>
-#include <raykernel/nearest_hit.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -21,9 +12,18 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <raykernel/batch.hpp>
+#include <raykernel/nearest_hit.hpp>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "batch_support.hpp"
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "mesh.hpp"
+#include "plane_set.hpp"
+#include "sphere_set.hpp"
 
 namespace raykernel::python {
 namespace {
@@ -188,14 +188,18 @@ shown::RelationArrays relation_batch_py(shown::ArrayLike3 origins, shown::ArrayL
 }
 
 py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::handle planes_arg, py::handle rule,
-                                const std::string& path_name, const std::string& errors,
-                                std::optional<unsigned> threads, bool want_stats) {
-  if (py::isinstance<PythonMesh>(planes_arg)) {
-    if (want_stats) throw py::value_error("stats: only for planes");
-    return nearest_hit_mesh_batch(origins, directions, planes_arg.cast<const PythonMesh&>(), rule, path_name, errors,
-                                  threads);
-  }
-  if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
+                                py::handle t_min, py::handle t_max, const std::string& path_name,
+                                const std::string& errors, std::optional<unsigned> threads, bool want_stats) {
+  if (want_stats && (py::isinstance<PythonMesh>(planes_arg) || is_sphere_set(planes_arg)))
+    throw py::value_error("stats: only for planes");
+  if (py::isinstance<PythonMesh>(planes_arg))
+    return nearest_hit_mesh_batch(origins, directions, planes_arg.cast<const PythonMesh&>(), t_min, t_max, rule,
+                                  path_name, errors, threads);
+  require_no_rule(rule, planes_arg);
+  if (is_sphere_set(planes_arg))
+    return nearest_hit_spheres_batch(origins, directions, planes_arg.cast<const raykernel::SphereSet&>(), t_min, t_max,
+                                     path_name, errors, threads);
+  require_whole_ray(t_min, t_max, "planes");
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   ColumnsView o(origins, "origins"), d(directions, "directions");
@@ -319,14 +323,15 @@ certified path on planes is one vectorized C++ call, which reports nothing.)doc"
   m.def(
       "nearest_hit_batch",
       [](shown::ArrayLike3 origins, shown::ArrayLike3 directions, shown::Scene scene, shown::OptionalRule rule,
-         const std::string& path, const std::string& errors, std::optional<unsigned> threads, shown::Progress progress,
-         bool stats) -> shown::NearestHitArrays {
+         shown::ScalarOrArray t_min, shown::ScalarOrArray t_max, const std::string& path, const std::string& errors,
+         std::optional<unsigned> threads, shown::Progress progress, bool stats) -> shown::NearestHitArrays {
         const ProgressScope scope(progress);
-        return nearest_hit_batch_py(origins, directions, scene, rule, path, errors, threads, stats);
+        return nearest_hit_batch_py(origins, directions, scene, rule, t_min, t_max, path, errors, threads, stats);
       },
       py::arg("origins"), py::arg("directions"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
-      py::arg("path") = "certified", py::arg("errors") = "raise", py::arg("threads") = py::none(),
-      py::arg("progress") = py::none(), py::arg("stats") = false,
+      py::arg("t_min") = 0.0, py::arg("t_max") = std::numeric_limits<double>::infinity(), py::arg("path") = "certified",
+      py::arg("errors") = "raise", py::arg("threads") = py::none(), py::arg("progress") = py::none(),
+      py::arg("stats") = false,
       R"doc(``nearest_hit`` for every ray: the first plane of ``scene`` each ray meets (or triangle, for a mesh).
 
 ``origins``, ``directions``: (n, 3) arrays; ``scene``: a ``PlaneSet`` (read and validated once) or a sequence

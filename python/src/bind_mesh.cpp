@@ -1,14 +1,5 @@
 // Meshes from Python (docs/contract.md §7): raykernel.Mesh, load_mesh (the io readers), and the kernel's mesh
 // queries (<raykernel/mesh_queries.hpp>) for one ray or point and over arrays of them, on threads.
-#include "mesh.hpp"
-
-#include "batch_support.hpp"
-#include "bindings.hpp"
-#include "convert.hpp"
-
-#include <raykernel/io/mesh_file.hpp>
-#include <raykernel/occlusion.hpp>
-
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -17,10 +8,19 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <raykernel/io/mesh_file.hpp>
+#include <raykernel/occlusion.hpp>
 #include <string>
 #include <system_error>
 #include <type_traits>
 #include <vector>
+
+#include "batch_support.hpp"
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "mesh.hpp"
+#include "ray_batch.hpp"
+#include "sphere_set.hpp"
 
 namespace raykernel::python {
 namespace {
@@ -73,6 +73,12 @@ Mesh mesh_from_arrays(py::handle vertices, py::handle triangles) {
 
 }  // namespace
 
+const PythonMesh& mesh_from(py::handle scene, const char* wanted) {
+  if (!py::isinstance<PythonMesh>(scene))
+    throw py::type_error(std::string("scene: expected ") + wanted + ", got " + Py_TYPE(scene.ptr())->tp_name);
+  return scene.cast<const PythonMesh&>();
+}
+
 py::object to_python(const std::optional<MeshHit>& hit) {
   if (!hit) return py::none();
   const TriangleIntersection& x = hit->intersection;
@@ -82,45 +88,43 @@ py::object to_python(const std::optional<MeshHit>& hit) {
 
 namespace {
 
-// The kernel's answer on `path` (the naive path has no rule). Throws invalid_input for an invalid ray.
-std::optional<MeshHit> nearest_on(MeshPath path, const Ray& ray, const PythonMesh& mesh, TriangleRule rule) {
+// The kernel's answer on `path` within `interval` (the naive path has no rule). Throws invalid_input for an
+// invalid ray or interval.
+std::optional<MeshHit> nearest_on(Path path, const Ray& ray, const RayInterval& interval, const PythonMesh& mesh,
+                                  TriangleRule rule) {
   switch (path) {
-    case MeshPath::exact: return nearest_hit_exact(ray, mesh.mesh(), rule);
-    case MeshPath::naive: return nearest_hit_naive(ray, mesh.prepared());
-    case MeshPath::certified: break;
+    case Path::exact:
+      return nearest_hit_exact(ray, interval, mesh.mesh(), rule);
+    case Path::naive:
+      return nearest_hit_naive(ray, interval, mesh.prepared());
+    case Path::certified:
+      break;
   }
-  return nearest_hit(ray, mesh.prepared(), rule);
-}
-
-MeshPath mesh_path_from(const std::string& name) {
-  const Path path = path_from(name);
-  return path == Path::exact ? MeshPath::exact : path == Path::naive ? MeshPath::naive : MeshPath::certified;
+  return nearest_hit(ray, interval, mesh.prepared(), rule);
 }
 
 }  // namespace
 
-py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, MeshPath path) {
+py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, double t_min, double t_max, py::handle rule,
+                            Path path) {
+  if (path == Path::naive && !rule.is_none()) throw py::value_error("rule: the naive path has no rule");
   const Ray r = ray_from(ray);
+  const RayInterval interval{t_min, t_max};
   const TriangleRule chosen = rule_or_owned(rule);
   std::optional<MeshHit> hit;
   {
     py::gil_scoped_release release;
-    hit = nearest_on(path, r, mesh, chosen);
+    hit = nearest_on(path, r, interval, mesh, chosen);
   }
   return to_python(hit);
 }
 
-py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle rule,
-                                  const std::string& path_name, const std::string& errors,
-                                  std::optional<unsigned> threads) {
-  const MeshPath path = mesh_path_from(path_name);
-  if (path == MeshPath::naive && !rule.is_none()) throw py::value_error("rule: the naive path has no rule");
-  const ErrorPolicy policy = error_policy_from(errors);
-  const TriangleRule chosen = rule_or_owned(rule);
-  const ColumnsView o(origins, "origins"), d(directions, "directions");
-  const std::size_t n = o.rows();
-  require_rows(d, "directions", n, "origins");
-
+py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
+                                  py::handle t_max, py::handle rule, const std::string& path_name,
+                                  const std::string& errors, std::optional<unsigned> threads) {
+  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors, /*allow_naive=*/true);
+  if (b.path == Path::naive && !rule.is_none()) throw py::value_error("rule: the naive path has no rule");
+  const std::size_t n = b.rows();
   auto triangle = new_array<std::int64_t>(n);
   auto t = new_array<double>(n);
   auto location = new_array<std::uint8_t>(n);
@@ -129,29 +133,19 @@ py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, con
   const std::span<std::int64_t> triangle_out = span_of(triangle);
   const std::span<double> t_out = span_of(t);
   const std::span<std::uint8_t> location_out = span_of(location);
-  const std::span<bool> valid_out = span_of(valid);
   double* const barycentric_out = barycentric.mutable_data();
-  std::optional<std::string> error;
-  {
-    py::gil_scoped_release release;
-    // A BVH walk is microseconds per ray, an exact scan far more: small grains.
-    parallel_for(n, threads_from(threads), path == MeshPath::exact ? 4 : 256, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const Ray ray{o.row(i), d.row(i)};
-        valid_out[i] = !validate(ray).has_value();
-        std::optional<MeshHit> hit;
-        if (valid_out[i]) hit = nearest_on(path, ray, mesh, chosen);
-        triangle_out[i] = hit ? static_cast<std::int64_t>(hit->triangle) : -1;
-        t_out[i] = hit ? hit->intersection.t : nan;
-        location_out[i] = hit ? static_cast<std::uint8_t>(hit->intersection.location)
-                              : valid_out[i] ? static_cast<std::uint8_t>(TriangleLocation::none) : invalid_code;
-        for (std::size_t k = 0; k < 3; ++k) barycentric_out[3 * i + k] = hit ? hit->intersection.barycentric[k] : nan;
-      }
-    });
-    if (const std::optional<std::size_t> i = first_invalid_row(valid_out))
-      error = "ray " + std::to_string(*i) + ": " + validate(Ray{o.row(*i), d.row(*i)}).value_or("invalid input");
-  }
-  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+  // A BVH walk is microseconds per ray, an exact scan far more: small grains.
+  b.run(span_of(valid), threads, b.exact ? 4 : 256,
+        [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
+          std::optional<MeshHit> hit;
+          if (ok) hit = nearest_on(b.path, ray, interval, mesh, b.rule);
+          triangle_out[i] = hit ? static_cast<std::int64_t>(hit->triangle) : -1;
+          t_out[i] = hit ? hit->intersection.t : nan;
+          location_out[i] = hit  ? static_cast<std::uint8_t>(hit->intersection.location)
+                            : ok ? static_cast<std::uint8_t>(TriangleLocation::none)
+                                 : invalid_code;
+          for (std::size_t k = 0; k < 3; ++k) barycentric_out[3 * i + k] = hit ? hit->intersection.barycentric[k] : nan;
+        });
   return types().mesh_hit_arrays(triangle, t, location, barycentric, valid);
 }
 
@@ -409,16 +403,24 @@ the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. 
 
   m.def(
       "occluded",
-      [](shown::RayLike ray, const PythonMesh& mesh, double t_min, double t_max, shown::OptionalRule rule,
+      [](shown::RayLike ray, shown::MeshOrSpheres scene, double t_min, double t_max, shown::OptionalRule rule,
          const std::string& path) {
         const Ray r = ray_from(ray);
         const RayInterval interval{t_min, t_max};
-        const TriangleRule chosen = rule_or_owned(rule);
         const bool exact = path_from(path, false) == Path::exact;
+        if (is_sphere_set(scene)) {
+          require_no_rule(rule, scene);
+          if (auto reason = ray_problem(r, interval)) throw invalid_input(*reason);
+          const auto& spheres = scene.cast<const raykernel::SphereSet&>();
+          py::gil_scoped_release release;
+          return occluded_spheres(r, interval, spheres, exact);
+        }
+        const PythonMesh& mesh = mesh_from(scene, "a raykernel.Mesh or a raykernel.SphereSet");
+        const TriangleRule chosen = rule_or_owned(rule);
         py::gil_scoped_release release;
         return exact ? occluded_exact(r, interval, mesh.mesh(), chosen) : occluded(r, interval, mesh.prepared(), chosen);
       },
-      py::arg("ray"), py::arg("mesh"), py::kw_only(), py::arg("t_min") = 0.0,
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("t_min") = 0.0,
       py::arg("t_max") = std::numeric_limits<double>::infinity(), py::arg("rule") = py::none(),
       py::arg("path") = "certified",
       R"doc(Whether some triangle of ``mesh`` blocks ``ray`` within ``[t_min, t_max]`` (docs/contract.md §8): a
@@ -429,15 +431,23 @@ for an invalid ray or interval, naming the bound ("t_min is greater than t_max")
 
   m.def(
       "occluded_segment",
-      [](shown::Vec3Like p, shown::Vec3Like q, const PythonMesh& mesh, shown::OptionalRule rule,
+      [](shown::Vec3Like p, shown::Vec3Like q, shown::MeshOrSpheres scene, shown::OptionalRule rule,
          const std::string& path) {
         const Vec3 a = vec3_from(p, "p"), b = vec3_from(q, "q");
-        const TriangleRule chosen = rule_or_owned(rule);
         const bool exact = path_from(path, false) == Path::exact;
+        if (is_sphere_set(scene)) {
+          require_no_rule(rule, scene);
+          if (auto reason = validate_segment(a, b)) throw invalid_input(*reason);
+          const auto& spheres = scene.cast<const raykernel::SphereSet&>();
+          py::gil_scoped_release release;
+          return occluded_segment_spheres(a, b, spheres, exact);
+        }
+        const PythonMesh& mesh = mesh_from(scene, "a raykernel.Mesh or a raykernel.SphereSet");
+        const TriangleRule chosen = rule_or_owned(rule);
         py::gil_scoped_release release;
         return exact ? occluded_exact(a, b, mesh.mesh(), chosen) : occluded(a, b, mesh.prepared(), chosen);
       },
-      py::arg("p"), py::arg("q"), py::arg("mesh"), py::kw_only(), py::arg("rule") = py::none(),
+      py::arg("p"), py::arg("q"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
       py::arg("path") = "certified",
       R"doc(Whether some triangle of ``mesh`` meets the open segment between the points ``p`` and ``q``
 (docs/contract.md §8): 0 < t < 1 along the exact direction ``q - p``, which is not rounded; the endpoints never

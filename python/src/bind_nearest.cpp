@@ -1,16 +1,17 @@
 // PlaneSet and the scalar nearest hit (docs/contract.md §4): the first plane one ray meets.
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <raykernel/nearest_hit.hpp>
+#include <string>
+#include <vector>
+
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "mesh.hpp"
 #include "plane_set.hpp"
-
-#include <raykernel/nearest_hit.hpp>
-
-#include <algorithm>
-#include <cstdint>
-#include <optional>
-#include <string>
-#include <vector>
+#include "sphere_set.hpp"
 
 namespace raykernel::python {
 namespace {
@@ -75,6 +76,10 @@ py::array_t<double> plane_columns(const PlaneSet& s, Vec3 Plane::*member) {
   return a;
 }
 
+namespace {
+constexpr double inf = std::numeric_limits<double>::infinity();
+}  // namespace
+
 void bind_nearest(py::module_& m) {
   py::class_<PlaneSet>(m, "PlaneSet", R"doc(The planes of a scene, read and validated once.
 
@@ -129,13 +134,18 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
 
   m.def(
       "nearest_hit",
-      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule) -> shown::NearestHit {
+      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule, double t_min,
+         double t_max) -> shown::NearestHit {
         if (py::isinstance<PythonMesh>(scene))
-          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::certified);
-        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, rule, Path::certified);
+        require_no_rule(rule, scene);
+        if (is_sphere_set(scene))
+          return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, false);
+        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
         return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
       },
-      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
+      py::arg("t_max") = inf,
       R"doc(The first plane or triangle ``ray`` meets, decided exactly, or None.
 
 Planes (``scene`` a ``PlaneSet`` or a sequence of ``(point, normal)`` pairs; docs/contract.md §4): among the
@@ -152,10 +162,14 @@ Raises ``ValueError`` naming the invalid ray or plane.)doc");
 
   m.def(
       "nearest_hit_exact",
-      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule) -> shown::NearestHit {
+      [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule, double t_min,
+         double t_max) -> shown::NearestHit {
         if (py::isinstance<PythonMesh>(scene))
-          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), rule, MeshPath::exact);
-        if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is planes");
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, rule, Path::exact);
+        require_no_rule(rule, scene);
+        if (is_sphere_set(scene))
+          return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, true);
+        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
         const Ray r = ray_from(ray);
         std::optional<raykernel::PlaneSet> storage;
         const raykernel::PlaneSet& set = planes_from(scene, storage);
@@ -166,19 +180,22 @@ Raises ``ValueError`` naming the invalid ray or plane.)doc");
         }
         return to_python(hit);
       },
-      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
+      py::arg("t_max") = inf,
       R"doc(The reference nearest hit, in exact rationals, by brute force (every plane or every triangle, no
 BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
 
   m.def(
       "nearest_hit_naive",
-      [](shown::RayLike ray, shown::Scene scene) -> shown::NearestHit {
+      [](shown::RayLike ray, shown::Scene scene, double t_min, double t_max) -> shown::NearestHit {
         if (py::isinstance<PythonMesh>(scene))
-          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), py::none(), MeshPath::naive);
+          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, py::none(), Path::naive);
+        if (is_sphere_set(scene)) throw py::type_error("scene: nearest_hit_naive has no form for a SphereSet");
+        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
         return nearest(ray, scene,
                        [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit_naive(r, p.planes()); });
       },
-      py::arg("ray"), py::arg("scene"),
+      py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("t_min") = 0.0, py::arg("t_max") = inf,
       R"doc(The textbook loop in plain doubles, the baseline: no guarantee.
 
 Planes: ``intersect_naive`` per plane, the smallest rounded t wins (ties to the smallest index); no validation.

@@ -12,6 +12,7 @@ void bind_nearest(pybind11::module_& m);    // PlaneSet and the scalar nearest h
 void bind_batch(pybind11::module_& m);      // the vectorized ray–plane forms over NumPy arrays
 void bind_triangle(pybind11::module_& m);   // the vectorized ray–triangle forms (docs/contract.md §6)
 void bind_sphere(pybind11::module_& m);     // the vectorized ray–sphere form (docs/contract.md §10)
+void bind_sphere_set(pybind11::module_& m);  // SphereSet: spheres as a scene (docs/contract.md §8, §10)
 void bind_mesh(pybind11::module_& m);       // Mesh, load_mesh, the mesh nearest hit (docs/contract.md §7)
 void bind_occlusion(pybind11::module_& m);   // all hits, crossings, occluded over arrays (docs/contract.md §8)
 void bind_closest(pybind11::module_& m);     // the exact closest point of a mesh (docs/contract.md §11)

@@ -1,9 +1,9 @@
 // Between Python objects and raykernel's C++ types (convert.hpp).
 #include "convert.hpp"
 
-#include <raykernel/mesh_queries.hpp>  // PointLocation
-
 #include <cstring>
+#include <limits>
+#include <raykernel/mesh_queries.hpp>  // PointLocation
 #include <stdexcept>
 #include <string>
 
@@ -198,6 +198,21 @@ TriangleRule rule_from(py::handle value) {
 }
 
 TriangleRule rule_or_owned(py::handle rule) { return rule.is_none() ? TriangleRule::owned : rule_from(rule); }
+
+void require_no_rule(py::handle rule, py::handle scene) {
+  if (!rule.is_none())
+    throw py::value_error(std::string("rule: only meshes have rules, the scene is ") +
+                          (py::isinstance<raykernel::SphereSet>(scene) ? "spheres" : "planes"));
+}
+
+void require_whole_ray(py::handle t_min, py::handle t_max, const char* scene) {
+  const auto is = [](py::handle v, double want) {
+    return (PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr())) && v.cast<double>() == want;
+  };
+  if (!is(t_min, 0.0) || !is(t_max, std::numeric_limits<double>::infinity()))
+    throw py::value_error(std::string("t_min, t_max: ") + scene +
+                          " take the whole ray, t >= 0 (an interval is for meshes and sphere sets)");
+}
 
 double double_from(py::handle value, std::string_view field) {
   if (PyFloat_CheckExact(value.ptr())) return PyFloat_AS_DOUBLE(value.ptr());

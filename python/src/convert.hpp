@@ -86,6 +86,11 @@ enum class PrimitiveKind { plane, triangle, sphere };
 // the default of every function with a `rule` keyword: the owned rule.
 [[nodiscard]] TriangleRule rule_from(py::handle value);
 [[nodiscard]] TriangleRule rule_or_owned(py::handle rule);
+// Refuses an interval other than the whole ray [0, +inf] where the scene (planes) takes none: t_min and t_max
+// numbers, or arrays in a batch (refused).
+void require_whole_ray(py::handle t_min, py::handle t_max, const char* scene);
+// Refuses a rule where the scene (planes, spheres) has none.
+void require_no_rule(py::handle rule, py::handle scene);
 // A finite double from a Python number (for round_rational_to_double's sister functions, t values...).
 [[nodiscard]] double double_from(py::handle value, std::string_view field);
 // A Relation from a raykernel.Relation, its string value ("in-plane") or its code (0..3).

@@ -4,13 +4,13 @@
 // Every answer is the kernel's; this file and bind_mesh.cpp only convert values and spread arrays over threads.
 #pragma once
 
-#include "convert.hpp"
-
+#include <optional>
 #include <raykernel/mesh.hpp>
 #include <raykernel/mesh_queries.hpp>
-
-#include <optional>
 #include <string>
+
+#include "batch_support.hpp"
+#include "convert.hpp"
 
 namespace raykernel::python {
 
@@ -26,18 +26,21 @@ class PythonMesh {
   PreparedMesh prepared_;
 };
 
+// The Mesh a scene argument holds; TypeError otherwise ("scene: expected <wanted>, got list").
+[[nodiscard]] const PythonMesh& mesh_from(py::handle scene, const char* wanted);
+
 // A mesh hit as the MeshHit NamedTuple, or None (bind_mesh.cpp).
 [[nodiscard]] py::object to_python(const std::optional<MeshHit>& hit);
 
-// Which kernel query answers a mesh nearest hit from Python.
-enum class MeshPath { certified, exact, naive };
-
 // The Python forms (bind_mesh.cpp), called by nearest_hit / nearest_hit_exact / nearest_hit_naive /
-// nearest_hit_batch when their scene is a Mesh: a MeshHit NamedTuple or None; MeshHitArrays. `rule` is None
+// nearest_hit_batch when their scene is a Mesh, on `path` (certified, exact or naive) within [t_min, t_max] (per
+// ray in the batch: one number or one per ray): a MeshHit NamedTuple or None; MeshHitArrays. `rule` is None
 // (owned) or a rule; the naive path has none (Möller–Trumbore decides its own edges).
-[[nodiscard]] py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, py::handle rule, MeshPath path);
+[[nodiscard]] py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, double t_min, double t_max,
+                                          py::handle rule, Path path);
 [[nodiscard]] py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh,
-                                                py::handle rule, const std::string& path, const std::string& errors,
+                                                py::handle t_min, py::handle t_max, py::handle rule,
+                                                const std::string& path, const std::string& errors,
                                                 std::optional<unsigned> threads);
 
 }  // namespace raykernel::python

@@ -26,6 +26,7 @@ PYBIND11_MODULE(_raykernel, m) {
   bind_batch(m);
   bind_triangle(m);
   bind_sphere(m);
+  bind_sphere_set(m);
   bind_mesh(m);
   bind_occlusion(m);
   bind_closest(m);

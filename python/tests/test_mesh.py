@@ -67,6 +67,39 @@ def test_bvh_nearest_hit_equals_brute_force_exact(rule):
             assert one is None or (same_bits(one.t, got.t[i]) and one == rk.nearest_hit_exact((o[i], d[i]), mesh, rule=rule))
 
 
+def test_nearest_hit_within_an_interval():
+    """docs/contract.md §8: the nearest hit among the triangles whose exact t lies in [t_min, t_max]."""
+    octahedron = testkit.make_octahedron()
+    # Along −x from (2, 0, 0): the vertex +x at t = 1, the vertex −x at t = 3 (each shared by four faces).
+    ray = ((2, 0, 0), (-1, 0, 0))
+    assert rk.nearest_hit(ray, octahedron).t == 1.0
+    far = rk.nearest_hit(ray, octahedron, t_min=1.5)
+    assert far.t == 3.0 and far.location.value.startswith("vertex")
+    assert rk.nearest_hit(ray, octahedron, t_min=1.0, t_max=1.0).t == 1.0  # a closed interval
+    assert rk.nearest_hit(ray, octahedron, t_min=np.nextafter(1.0, 2.0), t_max=np.nextafter(3.0, 0.0)) is None
+    assert rk.nearest_hit_exact(ray, octahedron, t_min=1.5) == far
+    assert rk.nearest_hit_naive(ray, octahedron, t_max=0.5) is None
+    with pytest.raises(ValueError, match="t_min is greater than t_max"):
+        rk.nearest_hit(ray, octahedron, t_min=2, t_max=1)
+    # Per-ray intervals in the batch: certified == exact, and each row the scalar answer.
+    mesh = testkit.make_icosphere(2)
+    rng = np.random.default_rng(30)
+    o = rng.uniform(-1, 1, (400, 3)) * 3
+    d = -o + rng.uniform(-0.3, 0.3, (400, 3))
+    t_min = rng.uniform(0.0, 1.5, 400)
+    t_max = t_min + rng.uniform(0.0, 1.0, 400)
+    got = rk.nearest_hit_batch(o, d, mesh, t_min=t_min, t_max=t_max)
+    exact = rk.nearest_hit_batch(o, d, mesh, t_min=t_min, t_max=t_max, path="exact")
+    assert (got.triangle == exact.triangle).all() and same_bits(got.t, exact.t)
+    whole = rk.nearest_hit_batch(o, d, mesh)
+    inside = (got.triangle >= 0)
+    assert inside.sum() > 50 and (got.t[inside] >= t_min[inside]).all() and (got.t[inside] <= t_max[inside]).all()
+    assert (got.triangle != whole.triangle).sum() > 50  # the interval changes the answer often
+    for i in range(0, 400, 23):
+        one = rk.nearest_hit((o[i], d[i]), mesh, t_min=t_min[i], t_max=t_max[i])
+        assert (one.triangle if one else -1) == got.triangle[i]
+
+
 def test_the_closed_cube_is_watertight_under_the_owned_rule():
     cube = testkit.make_subdivided_cube(4)  # grid lines at multiples of 1/4 on each face
     tris = [cube.triangle(k) for k in range(len(cube))]
