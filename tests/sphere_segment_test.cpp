@@ -18,6 +18,7 @@
 #include <cfenv>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -176,6 +177,35 @@ TEST(SphereSegment, AgreesWithExactOnEveryKindInEveryEnvironment) {
       EXPECT_EQ(segment_meets(cases[i].p, cases[i].q, cases[i].sphere), want[i]) << mode;
     std::fesetround(FE_TONEAREST);
   }
+}
+
+// occluded(p, q, SphereSet) walks the set's BVH by the box of the segment's ends: on a set large enough to have one
+// (spheres on a coarse dyadic grid, so that segments end on spheres, graze them and pass between them), it says
+// what the exact reference says of the spheres one by one — no sphere the segment meets is culled.
+TEST(SphereSetSegments, TheBvhWalkMissesNoSphere) {
+  std::mt19937_64 rng(20261129);
+  const auto grid = [&](int lo, int hi) {
+    return static_cast<double>(std::uniform_int_distribution<int>(lo, hi)(rng)) / 4.0;
+  };
+  std::vector<Sphere> spheres;
+  for (int k = 0; k < 60; ++k) spheres.push_back({{grid(-16, 16), grid(-16, 16), grid(-16, 16)}, grid(1, 6)});
+  const SphereSet set(spheres);
+  ASSERT_NE(set.bvh(), nullptr);
+  int met = 0;
+  for (int i = 0; i < 4000; ++i) {
+    Vec3 p{grid(-20, 20), grid(-20, 20), grid(-20, 20)};
+    // Short and long segments, some along an axis (flat boxes), some from a sphere's centre outwards.
+    const int span = i % 3 == 0 ? 4 : 40;
+    Vec3 q{p.x + grid(-span, span), p.y + (i % 5 == 0 ? 0.0 : grid(-span, span)), p.z + grid(-span, span)};
+    if (i % 7 == 0) p = spheres[static_cast<std::size_t>(i) % spheres.size()].center;
+    if (p.x == q.x && p.y == q.y && p.z == q.z) q.x += 1;
+    bool want = false;
+    for (const Sphere& s : spheres) want = want || segment_meets_exact(p, q, s);
+    EXPECT_EQ(occluded(p, q, set), want) << text(p) << " -> " << text(q);
+    met += want;
+  }
+  EXPECT_GT(met, 800);
+  EXPECT_LT(met, 3200);
 }
 
 // The CLI's --spheres streams (docs/contract.md, "Decided here"): answers worked out by hand. The unit sphere and

@@ -176,4 +176,36 @@ class BvhRayTraversal {
 [[nodiscard]] unsigned ray_box_entries(const BvhRayTraversal::Slabs& slabs, const BvhNode& node, double t_min,
                                        double t_max, std::array<double, BvhNode::width>& entries) noexcept;
 
+// Whether the closed boxes a and b share a point: six comparisons of doubles, exact (an empty box shares none).
+[[nodiscard]] inline bool boxes_overlap(const Box3& a, const Box3& b) noexcept {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
+         b.lo.z <= a.hi.z;
+}
+
+// Calls visit(primitives) — the indices of one leaf (into the mesh's triangles, or a SphereSet's spheres) — for
+// each leaf whose box overlaps `box`, depth first, until visit returns true; returns whether it did. Exact: a
+// primitive with a point in `box` is in a leaf whose box overlaps it (each box contains its primitives exactly), so
+// that leaf is visited. The query of anything bounded by a box: an open segment by the box of its two ends.
+template <class Visit>
+bool any_leaf_overlapping(const MeshBvh& bvh, const Box3& box, Visit&& visit) {
+  const std::span<const BvhNode> nodes = bvh.nodes();
+  if (nodes.empty() || !boxes_overlap(bvh.bounds(), box)) return false;
+  std::array<std::uint32_t, (BvhNode::width - 1) * MeshBvh::max_depth + 2> stack;
+  int size = 0;
+  stack[static_cast<std::size_t>(size++)] = 0;
+  while (size > 0) {
+    const BvhNode& node = nodes[stack[static_cast<std::size_t>(--size)]];
+    for (int s = 0; s < static_cast<int>(node.children); ++s) {
+      if (!boxes_overlap(node.box(s), box)) continue;
+      const auto slot = static_cast<std::size_t>(s);
+      if (node.is_leaf(s)) {
+        if (visit(bvh.triangle_order().subspan(node.first[slot], node.count[slot]))) return true;
+      } else {
+        stack[static_cast<std::size_t>(size++)] = node.first[slot];
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace raykernel

@@ -13,6 +13,7 @@
 #include "sphere/exact_sphere.hpp"
 #include "sphere/ray_sphere_cascade.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -159,9 +160,17 @@ bool segment_meets_exact(const Vec3& p, const Vec3& q, const Sphere& sphere) {
 bool occluded(const Vec3& p, const Vec3& q, const SphereSet& spheres) {
   return detail::in_default_fp_environment([&] {
     throw_if_invalid_segment(p, q);
-    for (const Sphere& sphere : spheres.spheres())
-      if (detail::segment_meets_sphere(p, q, sphere)) return true;
-    return false;
+    const std::span<const Sphere> list = spheres.spheres();
+    const auto meets = [&](const Sphere& sphere) { return detail::segment_meets_sphere(p, q, sphere); };
+    if (const MeshBvh* bvh = spheres.bvh()) {
+      // The segment lies in the box of its ends: a sphere it meets has a point there, so its leaf overlaps it.
+      const Box3 box{{std::fmin(p.x, q.x), std::fmin(p.y, q.y), std::fmin(p.z, q.z)},
+                     {std::fmax(p.x, q.x), std::fmax(p.y, q.y), std::fmax(p.z, q.z)}};
+      return any_leaf_overlapping(*bvh, box, [&](std::span<const std::uint32_t> leaf) {
+        return std::any_of(leaf.begin(), leaf.end(), [&](std::uint32_t k) { return meets(list[k]); });
+      });
+    }
+    return std::any_of(list.begin(), list.end(), meets);
   });
 }
 
