@@ -346,7 +346,9 @@ errors="mask". Releases the GIL.
 ``MeshHitArrays(triangle, t, location, barycentric, valid)``: ``triangle`` int64 (-1 for a miss), ``t``
 float64 and ``barycentric`` (n, 3) float64 (NaN for a miss), ``location`` uint8 ``TriangleLocation`` codes
 (NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``path`` "certified" (the BVH) or "exact"
-(brute force in rationals); rays spread over threads.
+(brute force in rationals); rays spread over threads. A ``raykernel.SphereSet`` gives ``SphereHitArrays(sphere,
+t, valid)`` (``sphere`` int64, -1 for a miss). Meshes and sphere sets take ``t_min`` and ``t_max``, one number
+each or one per ray (a 1-D array of n), compared exactly; planes only the whole ray.
 
 Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
 called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too); the

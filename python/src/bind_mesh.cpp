@@ -423,11 +423,13 @@ the same ray), no BVH. Slow and obviously right; the same answer as ``inside``. 
       py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("t_min") = 0.0,
       py::arg("t_max") = std::numeric_limits<double>::infinity(), py::arg("rule") = py::none(),
       py::arg("path") = "certified",
-      R"doc(Whether some triangle of ``mesh`` blocks ``ray`` within ``[t_min, t_max]`` (docs/contract.md §8): a
-triangle whose relation under ``rule`` (owned by default) is hit at an exact t with ``t_min <= t <= t_max``,
-compared exactly (never a rounded t); coplanar and degenerate triangles never block. Any-hit: stops at the first
-blocker. ``path``: "certified" (through the BVH) or "exact" (every triangle in rationals). Raises ``ValueError``
-for an invalid ray or interval, naming the bound ("t_min is greater than t_max"). Releases the GIL.)doc");
+      R"doc(Whether some triangle of ``scene`` (a ``Mesh``) blocks ``ray`` within ``[t_min, t_max]``
+(docs/contract.md §8): a triangle whose relation under ``rule`` (owned by default) is hit at an exact t with
+``t_min <= t <= t_max``, compared exactly (never a rounded t); coplanar and degenerate triangles never block. A
+``SphereSet`` blocks where a sphere has a root in the interval (§10: closed, the tangent root included; no rule).
+Any-hit: stops at the first blocker. ``path``: "certified" (through the BVH) or "exact" (every triangle or
+sphere in rationals). Raises ``ValueError`` for an invalid ray or interval, naming the bound ("t_min is greater
+than t_max"). Releases the GIL.)doc");
 
   m.def(
       "occluded_segment",
@@ -449,7 +451,8 @@ for an invalid ray or interval, naming the bound ("t_min is greater than t_max")
       },
       py::arg("p"), py::arg("q"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(),
       py::arg("path") = "certified",
-      R"doc(Whether some triangle of ``mesh`` meets the open segment between the points ``p`` and ``q``
+      R"doc(Whether some triangle of ``scene`` (a ``Mesh``, or sphere of a ``SphereSet``) meets the open segment
+between the points ``p`` and ``q``
 (docs/contract.md §8): 0 < t < 1 along the exact direction ``q - p``, which is not rounded; the endpoints never
 count, and under the owned rule (the default) a segment through a shared edge or vertex of a closed mesh is
 blocked by exactly one triangle. ``path``: "certified" or "exact". Raises ``ValueError`` for a non-finite

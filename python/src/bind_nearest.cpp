@@ -146,7 +146,7 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
       },
       py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
       py::arg("t_max") = inf,
-      R"doc(The first plane or triangle ``ray`` meets, decided exactly, or None.
+      R"doc(The first plane, triangle or sphere ``ray`` meets, decided exactly, or None.
 
 Planes (``scene`` a ``PlaneSet`` or a sequence of ``(point, normal)`` pairs; docs/contract.md §4): among the
 planes whose relation is HIT (t ≥ 0), the one with the smallest exact t = num/den, ties to the smallest index:
@@ -158,7 +158,12 @@ Mesh (``scene`` a ``raykernel.Mesh``; docs/contract.md §7): among the triangles
 through the mesh's BVH (the answer is the brute-force one): ``MeshHit(triangle, t, location, barycentric)``
 as ``intersect`` gives them. Releases the GIL for meshes.
 
-Raises ``ValueError`` naming the invalid ray or plane.)doc");
+Sphere set (``scene`` a ``raykernel.SphereSet``; docs/contract.md §8, §10): the sphere with the smallest root in
+the interval (the tangent root included), an exact tie to the smaller index: ``SphereHit(sphere, t)``.
+
+Meshes and sphere sets take an interval, ``t_min`` ≤ t ≤ ``t_max`` compared exactly (docs/contract.md §8);
+planes only the whole ray (t ≥ 0: another interval raises ``ValueError``). Raises ``ValueError`` naming the
+invalid ray, interval, plane or sphere.)doc");
 
   m.def(
       "nearest_hit_exact",

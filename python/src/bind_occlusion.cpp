@@ -35,55 +35,60 @@ shown::MeshHits all_hits_py(shown::RayLike ray, const PythonMesh& mesh, double t
   return types_attr("MeshHits")(list, hits.crossings);
 }
 
+// OcclusionArrays of a ray batch (rows: a ray and its interval) or a segment batch (rows: p and q) over a Mesh or a
+// SphereSet: on_spheres(spheres, x, y) or on_mesh(mesh, rule, x, y) for each valid row.
+template <class Batch, class OnSpheres, class OnMesh>
+py::object occlusion_arrays(const Batch& b, py::handle scene, py::handle rule, std::optional<unsigned> threads,
+                            OnSpheres&& on_spheres, OnMesh&& on_mesh) {
+  auto blocked = new_array<bool>(b.rows());
+  auto valid = new_array<bool>(b.rows());
+  const std::span<bool> blocked_out = span_of(blocked);
+  const std::size_t grain = b.exact ? 4 : 256;
+  if (is_sphere_set(scene)) {
+    require_no_rule(rule, scene);
+    const auto& spheres = scene.cast<const raykernel::SphereSet&>();
+    b.run(span_of(valid), threads, grain, [&](std::size_t i, const auto& x, const auto& y, bool ok) {
+      blocked_out[i] = ok && on_spheres(spheres, x, y);
+    });
+  } else {
+    const PythonMesh& mesh = mesh_from(scene, "a raykernel.Mesh or a raykernel.SphereSet");
+    const TriangleRule chosen = rule_or_owned(rule);
+    b.run(span_of(valid), threads, grain, [&](std::size_t i, const auto& x, const auto& y, bool ok) {
+      blocked_out[i] = ok && on_mesh(mesh, chosen, x, y);
+    });
+  }
+  return types_attr("OcclusionArrays")(blocked, valid);
+}
+
 shown::OcclusionArrays occluded_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
                                          shown::MeshOrSpheres scene, shown::ScalarOrArray t_min,
                                          shown::ScalarOrArray t_max, shown::OptionalRule rule,
                                          const std::string& path_name, const std::string& errors,
                                          std::optional<unsigned> threads) {
   const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
-  auto blocked = new_array<bool>(b.rows());
-  auto valid = new_array<bool>(b.rows());
-  const std::span<bool> blocked_out = span_of(blocked);
-  if (is_sphere_set(scene)) {
-    if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is spheres");
-    const auto& spheres = scene.cast<const raykernel::SphereSet&>();
-    b.run(span_of(valid), threads, b.exact ? 4 : 256,
-          [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-            blocked_out[i] = ok && occluded_spheres(ray, interval, spheres, b.exact);
-          });
-  } else {
-    const PythonMesh& mesh = mesh_from(scene, "a raykernel.Mesh or a raykernel.SphereSet");
-    b.run(span_of(valid), threads, b.exact ? 4 : 256,
-          [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-            blocked_out[i] = ok && (b.exact ? occluded_exact(ray, interval, mesh.mesh(), b.rule)
-                                            : occluded(ray, interval, mesh.prepared(), b.rule));
-          });
-  }
-  return types_attr("OcclusionArrays")(blocked, valid);
+  return occlusion_arrays(
+      b, scene, rule, threads,
+      [&](const raykernel::SphereSet& spheres, const Ray& ray, const RayInterval& interval) {
+        return occluded_spheres(ray, interval, spheres, b.exact);
+      },
+      [&](const PythonMesh& mesh, TriangleRule chosen, const Ray& ray, const RayInterval& interval) {
+        return b.exact ? occluded_exact(ray, interval, mesh.mesh(), chosen)
+                       : occluded(ray, interval, mesh.prepared(), chosen);
+      });
 }
 
 shown::OcclusionArrays occluded_segment_batch_py(shown::ArrayLike3 ps, shown::ArrayLike3 qs, shown::MeshOrSpheres scene,
                                                  shown::OptionalRule rule, const std::string& path_name,
                                                  const std::string& errors, std::optional<unsigned> threads) {
   const SegmentBatch b(ps, qs, path_name, errors);
-  auto blocked = new_array<bool>(b.rows());
-  auto valid = new_array<bool>(b.rows());
-  const std::span<bool> blocked_out = span_of(blocked);
-  if (is_sphere_set(scene)) {
-    if (!rule.is_none()) throw py::value_error("rule: only meshes have rules, the scene is spheres");
-    const auto& spheres = scene.cast<const raykernel::SphereSet&>();
-    b.run(span_of(valid), threads, b.exact ? 4 : 256, [&](std::size_t i, const Vec3& p, const Vec3& q, bool ok) {
-      blocked_out[i] = ok && occluded_segment_spheres(p, q, spheres, b.exact);
-    });
-  } else {
-    const PythonMesh& mesh = mesh_from(scene, "a raykernel.Mesh or a raykernel.SphereSet");
-    const TriangleRule chosen = rule_or_owned(rule);
-    b.run(span_of(valid), threads, b.exact ? 4 : 256, [&](std::size_t i, const Vec3& p, const Vec3& q, bool ok) {
-      blocked_out[i] =
-          ok && (b.exact ? occluded_exact(p, q, mesh.mesh(), chosen) : occluded(p, q, mesh.prepared(), chosen));
-    });
-  }
-  return types_attr("OcclusionArrays")(blocked, valid);
+  return occlusion_arrays(
+      b, scene, rule, threads,
+      [&](const raykernel::SphereSet& spheres, const Vec3& p, const Vec3& q) {
+        return occluded_segment_spheres(p, q, spheres, b.exact);
+      },
+      [&](const PythonMesh& mesh, TriangleRule chosen, const Vec3& p, const Vec3& q) {
+        return b.exact ? occluded_exact(p, q, mesh.mesh(), chosen) : occluded(p, q, mesh.prepared(), chosen);
+      });
 }
 
 shown::CrossingArrays crossings_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,

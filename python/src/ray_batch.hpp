@@ -19,6 +19,26 @@ namespace raykernel::python {
   return validate(interval);
 }
 
+// answer(i, valid) for every row of [0, rows), on threads without the GIL, valid[i] the absence of problem(i) (an
+// optional reason); then, with the GIL, "<label> i: <reason>" for the first bad row, raised when `policy` says so.
+template <class Problem, class Answer>
+void run_checked_rows(std::size_t rows, std::span<bool> valid, std::optional<unsigned> threads, std::size_t grain,
+                      ErrorPolicy policy, const char* label, Problem&& problem, Answer&& answer) {
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    parallel_for(rows, threads_from(threads), grain, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        valid[i] = !problem(i).has_value();
+        answer(i, valid[i]);
+      }
+    });
+    if (const std::optional<std::size_t> i = first_invalid_row(valid))
+      error = std::string(label) + " " + std::to_string(*i) + ": " + problem(*i).value_or("invalid input");
+  }
+  if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+}
+
 // The arguments every ray batch here shares, read with the GIL held: the rays (origins, directions) with their
 // intervals (t_min, t_max: one number each, or one per ray), the path, the error policy and the rule.
 struct RayBatch {
@@ -53,19 +73,9 @@ struct RayBatch {
   // the GIL, raises for the first bad row when the policy says so.
   template <class Answer>
   void run(std::span<bool> valid, std::optional<unsigned> threads, std::size_t grain, Answer&& answer) const {
-    std::optional<std::string> error;
-    {
-      py::gil_scoped_release release;
-      parallel_for(rows(), threads_from(threads), grain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          valid[i] = !ray_problem(ray(i), interval(i)).has_value();
-          answer(i, ray(i), interval(i), valid[i]);
-        }
-      });
-      if (const std::optional<std::size_t> i = first_invalid_row(valid))
-        error = "ray " + std::to_string(*i) + ": " + ray_problem(ray(*i), interval(*i)).value_or("invalid input");
-    }
-    if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+    run_checked_rows(
+        rows(), valid, threads, grain, policy, "ray", [&](std::size_t i) { return ray_problem(ray(i), interval(i)); },
+        [&](std::size_t i, bool ok) { answer(i, ray(i), interval(i), ok); });
   }
 };
 
@@ -85,20 +95,10 @@ struct SegmentBatch {
   // answer(i, p, q, valid) for every row, as RayBatch::run.
   template <class Answer>
   void run(std::span<bool> valid, std::optional<unsigned> threads, std::size_t grain, Answer&& answer) const {
-    std::optional<std::string> error;
-    {
-      py::gil_scoped_release release;
-      parallel_for(rows(), threads_from(threads), grain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          valid[i] = !validate_segment(p.row(i), q.row(i)).has_value();
-          answer(i, p.row(i), q.row(i), valid[i]);
-        }
-      });
-      if (const std::optional<std::size_t> i = first_invalid_row(valid))
-        error =
-            "segment " + std::to_string(*i) + ": " + validate_segment(p.row(*i), q.row(*i)).value_or("invalid input");
-    }
-    if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
+    run_checked_rows(
+        rows(), valid, threads, grain, policy, "segment",
+        [&](std::size_t i) { return validate_segment(p.row(i), q.row(i)); },
+        [&](std::size_t i, bool ok) { answer(i, p.row(i), q.row(i), ok); });
   }
 };
 
