@@ -5,6 +5,16 @@
 // threads for large batches); the exact and naive paths loop over the scalar functions in C++, on threads.
 // Invalid rows either raise ValueError naming the first one ("query 17: ray direction is the zero vector")
 // or, with errors="mask", are marked in the `valid` array while the others are answered.
+#include "batch_support.hpp"
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "mesh.hpp"
+#include "plane_set.hpp"
+#include "sphere_set.hpp"
+
+#include <raykernel/batch.hpp>
+#include <raykernel/nearest_hit.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,18 +22,9 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
-#include <raykernel/batch.hpp>
-#include <raykernel/nearest_hit.hpp>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include "batch_support.hpp"
-#include "bindings.hpp"
-#include "convert.hpp"
-#include "mesh.hpp"
-#include "plane_set.hpp"
-#include "sphere_set.hpp"
 
 namespace raykernel::python {
 namespace {

@@ -1,5 +1,16 @@
 // Meshes from Python (docs/contract.md §7): raykernel.Mesh, load_mesh (the io readers), and the kernel's mesh
 // queries (<raykernel/mesh_queries.hpp>) for one ray or point and over arrays of them, on threads.
+#include "mesh.hpp"
+
+#include "batch_support.hpp"
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "ray_batch.hpp"
+#include "sphere_set.hpp"
+
+#include <raykernel/io/mesh_file.hpp>
+#include <raykernel/occlusion.hpp>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -8,19 +19,10 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
-#include <raykernel/io/mesh_file.hpp>
-#include <raykernel/occlusion.hpp>
 #include <string>
 #include <system_error>
 #include <type_traits>
 #include <vector>
-
-#include "batch_support.hpp"
-#include "bindings.hpp"
-#include "convert.hpp"
-#include "mesh.hpp"
-#include "ray_batch.hpp"
-#include "sphere_set.hpp"
 
 namespace raykernel::python {
 namespace {

@@ -1,17 +1,18 @@
 // PlaneSet and the scalar nearest hit (docs/contract.md §4): the first plane one ray meets.
-#include <algorithm>
-#include <cstdint>
-#include <limits>
-#include <optional>
-#include <raykernel/nearest_hit.hpp>
-#include <string>
-#include <vector>
-
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "mesh.hpp"
 #include "plane_set.hpp"
 #include "sphere_set.hpp"
+
+#include <raykernel/nearest_hit.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace raykernel::python {
 namespace {

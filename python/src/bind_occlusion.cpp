@@ -1,18 +1,19 @@
 // Rays with an interval, any-hit, segments and all hits from Python, over arrays (docs/contract.md §8):
 // all_hits, occluded_batch, occluded_segment_batch, crossings_batch (raykernel/occlusion.hpp). The scalar
 // occluded and occluded_segment are in bind_mesh.cpp.
-#include <cstdint>
-#include <limits>
-#include <optional>
-#include <raykernel/occlusion.hpp>
-#include <string>
-
 #include "batch_support.hpp"
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "mesh.hpp"
 #include "ray_batch.hpp"
 #include "sphere_set.hpp"
+
+#include <raykernel/occlusion.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
 
 namespace raykernel::python {
 namespace {

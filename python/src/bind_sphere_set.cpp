@@ -1,12 +1,13 @@
 // raykernel.SphereSet and the sphere forms of the scene queries (sphere_set.hpp; docs/contract.md §8 and §10).
-#include <algorithm>
-#include <cstdint>
-#include <vector>
+#include "sphere_set.hpp"
 
 #include "batch_support.hpp"
 #include "bindings.hpp"
 #include "ray_batch.hpp"
-#include "sphere_set.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
 
 namespace raykernel::python {
 namespace {
@@ -27,6 +28,9 @@ std::optional<SphereHit> nearest_on(const Ray& ray, const RayInterval& interval,
 std::vector<Sphere> read_spheres(py::handle centers_or_spheres, py::handle radii) {
   std::vector<Sphere> spheres;
   if (radii.is_none()) {
+    if (!PySequence_Check(centers_or_spheres.ptr()) || py::isinstance<py::array>(centers_or_spheres))
+      throw py::type_error("SphereSet: give centers (an (m, 3) array) with radii (an (m,) array), or a sequence of "
+                           "raykernel.Sphere");
     const py::sequence all = py::reinterpret_borrow<py::sequence>(centers_or_spheres);
     for (std::size_t k = 0; k < py::len(all); ++k)
       spheres.push_back(sphere_from(all[k], "sphere " + std::to_string(k)));

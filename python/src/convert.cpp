@@ -1,9 +1,10 @@
 // Between Python objects and raykernel's C++ types (convert.hpp).
 #include "convert.hpp"
 
+#include <raykernel/mesh_queries.hpp>  // PointLocation
+
 #include <cstring>
 #include <limits>
-#include <raykernel/mesh_queries.hpp>  // PointLocation
 #include <stdexcept>
 #include <string>
 

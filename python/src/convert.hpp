@@ -13,6 +13,13 @@
 // (and, for the scalar functions, a PrimitiveKind), and a bind_*.cpp beside the others; nothing else changes.
 #pragma once
 
+#include "annotated.hpp"
+
+#include <raykernel/nearest_hit.hpp>
+#include <raykernel/raykernel.hpp>
+#include <raykernel/sphere.hpp>
+#include <raykernel/triangle.hpp>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>  // std::optional, std::vector arguments and results
@@ -20,16 +27,10 @@
 #include <array>
 #include <cstddef>
 #include <optional>
-#include <raykernel/nearest_hit.hpp>
-#include <raykernel/raykernel.hpp>
-#include <raykernel/sphere.hpp>
-#include <raykernel/triangle.hpp>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "annotated.hpp"
 
 namespace raykernel::python {
 

@@ -4,13 +4,14 @@
 // Every answer is the kernel's; this file and bind_mesh.cpp only convert values and spread arrays over threads.
 #pragma once
 
-#include <optional>
-#include <raykernel/mesh.hpp>
-#include <raykernel/mesh_queries.hpp>
-#include <string>
-
 #include "batch_support.hpp"
 #include "convert.hpp"
+
+#include <raykernel/mesh.hpp>
+#include <raykernel/mesh_queries.hpp>
+
+#include <optional>
+#include <string>
 
 namespace raykernel::python {
 

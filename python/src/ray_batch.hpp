@@ -2,14 +2,15 @@
 // threads without it: nearest_hit_batch, occluded_batch and crossings_batch over meshes and sphere sets.
 #pragma once
 
-#include <cstddef>
-#include <optional>
-#include <raykernel/occlusion.hpp>
-#include <span>
-#include <string>
-
 #include "batch_support.hpp"
 #include "convert.hpp"
+
+#include <raykernel/occlusion.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
 
 namespace raykernel::python {
 

@@ -4,12 +4,13 @@
 // their scene is one. `exact` chooses the references (every sphere in rationals) over the certified queries.
 #pragma once
 
-#include <optional>
+#include "convert.hpp"
+
 #include <raykernel/occlusion.hpp>
 #include <raykernel/sphere.hpp>
-#include <string>
 
-#include "convert.hpp"
+#include <optional>
+#include <string>
 
 namespace raykernel::python {
 
