@@ -27,6 +27,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <cfenv>
 #include <cmath>
 #include <limits>
@@ -760,6 +761,74 @@ RC_GTEST_PROP(NearestScreenProperty, EveryScreenEqualsBruteForceExactOnLargerSce
     RC_ASSERT(got.hit->plane == *expected.plane);
     RC_ASSERT(same_bits(got.hit->t, expected.rounded_t()));
   }
+}
+
+// docs/contract.md §8 on a plane set: the nearest hit among the planes whose exact t lies in [t_min, t_max].
+// Planes x = 1, 2, 3 and a second x = 2 (index 3); along +x from the origin t = 1, 2, 3; along 3·x, t = 1/3, 2/3, 1.
+TEST(NearestHitInterval, HandDerived) {
+  const std::vector<Plane> planes{{{1, 0, 0}, {1, 0, 0}}, {{2, 0, 0}, {1, 0, 0}}, {{3, 0, 0}, {-1, 0, 0}},
+                                  {{2, 5, 7}, {2, 0, 0}}};
+  const PlaneSet set(planes);
+  const Ray x{{0, 0, 0}, {1, 0, 0}};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const auto plane_of = [&](const Ray& r, double lo, double hi) -> int {
+    const std::optional<NearestHit> got = nearest_hit(r, RayInterval{lo, hi}, set);
+    const std::optional<NearestHit> want = nearest_hit_exact(r, RayInterval{lo, hi}, planes);
+    EXPECT_EQ(got.has_value(), want.has_value()) << lo << " " << hi;
+    if (!got || !want) return -1;
+    EXPECT_EQ(got->plane, want->plane);
+    EXPECT_TRUE(same_bits(got->t, want->t));
+    return static_cast<int>(got->plane);
+  };
+  EXPECT_EQ(plane_of(x, 0, inf), 0);
+  EXPECT_EQ(plane_of(x, 1, inf), 0);                        // closed: t = t_min counts
+  EXPECT_EQ(plane_of(x, std::nextafter(1.0, 2.0), inf), 1);  // an ulp above t = 1
+  EXPECT_EQ(plane_of(x, 2, 2), 1);                          // t = 2 twice: the smaller index
+  EXPECT_EQ(plane_of(x, 2.5, 2.75), -1);
+  EXPECT_EQ(plane_of(x, 0, std::nextafter(1.0, 0.0)), -1);
+  EXPECT_EQ(plane_of(x, 2.5, inf), 2);
+  // t = 1/3 is not a double: RN(1/3) < 1/3, so [RN(1/3), inf] holds it and [0, RN(1/3)] does not.
+  const Ray x3{{0, 0, 0}, {3, 0, 0}};
+  const double third = 1.0 / 3.0;
+  EXPECT_EQ(plane_of(x3, third, inf), 0);
+  EXPECT_EQ(plane_of(x3, 0, third), -1);
+  EXPECT_EQ(plane_of(x3, 0, std::nextafter(third, 1.0)), 0);
+  EXPECT_EQ(plane_of(x3, std::nextafter(third, 1.0), inf), 1);
+  EXPECT_TRUE(same_bits(nearest_hit(x3, RayInterval{0, inf}, set)->t, third));
+  // The whole ray is the nearest hit without an interval.
+  EXPECT_EQ(nearest_hit(x, RayInterval{}, set)->plane, nearest_hit(x, set)->plane);
+  EXPECT_THROW((void)nearest_hit(x, RayInterval{2, 1}, set), invalid_input);
+  EXPECT_THROW((void)nearest_hit_exact(x, RayInterval{-1, 1}, planes), invalid_input);
+}
+
+RC_GTEST_PROP(NearestHitIntervalProperty, CertifiedEqualsExactWithBoundsOnAndBesideEveryT, ()) {
+  // The generated scenes of up to 40 planes (exact ties, near ties, coincident twins, behind, parallel), with
+  // bounds drawn from every plane's rounded t and its neighbours: the exact comparison against a bound is asked
+  // where t and the bound are equal or an ulp apart.
+  const test_support::PlaneScene scene = *rc::gen::exec([] {
+    const testkit::BitSource bits = [] {
+      return *rc::gen::inRange<std::uint64_t>(0, std::numeric_limits<std::uint64_t>::max());
+    };
+    return test_support::make_plane_scene(bits, 40);
+  });
+  std::vector<double> bounds{0.0, std::numeric_limits<double>::infinity()};
+  for (const Plane& p : scene.planes) {
+    const Intersection r = intersect(scene.ray, p);
+    if (r.relation != Relation::hit || !std::isfinite(r.t)) continue;
+    bounds.insert(bounds.end(), {r.t, std::nextafter(r.t, 0.0), std::nextafter(r.t, 2 * r.t + 1)});
+  }
+  const std::size_t i = *rc::gen::inRange<std::size_t>(0, bounds.size());
+  const std::size_t j = *rc::gen::inRange<std::size_t>(0, bounds.size());
+  double lo = std::min(bounds[i], bounds[j]), hi = std::max(bounds[i], bounds[j]);
+  if (std::isinf(lo)) lo = 0;
+  const RayInterval interval{lo, hi};
+  const PlaneSet set(scene.planes);
+  const std::optional<NearestHit> got = nearest_hit(scene.ray, interval, set);
+  const std::optional<NearestHit> want = nearest_hit_exact(scene.ray, interval, scene.planes);
+  RC_ASSERT(got.has_value() == want.has_value());
+  if (!want) return;
+  RC_ASSERT(got->plane == want->plane);
+  RC_ASSERT(same_bits(got->t, want->t));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "convert.hpp"
 #include "mesh.hpp"
 #include "plane_set.hpp"
+#include "ray_batch.hpp"
 #include "sphere_set.hpp"
 
 #include <raykernel/batch.hpp>
@@ -188,6 +189,30 @@ shown::RelationArrays relation_batch_py(shown::ArrayLike3 origins, shown::ArrayL
   return types().relation_arrays(relation, valid, stats_py);
 }
 
+// nearest_hit_batch on planes within per-ray intervals (docs/contract.md §8): each row through the plane set's
+// interval query (certified) or its reference (exact), on threads; the vectorized whole-ray path is not used.
+py::object nearest_plane_batch_within(py::handle origins, py::handle directions, py::handle planes_arg,
+                                      py::handle t_min, py::handle t_max, const std::string& path_name,
+                                      const std::string& errors, std::optional<unsigned> threads, bool want_stats) {
+  if (want_stats) throw py::value_error("stats: only for the whole ray");
+  const RayRows b(origins, directions, t_min, t_max, py::none(), path_name, errors);
+  std::optional<raykernel::PlaneSet> storage;
+  const raykernel::PlaneSet& planes = planes_from(planes_arg, storage);  // validated: "plane 3: ..."
+  auto plane = new_array<std::int64_t>(b.rows());
+  auto t = new_array<double>(b.rows());
+  auto valid = new_array<bool>(b.rows());
+  const std::span<std::int64_t> plane_out = span_of(plane);
+  const std::span<double> t_out = span_of(t);
+  b.run(span_of(valid), threads, b.exact ? 16 : 1024,
+        [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
+          std::optional<NearestHit> hit;
+          if (ok) hit = b.exact ? nearest_hit_exact(ray, interval, planes.planes()) : nearest_hit(ray, interval, planes);
+          plane_out[i] = hit ? static_cast<std::int64_t>(hit->plane) : -1;
+          t_out[i] = hit ? hit->t : nan;
+        });
+  return types().nearest_hit_arrays(plane, t, valid, py::none());
+}
+
 py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::handle planes_arg, py::handle rule,
                                 py::handle t_min, py::handle t_max, const std::string& path_name,
                                 const std::string& errors, std::optional<unsigned> threads, bool want_stats) {
@@ -200,7 +225,8 @@ py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::h
   if (is_sphere_set(planes_arg))
     return nearest_hit_spheres_batch(origins, directions, planes_arg.cast<const raykernel::SphereSet&>(), t_min, t_max,
                                      path_name, errors, threads);
-  require_whole_ray(t_min, t_max, "planes");
+  if (!is_whole_ray(t_min, t_max)) return nearest_plane_batch_within(origins, directions, planes_arg, t_min, t_max,
+                                                                     path_name, errors, threads, want_stats);
   const Path path = path_from(path_name);
   const ErrorPolicy policy = error_policy_from(errors);
   ColumnsView o(origins, "origins"), d(directions, "directions");
@@ -348,8 +374,9 @@ errors="mask". Releases the GIL.
 float64 and ``barycentric`` (n, 3) float64 (NaN for a miss), ``location`` uint8 ``TriangleLocation`` codes
 (NONE for a miss, ``INVALID_RELATION_CODE`` for invalid rays); ``path`` "certified" (the BVH) or "exact"
 (brute force in rationals); rays spread over threads. A ``raykernel.SphereSet`` gives ``SphereHitArrays(sphere,
-t, valid)`` (``sphere`` int64, -1 for a miss). Meshes and sphere sets take ``t_min`` and ``t_max``, one number
-each or one per ray (a 1-D array of n), compared exactly; planes only the whole ray.
+t, valid)`` (``sphere`` int64, -1 for a miss). Every scene takes ``t_min`` and ``t_max``, one number each or
+one per ray (a 1-D array of n), compared exactly (docs/contract.md §8); on planes another interval than the whole
+ray runs each row through the plane set's interval query on threads (no ``stats``, no naive path).
 
 Ctrl-C stops a long call (``KeyboardInterrupt``, within a block of rows); ``progress``, None or a callable, is
 called with (done, total) about every 0.1 s and at the end (an exception it raises stops the call too); the

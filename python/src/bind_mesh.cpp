@@ -124,7 +124,7 @@ py::object nearest_hit_mesh(py::handle ray, const PythonMesh& mesh, double t_min
 py::object nearest_hit_mesh_batch(py::handle origins, py::handle directions, const PythonMesh& mesh, py::handle t_min,
                                   py::handle t_max, py::handle rule, const std::string& path_name,
                                   const std::string& errors, std::optional<unsigned> threads) {
-  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors, /*allow_naive=*/true);
+  const RayRows b(origins, directions, t_min, t_max, rule, path_name, errors, /*allow_naive=*/true);
   if (b.path == Path::naive && !rule.is_none()) throw py::value_error("rule: the naive path has no rule");
   const std::size_t n = b.rows();
   auto triangle = new_array<std::int64_t>(n);

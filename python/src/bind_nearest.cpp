@@ -142,8 +142,9 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
         require_no_rule(rule, scene);
         if (is_sphere_set(scene))
           return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, false);
-        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
-        return nearest(ray, scene, [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, p); });
+        const RayInterval interval{t_min, t_max};
+        return nearest(ray, scene,
+                       [&](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, interval, p); });
       },
       py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
       py::arg("t_max") = inf,
@@ -162,9 +163,9 @@ as ``intersect`` gives them. Releases the GIL for meshes.
 Sphere set (``scene`` a ``raykernel.SphereSet``; docs/contract.md §8, §10): the sphere with the smallest root in
 the interval (the tangent root included), an exact tie to the smaller index: ``SphereHit(sphere, t)``.
 
-Meshes and sphere sets take an interval, ``t_min`` ≤ t ≤ ``t_max`` compared exactly (docs/contract.md §8);
-planes only the whole ray (t ≥ 0: another interval raises ``ValueError``). Raises ``ValueError`` naming the
-invalid ray, interval, plane or sphere.)doc");
+Every scene takes an interval, ``t_min`` ≤ t ≤ ``t_max``, closed, compared exactly (docs/contract.md §8: the
+exact t against the doubles, never a rounded t). Raises ``ValueError`` naming the invalid ray, interval, plane or
+sphere.)doc");
 
   m.def(
       "nearest_hit_exact",
@@ -175,14 +176,14 @@ invalid ray, interval, plane or sphere.)doc");
         require_no_rule(rule, scene);
         if (is_sphere_set(scene))
           return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, true);
-        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
         const Ray r = ray_from(ray);
+        const RayInterval interval{t_min, t_max};
         std::optional<raykernel::PlaneSet> storage;
         const raykernel::PlaneSet& set = planes_from(scene, storage);
         std::optional<NearestHit> hit;
         {
           py::gil_scoped_release release;
-          hit = nearest_hit_exact(r, set.planes());
+          hit = nearest_hit_exact(r, interval, set.planes());
         }
         return to_python(hit);
       },
@@ -197,7 +198,7 @@ BVH): the same answer as ``nearest_hit``. Releases the GIL.)doc");
         if (py::isinstance<PythonMesh>(scene))
           return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, py::none(), Path::naive);
         if (is_sphere_set(scene)) throw py::type_error("scene: nearest_hit_naive has no form for a SphereSet");
-        require_whole_ray(py::float_(t_min), py::float_(t_max), "planes");
+        require_whole_ray(py::float_(t_min), py::float_(t_max), "the naive loop over planes");
         return nearest(ray, scene,
                        [](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit_naive(r, p.planes()); });
       },

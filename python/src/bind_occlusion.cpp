@@ -66,7 +66,7 @@ shown::OcclusionArrays occluded_batch_py(shown::ArrayLike3 origins, shown::Array
                                          shown::ScalarOrArray t_max, shown::OptionalRule rule,
                                          const std::string& path_name, const std::string& errors,
                                          std::optional<unsigned> threads) {
-  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
+  const RayRows b(origins, directions, t_min, t_max, rule, path_name, errors);
   return occlusion_arrays(
       b, scene, rule, threads,
       [&](const raykernel::SphereSet& spheres, const Ray& ray, const RayInterval& interval) {
@@ -81,7 +81,7 @@ shown::OcclusionArrays occluded_batch_py(shown::ArrayLike3 origins, shown::Array
 shown::OcclusionArrays occluded_segment_batch_py(shown::ArrayLike3 ps, shown::ArrayLike3 qs, shown::MeshOrSpheres scene,
                                                  shown::OptionalRule rule, const std::string& path_name,
                                                  const std::string& errors, std::optional<unsigned> threads) {
-  const SegmentBatch b(ps, qs, path_name, errors);
+  const SegmentRows b(ps, qs, path_name, errors);
   return occlusion_arrays(
       b, scene, rule, threads,
       [&](const raykernel::SphereSet& spheres, const Vec3& p, const Vec3& q) {
@@ -96,7 +96,7 @@ shown::CrossingArrays crossings_batch_py(shown::ArrayLike3 origins, shown::Array
                                          const PythonMesh& mesh, shown::ScalarOrArray t_min, shown::ScalarOrArray t_max,
                                          shown::OptionalRule rule, const std::string& path_name,
                                          const std::string& errors, std::optional<unsigned> threads) {
-  const RayBatch b(origins, directions, t_min, t_max, rule, path_name, errors);
+  const RayRows b(origins, directions, t_min, t_max, rule, path_name, errors);
   auto hits = new_array<std::int64_t>(b.rows());
   auto crossings = new_array<std::int64_t>(b.rows());
   auto valid = new_array<bool>(b.rows());

@@ -60,7 +60,7 @@ py::object nearest_hit_spheres(py::handle ray, const raykernel::SphereSet& spher
 py::object nearest_hit_spheres_batch(py::handle origins, py::handle directions, const raykernel::SphereSet& spheres,
                                      py::handle t_min, py::handle t_max, const std::string& path,
                                      const std::string& errors, std::optional<unsigned> threads) {
-  const RayBatch b(origins, directions, t_min, t_max, py::none(), path, errors);
+  const RayRows b(origins, directions, t_min, t_max, py::none(), path, errors);
   auto sphere = new_array<std::int64_t>(b.rows());
   auto t = new_array<double>(b.rows());
   auto valid = new_array<bool>(b.rows());

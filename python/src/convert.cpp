@@ -206,13 +206,15 @@ void require_no_rule(py::handle rule, py::handle scene) {
                           (py::isinstance<raykernel::SphereSet>(scene) ? "spheres" : "planes"));
 }
 
-void require_whole_ray(py::handle t_min, py::handle t_max, const char* scene) {
+bool is_whole_ray(py::handle t_min, py::handle t_max) {
   const auto is = [](py::handle v, double want) {
     return (PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr())) && v.cast<double>() == want;
   };
-  if (!is(t_min, 0.0) || !is(t_max, std::numeric_limits<double>::infinity()))
-    throw py::value_error(std::string("t_min, t_max: ") + scene +
-                          " take the whole ray, t >= 0 (an interval is for meshes and sphere sets)");
+  return is(t_min, 0.0) && is(t_max, std::numeric_limits<double>::infinity());
+}
+
+void require_whole_ray(py::handle t_min, py::handle t_max, const char* what) {
+  if (!is_whole_ray(t_min, t_max)) throw py::value_error(std::string("t_min, t_max: ") + what + " takes the whole ray, t >= 0");
 }
 
 double double_from(py::handle value, std::string_view field) {

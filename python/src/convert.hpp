@@ -87,9 +87,10 @@ enum class PrimitiveKind { plane, triangle, sphere };
 // the default of every function with a `rule` keyword: the owned rule.
 [[nodiscard]] TriangleRule rule_from(py::handle value);
 [[nodiscard]] TriangleRule rule_or_owned(py::handle rule);
-// Refuses an interval other than the whole ray [0, +inf] where the scene (planes) takes none: t_min and t_max
-// numbers, or arrays in a batch (refused).
-void require_whole_ray(py::handle t_min, py::handle t_max, const char* scene);
+// Whether t_min and t_max (numbers, or arrays in a batch) are the whole ray [0, +inf]; require_whole_ray refuses
+// another interval where the query takes none ("t_min, t_max: <what> take the whole ray, t >= 0").
+[[nodiscard]] bool is_whole_ray(py::handle t_min, py::handle t_max);
+void require_whole_ray(py::handle t_min, py::handle t_max, const char* what);
 // Refuses a rule where the scene (planes, spheres) has none.
 void require_no_rule(py::handle rule, py::handle scene);
 // A finite double from a Python number (for round_rational_to_double's sister functions, t values...).

@@ -42,7 +42,7 @@ void run_checked_rows(std::size_t rows, std::span<bool> valid, std::optional<uns
 
 // The arguments every ray batch here shares, read with the GIL held: the rays (origins, directions) with their
 // intervals (t_min, t_max: one number each, or one per ray), the path, the error policy and the rule.
-struct RayBatch {
+struct RayRows {
   ColumnsView o, d;
   ValuesView lo, hi;
   Path path;  // certified or exact; naive too where the query has a naive form (allow_naive)
@@ -50,7 +50,7 @@ struct RayBatch {
   ErrorPolicy policy;
   TriangleRule rule;
 
-  RayBatch(py::handle origins, py::handle directions, py::handle t_min, py::handle t_max, py::handle rule_arg,
+  RayRows(py::handle origins, py::handle directions, py::handle t_min, py::handle t_max, py::handle rule_arg,
            const std::string& path_name, const std::string& errors, bool allow_naive = false)
       : o(origins, "origins"),
         d(directions, "directions"),
@@ -82,18 +82,18 @@ struct RayBatch {
 
 // The open segments of a batch (p[i], q[i]; docs/contract.md §8), read with the GIL held: occluded_segment_batch
 // over meshes and sphere sets.
-struct SegmentBatch {
+struct SegmentRows {
   ColumnsView p, q;
   bool exact;
   ErrorPolicy policy;
 
-  SegmentBatch(py::handle ps, py::handle qs, const std::string& path_name, const std::string& errors)
+  SegmentRows(py::handle ps, py::handle qs, const std::string& path_name, const std::string& errors)
       : p(ps, "p"), q(qs, "q"), exact(path_from(path_name, false) == Path::exact), policy(error_policy_from(errors)) {
     require_rows(q, "q", p.rows(), "p");
   }
   [[nodiscard]] std::size_t rows() const noexcept { return p.rows(); }
 
-  // answer(i, p, q, valid) for every row, as RayBatch::run.
+  // answer(i, p, q, valid) for every row, as RayRows::run.
   template <class Answer>
   void run(std::span<bool> valid, std::optional<unsigned> threads, std::size_t grain, Answer&& answer) const {
     run_checked_rows(

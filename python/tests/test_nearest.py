@@ -78,3 +78,43 @@ def test_plane_set_sets_coinciding_planes_aside():
     assert rk.nearest_hit(RAY, s) == rk.nearest_hit_exact(RAY, s) == (0, 2.0)
     near = rk.PlaneSet([((2, 0, 0), (1, 0, 0)), ((2, 2.0**-60, 0), (1, 1e-300, 0))])  # not exactly the same plane
     assert near.candidates.tolist() == [0, 1]
+
+
+def test_plane_scenes_take_an_interval():
+    """docs/contract.md §8 on planes: x = 1, 2, 3 and a second x = 2 (index 3); along (3, 0, 0) t = 1/3, 2/3, 1 —
+    1/3 is not a double and RN(1/3) < 1/3, so a bound at RN(1/3) is below the exact t."""
+    planes = rk.PlaneSet([((1, 0, 0), (1, 0, 0)), ((2, 0, 0), (1, 0, 0)), ((3, 0, 0), (-1, 0, 0)),
+                          ((2, 5, 7), (2, 0, 0))])
+    x, x3 = ((0, 0, 0), (1, 0, 0)), ((0, 0, 0), (3, 0, 0))
+    third = 1 / 3
+    assert rk.nearest_hit(x, planes, t_min=1.5) == rk.NearestHit(1, 2.0)
+    assert rk.nearest_hit(x, planes, t_min=2.0, t_max=2.0) == rk.NearestHit(1, 2.0)  # the tie: the smaller index
+    assert rk.nearest_hit(x, planes, t_min=2.5, t_max=2.75) is None
+    assert rk.nearest_hit(x3, planes, t_min=third) == rk.NearestHit(0, third)
+    assert rk.nearest_hit(x3, planes, t_max=third) is None
+    assert rk.nearest_hit(x3, planes, t_min=math.nextafter(third, 1)).plane == 1
+    assert rk.nearest_hit_exact(x3, planes, t_min=math.nextafter(third, 1)).plane == 1
+    with pytest.raises(ValueError, match="whole ray"):
+        rk.nearest_hit_naive(x, planes, t_min=1.0)
+    # Per-ray intervals in the batch: each row the scalar answer, certified == exact.
+    rng = np.random.default_rng(12)
+    n = 2000
+    o = rng.integers(-8, 9, size=(n, 3)) / 4.0
+    d = rng.integers(-4, 5, size=(n, 3)) / 2.0
+    d[np.all(d == 0, axis=1)] = (1.0, 0.0, 0.0)
+    points = rng.integers(-8, 9, size=(30, 3)) / 4.0
+    normals = rng.integers(-2, 3, size=(30, 3)).astype(float)
+    normals[np.all(normals == 0, axis=1)] = (0.0, 0.0, 1.0)
+    scene = rk.PlaneSet(points, normals)
+    whole = rk.nearest_hit_batch(o, d, scene)
+    t_min = np.where(whole.plane >= 0, np.nan_to_num(whole.t, nan=0.0), 0.0)  # on the nearest t exactly: closed
+    t_min[::3] = np.nextafter(t_min[::3], np.inf)                            # an ulp past it: another plane
+    got = rk.nearest_hit_batch(o, d, scene, t_min=t_min)
+    exact = rk.nearest_hit_batch(o, d, scene, t_min=t_min, path="exact")
+    assert np.array_equal(got.plane, exact.plane) and np.array_equal(got.t, exact.t, equal_nan=True)
+    assert ((got.plane != whole.plane) & (whole.plane >= 0)).sum() > 50
+    for i in range(0, n, 71):
+        one = rk.nearest_hit((o[i], d[i]), scene, t_min=t_min[i])
+        assert (one.plane if one else -1) == got.plane[i]
+    with pytest.raises(ValueError, match="stats: only for the whole ray"):
+        rk.nearest_hit_batch(o, d, scene, t_min=t_min, stats=True)

@@ -65,8 +65,8 @@ def test_invalid_input_is_named(three):
         rk.occluded_segment((1, 1, 1), (1, 1, 1), three)
     with pytest.raises(TypeError, match="no form for a SphereSet"):
         rk.nearest_hit_naive(X, three)
-    with pytest.raises(ValueError, match="planes take the whole ray"):
-        rk.nearest_hit(X, [((1, 0, 0), (1, 0, 0))], t_max=2.0)
+    with pytest.raises(ValueError, match="the naive loop over planes takes the whole ray"):
+        rk.nearest_hit_naive(X, [((1, 0, 0), (1, 0, 0))], t_max=2.0)
     with pytest.raises(TypeError, match="expected a raykernel.Mesh or a raykernel.SphereSet, got list"):
         rk.occluded(X, [1, 2, 3])
 

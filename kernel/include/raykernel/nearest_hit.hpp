@@ -14,6 +14,7 @@
 // (raykernel/mesh_queries.hpp) and for scenes of planes and a mesh (raykernel/nearest_scene.hpp).
 #pragma once
 
+#include <raykernel/interval.hpp>
 #include <raykernel/raykernel.hpp>
 
 #include <array>
@@ -71,6 +72,16 @@ class PlaneSet {
 // The reference: every num and den in exact rationals, the minimum t taken exactly, the winner's t rounded
 // with MPFR. Slow (microseconds per plane) and obviously right. Throws invalid_input.
 [[nodiscard]] std::optional<NearestHit> nearest_hit_exact(const Ray& ray, std::span<const Plane> planes);
+
+// docs/contract.md §8 on a plane set: the nearest hit among the planes whose exact t lies in `interval`
+// ([t_min, t_max], closed, compared exactly: the rational t against the doubles, never a rounded t), ties to the
+// smallest index, t rounded as `intersect` rounds it. Throws invalid_input for an invalid ray or interval. The
+// whole ray [0, +inf] is nearest_hit(ray, planes); another interval is searched plane by plane (the screen that
+// sets planes aside by comparison with one the ray hits holds only for the whole ray). The reference:
+// nearest_hit_exact with an interval (every t in rationals).
+[[nodiscard]] std::optional<NearestHit> nearest_hit(const Ray& ray, const RayInterval& interval, const PlaneSet& planes);
+[[nodiscard]] std::optional<NearestHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval,
+                                                          std::span<const Plane> planes);
 
 // The seed's loop in plain doubles: intersect_naive for each plane, keep the hit with the smallest rounded
 // t (strictly smaller: ties to the smallest index). No validation, no guarantee: the baseline that

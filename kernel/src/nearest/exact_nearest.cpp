@@ -107,6 +107,11 @@ int compare_plane_triangle_t(const Ray& ray, const Plane& plane, const Triangle&
   return sign_of(cmp(mpq_class(p.num / p.den), mpq_class(q.num / q.den)));
 }
 
+int compare_plane_t_with(const Ray& ray, const Plane& plane, double b) {
+  const RayPlaneValues<mpq_class> p = ray_plane_values<mpq_class>(ray, plane, rational_from_double);
+  return sign_of(cmp(mpq_class(p.num / p.den), rational_from_double(b)));
+}
+
 QuotientSigns triangle_quotient_signs(const Ray& ray, const Triangle& triangle) {
   const Quotient q = triangle_quotient(ray, triangle);
   return {sgn(q.num), sgn(q.den)};
@@ -143,6 +148,29 @@ std::optional<SphereHit> nearest_hit_exact(const Ray& ray, const RayInterval& in
         }
         break;  // the smaller root in the interval is this sphere's hit
       }
+    }
+    return best;
+  });
+}
+
+std::optional<NearestHit> nearest_hit_exact(const Ray& ray, const RayInterval& interval, std::span<const Plane> planes) {
+  return detail::in_default_fp_environment([&]() -> std::optional<NearestHit> {
+    if (auto reason = validate(ray)) throw invalid_input(*reason);
+    if (auto reason = validate(interval)) throw invalid_input(*reason);
+    for (std::size_t k = 0; k < planes.size(); ++k)
+      if (auto reason = validate(planes[k])) throw invalid_input("plane " + std::to_string(k) + ": " + *reason);
+    const mpq_class lo = detail::exact::rational_from_double(interval.t_min);
+    const bool bounded = !std::isinf(interval.t_max);  // a valid t_max is +inf or finite
+    const mpq_class hi = bounded ? detail::exact::rational_from_double(interval.t_max) : mpq_class(0);
+    std::optional<NearestHit> best;
+    mpq_class best_t;
+    for (std::size_t k = 0; k < planes.size(); ++k) {  // a strictly smaller t wins: a tie keeps the smaller index
+      const ExactIntersection e = intersect_exact_rational(ray, planes[k]);
+      if (e.intersection.relation != Relation::hit) continue;
+      const mpq_class t = detail::exact::rational(*e.t);
+      if (t < lo || (bounded && t > hi) || (best && t >= best_t)) continue;
+      best_t = t;
+      best = NearestHit{k, e.intersection.t};
     }
     return best;
   });

@@ -13,6 +13,9 @@ namespace raykernel::detail::exact {
 // docs/contract.md §1 and §6).
 [[nodiscard]] int compare_plane_triangle_t(const Ray& ray, const Plane& plane, const Triangle& triangle);
 
+// The sign of t − b for a plane's t = num/den (den ≠ 0) and a double b (an interval's bound).
+[[nodiscard]] int compare_plane_t_with(const Ray& ray, const Plane& plane, double b);
+
 // The sign of t_sphere − t_other for a sphere's root (`root` −1: t1 = U − √V, +1: t2 = U + √V, 0: the tangent
 // root t0 = U; docs/contract.md §10) against a plane's or a triangle's t = num/den (den ≠ 0), or against another
 // sphere's root. The sphere's relation must not be miss.

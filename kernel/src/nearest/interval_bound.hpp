@@ -7,7 +7,8 @@
 //   stage 1  compare_quotients_filter on the hit's stage-1 enclosures and {b, 0}, {1, 0} (exact enclosures: radius 0)
 //   stage 2  compare_quotients_compensated on its stage-2 enclosures and {b, 0, 0}, {1, 0, 0}
 //   stage 3  compare_quotients_expansion on its expansions and the one-component expansions {b}, {1}
-//   stage 4  exact_order: rationals (exact::compare_triangle_t_with, occlusion/exact_occlusion.hpp)
+//   stage 4  exact_order: rationals (exact::compare_triangle_t_with, occlusion/exact_occlusion.hpp; for a plane
+//            exact::compare_plane_t_with, nearest/exact_nearest.hpp)
 //
 // Each stage is proved for any enclosures (resp. expansions) of the four values (compare_quotients.hpp:
 // proofs/compare/CompareQuotients.v, `compare_quotients_filter_sound`, `compare_quotients_compensated_enclosure`;
@@ -19,7 +20,9 @@
 #include "core/expansion.hpp"
 #include "core/sign.hpp"
 #include "nearest/compare_quotients.hpp"
+#include "nearest/exact_nearest.hpp"
 #include "nearest/nearest_candidates.hpp"
+#include "nearest/plane_candidate.hpp"
 #include "nearest/triangle_candidate.hpp"
 #include "occlusion/exact_occlusion.hpp"
 
@@ -63,10 +66,14 @@ class BoundQuotient {
 [[nodiscard]] inline int exact_order(const Ray& ray, const TriangleCandidate& a, const BoundQuotient& b) {
   return exact::compare_triangle_t_with(ray, *a.source, b.value());
 }
+[[nodiscard]] inline int exact_order(const Ray& ray, const HitCandidate& a, const BoundQuotient& b) {
+  return exact::compare_plane_t_with(ray, *a.plane, b.value());
+}
 
 // Whether a hit candidate's exact t lies in the valid interval [t_min, t_max]: t ≥ t_min is asked only when
 // t_min > 0 (a hit has t ≥ 0), t ≤ t_max only when t_max is finite.
-[[nodiscard]] inline bool within_interval(const Ray& ray, TriangleCandidate& c, const RayInterval& interval) noexcept {
+template <class Candidate>
+[[nodiscard]] inline bool within_interval(const Ray& ray, Candidate& c, const RayInterval& interval) noexcept {
   if (interval.t_min > 0) {
     BoundQuotient lower(interval.t_min);
     if (compare_candidates(ray, c, lower).sign < 0) return false;

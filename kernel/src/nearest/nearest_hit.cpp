@@ -76,6 +76,16 @@ template <class Tracer>
 }
 
 
+// Within an interval other than the whole ray: the scalar loop, each hit ordered against the bounds.
+RAYKERNEL_MULTIVERSION
+std::optional<NearestHit> nearest_within(const Ray& ray, const RayInterval& interval, const PlaneSet& set) noexcept {
+  NearestSearch<NoTrace> search(ray, NoTrace{});
+  search.planes(set, nullptr, interval);
+  if (!search.found()) return std::nullopt;
+  HitCandidate& winner = search.plane_winner();
+  return NearestHit{winner.index, winner.round_t()};
+}
+
 RAYKERNEL_MULTIVERSION
 std::optional<NearestHit> nearest_untraced(const Ray& ray, const PlaneSet& set) noexcept {
   Stage t_stage;
@@ -204,6 +214,16 @@ std::string_view to_string(SurfaceKind kind) noexcept {
     case SurfaceKind::sphere: return "sphere";
   }
   return "?";
+}
+
+std::optional<NearestHit> nearest_hit(const Ray& ray, const RayInterval& interval, const PlaneSet& planes) {
+  detail::throw_if_invalid(ray);
+  detail::throw_if_invalid_interval(interval);
+  return detail::in_default_fp_environment([&] {
+    if (interval.t_min == 0 && interval.t_max == std::numeric_limits<double>::infinity())
+      return detail::nearest_untraced(ray, planes);
+    return detail::nearest_within(ray, interval, planes);
+  });
 }
 
 std::optional<SphereHit> nearest_hit(const Ray& ray, const RayInterval& interval, const SphereSet& spheres) {

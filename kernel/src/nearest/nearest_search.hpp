@@ -188,7 +188,12 @@ class NearestSearch {
   // Every plane of `set`: stage 1 of its relation in the scalar loop (screen null) or four or two planes at a time
   // by the screen, the rest of its cascade only when stage 1 cannot decide; each hit offered, in ascending index
   // order.
-  [[gnu::always_inline]] void planes(const PlaneSet& set, nearest_kernel::ScreenFunction screen) noexcept {
+  // Every candidate plane of `set`, each hit whose exact t lies in `interval` offered (docs/contract.md §8: a valid
+  // interval; within_interval decides each hit). The screen sets planes aside by comparison with one the ray hits,
+  // which holds only for the whole ray: with another interval the caller passes none.
+  [[gnu::always_inline]] void planes(const PlaneSet& set, nearest_kernel::ScreenFunction screen,
+                                     const RayInterval& interval = {}) noexcept {
+    const bool whole_ray = interval.t_min == 0 && interval.t_max == std::numeric_limits<double>::infinity();
     const double o[3] = {ray_.origin.x, ray_.origin.y, ray_.origin.z};
     const double d[3] = {ray_.direction.x, ray_.direction.y, ray_.direction.z};
     const std::span<const Plane> planes = set.planes();
@@ -203,6 +208,7 @@ class NearestSearch {
         c.num_sign = static_cast<Sign>(num_filter);
         c.den_sign = static_cast<Sign>(den_filter);
         tracer_.plane_relation(Stage::filter);
+        if (!whole_ray && !within_interval(ray_, c, interval)) return;
         offer(c, slot);
       } else {
         HitCandidate& c = plane_[slot].emplace(k, ray_, plane, den, num);
@@ -212,6 +218,7 @@ class NearestSearch {
         c.num_sign = signs.num;
         c.den_sign = signs.den;
         c.relation_stage = signs.stage;
+        if (!whole_ray && !within_interval(ray_, c, interval)) return;
         offer(c, slot);
       }
     };
