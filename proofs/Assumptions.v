@@ -794,3 +794,13 @@ Definition main_results_25 :=
    @IntervalWidening.ieee_sign_sound).
 Goal True. idtac "@@ ieee_add_encloses ieee_sub_encloses ieee_neg_encloses ieee_mul_encloses ieee_square_encloses ieee_div_encloses ieee_sign_sound". Abort.
 Print Assumptions main_results_25.
+(** sphere/: whether a sphere meets an open segment (ray_sphere_formula.hpp, segment_root_inside, on the exact signs;
+    ray_sphere_cascade.cpp, segment_meets_sphere's two shortcuts on the filter's signs of C_p and C_q): true exactly
+    when a root of A·t² + 2B·t + C lies in (0, 1); C_p·C_q < 0 gives one; C_p, C_q < 0 give none on [0, 1] *)
+From Raykernel Require SphereSegment.
+Definition main_results_26 :=
+  (@SphereSegment.segment_root_inside_correct,
+   @SphereSegment.segment_ends_opposite_meet,
+   @SphereSegment.segment_ends_inside_clear).
+Goal True. idtac "@@ segment_root_inside_correct segment_ends_opposite_meet segment_ends_inside_clear". Abort.
+Print Assumptions main_results_26.

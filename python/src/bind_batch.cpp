@@ -198,19 +198,10 @@ py::object nearest_plane_batch_within(py::handle origins, py::handle directions,
   const RayRows b(origins, directions, t_min, t_max, py::none(), path_name, errors);
   std::optional<raykernel::PlaneSet> storage;
   const raykernel::PlaneSet& planes = planes_from(planes_arg, storage);  // validated: "plane 3: ..."
-  auto plane = new_array<std::int64_t>(b.rows());
-  auto t = new_array<double>(b.rows());
-  auto valid = new_array<bool>(b.rows());
-  const std::span<std::int64_t> plane_out = span_of(plane);
-  const std::span<double> t_out = span_of(t);
-  b.run(span_of(valid), threads, b.exact ? 16 : 1024,
-        [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-          std::optional<NearestHit> hit;
-          if (ok) hit = b.exact ? nearest_hit_exact(ray, interval, planes.planes()) : nearest_hit(ray, interval, planes);
-          plane_out[i] = hit ? static_cast<std::int64_t>(hit->plane) : -1;
-          t_out[i] = hit ? hit->t : nan;
-        });
-  return types().nearest_hit_arrays(plane, t, valid, py::none());
+  const NearestColumns c = nearest_columns(b, threads, b.exact ? 16 : 1024, [&](const Ray& ray, const RayInterval& i) {
+    return b.exact ? nearest_hit_exact(ray, i, planes.planes()) : nearest_hit(ray, i, planes);
+  });
+  return types().nearest_hit_arrays(c.index, c.t, c.valid, py::none());
 }
 
 py::object nearest_hit_batch_py(py::handle origins, py::handle directions, py::handle planes_arg, py::handle rule,

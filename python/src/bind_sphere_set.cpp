@@ -61,18 +61,10 @@ py::object nearest_hit_spheres_batch(py::handle origins, py::handle directions, 
                                      py::handle t_min, py::handle t_max, const std::string& path,
                                      const std::string& errors, std::optional<unsigned> threads) {
   const RayRows b(origins, directions, t_min, t_max, py::none(), path, errors);
-  auto sphere = new_array<std::int64_t>(b.rows());
-  auto t = new_array<double>(b.rows());
-  auto valid = new_array<bool>(b.rows());
-  const std::span<std::int64_t> sphere_out = span_of(sphere);
-  const std::span<double> t_out = span_of(t);
-  b.run(span_of(valid), threads, b.exact ? 4 : 256,
-        [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
-          const std::optional<SphereHit> hit = ok ? nearest_on(ray, interval, spheres, b.exact) : std::nullopt;
-          sphere_out[i] = hit ? static_cast<std::int64_t>(hit->sphere) : -1;
-          t_out[i] = hit ? hit->t : nan;
-        });
-  return sphere_type("SphereHitArrays")(sphere, t, valid);
+  const NearestColumns c = nearest_columns(b, threads, b.exact ? 4 : 256, [&](const Ray& ray, const RayInterval& i) {
+    return nearest_on(ray, i, spheres, b.exact);
+  });
+  return sphere_type("SphereHitArrays")(c.index, c.t, c.valid);
 }
 
 bool occluded_spheres(const Ray& ray, const RayInterval& interval, const raykernel::SphereSet& spheres, bool exact) {

@@ -8,6 +8,7 @@
 #include <raykernel/occlusion.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -79,6 +80,33 @@ struct RayRows {
         [&](std::size_t i, bool ok) { answer(i, ray(i), interval(i), ok); });
   }
 };
+
+// Per ray the nearest hit within its interval as two columns: `index` (int64, −1 for none and for an invalid row)
+// and `t` (float64, NaN there), from nearest(ray, interval) → an optional hit of two members (index, t): a plane
+// set's NearestHit, a sphere set's SphereHit.
+struct NearestColumns {
+  py::array_t<std::int64_t> index;
+  py::array_t<double> t;
+  py::array_t<bool> valid;
+};
+template <class Nearest>
+[[nodiscard]] NearestColumns nearest_columns(const RayRows& b, std::optional<unsigned> threads, std::size_t grain,
+                                             Nearest&& nearest) {
+  NearestColumns c{new_array<std::int64_t>(b.rows()), new_array<double>(b.rows()), new_array<bool>(b.rows())};
+  const std::span<std::int64_t> index_out = span_of(c.index);
+  const std::span<double> t_out = span_of(c.t);
+  b.run(span_of(c.valid), threads, grain, [&](std::size_t i, const Ray& ray, const RayInterval& interval, bool ok) {
+    index_out[i] = -1;
+    t_out[i] = nan;
+    if (!ok) return;
+    if (const auto hit = nearest(ray, interval)) {
+      const auto& [index, t] = *hit;
+      index_out[i] = static_cast<std::int64_t>(index);
+      t_out[i] = t;
+    }
+  });
+  return c;
+}
 
 // The open segments of a batch (p[i], q[i]; docs/contract.md §8), read with the GIL held: occluded_segment_batch
 // over meshes and sphere sets.

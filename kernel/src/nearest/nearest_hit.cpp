@@ -18,6 +18,7 @@
 #include "plane/exact_plane.hpp"
 #include "plane/exact_plane_compare.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -220,7 +221,7 @@ std::optional<NearestHit> nearest_hit(const Ray& ray, const RayInterval& interva
   detail::throw_if_invalid(ray);
   detail::throw_if_invalid_interval(interval);
   return detail::in_default_fp_environment([&] {
-    if (interval.t_min == 0 && interval.t_max == std::numeric_limits<double>::infinity())
+    if (interval.t_min == 0 && std::isinf(interval.t_max))  // the whole ray (a valid t_max is +inf or finite)
       return detail::nearest_untraced(ray, planes);
     return detail::nearest_within(ray, interval, planes);
   });

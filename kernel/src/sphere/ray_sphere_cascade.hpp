@@ -41,6 +41,8 @@ struct SphereRootHit {
 // binary64 filter's signs of C_p = |p − c|² − r² and C_q = |q − c|² − r² decide when they differ (the quadratic
 // changes sign between the ends: a root strictly inside) or are both negative (it is negative on all of [0, 1],
 // being convex: no root there); otherwise the exact stage (exact::segment_meets_sphere).
+//   Certified by: proofs/sphere/SphereSegment.v, `segment_ends_opposite_meet` and `segment_ends_inside_clear`
+//   (the two shortcuts; the filter's signs by proofs/sphere/SphereFilter.v, `sphere_filter_c_sound`).
 [[nodiscard]] bool segment_meets_sphere(const Vec3& p, const Vec3& q, const Sphere& sphere);
 
 }  // namespace raykernel::detail

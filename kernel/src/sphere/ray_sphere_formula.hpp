@@ -84,6 +84,8 @@ template <class T, class Lift, class Difference>
 // Whether a root lies strictly between the ends (0 < t_k < 1), from the signs of D, C_p, B at 0, C_q and A + B at
 // 1: D ≥ 0 and some root k with sign(t_k − 0) > 0 and sign(t_k − 1) < 0 (root_side_of at m = 0 and m = 1; A > 0
 // as p ≠ q). A tangent root counts (the sphere is closed); a root at an end does not (the segment is open).
+//   Certified by: proofs/sphere/SphereSegment.v, `segment_root_inside_correct` (for all A > 0, B, C on the exact
+//   signs: true exactly when some root of A·t² + 2B·t + C lies in (0, 1); the Coq definition is this case analysis).
 [[nodiscard]] constexpr bool segment_root_inside(int sign_d, int sign_c_p, int sign_b_p, int sign_c_q,
                                                  int sign_b_q) noexcept {
   if (sign_d < 0) return false;
