@@ -182,7 +182,7 @@ def _batch(function: Callable[..., Any], rows: dict, shared: Sequence[Any], per_
                     keyword_rows=keyword_rows, threads=threads, **kwargs)
 
 
-def _interval_rows(function: Callable[..., Any], origins, directions, mesh, t_min, t_max, threads, kwargs) -> Any:
+def _interval_rows(function: Callable[..., Any], origins, directions, scene, t_min, t_max, threads, kwargs) -> Any:
     """A ray batch with intervals: t_min and t_max one number for every ray (passed whole) or one per ray."""
     rows = dict(origins=origins, directions=directions)
     ndims, keyword_rows = [1, 1], []
@@ -193,7 +193,7 @@ def _interval_rows(function: Callable[..., Any], origins, directions, mesh, t_mi
             keyword_rows.append(name)
         else:
             kwargs[name] = value
-    return _batch(function, rows, (mesh,), ndims, threads, kwargs, keyword_rows)
+    return _batch(function, rows, (scene,), ndims, threads, kwargs, keyword_rows)
 
 
 def intersect_batch(origins, directions, points, normals, *, threads: Optional[int] = 1, **kwargs):
@@ -241,10 +241,11 @@ def inside_batch(points, mesh, *, threads: Optional[int] = 1, **kwargs):
     return _batch(_rk.inside_batch, dict(points=points), (mesh,), (1,), threads, kwargs)
 
 
-def occluded_batch(origins, directions, mesh, *, t_min=0.0, t_max=np.inf, threads: Optional[int] = 1, **kwargs):
+def occluded_batch(origins, directions, scene, *, t_min=0.0, t_max=np.inf, threads: Optional[int] = 1, **kwargs):
     """``raykernel.occluded_batch`` over Dask arrays: any-hit per ray within [t_min, t_max] (each one number, or
-    an (n,) array of per-ray bounds, chunked with the rays); ``mesh`` goes to each worker once."""
-    return _interval_rows(_rk.occluded_batch, origins, directions, mesh, t_min, t_max, threads, kwargs)
+    an (n,) array of per-ray bounds, chunked with the rays); ``scene`` (a ``Mesh`` or ``SphereSet``) goes to each
+    worker once."""
+    return _interval_rows(_rk.occluded_batch, origins, directions, scene, t_min, t_max, threads, kwargs)
 
 
 def crossings_batch(origins, directions, mesh, *, t_min=0.0, t_max=np.inf, threads: Optional[int] = 1, **kwargs):
@@ -253,9 +254,10 @@ def crossings_batch(origins, directions, mesh, *, t_min=0.0, t_max=np.inf, threa
     return _interval_rows(_rk.crossings_batch, origins, directions, mesh, t_min, t_max, threads, kwargs)
 
 
-def occluded_segment_batch(p, q, mesh, *, threads: Optional[int] = 1, **kwargs):
-    """``raykernel.occluded_segment_batch`` over Dask arrays of segment ends (the open segments p → q)."""
-    return _batch(_rk.occluded_segment_batch, dict(p=p, q=q), (mesh,), (1, 1), threads, kwargs)
+def occluded_segment_batch(p, q, scene, *, threads: Optional[int] = 1, **kwargs):
+    """``raykernel.occluded_segment_batch`` over Dask arrays of segment ends (the open segments p → q; ``scene`` a
+    ``Mesh`` or ``SphereSet``)."""
+    return _batch(_rk.occluded_segment_batch, dict(p=p, q=q), (scene,), (1, 1), threads, kwargs)
 
 
 def closest_point_batch(points, mesh, *, threads: Optional[int] = 1, **kwargs):
