@@ -18,12 +18,10 @@ namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-py::object closest_type(const char* name) { return py::module_::import("raykernel._types").attr(name); }
-
 py::object to_python(const ClosestPoint& c) {
-  return closest_type("ClosestPoint")(c.triangle, closest_type("ClosestFeature").attr("from_code")(static_cast<int>(c.feature)),
-                                      static_cast<int>(c.corner), python::to_python(c.point), c.squared_distance,
-                                      c.distance, to_fraction(c.squared_distance_exact));
+  return types().closest_point(c.triangle, types().closest_feature[static_cast<std::size_t>(c.feature)],
+                               static_cast<int>(c.corner), python::to_python(c.point), c.squared_distance, c.distance,
+                               to_fraction(c.squared_distance_exact));
 }
 
 py::object closest_point_py(py::handle point, const PythonMesh& mesh, bool exact) {
@@ -91,8 +89,8 @@ shown::ClosestPointArrays closest_point_batch_py(shown::ArrayLike3 points, const
       error = "point " + std::to_string(*i) + ": " + point_problem(p.row(*i)).value_or("invalid input");
   }
   if (error && policy == ErrorPolicy::raise) throw invalid_input(*error);
-  return closest_type("ClosestPointArrays")(triangle, feature, corner, point, squared, distance,
-                                            with_sign ? py::object(signed_distance_array) : py::none(), valid);
+  return types().closest_point_arrays(triangle, feature, corner, point, squared, distance,
+                                      with_sign ? py::object(signed_distance_array) : py::none(), valid);
 }
 
 }  // namespace

@@ -78,7 +78,32 @@ py::array_t<double> plane_columns(const PlaneSet& s, Vec3 Plane::*member) {
 }
 
 namespace {
+
 constexpr double inf = std::numeric_limits<double>::infinity();
+
+// nearest_hit (exact = false) and nearest_hit_exact (true) on any scene: the scene's kind chooses the query, `exact`
+// its reference. The exact plane scan always releases the GIL (microseconds per plane).
+py::object nearest_in_scene(py::handle ray, py::handle scene, py::handle rule, double t_min, double t_max, bool exact) {
+  if (py::isinstance<PythonMesh>(scene))
+    return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, rule,
+                            exact ? Path::exact : Path::certified);
+  require_no_rule(rule, scene);
+  if (is_sphere_set(scene))
+    return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, exact);
+  const RayInterval interval{t_min, t_max};
+  if (!exact)
+    return nearest(ray, scene, [&](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, interval, p); });
+  const Ray r = ray_from(ray);
+  std::optional<raykernel::PlaneSet> storage;
+  const raykernel::PlaneSet& set = planes_from(scene, storage);
+  std::optional<NearestHit> hit;
+  {
+    py::gil_scoped_release release;
+    hit = nearest_hit_exact(r, interval, set.planes());
+  }
+  return to_python(hit);
+}
+
 }  // namespace
 
 void bind_nearest(py::module_& m) {
@@ -136,16 +161,7 @@ with an earlier one is set aside once (``candidates``), so a query tests only th
   m.def(
       "nearest_hit",
       [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule, double t_min,
-         double t_max) -> shown::NearestHit {
-        if (py::isinstance<PythonMesh>(scene))
-          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, rule, Path::certified);
-        require_no_rule(rule, scene);
-        if (is_sphere_set(scene))
-          return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, false);
-        const RayInterval interval{t_min, t_max};
-        return nearest(ray, scene,
-                       [&](const Ray& r, const raykernel::PlaneSet& p) { return nearest_hit(r, interval, p); });
-      },
+         double t_max) -> shown::NearestHit { return nearest_in_scene(ray, scene, rule, t_min, t_max, false); },
       py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
       py::arg("t_max") = inf,
       R"doc(The first plane, triangle or sphere ``ray`` meets, decided exactly, or None.
@@ -170,23 +186,7 @@ sphere.)doc");
   m.def(
       "nearest_hit_exact",
       [](shown::RayLike ray, shown::Scene scene, shown::OptionalRule rule, double t_min,
-         double t_max) -> shown::NearestHit {
-        if (py::isinstance<PythonMesh>(scene))
-          return nearest_hit_mesh(ray, scene.cast<const PythonMesh&>(), t_min, t_max, rule, Path::exact);
-        require_no_rule(rule, scene);
-        if (is_sphere_set(scene))
-          return nearest_hit_spheres(ray, scene.cast<const raykernel::SphereSet&>(), t_min, t_max, true);
-        const Ray r = ray_from(ray);
-        const RayInterval interval{t_min, t_max};
-        std::optional<raykernel::PlaneSet> storage;
-        const raykernel::PlaneSet& set = planes_from(scene, storage);
-        std::optional<NearestHit> hit;
-        {
-          py::gil_scoped_release release;
-          hit = nearest_hit_exact(r, interval, set.planes());
-        }
-        return to_python(hit);
-      },
+         double t_max) -> shown::NearestHit { return nearest_in_scene(ray, scene, rule, t_min, t_max, true); },
       py::arg("ray"), py::arg("scene"), py::kw_only(), py::arg("rule") = py::none(), py::arg("t_min") = 0.0,
       py::arg("t_max") = inf,
       R"doc(The reference nearest hit, in exact rationals, by brute force (every plane or every triangle, no

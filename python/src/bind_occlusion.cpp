@@ -18,8 +18,6 @@
 namespace raykernel::python {
 namespace {
 
-py::object types_attr(const char* name) { return py::module_::import("raykernel._types").attr(name); }
-
 shown::MeshHits all_hits_py(shown::RayLike ray, const PythonMesh& mesh, double t_min, double t_max,
                             shown::OptionalRule rule, const std::string& path) {
   const Ray r = ray_from(ray);
@@ -33,7 +31,7 @@ shown::MeshHits all_hits_py(shown::RayLike ray, const PythonMesh& mesh, double t
   }
   py::list list;
   for (const MeshHit& h : hits.hits) list.append(to_python(std::optional<MeshHit>(h)));
-  return types_attr("MeshHits")(list, hits.crossings);
+  return types().mesh_hits(list, hits.crossings);
 }
 
 // OcclusionArrays of a ray batch (rows: a ray and its interval) or a segment batch (rows: p and q) over a Mesh or a
@@ -58,7 +56,7 @@ py::object occlusion_arrays(const Batch& b, py::handle scene, py::handle rule, s
       blocked_out[i] = ok && on_mesh(mesh, chosen, x, y);
     });
   }
-  return types_attr("OcclusionArrays")(blocked, valid);
+  return types().occlusion_arrays(blocked, valid);
 }
 
 shown::OcclusionArrays occluded_batch_py(shown::ArrayLike3 origins, shown::ArrayLike3 directions,
@@ -111,7 +109,7 @@ shown::CrossingArrays crossings_batch_py(shown::ArrayLike3 origins, shown::Array
     hits_out[i] = static_cast<std::int64_t>(h.hits.size());
     crossings_out[i] = h.crossings;
   });
-  return types_attr("CrossingArrays")(hits, crossings, valid);
+  return types().crossing_arrays(hits, crossings, valid);
 }
 
 constexpr double inf = std::numeric_limits<double>::infinity();

@@ -12,11 +12,9 @@
 namespace raykernel::python {
 namespace {
 
-py::object sphere_type(const char* name) { return py::module_::import("raykernel._types").attr(name); }
-
 py::object to_python(const std::optional<SphereHit>& hit) {
   if (!hit) return py::none();
-  return sphere_type("SphereHit")(hit->sphere, hit->t);
+  return types().sphere_hit(hit->sphere, hit->t);
 }
 
 std::optional<SphereHit> nearest_on(const Ray& ray, const RayInterval& interval, const raykernel::SphereSet& spheres,
@@ -64,7 +62,7 @@ py::object nearest_hit_spheres_batch(py::handle origins, py::handle directions, 
   const NearestColumns c = nearest_columns(b, threads, b.exact ? 4 : 256, [&](const Ray& ray, const RayInterval& i) {
     return nearest_on(ray, i, spheres, b.exact);
   });
-  return sphere_type("SphereHitArrays")(c.index, c.t, c.valid);
+  return types().sphere_hit_arrays(c.index, c.t, c.valid);
 }
 
 bool occluded_spheres(const Ray& ray, const RayInterval& interval, const raykernel::SphereSet& spheres, bool exact) {

@@ -111,6 +111,14 @@ void load_types() {
   t->mesh_hit_arrays = m.attr("MeshHitArrays");
   t->point_location_arrays = m.attr("PointLocationArrays");
   t->spawned_origin = m.attr("SpawnedOrigin");
+  t->mesh_hits = m.attr("MeshHits");
+  t->occlusion_arrays = m.attr("OcclusionArrays");
+  t->crossing_arrays = m.attr("CrossingArrays");
+  t->sphere_hit = m.attr("SphereHit");
+  t->sphere_hit_arrays = m.attr("SphereHitArrays");
+  t->closest_point = m.attr("ClosestPoint");
+  t->closest_point_arrays = m.attr("ClosestPointArrays");
+  for (std::size_t k = 0; k < 3; ++k) t->closest_feature[k] = m.attr("ClosestFeature").attr("from_code")(k);
   // The Python enums list their members in the C++ enums' order, and their codes are those values.
   for (std::size_t k = 0; k < 6; ++k) t->triangle_relation[k] = m.attr("TriangleRelation").attr("from_code")(k);
   for (std::size_t k = 0; k < 9; ++k) t->triangle_location[k] = m.attr("TriangleLocation").attr("from_code")(k);

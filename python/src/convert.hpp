@@ -49,6 +49,10 @@ struct PythonTypes {
       sphere_intersection_arrays;
   py::object mesh_hit, mesh_hit_arrays, point_location_arrays;
   py::object spawned_origin;
+  py::object mesh_hits, occlusion_arrays, crossing_arrays;  // §8
+  py::object sphere_hit, sphere_hit_arrays;                 // sphere sets
+  py::object closest_point, closest_point_arrays;           // §11
+  std::array<py::object, 3> closest_feature;                // indexed by the C++ enum's value
   std::array<py::object, 3> point_location;
   std::array<py::object, 4> relation;  // indexed by the C++ enum's value
   std::array<py::object, 6> triangle_relation;
