@@ -5,6 +5,7 @@
 // mirror directions.
 #include "offset_methods.hpp"
 
+#include <raykernel/fp_environment.hpp>
 #include <raykernel/spawn.hpp>
 
 #include <benchmark/benchmark.h>
@@ -80,6 +81,21 @@ void spawn_binary32(benchmark::State& s) {
     return spawn(HitPoint::crossing(c.primary), c.triangle, c.hit.direction, OriginFormat::binary32);
   });
 }
+// The same calls inside one DefaultFpEnvironment scope (as the plane's, the triangle's and the sphere's
+// *_scoped): how a renderer spawning many rays on one thread calls it, the per-call environment check hoisted out.
+void spawn_binary64_scoped(benchmark::State& s) {
+  const DefaultFpEnvironment env;
+  cycle(s, [](const SpawnCase& c) { return spawn(HitPoint::crossing(c.primary), c.triangle, c.hit.direction); });
+}
+void spawn_binary32_scoped(benchmark::State& s) {
+  const DefaultFpEnvironment env;
+  cycle(s, [](const SpawnCase& c) {
+    return spawn(HitPoint::crossing(c.primary), c.triangle, c.hit.direction, OriginFormat::binary32);
+  });
+}
+void spawn_exact_binary64(benchmark::State& s) {
+  cycle(s, [](const SpawnCase& c) { return spawn_exact(HitPoint::crossing(c.primary), c.triangle, c.hit.direction); });
+}
 void pbrt(benchmark::State& s) {
   cycle(s, [](const SpawnCase& c) { return baseline::offset_ray(baseline::OffsetMethod::pbrt_v4, c.hit); });
 }
@@ -89,6 +105,9 @@ void rtgems(benchmark::State& s) {
 
 BENCHMARK(spawn_binary64)->Name("spawn/certified/binary64");
 BENCHMARK(spawn_binary32)->Name("spawn/certified/binary32");
+BENCHMARK(spawn_binary64_scoped)->Name("spawn/certified/binary64_scoped");
+BENCHMARK(spawn_binary32_scoped)->Name("spawn/certified/binary32_scoped");
+BENCHMARK(spawn_exact_binary64)->Name("spawn/exact/binary64");
 BENCHMARK(pbrt)->Name("spawn/pbrt");
 BENCHMARK(rtgems)->Name("spawn/rtgems");
 

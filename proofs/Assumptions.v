@@ -804,3 +804,21 @@ Definition main_results_26 :=
    @SphereSegment.segment_ends_inside_clear).
 Goal True. idtac "@@ segment_root_inside_correct segment_ends_opposite_meet segment_ends_inside_clear". Abort.
 Print Assumptions main_results_26.
+(** spawn/: the certified fast path of spawn (spawn/spawn_certified.cpp): midpoint_offset's enclosure of
+    x + y − 2·o, the side of the hit point o + (num/den)·d against (x + y)/2 from sign(den)·sign(Δ), and
+    round_binary32_from_binary64 (binary32 through binary64: RN32(x) = RN32(RN64(x)) off the binary32
+    midpoints; at one, the side of x against it decides) *)
+From Raykernel Require SpawnRounding.
+Definition main_results_27 :=
+  (@SpawnRounding.midpoint_offset_encloses,
+   @SpawnRounding.midpoint_side_sign,
+   @SpawnRounding.binary32_through_binary64,
+   @SpawnRounding.binary32_midpoint_side).
+Goal True. idtac "@@ midpoint_offset_encloses midpoint_side_sign binary32_through_binary64 binary32_midpoint_side". Abort.
+Print Assumptions main_results_27.
+(** spawn/: affine_enclosure (spawn/spawn_certified.cpp): an enclosure of o·D + d·N from enclosures of D and N,
+    which round_quotient rounds each coordinate of the hit point (o_k·den + d_k·num)/den from *)
+From Raykernel Require SpawnAffine.
+Definition main_results_28 := (@SpawnAffine.affine_enclosure_sound).
+Goal True. idtac "@@ affine_enclosure_sound". Abort.
+Print Assumptions main_results_28.

@@ -308,6 +308,10 @@ std::vector<Row> table() {
        {}},
       {"orient3d_filter_max_difference", "bpow radix2 (300)", Dyadic::pow2(300), mb::orient3d_filter_max_difference,
        {}},
+      // spawn's certified fast path (spawn/spawn_certified.hpp; spawn/SpawnRounding.v, spawn/SpawnAffine.v).
+      {"midpoint_offset_relative", "bpow radix2 (-52)", Dyadic::pow2(-52), mb::midpoint_offset_relative, {}},
+      {"affine_propagation_factor", "1 + bpow radix2 (-50)", 1 + Dyadic::pow2(-50), mb::affine_propagation_factor, {}},
+      {"affine_absolute", "bpow radix2 (-1060)", Dyadic::pow2(-1060), mb::affine_absolute, {}},
   };
 }
 

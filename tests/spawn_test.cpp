@@ -7,6 +7,8 @@
 #include <raykernel/spawn.hpp>
 
 #include "commands/spawn.hpp"
+#include "core/fp_environment.hpp"
+#include "spawn/spawn_certified.hpp"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -98,6 +101,28 @@ TEST(Spawn, Binary32IsRoundedStraightFromTheExactPoint) {
   expect_origin(spawn(HitPoint::crossing(down), t, {0, 0, 1}), {1, 0, 1 + std::ldexp(1, -24) + std::ldexp(1, -52)}, 1);
   // Leaving downwards in binary32, RN32(P_z) is on the wrong side: one float down, to 1.
   expect_origin(spawn(HitPoint::crossing(down), t, {0, 0, -1}, OriginFormat::binary32), {1, 0, 1}, 1);
+}
+
+TEST(Spawn, MidpointsOfTheFormatAreDecidedExactly) {
+  // The ray from (1, 0, 1) along (d_x, 0, −2) crosses z = 0 at t = 1/2: P_x = 1 + d_x/2 exactly (hand-derived).
+  const auto from = [](double dx) { return HitPoint::crossing(Ray{{1, 0, 1}, {dx, 0, -2}}); };
+  const double u = std::ldexp(1, -52);
+  // binary64: P_x = 1 + 2^-53, the midpoint of 1 and 1 + 2^-52: ties to even, 1; an ulp of d_x beside it decides.
+  expect_origin(spawn(from(u), xy_plane, {0, 0, 1}), {1, 0, denorm_min}, 1);
+  expect_origin(spawn(from(u + std::ldexp(1, -104)), xy_plane, {0, 0, 1}), {1 + u, 0, denorm_min}, 1);
+  expect_origin(spawn(from(u - std::ldexp(1, -105)), xy_plane, {0, 0, 1}), {1, 0, denorm_min}, 1);
+  // binary32: P_x = 1 + 2^-24 ± 2^-76 rounds to 1 + 2^-24 in binary64, a float midpoint; P_x's side of it decides
+  // (above: 1 + 2^-23; below: 1; exactly on it: ties to even, 1).
+  const double f = std::ldexp(1, -23);
+  expect_origin(spawn(from(f + std::ldexp(1, -75)), xy_plane, {0, 0, 1}, OriginFormat::binary32),
+                {1 + f, 0, float_denorm_min}, 1);
+  expect_origin(spawn(from(f - std::ldexp(1, -75)), xy_plane, {0, 0, 1}, OriginFormat::binary32),
+                {1, 0, float_denorm_min}, 1);
+  expect_origin(spawn(from(f), xy_plane, {0, 0, -1}, OriginFormat::binary32), {1, 0, -float_denorm_min}, 1);
+  // A direction with d_x = 0: P_x = o_x exactly; in binary32 a double that is a float midpoint ties to even.
+  expect_origin(spawn(HitPoint::crossing(Ray{{1 + std::ldexp(1, -24), 0, 1}, {0, 0, -2}}), xy_plane, {0, 0, 1},
+                      OriginFormat::binary32),
+                {1, 0, float_denorm_min}, 1);
 }
 
 TEST(Spawn, ShadowRaysTowardsATargetPoint) {
@@ -279,6 +304,55 @@ RC_GTEST_PROP(SpawnDefinition, TheOriginIsStrictlyOnTheSideWithTheFewestSteps, (
     for (std::uint64_t k = 0; k < o.steps; ++k) x = step(x, delta, binary32);
     RC_ASSERT(x == got[i]);
   }
+}
+
+// ---- The certified fast path against the exact path ------------------------------------------------------
+
+// A double of `bits` significant bits (1 to 53) near 2^scale, or 0 one time in eight: short significands make
+// the hit's coordinates land on midpoints of the format (ties) and on the plane; zeros make axis-aligned rays.
+rc::Gen<double> hard_coordinate(int scale, int bits) {
+  return rc::gen::map(rc::gen::pair(rc::gen::inRange<std::int64_t>(-(std::int64_t{1} << (bits - 1)),
+                                                                    std::int64_t{1} << (bits - 1)),
+                                    rc::gen::inRange(0, 8)),
+                      [scale, bits](const std::pair<std::int64_t, int>& m) {
+                        return m.second == 0 ? 0.0 : std::ldexp(static_cast<double>(m.first), scale - bits);
+                      });
+}
+
+// The reason spawn throws, or "" with the answer.
+std::pair<std::string, SpawnedOrigin> run(const std::function<SpawnedOrigin()>& f) {
+  try {
+    return {"", f()};
+  } catch (const invalid_input& e) {
+    return {e.what(), {}};
+  }
+}
+
+RC_GTEST_PROP(SpawnCertified, EqualsTheExactPathBitForBit, ()) {
+  const int scale = *rc::gen::inRange(-80, 80);
+  const int bits = *rc::gen::element(1, 2, 3, 5, 12, 24, 25, 53);
+  const auto v = [&] {
+    return Vec3{*hard_coordinate(scale, bits), *hard_coordinate(scale, bits), *hard_coordinate(scale, bits)};
+  };
+  const Triangle t{v(), v(), v()};
+  const bool point_mode = *rc::gen::inRange(0, 4) == 0;
+  const HitPoint hit = point_mode ? HitPoint::at(v()) : HitPoint::crossing(Ray{v(), v()});
+  const Vec3 w = v();
+  const OriginFormat format = *rc::gen::arbitrary<bool>() ? OriginFormat::binary32 : OriginFormat::binary64;
+  const bool to = *rc::gen::arbitrary<bool>();
+  const auto fast = run([&] { return to ? spawn_to(hit, t, w, format) : spawn(hit, t, w, format); });
+  const auto exact = run([&] { return to ? spawn_to_exact(hit, t, w, format) : spawn_exact(hit, t, w, format); });
+  RC_ASSERT(fast.first == exact.first);
+  const bool certified = detail::in_default_fp_environment(
+      [&] { return detail::spawn_certified(hit, t, to, w, format).has_value(); });
+  RC_TAG(exact.first.empty() ? (exact.second.steps == 0 ? "k = 0" : "k >= 1") : "invalid",
+         certified ? "certified" : "exact path");
+  RC_ASSERT(!(certified && !exact.first.empty()));  // the fast path answers valid input only
+  if (!exact.first.empty()) return;
+  RC_ASSERT(std::bit_cast<std::uint64_t>(fast.second.origin.x) == std::bit_cast<std::uint64_t>(exact.second.origin.x));
+  RC_ASSERT(std::bit_cast<std::uint64_t>(fast.second.origin.y) == std::bit_cast<std::uint64_t>(exact.second.origin.y));
+  RC_ASSERT(std::bit_cast<std::uint64_t>(fast.second.origin.z) == std::bit_cast<std::uint64_t>(exact.second.origin.z));
+  RC_ASSERT(fast.second.steps == exact.second.steps);
 }
 
 }  // namespace

@@ -97,6 +97,15 @@ Definition orient3d_filter_relative : R := bpow radix2 (-49).
 Definition orient3d_filter_min_difference : R := bpow radix2 (-300).
 Definition orient3d_filter_max_difference : R := bpow radix2 (300).
 
+(** midpoint_offset (kernel/src/spawn/spawn_certified.hpp; spawn/SpawnRounding.v): the radius R ⊗ |lo| of the
+    enclosure of x + y − 2·o. *)
+Definition midpoint_offset_relative : R := bpow radix2 (-52).
+
+(** affine_enclosure (kernel/src/spawn/spawn_certified.hpp; spawn/SpawnAffine.v): radius
+    (C ⊗ ((|o| ⊗ D.radius ⊕ |d| ⊗ N.radius) ⊕ E)) ⊕ U. *)
+Definition affine_propagation_factor : R := 1 + bpow radix2 (-50).
+Definition affine_absolute : R := bpow radix2 (-1060).
+
 (** ** Ray–sphere (kernel/src/sphere/ray_sphere_filter.hpp; sphere/SphereFilter.v): E_C = (κ_C ⊗ P_C) ⊕ μ_C and
     E_D = (... ⊗ φ_D) ⊕ μ_D, the bounds of stage 1's signs of C and D. *)
 Definition sphere_filter_c_relative : R := 8 * unit_roundoff.

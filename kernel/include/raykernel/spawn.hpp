@@ -64,6 +64,13 @@ struct SpawnedOrigin {
 [[nodiscard]] SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target,
                                      OriginFormat format = OriginFormat::binary64);
 
+// spawn and spawn_to decided in exact rationals alone (GMP, MPFR): the reference spawn's certified fast path is
+// tested against, and the path it hands every case to that it cannot certify. Same answers, same errors.
+[[nodiscard]] SpawnedOrigin spawn_exact(const HitPoint& hit, const Triangle& source, const Vec3& direction,
+                                        OriginFormat format = OriginFormat::binary64);
+[[nodiscard]] SpawnedOrigin spawn_to_exact(const HitPoint& hit, const Triangle& source, const Vec3& target,
+                                           OriginFormat format = OriginFormat::binary64);
+
 // P̂: the hit point P rounded to nearest-even in the format, coordinate by coordinate (what spawn starts from).
 // Invalid input as for spawn; a coordinate that overflows the format is ±inf.
 [[nodiscard]] Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source,

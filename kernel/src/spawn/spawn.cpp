@@ -1,4 +1,6 @@
-// spawn and spawn_to (<raykernel/spawn.hpp>, docs/contract.md §9), decided exactly: the hit point P, the
+// spawn and spawn_to (<raykernel/spawn.hpp>, docs/contract.md §9): the certified fast path first
+// (spawn/spawn_certified.cpp), then, for what it leaves, the exact path here — spawn_exact and spawn_to_exact alone,
+// the reference the fast path is tested against. The exact path decides exactly: the hit point P, the
 // sides and the threshold along the stepping axis are exact rationals (GMP), the roundings to the origin's
 // format one correct rounding each (MPFR, core/binary64_rounding.hpp).
 //
@@ -16,6 +18,7 @@
 #include "core/rational_from_double.hpp"
 #include "spawn/exact_point.hpp"
 #include "spawn/format_steps.hpp"
+#include "spawn/spawn_certified.hpp"
 
 #include <gmpxx.h>
 
@@ -127,10 +130,24 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
 }  // namespace
 
 SpawnedOrigin spawn(const HitPoint& hit, const Triangle& source, const Vec3& direction, OriginFormat format) {
-  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 0, direction, format); });
+  return detail::in_default_fp_environment([&] {
+    if (const auto fast = detail::spawn_certified(hit, source, false, direction, format)) return *fast;
+    return spawn_on_side(hit, source, 0, direction, format);
+  });
 }
 
 SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
+  return detail::in_default_fp_environment([&] {
+    if (const auto fast = detail::spawn_certified(hit, source, true, target, format)) return *fast;
+    return spawn_on_side(hit, source, 1, target, format);
+  });
+}
+
+SpawnedOrigin spawn_exact(const HitPoint& hit, const Triangle& source, const Vec3& direction, OriginFormat format) {
+  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 0, direction, format); });
+}
+
+SpawnedOrigin spawn_to_exact(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
   return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 1, target, format); });
 }
 

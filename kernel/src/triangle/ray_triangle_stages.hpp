@@ -258,24 +258,35 @@ struct TriangleQuotientStage2 {
   Enclosure num, den;
 };
 
-[[nodiscard]] [[gnu::always_inline]] inline TriangleQuotientStage2 triangle_quotient_compensated(
-    const Ray& ray, const Triangle& t) noexcept {
-  const auto difference = [](double v, double w) {
-    const DoubleDouble s = two_diff(v, w);
-    return CompensatedLeaf<double>{s.hi, s.lo};
-  };
-  const Vec3 &o = ray.origin, &d = ray.direction;
+[[nodiscard]] [[gnu::always_inline]] inline CompensatedLeaf<double> compensated_difference(double v, double w) noexcept {
+  const DoubleDouble s = two_diff(v, w);
+  return CompensatedLeaf<double>{s.hi, s.lo};
+}
+
+// Stage 2 of num alone, for a ray from o: (a − o)·((b − o) × (c − o)) (spawn's side of a point, σ(o), is its
+// opposite sign: spawn/spawn_certified.cpp).
+[[nodiscard]] [[gnu::always_inline]] inline Enclosure triangle_num_compensated(const Vec3& o,
+                                                                               const Triangle& t) noexcept {
+  const auto ea = leaf_differences<CompensatedLeaf<double>>(t.a, o, compensated_difference);
+  const auto eb = leaf_differences<CompensatedLeaf<double>>(t.b, o, compensated_difference);
+  const auto ec = leaf_differences<CompensatedLeaf<double>>(t.c, o, compensated_difference);
+  return det3_enclosure(dot_terms(ea, cross_terms(eb, ec)), bounds::triangle_compensated_relative,
+                        det3_absolute_term(ea[0].h, ea[1].h, ea[2].h));
+}
+
+// Stage 2 of den alone (the short form): d·((b − a) × (c − a)).
+[[nodiscard]] [[gnu::always_inline]] inline Enclosure triangle_den_compensated(const Vec3& d, const Triangle& t) noexcept {
   const std::array<CompensatedLeaf<double>, 3> dl{CompensatedLeaf<double>{d.x, 0.0}, CompensatedLeaf<double>{d.y, 0.0},
                                                   CompensatedLeaf<double>{d.z, 0.0}};
-  const auto ea = leaf_differences<CompensatedLeaf<double>>(t.a, o, difference);
-  const auto eb = leaf_differences<CompensatedLeaf<double>>(t.b, o, difference);
-  const auto ec = leaf_differences<CompensatedLeaf<double>>(t.c, o, difference);
-  const auto ab = leaf_differences<CompensatedLeaf<double>>(t.b, t.a, difference);
-  const auto ac = leaf_differences<CompensatedLeaf<double>>(t.c, t.a, difference);
-  return {det3_enclosure(dot_terms(ea, cross_terms(eb, ec)), bounds::triangle_compensated_relative,
-                         det3_absolute_term(ea[0].h, ea[1].h, ea[2].h)),
-          det3_enclosure(dot_terms(dl, cross_terms(ab, ac)), bounds::triangle_compensated_relative,
-                         det3_absolute_term(d.x, d.y, d.z))};
+  const auto ab = leaf_differences<CompensatedLeaf<double>>(t.b, t.a, compensated_difference);
+  const auto ac = leaf_differences<CompensatedLeaf<double>>(t.c, t.a, compensated_difference);
+  return det3_enclosure(dot_terms(dl, cross_terms(ab, ac)), bounds::triangle_compensated_relative,
+                        det3_absolute_term(d.x, d.y, d.z));
+}
+
+[[nodiscard]] [[gnu::always_inline]] inline TriangleQuotientStage2 triangle_quotient_compensated(
+    const Ray& ray, const Triangle& t) noexcept {
+  return {triangle_num_compensated(ray.origin, t), triangle_den_compensated(ray.direction, t)};
 }
 
 // The tie-break vector d × (q − p) of the directed edge p → q (ray_triangle_formula.hpp's edge_tie_break) in exact
