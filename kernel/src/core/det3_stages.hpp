@@ -35,7 +35,9 @@
 #include "core/error_bounds.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace raykernel::detail {
 
@@ -73,10 +75,27 @@ template <class V>
 // The dynamic absolute term A = (K_A ⊗ S) ⊕ U_A, S = (|x_0| ⊕ |x_1|) ⊕ |x_2|, of the determinants whose outer
 // vector is x (d for the π's and den, ê_a for num): it covers products that underflow, whose error the outer
 // product scales by |x_i| (error_bounds.hpp).
+//
+// Computed without arithmetic on subnormals: on x86 each operation with a subnormal result costs a microcode
+// assist (about a hundred cycles; the default environment has no FTZ/DAZ), and for S < 2^48 both K_A ⊗ S and the
+// sum are subnormal. There K_A ⊗ S = RN(2^-1070·S) = 2^-1074·n, n = 16·S rounded to an integer, ties to even:
+// 16·S ⊕ 2^52 = 2^52 + n exactly (16·S < 2^52), whose bit pattern is that of 2^52 plus n; adding U_A = 32·2^-1074
+// is exact, and 2^-1074·k for an integer k < 2^53 has the bit pattern k. For S ≥ 2^48 (and NaN) the formula,
+// evaluated on max(S, 2^48) so that no lane computes a subnormal. The same bits as the formula for every input:
+// tests/stages_test.cpp (DetAbsoluteTerm) checks it against the formula bit for bit, and the twin runner's
+// models compute the formula.
+inline constexpr double absolute_term_subnormal_below = 0x1p48;  // K_A ⊗ S is subnormal below it (exact value)
+inline constexpr double absolute_term_integer_shift = 0x1p52;     // x ⊕ 2^52 rounds x ∈ [0, 2^52) to an integer
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline V det3_absolute_term(V x0, V x1, V x2) noexcept {
+  static_assert(bounds::triangle_absolute_scale == 0x1p-1070 && bounds::triangle_absolute == 0x1p-1069);
   const V s = (abs(x0) + abs(x1)) + abs(x2);
-  return bounds::triangle_absolute_scale * s + bounds::triangle_absolute;
+  const auto small = s < absolute_term_subnormal_below;
+  const V formula = bounds::triangle_absolute_scale * select(small, V{} + absolute_term_subnormal_below, s) +
+                    bounds::triangle_absolute;
+  const V shifted = 16 * s + absolute_term_integer_shift;  // 2^52 + n where small
+  const V subnormal = from_bits(to_bits(shifted) - (to_bits(absolute_term_integer_shift) - 32));
+  return select(small, subnormal, formula);
 }
 
 // det3_filter: the sign of the exact determinant, from its stage-1 evaluation.
