@@ -13,6 +13,7 @@
 #pragma once
 
 #include <raykernel/core.hpp>
+#include <raykernel/interval.hpp>
 
 #include <optional>
 #include <string>
@@ -61,6 +62,14 @@ struct Intersection {
 // The reference: exact rational arithmetic (CGAL::Exact_rational) for num and den, MPFR for the rounding of
 // t. Slow (microseconds) and obviously right. Throws invalid_input.
 [[nodiscard]] Intersection intersect_exact(const Ray& ray, const Plane& plane);
+
+// docs/contract.md §8 on one plane: the intersection (as `intersect`) when the ray hits the plane at an exact t in
+// `interval` ([t_min, t_max], closed; compared exactly, never through a rounded t); nothing otherwise (behind,
+// parallel, in the plane, or t outside). Throws invalid_input (the ray, the plane, or the interval naming the
+// bound). intersect_exact: the same in exact rationals alone.
+[[nodiscard]] std::optional<Intersection> intersect(const Ray& ray, const RayInterval& interval, const Plane& plane);
+[[nodiscard]] std::optional<Intersection> intersect_exact(const Ray& ray, const RayInterval& interval,
+                                                          const Plane& plane);
 
 // The seed's formula t = −((o − p)·n) / (d·n) in plain binary64, classifying with the computed values
 // (d·n == 0 → parallel or in-plane, t ≥ 0 → hit). No validation, no guarantee: the baseline that the

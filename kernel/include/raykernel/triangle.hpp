@@ -26,6 +26,7 @@
 #pragma once
 
 #include <raykernel/core.hpp>
+#include <raykernel/interval.hpp>
 
 #include <array>
 #include <cstddef>
@@ -127,6 +128,17 @@ struct TriangleIntersection {
 // Throws invalid_input.
 [[nodiscard]] TriangleIntersection intersect_exact(const Ray& ray, const Triangle& triangle,
                                                    const TriangleOptions& options = {});
+
+// docs/contract.md §8 on one triangle: the intersection (as `intersect`) when the ray passes through the triangle
+// under options.rule at an exact t in `interval` ([t_min, t_max], closed; the exact t compared with the doubles,
+// never a rounded t); nothing when it does not (a miss, behind, or t outside the interval). Throws invalid_input
+// (the ray, or the interval naming the bound).
+[[nodiscard]] std::optional<TriangleIntersection> intersect(const Ray& ray, const RayInterval& interval,
+                                                            const Triangle& triangle, const TriangleOptions& options = {});
+// The same in exact rationals alone (the reference).
+[[nodiscard]] std::optional<TriangleIntersection> intersect_exact(const Ray& ray, const RayInterval& interval,
+                                                                  const Triangle& triangle,
+                                                                  const TriangleOptions& options = {});
 
 // Möller–Trumbore (1997) in plain binary64: e1 = b − a, e2 = c − a, P = d × e2, det = e1·P, T = o − a,
 // u = T·P/det, Q = T × e1, v = d·Q/det, t = e2·Q/det, barycentric (1 − u − v, u, v). Its own closed test

@@ -85,4 +85,14 @@ template <class Candidate>
   return true;
 }
 
+// The same for one plane or triangle on its own (the single-primitive queries of docs/contract.md §8: plane_api.cpp,
+// triangle_api.cpp): whether the ray hits it with its exact t in the valid `interval`. Classified by the
+// nearest-hit module's candidates, so the hit and its t against the bounds are decided as in every scene.
+[[nodiscard]] bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Plane& plane);
+[[nodiscard]] bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Triangle& triangle,
+                                        TriangleRule rule);
+// The exact references: rationals (exact::compare_plane_t_with, exact::compare_triangle_t_with) for a hit's t.
+[[nodiscard]] bool exact_t_within_interval(const Ray& ray, const RayInterval& interval, const Plane& plane);
+[[nodiscard]] bool exact_t_within_interval(const Ray& ray, const RayInterval& interval, const Triangle& triangle);
+
 }  // namespace raykernel::detail

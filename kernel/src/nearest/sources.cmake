@@ -1,7 +1,7 @@
 # nearest: the nearest hit over every kind of surface — the module (candidates, search, the certified comparison of
 # two t values, the exact stage across kinds), the screen, the entry points for plane sets and scenes.
 target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/nearest_hit.cpp ${CMAKE_CURRENT_LIST_DIR}/exact_nearest.cpp
-                                 ${CMAKE_CURRENT_LIST_DIR}/nearest_stages.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/nearest_stages.cpp ${CMAKE_CURRENT_LIST_DIR}/interval_bound.cpp
                                  ${CMAKE_CURRENT_LIST_DIR}/nearest_screen_portable.cpp)
 # nearest_hit's screen (nearest_screen.hpp), once per instruction set: AVX2, or portable.
 if(RAYKERNEL_ISA_VARIANTS)

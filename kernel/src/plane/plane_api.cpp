@@ -12,6 +12,7 @@
 #include "core/fp_probe.hpp"
 #include "plane/ray_plane_formula.hpp"
 #include "core/validation.hpp"
+#include "nearest/interval_bound.hpp"
 
 #include <limits>
 #include <optional>
@@ -97,6 +98,25 @@ Intersection intersect_exact(const Ray& ray, const Plane& plane) {
   return detail::in_default_fp_environment([&] {
     throw_if_invalid(ray, plane);
     return detail::exact::intersect(ray, plane);
+  });
+}
+
+std::optional<Intersection> intersect(const Ray& ray, const RayInterval& interval, const Plane& plane) {
+  return detail::in_default_fp_environment([&]() -> std::optional<Intersection> {
+    throw_if_invalid(ray, plane);
+    detail::throw_if_invalid_interval(interval);
+    if (!detail::hits_within_interval(ray, interval, plane)) return std::nullopt;
+    return certified_intersection(ray, plane);
+  });
+}
+
+std::optional<Intersection> intersect_exact(const Ray& ray, const RayInterval& interval, const Plane& plane) {
+  return detail::in_default_fp_environment([&]() -> std::optional<Intersection> {
+    throw_if_invalid(ray, plane);
+    detail::throw_if_invalid_interval(interval);
+    const Intersection x = detail::exact::intersect(ray, plane);
+    if (x.relation != Relation::hit || !detail::exact_t_within_interval(ray, interval, plane)) return std::nullopt;
+    return x;
   });
 }
 

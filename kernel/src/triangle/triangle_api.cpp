@@ -11,6 +11,7 @@
 #include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
 #include "core/validation.hpp"
+#include "nearest/interval_bound.hpp"
 
 #include <limits>
 #include <optional>
@@ -65,6 +66,28 @@ TriangleIntersection intersect_exact(const Ray& ray, const Triangle& triangle, c
   return detail::in_default_fp_environment([&] {
     throw_if_invalid(ray, triangle);
     return detail::exact::intersect_triangle(ray, triangle, options);
+  });
+}
+
+std::optional<TriangleIntersection> intersect(const Ray& ray, const RayInterval& interval, const Triangle& triangle,
+                                              const TriangleOptions& options) {
+  return detail::in_default_fp_environment([&]() -> std::optional<TriangleIntersection> {
+    throw_if_invalid(ray, triangle);
+    detail::throw_if_invalid_interval(interval);
+    if (!detail::hits_within_interval(ray, interval, triangle, options.rule)) return std::nullopt;
+    return certified(ray, triangle, options).intersection;
+  });
+}
+
+std::optional<TriangleIntersection> intersect_exact(const Ray& ray, const RayInterval& interval,
+                                                    const Triangle& triangle, const TriangleOptions& options) {
+  return detail::in_default_fp_environment([&]() -> std::optional<TriangleIntersection> {
+    throw_if_invalid(ray, triangle);
+    detail::throw_if_invalid_interval(interval);
+    const TriangleIntersection x = detail::exact::intersect_triangle(ray, triangle, options);
+    if (x.relation != TriangleRelation::hit || !detail::exact_t_within_interval(ray, interval, triangle))
+      return std::nullopt;
+    return x;
   });
 }
 
