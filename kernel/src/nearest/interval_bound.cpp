@@ -11,7 +11,7 @@
 #include "occlusion/exact_occlusion.hpp"
 #include "plane/ray_plane_cascade.hpp"
 
-#include <limits>
+#include <cmath>
 
 namespace raykernel::detail {
 
@@ -47,7 +47,7 @@ namespace {
 template <class Compare>
 bool within_bounds(const RayInterval& interval, const Compare& compare_with) {
   if (interval.t_min > 0 && compare_with(interval.t_min) < 0) return false;
-  return !(interval.t_max < std::numeric_limits<double>::infinity() && compare_with(interval.t_max) > 0);
+  return std::isinf(interval.t_max) || compare_with(interval.t_max) <= 0;  // (a valid t_max is not −inf)
 }
 }  // namespace
 
