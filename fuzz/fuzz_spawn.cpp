@@ -4,7 +4,8 @@
 // of P in the format (exact comparisons with the neighbouring values), the stepped coordinate k values of the
 // format away from P̂_i along the axis of the largest |N_i| in direction sign(N_i)·s, σ(origin) = s, and the
 // value one step back (k ≥ 1) not on side s — so k is the smallest, and the new ray from the origin meets the
-// source triangle's plane only at t < 0.
+// source triangle's plane only at t < 0. spawn's certified fast path is also checked against spawn_exact (the exact
+// path alone): the same origin bit for bit, or the same reason.
 //
 // Input: byte 0 is the mode (bit 0: binary32; bit 1: spawn_to, the last three numbers the target q; bit 2: the
 // hit point given as a point, the first three numbers; bit 7: structured numbers), then 18 numbers: raw
@@ -141,6 +142,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const raykernel::invalid_input& e) {
     reason = e.what();
     check(!reason.empty(), "invalid_input without a reason");
+  }
+
+  // The certified fast path (spawn_certified.cpp) against the exact path alone: the same origin bit for bit, or
+  // the same reason.
+  {
+    std::optional<raykernel::SpawnedOrigin> exact;
+    std::string exact_reason;
+    try {
+      exact = to ? raykernel::spawn_to_exact(hit, tri, w_or_q, format) : raykernel::spawn_exact(hit, tri, w_or_q, format);
+    } catch (const raykernel::invalid_input& e) {
+      exact_reason = e.what();
+    }
+    check(reason == exact_reason, "spawn and spawn_exact give different reasons");
+    check(answer.has_value() == exact.has_value(), "spawn and spawn_exact disagree on validity");
+    if (answer && exact) {
+      const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+      check(bits(answer->origin.x) == bits(exact->origin.x) && bits(answer->origin.y) == bits(exact->origin.y) &&
+                bits(answer->origin.z) == bits(exact->origin.z) && answer->steps == exact->steps,
+            "spawn and spawn_exact give different origins");
+    }
   }
 
   // The oracle.

@@ -822,3 +822,28 @@ From Raykernel Require SpawnAffine.
 Definition main_results_28 := (@SpawnAffine.affine_enclosure_sound).
 Goal True. idtac "@@ affine_enclosure_sound". Abort.
 Print Assumptions main_results_28.
+(** triangle/: the open segment from p to q against a triangle (occlusion/segment_triangle.hpp,
+    segment_meets_triangle): with S(x) = (x − a)·((b − a) × (c − a)), the §6 values of the line p + t·(q − p) are
+    num = −S(p), den = S(q) − S(p), π(u, v) = orient3d(p, q, u, v), and S(x) = orient3d(a, x, b, c); t = num/den
+    lies in (0, 1) exactly when S(p), S(q) are nonzero with opposite signs, and then num, den have S(q)'s sign *)
+From Raykernel Require SegmentSigns.
+Definition main_results_29 :=
+  (@SegmentSigns.segment_num_is_side,
+   @SegmentSigns.segment_den_is_difference,
+   @SegmentSigns.segment_t_in_open_unit,
+   @SegmentSigns.segment_crossing_signs,
+   @SegmentSigns.segment_plane_test_correct,
+   @SegmentSigns.segment_side_is_orient3d,
+   @SegmentSigns.segment_pi_is_orient3d,
+   @SegmentSigns.orient3d_is_exact).
+Goal True. idtac "@@ segment_num_is_side segment_den_is_difference segment_t_in_open_unit segment_crossing_signs segment_plane_test_correct segment_side_is_orient3d segment_pi_is_orient3d orient3d_is_exact". Abort.
+Print Assumptions main_results_29.
+(** spawn/: the twins of midpoint_offset and affine_enclosure (spawn/spawn_certified.hpp; runner group spawn): for
+    every bit pattern, finite results mean finite inputs and the values of SpawnRounding.v's and SpawnAffine.v's
+    models, so the enclosures hold for the bits *)
+From Raykernel Require SpawnTwins.
+Definition main_results_30 :=
+  (@SpawnTwins.midpoint_offset_twin_sound,
+   @SpawnTwins.affine_enclosure_twin_sound).
+Goal True. idtac "@@ midpoint_offset_twin_sound affine_enclosure_twin_sound". Abort.
+Print Assumptions main_results_30.

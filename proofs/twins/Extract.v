@@ -24,6 +24,7 @@ From Raykernel Require TriangleIntersectPublic.
 From Raykernel Require OrientTwins.
 From Raykernel Require QuotientBoundary.
 From Raykernel Require SphereStages.
+From Raykernel Require SpawnTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -468,6 +469,15 @@ Definition run_sphere_root_side (x : list Z) : list Z :=
     [sign_code (SphereStages.sphere_root_side_b a b c (if root =? 0 then (-1) else 1) (f mx) (f my))]
   | _ => [] end.
 
+(** spawn/spawn_certified.hpp (SpawnTwins.v): [midpoint_offset] on "x y o" and [affine_enclosure] on
+    "o D.hi D.lo D.radius d N.hi N.lo N.radius" (the C++ argument order); each returns its enclosure (hi, lo,
+    radius). *)
+Definition run_midpoint_offset (x : list Z) : list Z :=
+  match x with [x0; y0; o0] => enc_bits (SpawnTwins.midpoint_offset_b (f x0) (f y0) (f o0)) | _ => [] end.
+Definition run_affine_enclosure (x : list Z) : list Z :=
+  match x with [o; dh; dl; dr; d; nh; nl; nr] =>
+    enc_bits (SpawnTwins.affine_enclosure_b (f o) (enc dh dl dr) (f d) (enc nh nl nr)) | _ => [] end.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -479,4 +489,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_cascade_intersect run_cascade_relation
   run_tri_cascade_intersect run_tri_cascade_relation
   run_orient2d run_orient3d
-  run_sphere_expansions run_sphere_abc_expansions run_sphere_root_side.
+  run_sphere_expansions run_sphere_abc_expansions run_sphere_root_side
+  run_midpoint_offset run_affine_enclosure.

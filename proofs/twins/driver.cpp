@@ -38,6 +38,7 @@
 #include "triangle/ray_triangle_stages.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
 #include "sphere/ray_sphere_stages.hpp"
+#include "spawn/spawn_certified.hpp"
 #include "core/validation.hpp"
 #include <raykernel/triangle.hpp>
 
@@ -457,6 +458,22 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          SphereExpansions s;
          sphere_abc_expansions(sphere_query_ray(x), sphere_query_sphere(x), s);
          o.i(sign_code(sphere_root_side(s, w[10] == 0 ? -1 : 1, x[11], x[12])));
+         return true;
+       }},
+      // spawn/spawn_certified.hpp (proofs/spawn/SpawnTwins.v): midpoint_offset on "x y o" and affine_enclosure on
+      // "o D.hi D.lo D.radius d N.hi N.lo N.radius"; each the enclosure (hi, lo, radius).
+      {"midpoint_offset",
+       [](const Words& w, Out& o) {
+         if (w.size() != 3) return false;
+         const std::vector<double> x = doubles(w);
+         o = enclosure_out(midpoint_offset(x[0], x[1], x[2]));
+         return true;
+       }},
+      {"affine_enclosure",
+       [](const Words& w, Out& o) {
+         if (w.size() != 8) return false;
+         const std::vector<double> x = doubles(w);
+         o = enclosure_out(affine_enclosure(x[0], Enclosure{x[1], x[2], x[3]}, x[4], Enclosure{x[5], x[6], x[7]}));
          return true;
        }},
       {"nearest_compare",

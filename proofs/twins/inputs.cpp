@@ -17,6 +17,7 @@
 #include "core/eft.hpp"
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_stages.hpp"
+#include "triangle/ray_triangle_stages.hpp"
 
 #include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
@@ -24,6 +25,7 @@
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/sphere.hpp>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -32,6 +34,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -356,6 +359,158 @@ Args word_then(std::uint64_t word, const std::vector<double>& query) {
 }
 Args word_then_triangle_query(Source& s, std::uint64_t word) { return word_then(word, s.triangle_query()); }
 
+// ---- spawn (spawn/spawn_certified.hpp, proofs/spawn/SpawnTwins.v) ----------------------------------------------
+
+// A double with a random significand and sign and the biased exponent e, clamped to [0, 2046] (0: subnormal or zero).
+double with_exponent(Source& s, long e) {
+  const auto biased = static_cast<std::uint64_t>(std::clamp(e, 0L, 2046L));
+  return std::bit_cast<double>((s.word() & 0x800fffffffffffffULL) | (biased << 52));
+}
+double any_sign(Source& s, double x) { return s.chance(2) ? x : -x; }
+double neighbour(Source& s, double x) { return std::nextafter(x, s.chance(2) ? HUGE_VAL : -HUGE_VAL); }
+
+// A hard ray–triangle query (1 in 4 with its origin just off the plane) and the triangle's stage-2 enclosures of
+// num and den, as spawn's rounded_hit gets them (triangle_quotient_compensated).
+struct SpawnQuery {
+  std::vector<double> q;  // "o d a b c"
+  detail::TriangleQuotientStage2 v;
+};
+SpawnQuery spawn_query(Source& s) {
+  SpawnQuery r{s.chance(4) ? s.near_plane_triangle_query() : s.triangle_query(), {}};
+  const std::vector<double>& q = r.q;
+  const Ray ray{{q[0], q[1], q[2]}, {q[3], q[4], q[5]}};
+  const Triangle tri{{q[6], q[7], q[8]}, {q[9], q[10], q[11]}, {q[12], q[13], q[14]}};
+  r.v = detail::triangle_quotient_compensated(ray, tri);
+  return r;
+}
+
+// "x y o" of midpoint_offset, the enclosure of x + y − 2·o ((x + y)/2 a rounding boundary between the doubles x, y
+// beside a hit point's coordinate, o the ray origin's coordinate): 1 in 8 raw; else one of
+//   uniformly random words;
+//   x, y adjacent doubles (1 in 4: x = y, as round_binary32_from_binary64 asks at r = r), o near them: x or y,
+//     1–4 ulps from x, x·(1 ± 2^-j), or x·2^k (so that the TwoSums' low parts are nonzero and l + e rounds);
+//   the call site: a hard ray–triangle query's coordinate x = o_k + (num.hi/den.hi)·d_k, its neighbour, o_k;
+//   three random significands at the exponents E, E − a, E − b (a, b ≤ 120) in any order (l + e inexact);
+//   subnormal: x, y, o below or at the smallest normal 2^-1022 (l + e exact);
+//   huge: x near 2^1023 with its neighbour (x + y overflows), o huge (2·o overflows) or the largest finite;
+// then 1 in 8 with one of the three a raw value.
+Args midpoint_offset_args(Source& s) {
+  if (s.chance(8)) return raw_args(s, 3);
+  Args a(3);
+  switch (s.below(6)) {
+    case 0:
+      for (double& v : a) v = std::bit_cast<double>(s.word());
+      break;
+    case 1: {
+      const double x = with_exponent(s, 1023 - 60 + static_cast<long>(s.below(120)));
+      const double y = s.chance(4) ? x : neighbour(s, x);
+      double o = x;
+      switch (s.below(4)) {
+        case 0:
+          if (s.chance(2)) o = y;
+          break;
+        case 1:
+          for (std::uint64_t k = 1 + s.below(4); k > 0; --k) o = neighbour(s, o);
+          break;
+        case 2:
+          o = x * (1 + any_sign(s, std::ldexp(1.0, -1 - static_cast<int>(s.below(60)))));
+          break;
+        default:
+          o = any_sign(s, std::ldexp(x, static_cast<int>(s.below(121)) - 60));
+      }
+      a = {x, y, o};
+      break;
+    }
+    case 2: {
+      const SpawnQuery sq = spawn_query(s);
+      const std::size_t k = static_cast<std::size_t>(s.below(3));
+      const double o = sq.q[k], d = sq.q[3 + k];
+      const double x = o + (sq.v.num.hi / sq.v.den.hi) * d;
+      a = {x, s.chance(4) ? x : neighbour(s, x), o};
+      break;
+    }
+    case 3: {
+      const long e = 200 + static_cast<long>(s.below(1700));
+      const long exponents[3] = {e, e - static_cast<long>(s.below(121)), e - static_cast<long>(s.below(121))};
+      const std::size_t first = static_cast<std::size_t>(s.below(3));
+      for (std::size_t i = 0; i < 3; ++i) a[i] = with_exponent(s, exponents[(first + i) % 3]);
+      break;
+    }
+    case 4: {
+      const double x = with_exponent(s, static_cast<long>(s.below(2)));
+      a = {x, s.chance(2) ? neighbour(s, x) : with_exponent(s, static_cast<long>(s.below(2))),
+           s.chance(3) ? x : with_exponent(s, static_cast<long>(s.below(3)))};
+      break;
+    }
+    default: {
+      const double x = with_exponent(s, 2040 + static_cast<long>(s.below(7)));
+      const double o = s.chance(4) ? any_sign(s, std::numeric_limits<double>::max())
+                                   : with_exponent(s, 2020 + static_cast<long>(s.below(27)));
+      a = {x, s.chance(2) ? neighbour(s, x) : with_exponent(s, 2040 + static_cast<long>(s.below(7))), o};
+    }
+  }
+  if (s.chance(8)) a[s.below(3)] = s.raw();
+  return a;
+}
+
+// An enclosure (hi, lo, radius) as affine_enclosure may get one, not normalized: hi at a moderate exponent (1 in 8:
+// ±0); lo ±0, at or below u·|hi| (normalized), between u·|hi| and |hi|, or above |hi|; the radius 0, far below hi,
+// of hi's size, up to 2^1000 times it, the largest finite, or subnormal.
+std::array<double, 3> loose_enclosure(Source& s) {
+  const long e = 1023 - 100 + static_cast<long>(s.below(200));
+  const double hi = s.chance(8) ? any_sign(s, 0.0) : with_exponent(s, e);
+  double lo = 0;
+  switch (s.below(4)) {
+    case 0: lo = any_sign(s, 0.0); break;
+    case 1: lo = with_exponent(s, e - 53 - static_cast<long>(s.below(20))); break;
+    case 2: lo = with_exponent(s, e - static_cast<long>(s.below(53))); break;
+    default: lo = with_exponent(s, e + 1 + static_cast<long>(s.below(8)));
+  }
+  double radius = 0;
+  switch (s.below(6)) {
+    case 0: break;
+    case 1: radius = std::abs(with_exponent(s, e - 60 - static_cast<long>(s.below(60)))); break;
+    case 2: radius = std::abs(with_exponent(s, e - 5 + static_cast<long>(s.below(10)))); break;
+    case 3: radius = std::abs(with_exponent(s, e + static_cast<long>(s.below(1000)))); break;
+    case 4: radius = std::numeric_limits<double>::max(); break;
+    default: radius = std::abs(with_exponent(s, 0));
+  }
+  return {hi, lo, radius};
+}
+
+// "o D.hi D.lo D.radius d N.hi N.lo N.radius" of affine_enclosure, the enclosure of o·D + d·N: 1 in 16 wholly raw;
+// half the call site (a hard ray–triangle query's o_k, den's stage-2 enclosure, d_k, num's: the numerator
+// o_k·den + d_k·num of the hit point's coordinate); half loose enclosures (loose_enclosure) with o and d at moderate
+// or extreme exponents (products that underflow or overflow), ±0 or random words; 1 in 8 with one field raw.
+Args affine_enclosure_args(Source& s) {
+  if (s.chance(16)) return raw_args(s, 8);
+  Args a;
+  if (s.chance(2)) {
+    const SpawnQuery sq = spawn_query(s);
+    const std::size_t k = static_cast<std::size_t>(s.below(3));
+    const detail::Enclosure& D = sq.v.den;
+    const detail::Enclosure& N = sq.v.num;
+    a = {sq.q[k], D.hi, D.lo, D.radius, sq.q[3 + k], N.hi, N.lo, N.radius};
+  } else {
+    auto coordinate = [&s]() -> double {
+      switch (s.below(5)) {
+        case 0: return with_exponent(s, static_cast<long>(s.below(60)));
+        case 1: return with_exponent(s, 1990 + static_cast<long>(s.below(57)));
+        case 2: return any_sign(s, 0.0);
+        case 3: return std::bit_cast<double>(s.word());
+        default: return with_exponent(s, 1023 - 60 + static_cast<long>(s.below(120)));
+      }
+    };
+    const double o = coordinate();
+    const std::array<double, 3> D = loose_enclosure(s);
+    const double d = coordinate();
+    const std::array<double, 3> N = loose_enclosure(s);
+    a = {o, D[0], D[1], D[2], d, N[0], N[1], N[2]};
+  }
+  if (s.chance(8)) a[s.below(8)] = s.raw();
+  return a;
+}
+
 // A quotient at a rounding boundary (round_quotient_at_boundaries): a candidate q (a few significant bits,
 // a power of two, or raw), den = D_1 (+ D_2) and num = (q + δ)·den as TwoProducts, δ = 0, half the gap above
 // or below q (t on a midpoint: a tie) or a random offset, sometimes with a tiny extra component (t just off
@@ -599,6 +754,10 @@ const std::map<std::string, Generator>& generators() {
       {"sphere_expansions", [](Source& s) { return s.sphere_query(); }},
       {"sphere_abc_expansions", [](Source& s) { return s.sphere_query(); }},
       {"sphere_root_side", [](Source& s) { return s.sphere_root_side_args(); }},
+      // spawn's two enclosures (proofs/spawn/SpawnTwins.v): midpoint_offset's "x y o" and affine_enclosure's
+      // "o D d N" (above)
+      {"midpoint_offset", [](Source& s) { return midpoint_offset_args(s); }},
+      {"affine_enclosure", [](Source& s) { return affine_enclosure_args(s); }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -49,6 +49,8 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("sphere_expansions", Twins.run_sphere_expansions);
   ("sphere_abc_expansions", Twins.run_sphere_abc_expansions);
   ("sphere_root_side", Twins.run_sphere_root_side);
+  ("midpoint_offset", Twins.run_midpoint_offset);
+  ("affine_enclosure", Twins.run_affine_enclosure);
 ]
 
 let () =

@@ -20,6 +20,13 @@
 // overflow), by rationals (exact::segment_tie_break_signs). They are asked only for a π that is exactly 0 (a
 // segment through an edge or vertex), so no binary64 filter precedes them. The decision from the signs is §6's
 // own (ray_triangle_formula.hpp's classify_triangle), so the segment and the ray share one rule.
+//
+// Certified by:
+//   proofs/triangle/SegmentSigns.v, `segment_num_is_side`, `segment_den_is_difference`, `segment_t_in_open_unit`;
+//   proofs/triangle/SegmentSigns.v, `segment_crossing_signs`, `segment_plane_test_correct`;
+//   proofs/triangle/SegmentSigns.v, `segment_side_is_orient3d`, `segment_pi_is_orient3d`, `orient3d_is_exact`;
+//   (the identities above, and that each orient3d_sign call's argument order gives S(p), S(q) and the π);
+//   proofs/orient/OrientFilter.v, `orient3d_filter_sound` (the filter of each sign).
 #pragma once
 
 #include "core/expansion_value.hpp"

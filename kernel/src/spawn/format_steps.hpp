@@ -42,6 +42,11 @@ inline std::int64_t ordinal(double x, OriginFormat f) {
   return x < 0 ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
 }
 
+// The ordinal of the largest finite value of the format (its bits: below 2^63).
+inline std::uint64_t largest_ordinal(OriginFormat f) {
+  return f == OriginFormat::binary32 ? std::uint64_t{0x7f7fffff} : std::uint64_t{0x7fefffffffffffff};
+}
+
 // The value of the format with ordinal n, or ±inf beyond the largest finite value.
 inline double from_ordinal(std::int64_t n, OriginFormat f) {
   const std::uint64_t magnitude = n < 0 ? static_cast<std::uint64_t>(-n) : static_cast<std::uint64_t>(n);

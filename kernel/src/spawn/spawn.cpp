@@ -127,28 +127,39 @@ SpawnedOrigin spawn_on_side(const HitPoint& hit, const Triangle& source, int sid
   return {rounded, steps};
 }
 
+// Every zero coordinate of an origin as +0: §9 leaves a zero's sign unspecified, and the two paths reach a zero
+// differently (a step from −2^-1074 up is +0; MPFR rounds a negative value up to −0), so one sign is chosen, for
+// answers that are the same bits whichever path decided them (tests/spawn_test.cpp, fuzz/fuzz_spawn.cpp).
+SpawnedOrigin with_positive_zeros(SpawnedOrigin o) noexcept {
+  for (double* c : {&o.origin.x, &o.origin.y, &o.origin.z})
+    if (*c == 0) *c = 0;
+  return o;
+}
 }  // namespace
 
 SpawnedOrigin spawn(const HitPoint& hit, const Triangle& source, const Vec3& direction, OriginFormat format) {
   return detail::in_default_fp_environment([&] {
-    if (const auto fast = detail::spawn_certified(hit, source, false, direction, format)) return *fast;
-    return spawn_on_side(hit, source, 0, direction, format);
+    if (const auto fast = detail::spawn_certified(hit, source, false, direction, format))
+      return with_positive_zeros(*fast);
+    return with_positive_zeros(spawn_on_side(hit, source, 0, direction, format));
   });
 }
 
 SpawnedOrigin spawn_to(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
   return detail::in_default_fp_environment([&] {
-    if (const auto fast = detail::spawn_certified(hit, source, true, target, format)) return *fast;
-    return spawn_on_side(hit, source, 1, target, format);
+    if (const auto fast = detail::spawn_certified(hit, source, true, target, format)) return with_positive_zeros(*fast);
+    return with_positive_zeros(spawn_on_side(hit, source, 1, target, format));
   });
 }
 
 SpawnedOrigin spawn_exact(const HitPoint& hit, const Triangle& source, const Vec3& direction, OriginFormat format) {
-  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 0, direction, format); });
+  return detail::in_default_fp_environment(
+      [&] { return with_positive_zeros(spawn_on_side(hit, source, 0, direction, format)); });
 }
 
 SpawnedOrigin spawn_to_exact(const HitPoint& hit, const Triangle& source, const Vec3& target, OriginFormat format) {
-  return detail::in_default_fp_environment([&] { return spawn_on_side(hit, source, 1, target, format); });
+  return detail::in_default_fp_environment(
+      [&] { return with_positive_zeros(spawn_on_side(hit, source, 1, target, format)); });
 }
 
 Vec3 rounded_hit_point(const HitPoint& hit, const Triangle& source, OriginFormat format) {

@@ -29,6 +29,8 @@
 //   overflow, den or w·N too close to 0 for stage 2 and inexact in expansions) returns nothing.
 // Certified by:
 //   proofs/spawn/SpawnAffine.v, `affine_enclosure_sound`;
+//   proofs/spawn/SpawnTwins.v, `midpoint_offset_twin_sound`, `affine_enclosure_twin_sound` (the twins of
+//   midpoint_offset and affine_enclosure, spawn_certified.hpp; differential runner, group spawn);
 //   proofs/plane/QuotientRounding.v, `round_quotient_sound`;
 //   proofs/spawn/SpawnRounding.v, `midpoint_offset_encloses`, `midpoint_side_sign`, `binary32_through_binary64`;
 //   proofs/spawn/SpawnRounding.v, `binary32_midpoint_side`;
@@ -79,7 +81,7 @@ constexpr int max_candidate_walk = 3;
 // σ(x) = sign((x − a)·N): stage 2 of the ray–triangle num of a ray from x, (a − x)·N, of the opposite sign
 // (triangle/ray_triangle_stages.hpp); then the orientation's stages (orient/orient_predicates.hpp's orient3d_sign:
 // filter, exact expansions, rationals), as −orient3d(x; a, b, c), since det(a − x, b − x, c − x) = (a − x)·N.
-RAYKERNEL_MULTIVERSION [[nodiscard]] Sign plane_side_compensated(const Vec3& x, const Triangle& t) noexcept {
+RAYKERNEL_MULTIVERSION Sign plane_side_compensated(const Vec3& x, const Triangle& t) noexcept {
   const Sign num = enclosure_sign(triangle_num_compensated(x, t));
   return is_certain(num) ? static_cast<Sign>(-static_cast<int>(num)) : Sign::uncertain;
 }
@@ -90,7 +92,7 @@ RAYKERNEL_MULTIVERSION [[nodiscard]] Sign plane_side_compensated(const Vec3& x, 
 
 // sign(w·N): the ray–triangle den of a ray along w, from stage 2, then from its exact expansion; 0 when neither is
 // certain or it is exactly 0 (invalid input: the exact path names it).
-RAYKERNEL_MULTIVERSION [[nodiscard]] Sign direction_side_compensated(const Vec3& w, const Triangle& t) noexcept {
+RAYKERNEL_MULTIVERSION Sign direction_side_compensated(const Vec3& w, const Triangle& t) noexcept {
   return enclosure_sign(triangle_den_compensated(w, t));
 }
 [[nodiscard]] int direction_side_of(const Vec3& w, const Triangle& t) noexcept {
@@ -98,25 +100,6 @@ RAYKERNEL_MULTIVERSION [[nodiscard]] Sign direction_side_compensated(const Vec3&
   if (is_certain(compensated)) return static_cast<int>(compensated);
   const Sign expansion = value_expansion(Ray{t.a, w}, t, value_den).sign();
   return is_certain(expansion) ? static_cast<int>(expansion) : 0;
-}
-
-// midpoint_offset (spawn_certified.hpp): an enclosure of x + y − 2·o.
-[[nodiscard]] Enclosure midpoint_offset(double x, double y, double o) noexcept {
-  const DoubleDouble s = two_sum(x, y);
-  const DoubleDouble h = two_sum(s.hi, -(2 * o));
-  const double lo = h.lo + s.lo;
-  return {h.hi, lo, raykernel::bounds::midpoint_offset_relative * std::fabs(lo)};
-}
-
-// affine_enclosure (spawn_certified.hpp): an enclosure of o·D + d·N.
-[[nodiscard]] [[gnu::always_inline]] inline Enclosure affine_enclosure(double o, const Enclosure& D, double d,
-                                                                     const Enclosure& N) noexcept {
-  const DoubleDouble dd = two_sum(D.hi, D.lo), nn = two_sum(N.hi, N.lo);
-  const double a[3] = {dd.hi, nn.hi, 0}, alpha[3] = {dd.lo, nn.lo, 0}, b[3] = {o, d, 0};
-  const Enclosure v = compensated_dot3(a, alpha, b, dot3_rounded(a, b));
-  const double propagated = std::fabs(o) * D.radius + std::fabs(d) * N.radius;
-  return {v.hi, v.lo, raykernel::bounds::affine_propagation_factor * (propagated + v.radius) +
-                          raykernel::bounds::affine_absolute};
 }
 
 // One coordinate of the crossing P = o + (num/den)·d: its side against midpoints, and a candidate for RN(P_k).
@@ -160,7 +143,7 @@ template <class Side>
 }
 
 // P̂, or nothing.
-RAYKERNEL_MULTIVERSION [[nodiscard]] std::optional<Vec3> rounded_hit(const HitPoint& hit, const Triangle& source, OriginFormat format) noexcept {
+RAYKERNEL_MULTIVERSION std::optional<Vec3> rounded_hit(const HitPoint& hit, const Triangle& source, OriginFormat format) noexcept {
   const bool binary32 = format == OriginFormat::binary32;
   if (hit.kind == HitPoint::Kind::point) {
     if (!finite(hit.point)) return std::nullopt;
@@ -244,13 +227,26 @@ std::optional<SpawnedOrigin> spawn_certified(const HitPoint& hit, const Triangle
   const int delta = axis->sign * s;
   const std::int64_t start = spawn_steps::ordinal(coordinate(*rounded, axis->index), format);
   Vec3 origin = *rounded;
-  const auto moved = [&](std::int64_t k) {  // P̂ moved k values of the format along axis i, and whether σ = s
-    coordinate(origin, axis->index) = spawn_steps::from_ordinal(start + delta * k, format);
-    return std::isfinite(coordinate(origin, axis->index)) && plane_side_of(origin, source) == s;
+  // The finite values left after P̂_i in direction δ: ordinals run from −m to m, m that of the largest finite
+  // value (below 2^63); the differences are taken modulo 2^64, where they are exact (below 2^64).
+  const std::uint64_t largest = spawn_steps::largest_ordinal(format);
+  const std::uint64_t room =
+      delta > 0 ? largest - static_cast<std::uint64_t>(start) : static_cast<std::uint64_t>(start) + largest;
+  const auto place = [&](std::int64_t k) {  // the origin: P̂ moved k ≤ room values of the format along axis i
+    const auto steps = static_cast<std::uint64_t>(k);
+    const std::uint64_t target = delta > 0 ? static_cast<std::uint64_t>(start) + steps
+                                           : static_cast<std::uint64_t>(start) - steps;
+    coordinate(origin, axis->index) = spawn_steps::from_ordinal(static_cast<std::int64_t>(target), format);
+  };
+  const auto moved = [&](std::int64_t k) {  // whether σ = s after k moves
+    place(k);
+    return plane_side_of(origin, source) == s;
   };
   std::int64_t below = 0, above = 1;  // σ ≠ s after `below` moves; `above` is the next candidate
-  while (!moved(above)) {
-    if (!std::isfinite(coordinate(origin, axis->index)) || above > max_certified_steps) return std::nullopt;
+  while (true) {
+    // Beyond the largest finite value, or too many moves for this search: the exact path decides (and names it).
+    if (static_cast<std::uint64_t>(above) > room || above > max_certified_steps) return std::nullopt;
+    if (moved(above)) break;
     below = above;
     above *= 2;
   }
@@ -258,7 +254,7 @@ std::optional<SpawnedOrigin> spawn_certified(const HitPoint& hit, const Triangle
     const std::int64_t middle = below + (above - below) / 2;
     (moved(middle) ? above : below) = middle;
   }
-  coordinate(origin, axis->index) = spawn_steps::from_ordinal(start + delta * above, format);
+  place(above);
   return SpawnedOrigin{origin, static_cast<std::uint64_t>(above)};
 }
 
