@@ -67,8 +67,8 @@
 namespace raykernel::detail {
 namespace {
 
-// The largest number of moves searched here (2^61: start ± k stays within int64; a k beyond it, possible only
-// across most of the format's range, goes to the exact path).
+// The largest number of moves searched here (2^61, so that the doubling stays within int64; the end of the format's
+// range bounds the search too, below). A larger k, possible only across most of the range, goes to the exact path.
 constexpr std::int64_t max_certified_steps = std::int64_t{1} << 61;
 constexpr int max_candidate_walk = 3;
 
