@@ -9,31 +9,22 @@
 #include "nearest/plane_candidate.hpp"
 #include "nearest/triangle_candidate.hpp"
 #include "occlusion/exact_occlusion.hpp"
-#include "plane/ray_plane_cascade.hpp"
 
 #include <cmath>
 
 namespace raykernel::detail {
 
-bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Plane& plane) {
+std::optional<double> hit_t_within_interval(const Ray& ray, const RayInterval& interval, const Plane& plane) {
   const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const double n[3] = {plane.normal.x, plane.normal.y, plane.normal.z};
   const double diff[3] = {plane.point.x - o[0], plane.point.y - o[1], plane.point.z - o[2]};
   HitCandidate c(0, ray, plane, dot3_rounded(d, n), dot3_rounded(diff, n));
-  const auto den = static_cast<Sign>(dot3_filter_lanes(c.den, bounds::filter_den_relative));
-  const auto num = static_cast<Sign>(dot3_filter_lanes(c.num, bounds::filter_num_relative));
-  if (is_certain(den) && is_certain(num)) {
-    c.num_sign = num;
-    c.den_sign = den;
-  } else {
-    const CertifiedSigns signs = certified_signs(c.cascade());
-    c.num_sign = signs.num;
-    c.den_sign = signs.den;
-    c.relation_stage = signs.stage;
-  }
-  if (relation_from_signs(static_cast<int>(c.num_sign), static_cast<int>(c.den_sign)) != Relation::hit) return false;
-  return within_interval(ray, c, interval);
+  if (c.decide_signs(dot3_filter_lanes(c.den, bounds::filter_den_relative),
+                     dot3_filter_lanes(c.num, bounds::filter_num_relative)) != Relation::hit ||
+      !within_interval(ray, c, interval))
+    return std::nullopt;
+  return c.round_t();
 }
 
 bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Triangle& triangle, TriangleRule rule) {

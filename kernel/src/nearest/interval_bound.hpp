@@ -29,6 +29,7 @@
 #include <raykernel/interval.hpp>
 
 #include <cstddef>
+#include <optional>
 
 namespace raykernel::detail {
 
@@ -86,9 +87,11 @@ template <class Candidate>
 }
 
 // The same for one plane or triangle on its own (the single-primitive queries of docs/contract.md §8: plane_api.cpp,
-// triangle_api.cpp): whether the ray hits it with its exact t in the valid `interval`. Classified by the
-// nearest-hit module's candidates, so the hit and its t against the bounds are decided as in every scene.
-[[nodiscard]] bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Plane& plane);
+// triangle_api.cpp): whether the ray hits it with its exact t in the valid `interval` — for a plane, RN(t) then,
+// rounded by the same candidate. Classified by the nearest-hit module's candidates, so the hit and its t against
+// the bounds are decided as in every scene.
+[[nodiscard]] std::optional<double> hit_t_within_interval(const Ray& ray, const RayInterval& interval,
+                                                          const Plane& plane);
 [[nodiscard]] bool hits_within_interval(const Ray& ray, const RayInterval& interval, const Triangle& triangle,
                                         TriangleRule rule);
 // The exact references: rationals (exact::compare_plane_t_with, exact::compare_triangle_t_with) for a hit's t.

@@ -202,25 +202,15 @@ class NearestSearch {
                        std::int64_t num_filter) __attribute__((always_inline)) {
       const Plane& plane = planes[k];
       const int slot = best_ == Best::plane && plane_best_ == 0 ? 1 : 0;
-      if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
-        if (signs_say_behind(num_filter, den_filter)) return;
-        HitCandidate& c = plane_[slot].emplace(k, ray_, plane, den, num);
-        c.num_sign = static_cast<Sign>(num_filter);
-        c.den_sign = static_cast<Sign>(den_filter);
-        tracer_.plane_relation(Stage::filter);
-        if (!whole_ray && !within_interval(ray_, c, interval)) return;
-        offer(c, slot);
-      } else {
-        HitCandidate& c = plane_[slot].emplace(k, ray_, plane, den, num);
-        const CertifiedSigns signs = certified_signs(c.cascade());
-        tracer_.plane_relation(signs.stage);
-        if (relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den)) != Relation::hit) return;
-        c.num_sign = signs.num;
-        c.den_sign = signs.den;
-        c.relation_stage = signs.stage;
-        if (!whole_ray && !within_interval(ray_, c, interval)) return;
-        offer(c, slot);
-      }
+      // A plane behind by the filter's signs is set aside before a candidate is made.
+      if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane) && signs_say_behind(num_filter, den_filter))
+        return;
+      HitCandidate& c = plane_[slot].emplace(k, ray_, plane, den, num);
+      const Relation relation = c.decide_signs(den_filter, num_filter);
+      tracer_.plane_relation(c.relation_stage);
+      if (relation != Relation::hit) return;
+      if (!whole_ray && !within_interval(ray_, c, interval)) return;
+      offer(c, slot);
     };
     if (screen == nullptr) {
       for (const std::uint32_t k : candidates) {

@@ -20,6 +20,7 @@
 #include <raykernel/raykernel.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 
 namespace raykernel::detail {
@@ -64,6 +65,22 @@ struct HitCandidate {
   [[nodiscard]] const Enclosure& num_compensated() noexcept { return cascade().num_compensated(); }
   [[nodiscard]] const Enclosure& den_compensated() noexcept { return cascade().den_compensated(); }
   [[nodiscard]] const ExactExpansions& expansions() noexcept { return cascade().expansions(); }
+
+  // The signs of num and den, hence the relation: stage 1's when its filter certified both (den_filter, num_filter:
+  // dot3_filter_lanes of the kept values, which never certifies a zero), else the cascade's, with the stage that
+  // decided them — the one classification of a plane, for nearest_hit's search and the single-plane queries.
+  [[gnu::always_inline]] Relation decide_signs(std::int64_t den_filter, std::int64_t num_filter) noexcept {
+    if ((den_filter != uncertain_lane) & (num_filter != uncertain_lane)) [[likely]] {
+      num_sign = static_cast<Sign>(num_filter);
+      den_sign = static_cast<Sign>(den_filter);
+    } else {
+      const CertifiedSigns signs = certified_signs(cascade());
+      num_sign = signs.num;
+      den_sign = signs.den;
+      relation_stage = signs.stage;
+    }
+    return relation_from_signs(static_cast<int>(num_sign), static_cast<int>(den_sign));
+  }
 
   // RN(t), rounded the first time it is asked for: +0 when num = 0 exactly (decided with the relation), the
   // exact stage when the relation needed it (extreme exponents), else certified_quotient.

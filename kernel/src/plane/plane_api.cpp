@@ -105,8 +105,9 @@ std::optional<Intersection> intersect(const Ray& ray, const RayInterval& interva
   return detail::in_default_fp_environment([&]() -> std::optional<Intersection> {
     throw_if_invalid(ray, plane);
     detail::throw_if_invalid_interval(interval);
-    if (!detail::hits_within_interval(ray, interval, plane)) return std::nullopt;
-    return certified_intersection(ray, plane);
+    const std::optional<double> t = detail::hit_t_within_interval(ray, interval, plane);
+    if (!t) return std::nullopt;
+    return Intersection{Relation::hit, *t};
   });
 }
 

@@ -53,6 +53,7 @@
 #include "core/quotient_boundary.hpp"
 #include "core/quotient_rounding.hpp"
 #include "core/sign.hpp"
+#include "core/validation.hpp"
 #include "nearest/compare_quotients.hpp"
 #include "orient/orient_predicates.hpp"
 #include "spawn/format_steps.hpp"
@@ -72,9 +73,6 @@ namespace {
 constexpr std::int64_t max_certified_steps = std::int64_t{1} << 61;
 constexpr int max_candidate_walk = 3;
 
-[[nodiscard]] bool finite(const Vec3& v) noexcept {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 [[nodiscard]] double& coordinate(Vec3& v, int k) noexcept { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 [[nodiscard]] double coordinate(const Vec3& v, int k) noexcept { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 
@@ -127,12 +125,22 @@ struct CrossingCoordinate {
   }
 };
 
+// RN32(x) for a double x (the conversion), or nothing beyond the largest finite float: there the conversion is
+// undefined in C++ (the compiler may assume a finite result), and the exact path decides (and names an overflow).
+[[nodiscard]] std::optional<double> to_binary32(double x) noexcept {
+  const double largest = spawn_steps::from_ordinal(
+      static_cast<std::int64_t>(spawn_steps::largest_ordinal(OriginFormat::binary32)), OriginFormat::binary32);
+  if (!(std::fabs(x) <= largest)) return std::nullopt;
+  return static_cast<float>(x);
+}
+
 // RN32(X) from r = RN64(X) and `side`, the sign of X against midpoints (`binary32_through_binary64`,
 // `binary32_midpoint_side`); nothing when it overflows binary32 or the side at a binary32 midpoint is uncertain.
 template <class Side>
 [[nodiscard]] std::optional<double> round_binary32_from_binary64(double r, const Side& side) noexcept {
-  const double f = static_cast<float>(r);  // RN32(r)
-  if (!std::isfinite(f)) return std::nullopt;
+  const std::optional<double> rounded = to_binary32(r);  // RN32(r)
+  if (!rounded) return std::nullopt;
+  const double f = *rounded;
   if (f == r) return f;
   const double g = spawn_steps::step(f, r > f ? 1 : -1, OriginFormat::binary32);  // r's other binary32 neighbour
   if (!std::isfinite(g) || f + g != 2 * r) return f;  // not a midpoint (f + g and 2r are exact)
@@ -146,12 +154,13 @@ template <class Side>
 RAYKERNEL_MULTIVERSION std::optional<Vec3> rounded_hit(const HitPoint& hit, const Triangle& source, OriginFormat format) noexcept {
   const bool binary32 = format == OriginFormat::binary32;
   if (hit.kind == HitPoint::Kind::point) {
-    if (!finite(hit.point)) return std::nullopt;
+    if (!is_finite(hit.point)) return std::nullopt;
     if (!binary32) return hit.point;
-    const Vec3 r{static_cast<float>(hit.point.x), static_cast<float>(hit.point.y), static_cast<float>(hit.point.z)};
-    return finite(r) ? std::optional<Vec3>(r) : std::nullopt;
+    const std::optional<double> x = to_binary32(hit.point.x), y = to_binary32(hit.point.y), z = to_binary32(hit.point.z);
+    if (!x || !y || !z) return std::nullopt;
+    return Vec3{*x, *y, *z};
   }
-  if (!finite(hit.ray.origin) || !finite(hit.ray.direction)) return std::nullopt;
+  if (!is_finite(hit.ray.origin) || !is_finite(hit.ray.direction)) return std::nullopt;
   const TriangleQuotientStage2 values = triangle_quotient_compensated(hit.ray, source);
   const Enclosure& den = values.den;
   const Sign den_sign = enclosure_sign(den);
@@ -210,7 +219,7 @@ struct Axis {
 
 std::optional<SpawnedOrigin> spawn_certified(const HitPoint& hit, const Triangle& source, bool to_target,
                                              const Vec3& w_or_q, OriginFormat format) {
-  if (!finite(source.a) || !finite(source.b) || !finite(source.c) || !finite(w_or_q)) return std::nullopt;
+  if (!is_finite(source.a) || !is_finite(source.b) || !is_finite(source.c) || !is_finite(w_or_q)) return std::nullopt;
   const std::optional<Vec3> rounded = rounded_hit(hit, source, format);
   if (!rounded) return std::nullopt;
   // s ≠ 0 also certifies N ≠ 0 (and w ≠ 0); den ≠ 0 in rounded_hit certified d ≠ 0.
