@@ -847,3 +847,17 @@ Definition main_results_30 :=
    @SpawnTwins.affine_enclosure_twin_sound).
 Goal True. idtac "@@ midpoint_offset_twin_sound affine_enclosure_twin_sound". Abort.
 Print Assumptions main_results_30.
+(** core/: the escalation policy of every certified predicate (core/escalation.hpp): a certain answer is a stage's
+    (so the exact sign when every stage is sound), the first certain one, the stages up to it asked, the trace
+    the latest stage asked; [exact_sign] asks its exact stage exactly when no stage certified; and the plane
+    cascade's certified_signs (PlaneCascadeTwins.v's twin) is that escalation of den, then num *)
+From Raykernel Require Escalation.
+Definition main_results_31 :=
+  (@Escalation.escalate_sound,
+   @Escalation.escalate_certifies,
+   @Escalation.escalate_first_certain,
+   @Escalation.escalate_trace,
+   @Escalation.exact_sign_reaches_exact,
+   @PlaneCascadeTwins.certified_signs_b_escalate).
+Goal True. idtac "@@ escalate_sound escalate_certifies escalate_first_certain escalate_trace exact_sign_reaches_exact certified_signs_b_escalate". Abort.
+Print Assumptions main_results_31.

@@ -6,10 +6,11 @@
       o, d, p, n (and whether it is NaN, +inf or −inf, decided from the bits), then a zero direction, then
       a zero normal — as a code: 3·i + k for component i (0 … 11) of kind k (0 NaN, 1 +inf, 2 −inf), 36 for
       "ray direction is the zero vector", 37 for "plane normal is the zero vector";
-    - [certified_signs_b]: stage 1 with the zero flags of RayPlaneCascade::den_filter/num_filter, then, for
-      the signs still open, the first level of stage 2, then its second level, then stage 3 (the checked
-      signs of the expansions, when the builder says exact), else the exact stage, which the twin does not
-      compute ([StExact], no answer);
+    - [certified_signs_b]: each sign through its stages (core/escalation.hpp, Escalation.v): stage 1 with the
+      zero flags of RayPlaneCascade::den_filter/num_filter, then, while it is open, the first level of stage 2,
+      then its second level, then stage 3 (the checked sign of its expansion, when the builder says exact);
+      both certain: the signs and the latest stage either was asked of ([certified_signs_b_escalate]); else
+      the exact stage, which the twin does not compute ([StExact], no answer);
     - [certified_quotient_b]: round_quotient on the first level's enclosures, on the second level's, on the
       stage-3 tail enclosures (when exact), then [round_quotient_near] (the boundaries of the candidate or a neighbour) on the expansions with the
       last candidate (den's checked sign ±1), else the exact stage ([None]);
@@ -29,11 +30,16 @@ From Flocq Require Import Core IEEE754.BinarySingleNaN Plus_error.
 From Raykernel Require Import Constants Model PlaneFilter PlaneCompensated PlaneClassification QuotientRounding PlaneCascade FloatCore
   ConstantsCpp PlaneTwins Expansions PlaneQueryTwins PlaneRefinedTwins QuotientBoundary.
 From Raykernel Require PlaneStageTwoFinite PlaneRefinedFinite.
+From Raykernel Require Escalation.
 Import ListNotations.
 Open Scope R_scope.
 
-(** [Stage] (raykernel.hpp), in its order. *)
-Inductive stage := StFilter | StCompensated | StExpansion | StExact.
+(** [Stage] (raykernel/core.hpp), in its order: Escalation.v's (core/escalation.hpp), named here as before. *)
+Notation stage := Escalation.stage.
+Notation StFilter := Escalation.StFilter.
+Notation StCompensated := Escalation.StCompensated.
+Notation StExpansion := Escalation.StExpansion.
+Notation StExact := Escalation.StExact.
 
 (** ** validation.cpp *)
 
@@ -111,15 +117,64 @@ Definition den_sign2_b : sign :=
 Definition num_sign2_b : sign :=
   first_certain (first_certain num_filter_b (enclosure_sign_b num2_b)) (enclosure_sign_b num2r_b).
 
-(** [certified_signs]: (num, den, stage); at the exact stage the twin has no signs ([Uncertain]). *)
+(** Stage 3 of each sign: the checked sign of its expansion when the builder says exact, else uncertain. *)
+Definition den_expansion_sign_b : sign := let '(_, ed, ex) := expansions_b in if ex then expansion_sign_b ed else Uncertain.
+Definition num_expansion_sign_b : sign := let '(en, _, ex) := expansions_b in if ex then expansion_sign_b en else Uncertain.
+
+(** The signs after stage 3: stage 2's where certain, else stage 3's. *)
+Definition den_sign3_b : sign := first_certain den_sign2_b den_expansion_sign_b.
+Definition num_sign3_b : sign := first_certain num_sign2_b num_expansion_sign_b.
+
+(** [certified_signs]: (num, den, stage), each sign through its stages (core/escalation.hpp) and the stage the
+    later of the two ([certified_signs_b_escalate], below); at the exact stage the twin has no signs
+    ([Uncertain]). *)
 Definition certified_signs_b : sign * sign * stage :=
   if (is_certain den_filter_b && is_certain num_filter_b)%bool then (num_filter_b, den_filter_b, StFilter)
   else if (is_certain den_sign2_b && is_certain num_sign2_b)%bool then (num_sign2_b, den_sign2_b, StCompensated)
-  else
-    let '(en, ed, ex) := expansions_b in
-    if (ex && is_certain (expansion_sign_b en) && is_certain (expansion_sign_b ed))%bool
-    then (expansion_sign_b en, expansion_sign_b ed, StExpansion)
-    else (Uncertain, Uncertain, StExact).
+  else if (is_certain den_sign3_b && is_certain num_sign3_b)%bool then (num_sign3_b, den_sign3_b, StExpansion)
+  else (Uncertain, Uncertain, StExact).
+
+(** The stages of each sign, as ray_plane_cascade.cpp's [certified_signs] hands them to
+    [Escalation::sign]: the filter, stage 2's two levels (both counted as compensated), the expansion. *)
+Definition den_steps_b : list (stage * sign) :=
+  [(StFilter, den_filter_b); (StCompensated, enclosure_sign_b den2_b); (StCompensated, enclosure_sign_b den2r_b);
+   (StExpansion, den_expansion_sign_b)].
+Definition num_steps_b : list (stage * sign) :=
+  [(StFilter, num_filter_b); (StCompensated, enclosure_sign_b num2_b); (StCompensated, enclosure_sign_b num2r_b);
+   (StExpansion, num_expansion_sign_b)].
+
+(** The chain of [certified_signs_b] is the escalation of each sign (den first, then num, one trace, from
+    [StFilter]), for any answers of the stages. *)
+Lemma two_signs_escalate : forall a1 a2 a3 a4 b1 b2 b3 b4 : sign,
+  let a_2 := first_certain (first_certain a1 a2) a3 in let b_2 := first_certain (first_certain b1 b2) b3 in
+  let a_3 := first_certain a_2 a4 in let b_3 := first_certain b_2 b4 in
+  (if (is_certain a1 && is_certain b1)%bool then (b1, a1, StFilter)
+   else if (is_certain a_2 && is_certain b_2)%bool then (b_2, a_2, StCompensated)
+   else if (is_certain a_3 && is_certain b_3)%bool then (b_3, a_3, StExpansion)
+   else (Uncertain, Uncertain, StExact)) =
+  (let '(ds, t, _) := Escalation.escalate StFilter
+                        [(StFilter, a1); (StCompensated, a2); (StCompensated, a3); (StExpansion, a4)] in
+   let '(ns, t', _) := Escalation.escalate t
+                        [(StFilter, b1); (StCompensated, b2); (StCompensated, b3); (StExpansion, b4)] in
+   if (Escalation.sign_certain ds && Escalation.sign_certain ns)%bool then (ns, ds, t')
+   else (Uncertain, Uncertain, StExact)).
+Proof.
+  intros a1 a2 a3 a4 b1 b2 b3 b4; cbv zeta.
+  (* destruct each answer only while it still matters: 13 cases a sign *)
+  destruct a1; cbn; [destruct b1; cbn; try reflexivity .. |].
+  all: repeat (match goal with s : sign |- _ => lazymatch goal with |- context [s] => destruct s; cbn end end);
+    reflexivity.
+Qed.
+
+(** ray_plane_cascade.cpp's [certified_signs]: the escalation of den through [den_steps_b], then of num through
+    [num_steps_b] with the same trace, both signs when both are certain with the trace, else the exact stage. *)
+Theorem certified_signs_b_escalate :
+  certified_signs_b =
+  let '(ds, t, _) := Escalation.escalate StFilter den_steps_b in
+  let '(ns, t', _) := Escalation.escalate t num_steps_b in
+  if (Escalation.sign_certain ds && Escalation.sign_certain ns)%bool then (ns, ds, t')
+  else (Uncertain, Uncertain, StExact).
+Proof. exact (two_signs_escalate _ _ _ _ _ _ _ _). Qed.
 
 (** [certified_quotient]: t and the stage that rounded it, or [None] for the exact stage. *)
 Definition certified_quotient_b : option (float * stage) :=
@@ -326,6 +381,32 @@ Proof.
              num2r_encloses).
 Qed.
 
+Lemma den_expansion_sign_certifies : certifies (den_expansion_sign_b o d p n) VD.
+Proof.
+  unfold den_expansion_sign_b, expansions_b, ray_plane_expansions_b.
+  pose proof (certified_signs_expansion_sound (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as S.
+  destruct (build_expansions_gen two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+              (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
+  destruct ex; [rewrite VD_eq; exact (proj2 (S eq_refl)) | exact I].
+Qed.
+
+Lemma num_expansion_sign_certifies : certifies (num_expansion_sign_b o d p n) VN.
+Proof.
+  unfold num_expansion_sign_b, expansions_b, ray_plane_expansions_b.
+  pose proof (certified_signs_expansion_sound (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+                (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as S.
+  destruct (build_expansions_gen two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
+              (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
+  destruct ex; [rewrite VN_eq; exact (proj1 (S eq_refl)) | exact I].
+Qed.
+
+Lemma den_sign3_certifies : certifies (den_sign3_b o d p n) VD.
+Proof. apply first_certain_sound; [apply den_sign2_certifies | apply den_expansion_sign_certifies]. Qed.
+
+Lemma num_sign3_certifies : certifies (num_sign3_b o d p n) VN.
+Proof. apply first_certain_sound; [apply num_sign2_certifies | apply num_expansion_sign_certifies]. Qed.
+
 (** [certified_signs_b]: before the exact stage, both signs are certain and exact. *)
 Theorem certified_signs_twin_sound : forall ns ds st, certified_signs_b o d p n = (ns, ds, st) -> st <> StExact ->
   ns <> Uncertain /\ ds <> Uncertain /\ certifies ns VN /\ certifies ds VD.
@@ -339,16 +420,10 @@ Proof.
     + injection E as <- <- <-. apply andb_true_iff in C2. destruct C2 as [Cd Cn].
       repeat split; [destruct (num_sign2_b o p n); discriminate | destruct (den_sign2_b d n); discriminate
                     | apply num_sign2_certifies | apply den_sign2_certifies].
-    + unfold expansions_b, ray_plane_expansions_b in E.
-      pose proof (certified_signs_expansion_sound (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
-                    (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as S.
-      destruct (build_expansions_gen two_sum_b (vxb o) (vyb o) (vzb o) (vxb d) (vyb d) (vzb d)
-                  (vxb p) (vyb p) (vzb p) (vxb n) (vyb n) (vzb n)) as [[en ed] ex].
-      destruct (ex && is_certain (expansion_sign_b en) && is_certain (expansion_sign_b ed))%bool eqn:C3.
-      * injection E as <- <- <-. apply andb_true_iff in C3. destruct C3 as [C3 Cd].
-        apply andb_true_iff in C3. destruct C3 as [Ex Cn]. destruct (S Ex) as [Sn Sd].
-        repeat split; [destruct (expansion_sign_b en); discriminate | destruct (expansion_sign_b ed); discriminate
-                      | rewrite VN_eq; exact Sn | rewrite VD_eq; exact Sd].
+    + destruct (is_certain (den_sign3_b o d p n) && is_certain (num_sign3_b o d p n))%bool eqn:C3.
+      * injection E as <- <- <-. apply andb_true_iff in C3. destruct C3 as [Cd Cn].
+        repeat split; [destruct (num_sign3_b o d p n); discriminate | destruct (den_sign3_b o d p n); discriminate
+                      | apply num_sign3_certifies | apply den_sign3_certifies].
       * injection E as _ _ <-. contradiction.
 Qed.
 

@@ -60,10 +60,14 @@ Proof.
   { destruct (expansion_sign_b [x]) eqn:E; try reflexivity. exfalso; now apply (expansion_sign_single_certain x). }
   assert (Cy : is_certain (expansion_sign_b [y]) = true).
   { destruct (expansion_sign_b [y]) eqn:E; try reflexivity. exfalso; now apply (expansion_sign_single_certain y). }
+  assert (Dy : is_certain (den_sign3_b o d p n) = true).
+  { unfold den_sign3_b, den_expansion_sign_b. rewrite H. destruct (den_sign2_b d n); [reflexivity .. | exact Cy]. }
+  assert (Nx : is_certain (num_sign3_b o d p n) = true).
+  { unfold num_sign3_b, num_expansion_sign_b. rewrite H. destruct (num_sign2_b o p n); [reflexivity .. | exact Cx]. }
   unfold certified_signs_b.
   destruct (is_certain (den_filter_b d n) && is_certain (num_filter_b o p n))%bool; [discriminate|].
   destruct (is_certain (den_sign2_b d n) && is_certain (num_sign2_b o p n))%bool; [discriminate|].
-  rewrite H. cbv beta iota. rewrite Cx, Cy. discriminate.
+  rewrite Dy, Nx. discriminate.
 Qed.
 
 (** The same for [relation_b] on a valid query: it decides, at a stage before the exact one. *)
@@ -371,8 +375,8 @@ Qed.
 
 (** On the class, stage 3 certifies both signs (each the exact sign), so the cascade never reaches the exact
     stage: [certified_signs_b]'s stage is not [StExact] and [relation_b] on a valid query is not [CExact].
-    Both signs certain also means the mutation "stage 3 returning when ONE expansion sign is certain"
-    answers as the code on this class. *)
+    Both signs certain also means the mutation "stage 3 returning when ONE expansion sign is certain" (of the
+    joint stage 3 before core/escalation.hpp) answers as the code on this class. *)
 Theorem stage3_int_live : forall o d p n, vec_int_le 24 o -> vec_int_le 24 d -> vec_int_le 24 p -> vec_int_le 24 n ->
   let '(en, ed, ex) := expansions_b o d p n in
   ex = true /\ is_certain (expansion_sign_b en) = true /\ is_certain (expansion_sign_b ed) = true /\

@@ -25,6 +25,7 @@ From Raykernel Require OrientTwins.
 From Raykernel Require QuotientBoundary.
 From Raykernel Require SphereStages.
 From Raykernel Require SpawnTwins.
+From Raykernel Require Escalation.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -478,6 +479,39 @@ Definition run_affine_enclosure (x : list Z) : list Z :=
   match x with [o; dh; dl; dr; d; nh; nl; nr] =>
     enc_bits (SpawnTwins.affine_enclosure_b (f o) (enc dh dl dr) (f d) (enc nh nl nr)) | _ => [] end.
 
+(** core/escalation.hpp (Escalation.v): [Escalation(start).sign(SignStage{stage_k, decide_k}...)] on "start
+    stage_1 sign_1 ... stage_m sign_m" (m ≤ 6 steps; a stage as its code 0..3, a sign as its code −1, 0, +1, 2
+    in a 64-bit two's-complement word, so −1 is 2^64 − 1): the answer's sign code, the trace's stage code and
+    the number of stages asked. *)
+Definition escalation_stage (w : Z) : option Escalation.stage :=
+  if w =? 0 then Some Escalation.StFilter else if w =? 1 then Some Escalation.StCompensated
+  else if w =? 2 then Some Escalation.StExpansion else if w =? 3 then Some Escalation.StExact else None.
+Definition escalation_sign (w : Z) : option sign :=
+  if w =? 18446744073709551615 then Some Negative else if w =? 0 then Some Zero
+  else if w =? 1 then Some Positive else if w =? 2 then Some Uncertain else None.
+Fixpoint escalation_steps (x : list Z) : option (list (Escalation.stage * sign)) :=
+  match x with
+  | [] => Some []
+  | st :: sg :: rest =>
+    match escalation_stage st, escalation_sign sg, escalation_steps rest with
+    | Some a, Some c, Some r => Some ((a, c) :: r)
+    | _, _, _ => None
+    end
+  | _ => None
+  end.
+Definition run_escalate (x : list Z) : list Z :=
+  match x with
+  | start :: rest =>
+    match escalation_stage start, escalation_steps rest with
+    | Some s, Some steps =>
+      if Nat.leb (length steps) 6 then
+        let '(a, t, k) := Escalation.escalate s steps in [sign_code a; Casc.stage_code t; Z.of_nat k]
+      else []
+    | _, _ => []
+    end
+  | [] => []
+  end.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -490,4 +524,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_tri_cascade_intersect run_tri_cascade_relation
   run_orient2d run_orient3d
   run_sphere_expansions run_sphere_abc_expansions run_sphere_root_side
-  run_midpoint_offset run_affine_enclosure.
+  run_midpoint_offset run_affine_enclosure
+  run_escalate.

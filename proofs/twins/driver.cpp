@@ -24,6 +24,7 @@
 #include "core/dot3_compensated.hpp"
 #include "core/dot3_filter.hpp"
 #include "core/eft.hpp"
+#include "core/escalation.hpp"
 #include "core/enclosure.hpp"
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
@@ -42,6 +43,7 @@
 #include "core/validation.hpp"
 #include <raykernel/triangle.hpp>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -53,6 +55,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #ifndef RAYKERNEL_TWIN_LANES
@@ -256,6 +259,60 @@ RayPlaneTerms terms_of(const std::vector<double>& x, std::size_t plane_at = 6) {
   return ray_plane_terms(ray_of(x), plane_of(x, plane_at));
 }
 
+
+// ---- The escalation policy (core/escalation.hpp, proofs/core/Escalation.v) ---------------------------------------------
+
+// One step of a sign: the Stage it counts as and its answer.
+struct EscalationStep {
+  raykernel::Stage stage;
+  Sign answer;
+};
+constexpr std::size_t max_escalation_steps = 6;
+
+// Escalation(start).sign with one SignStage per step (the steps 0 .. N−1), each decision counting that it
+// was asked.
+template <std::size_t... I>
+Sign escalate_steps(Escalation& trace, const std::array<EscalationStep, max_escalation_steps>& steps, int& asked,
+                    std::index_sequence<I...>) {
+  return trace.sign(SignStage{steps[I].stage, [&] {
+    ++asked;
+    return steps[I].answer;
+  }}...);
+}
+template <std::size_t N>
+Sign escalate_n(Escalation& trace, const std::array<EscalationStep, max_escalation_steps>& steps, int& asked) {
+  return escalate_steps(trace, steps, asked, std::make_index_sequence<N>{});
+}
+
+// "start stage_1 sign_1 ... stage_m sign_m" (m ≤ 6; a stage as its code 0..3, a sign as its code −1, 0, +1, 2
+// in a two's-complement word): the answer's sign code, the trace's stage code, the number of stages asked.
+bool escalate_routine(const Words& w, Out& o) {
+  if (w.empty() || w.size() % 2 == 0 || (w.size() - 1) / 2 > max_escalation_steps) return false;
+  const auto stage_of = [](std::uint64_t word) { return static_cast<raykernel::Stage>(word); };
+  if (w[0] > 3) return false;
+  std::array<EscalationStep, max_escalation_steps> steps{};
+  const std::size_t m = (w.size() - 1) / 2;
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::uint64_t stage = w[1 + 2 * k];
+    const auto sign = static_cast<std::int64_t>(w[2 + 2 * k]);
+    if (stage > 3 || sign < -1 || sign > 2) return false;
+    steps[k] = {stage_of(stage), static_cast<Sign>(sign)};
+  }
+  Escalation trace(stage_of(w[0]));
+  int asked = 0;
+  Sign answer = Sign::uncertain;
+  switch (m) {
+    case 0: answer = escalate_n<0>(trace, steps, asked); break;
+    case 1: answer = escalate_n<1>(trace, steps, asked); break;
+    case 2: answer = escalate_n<2>(trace, steps, asked); break;
+    case 3: answer = escalate_n<3>(trace, steps, asked); break;
+    case 4: answer = escalate_n<4>(trace, steps, asked); break;
+    case 5: answer = escalate_n<5>(trace, steps, asked); break;
+    default: answer = escalate_n<6>(trace, steps, asked); break;
+  }
+  o.i(sign_code(answer)), o.i(static_cast<int>(trace.reached())), o.i(asked);
+  return true;
+}
 
 // ---- The cascade's control flow (proofs/plane/PlaneCascadeTwins.v) ----------------------------------------------------
 
@@ -476,6 +533,8 @@ const std::map<std::string, ScalarRoutine>& scalar_routines() {
          o = enclosure_out(affine_enclosure(x[0], Enclosure{x[1], x[2], x[3]}, x[4], Enclosure{x[5], x[6], x[7]}));
          return true;
        }},
+      // core/escalation.hpp's policy (proofs/core/Escalation.v): Escalation(start).sign over 0..6 stages (above).
+      {"escalate", escalate_routine},
       {"nearest_compare",
        [](const Words& w, Out& o) {
          if (w.size() != 22) return false;

@@ -758,6 +758,25 @@ const std::map<std::string, Generator>& generators() {
       // "o D d N" (above)
       {"midpoint_offset", [](Source& s) { return midpoint_offset_args(s); }},
       {"affine_enclosure", [](Source& s) { return affine_enclosure_args(s); }},
+      // the escalation policy (core/escalation.hpp, proofs/core/Escalation.v): a start stage (the filter 1 in 2,
+      // else any), then 0..6 steps (stage, sign), each a stage code 0..3 (1 in 2 lists nondecreasing, as the
+      // predicates order them) and a sign code −1, 0, +1 or 2 (uncertain: 1 in 2, so that escalations run
+      // long and end uncertain), the codes as integer words (−1 in two's complement)
+      {"escalate",
+       [](Source& s) {
+         const std::uint64_t start = s.chance(2) ? 0 : s.below(4);
+         const std::size_t m = s.below(7);
+         std::vector<std::uint64_t> stages(m);
+         for (std::uint64_t& stage : stages) stage = s.below(4);
+         if (s.chance(2)) std::sort(stages.begin(), stages.end());
+         Args a{std::bit_cast<double>(start)};
+         for (const std::uint64_t stage : stages) {
+           const std::int64_t sign = s.chance(2) ? 2 : static_cast<std::int64_t>(s.below(3)) - 1;
+           a.push_back(std::bit_cast<double>(stage));
+           a.push_back(std::bit_cast<double>(static_cast<std::uint64_t>(sign)));
+         }
+         return a;
+       }},
       {"tail_enclosure",
        [](Source& s) {
          if (s.chance(3)) return raw_args(s, 1 + static_cast<int>(s.below(32)));

@@ -51,6 +51,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("sphere_root_side", Twins.run_sphere_root_side);
   ("midpoint_offset", Twins.run_midpoint_offset);
   ("affine_enclosure", Twins.run_affine_enclosure);
+  ("escalate", Twins.run_escalate);
 ]
 
 let () =

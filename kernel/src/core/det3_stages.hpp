@@ -77,7 +77,8 @@ template <class V>
 // product scales by |x_i| (error_bounds.hpp).
 //
 // Computed without arithmetic on subnormals: on x86 each operation with a subnormal result costs a microcode
-// assist (about a hundred cycles; the default environment has no FTZ/DAZ), and for S < 2^48 both K_A ⊗ S and the
+// assist (about a hundred cycles; the default environment has no FTZ/DAZ), and so does one with a subnormal operand
+// (K_A and U_A themselves); for S < 2^48 both K_A ⊗ S and the
 // sum are subnormal. There K_A ⊗ S = RN(2^-1070·S) = 2^-1074·n, n = 16·S rounded to an integer, ties to even:
 // 16·S ⊕ 2^52 = 2^52 + n exactly (16·S < 2^52), whose bit pattern is that of 2^52 plus n; adding U_A = 32·2^-1074
 // is exact, and 2^-1074·k for an integer k < 2^53 has the bit pattern k. For S ≥ 2^48 (and NaN) the formula,
@@ -86,13 +87,20 @@ template <class V>
 // models compute the formula.
 inline constexpr double absolute_term_subnormal_below = 0x1p48;  // K_A ⊗ S is subnormal below it (exact value)
 inline constexpr double absolute_term_integer_shift = 0x1p52;     // x ⊕ 2^52 rounds x ∈ [0, 2^52) to an integer
+inline constexpr double absolute_term_lift = 0x1p200;             // K_A·2^200, U_A·2^200 are normal (exact)
+inline constexpr double absolute_term_drop = 0x1p-200;            // and scaled back (exact on normal values)
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline V det3_absolute_term(V x0, V x1, V x2) noexcept {
   static_assert(bounds::triangle_absolute_scale == 0x1p-1070 && bounds::triangle_absolute == 0x1p-1069);
   const V s = (abs(x0) + abs(x1)) + abs(x2);
   const auto small = s < absolute_term_subnormal_below;
-  const V formula = bounds::triangle_absolute_scale * select(small, V{} + absolute_term_subnormal_below, s) +
-                    bounds::triangle_absolute;
+  // The formula 2^200 higher, then scaled back: K_A and U_A are subnormal, and an operation with a subnormal
+  // operand costs an assist too. For S ≥ 2^48 every value is normal (K_A ⊗ S ≥ 2^-1022), so the scaling by
+  // powers of two is exact and commutes with the rounding of the sum: the same bits (inf and NaN pass through).
+  const V formula = ((bounds::triangle_absolute_scale * absolute_term_lift) *
+                         select(small, V{} + absolute_term_subnormal_below, s) +
+                     bounds::triangle_absolute * absolute_term_lift) *
+                    absolute_term_drop;
   const V shifted = 16 * s + absolute_term_integer_shift;  // 2^52 + n where small
   const V subnormal = from_bits(to_bits(shifted) - (to_bits(absolute_term_integer_shift) - 32));
   return select(small, subnormal, formula);

@@ -18,6 +18,11 @@ enum class Sign : std::int8_t { negative = -1, zero = 0, positive = 1, uncertain
   return s < 0 ? Sign::negative : (s > 0 ? Sign::positive : Sign::zero);
 }
 
+// A filter's int answer (+1, −1, or 0 for uncertain: a filter never certifies zero) as a Sign.
+[[nodiscard]] constexpr Sign sign_or_uncertain(int filter) noexcept {
+  return filter > 0 ? Sign::positive : (filter < 0 ? Sign::negative : Sign::uncertain);
+}
+
 // Signs as integer lanes, for the routines written for both double and Lanes8: the values of Sign
 // (+1, −1, 0, and 2 for uncertain) in a std::int64_t, or in each lane of a Mask8.
 inline constexpr std::int64_t uncertain_lane = static_cast<std::int64_t>(Sign::uncertain);

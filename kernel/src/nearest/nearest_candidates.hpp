@@ -31,6 +31,7 @@
 #pragma once
 
 #include "core/enclosure.hpp"
+#include "core/escalation.hpp"
 #include "core/sign.hpp"
 #include "nearest/compare_quotients.hpp"
 
@@ -81,19 +82,29 @@ template <class A, class B>
     return DistanceOrder{static_cast<int>(!a_at_origin) - static_cast<int>(!b_at_origin), Stage::filter,
                          a_at_origin && b_at_origin};
 
-  // sign(t_a − t_b) = sign(Δ)·sign(den_a)·sign(den_b).
+  // sign(t_a − t_b) = sign(Δ)·sign(den_a)·sign(den_b), Δ's sign through the stages (core/escalation.hpp).
   const int orientation = a.den_sign == b.den_sign ? 1 : -1;
-  // compare_quotients_filter, inlined (its lane form on one lane: the same operations).
-  Sign delta = static_cast<Sign>(
-      compare_quotients_filter_lanes(a.num_filter(), a.den_filter(), b.num_filter(), b.den_filter()));
-  if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::filter};
-
-  if (same_t_without_arithmetic(a, b)) return DistanceOrder{0, Stage::filter, true};
-
-  delta = enclosure_sign(compare_quotients_compensated(a.num_compensated(), a.den_compensated(), b.num_compensated(),
-                                                       b.den_compensated()));
-  if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), Stage::compensated};
-
+  Escalation trace;
+  bool tie_without_arithmetic = false;
+  const Sign delta = trace.sign(
+      // compare_quotients_filter, inlined (its lane form on one lane: the same operations).
+      SignStage{Stage::filter,
+                [&] {
+                  return static_cast<Sign>(compare_quotients_filter_lanes(a.num_filter(), a.den_filter(),
+                                                                          b.num_filter(), b.den_filter()));
+                }},
+      // A kind pair's exact tie seen without arithmetic counts as the filter.
+      SignStage{Stage::filter,
+                [&] {
+                  tie_without_arithmetic = same_t_without_arithmetic(a, b);
+                  return tie_without_arithmetic ? Sign::zero : Sign::uncertain;
+                }},
+      SignStage{Stage::compensated, [&] {
+                  return enclosure_sign(compare_quotients_compensated(a.num_compensated(), a.den_compensated(),
+                                                                      b.num_compensated(), b.den_compensated()));
+                }});
+  if (tie_without_arithmetic) return DistanceOrder{0, Stage::filter, true};
+  if (is_certain(delta)) return DistanceOrder{orientation * static_cast<int>(delta), trace.reached()};
   return compare_candidates_by_expansions(a, b, orientation);
 }
 

@@ -22,6 +22,7 @@
 // not clear them per ray), and stage 3 is kept in short form: the candidate stays small.
 #pragma once
 
+#include "core/escalation.hpp"
 #include "core/expansion.hpp"
 #include "core/expansion_value.hpp"
 #include "core/quotient_rounding.hpp"
@@ -219,15 +220,27 @@ class TriangleCandidate {
     relation_stage = c.stage;
     if (classification.relation != TriangleRelation::hit) return;
     stage1_ = triangle_quotient_filter(*ray_, *source);
-    Sign num = static_cast<Sign>(det3_filter_lanes(stage1_.num, bounds::triangle_filter_num_relative, stage1_.absolute_e));
-    Sign den = static_cast<Sign>(det3_filter_lanes(stage1_.den, bounds::triangle_filter_pi_relative, stage1_.absolute_d));
-    if (!is_certain(num)) num = enclosure_sign(num_compensated());
-    if (!is_certain(den)) den = enclosure_sign(den_compensated());
-    if (!is_certain(num) || !is_certain(den)) {
-      stage3();
-      if (!is_certain(num)) num = num3_sign_;
-      if (!is_certain(den)) den = den3_sign_;
-    }
+    // Each sign through this candidate's stages (core/escalation.hpp); the trace is not reported (relation_stage
+    // is the relation's, and the comparisons trace their own stages).
+    Escalation signs;
+    Sign num = signs.sign(SignStage{Stage::filter, [&] {
+                            return static_cast<Sign>(det3_filter_lanes(stage1_.num, bounds::triangle_filter_num_relative,
+                                                                       stage1_.absolute_e));
+                          }},
+                          SignStage{Stage::compensated, [&] { return enclosure_sign(num_compensated()); }},
+                          SignStage{Stage::expansion, [&] {
+                            stage3();
+                            return num3_sign_;
+                          }});
+    Sign den = signs.sign(SignStage{Stage::filter, [&] {
+                            return static_cast<Sign>(det3_filter_lanes(stage1_.den, bounds::triangle_filter_pi_relative,
+                                                                       stage1_.absolute_d));
+                          }},
+                          SignStage{Stage::compensated, [&] { return enclosure_sign(den_compensated()); }},
+                          SignStage{Stage::expansion, [&] {
+                            stage3();
+                            return den3_sign_;
+                          }});
     if (!is_certain(num) || !is_certain(den)) {
       const exact::QuotientSigns s = exact::triangle_quotient_signs(*ray_, *source);
       num = static_cast<Sign>(s.num);

@@ -12,6 +12,7 @@
 // d × (q − p) have components ±(q_m − p_m), whose signs are comparisons of doubles.
 #pragma once
 
+#include "core/escalation.hpp"
 #include "core/fp_requirements.hpp"
 #include "core/sign.hpp"
 #include "mesh/exact_mesh.hpp"
@@ -118,10 +119,11 @@ namespace raykernel::mesh_detail {
 // decide the exact zeros a point in a triangle's plane gives (inside() on flat meshes) at a fraction of the
 // rationals' cost.
 [[nodiscard]] inline int orient3d_sign(const Vec3& o, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const int s = orient3d_filter(o, a, b, c);
-  if (s != 0) return s;
-  const detail::Sign e = detail::num_expansion(Ray{o, {0, 0, 0}}, Triangle{a, b, c}).sign();
-  return detail::is_certain(e) ? static_cast<int>(e) : detail::exact::det3_sign(o, a, b, c);
+  return detail::Escalation{}.exact_sign(
+      [&] { return detail::exact::det3_sign(o, a, b, c); },
+      detail::SignStage{Stage::filter, [&] { return detail::sign_or_uncertain(orient3d_filter(o, a, b, c)); }},
+      detail::SignStage{Stage::expansion,
+                        [&] { return detail::num_expansion(Ray{o, {0, 0, 0}}, Triangle{a, b, c}).sign(); }});
 }
 
 // The exact sign of orient2d(p, q, r) in the plane of axes (i, j).
@@ -132,8 +134,9 @@ namespace raykernel::mesh_detail {
   const bool left_zero = coordinate(p, i) == coordinate(r, i) || coordinate(q, j) == coordinate(r, j);
   const bool right_zero = coordinate(p, j) == coordinate(r, j) || coordinate(q, i) == coordinate(r, i);
   if (left_zero && right_zero) return 0;
-  const int s = orient2d_filter(p, q, r, i, j);
-  return s != 0 ? s : detail::exact::orient2d_sign(p, q, r, i, j);
+  return detail::Escalation{}.exact_sign(
+      [&] { return detail::exact::orient2d_sign(p, q, r, i, j); },
+      detail::SignStage{Stage::filter, [&] { return detail::sign_or_uncertain(orient2d_filter(p, q, r, i, j)); }});
 }
 
 // Whether p, coplanar with the triangle (det(a − p, b − p, c − p) = 0 exactly), lies on the closed triangle:

@@ -13,6 +13,7 @@
 // + − × / as one correctly rounded operation and each std::fma as one rounding. Each function is cloned
 // for CPUs with and without an FMA unit (core/multiversion.hpp); both clones compute the same bits.
 #include "core/fp_requirements.hpp"
+#include "core/escalation.hpp"
 #include "core/multiversion.hpp"
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/exact_plane.hpp"
@@ -25,27 +26,26 @@ namespace raykernel::detail {
 
 RAYKERNEL_MULTIVERSION
 CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
-  // Stage 1: binary64 filter.
-  Sign den_sign = query.den_filter();
-  Sign num_sign = query.num_filter();
-  Stage stage = Stage::filter;
-
-  // Stage 2, both levels, computed on demand and kept for the rounding of t.
-  if (!is_certain(den_sign) || !is_certain(num_sign)) {
-    stage = Stage::compensated;
-    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_compensated());
-    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_compensated());
-    // The second level, for values that cancel to within ~2^-100 of the terms.
-    if (!is_certain(den_sign)) den_sign = enclosure_sign(query.den_refined());
-    if (!is_certain(num_sign)) num_sign = enclosure_sign(query.num_refined());
-  }
-  if (is_certain(den_sign) && is_certain(num_sign)) return {num_sign, den_sign, stage};
-
-  // Stage 3: exact signs, if the expansions are exact and their signs certain; else the exact stage.
-  if (const ExactExpansions& e = query.expansions(); e.exact) {
-    const Sign num = e.num.sign(), den = e.den.sign();
-    if (is_certain(num) && is_certain(den)) return {num, den, Stage::expansion};
-  }
+  // Each sign through the stages (core/escalation.hpp): the binary64 filter, stage 2's two levels (the second
+  // for values that cancel to within ~2^-100 of the terms), computed on demand and kept for the rounding of t,
+  // then the exact expansions when they are exact.
+  Escalation trace;
+  const Sign den = trace.sign(SignStage{Stage::filter, [&] { return query.den_filter(); }},
+                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.den_compensated()); }},
+                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.den_refined()); }},
+                              SignStage{Stage::expansion, [&] {
+                                const ExactExpansions& e = query.expansions();
+                                return e.exact ? e.den.sign() : Sign::uncertain;
+                              }});
+  const Sign num = trace.sign(SignStage{Stage::filter, [&] { return query.num_filter(); }},
+                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.num_compensated()); }},
+                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.num_refined()); }},
+                              SignStage{Stage::expansion, [&] {
+                                const ExactExpansions& e = query.expansions();
+                                return e.exact ? e.num.sign() : Sign::uncertain;
+                              }});
+  if (is_certain(den) && is_certain(num)) return {num, den, trace.reached()};
+  // The exact stage, for both signs (one rational evaluation gives both).
   const exact::ExactSigns s = exact::ray_plane_signs(query.ray(), query.plane());
   return {sign_from_int(s.num), sign_from_int(s.den), Stage::exact};
 }

@@ -65,10 +65,12 @@ struct CertifiedSigns {
 };
 
 // Stages 1–3 of the relation: the signs of num and den, each stage asked only for the signs the cheaper
-// ones left uncertain, then the exact stage (plane/exact_plane.hpp) when stage 3 is not exact (a TwoProduct
-// underflowed or a value overflowed).
+// ones left uncertain, then the exact stage (plane/exact_plane.hpp) for both when either is left uncertain
+// (stage 3 not exact: a TwoProduct underflowed or a value overflowed; or its checked sign uncertain).
+// Each sign escalated by core/escalation.hpp's policy.
 //   Certified by: proofs/plane/PlaneCascade.v, `cascade_signs_correct` (stages 1 and 2); proofs/core/Expansions.v,
-//   `certified_signs_expansion_sound` (stage 3).
+//   `certified_signs_expansion_sound` (stage 3);
+//   each sign escalated as core/escalation.hpp: proofs/plane/PlaneCascadeTwins.v, `certified_signs_b_escalate`, `certified_signs_twin_sound`.
 [[nodiscard]] CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept;
 
 // t = RN(num/den) for num ≠ 0 ≠ den (hit or behind): round_quotient on the stage-2 enclosures, on the

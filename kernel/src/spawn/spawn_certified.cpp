@@ -48,6 +48,7 @@
 #include "core/eft.hpp"
 #include "core/dot3_compensated.hpp"
 #include "core/enclosure.hpp"
+#include "core/escalation.hpp"
 #include "core/expansion_value.hpp"
 #include "core/multiversion.hpp"
 #include "core/quotient_boundary.hpp"
@@ -84,8 +85,8 @@ RAYKERNEL_MULTIVERSION Sign plane_side_compensated(const Vec3& x, const Triangle
   return is_certain(num) ? static_cast<Sign>(-static_cast<int>(num)) : Sign::uncertain;
 }
 [[nodiscard]] int plane_side_of(const Vec3& x, const Triangle& t) {
-  const Sign compensated = plane_side_compensated(x, t);
-  return is_certain(compensated) ? static_cast<int>(compensated) : -mesh_detail::orient3d_sign(x, t.a, t.b, t.c);
+  return Escalation{}.exact_sign([&] { return -mesh_detail::orient3d_sign(x, t.a, t.b, t.c); },
+                                 SignStage{Stage::compensated, [&] { return plane_side_compensated(x, t); }});
 }
 
 // sign(w·N): the ray–triangle den of a ray along w, from stage 2, then from its exact expansion; 0 when neither is
@@ -94,10 +95,10 @@ RAYKERNEL_MULTIVERSION Sign direction_side_compensated(const Vec3& w, const Tria
   return enclosure_sign(triangle_den_compensated(w, t));
 }
 [[nodiscard]] int direction_side_of(const Vec3& w, const Triangle& t) noexcept {
-  const Sign compensated = direction_side_compensated(w, t);
-  if (is_certain(compensated)) return static_cast<int>(compensated);
-  const Sign expansion = value_expansion(Ray{t.a, w}, t, value_den).sign();
-  return is_certain(expansion) ? static_cast<int>(expansion) : 0;
+  const Sign s = Escalation{}.sign(
+      SignStage{Stage::compensated, [&] { return direction_side_compensated(w, t); }},
+      SignStage{Stage::expansion, [&] { return value_expansion(Ray{t.a, w}, t, value_den).sign(); }});
+  return is_certain(s) ? static_cast<int>(s) : 0;
 }
 
 // One coordinate of the crossing P = o + (num/den)·d: its side against midpoints, and a candidate for RN(P_k).

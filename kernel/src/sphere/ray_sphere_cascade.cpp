@@ -10,6 +10,7 @@
 // Every stage's answer is exact: there is no error bound to check, only the builder's exactness and the signs.
 #include "sphere/ray_sphere_cascade.hpp"
 
+#include "core/escalation.hpp"
 #include "core/multiversion.hpp"
 #include "core/quotient_boundary.hpp"
 #include "sphere/exact_sphere.hpp"
@@ -134,54 +135,65 @@ std::optional<Roots> expansion_roots(const Ray& ray, const Sphere& sphere, const
   return Roots{*t1, *t2, filtered ? Stage::filter : Stage::expansion};
 }
 
-std::optional<SphereClassification> expansion_classification(const SphereExpansions& s) noexcept {
-  if (!s.builder.exact()) return std::nullopt;
-  const Sign c = ExpansionBuilder::sign_or_compressed(s.c), d = ExpansionBuilder::sign_or_compressed(s.d);
+// The signs of C and D, each through the stages (core/escalation.hpp): the binary64 filter
+// (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound), then the exact expansions, built
+// into `s` by `build` on first use and read only when exact (sign_or_compressed); nothing when a sign needs the
+// exact stage.
+template <class Build>
+std::optional<TracedSphereClassification> classification(const SphereFilterSigns& f, const SphereExpansions& s,
+                                                          Build build) noexcept {
+  Escalation trace;
+  const auto expanded = [&](const auto& e) {
+    build();
+    return s.builder.exact() ? ExpansionBuilder::sign_or_compressed(e) : Sign::uncertain;
+  };
+  const Sign c = trace.sign(SignStage{Stage::filter, [&] { return f.c; }},
+                            SignStage{Stage::expansion, [&] { return expanded(s.c); }});
+  const Sign d = trace.sign(SignStage{Stage::filter, [&] { return f.d; }},
+                            SignStage{Stage::expansion, [&] { return expanded(s.d); }});
   if (!is_certain(c) || !is_certain(d)) return std::nullopt;
-  return SphereClassification{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))};
-}
-
-// Both signs from the binary64 filter (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound),
-// or nothing.
-std::optional<SphereClassification> filter_classification(const SphereFilterSigns& f) noexcept {
-  if (!is_certain(f.c) || !is_certain(f.d)) return std::nullopt;
-  return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
+  return TracedSphereClassification{{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))},
+                                    trace.reached()};
 }
 
 }  // namespace
 
 TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
-  if (const std::optional<SphereClassification> c = filter_classification(sphere_filter(ray, sphere)))
-    return {*c, Stage::filter};
   SphereExpansions s;
-  sphere_expansions(ray, sphere, s);
-  if (const std::optional<SphereClassification> c = expansion_classification(s)) return {*c, Stage::expansion};
+  bool built = false;
+  const auto build = [&] {
+    if (!built) sphere_expansions(ray, sphere, s);
+    built = true;
+  };
+  if (const std::optional<TracedSphereClassification> c = classification(sphere_filter(ray, sphere), s, build)) return *c;
   return {exact::classify_sphere(ray, sphere), Stage::exact};
 }
 
 TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
   const SphereFilterSigns signs = sphere_filter(ray, sphere);
-  const std::optional<SphereClassification> filtered = filter_classification(signs);
-  if (filtered && filtered->relation == SphereRelation::miss)
-    return {{filtered->origin, filtered->relation, not_a_number, not_a_number}, Stage::filter, Stage::filter};
-  if (filtered)
+  SphereExpansions s;
+  bool built = false;
+  const auto build = [&] {
+    if (!built) sphere_expansions(ray, sphere, s);
+    built = true;
+  };
+  const std::optional<TracedSphereClassification> c = classification(signs, s, build);
+  if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
+  const SphereClassification& k = c->classification;
+  const Stage relation_stage = c->stage;
+  if (k.relation == SphereRelation::miss) return {{k.origin, k.relation, not_a_number, not_a_number}, relation_stage, relation_stage};
+  const bool filter_tried = relation_stage == Stage::filter;  // both signs from the filter: D > 0 or D = 0, C certain
+  if (filter_tried)
     if (const std::optional<Roots> r = filter_roots(ray, sphere, signs))
-      return {{filtered->origin, filtered->relation, r->t1, r->t2}, Stage::filter, Stage::filter};
+      return {{k.origin, k.relation, r->t1, r->t2}, Stage::filter, Stage::filter};
   // D's expansion is built even when the filter decided the relation: its rounded value makes the roots'
   // candidates a rounding or two from the roots (the filter's D̂ can be far off where B² − A·C cancels, and
   // a candidate further off costs a boundary sign per ulp; measured in bench/README.md).
-  SphereExpansions s;
-  sphere_expansions(ray, sphere, s);
-  const std::optional<SphereClassification> c = filtered ? filtered : expansion_classification(s);
-  if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
-  const Stage relation_stage = filtered ? Stage::filter : Stage::expansion;
-  if (c->relation == SphereRelation::miss)
-    return {{c->origin, c->relation, not_a_number, not_a_number}, Stage::expansion, Stage::expansion};
-  const bool filter_tried = filtered.has_value();  // filter_roots above tried the boundary filter (D > 0, C ≠ 0)
-  if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, *c, filter_tried))
-    return {{c->origin, c->relation, r->t1, r->t2}, relation_stage, r->stage};
+  build();
+  if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, k, filter_tried))
+    return {{k.origin, k.relation, r->t1, r->t2}, relation_stage, r->stage};
   const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
-  return {{c->origin, c->relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
+  return {{k.origin, k.relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
 }
 
 int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b) {

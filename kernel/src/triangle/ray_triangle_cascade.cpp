@@ -49,6 +49,7 @@
 // Compiled with -ffp-contract=off and without fast-math (kernel/CMakeLists.txt).
 #include "triangle/ray_triangle_cascade.hpp"
 
+#include "core/escalation.hpp"
 #include "core/fp_requirements.hpp"
 #include "core/multiversion.hpp"
 #include "core/quotient_rounding.hpp"
@@ -66,8 +67,6 @@ namespace raykernel::detail {
 namespace {
 
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-
-Stage later(Stage a, Stage b) noexcept { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
 // The values to round: t = num/den (index 0) and πa/den, πb/den, πc/den (indices 1–3), as determinant indices.
 constexpr int numerator_value[4] = {value_num, value_pi_a, value_pi_b, value_pi_c};
@@ -123,25 +122,25 @@ class TriangleCascade {
     return c;
   }
 
-  // The exact sign of determinant v (stages 1–3); sets needs_exact_ (and returns 0) when stage 3 is not exact.
+  // The exact sign of determinant v (stages 1–3, core/escalation.hpp); sets needs_exact_ (and returns 0) when
+  // no stage certifies it (stage 3 is not exact).
   int sign(int v) {
-    Sign s = det3_filter_sign(v);
-    if (s == Sign::uncertain) {
-      stage_ = later(stage_, Stage::compensated);
-      s = enclosure_sign(compensated().enclosure(v));
-    }
-    if (s == Sign::uncertain) {
-      stage_ = later(stage_, Stage::expansion);
-      s = expansion(v).sign();
-    }
-    if (s == Sign::uncertain) {
+    const Sign s = trace_.sign(SignStage{Stage::filter, [&] { return det3_filter_sign(v); }},
+                               SignStage{Stage::compensated, [&] { return enclosure_sign(compensated().enclosure(v)); }},
+                               SignStage{Stage::expansion, [&] { return expansion(v).sign(); }});
+    if (!is_certain(s)) {
       needs_exact_ = true;
       return 0;
     }
     return static_cast<int>(s);
   }
 
-  [[nodiscard]] Stage stage() const noexcept { return stage_; }
+  [[nodiscard]] Stage stage() const noexcept { return trace_.reached(); }
+  // Records that the roundings asked `stage`; returns the query's trace.
+  Stage reach(Stage stage) noexcept {
+    trace_.reach(stage);
+    return trace_.reached();
+  }
   [[nodiscard]] bool needs_exact() const noexcept { return needs_exact_; }
 
   // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
@@ -165,9 +164,12 @@ class TriangleCascade {
   }
   // Stage 3 of determinant v, computed on first use.
   const ExpansionValue<192>& expansion(int v) {
-    std::optional<ExpansionValue<192>>& x = expansion_[static_cast<std::size_t>(v)];
-    if (!x) x = value_expansion(ray_, triangle_, v);
-    return *x;
+    const std::size_t k = static_cast<std::size_t>(v);
+    if (!has_expansion_[k]) {
+      expansion_[k] = value_expansion(ray_, triangle_, v);
+      has_expansion_[k] = true;
+    }
+    return expansion_[k];
   }
 
  private:
@@ -177,13 +179,13 @@ class TriangleCascade {
         det3_filter_lanes(filter_->value[static_cast<std::size_t>(v)], filter_relative(v), filter_->absolute(v)));
   }
   std::array<int, 3> tie_break(int k) {
-    stage_ = later(stage_, Stage::expansion);
+    trace_.reach(Stage::expansion);
     if (const auto s = tie_break_signs_by_expansion(ray_, triangle_, k)) return *s;
     needs_exact_ = true;
     return {1, 0, 0};
   }
   bool normal_is_zero() {
-    stage_ = later(stage_, Stage::expansion);
+    trace_.reach(Stage::expansion);
     if (const auto z = normal_is_zero_by_expansion(triangle_)) return *z;
     needs_exact_ = true;
     return false;
@@ -191,11 +193,14 @@ class TriangleCascade {
 
   const Ray& ray_;
   const Triangle& triangle_;
-  Stage stage_ = Stage::filter;
+  Escalation trace_;
   bool needs_exact_ = false;
   std::optional<TriangleFilterValues> filter_;
   std::optional<TriangleCompensatedValues> compensated_;
-  std::array<std::optional<ExpansionValue<192>>, triangle_value_count> expansion_;
+  // Stage 3 of each determinant, once computed (not std::optional: GCC zeroes an optional's 1.5 KB payload
+  // when it constructs it, 7.8 KB per query here; an ExpansionValue's components are left uninitialized).
+  std::array<ExpansionValue<192>, triangle_value_count> expansion_;
+  std::array<bool, triangle_value_count> has_expansion_{};
 };
 
 // Four scalar enclosures (in lane order) as the lanes of one.
@@ -257,14 +262,22 @@ class TriangleCascade {
 
 // ---- The full cascade --------------------------------------------------------------------------------------
 
-TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
-                                                         const TriangleOptions& options) {
+// Stages 1–3 of the whole cascade run in the multiversioned functions below (noexcept: core/multiversion.hpp); the
+// relation's is flattened (everything it calls inlined, so that its FMA clone computes every TwoProduct with the
+// instruction instead of calling libm's fma: −16% on the degenerate workload; flattening the intersection's, whose
+// time is stage 3's sums, measured no gain and tripled the file's compile time); the exact stage, which allocates, runs in
+// their callers when they say what is left to it.
+enum class ExactStageNeeded { none, relation, roundings };
+
+RAYKERNEL_MULTIVERSION
+ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& triangle, const TriangleOptions& options,
+                                              TracedTriangleIntersection& r) noexcept {
   TriangleCascade query(ray, triangle);
   const std::optional<TriangleClassification> classified = query.classify(options.rule);
-  if (!classified) return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
+  if (!classified) return ExactStageNeeded::relation;
   const Stage relation_stage = query.stage();
-  TracedTriangleIntersection r{answer(*classified), relation_stage, relation_stage};
-  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return r;
+  r = {answer(*classified), relation_stage, relation_stage};
+  if (classified->location == TriangleLocation::none || (!options.t && !options.barycentric)) return ExactStageNeeded::none;
 
   // The quotients: an exactly zero numerator gives +0; the others are rounded from the stage-2 enclosures,
   // then from stage 3's, or else exactly.
@@ -272,13 +285,7 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
   int numerator_sign[4] = {0, 0, 0, 0};
   for (int k = 0; k < 4; ++k)
     if (asked[k]) numerator_sign[k] = query.sign(numerator_value[k]);
-  if (query.needs_exact()) {
-    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
-    r.intersection.t = e.t;
-    r.intersection.barycentric = e.barycentric;
-    r.rounding_stage = Stage::exact;
-    return r;
-  }
+  if (query.needs_exact()) return ExactStageNeeded::roundings;
   bool certain[4];
   bool all_certain = true;
   double value[4];
@@ -291,12 +298,12 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
   auto with_values = [&] {
     r.intersection.t = value[0];
     r.intersection.barycentric = {value[1], value[2], value[3]};
-    return r;
+    return ExactStageNeeded::none;
   };
   if (all_certain) return with_values();
 
   // Stage 2: round_quotient on the enclosures, over one divisor.
-  r.rounding_stage = later(r.rounding_stage, Stage::compensated);
+  r.rounding_stage = query.reach(Stage::compensated);
   const TriangleCompensatedValues& s2 = query.compensated();
   Enclosure numerators[4];
   for (int k = 0; k < 4; ++k) numerators[numerator_lane[k]] = s2.enclosure(numerator_value[k]);
@@ -312,7 +319,7 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
 
   // Stage 3: round_quotient on the expansions' tail enclosures over one divisor (den's tail enclosure, or
   // stage 2's when den's expansion is too long), then the exact stage for what is left (exact ties among it).
-  r.rounding_stage = later(r.rounding_stage, Stage::expansion);
+  r.rounding_stage = query.reach(Stage::expansion);
   const std::optional<Enclosure> den = query.expansion_enclosure(value_den);
   const Divisor divisor = prepare_divisor(den ? *den : s2.enclosure(value_den));
   all_certain = true;
@@ -345,19 +352,38 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
       all_certain = all_certain && certain[k];
     }
   }
-  if (!all_certain) {
-    r.rounding_stage = Stage::exact;
-    const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
-    const double exact_value[4] = {e.t, e.barycentric[0], e.barycentric[1], e.barycentric[2]};
-    for (int k = 0; k < 4; ++k)
-      if (!certain[k]) value[k] = exact_value[k];
-  }
+  // What is left goes to the exact stage, which rounds every asked quotient (the ones certified here are the
+  // same correctly rounded values).
+  if (!all_certain) return ExactStageNeeded::roundings;
   return with_values();
 }
 
-TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+RAYKERNEL_MULTIVERSION [[gnu::flatten]]
+std::optional<TracedTriangleClassification> triangle_relation_stages(const Ray& ray, const Triangle& triangle,
+                                                                     TriangleRule rule) noexcept {
   TriangleCascade query(ray, triangle);
-  if (const std::optional<TriangleClassification> c = query.classify(rule)) return {*c, query.stage()};
+  if (const std::optional<TriangleClassification> c = query.classify(rule)) return TracedTriangleClassification{*c, query.stage()};
+  return std::nullopt;
+}
+
+TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                         const TriangleOptions& options) {
+  TracedTriangleIntersection r{};
+  switch (triangle_intersection_stages(ray, triangle, options, r)) {
+    case ExactStageNeeded::none: return r;
+    case ExactStageNeeded::relation:
+      return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
+    case ExactStageNeeded::roundings: break;
+  }
+  const exact::TriangleRoundings e = exact::round_triangle_quotients(ray, triangle, options.t, options.barycentric);
+  r.intersection.t = e.t;
+  r.intersection.barycentric = e.barycentric;
+  r.rounding_stage = Stage::exact;
+  return r;
+}
+
+TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
+  if (const std::optional<TracedTriangleClassification> c = triangle_relation_stages(ray, triangle, rule)) return *c;
   return {exact::classify_triangle(ray, triangle, rule), Stage::exact};
 }
 
