@@ -9,6 +9,7 @@
 #include "common/exit_status.hpp"
 
 #include "sphere/exact_sphere.hpp"
+#include "sphere/ray_sphere_cascade.hpp"
 #include "sphere/ray_sphere_filter.hpp"
 #include "sphere/ray_sphere_formula.hpp"
 
@@ -179,6 +180,46 @@ TEST(SphereInvalid, EveryReasonIsNamed) {
   EXPECT_THROW((void)intersect(x_axis, Sphere{{0, 0, 0}, 0.0}), invalid_input);
   EXPECT_THROW((void)intersect_exact(Ray{{0, 0, 0}, {0, 0, 0}}, unit), invalid_input);
   EXPECT_THROW((void)relation(x_axis, Sphere{{0, 0, nan}, 1}), invalid_input);
+}
+
+// The relation's fast path runs before validation (ray_sphere_cascade.hpp, fast_sphere_relation): it must answer
+// nothing for every invalid input, so that validation names it. Each of the ten numbers of otherwise valid
+// queries (crossing, missing, tangent-ish, huge and tiny ones, which the filter certifies) replaced by NaN, ±inf,
+// and the direction by zero, the radius by 0, −0, negatives: never certified, and relation() throws.
+TEST(SphereFastPath, InvalidInputIsNeverCertified) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<Ray, Sphere>> bases{
+      {Ray{{-5, 0, 0}, {1, 0, 0}}, Sphere{{0, 0, 0}, 1}},        {Ray{{-5, 3, 0}, {1, 0, 0}}, Sphere{{0, 0, 0}, 1}},
+      {Ray{{0.25, 0, 0}, {0, 1, 0}}, Sphere{{0, 0, 0}, 1}},       {Ray{{1e70, 0, 0}, {-1e70, 0, 0}}, Sphere{{0, 0, 0}, 5e69}},
+      {Ray{{-1e-70, 0, 0}, {1e-70, 0, 0}}, Sphere{{0, 0, 0}, 1e-71}}, {Ray{{2, 2, 2}, {-1, -1, -1}}, Sphere{{0, 0, 0}, 3}}};
+  int certified_valid = 0, checked = 0;
+  for (const auto& [ray0, sphere0] : bases) {
+    ASSERT_TRUE(detail::fast_sphere_relation(ray0, sphere0).has_value()) << certified_valid;  // the filter decides the valid base
+    ++certified_valid;
+    for (int k = 0; k < 10; ++k)
+      for (double bad : {nan, -nan, inf, -inf}) {
+        Ray ray = ray0;
+        Sphere sphere = sphere0;
+        double* slot[10] = {&ray.origin.x, &ray.origin.y, &ray.origin.z, &ray.direction.x, &ray.direction.y,
+                            &ray.direction.z, &sphere.center.x, &sphere.center.y, &sphere.center.z, &sphere.radius};
+        *slot[k] = bad;
+        EXPECT_FALSE(detail::fast_sphere_relation(ray, sphere).has_value()) << k << " " << bad;
+        EXPECT_THROW((void)relation(ray, sphere), invalid_input) << k << " " << bad;
+        ++checked;
+      }
+    Ray still = ray0;
+    still.direction = {0, 0, 0};
+    EXPECT_FALSE(detail::fast_sphere_relation(still, sphere0).has_value());
+    EXPECT_THROW((void)relation(still, sphere0), invalid_input);
+    for (double r : {0.0, -0.0, -sphere0.radius, -0x1p-1074, -1e300}) {
+      const Sphere bad{sphere0.center, r};
+      EXPECT_FALSE(detail::fast_sphere_relation(ray0, bad).has_value()) << r;
+      EXPECT_THROW((void)relation(ray0, bad), invalid_input) << r;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(certified_valid, 6);
+  EXPECT_EQ(checked, 6 * (40 + 5));
 }
 
 // The contract's sample through the stream code of `raykernel sphere --exact` (check-cases' comparison: the

@@ -136,36 +136,48 @@ std::optional<Roots> expansion_roots(const Ray& ray, const Sphere& sphere, const
 }
 
 // The signs of C and D, each through the stages (core/escalation.hpp): the binary64 filter
-// (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound), then the exact expansions, built
-// into `s` by `build` on first use and read only when exact (sign_or_compressed); nothing when a sign needs the
-// exact stage.
-template <class Build>
-std::optional<TracedSphereClassification> classification(const SphereFilterSigns& f, const SphereExpansions& s,
-                                                          Build build) noexcept {
+// (proofs/sphere/SphereFilter.v: sphere_filter_c_sound, sphere_filter_d_sound), then the exact expansions,
+// `expanded(false)` for C's sign and `expanded(true)` for D's (built on first use; read only when exact, by
+// sign_or_compressed); nothing when a sign needs the exact stage.
+template <class Expanded>
+std::optional<TracedSphereClassification> classification(const SphereFilterSigns& f, Expanded expanded) noexcept {
   Escalation trace;
-  const auto expanded = [&](const auto& e) {
-    build();
-    return s.builder.exact() ? ExpansionBuilder::sign_or_compressed(e) : Sign::uncertain;
-  };
   const Sign c = trace.sign(SignStage{Stage::filter, [&] { return f.c; }},
-                            SignStage{Stage::expansion, [&] { return expanded(s.c); }});
+                            SignStage{Stage::expansion, [&] { return expanded(false); }});
   const Sign d = trace.sign(SignStage{Stage::filter, [&] { return f.d; }},
-                            SignStage{Stage::expansion, [&] { return expanded(s.d); }});
+                            SignStage{Stage::expansion, [&] { return expanded(true); }});
   if (!is_certain(c) || !is_certain(d)) return std::nullopt;
   return TracedSphereClassification{{sphere_origin(static_cast<int>(c)), sphere_relation(static_cast<int>(d))},
                                     trace.reached()};
 }
 
+// The expansions' signs of C and D (uncertain where the expansions are not exact), out of line: SphereExpansions
+// takes 5 KB of stack, which the relation's frame should not carry (nor probe page by page) on every query.
+struct ExpansionSigns {
+  Sign c, d;
+};
+[[gnu::noinline]] ExpansionSigns expansion_signs(const Ray& ray, const Sphere& sphere) noexcept {
+  SphereExpansions s;
+  sphere_expansions(ray, sphere, s);
+  if (!s.builder.exact()) return {Sign::uncertain, Sign::uncertain};
+  return {ExpansionBuilder::sign_or_compressed(s.c), ExpansionBuilder::sign_or_compressed(s.d)};
+}
+
 }  // namespace
 
+std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept {
+  const SphereFilterSigns f = sphere_filter(ray, sphere);
+  if (!(is_certain(f.c) & is_certain(f.d) & (sphere.radius > 0))) return std::nullopt;
+  return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
+}
+
 TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
-  SphereExpansions s;
-  bool built = false;
-  const auto build = [&] {
-    if (!built) sphere_expansions(ray, sphere, s);
-    built = true;
+  std::optional<ExpansionSigns> signs;
+  const auto expanded = [&](bool d) {
+    if (!signs) signs = expansion_signs(ray, sphere);
+    return d ? signs->d : signs->c;
   };
-  if (const std::optional<TracedSphereClassification> c = classification(sphere_filter(ray, sphere), s, build)) return *c;
+  if (const std::optional<TracedSphereClassification> c = classification(sphere_filter(ray, sphere), expanded)) return *c;
   return {exact::classify_sphere(ray, sphere), Stage::exact};
 }
 
@@ -177,7 +189,11 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
     if (!built) sphere_expansions(ray, sphere, s);
     built = true;
   };
-  const std::optional<TracedSphereClassification> c = classification(signs, s, build);
+  const std::optional<TracedSphereClassification> c = classification(signs, [&](bool d) {
+    build();
+    if (!s.builder.exact()) return Sign::uncertain;
+    return d ? ExpansionBuilder::sign_or_compressed(s.d) : ExpansionBuilder::sign_or_compressed(s.c);
+  });
   if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
   const SphereClassification& k = c->classification;
   const Stage relation_stage = c->stage;

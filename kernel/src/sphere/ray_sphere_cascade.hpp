@@ -18,6 +18,16 @@ struct TracedSphereClassification {
 };
 [[nodiscard]] TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere);
 
+// The relation's fast path, on raw input: the binary64 filter's signs of C and D when both are certain and the
+// radius is positive; nothing otherwise (then the caller validates and runs the cascade). No validation is
+// needed before it: certain signs imply finite input and d ≠ 0. Every component of o, c and r reaches C's bound
+// through |f|² + r² (f = o − c), so a NaN or infinite one makes that bound NaN or +inf, which certifies
+// nothing; one of d makes A and its bound NaN or infinite, hence D's bound (t3 = e_A·|C|, t4 = (|A| + e_A)·e_C);
+// d = 0 makes A = B = D̂ = 0 exactly, and a zero is never certified. The radius is the one condition the filter
+// cannot see (r and −r have the same r²), checked here. tests/sphere_test.cpp (SphereFastPath) checks every
+// kind of invalid input goes to validation.
+[[nodiscard]] std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept;
+
 // sign(t_root − b) for a root of a sphere the ray's line meets (root −1: t1, or the tangent root t0; +1: t2) and a
 // double b: the expansion stage's side of b (sphere_root_side with the boundary m = (b + b)/2 = b), else the exact
 // stage's (exact::root_side_of_midpoint).

@@ -40,6 +40,8 @@ SphereIntersection intersect(const Ray& ray, const Sphere& sphere) { return inte
 
 SphereClassification relation(const Ray& ray, const Sphere& sphere) {
   return detail::in_default_fp_environment([&] {
+    if (const std::optional<SphereClassification> c = detail::fast_sphere_relation(ray, sphere)) [[likely]]
+      return *c;
     throw_if_invalid(ray, sphere);
     return detail::sphere_relation_cascade(ray, sphere).classification;
   });
