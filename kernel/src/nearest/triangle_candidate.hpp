@@ -223,24 +223,22 @@ class TriangleCandidate {
     // Each sign through this candidate's stages (core/escalation.hpp); the trace is not reported (relation_stage
     // is the relation's, and the comparisons trace their own stages).
     Escalation signs;
-    Sign num = signs.sign(SignStage{Stage::filter, [&] {
-                            return static_cast<Sign>(det3_filter_lanes(stage1_.num, bounds::triangle_filter_num_relative,
-                                                                       stage1_.absolute_e));
-                          }},
-                          SignStage{Stage::compensated, [&] { return enclosure_sign(num_compensated()); }},
-                          SignStage{Stage::expansion, [&] {
-                            stage3();
-                            return num3_sign_;
-                          }});
-    Sign den = signs.sign(SignStage{Stage::filter, [&] {
-                            return static_cast<Sign>(det3_filter_lanes(stage1_.den, bounds::triangle_filter_pi_relative,
-                                                                       stage1_.absolute_d));
-                          }},
-                          SignStage{Stage::compensated, [&] { return enclosure_sign(den_compensated()); }},
-                          SignStage{Stage::expansion, [&] {
-                            stage3();
-                            return den3_sign_;
-                          }});
+    const auto escalate = [&](bool is_num) {
+      return signs.sign(SignStage{Stage::filter, [&] {
+                          return static_cast<Sign>(is_num ? det3_filter_lanes(stage1_.num, bounds::triangle_filter_num_relative,
+                                                                              stage1_.absolute_e)
+                                                          : det3_filter_lanes(stage1_.den, bounds::triangle_filter_pi_relative,
+                                                                              stage1_.absolute_d));
+                        }},
+                        SignStage{Stage::compensated,
+                                  [&] { return enclosure_sign(is_num ? num_compensated() : den_compensated()); }},
+                        SignStage{Stage::expansion, [&] {
+                          stage3();
+                          return is_num ? num3_sign_ : den3_sign_;
+                        }});
+    };
+    Sign num = escalate(true);
+    Sign den = escalate(false);
     if (!is_certain(num) || !is_certain(den)) {
       const exact::QuotientSigns s = exact::triangle_quotient_signs(*ray_, *source);
       num = static_cast<Sign>(s.num);

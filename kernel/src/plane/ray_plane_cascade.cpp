@@ -30,20 +30,18 @@ CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
   // for values that cancel to within ~2^-100 of the terms), computed on demand and kept for the rounding of t,
   // then the exact expansions when they are exact.
   Escalation trace;
-  const Sign den = trace.sign(SignStage{Stage::filter, [&] { return query.den_filter(); }},
-                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.den_compensated()); }},
-                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.den_refined()); }},
-                              SignStage{Stage::expansion, [&] {
-                                const ExactExpansions& e = query.expansions();
-                                return e.exact ? e.den.sign() : Sign::uncertain;
-                              }});
-  const Sign num = trace.sign(SignStage{Stage::filter, [&] { return query.num_filter(); }},
-                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.num_compensated()); }},
-                              SignStage{Stage::compensated, [&] { return enclosure_sign(query.num_refined()); }},
-                              SignStage{Stage::expansion, [&] {
-                                const ExactExpansions& e = query.expansions();
-                                return e.exact ? e.num.sign() : Sign::uncertain;
-                              }});
+  const auto escalate = [&](bool den) {
+    return trace.sign(
+        SignStage{Stage::filter, [&] { return den ? query.den_filter() : query.num_filter(); }},
+        SignStage{Stage::compensated, [&] { return enclosure_sign(den ? query.den_compensated() : query.num_compensated()); }},
+        SignStage{Stage::compensated, [&] { return enclosure_sign(den ? query.den_refined() : query.num_refined()); }},
+        SignStage{Stage::expansion, [&] {
+          const ExactExpansions& e = query.expansions();
+          return !e.exact ? Sign::uncertain : den ? e.den.sign() : e.num.sign();
+        }});
+  };
+  const Sign den = escalate(true);  // den first, then num, on one trace (PlaneCascadeTwins.v's order)
+  const Sign num = escalate(false);
   if (is_certain(den) && is_certain(num)) return {num, den, trace.reached()};
   // The exact stage, for both signs (one rational evaluation gives both).
   const exact::ExactSigns s = exact::ray_plane_signs(query.ray(), query.plane());
