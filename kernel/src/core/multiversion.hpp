@@ -18,3 +18,13 @@
 #ifndef RAYKERNEL_MULTIVERSION
 #define RAYKERNEL_MULTIVERSION
 #endif
+
+// RAYKERNEL_MULTIVERSION_FLATTEN: the same, with everything the function calls inlined into each clone (GCC's
+// flatten), so that the FMA clone computes std::fma with the instruction in its callees too (the triangle
+// cascade's stages). clang (14) does not combine flatten with target_clones; there it is RAYKERNEL_MULTIVERSION
+// alone (the same bits: the callees call libm's fma).
+#if defined(__clang__)
+#define RAYKERNEL_MULTIVERSION_FLATTEN RAYKERNEL_MULTIVERSION
+#else
+#define RAYKERNEL_MULTIVERSION_FLATTEN [[gnu::flatten]] RAYKERNEL_MULTIVERSION
+#endif

@@ -358,7 +358,7 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
   return with_values();
 }
 
-RAYKERNEL_MULTIVERSION [[gnu::flatten]]
+RAYKERNEL_MULTIVERSION_FLATTEN
 std::optional<TracedTriangleClassification> triangle_relation_stages(const Ray& ray, const Triangle& triangle,
                                                                      TriangleRule rule) noexcept {
   TriangleCascade query(ray, triangle);
