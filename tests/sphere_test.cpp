@@ -182,11 +182,16 @@ TEST(SphereInvalid, EveryReasonIsNamed) {
   EXPECT_THROW((void)relation(x_axis, Sphere{{0, 0, nan}, 1}), invalid_input);
 }
 
-// The relation's fast path runs before validation (ray_sphere_cascade.hpp, fast_sphere_relation): it must answer
-// nothing for every invalid input, so that validation names it. Each of the ten numbers of otherwise valid
+// The fast paths run before validation (ray_sphere_cascade.hpp, fast_sphere_relation for relation() and
+// sphere_intersection_filtered for intersect()): they must answer nothing for every invalid input, so that
+// validation names it. Each of the ten numbers of otherwise valid
 // queries (crossing, missing, tangent-ish, huge and tiny ones, which the filter certifies) replaced by NaN, ±inf,
-// and the direction by zero, the radius by 0, −0, negatives: never certified, and relation() throws.
+// and the direction by zero, the radius by 0, −0, negatives: never certified, and relation() and intersect() throw.
 TEST(SphereFastPath, InvalidInputIsNeverCertified) {
+  SphereIntersection out{};
+  const auto filtered = [&out](const Ray& ray, const Sphere& sphere) {
+    return detail::sphere_intersection_filtered(ray, sphere, out);
+  };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<std::pair<Ray, Sphere>> bases{
       {Ray{{-5, 0, 0}, {1, 0, 0}}, Sphere{{0, 0, 0}, 1}},        {Ray{{-5, 3, 0}, {1, 0, 0}}, Sphere{{0, 0, 0}, 1}},
@@ -195,6 +200,7 @@ TEST(SphereFastPath, InvalidInputIsNeverCertified) {
   int certified_valid = 0, checked = 0;
   for (const auto& [ray0, sphere0] : bases) {
     ASSERT_TRUE(detail::fast_sphere_relation(ray0, sphere0).has_value()) << certified_valid;  // the filter decides the valid base
+    ASSERT_TRUE(filtered(ray0, sphere0)) << certified_valid;
     ++certified_valid;
     for (int k = 0; k < 10; ++k)
       for (double bad : {nan, -nan, inf, -inf}) {
@@ -204,17 +210,23 @@ TEST(SphereFastPath, InvalidInputIsNeverCertified) {
                             &ray.direction.z, &sphere.center.x, &sphere.center.y, &sphere.center.z, &sphere.radius};
         *slot[k] = bad;
         EXPECT_FALSE(detail::fast_sphere_relation(ray, sphere).has_value()) << k << " " << bad;
+        EXPECT_FALSE(filtered(ray, sphere)) << k << " " << bad;
         EXPECT_THROW((void)relation(ray, sphere), invalid_input) << k << " " << bad;
+        EXPECT_THROW((void)intersect(ray, sphere), invalid_input) << k << " " << bad;
         ++checked;
       }
     Ray still = ray0;
     still.direction = {0, 0, 0};
     EXPECT_FALSE(detail::fast_sphere_relation(still, sphere0).has_value());
+    EXPECT_FALSE(filtered(still, sphere0));
     EXPECT_THROW((void)relation(still, sphere0), invalid_input);
+    EXPECT_THROW((void)intersect(still, sphere0), invalid_input);
     for (double r : {0.0, -0.0, -sphere0.radius, -0x1p-1074, -1e300}) {
       const Sphere bad{sphere0.center, r};
       EXPECT_FALSE(detail::fast_sphere_relation(ray0, bad).has_value()) << r;
+      EXPECT_FALSE(filtered(ray0, bad)) << r;
       EXPECT_THROW((void)relation(ray0, bad), invalid_input) << r;
+      EXPECT_THROW((void)intersect(ray0, bad), invalid_input) << r;
       ++checked;
     }
   }

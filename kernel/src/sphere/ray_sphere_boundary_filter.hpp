@@ -27,6 +27,7 @@
 #include <raykernel/sphere.hpp>
 
 #include <cmath>
+#include <type_traits>
 
 namespace raykernel::detail {
 
@@ -36,57 +37,87 @@ struct SphereBoundarySigns {
   double q4_bound;    // E_q: |4q(m) − q4| ≤ E_q when it is finite (tests check the margin)
 };
 
-[[nodiscard]] [[gnu::always_inline]] inline SphereBoundarySigns sphere_boundary_filter(const Ray& ray, const Sphere& sphere, double x,
-                                                                double y) noexcept {
-  const double o[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
-  const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-  const double c[3] = {sphere.center.x, sphere.center.y, sphere.center.z};
-  const DD<double> m = two_sum(x, y);  // M = x + y, exactly
-  double h_head[3], low[3], t[3];
+// The filter written once over V = double or Lanes4 (four boundaries at once: each lane performs exactly the
+// scalar operations, so each lane's signs are the scalar filter's; core/lanes.hpp), the signs as integer lanes.
+template <class V>
+struct SphereBoundaryLanes {
+  IntegerOf<V> q, slope;
+  V q4, slope2, q4_bound;
+};
+
+// Each lane the double x, bit for bit (V{} + x would turn a −0 into +0).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V splat(double x) noexcept {
+  if constexpr (std::is_same_v<V, double>) {
+    return x;
+  } else {
+    V r;
+    for (int i = 0; i < width_of<V>; ++i) r[i] = x;
+    return r;
+  }
+}
+
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline SphereBoundaryLanes<V> sphere_boundary_filter_lanes(const Ray& ray,
+                                                                                                const Sphere& sphere,
+                                                                                                V x, V y) noexcept {
+  const V o[3] = {splat<V>(ray.origin.x), splat<V>(ray.origin.y), splat<V>(ray.origin.z)};
+  const V d[3] = {splat<V>(ray.direction.x), splat<V>(ray.direction.y), splat<V>(ray.direction.z)};
+  const V c[3] = {splat<V>(sphere.center.x), splat<V>(sphere.center.y), splat<V>(sphere.center.z)};
+  const DD<V> m = two_sum(x, y);  // M = x + y, exactly
+  V h_head[3], low[3], t[3];
   for (int i = 0; i < 3; ++i) {
-    const DD<double> f = two_diff(o[i], c[i]);  // o_i − c_i, exactly
-    const double p = m.hi * d[i];
-    const double pi = std::fma(m.hi, d[i], -p);  // M₁·d_i − P, exactly unless it underflows
-    const double q = m.lo * d[i];
-    const DD<double> head = two_sum(f.hi + f.hi, p);  // 2f̂ exact (a power of two)
+    const DD<V> f = two_diff(o[i], c[i]);  // o_i − c_i, exactly
+    const V p = m.hi * d[i];
+    const V pi = fma(m.hi, d[i], -p);  // M₁·d_i − P, exactly unless it underflows
+    const V q = m.lo * d[i];
+    const DD<V> head = two_sum(f.hi + f.hi, p);  // 2f̂ exact (a power of two)
     h_head[i] = head.hi;
     low[i] = (head.lo + (f.lo + f.lo)) + (pi + q);
-    t[i] = (std::fabs(f.hi) + std::fabs(f.hi)) + std::fabs(p);
+    t[i] = (abs(f.hi) + abs(f.hi)) + abs(p);
   }
-  const double two_r = sphere.radius + sphere.radius;
-  const DD<double> s0 = two_prod(h_head[0], h_head[0]), s1 = two_prod(h_head[1], h_head[1]),
-                   s2 = two_prod(h_head[2], h_head[2]), rr = two_prod(two_r, two_r);
-  const DD<double> a1 = two_sum(s0.hi, s1.hi), a2 = two_sum(a1.hi, s2.hi), a3 = two_sum(a2.hi, -rr.hi);
-  double k[3];
+  const V radius = splat<V>(sphere.radius);
+  const V two_r = radius + radius;
+  const DD<V> s0 = two_prod(h_head[0], h_head[0]), s1 = two_prod(h_head[1], h_head[1]),
+              s2 = two_prod(h_head[2], h_head[2]), rr = two_prod(two_r, two_r);
+  const DD<V> a1 = two_sum(s0.hi, s1.hi), a2 = two_sum(a1.hi, s2.hi), a3 = two_sum(a2.hi, -rr.hi);
+  V k[3];
   for (int i = 0; i < 3; ++i) k[i] = low[i] * ((h_head[i] + h_head[i]) + low[i]);  // L·(2H + L)
-  const double small = (((s0.lo + s1.lo) + (s2.lo - rr.lo)) + ((a1.lo + a2.lo) + a3.lo)) + ((k[0] + k[1]) + k[2]);
-  const double value = a3.hi + small;
-  double w = ((s0.hi + s1.hi) + s2.hi) + rr.hi;
-  for (int i = 0; i < 3; ++i) w += t[i] * (std::fabs(h_head[i]) + bounds::sphere_boundary_tail * t[i]);
-  const double slope = (d[0] * h_head[0] + d[1] * h_head[1]) + d[2] * h_head[2];  // 2(A·m + B) = Σ d_i·G_i
-  const double e_q = bounds::sphere_boundary_q_relative * w + bounds::sphere_boundary_q_absolute;
-  SphereBoundarySigns r{Sign::uncertain, Sign::uncertain, value, slope, e_q};
-  if (!(w <= bounds::largest_finite) || !(std::fabs(value) <= bounds::largest_finite)) return r;
-  r.q = value > e_q ? Sign::positive : value < -e_q ? Sign::negative : Sign::uncertain;
+  const V small = (((s0.lo + s1.lo) + (s2.lo - rr.lo)) + ((a1.lo + a2.lo) + a3.lo)) + ((k[0] + k[1]) + k[2]);
+  const V value = a3.hi + small;
+  V w = ((s0.hi + s1.hi) + s2.hi) + rr.hi;
+  for (int i = 0; i < 3; ++i) w += t[i] * (abs(h_head[i]) + bounds::sphere_boundary_tail * t[i]);
+  const V slope = (d[0] * h_head[0] + d[1] * h_head[1]) + d[2] * h_head[2];  // 2(A·m + B) = Σ d_i·G_i
+  const V e_q = bounds::sphere_boundary_q_relative * w + bounds::sphere_boundary_q_absolute;
+  // Certain only where W and the value are finite (no comparison holds with a NaN).
+  const auto finite = both(w <= bounds::largest_finite, abs(value) <= bounds::largest_finite);
+  const IntegerOf<V> uncertain = IntegerOf<V>{} + uncertain_lane;
+  const IntegerOf<V> q_sign = select(finite, sign_lanes(value > e_q, value < -e_q), uncertain);
   // The slope's sign, from the heads alone: read by root_side_of only when q(m) > 0, so certified only then.
-  if (r.q != Sign::positive) return r;
-  double slope_magnitude = 0;
+  V slope_magnitude{};  // from 0, as the proof's model sums it
   for (int i = 0; i < 3; ++i)
-    slope_magnitude += std::fabs(d[i]) * ((std::fabs(h_head[i]) + t[i]) + bounds::sphere_boundary_slope_floor);
-  if (!(slope_magnitude <= bounds::largest_finite)) return r;
-  const double e_s = bounds::sphere_boundary_slope_relative * slope_magnitude + bounds::sphere_boundary_slope_absolute;
-  r.slope = slope > e_s ? Sign::positive : slope < -e_s ? Sign::negative : Sign::uncertain;
-  return r;
+    slope_magnitude += abs(d[i]) * ((abs(h_head[i]) + t[i]) + bounds::sphere_boundary_slope_floor);
+  const V e_s = bounds::sphere_boundary_slope_relative * slope_magnitude + bounds::sphere_boundary_slope_absolute;
+  const auto slope_read = both(q_sign == IntegerOf<V>{} + 1, slope_magnitude <= bounds::largest_finite);
+  const IntegerOf<V> slope_sign = select(slope_read, sign_lanes(slope > e_s, slope < -e_s), uncertain);
+  return {q_sign, slope_sign, value, slope, e_q};
+}
+
+[[nodiscard]] [[gnu::always_inline]] inline SphereBoundarySigns sphere_boundary_filter(const Ray& ray, const Sphere& sphere,
+                                                                                       double x, double y) noexcept {
+  const SphereBoundaryLanes<double> b = sphere_boundary_filter_lanes<double>(ray, sphere, x, y);
+  return {static_cast<Sign>(b.q), static_cast<Sign>(b.slope), b.q4, b.slope2, b.q4_bound};
 }
 
 // A root's candidate one Newton step from t: t − q(t)/q'(t) with q(t) and q'(t) from the filter's approximations
 // (double-double residual, so a candidate ulps off lands within about an ulp); t itself when the step is not finite.
 // Never a decision: the walk over boundaries decides.
-[[nodiscard]] [[gnu::always_inline]] inline double sphere_root_newton_step(const Ray& ray, const Sphere& sphere, double t) noexcept {
-  const SphereBoundarySigns b = sphere_boundary_filter(ray, sphere, t, t);  // M = 2t: 4q(t) and 2(A·t + B)
-  const double step = b.q4 / (b.slope2 * 4);
-  const double next = t - step;
-  return std::isfinite(next) ? next : t;
+// (Per lane for V = Lanes2: both roots' candidates in one pass.)
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V sphere_root_newton_step(const Ray& ray, const Sphere& sphere, V t) noexcept {
+  const SphereBoundaryLanes<V> b = sphere_boundary_filter_lanes<V>(ray, sphere, t, t);  // M = 2t: 4q(t) and 2(A·t + B)
+  const V next = t - b.q4 / (b.slope2 * 4);
+  return select(abs(next) <= bounds::largest_finite, next, t);  // t itself when the step is not finite
 }
 
 // sign(t_k − (x + y)/2) for the root k (−1: t1 or t0, +1: t2 or t0), D ≥ 0, from the filter's signs (root_side_of

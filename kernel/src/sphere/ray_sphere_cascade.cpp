@@ -2,15 +2,21 @@
 //   - the relation: first the binary64 filter of the signs of C and D (ray_sphere_filter.hpp; a miss it decides
 //     returns at once, without expansions); then the signs of C and D read from their exact expansions
 //     (ray_sphere_stages.hpp), or exact rationals when a product was not exact or a sign could not be read;
-//   - each root: a candidate from the expansions' rounded values (the stable form: the root of larger magnitude
+//   - both roots, when the filter decided D > 0 and C ≠ 0: candidates from the filter's values, one Newton step each
+//     (one Lanes2 pass of the boundary filter, ray_sphere_boundary_filter.hpp), confirmed at the four midpoints
+//     beside them in one Lanes4 pass; else each by the walk over its boundaries, one boundary filter at a time
+//     (round_walking_to_midpoints); this whole filter stage runs before validation (sphere_intersection_filtered);
+//   - each root otherwise: a candidate from the expansions' rounded values (the stable form: the root of larger magnitude
 //     from −B ∓ √D, the other as C over it), decided at its rounding boundaries from the exact expansions of A,
 //     B, C (core/quotient_boundary.hpp's round_walking_to_midpoints on the root's side, ray_sphere_stages.hpp);
 //     a rational root (C = 0: 0 and −2B/A; the tangent root −B/A) as a quotient of expansions
 //     (round_quotient_near); otherwise exact rationals and MPFR.
-// Every stage's answer is exact: there is no error bound to check, only the builder's exactness and the signs.
+// Every answer is exact: the filters' signs are certified (proofs/sphere/SphereFilter.v, SphereBoundaryFilter.v),
+// the expansions' are exact when the builder says so.
 #include "sphere/ray_sphere_cascade.hpp"
 
 #include "core/escalation.hpp"
+#include "core/interval.hpp"
 #include "core/multiversion.hpp"
 #include "core/quotient_boundary.hpp"
 #include "sphere/exact_sphere.hpp"
@@ -87,11 +93,57 @@ std::optional<double> filtered_root(const Ray& ray, const Sphere& sphere, int ro
       t, max_walk);
 }
 
+// Both candidates at once (D > 0, C ≠ 0): one Newton step each, then the boundary filter at the four midpoints
+// beside them in one Lanes4 pass
+// (lanes: below t1, above t1, below t2, above t2). A candidate is RN of its root when the root lies strictly
+// between its two midpoints, sign(t_k − lower) > 0 and sign(t_k − upper) < 0: the first step of
+// round_walking_to_midpoints (core/quotient_boundary.hpp) when it returns the candidate, each side read by
+// root_side_of from the lane's signs as sphere_root_side_filtered reads the scalar filter's. Nothing when either
+// candidate is not confirmed so (then the Newton step and the walk decide, one boundary at a time).
+//   Certified by: each lane's signs, proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound` and
+//   `sphere_boundary_slope_sound` (each lane the scalar filter's operations); the side, proofs/sphere/SphereRoots.v,
+//   `root_side_of_smaller_correct` and `root_side_of_larger_correct`; m⁻ < t < m⁺ gives RN(t) = t̂,
+//   proofs/core/MidpointRounding.v, `rn_between_midpoints` (round_at_midpoints' last case, whose twin the runner
+//   checks: routine quotient_boundary). The Newton step chooses where to look and decides nothing.
+// The body is always_inline and called from the multiversioned function only: clang rejects a call passing a
+// Lanes4 by value from a target_clones clone to a function without that target.
+[[gnu::always_inline]] inline std::optional<Roots> confirmed_candidates_body(const Ray& ray, const Sphere& sphere,
+                                                                         const Roots& candidate) noexcept {
+  // One Newton step of both candidates in one Lanes2 pass.
+  const Lanes2 next = sphere_root_newton_step(ray, sphere, Lanes2{candidate.t1, candidate.t2});
+  const double t[2] = {next[0], next[1]};
+  double below[2], above[2];
+  for (int k = 0; k < 2; ++k) {
+    const double magnitude = std::fabs(t[k]);
+    if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
+    below[k] = next_down(t[k]);  // std::nextafter towards ∓DBL_MAX, for finite t (core/interval.hpp), inline
+    above[k] = next_up(t[k]);
+  }
+  const SphereBoundaryLanes<Lanes4> b = sphere_boundary_filter_lanes<Lanes4>(
+      ray, sphere, Lanes4{below[0], t[0], below[1], t[1]}, Lanes4{t[0], above[0], t[1], above[1]});
+  bool confirmed = true;
+  for (int lane = 0; lane < 4; ++lane) {
+    const int root = lane < 2 ? -1 : +1;
+    const std::int64_t q = b.q[lane], slope = b.slope[lane];
+    const bool certain = q == -1 || (q == 1 && slope != uncertain_lane);
+    const int side = certain ? root_side_of(root, static_cast<int>(q), q == 1 ? static_cast<int>(slope) : 0) : 0;
+    confirmed = confirmed && (lane % 2 == 0 ? side > 0 : side < 0);
+  }
+  if (!confirmed) return std::nullopt;
+  return Roots{t[0], t[1], Stage::filter};
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<Roots> confirmed_candidates(const Ray& ray, const Sphere& sphere, const Roots& candidate) noexcept {
+  return confirmed_candidates_body(ray, sphere, candidate);
+}
+
 // Both roots from the boundary filter, from the relation filter's candidates (Â, B̂, Ĉ, D̂: ulps off where
 // B² − A·C cancels, which the Newton step repairs), when that filter decided D > 0 and C ≠ 0.
 std::optional<Roots> filter_roots(const Ray& ray, const Sphere& sphere, const SphereFilterSigns& f) noexcept {
   if (f.d != Sign::positive || !is_certain(f.c)) return std::nullopt;
   const Roots candidate = root_candidates(f.a, f.b, f.c_value, f.d_value);
+  if (const std::optional<Roots> r = confirmed_candidates(ray, sphere, candidate)) return r;
   const std::optional<double> t1 = filtered_root(ray, sphere, -1, candidate.t1);
   if (!t1) return std::nullopt;
   const std::optional<double> t2 = filtered_root(ray, sphere, +1, candidate.t2);
@@ -169,11 +221,18 @@ Sign expansion_sign(const SphereExpansions& s, bool d) noexcept {
 
 }  // namespace
 
-// Branch-free up to the decision (written through classification() it measured 10% slower).
-std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept {
+
+// Branch-free (written through classification() it measured 10% slower; with a branch per sign, which random
+// queries mispredict, 40%): each sign from two comparisons, and SphereOrigin and SphereRelation are 1 + the sign
+// (inside 0, outside 2; miss 0, cross 2) when certain, hence nonzero.
+std::uint32_t fast_sphere_relation_packed(const Ray& ray, const Sphere& sphere) noexcept {
+  static_assert(static_cast<int>(SphereOrigin::inside) == 0 && static_cast<int>(SphereOrigin::outside) == 2 &&
+                static_cast<int>(SphereRelation::miss) == 0 && static_cast<int>(SphereRelation::cross) == 2);
   const SphereFilterSigns f = sphere_filter(ray, sphere);
-  if (!(is_certain(f.c) & is_certain(f.d) & (sphere.radius > 0))) return std::nullopt;
-  return SphereClassification{sphere_origin(static_cast<int>(f.c)), sphere_relation(static_cast<int>(f.d))};
+  const std::uint32_t c_pos = f.c_value > f.c_bound, c_neg = f.c_value < -f.c_bound;
+  const std::uint32_t d_pos = f.d_value > f.d_bound, d_neg = f.d_value < -f.d_bound;
+  const std::uint32_t certain = (c_pos | c_neg) & (d_pos | d_neg) & static_cast<std::uint32_t>(sphere.radius > 0);
+  return (1 + c_pos - c_neg) | ((1 + d_pos - d_neg) << 8) | (certain << 16);
 }
 
 TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere& sphere) {
@@ -186,8 +245,13 @@ TracedSphereClassification sphere_relation_cascade(const Ray& ray, const Sphere&
   return {exact::classify_sphere(ray, sphere), Stage::exact};
 }
 
-TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
-  const SphereFilterSigns signs = sphere_filter(ray, sphere);
+namespace {
+
+// The cascade after the filter (SphereExpansions takes 5 KB of stack, which the filter's path should not carry, nor
+// probe page by page, on every query): the signs of C and D escalated, the roots from the boundary filter or the
+// expansions, else the exact stage.
+[[gnu::noinline]] SphereStages intersection_with_expansions(const Ray& ray, const Sphere& sphere,
+                                                            const SphereFilterSigns& signs, SphereIntersection& out) {
   SphereExpansions s;
   bool built = false;
   const auto build = [&] {
@@ -198,22 +262,51 @@ TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Spher
     build();
     return expansion_sign(s, d);
   });
-  if (!c) return {exact::intersect_sphere(ray, sphere), Stage::exact, Stage::exact};
+  if (!c) {
+    out = exact::intersect_sphere(ray, sphere);
+    return {Stage::exact, Stage::exact};
+  }
   const SphereClassification& k = c->classification;
   const Stage relation_stage = c->stage;
-  if (k.relation == SphereRelation::miss) return {{k.origin, k.relation, not_a_number, not_a_number}, relation_stage, relation_stage};
+  const auto answer = [&](double t1, double t2, Stage rounding_stage) {
+    out = {k.origin, k.relation, t1, t2};
+    return SphereStages{relation_stage, rounding_stage};
+  };
+  if (k.relation == SphereRelation::miss) return answer(not_a_number, not_a_number, relation_stage);
   const bool filter_tried = relation_stage == Stage::filter;  // both signs from the filter: D > 0 or D = 0, C certain
-  if (filter_tried)
-    if (const std::optional<Roots> r = filter_roots(ray, sphere, signs))
-      return {{k.origin, k.relation, r->t1, r->t2}, Stage::filter, Stage::filter};
   // D's expansion is built even when the filter decided the relation: its rounded value makes the roots'
   // candidates a rounding or two from the roots (the filter's D̂ can be far off where B² − A·C cancels, and
   // a candidate further off costs a boundary sign per ulp; measured in bench/README.md).
   build();
   if (const std::optional<Roots> r = expansion_roots(ray, sphere, s, k, filter_tried))
-    return {{k.origin, k.relation, r->t1, r->t2}, relation_stage, r->stage};
+    return answer(r->t1, r->t2, r->stage);
   const SphereIntersection exact = exact::intersect_sphere(ray, sphere);
-  return {{k.origin, k.relation, exact.t1, exact.t2}, relation_stage, Stage::exact};
+  return answer(exact.t1, exact.t2, Stage::exact);
+}
+
+}  // namespace
+
+bool sphere_intersection_filtered(const Ray& ray, const Sphere& sphere, SphereIntersection& out) noexcept {
+  const SphereFilterSigns signs = sphere_filter(ray, sphere);
+  // Both signs from the filter (the escalation asks no later stage), then a miss, or both roots from the boundary
+  // filter, answer here.
+  const std::optional<TracedSphereClassification> c = classification(signs, [](bool) { return Sign::uncertain; });
+  if (!c || !(sphere.radius > 0)) return false;
+  const SphereClassification& k = c->classification;
+  if (k.relation == SphereRelation::miss) {
+    out = {k.origin, k.relation, not_a_number, not_a_number};
+    return true;
+  }
+  if (const std::optional<Roots> r = filter_roots(ray, sphere, signs)) {
+    out = {k.origin, k.relation, r->t1, r->t2};
+    return true;
+  }
+  return false;
+}
+
+SphereStages sphere_intersection_cascade(const Ray& ray, const Sphere& sphere, SphereIntersection& out) {
+  if (sphere_intersection_filtered(ray, sphere, out)) return {Stage::filter, Stage::filter};
+  return intersection_with_expansions(ray, sphere, sphere_filter(ray, sphere), out);
 }
 
 int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b) {

@@ -6,11 +6,29 @@
 #include <raykernel/interval.hpp>
 #include <raykernel/sphere.hpp>
 
+#include <cstdint>
 #include <optional>
 
 namespace raykernel::detail {
 
-[[nodiscard]] TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere);
+// The answer is written to `out` (so that a caller's return slot receives it in place: a copy of a struct whose
+// bytes were just stored one by one stalls store forwarding), the stages returned.
+struct SphereStages {
+  Stage relation, rounding;
+};
+SphereStages sphere_intersection_cascade(const Ray& ray, const Sphere& sphere, SphereIntersection& out);
+// The cascade's filter stage alone, on raw input: true (and the answer in `out`, both stages the filter) when the
+// filter decides the signs of C and D, the radius is positive and, unless the line misses, the boundary filter
+// rounds both roots; false otherwise (then the caller validates and runs the cascade). No validation is needed
+// before it, for the reason given at fast_sphere_relation below.
+[[nodiscard]] bool sphere_intersection_filtered(const Ray& ray, const Sphere& sphere, SphereIntersection& out) noexcept;
+[[nodiscard]] inline TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
+  TracedSphereIntersection r;
+  const SphereStages stages = sphere_intersection_cascade(ray, sphere, r.intersection);
+  r.relation_stage = stages.relation;
+  r.rounding_stage = stages.rounding;
+  return r;
+}
 
 struct TracedSphereClassification {
   SphereClassification classification;
@@ -26,7 +44,19 @@ struct TracedSphereClassification {
 // d = 0 makes A = B = D̂ = 0 exactly, and a zero is never certified. The radius is the one condition the filter
 // cannot see (r and −r have the same r²), checked here. tests/sphere_test.cpp (SphereFastPath) checks every
 // kind of invalid input goes to validation.
-[[nodiscard]] std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept;
+// The answer is packed in one integer, decoded by fast_sphere_relation: the origin in bits 0–7, the relation in
+// bits 8–15, bit 16 set when certain (GCC assembles an optional of two one-byte enums through the stack, and reading
+// it back stalled store forwarding: half the function's time, measured).
+inline constexpr std::uint32_t fast_sphere_relation_certain = 1u << 16;
+[[nodiscard]] std::uint32_t fast_sphere_relation_packed(const Ray& ray, const Sphere& sphere) noexcept;
+[[nodiscard]] inline SphereClassification unpack_sphere_classification(std::uint32_t p) noexcept {
+  return SphereClassification{static_cast<SphereOrigin>(p & 0xffu), static_cast<SphereRelation>((p >> 8) & 0xffu)};
+}
+[[nodiscard]] inline std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept {
+  const std::uint32_t p = fast_sphere_relation_packed(ray, sphere);
+  if ((p & fast_sphere_relation_certain) == 0) return std::nullopt;
+  return unpack_sphere_classification(p);
+}
 
 // sign(t_root − b) for a root of a sphere the ray's line meets (root −1: t1, or the tangent root t0; +1: t2) and a
 // double b: the expansion stage's side of b (sphere_root_side with the boundary m = (b + b)/2 = b), else the exact

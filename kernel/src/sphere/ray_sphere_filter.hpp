@@ -22,6 +22,7 @@ namespace raykernel::detail {
 struct SphereFilterSigns {
   Sign c, d;  // sign(C), sign(D), or uncertain
   double a, b, c_value, d_value;  // Â, B̂, Ĉ, D̂: the roots' candidates when D > 0 (never a decision)
+  double c_bound, d_bound;        // E_C, E_D: the sign of Ĉ is certain when |Ĉ| > E_C, of D̂ when |D̂| > E_D
 };
 
 [[nodiscard]] inline Sign sphere_filter_sign(double value, double bound) noexcept {
@@ -30,7 +31,7 @@ struct SphereFilterSigns {
   return Sign::uncertain;
 }
 
-[[nodiscard]] inline SphereFilterSigns sphere_filter(const Ray& ray, const Sphere& sphere) noexcept {
+[[nodiscard]] [[gnu::always_inline]] inline SphereFilterSigns sphere_filter(const Ray& ray, const Sphere& sphere) noexcept {
   const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const double f[3] = {ray.origin.x - sphere.center.x, ray.origin.y - sphere.center.y,
                        ray.origin.z - sphere.center.z};
@@ -51,7 +52,7 @@ struct SphereFilterSigns {
   const double t3 = ea * std::abs(c);
   const double t4 = (std::abs(a) + ea) * ec;
   const double ed = ((t1 + t2) + (t3 + t4)) * bounds::sphere_filter_d_factor + bounds::sphere_filter_d_absolute;
-  return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv};
+  return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv, ec, ed};
 }
 
 }  // namespace raykernel::detail
