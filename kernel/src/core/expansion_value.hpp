@@ -89,12 +89,11 @@ template <std::size_t M>
 [[nodiscard]] ExpansionValue<4 * M> operator*(const ExpansionValue<M>& a, const ExpansionValue<2>& b) noexcept {
   ExpansionBuilder builder;
   ExpansionValue<4 * M> r;
-  Expansion<2 * M> first;
-  builder.scale(a.e, b.e.component[0], first);
   if (b.e.size == 1) {
-    for (std::size_t i = 0; i < first.size; ++i) r.e.component[i] = first.component[i];
-    r.e.size = first.size;
+    builder.scale(a.e, b.e.component[0], r.e);  // the one scaled expansion, built in place
   } else {
+    Expansion<2 * M> first;
+    builder.scale(a.e, b.e.component[0], first);
     Expansion<2 * M> second;
     builder.scale(a.e, b.e.component[1], second);
     ExpansionBuilder::sum(first, second, r.e);

@@ -100,11 +100,11 @@ std::optional<double> filtered_root(const Ray& ray, const Sphere& sphere, int ro
 // round_walking_to_midpoints (core/quotient_boundary.hpp) when it returns the candidate, each side read by
 // root_side_of from the lane's signs as sphere_root_side_filtered reads the scalar filter's. Nothing when either
 // candidate is not confirmed so (then the Newton step and the walk decide, one boundary at a time).
-//   Certified by: each lane's signs, proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound` and
-//   `sphere_boundary_slope_sound` (each lane the scalar filter's operations); the side, proofs/sphere/SphereRoots.v,
-//   `root_side_of_smaller_correct` and `root_side_of_larger_correct`; m⁻ < t < m⁺ gives RN(t) = t̂,
-//   proofs/core/MidpointRounding.v, `rn_between_midpoints` (round_at_midpoints' last case, whose twin the runner
-//   checks: routine quotient_boundary). The Newton step chooses where to look and decides nothing.
+//   Certified by (each lane the scalar filter's operations; the Newton step chooses where to look, decides nothing):
+//     each lane's signs:  proofs/sphere/SphereBoundaryFilter.v, `sphere_boundary_q_sound`, `sphere_boundary_slope_sound`
+//     the side of t_k:    proofs/sphere/SphereRoots.v, `root_side_of_smaller_correct`, `root_side_of_larger_correct`
+//     m⁻ < t < m⁺ gives RN(t) = t̂ (round_at_midpoints' last case, twinned: runner routine quotient_boundary):
+//                         proofs/core/MidpointRounding.v, `rn_between_midpoints`
 // The body is always_inline and called from the multiversioned function only: clang rejects a call passing a
 // Lanes4 by value from a target_clones clone to a function without that target.
 [[gnu::always_inline]] inline std::optional<Roots> confirmed_candidates_body(const Ray& ray, const Sphere& sphere,
