@@ -6,6 +6,8 @@
 #include <raykernel/interval.hpp>
 #include <raykernel/sphere.hpp>
 
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 
@@ -49,8 +51,14 @@ struct TracedSphereClassification {
 // it back stalled store forwarding: half the function's time, measured).
 inline constexpr std::uint32_t fast_sphere_relation_certain = 1u << 16;
 [[nodiscard]] std::uint32_t fast_sphere_relation_packed(const Ray& ray, const Sphere& sphere) noexcept;
+// The packed answer's two low bytes are a SphereClassification's (origin, then relation) on a little-endian
+// machine; elsewhere it is assembled field by field.
 [[nodiscard]] inline SphereClassification unpack_sphere_classification(std::uint32_t p) noexcept {
-  return SphereClassification{static_cast<SphereOrigin>(p & 0xffu), static_cast<SphereRelation>((p >> 8) & 0xffu)};
+  static_assert(sizeof(SphereClassification) == 2 && offsetof(SphereClassification, relation) == 1);
+  if constexpr (std::endian::native == std::endian::little)
+    return std::bit_cast<SphereClassification>(static_cast<std::uint16_t>(p));
+  else
+    return SphereClassification{static_cast<SphereOrigin>(p & 0xffu), static_cast<SphereRelation>((p >> 8) & 0xffu)};
 }
 [[nodiscard]] inline std::optional<SphereClassification> fast_sphere_relation(const Ray& ray, const Sphere& sphere) noexcept {
   const std::uint32_t p = fast_sphere_relation_packed(ray, sphere);
