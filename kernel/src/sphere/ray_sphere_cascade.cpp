@@ -314,9 +314,13 @@ bool sphere_intersection_filtered(const Ray& ray, const Sphere& sphere, SphereIn
   return false;
 }
 
+SphereStages sphere_intersection_after_filter(const Ray& ray, const Sphere& sphere, SphereIntersection& out) {
+  return intersection_with_expansions(ray, sphere, sphere_filter(ray, sphere), out);
+}
+
 SphereStages sphere_intersection_cascade(const Ray& ray, const Sphere& sphere, SphereIntersection& out) {
   if (sphere_intersection_filtered(ray, sphere, out)) return {Stage::filter, Stage::filter};
-  return intersection_with_expansions(ray, sphere, sphere_filter(ray, sphere), out);
+  return sphere_intersection_after_filter(ray, sphere, out);
 }
 
 int sphere_root_side_of(const Ray& ray, const Sphere& sphere, int root, double b) {

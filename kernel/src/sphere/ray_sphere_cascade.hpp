@@ -24,6 +24,9 @@ SphereStages sphere_intersection_cascade(const Ray& ray, const Sphere& sphere, S
 // rounds both roots; false otherwise (then the caller validates and runs the cascade). No validation is needed
 // before it, for the reason given at fast_sphere_relation below.
 [[nodiscard]] bool sphere_intersection_filtered(const Ray& ray, const Sphere& sphere, SphereIntersection& out) noexcept;
+// The cascade after its filter stage answered nothing (valid input): the caller that tried
+// sphere_intersection_filtered goes on here without running it again.
+SphereStages sphere_intersection_after_filter(const Ray& ray, const Sphere& sphere, SphereIntersection& out);
 [[nodiscard]] inline TracedSphereIntersection sphere_intersection_cascade(const Ray& ray, const Sphere& sphere) {
   TracedSphereIntersection r;
   const SphereStages stages = sphere_intersection_cascade(ray, sphere, r.intersection);

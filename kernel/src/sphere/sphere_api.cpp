@@ -44,7 +44,7 @@ SphereIntersection intersect(const Ray& ray, const Sphere& sphere) {
     if (detail::sphere_intersection_filtered(ray, sphere, r)) [[likely]]
       return;
     throw_if_invalid(ray, sphere);
-    detail::sphere_intersection_cascade(ray, sphere, r);
+    detail::sphere_intersection_after_filter(ray, sphere, r);
   });
   return r;
 }
