@@ -2,7 +2,8 @@
 //
 //   io/read_{obj,off,ply_ascii,ply_binary,stl_binary}/icosphere-1M   MB/s and triangles/s of read_mesh on a
 //                                                                   ~10^6-triangle file made in memory
-//   mesh/bvh_build/<mesh>, mesh/embree_build/<mesh>                  build times
+//   mesh/bvh_build/<mesh>, mesh/{embree,embree_robust}_build/<mesh>   build times on 1 and 2 threads, and
+//                                   memory per triangle
 //   mesh/bvh_traverse/<mesh>        rays/s of the certified BVH walk alone: every leaf whose box the ray may
 //                                   meet (no bound), counting candidate triangles — the cost floor of the
 //                                   exact nearest hit to come
@@ -14,6 +15,8 @@
 //   mesh/{embree,embree_robust}/<mesh>   rays/s of rtcIntersect1 in Embree's default and robust modes (float
 //                                   mesh and rays: Embree's answers are for the float data)
 //   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
+//   mesh/embree_robust_medium[_build]/<mesh>   Embree robust built without spatial splits (BUILD_QUALITY_MEDIUM;
+//                                   the rows above use HIGH)
 //   mesh/cgal_aabb/<mesh>           rays/s of CGAL's AABB_tree::first_intersected_primitive (Epick)
 //   inside/cgal/<mesh>              points/s of CGAL's Side_of_triangle_mesh
 //   closest/{certified,naive,cgal}/<mesh>   points/s of closest_point(point, PreparedMesh) (exact: the point, the
@@ -100,6 +103,7 @@ struct Fixture {
   std::unique_ptr<CgalMeshQueries> cgal;
 #ifdef RAYKERNEL_HAVE_EMBREE
   std::unique_ptr<baseline::EmbreeScene> embree[2];
+  std::unique_ptr<baseline::EmbreeScene> embree_medium;  // robust, RTC_BUILD_QUALITY_MEDIUM (no spatial splits)
 #endif
 };
 
@@ -401,9 +405,20 @@ void register_all() {
         std::lock_guard lock(fixture_mutex);
         mesh = &fixture(m).mesh;
       }
-      for (auto _ : state) benchmark::DoNotOptimize(MeshBvh(*mesh).nodes().size());
-      state.counters["triangles"] = static_cast<double>(mesh->triangles.size());
-    })->Unit(benchmark::kMillisecond)->MinTime(1);
+      const BvhBuildOptions options{.threads = static_cast<unsigned>(state.range(0))};
+      std::size_t bytes = 0;
+      for (auto _ : state) {
+        const MeshBvh bvh(*mesh, options);
+        bytes = bvh.nodes().size_bytes() + bvh.triangle_order().size_bytes();
+        benchmark::DoNotOptimize(bvh.nodes().size());
+      }
+      const auto triangles = static_cast<double>(mesh->triangles.size());
+      state.counters["triangles"] = triangles;
+      // Memory: the hierarchy (nodes and the triangle order), and the prepared mesh's copy of the triangles in
+      // leaf order (9 doubles each) that the queries read beside it.
+      state.counters["bvh_bytes_per_triangle"] = static_cast<double>(bytes) / triangles;
+      state.counters["prepared_bytes_per_triangle"] = static_cast<double>(bytes + mesh->triangles.size() * sizeof(Triangle)) / triangles;
+    })->Unit(benchmark::kMillisecond)->MinTime(1)->ArgName("threads")->Arg(1)->Arg(2);
 
     benchmark::RegisterBenchmark(("mesh/bvh_traverse/" + m).c_str(), [m](benchmark::State& state) {
       ray_benchmark(
@@ -477,9 +492,16 @@ void register_all() {
           std::lock_guard lock(fixture_mutex);
           mesh = &fixture(m).mesh;
         }
-        for (auto _ : state)
-          benchmark::DoNotOptimize(baseline::EmbreeScene(*mesh, robust ? baseline::EmbreeScene::Mode::robust : baseline::EmbreeScene::Mode::fast, 1));
-      })->Unit(benchmark::kMillisecond)->MinTime(1);
+        const auto threads = static_cast<unsigned>(state.range(0));
+        std::size_t bytes = 0;
+        for (auto _ : state) {
+          const baseline::EmbreeScene scene(*mesh, robust ? baseline::EmbreeScene::Mode::robust : baseline::EmbreeScene::Mode::fast, threads);
+          bytes = scene.device_bytes();
+          benchmark::DoNotOptimize(bytes);
+        }
+        // Memory: everything the device holds (the float vertex and index buffers, the BVH and its leaves).
+        state.counters["device_bytes_per_triangle"] = static_cast<double>(bytes) / static_cast<double>(mesh->triangles.size());
+      })->Unit(benchmark::kMillisecond)->MinTime(1)->ArgName("threads")->Arg(1)->Arg(2);
       benchmark::RegisterBenchmark(("mesh/" + mode + "/" + m).c_str(), [m, robust](benchmark::State& state) {
         ray_benchmark(
             state, m,
@@ -528,6 +550,38 @@ void register_all() {
         i = (i + 8) % f->rays.size();
       }
       set_rate(state, 8);
+    })->Apply(threads);
+    // Embree robust without spatial splits (RTC_BUILD_QUALITY_MEDIUM, Embree's default quality; the rows above
+    // use HIGH): what the splits gain in query speed and cost in build time.
+    benchmark::RegisterBenchmark(("mesh/embree_robust_medium_build/" + m).c_str(), [m](benchmark::State& state) {
+      const Mesh* mesh;
+      {
+        std::lock_guard lock(fixture_mutex);
+        mesh = &fixture(m).mesh;
+      }
+      const auto threads = static_cast<unsigned>(state.range(0));
+      std::size_t bytes = 0;
+      for (auto _ : state) {
+        const baseline::EmbreeScene scene(*mesh, baseline::EmbreeScene::Mode::robust, threads, false,
+                                          baseline::EmbreeScene::Quality::medium);
+        bytes = scene.device_bytes();
+        benchmark::DoNotOptimize(bytes);
+      }
+      state.counters["device_bytes_per_triangle"] = static_cast<double>(bytes) / static_cast<double>(mesh->triangles.size());
+    })->Unit(benchmark::kMillisecond)->MinTime(1)->ArgName("threads")->Arg(1)->Arg(2);
+    benchmark::RegisterBenchmark(("mesh/embree_robust_medium/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m,
+          [](Fixture& f) {
+            part(f.embree_medium, [&] {
+              return std::make_unique<baseline::EmbreeScene>(f.mesh, baseline::EmbreeScene::Mode::robust, 0, false,
+                                                             baseline::EmbreeScene::Quality::medium);
+            });
+          },
+          [](Fixture& f, const Ray& r) {
+            const auto hit = f.embree_medium->intersect(r);
+            return hit ? std::uint64_t{hit->triangle} : 0;
+          });
     })->Apply(threads);
 #endif
 

@@ -24,6 +24,7 @@ Definition main_results_1 :=
   (@near_bound_sound,
    @far_bound_sound,
    @slab_sound,
+   @slab_sound_outward,
    @ray_box_sound,
    @den_filter_sound,
    @num_filter_sound,
@@ -31,7 +32,7 @@ Definition main_results_1 :=
    @dot3_filter_bound_encloses,
    @compensated_dot3_enclosure,
    @compensated_dot3_refined_enclosure).
-Goal True. idtac "@@ near_bound_sound far_bound_sound slab_sound ray_box_sound den_filter_sound num_filter_sound dot3_filter_sound_gen dot3_filter_bound_encloses compensated_dot3_enclosure compensated_dot3_refined_enclosure". Abort.
+Goal True. idtac "@@ near_bound_sound far_bound_sound slab_sound slab_sound_outward ray_box_sound den_filter_sound num_filter_sound dot3_filter_sound_gen dot3_filter_bound_encloses compensated_dot3_enclosure compensated_dot3_refined_enclosure". Abort.
 Print Assumptions main_results_1.
 Definition main_results_2 :=
   (@enclosure_sign_sound,

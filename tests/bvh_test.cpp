@@ -173,23 +173,46 @@ bool closed_rule_hit(const Ray& r, const Triangle& t, double bound) {
 
 // ---- The box test --------------------------------------------------------------------------------------
 
-// A node whose child `slot` is `b` and whose other slots in use hold `other` (empty slots: the empty box).
+// The largest binary32 ≤ x and the smallest ≥ x, by stepping from a conversion (the test's own rounding; the
+// BVH's must give the same bits).
+float float_down(double x) {
+  float f = static_cast<float>(x);
+  while (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float float_up(double x) {
+  float f = static_cast<float>(x);
+  while (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+// The box rounded outward to binary32 (what a BvhNode stores), as doubles.
+Box3 outward(const Box3& b) {
+  return {{float_down(b.lo.x), float_down(b.lo.y), float_down(b.lo.z)}, {float_up(b.hi.x), float_up(b.hi.y), float_up(b.hi.z)}};
+}
+
+// A node whose child `slot` is `b` and whose other slots in use hold `other`, both rounded outward (empty
+// slots: the empty box, first = count = 0).
 BvhNode node_with(const Box3& b, int slot, int children, const Box3& other) {
   BvhNode n{};
   for (int s = 0; s < BvhNode::width; ++s) {
-    const Box3 x = s == slot ? b : s < children ? other : Box3{{inf, inf, inf}, {-inf, -inf, -inf}};
+    const Box3 x = s == slot ? outward(b) : s < children ? outward(other) : Box3{{inf, inf, inf}, {-inf, -inf, -inf}};
     const double f[6] = {x.lo.x, x.lo.y, x.lo.z, x.hi.x, x.hi.y, x.hi.z};
-    for (int k = 0; k < 6; ++k) n.bounds[static_cast<std::size_t>(k)][static_cast<std::size_t>(s)] = f[k];
+    for (int k = 0; k < 6; ++k) n.bounds[static_cast<std::size_t>(k)][static_cast<std::size_t>(s)] = static_cast<float>(f[k]);
     n.first[static_cast<std::size_t>(s)] = 0;
-    n.count[static_cast<std::size_t>(s)] = 1;
+    n.count[static_cast<std::size_t>(s)] = s < children ? 1 : 0;
   }
-  n.children = static_cast<std::uint32_t>(children);
   return n;
 }
 
+std::array<double, 3> magnitude_max(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return {std::max(a[0], b[0]), std::max(a[1], b[1]), std::max(a[2], b[2])};
+}
+std::array<double, 3> magnitude_of(const Box3& b);
+
 // Checks the certified test against the exact entry; returns whether the exact ray meets the box. The
-// traversal's four-lane form, with the box in a random slot of a node, must give the scalar test's answer and
-// entry bound bit for bit (each lane performs the scalar operations).
+// traversal's eight-lane form, with the box rounded outward to binary32 in a random slot of a node, must give
+// the scalar test's answer and entry bound on the rounded box bit for bit (each lane performs the scalar
+// operations), and — the rounded box containing the exact one — never reject a box the exact ray meets.
 bool check_box(const Ray& r, const Box3& b, double t0, double t1, const std::array<double, 3>& magnitude) {
   const auto slabs = ray_box_slabs(r, magnitude);
   const std::optional<double> got = ray_box_entry(slabs, b, t0, t1);
@@ -201,11 +224,21 @@ bool check_box(const Ray& r, const Box3& b, double t0, double t1, const std::arr
   const int children = *rc::gen::inRange(1, BvhNode::width + 1);
   const int slot = *rc::gen::inRange(0, children);
   const Box3 other = *rc::gen::element(b, Box3{{-1, -1, -1}, {1, 1, 1}}, Box3{{inf, inf, inf}, {-inf, -inf, -inf}});
+  const BvhNode node = node_with(b, slot, children, other);
+  const Box3 stored = node.box(slot);
+  // The guard's magnitude must bound the stored boxes (MeshBvh's bounds its outward root box).
+  const auto node_slabs =
+      ray_box_slabs(r, magnitude_max(magnitude, magnitude_max(magnitude_of(stored), magnitude_of(outward(other)))));
+  const std::optional<double> scalar = ray_box_entry(node_slabs, stored, t0, t1);
   std::array<double, BvhNode::width> entries{};
-  const unsigned met = ray_box_entries(slabs, node_with(b, slot, children, other), t0, t1, entries);
+  const unsigned met = ray_box_entries(node_slabs, node, t0, t1, entries);
   RC_ASSERT((met >> children) == 0u);
-  RC_ASSERT(((met >> slot) & 1u) == static_cast<unsigned>(got.has_value()));
-  if (got) RC_ASSERT(std::bit_cast<std::uint64_t>(entries[static_cast<std::size_t>(slot)]) == std::bit_cast<std::uint64_t>(*got));
+  RC_ASSERT(((met >> slot) & 1u) == static_cast<unsigned>(scalar.has_value()));
+  if (scalar) RC_ASSERT(std::bit_cast<std::uint64_t>(entries[static_cast<std::size_t>(slot)]) == std::bit_cast<std::uint64_t>(*scalar));
+  if (exact) {
+    RC_ASSERT(scalar.has_value());
+    RC_ASSERT(q(*scalar) <= *exact);
+  }
   return exact.has_value();
 }
 
@@ -453,7 +486,7 @@ RC_GTEST_PROP(Bvh, VisitsEveryTriangleTheExactRayMeets, ()) {
     }
     case 3: {  // a corner or a face point of a box of the hierarchy
       const BvhNode& n = bvh->nodes()[*rc::gen::inRange<std::size_t>(0, bvh->nodes().size())];
-      const Box3 b = n.box(*rc::gen::inRange(0, static_cast<int>(n.children)));
+      const Box3 b = n.box(*rc::gen::inRange(0, n.children()));
       const Vec3 corner{*rc::gen::element(b.lo.x, b.hi.x), *rc::gen::element(b.lo.y, b.hi.y),
                         *rc::gen::element(b.lo.z, b.hi.z)};
       const auto p = testkit::edge_point(corner, b.hi, *rc::gen::inRange<std::int64_t>(0, 3), 1);
@@ -479,8 +512,9 @@ RC_GTEST_PROP(Bvh, VisitsEveryTriangleTheExactRayMeets, ()) {
 }
 
 TEST(Bvh, StructureIsExactAndComplete) {
-  // Every triangle in exactly one leaf; every child's box is the exact min/max of the vertices below it; the
-  // root's children cover bounds(); slots beyond `children` hold the empty box; depth() is the longest path.
+  // Every triangle in exactly one leaf; every child's box is the exact min/max of the vertices below it rounded
+  // outward to binary32; the root's children cover bounds(); slots beyond children() hold the empty box;
+  // depth() is the longest path; magnitude() is the outward root box's.
   for (const TestMesh& t : test_meshes()) {
     SCOPED_TRACE(t.name);
     const auto nodes = t.bvh.nodes();
@@ -495,12 +529,12 @@ TEST(Bvh, StructureIsExactAndComplete) {
     std::function<Box3(std::uint32_t, int)> check = [&](std::uint32_t i, int level) -> Box3 {
       depth = std::max(depth, level);
       const BvhNode& n = nodes[i];
-      EXPECT_GE(n.children, 1u);
-      EXPECT_LE(n.children, 4u);
+      EXPECT_GE(n.children(), 1);
       Box3 all = empty;
       for (int s = 0; s < BvhNode::width; ++s) {
-        if (s >= static_cast<int>(n.children)) {
+        if (s >= n.children()) {
           EXPECT_EQ(std::bit_cast<Six>(n.box(s)), std::bit_cast<Six>(empty)) << "node " << i << " slot " << s;
+          EXPECT_TRUE(n.empty_slot(s));
           continue;
         }
         Box3 b = empty;
@@ -516,13 +550,17 @@ TEST(Bvh, StructureIsExactAndComplete) {
           EXPECT_GT(n.first[static_cast<std::size_t>(s)], i) << "children after their parent";
           b = check(n.first[static_cast<std::size_t>(s)], level + 1);
         }
-        EXPECT_EQ(std::bit_cast<Six>(b), std::bit_cast<Six>(n.box(s))) << "node " << i << " slot " << s;
+        // The stored box: the exact min/max rounded outward to binary32, bit for bit.
+        EXPECT_EQ(std::bit_cast<Six>(outward(b)), std::bit_cast<Six>(n.box(s))) << "node " << i << " slot " << s;
         grow(all, b.lo), grow(all, b.hi);
       }
       return all;
     };
     const Box3 root = check(0, 1);
     EXPECT_EQ(std::bit_cast<Six>(root), std::bit_cast<Six>(t.bvh.bounds()));
+    const auto m = magnitude_of(outward(root));
+    using Three = std::array<std::uint64_t, 3>;
+    EXPECT_EQ(std::bit_cast<Three>(m), std::bit_cast<Three>(t.bvh.magnitude()));
     EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
     EXPECT_EQ(t.bvh.depth(), depth);
     EXPECT_LE(t.bvh.depth(), MeshBvh::max_depth);

@@ -1,5 +1,5 @@
 # Fails when an instruction-set-specific object of the batch fast loop (fast_loop_avx2/avx512) or of the BVH
-# walk (bvh_walk_avx2) or of nearest_hit's screen (nearest_screen_avx2) defines any global symbol besides its
+# walk (bvh_walk_avx2/avx512) or of nearest_hit's screen (nearest_screen_avx2) defines any global symbol besides its
 # entry points raykernel::batch_kernel::<isa>::{pairwise,broadcast}[_relation], raykernel::mesh_detail::<isa>::
 # {next_leaf,node_entries} and raykernel::nearest_kernel::<isa>::{reference,screen} (and the exception-handling
 # personality's data reference, which is not code).
@@ -37,4 +37,4 @@ if(bad)
   list(JOIN bad "\n  " text)
   message(FATAL_ERROR "ISA-specific objects export more than their entry points:\n  ${text}")
 endif()
-message(STATUS "fast_loop_avx2/avx512, bvh_walk_avx2 and nearest_screen_avx2 objects export only their entry points")
+message(STATUS "fast_loop_avx2/avx512, bvh_walk_avx2/avx512 and nearest_screen_avx2 objects export only their entry points")

@@ -1,8 +1,10 @@
 // EmbreeScene: raykernel meshes in Embree 3.
 #include "embree_scene.hpp"
 
+#include <atomic>
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -70,6 +72,7 @@ struct EmbreeScene::Impl {
   Mode mode = Mode::fast;
   bool collects = false;
   FloatConversion conversion;
+  std::atomic<std::int64_t> bytes{0};  // what the device holds (its memory monitor's running sum)
   std::vector<float> vertices;  // the float mesh
   std::vector<std::array<std::uint32_t, 3>> triangles;
   ~Impl() {
@@ -78,7 +81,13 @@ struct EmbreeScene::Impl {
   }
 };
 
-EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads, bool collect_all_hits)
+// Embree's memory monitor: every allocation and release of the device, added up (returning true lets it go on).
+static bool count_bytes(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<std::int64_t>*>(user)->fetch_add(bytes, std::memory_order_relaxed);
+  return true;
+}
+
+EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads, bool collect_all_hits, Quality quality)
     : impl_(std::make_unique<Impl>()) {
   if (const auto problem = validate(mesh)) throw std::invalid_argument("EmbreeScene: " + *problem);
   impl_->mode = mode;
@@ -86,9 +95,10 @@ EmbreeScene::EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads, bool col
   const std::string config = threads == 0 ? std::string() : "threads=" + std::to_string(threads);
   impl_->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   if (impl_->device == nullptr) throw std::runtime_error("Embree: rtcNewDevice failed");
+  rtcSetDeviceMemoryMonitorFunction(impl_->device, count_bytes, &impl_->bytes);
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneFlags(impl_->scene, mode == Mode::robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
-  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(impl_->scene, quality == Quality::high ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.vertices.size()));
@@ -125,6 +135,9 @@ EmbreeScene& EmbreeScene::operator=(EmbreeScene&&) noexcept = default;
 
 EmbreeScene::Mode EmbreeScene::mode() const noexcept { return impl_->mode; }
 const FloatConversion& EmbreeScene::conversion() const noexcept { return impl_->conversion; }
+std::size_t EmbreeScene::device_bytes() const noexcept {
+  return static_cast<std::size_t>(std::max<std::int64_t>(0, impl_->bytes.load(std::memory_order_relaxed)));
+}
 
 std::optional<EmbreeScene::Hit> EmbreeScene::intersect(const Ray& ray, float t_max) const {
   CollectingContext context{{}, nullptr};

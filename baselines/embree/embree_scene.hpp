@@ -30,19 +30,26 @@ struct FloatConversion {
 class EmbreeScene {
  public:
   enum class Mode { fast, robust };  // Embree's default, or RTC_SCENE_FLAG_ROBUST
+  // RTC_BUILD_QUALITY_HIGH (spatial splits: triangles may be referenced by several leaves), or MEDIUM (Embree's
+  // default for static scenes: binned SAH, each triangle in one leaf).
+  enum class Quality { high, medium };
 
   // Builds the scene (one triangle geometry, the mesh's triangles in order: primID = triangle index).
   // Throws std::invalid_argument when validate(mesh) fails or a coordinate is beyond the float range, and
   // std::runtime_error when Embree reports an error. `threads` = 0: Embree's default (all cores).
   // `collect_all_hits`: install an intersection filter so that all_hits() can list every hit Embree's
   // traversal reports (it costs the other queries a callback per candidate hit).
-  EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads = 0, bool collect_all_hits = false);
+  EmbreeScene(const Mesh& mesh, Mode mode, unsigned threads = 0, bool collect_all_hits = false,
+              Quality quality = Quality::high);
   ~EmbreeScene();
   EmbreeScene(EmbreeScene&&) noexcept;
   EmbreeScene& operator=(EmbreeScene&&) noexcept;
 
   [[nodiscard]] Mode mode() const noexcept;
   [[nodiscard]] const FloatConversion& conversion() const noexcept;
+  // The bytes the device holds after the build (its memory monitor's sum: the scene's vertex and index
+  // buffers, the BVH and its leaves).
+  [[nodiscard]] std::size_t device_bytes() const noexcept;
 
   // Embree's nearest hit (rtcIntersect1) of the ray converted to float, for t in [0, t_max]: the triangle
   // index and Embree's float t, or nothing. Thread-safe.

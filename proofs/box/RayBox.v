@@ -11,6 +11,9 @@
     - [near_bound_sound]: near_lo ≤ T when T ≥ 0, and near_lo ≤ 0 when T < 0;
     - [far_bound_sound]: far_hi ≥ T when T ≥ 0;
     - [slab_sound]: for every real t* ≥ 0 in the exact slab [T_near, T_far], near_lo ≤ t* ≤ far_hi;
+    - [slab_sound_outward]: the same on the box the BVH stores (binary32 bounds rounded outward, lo down and
+      hi up, converted exactly to double): near_lo ≤ t* ≤ far_hi for every real t* ≥ 0 in the exact box's
+      slab;
     - [ray_box_sound]: the test's t0 = max(t_min, near_lo of each axis) and t1 = min(t_max, far_hi of each
       axis), with an axis left out (NaN, case A's equalities and case C) modelled as [None], satisfy
       t0 ≤ t* ≤ t1 for every t* in [t_min, t_max] that the slab bounds allow: the box is not rejected, and
@@ -255,4 +258,54 @@ Proof.
     apply IH; [exact Hlo|].
     destruct b as [v|]; simpl in *; [|exact Hhi].
     destruct (Rlt_bool_spec v t_max); assumption.
+Qed.
+
+(** ** Boxes stored in binary32, rounded outward.
+
+    The BVH stores each child box in binary32: lo' is a binary32 value ≤ lo and hi' a binary32 value ≥ hi,
+    for the exact double box [lo, hi] (the C++ rounds with (float)x, then steps with nextafterf until the
+    inequality holds). At query time each bound is converted exactly to double and the slab test above runs
+    on it. Every binary32 value is a double ([binary32_binary64], Model.v), and the outward box's slab contains the
+    exact box's ([outward_slab_order]), so [slab_sound_outward]: the test on the outward box never rejects a
+    t* ≥ 0 in the exact box's slab. The exact faces enter only through the order, so they need not be
+    doubles. *)
+
+(** The faces in the ray's crossing order, as the C++ picks them by the sign bit of d: near = lo, far = hi
+    when d > 0, near = hi, far = lo when d < 0. Rounding lo down and hi up moves the near face against the
+    ray's direction and the far face along it. *)
+Definition near_face (d lo hi : R) : R := if Rlt_bool d 0 then hi else lo.
+Definition far_face (d lo hi : R) : R := if Rlt_bool d 0 then lo else hi.
+
+Lemma outward_faces : forall d lo hi lo' hi', lo' <= lo -> hi <= hi' ->
+  (0 < d -> near_face d lo' hi' <= near_face d lo hi /\ far_face d lo hi <= far_face d lo' hi') /\
+  (d < 0 -> near_face d lo hi <= near_face d lo' hi' /\ far_face d lo' hi' <= far_face d lo hi).
+Proof.
+  intros d lo hi lo' hi' Hlo Hhi. unfold near_face, far_face.
+  split; intros Hd; destruct (Rlt_bool_spec d 0); lra.
+Qed.
+
+(** Moved outward, the near face's parameter decreases and the far face's increases, for either sign of d. *)
+Lemma outward_slab_order : forall near_plane far_plane near' far' o d, d <> 0 ->
+  (0 < d -> near' <= near_plane /\ far_plane <= far') ->
+  (d < 0 -> near_plane <= near' /\ far' <= far_plane) ->
+  (near' - o) / d <= (near_plane - o) / d /\ (far_plane - o) / d <= (far' - o) / d.
+Proof.
+  intros np fp n' f' o d Hd Hpos Hneg. unfold Rdiv.
+  destruct (Rlt_or_le 0 d) as [P|N].
+  - destruct (Hpos P) as [H1 H2]. assert (I : 0 < / d) by (apply Rinv_0_lt_compat; exact P). split; nra.
+  - assert (N' : d < 0) by lra. destruct (Hneg N') as [H1 H2].
+    assert (I : / d < 0) by (apply Rinv_lt_0_compat; exact N'). split; nra.
+Qed.
+
+Theorem slab_sound_outward : forall near_plane far_plane near' far' o d t,
+  binary32 near' -> binary32 far' -> binary64 o -> d <> 0 -> bpow radix2 (-1022) <= Rabs (/ d) -> 0 <= t ->
+  (0 < d -> near' <= near_plane /\ far_plane <= far') ->
+  (d < 0 -> near_plane <= near' /\ far' <= far_plane) ->
+  (near_plane - o) / d <= t <= (far_plane - o) / d ->
+  near_bound (slab_parameter near' o (RN (/ d))) <= t /\
+  t <= far_bound (slab_parameter far' o (RN (/ d))).
+Proof.
+  intros np fp n' f' o d t Hn Hf Ho Hd Hinv Ht Hpos Hneg [Hlo Hhi].
+  destruct (outward_slab_order np fp n' f' o d Hd Hpos Hneg) as [On Of].
+  apply slab_sound; try assumption; try (apply binary32_binary64; assumption). lra.
 Qed.

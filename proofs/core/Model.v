@@ -31,6 +31,19 @@ Notation u := unit_roundoff.
 Global Instance binary64_prec_gt_0 : Prec_gt_0 53.
 Proof. reflexivity. Qed.
 
+(** binary32 (the BVH's stored boxes, box/RayBox.v; spawned coordinates, spawn/SpawnRounding.v): every binary32
+    value is a binary64 value. *)
+Notation binary32 := (generic_format radix2 (FLT_exp (-149) 24)).
+
+Global Instance binary32_prec_gt_0 : Prec_gt_0 24.
+Proof. reflexivity. Qed.
+
+Lemma binary32_binary64 : forall x, binary32 x -> binary64 x.
+Proof.
+  intros x Hx. apply generic_inclusion_mag with (fexp1 := FLT_exp (-149) 24); [|exact Hx].
+  intros _. unfold FLT_exp. lia.
+Qed.
+
 (** Half the smallest subnormal: the largest absolute error of a rounding in the subnormal range. *)
 Definition eta : R := bpow radix2 (-1075).
 

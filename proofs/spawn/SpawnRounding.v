@@ -136,22 +136,12 @@ Qed.
 
 (** ** 3. binary32 through binary64 (C++ [round_binary32_from_binary64]). *)
 
-Notation binary32 := (generic_format radix2 (FLT_exp (-149) 24)).
 Notation RN32 := (round radix2 (FLT_exp (-149) 24) ZnearestE).
 Notation succ32 := (succ radix2 (FLT_exp (-149) 24)).
 Notation pred32 := (pred radix2 (FLT_exp (-149) 24)).
 
-Global Instance binary32_prec_gt_0 : Prec_gt_0 24.
-Proof. reflexivity. Qed.
-
-(** Every binary32 value is a binary64 value. *)
-Lemma binary32_binary64 : forall f, binary32 f -> binary64 f.
-Proof.
-  intros f Ff. destruct (FLT_format_generic radix2 (-149) 24 f Ff) as [[m e] E Hm He].
-  simpl in Hm, He. apply generic_format_FLT. exists (Float radix2 m e); simpl; try assumption.
-  - change (Zpower radix2 24) with 16777216%Z in Hm. change (Zpower radix2 53) with 9007199254740992%Z. lia.
-  - lia.
-Qed.
+(** [binary32], [binary32_prec_gt_0] and [binary32_binary64] (every binary32 value is a binary64 value) are
+    Model.v's. *)
 
 Lemma lt_succ32 : forall f, f < succ32 f.
 Proof.

@@ -1,15 +1,15 @@
 // raykernel/bvh.hpp: a bounding volume hierarchy over a mesh's triangles, and a ray traversal that never
 // misses a box the exact ray meets.
 //
-// The hierarchy is built once per mesh (binned surface-area heuristic, deterministic, then collapsed to four
+// The hierarchy is built once per mesh (binned surface-area heuristic, deterministic, then collapsed to eight
 // children per node) and stored flat: each child's box is the exact min/max of its triangles' vertex
-// doubles, so it contains them exactly. The traversal asks, for each box, whether the ray o + t·d, t in
+// doubles rounded outward to binary32, so it contains them exactly. The traversal asks, for each box, whether the ray o + t·d, t in
 // [t_min, t_max], may meet it. Its answer is conservative in one direction only: a box the exact ray meets is
 // never rejected, and the lower bound it reports for the box's exact entry t is never above that t
 // (kernel/src/box/ray_box.hpp has the argument, step by step, with overflow, underflow, zero and tiny
 // direction components). A box may be reported that the exact ray just misses; the exact primitive test
-// decides those. The four children of a node are tested in one vector pass (AVX2 where the CPU has it), each
-// lane performing exactly the scalar test's operations, so the argument (and proofs/box/RayBox.v) covers every
+// decides those. The eight children of a node are tested in one vector pass (AVX2 or AVX-512 where the CPU has
+// it), each lane performing exactly the scalar test's operations on its box converted to double, so the argument (and proofs/box/RayBox.v) covers every
 // lane.
 //
 // Leaves come nearest box first (each node's children in the order of their entry bounds; a deferred child is
@@ -36,29 +36,43 @@ struct Box3 {
   Vec3 lo, hi;
 };
 
-// One node of the flattened hierarchy: up to four children, their boxes side by side (structure of arrays,
-// one 32-byte row per face, so that one vector load reads a face of all four boxes), then what each child is.
-// 256 bytes, aligned to cache lines.
+// One node of the flattened hierarchy: up to eight children, their boxes side by side (structure of arrays,
+// one 32-byte row per face, so that one vector load reads a face of all eight boxes), then what each child is.
+// 256 bytes, aligned to cache lines. The boxes are binary32, rounded outward from the exact double boxes (lo
+// down, hi up), so each contains its primitives exactly; the ray–box test converts them back to double exactly (proofs/box/RayBox.v, `slab_sound_outward`).
 struct alignas(64) BvhNode {
-  static constexpr int width = 4;
+  static constexpr int width = 8;
   // bounds[f][s]: face f of child s's box, f = 0, 1, 2 for lo.x, lo.y, lo.z and 3, 4, 5 for hi.x, hi.y, hi.z.
-  // Slots s ≥ children hold the empty box (lo = +inf, hi = −inf).
-  std::array<std::array<double, width>, 6> bounds;
-  std::array<std::uint32_t, width> first;  // leaf child: first position in MeshBvh::triangle_order(); inner: node index
+  // Slots s ≥ children() hold the empty box (lo = +inf, hi = −inf) and first = count = 0.
+  std::array<std::array<float, width>, 6> bounds;
+  std::array<std::uint32_t, width> first;  // leaf child: first position in MeshBvh::triangle_order(); inner: node index (≥ 1)
   std::array<std::uint32_t, width> count;  // leaf child: number of triangles (≥ 1); inner child: 0
-  std::uint32_t children;                  // slots in use, 1 to 4
 
+  // The slot holds no child (the root, node 0, is nobody's child, so an inner child has first ≥ 1).
+  [[nodiscard]] bool empty_slot(int slot) const noexcept {
+    const auto s = static_cast<std::size_t>(slot);
+    return (first[s] | count[s]) == 0;
+  }
+  // Slots in use, 1 to width: the children fill the first slots.
+  [[nodiscard]] int children() const noexcept {
+    int n = 0;
+    while (n < width && !empty_slot(n)) ++n;
+    return n;
+  }
+  // Child `slot`'s box, in doubles (exactly the stored binary32 bounds): it contains the exact box.
   [[nodiscard]] Box3 box(int slot) const noexcept {
     const auto s = static_cast<std::size_t>(slot);
     return {{bounds[0][s], bounds[1][s], bounds[2][s]}, {bounds[3][s], bounds[4][s], bounds[5][s]}};
   }
   [[nodiscard]] bool is_leaf(int slot) const noexcept { return count[static_cast<std::size_t>(slot)] > 0; }
 };
+static_assert(sizeof(BvhNode) == 256);
 
 struct BvhBuildOptions {
   std::uint32_t max_leaf_size = 4;  // a node with more triangles is split when the heuristic says so...
   std::uint32_t max_leaf_size_hard = 16;  // ...and always above this (unless all centroids coincide)
   std::uint32_t bins = 32;          // candidate split planes per axis: bins − 1
+  unsigned threads = 0;             // the build's threads (0: every core); the nodes are the same for any count
 };
 
 class MeshBvh {
@@ -82,7 +96,8 @@ class MeshBvh {
   [[nodiscard]] const Box3& bounds() const noexcept { return bounds_; }
   // Nodes on the longest path from the root to a leaf (0 without triangles), at most max_depth.
   [[nodiscard]] int depth() const noexcept { return depth_; }
-  // max(|lo_i|, |hi_i|) of the root box per axis: the overflow guard of the traversal uses it.
+  // max(|lo_i|, |hi_i|) of the root box rounded outward to binary32, per axis (so it bounds every node's box;
+  // +inf beyond the binary32 range): the overflow guard of the traversal uses it.
   [[nodiscard]] const std::array<double, 3>& magnitude() const noexcept { return magnitude_; }
 
   static constexpr int max_depth = 64;
@@ -170,8 +185,8 @@ class BvhRayTraversal {
 [[nodiscard]] std::optional<double> ray_box_entry(const BvhRayTraversal::Slabs& slabs, const Box3& box, double t_min,
                                                   double t_max) noexcept;
 
-// The same test on the four children of `node` at once, as the traversal runs it (one vector pass where the
-// CPU has AVX2; each lane the scalar test's operations): bit s of the result is set when child s may be met,
+// The same test on the eight children of `node` at once, as the traversal runs it (one vector pass where the
+// CPU has AVX2; each lane the scalar test's operations on its box converted to double): bit s of the result is set when child s may be met,
 // and entries[s] is then its entry bound. For tests.
 [[nodiscard]] unsigned ray_box_entries(const BvhRayTraversal::Slabs& slabs, const BvhNode& node, double t_min,
                                        double t_max, std::array<double, BvhNode::width>& entries) noexcept;
@@ -195,7 +210,7 @@ bool any_leaf_overlapping(const MeshBvh& bvh, const Box3& box, Visit&& visit) {
   stack[static_cast<std::size_t>(size++)] = 0;
   while (size > 0) {
     const BvhNode& node = nodes[stack[static_cast<std::size_t>(--size)]];
-    for (int s = 0; s < static_cast<int>(node.children); ++s) {
+    for (int s = 0; s < BvhNode::width && !node.empty_slot(s); ++s) {
       if (!boxes_overlap(node.box(s), box)) continue;
       const auto slot = static_cast<std::size_t>(s);
       if (node.is_leaf(s)) {

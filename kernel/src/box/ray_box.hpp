@@ -10,7 +10,7 @@
 // Certified by: the argument below, step by step (IEEE-754 binary64, round to nearest even, gradual
 // underflow, as fixed by kernel/CMakeLists.txt and checked by core/fp_requirements.hpp); exercised by
 // tests/bvh_test.cpp against exact rational arithmetic, and Coq: proofs/box/RayBox.v (`near_bound_sound`,
-// `far_bound_sound`, `ray_box_sound`).
+// `far_bound_sound`, `ray_box_sound`; on the BVH's binary32 boxes rounded outward, `slab_sound_outward`).
 //
 // Notation: RN is round to nearest even, u = 2^-53, η = 2^-1075 (half the smallest subnormal). For a real x
 // whose rounding does not overflow: RN(x) = x(1 + ε) + δ with |ε| ≤ u, |δ| ≤ η, and δ = 0 unless
@@ -43,7 +43,8 @@
 // d_i = −0 the planes swap and the signs flip: the same three cases. ∞·K ∓ τ = ∞ and NaN stays NaN.
 //
 // Case B, 2^-1022 ≤ |d_i| ≤ 2^1022 and the overflow guard G = RN(RN(M_i + |o_i|) · |inv|) ≤ 2^1022 holds,
-// M_i ≥ |lo_i|, |hi_i| for every box tested (the root box's magnitude).
+// M_i ≥ |lo_i|, |hi_i| for every box tested (the root box's magnitude; for the BVH's binary32 boxes, of the root
+// box rounded outward, which contains them all).
 //  B1. inv = (1/d_i)(1 + ε1): 1/d_i is in [2^-1022, 2^1022], a normal range, so δ = 0 and no overflow.
 //  B2. |plane − o_i| ≤ M_i + |o_i|, so by monotonicity |RN(plane − o_i)| ≤ RN(M_i + |o_i|) and
 //      |RN(plane − o_i) · inv| ≤ RN(M_i + |o_i|)·|inv|, hence |p| ≤ G ≤ 2^1022: nothing overflows,
@@ -126,8 +127,8 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
   return s;
 }
 
-// One axis of ray_box_entry, written once for one box (V = double) and for the four children of a node at
-// once (V = Lanes4, one box per lane): every lane performs exactly these operations in this order, so the
+// One axis of ray_box_entry, written once for one box (V = double) and for the eight children of a node at
+// once (V = Lanes8, one box per lane): every lane performs exactly these operations in this order, so the
 // argument above and proofs/box/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
 // keeps t where the comparison is false, in particular where x is NaN.
 template <class V>
@@ -165,29 +166,44 @@ inline void set_walk_ray(detail::BvhWalk& w, const BvhRayTraversal::Slabs& s) no
   }
 }
 
-// The four children of `node` at once (V = Lanes4): the test above per lane, slots beyond node.children
-// masked off (their empty boxes are rejected anyway unless every axis was left out of the test). Bit s of
-// the result: child s may be met; entries[s] is then its entry bound. Internal linkage: the body depends on
-// the instruction set of the translation unit (bvh_walk_<isa>.cpp).
-[[gnu::always_inline]] static inline unsigned ray_box_entries4(const detail::BvhWalk& w, const BvhNode& node,
+// The eight children of `node` at once (V = Lanes8): each lane converts its child's binary32 bounds to double
+// (exactly) and performs the test above. Slots beyond node.children() are not masked off: their empty boxes
+// are rejected unless every axis was left out of the test, so the caller skips an accepted empty slot
+// (BvhNode::empty_slot; it reads first and count of each accepted slot anyway). A stored box contains the exact one (lo rounded
+// down, hi up), so a t in the exact box's slab is in the stored box's (RayBox.v, `slab_sound_outward`), and
+// the test never rejects a child the exact ray meets. Bit s of the result: child s may be met; entries[s] is
+// then its entry bound. Internal linkage: the body depends on the instruction set of the translation unit
+// (bvh_walk_<isa>.cpp): AVX-512 runs the eight lanes in one register, AVX2 in two, SSE2 in four.
+using FaceRow = float __attribute__((vector_size(BvhNode::width * sizeof(float))));
+[[gnu::always_inline]] static inline unsigned ray_box_entries8(const detail::BvhWalk& w, const BvhNode& node,
                                                                double t_min, double t_max,
-                                                               detail::Lanes4& entries) noexcept {
-  using detail::Lanes4;
-  static_assert(BvhNode::width == 4 && sizeof(Lanes4) == sizeof(node.bounds[0]) && alignof(BvhNode) % 32 == 0);
+                                                               detail::Lanes8& entries) noexcept {
+  using detail::Lanes8;
+  static_assert(BvhNode::width == 8 && sizeof(FaceRow) == sizeof(node.bounds[0]) && alignof(BvhNode) % 32 == 0);
   // Each face row is 32-byte aligned; GCC's vector types may alias their element type.
-  const auto* rows = reinterpret_cast<const Lanes4*>(node.bounds.data());
-  Lanes4 t0 = detail::broadcast<Lanes4>(t_min), t1 = detail::broadcast<Lanes4>(t_max);
+  const auto* rows = reinterpret_cast<const FaceRow*>(node.bounds.data());
+  Lanes8 t0 = detail::broadcast<Lanes8>(t_min), t1 = detail::broadcast<Lanes8>(t_max);
   for (std::size_t k = 0; k < 3; ++k)
-    ray_box_axis<Lanes4>(rows[w.near_face[k]], rows[w.far_face[k]], detail::broadcast<Lanes4>(w.origin[k]),
-                         detail::broadcast<Lanes4>(w.inverse_direction[k]), t0, t1);
+    ray_box_axis<Lanes8>(__builtin_convertvector(rows[w.near_face[k]], Lanes8),
+                         __builtin_convertvector(rows[w.far_face[k]], Lanes8), detail::broadcast<Lanes8>(w.origin[k]),
+                         detail::broadcast<Lanes8>(w.inverse_direction[k]), t0, t1);
   entries = t0;
-  const detail::Mask4 met = t0 <= t1;
-#if defined(__AVX__)
-  const auto bits = static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(met)));
+#if defined(__AVX512F__)
+  const auto bits = static_cast<unsigned>(_mm512_cmp_pd_mask(reinterpret_cast<__m512d>(t0), reinterpret_cast<__m512d>(t1), _CMP_LE_OQ));
 #else
-  const auto bits = static_cast<unsigned>((met[0] & 1) | (met[1] & 2) | (met[2] & 4) | (met[3] & 8));
+  const detail::Mask8 met = t0 <= t1;
+#if defined(__AVX__)
+  struct Halves {
+    __m256d lo, hi;
+  };
+  const auto h = std::bit_cast<Halves>(met);
+  const auto bits = static_cast<unsigned>(_mm256_movemask_pd(h.lo)) | static_cast<unsigned>(_mm256_movemask_pd(h.hi)) << 4;
+#else
+  unsigned bits = 0;
+  for (int s = 0; s < 8; ++s) bits |= static_cast<unsigned>(met[s] & 1) << s;
 #endif
-  return bits & ((1u << node.children) - 1u);
+#endif
+  return bits;
 }
 
 }  // namespace raykernel::mesh_detail

@@ -411,7 +411,7 @@ ClosestPoint search(const Vec3& query, const PreparedMesh& mesh, Counts& counts)
     if (next.lower > best) break;  // every box left is farther than a point already found
     if (next.count == 0) {
       const BvhNode& node = bvh.nodes()[next.first];
-      for (int s = 0; s < static_cast<int>(node.children); ++s) {
+      for (int s = 0; s < BvhNode::width && !node.empty_slot(s); ++s) {
         const double lower = box_lower_bound(query, node, s);
         if (lower > best) continue;
         push({lower, node.first[static_cast<std::size_t>(s)], node.count[static_cast<std::size_t>(s)]});
@@ -557,7 +557,7 @@ ClosestPoint closest_point_naive(const Vec3& query, const PreparedMesh& mesh) {
     if (next.lower > best.squared_distance) break;
     if (next.count == 0) {
       const BvhNode& node = bvh.nodes()[next.first];
-      for (int s = 0; s < static_cast<int>(node.children); ++s) {
+      for (int s = 0; s < BvhNode::width && !node.empty_slot(s); ++s) {
         const Box3 box = node.box(s);
         const double gx = std::max({box.lo.x - query.x, 0.0, query.x - box.hi.x}),
                      gy = std::max({box.lo.y - query.y, 0.0, query.y - box.hi.y}),

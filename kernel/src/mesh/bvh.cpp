@@ -1,4 +1,5 @@
-// MeshBvh (binned SAH build of a binary hierarchy, collapsed to four children per node) and
+// MeshBvh (binned SAH build of a binary hierarchy, collapsed to eight children per node, boxes rounded outward
+// to binary32) and
 // BvhRayTraversal (nearest-first walk with the certified box test of ray_box.hpp, bvh_walk.hpp).
 #include "core/fp_requirements.hpp"
 #include "core/fp_environment.hpp"
@@ -6,6 +7,7 @@
 #include "box/ray_box.hpp"
 
 #include <raykernel/bvh.hpp>
+#include <raykernel/parallel.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,11 +16,6 @@
 
 namespace raykernel {
 namespace {
-
-struct Item {  // one triangle during the build
-  Box3 box;
-  std::array<double, 3> centroid;  // the box centre, scaled by 2^-e (only the split choice uses it)
-};
 
 Box3 empty_box() {
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -38,6 +35,14 @@ double half_area(const Box3& b, double scale) {
   return ex * ey + ey * ez + ez * ex;
 }
 
+// One primitive during the build: its box, its centroid (the box centre scaled by 2^-e; only the split choice
+// uses it) and its index. The build partitions these in place, so each node's primitives lie side by side.
+struct Ref {
+  Box3 box;
+  std::array<double, 3> centroid;
+  std::uint32_t index;
+};
+
 // A node of the binary hierarchy the build makes first (depth-first: an inner node's first child is the next
 // node).
 struct BinaryNode {
@@ -46,31 +51,38 @@ struct BinaryNode {
   std::uint32_t count;  // leaf: number of triangles (≥ 1); inner: 0
 };
 
+// The binned SAH build of the subtree over refs[begin, end) into `nodes` (appended depth-first; inner nodes'
+// `first` index `nodes`). One Builder per thread: the bins are its scratch space.
 class Builder {
  public:
-  Builder(std::vector<Item> items, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes,
-          std::vector<std::uint32_t>& order)
-      : items_(std::move(items)), options_(options), scale_(scale), nodes_(nodes), order_(order) {}
+  Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes)
+      : refs_(refs), options_(options), scale_(scale), nodes_(nodes),
+        bins_(std::max<std::uint32_t>(2, options.bins)), bin_box_(3 * bins_), bin_count_(3 * bins_),
+        right_area_(bins_), right_count_(bins_) {}
 
+  // The node's bounds and its centroids' bounds (one pass over its primitives).
+  void measure(std::uint32_t begin, std::uint32_t end, Box3& bounds, Box3& centroid_bounds) const {
+    bounds = empty_box();
+    centroid_bounds = empty_box();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref& r = refs_[i];
+      grow(bounds, r.box);
+      const Vec3 c{r.centroid[0], r.centroid[1], r.centroid[2]};
+      grow(centroid_bounds, {c, c});
+    }
+  }
+
+  // Returns the depth of the subtree's deepest leaf.
   int build(std::uint32_t begin, std::uint32_t end, int depth) {
     const auto index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
-    Box3 bounds = empty_box();
-    Box3 centroid_bounds = empty_box();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Item& it = items_[order_[i]];
-      grow(bounds, it.box);
-      const Box3 c{{it.centroid[0], it.centroid[1], it.centroid[2]}, {it.centroid[0], it.centroid[1], it.centroid[2]}};
-      grow(centroid_bounds, c);
-    }
-    const std::uint32_t n = end - begin;
-    auto make_leaf = [&] {
-      nodes_[index] = {bounds, begin, n};
+    Box3 bounds, centroid_bounds;
+    measure(begin, end, bounds, centroid_bounds);
+    const std::uint32_t mid = split_or_leaf(begin, end, depth, bounds, centroid_bounds);
+    if (mid == begin) {
+      nodes_[index] = {bounds, begin, end - begin};
       return depth;
-    };
-    if (n <= 1 || depth >= MeshBvh::max_depth) return make_leaf();
-    const std::uint32_t mid = split(begin, end, bounds, centroid_bounds);
-    if (mid == begin || mid == end) return make_leaf();
+    }
     const int left_depth = build(begin, mid, depth + 1);
     const auto right = static_cast<std::uint32_t>(nodes_.size());
     const int right_depth = build(mid, end, depth + 1);
@@ -78,47 +90,64 @@ class Builder {
     return std::max(left_depth, right_depth);
   }
 
+  // The split position of [begin, end), or begin for "make a leaf".
+  std::uint32_t split_or_leaf(std::uint32_t begin, std::uint32_t end, int depth, const Box3& bounds,
+                              const Box3& centroid_bounds) {
+    // A node of at most max_leaf_size (and max_leaf_size_hard) primitives is a leaf whatever the bins say:
+    // split() would decide so after binning them.
+    if (end - begin <= std::max<std::uint32_t>(1, std::min(options_.max_leaf_size, options_.max_leaf_size_hard)) ||
+        depth >= MeshBvh::max_depth)
+      return begin;
+    const std::uint32_t mid = split(begin, end, bounds, centroid_bounds);
+    return mid == end ? begin : mid;
+  }
+
  private:
   // Partitions [begin, end) by the cheapest binned SAH split; returns the split position, or begin/end for
-  // "make a leaf".
+  // "make a leaf". The three axes are binned in one pass over the primitives.
   std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Box3& bounds, const Box3& cb) {
     const std::uint32_t n = end - begin;
-    const std::uint32_t bins = std::max<std::uint32_t>(2, options_.bins);
+    const std::uint32_t bins = bins_;
     const double lo[3] = {cb.lo.x, cb.lo.y, cb.lo.z}, hi[3] = {cb.hi.x, cb.hi.y, cb.hi.z};
+    double factor[3];
+    bool split_axis[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const double extent = hi[axis] - lo[axis];
+      split_axis[axis] = extent > 0;
+      factor[axis] = split_axis[axis] ? bins / extent : 0;
+    }
+    std::fill(bin_box_.begin(), bin_box_.end(), empty_box());
+    std::fill(bin_count_.begin(), bin_count_.end(), 0);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref& r = refs_[i];
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        const std::size_t b = axis * bins + bin_of(r.centroid[axis], lo[axis], factor[axis], bins);
+        grow(bin_box_[b], r.box);
+        ++bin_count_[b];
+      }
+    }
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1;
     std::uint32_t best_bin = 0;
-    std::vector<Box3> bin_box(bins);
-    std::vector<std::uint32_t> bin_count(bins);
-    std::vector<double> right_area(bins);
-    std::vector<std::uint32_t> right_count(bins);
     for (int axis = 0; axis < 3; ++axis) {
-      const double extent = hi[axis] - lo[axis];
-      if (!(extent > 0)) continue;
-      const double factor = bins / extent;
-      std::fill(bin_box.begin(), bin_box.end(), empty_box());
-      std::fill(bin_count.begin(), bin_count.end(), 0);
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const Item& it = items_[order_[i]];
-        const std::uint32_t b = bin_of(it.centroid[static_cast<std::size_t>(axis)], lo[axis], factor, bins);
-        grow(bin_box[b], it.box);
-        ++bin_count[b];
-      }
+      if (!split_axis[axis]) continue;
+      const Box3* box = &bin_box_[static_cast<std::size_t>(axis) * bins];
+      const std::uint32_t* count_of = &bin_count_[static_cast<std::size_t>(axis) * bins];
       Box3 acc = empty_box();
       std::uint32_t count = 0;
       for (std::uint32_t b = bins - 1; b > 0; --b) {
-        grow(acc, bin_box[b]);
-        count += bin_count[b];
-        right_area[b] = half_area(acc, scale_);
-        right_count[b] = count;
+        grow(acc, box[b]);
+        count += count_of[b];
+        right_area_[b] = half_area(acc, scale_);
+        right_count_[b] = count;
       }
       acc = empty_box();
       count = 0;
       for (std::uint32_t b = 0; b + 1 < bins; ++b) {
-        grow(acc, bin_box[b]);
-        count += bin_count[b];
-        if (count == 0 || right_count[b + 1] == 0) continue;
-        const double cost = half_area(acc, scale_) * count + right_area[b + 1] * right_count[b + 1];
+        grow(acc, box[b]);
+        count += count_of[b];
+        if (count == 0 || right_count_[b + 1] == 0) continue;
+        const double cost = half_area(acc, scale_) * count + right_area_[b + 1] * right_count_[b + 1];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -135,11 +164,11 @@ class Builder {
     // SAH: traversal cost 1 against intersection cost 1 per triangle, relative to the parent's area.
     const double split_cost = 1 + (parent_area > 0 ? best_cost / parent_area : best_cost);
     if (n <= options_.max_leaf_size || (n <= options_.max_leaf_size_hard && split_cost >= n)) return begin;
-    const double factor = bins / (hi[best_axis] - lo[best_axis]);
-    const auto mid = std::partition(order_.begin() + begin, order_.begin() + end, [&](std::uint32_t k) {
-      return bin_of(items_[k].centroid[static_cast<std::size_t>(best_axis)], lo[best_axis], factor, bins) <= best_bin;
+    const auto axis = static_cast<std::size_t>(best_axis);
+    const auto mid = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](const Ref& r) {
+      return bin_of(r.centroid[axis], lo[axis], factor[axis], bins) <= best_bin;
     });
-    return static_cast<std::uint32_t>(mid - order_.begin());
+    return static_cast<std::uint32_t>(mid - refs_.begin());
   }
 
   // The bin of a centroid: x = (c − lo)·factor clamped to [0, bins − 1] before it is converted (x may be +inf
@@ -151,16 +180,74 @@ class Builder {
     return static_cast<std::uint32_t>(x);
   }
 
-  std::vector<Item> items_;
+  std::vector<Ref>& refs_;
   const BvhBuildOptions& options_;
   double scale_;
   std::vector<BinaryNode>& nodes_;
-  std::vector<std::uint32_t>& order_;
+  std::uint32_t bins_;
+  std::vector<Box3> bin_box_;
+  std::vector<std::uint32_t> bin_count_;
+  std::vector<double> right_area_;
+  std::vector<std::uint32_t> right_count_;
 };
 
-// The binary hierarchy collapsed to nodes of up to four children: a node's children are its binary
+// The binary hierarchy over every ref: the root's split on this thread, then (for large inputs, with a second
+// core) its two subtrees on two threads, each into its own list, joined in depth-first order with the inner
+// nodes' indices moved — the nodes one thread builds, bit for bit (deterministic whatever the thread count).
+std::vector<BinaryNode> build_binary(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale) {
+  constexpr std::uint32_t parallel_from = 1u << 14;
+  std::vector<BinaryNode> nodes;
+  const auto n = static_cast<std::uint32_t>(refs.size());
+  Builder root(refs, options, scale, nodes);
+  if (n < parallel_from || thread_count(options.threads) < 2) {
+    root.build(0, n, 0);
+    return nodes;
+  }
+  Box3 bounds, centroid_bounds;
+  root.measure(0, n, bounds, centroid_bounds);
+  const std::uint32_t mid = root.split_or_leaf(0, n, 0, bounds, centroid_bounds);
+  if (mid == 0) {
+    nodes.push_back({bounds, 0, n});
+    return nodes;
+  }
+  std::array<std::vector<BinaryNode>, 2> sub;
+  run_parts(2, 2, [&](std::size_t k) {
+    detail::in_default_fp_environment([&] {
+      Builder b(refs, options, scale, sub[k]);
+      if (k == 0) b.build(0, mid, 1);
+      else b.build(mid, n, 1);
+    });
+  });
+  nodes.reserve(1 + sub[0].size() + sub[1].size());
+  nodes.push_back({bounds, static_cast<std::uint32_t>(1 + sub[0].size()), 0});
+  for (const auto& part : sub) {
+    const auto offset = static_cast<std::uint32_t>(nodes.size());
+    for (BinaryNode node : part) {
+      if (node.count == 0) node.first += offset;
+      nodes.push_back(node);
+    }
+  }
+  return nodes;
+}
+
+// The largest binary32 ≤ x and the smallest ≥ x, for finite x, in the default floating-point environment
+// (MeshBvh::build runs in it): RN32(x) is within one binary32 step of x, so one step towards x from a rounding
+// on the wrong side lands on the right side (±inf beyond the binary32 range: RN32 gives ±inf only there, and
+// a step from it gives ±FLT_MAX, beyond which x then lies).
+float round_down(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float round_up(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// The binary hierarchy collapsed to nodes of up to eight children: a node's children are its binary
 // children, with the inner one of largest surface area replaced by its own two children while fewer than
-// four. Nodes in depth-first order, each parent before its children.
+// eight. Nodes in depth-first order, each parent before its children.
 class Collapser {
  public:
   Collapser(const std::vector<BinaryNode>& binary, double scale, std::vector<BvhNode>& wide)
@@ -196,7 +283,6 @@ class Collapser {
       if (c.count == 0) depth = std::max(depth, 1 + collapse(slot_node[i], first));
       set_slot(wide_[index], i, c.bounds, first, count);
     }
-    wide_[index].children = static_cast<std::uint32_t>(n);
     return depth;
   }
 
@@ -204,14 +290,14 @@ class Collapser {
     BvhNode node{};
     const Box3 empty = empty_box();
     for (int s = 0; s < BvhNode::width; ++s) set_slot(node, s, empty, 0, 0);
-    node.children = 0;
     return node;
   }
 
   static void set_slot(BvhNode& node, int slot, const Box3& b, std::uint32_t first, std::uint32_t count) {
     const auto s = static_cast<std::size_t>(slot);
-    node.bounds[0][s] = b.lo.x, node.bounds[1][s] = b.lo.y, node.bounds[2][s] = b.lo.z;
-    node.bounds[3][s] = b.hi.x, node.bounds[4][s] = b.hi.y, node.bounds[5][s] = b.hi.z;
+    // Outward to binary32: lo down, hi up (the empty box's infinities stay as they are).
+    node.bounds[0][s] = round_down(b.lo.x), node.bounds[1][s] = round_down(b.lo.y), node.bounds[2][s] = round_down(b.lo.z);
+    node.bounds[3][s] = round_up(b.hi.x), node.bounds[4][s] = round_up(b.hi.y), node.bounds[5][s] = round_up(b.hi.z);
     node.first[s] = first;
     node.count[s] = count;
   }
@@ -236,7 +322,7 @@ MeshBvh::MeshBvh(const Mesh& mesh, const BvhBuildOptions& options) {
     grow(b, {t.c, t.c});
     boxes[k] = b;
   }
-  build(std::move(boxes), options);
+  detail::in_default_fp_environment([&] { build(std::move(boxes), options); });
 }
 
 MeshBvh::MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options) {
@@ -249,7 +335,7 @@ MeshBvh::MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options) {
     if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z))
       throw invalid_input("bvh: box " + std::to_string(k) + " has lo above hi");
   }
-  build(std::vector<Box3>(boxes.begin(), boxes.end()), options);
+  detail::in_default_fp_environment([&] { build(std::vector<Box3>(boxes.begin(), boxes.end()), options); });
 }
 
 void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
@@ -265,35 +351,35 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   int e = 0;
   (void)std::frexp(largest, &e);
   const double scale = std::ldexp(1.0, -e);
-  std::vector<Item> items(n);
+  std::vector<Ref> refs(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Box3& b = boxes[k];
-    items[k].box = b;
-    items[k].centroid = {b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5, b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5,
-                         b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5};
+    refs[k] = {b,
+               {b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5, b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5,
+                b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5},
+               static_cast<std::uint32_t>(k)};
   }
+  const std::vector<BinaryNode> binary = build_binary(refs, options, scale);
   order_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) order_[k] = static_cast<std::uint32_t>(k);
-  std::vector<BinaryNode> binary;
-  binary.reserve(2 * n / std::max<std::uint32_t>(1, options.max_leaf_size) + 1);
-  Builder builder(std::move(items), options, scale, binary, order_);
-  const int binary_depth = builder.build(0, static_cast<std::uint32_t>(n), 0);
+  for (std::size_t k = 0; k < n; ++k) order_[k] = refs[k].index;
   bounds_ = binary[0].bounds;
   nodes_.reserve(binary.size() / 2 + 1);
   if (binary[0].count > 0) {  // the whole mesh is one leaf: a root with one child
     nodes_.push_back(Collapser::empty_node());
     Collapser::set_slot(nodes_[0], 0, binary[0].bounds, binary[0].first, binary[0].count);
-    nodes_[0].children = 1;
     depth_ = 1;
   } else {
     std::uint32_t root = 0;
     depth_ = Collapser(binary, scale, nodes_).collapse(0, root);
   }
-  (void)binary_depth;  // ≥ depth_ − 1; the wide depth is what bounds the walk's stack
   nodes_.shrink_to_fit();
+  // The guard's magnitude bounds every stored (binary32, outward) box: the root's, rounded outward, contains them
+  // all (rounding down and up are monotone).
   const Box3& root = bounds_;
-  magnitude_ = {std::max(std::fabs(root.lo.x), std::fabs(root.hi.x)), std::max(std::fabs(root.lo.y), std::fabs(root.hi.y)),
-                std::max(std::fabs(root.lo.z), std::fabs(root.hi.z))};
+  const auto outward = [](double lo, double hi) {
+    return std::max(std::fabs(static_cast<double>(round_down(lo))), std::fabs(static_cast<double>(round_up(hi))));
+  };
+  magnitude_ = {outward(root.lo.x, root.hi.x), outward(root.lo.y, root.hi.y), outward(root.lo.z, root.hi.z)};
 }
 
 namespace mesh_detail {
@@ -302,6 +388,7 @@ const BvhWalkFunctions& bvh_walk_functions() noexcept {
   static const BvhWalkFunctions functions = [] {
 #if defined(RAYKERNEL_BVH_WALK_AVX2)
     __builtin_cpu_init();
+    if (__builtin_cpu_supports("x86-64-v4")) return BvhWalkFunctions{avx512::next_leaf, avx512::node_entries};
     if (__builtin_cpu_supports("x86-64-v3")) return BvhWalkFunctions{avx2::next_leaf, avx2::node_entries};
 #endif
     return BvhWalkFunctions{portable::next_leaf, portable::node_entries};

@@ -1,6 +1,7 @@
 // The BVH walk: the next leaf of one ray's nearest-first traversal (BvhRayTraversal::next and the mesh
-// queries). Written once here and compiled per instruction set in bvh_walk_<isa>.cpp (AVX2: the four child
-// boxes of a node in one ymm pass per face row; portable: the same Lanes4 operations as SSE2 pairs), chosen
+// queries). Written once here and compiled per instruction set in bvh_walk_<isa>.cpp (AVX-512: the eight
+// child boxes of a node in one zmm pass per face row; AVX2: two ymm; portable: the same Lanes8 operations as
+// SSE2 pairs), chosen
 // at run time by bvh.cpp — as the batch loops are (plane/fast_loop.hpp), and for the same reason separate
 // translation units: everything here is always inlined into the per-ISA entry point, so those objects define
 // no other symbol (tests/check_isa_objects.cmake checks it) and no AVX2 copy of a shared inline function can
@@ -14,6 +15,12 @@
 #include <cstdint>
 
 namespace raykernel::mesh_detail {
+
+// All four cache lines of a node (256 bytes, aligned to 64).
+[[gnu::always_inline]] inline void prefetch_node(const BvhNode& node) noexcept {
+  const char* p = reinterpret_cast<const char*>(&node);
+  for (int line = 0; line < 4; ++line) __builtin_prefetch(p + 64 * line);
+}
 
 // The next leaf whose box the ray may meet in [t_min, min(t_max, t_upper)], nearest entry bound first among
 // the children of each node; false when there is none. On a node, the children the test accepts are ordered
@@ -29,24 +36,29 @@ namespace raykernel::mesh_detail {
     if (current.entry > t1) continue;  // the box starts beyond the caller's bound: skip it
     while (current.count == 0) {
       const BvhNode& node = nodes[current.first];
-      detail::Lanes4 entry;
-      unsigned met = ray_box_entries4(w, node, w.t_min, t1, entry);
-      w.boxes_tested += node.children;
+      // The children's ids are on the node's last cache line, read only after the box test: fetch them now,
+      // beside the box rows, rather than after.
+      __builtin_prefetch(&node.first);
+      detail::Lanes8 entry;
+      unsigned met = ray_box_entries8(w, node, w.t_min, t1, entry);
+      w.boxes_tested += BvhNode::width;
       if (met == 0) goto next_pending;
-      // The accepted children by entry bound, nearest last (insertion into at most four).
+      // The accepted children by entry bound, nearest last (insertion into at most eight); an accepted empty
+      // slot (only when every axis is left out of the test) is skipped.
       Pending order[BvhNode::width];
       int n = 0;
       for (; met != 0; met &= met - 1) {
-        const int s = __builtin_ctz(met);
-        const auto slot = static_cast<std::size_t>(s);
-        const Pending p{node.first[slot], node.count[slot], entry[s]};
+        const auto slot = static_cast<std::size_t>(__builtin_ctz(met));
+        const Pending p{node.first[slot], node.count[slot], entry[slot]};
+        if ((p.first | p.count) == 0) continue;
         int i = n++;
         for (; i > 0 && order[i - 1].entry < p.entry; --i) order[i] = order[i - 1];
         order[i] = p;
       }
+      if (n == 0) goto next_pending;
       for (int i = 0; i + 1 < n; ++i) {
         w.stack[static_cast<std::size_t>(w.stack_size++)] = order[i];
-        if (order[i].count == 0) __builtin_prefetch(&nodes[order[i].first]);
+        if (order[i].count == 0) prefetch_node(nodes[order[i].first]);
       }
       current = order[n - 1];
     }
@@ -68,6 +80,7 @@ namespace raykernel::mesh_detail {
   }
 RAYKERNEL_DECLARE_BVH_WALK(portable)
 RAYKERNEL_DECLARE_BVH_WALK(avx2)
+RAYKERNEL_DECLARE_BVH_WALK(avx512)
 #undef RAYKERNEL_DECLARE_BVH_WALK
 
 #define RAYKERNEL_DEFINE_BVH_WALK(isa)                                                                        \
@@ -76,9 +89,12 @@ RAYKERNEL_DECLARE_BVH_WALK(avx2)
   }                                                                                                            \
   unsigned raykernel::mesh_detail::isa::node_entries(const detail::BvhWalk& walk, const BvhNode& node,         \
                                                      double t_min, double t_max, double* entries) noexcept {   \
-    detail::Lanes4 e;                                                                                          \
-    const unsigned met = ray_box_entries4(walk, node, t_min, t_max, e);                                        \
-    for (int s = 0; s < 4; ++s) entries[s] = e[s];                                                             \
+    detail::Lanes8 e;                                                                                          \
+    unsigned met = ray_box_entries8(walk, node, t_min, t_max, e);                                              \
+    for (int s = 0; s < BvhNode::width; ++s) {                                                                 \
+      entries[s] = e[s];                                                                                       \
+      if (node.empty_slot(s)) met &= ~(1u << s);                                                               \
+    }                                                                                                          \
     return met;                                                                                                \
   }
 

@@ -83,7 +83,7 @@ bool segment_blocked(const Vec3& p, const Vec3& q, const PreparedMesh& mesh, Tri
   stack[size++] = 0;
   while (size > 0) {
     const BvhNode& node = nodes[stack[--size]];
-    for (int s = 0; s < static_cast<int>(node.children); ++s) {
+    for (int s = 0; s < BvhNode::width && !node.empty_slot(s); ++s) {
       if (!overlaps(lo, hi, node.box(s))) continue;
       const auto slot = static_cast<std::size_t>(s);
       if (!node.is_leaf(s)) {
