@@ -133,6 +133,10 @@ struct BvhWalk {
   std::array<double, 3> origin{}, inverse_direction{};
   std::array<std::uint8_t, 3> near_face{}, far_face{};
   double t_min = 0, t_max = 0;
+  // The caller's primitives in leaf order (a PreparedMesh's leaf_triangles()), and their size in bytes: the walk
+  // prefetches a deferred leaf's when it defers it. Null: nothing to prefetch.
+  const unsigned char* leaf_data = nullptr;
+  std::uint32_t leaf_stride = 0;
   std::uint64_t boxes_tested = 0;
   int stack_size = 0;
   std::array<Pending, (BvhNode::width - 1) * MeshBvh::max_depth + 2> stack;

@@ -402,6 +402,8 @@ void start_walk(detail::BvhWalk& w, const MeshBvh& bvh, const Ray& ray, double t
   w.t_max = t_max;
   set_walk_ray(w, make_slabs(ray, bvh.magnitude()));
   w.stack_size = 0;
+  w.leaf_data = nullptr;
+  w.leaf_stride = 0;
   w.boxes_tested = 0;
   if (!bvh.nodes().empty()) w.stack[static_cast<std::size_t>(w.stack_size++)] = {0, 0, t_min};
 }

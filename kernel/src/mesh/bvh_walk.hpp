@@ -12,7 +12,9 @@
 
 #include <raykernel/bvh.hpp>
 
+#include <algorithm>
 #include <cstdint>
+#include <span>
 
 namespace raykernel::mesh_detail {
 
@@ -20,6 +22,14 @@ namespace raykernel::mesh_detail {
 [[gnu::always_inline]] inline void prefetch_node(const BvhNode& node) noexcept {
   const char* p = reinterpret_cast<const char*>(&node);
   for (int line = 0; line < 4; ++line) __builtin_prefetch(p + 64 * line);
+}
+
+// The first cache lines (up to four) of a deferred leaf's primitives, when the caller gave them (BvhWalk::leaf_data).
+[[gnu::always_inline]] inline void prefetch_leaf(const detail::BvhWalk& w, std::uint32_t first, std::uint32_t count) noexcept {
+  if (w.leaf_data == nullptr) return;
+  const unsigned char* p = w.leaf_data + static_cast<std::size_t>(first) * w.leaf_stride;
+  const std::size_t bytes = std::min<std::size_t>(static_cast<std::size_t>(count) * w.leaf_stride, 256);
+  for (std::size_t offset = 0; offset < bytes; offset += 64) __builtin_prefetch(p + offset);
 }
 
 // The next leaf whose box the ray may meet in [t_min, min(t_max, t_upper)], nearest entry bound first among
@@ -59,6 +69,7 @@ namespace raykernel::mesh_detail {
       for (int i = 0; i + 1 < n; ++i) {
         w.stack[static_cast<std::size_t>(w.stack_size++)] = order[i];
         if (order[i].count == 0) prefetch_node(nodes[order[i].first]);
+        else prefetch_leaf(w, order[i].first, order[i].count);
       }
       current = order[n - 1];
     }
@@ -108,5 +119,12 @@ struct BvhWalkFunctions {
 // The walk's start: the ray's set-up and the root on the stack (nothing for an empty hierarchy). The ray must
 // be valid and 0 ≤ t_min ≤ t_max.
 void start_walk(detail::BvhWalk& w, const MeshBvh& bvh, const Ray& ray, double t_min, double t_max) noexcept;
+// The same over a mesh's triangles in leaf order (PreparedMesh::leaf_triangles()), which the walk prefetches.
+inline void start_walk(detail::BvhWalk& w, const MeshBvh& bvh, const Ray& ray, double t_min, double t_max,
+                       std::span<const Triangle> leaf_triangles) noexcept {
+  start_walk(w, bvh, ray, t_min, t_max);
+  w.leaf_data = reinterpret_cast<const unsigned char*>(leaf_triangles.data());
+  w.leaf_stride = sizeof(Triangle);
+}
 
 }  // namespace raykernel::mesh_detail

@@ -104,7 +104,8 @@ std::optional<std::int64_t> winding(const Vec3& point, const PreparedMesh& mesh)
   Vec3 direction{0, 0, 0};
   (r.k == 0 ? direction.x : r.k == 1 ? direction.y : direction.z) = r.s;
   detail::BvhWalk walk;
-  mesh_detail::start_walk(walk, bvh, {point, direction}, 0, std::numeric_limits<double>::infinity());
+  mesh_detail::start_walk(walk, bvh, {point, direction}, 0, std::numeric_limits<double>::infinity(),
+                          mesh.leaf_triangles());
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
   std::int64_t count = 0;

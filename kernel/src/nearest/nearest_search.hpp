@@ -248,7 +248,7 @@ class NearestSearch {
     triangle_[0].emplace();
     triangle_[1].emplace();
     BvhWalk walk;
-    mesh_detail::start_walk(walk, bvh, ray_, interval.t_min, interval.t_max);
+    mesh_detail::start_walk(walk, bvh, ray_, interval.t_min, interval.t_max, mesh.leaf_triangles());
     const bool whole_ray = interval.t_min == 0 && interval.t_max == inf;
     const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
     const std::span<const Triangle> triangles = mesh.leaf_triangles();

@@ -47,7 +47,7 @@ bool ray_blocked(const Ray& ray, const RayInterval& interval, const PreparedMesh
   if (bvh.nodes().empty()) return false;
   const bool whole_ray = interval.t_min == 0 && interval.t_max == std::numeric_limits<double>::infinity();
   detail::BvhWalk walk;
-  mesh_detail::start_walk(walk, bvh, ray, interval.t_min, interval.t_max);
+  mesh_detail::start_walk(walk, bvh, ray, interval.t_min, interval.t_max, mesh.leaf_triangles());
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
   detail::TriangleCandidate c;
@@ -111,7 +111,7 @@ MeshHits all_hits_in(const Ray& ray, const RayInterval& interval, const Prepared
   const MeshBvh& bvh = mesh.bvh();
   if (bvh.nodes().empty()) return answer;
   detail::BvhWalk walk;
-  mesh_detail::start_walk(walk, bvh, ray, interval.t_min, interval.t_max);
+  mesh_detail::start_walk(walk, bvh, ray, interval.t_min, interval.t_max, mesh.leaf_triangles());
   const auto next_leaf = mesh_detail::bvh_walk_functions().next_leaf;
   const std::span<const Triangle> triangles = mesh.leaf_triangles();
   // Closed-rule hits include the owned ones (an owned crossing's location is not outside): classified under the
