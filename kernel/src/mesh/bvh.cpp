@@ -27,26 +27,65 @@ void grow(Box3& b, const Box3& o) {
   b.hi = {std::max(b.hi.x, o.hi.x), std::max(b.hi.y, o.hi.y), std::max(b.hi.z, o.hi.z)};
 }
 
-// Surface area of a box (half of it), in the scaled coordinates; only compared, never certified.
-double half_area(const Box3& b, double scale) {
-  if (b.lo.x > b.hi.x) return 0;
-  const double ex = (b.hi.x * scale - b.lo.x * scale), ey = (b.hi.y * scale - b.lo.y * scale),
-               ez = (b.hi.z * scale - b.lo.z * scale);
+// The largest binary32 ≤ x and the smallest ≥ x, for finite x, in the default floating-point environment
+// (MeshBvh::build runs in it): RN32(x) is within one binary32 step of x, so one step towards x from a rounding
+// on the wrong side lands on the right side (±inf beyond the binary32 range: RN32 gives ±inf only there, and
+// a step from it gives ±FLT_MAX, beyond which x then lies).
+float round_down(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
+}
+float round_up(double x) {
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// A box in binary32 (the build's: each primitive's box rounded outward, and their min/max). Rounding down and
+// up are monotone, so the min/max of rounded boxes is the rounded min/max: a node's FloatBox is its exact box
+// rounded outward, what BvhNode stores.
+struct FloatBox {
+  std::array<float, 3> lo, hi;
+};
+
+FloatBox empty_float_box() {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  return {{inf, inf, inf}, {-inf, -inf, -inf}};
+}
+
+FloatBox outward(const Box3& b) {
+  return {{round_down(b.lo.x), round_down(b.lo.y), round_down(b.lo.z)}, {round_up(b.hi.x), round_up(b.hi.y), round_up(b.hi.z)}};
+}
+
+void grow(FloatBox& b, const FloatBox& o) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    b.lo[k] = std::min(b.lo[k], o.lo[k]);
+    b.hi[k] = std::max(b.hi[k], o.hi[k]);
+  }
+}
+
+// Surface area of a box (half of it), in the scaled coordinates; only compared, never certified (beyond the
+// binary32 range it is inf or NaN, which no comparison prefers).
+double half_area(const FloatBox& b, double scale) {
+  if (b.lo[0] > b.hi[0]) return 0;
+  const double ex = (b.hi[0] * scale - b.lo[0] * scale), ey = (b.hi[1] * scale - b.lo[1] * scale),
+               ez = (b.hi[2] * scale - b.lo[2] * scale);
   return ex * ey + ey * ez + ez * ex;
 }
 
 // One primitive during the build: its box, its centroid (the box centre scaled by 2^-e; only the split choice
 // uses it) and its index. The build partitions these in place, so each node's primitives lie side by side.
 struct Ref {
-  Box3 box;
-  std::array<double, 3> centroid;
+  FloatBox box;                   // rounded outward
+  std::array<float, 3> centroid;  // scaled, |c| ≤ 1
   std::uint32_t index;
 };
 
 // A node of the binary hierarchy the build makes first (depth-first: an inner node's first child is the next
 // node).
 struct BinaryNode {
-  Box3 bounds;          // exact: min/max of the vertex doubles of every triangle below
+  FloatBox bounds;      // the exact min/max of the vertex doubles of every triangle below, rounded outward
   std::uint32_t first;  // leaf: first position in the triangle order; inner: index of the second child
   std::uint32_t count;  // leaf: number of triangles (≥ 1); inner: 0
 };
@@ -61,14 +100,13 @@ class Builder {
         right_area_(bins_), right_count_(bins_) {}
 
   // The node's bounds and its centroids' bounds (one pass over its primitives).
-  void measure(std::uint32_t begin, std::uint32_t end, Box3& bounds, Box3& centroid_bounds) const {
-    bounds = empty_box();
-    centroid_bounds = empty_box();
+  void measure(std::uint32_t begin, std::uint32_t end, FloatBox& bounds, FloatBox& centroid_bounds) const {
+    bounds = empty_float_box();
+    centroid_bounds = empty_float_box();
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
       grow(bounds, r.box);
-      const Vec3 c{r.centroid[0], r.centroid[1], r.centroid[2]};
-      grow(centroid_bounds, {c, c});
+      grow(centroid_bounds, {r.centroid, r.centroid});
     }
   }
 
@@ -76,7 +114,7 @@ class Builder {
   int build(std::uint32_t begin, std::uint32_t end, int depth) {
     const auto index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
-    Box3 bounds, centroid_bounds;
+    FloatBox bounds, centroid_bounds;
     measure(begin, end, bounds, centroid_bounds);
     const std::uint32_t mid = split_or_leaf(begin, end, depth, bounds, centroid_bounds);
     if (mid == begin) {
@@ -91,8 +129,8 @@ class Builder {
   }
 
   // The split position of [begin, end), or begin for "make a leaf".
-  std::uint32_t split_or_leaf(std::uint32_t begin, std::uint32_t end, int depth, const Box3& bounds,
-                              const Box3& centroid_bounds) {
+  std::uint32_t split_or_leaf(std::uint32_t begin, std::uint32_t end, int depth, const FloatBox& bounds,
+                              const FloatBox& centroid_bounds) {
     // A node of at most max_leaf_size (and max_leaf_size_hard) primitives is a leaf whatever the bins say:
     // split() would decide so after binning them.
     if (end - begin <= std::max<std::uint32_t>(1, std::min(options_.max_leaf_size, options_.max_leaf_size_hard)) ||
@@ -105,10 +143,10 @@ class Builder {
  private:
   // Partitions [begin, end) by the cheapest binned SAH split; returns the split position, or begin/end for
   // "make a leaf". The three axes are binned in one pass over the primitives.
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Box3& bounds, const Box3& cb) {
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const FloatBox& bounds, const FloatBox& cb) {
     const std::uint32_t n = end - begin;
     const std::uint32_t bins = bins_;
-    const double lo[3] = {cb.lo.x, cb.lo.y, cb.lo.z}, hi[3] = {cb.hi.x, cb.hi.y, cb.hi.z};
+    const double lo[3] = {cb.lo[0], cb.lo[1], cb.lo[2]}, hi[3] = {cb.hi[0], cb.hi[1], cb.hi[2]};
     double factor[3];
     bool split_axis[3];
     for (int axis = 0; axis < 3; ++axis) {
@@ -116,7 +154,7 @@ class Builder {
       split_axis[axis] = extent > 0;
       factor[axis] = split_axis[axis] ? bins / extent : 0;
     }
-    std::fill(bin_box_.begin(), bin_box_.end(), empty_box());
+    std::fill(bin_box_.begin(), bin_box_.end(), empty_float_box());
     std::fill(bin_count_.begin(), bin_count_.end(), 0);
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
@@ -131,9 +169,9 @@ class Builder {
     std::uint32_t best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (!split_axis[axis]) continue;
-      const Box3* box = &bin_box_[static_cast<std::size_t>(axis) * bins];
+      const FloatBox* box = &bin_box_[static_cast<std::size_t>(axis) * bins];
       const std::uint32_t* count_of = &bin_count_[static_cast<std::size_t>(axis) * bins];
-      Box3 acc = empty_box();
+      FloatBox acc = empty_float_box();
       std::uint32_t count = 0;
       for (std::uint32_t b = bins - 1; b > 0; --b) {
         grow(acc, box[b]);
@@ -141,7 +179,7 @@ class Builder {
         right_area_[b] = half_area(acc, scale_);
         right_count_[b] = count;
       }
-      acc = empty_box();
+      acc = empty_float_box();
       count = 0;
       for (std::uint32_t b = 0; b + 1 < bins; ++b) {
         grow(acc, box[b]);
@@ -185,65 +223,108 @@ class Builder {
   double scale_;
   std::vector<BinaryNode>& nodes_;
   std::uint32_t bins_;
-  std::vector<Box3> bin_box_;
+  std::vector<FloatBox> bin_box_;
   std::vector<std::uint32_t> bin_count_;
   std::vector<double> right_area_;
   std::vector<std::uint32_t> right_count_;
 };
 
-// The binary hierarchy over every ref: the root's split on this thread, then (for large inputs, with a second
-// core) its two subtrees on two threads, each into its own list, joined in depth-first order with the inner
-// nodes' indices moved — the nodes one thread builds, bit for bit (deterministic whatever the thread count).
-std::vector<BinaryNode> build_binary(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale) {
-  constexpr std::uint32_t parallel_from = 1u << 14;
-  std::vector<BinaryNode> nodes;
-  const auto n = static_cast<std::uint32_t>(refs.size());
-  Builder root(refs, options, scale, nodes);
-  if (n < parallel_from || thread_count(options.threads) < 2) {
-    root.build(0, n, 0);
-    return nodes;
-  }
-  Box3 bounds, centroid_bounds;
-  root.measure(0, n, bounds, centroid_bounds);
-  const std::uint32_t mid = root.split_or_leaf(0, n, 0, bounds, centroid_bounds);
-  if (mid == 0) {
-    nodes.push_back({bounds, 0, n});
-    return nodes;
-  }
-  std::array<std::vector<BinaryNode>, 2> sub;
-  run_parts(2, 2, [&](std::size_t k) {
-    detail::in_default_fp_environment([&] {
-      Builder b(refs, options, scale, sub[k]);
-      if (k == 0) b.build(0, mid, 1);
-      else b.build(mid, n, 1);
-    });
-  });
-  nodes.reserve(1 + sub[0].size() + sub[1].size());
-  nodes.push_back({bounds, static_cast<std::uint32_t>(1 + sub[0].size()), 0});
-  for (const auto& part : sub) {
-    const auto offset = static_cast<std::uint32_t>(nodes.size());
-    for (BinaryNode node : part) {
-      if (node.count == 0) node.first += offset;
-      nodes.push_back(node);
-    }
-  }
-  return nodes;
-}
+// The binary hierarchy over every ref, on up to options.threads threads: the top levels' splits on this thread
+// (a tree of Top entries), the subtrees below them as tasks handed out to the threads, each built into its own
+// list, then everything joined in depth-first order with the inner nodes' indices moved — the nodes one thread
+// builds, bit for bit (deterministic whatever the thread count).
+class ParallelBuild {
+ public:
+  ParallelBuild(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale)
+      : refs_(refs), options_(options), scale_(scale) {}
 
-// The largest binary32 ≤ x and the smallest ≥ x, for finite x, in the default floating-point environment
-// (MeshBvh::build runs in it): RN32(x) is within one binary32 step of x, so one step towards x from a rounding
-// on the wrong side lands on the right side (±inf beyond the binary32 range: RN32 gives ±inf only there, and
-// a step from it gives ±FLT_MAX, beyond which x then lies).
-float round_down(double x) {
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
-  return f;
-}
-float round_up(double x) {
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
+  std::vector<BinaryNode> run() {
+    const auto n = static_cast<std::uint32_t>(refs_.size());
+    const unsigned threads = thread_count(options_.threads);
+    // Eight subtrees for two threads: the SAH's splits are uneven, and run_parts hands the next one to whichever
+    // thread is free.
+    const int levels = threads < 2 || n < parallel_from ? 0 : 3;
+    const int root = top(0, n, 0, levels);
+    std::vector<std::vector<BinaryNode>> built(tasks_.size());
+    run_parts(tasks_.size(), threads, [&](std::size_t k) {
+      detail::in_default_fp_environment([&] {
+        const Task& t = tasks_[k];
+        std::vector<BinaryNode> nodes;
+        nodes.reserve(2 * (t.end - t.begin) / std::max<std::uint32_t>(1, options_.max_leaf_size) + 1);
+        Builder(refs_, options_, scale_, nodes).build(t.begin, t.end, t.depth);
+        built[k] = std::move(nodes);
+      });
+    });
+    std::size_t total = tops_.size();
+    for (const auto& b : built) total += b.size();
+    std::vector<BinaryNode> nodes;
+    nodes.reserve(total);
+    join(root, built, nodes);
+    return nodes;
+  }
+
+ private:
+  static constexpr std::uint32_t parallel_from = 1u << 14;
+  struct Task {
+    std::uint32_t begin, end;
+    int depth;
+  };
+  struct Top {
+    BinaryNode node;  // a leaf, or an inner node whose children are tops `left` and `right`
+    int left = -1, right = -1;
+    int task = -1;    // or the subtree of tasks_[task]
+  };
+
+  int top(std::uint32_t begin, std::uint32_t end, int depth, int levels) {
+    const int index = static_cast<int>(tops_.size());
+    tops_.emplace_back();
+    if (depth >= levels) {
+      tops_[static_cast<std::size_t>(index)].task = static_cast<int>(tasks_.size());
+      tasks_.push_back({begin, end, depth});
+      return index;
+    }
+    std::vector<BinaryNode> unused;
+    Builder builder(refs_, options_, scale_, unused);
+    FloatBox bounds, centroid_bounds;
+    builder.measure(begin, end, bounds, centroid_bounds);
+    const std::uint32_t mid = builder.split_or_leaf(begin, end, depth, bounds, centroid_bounds);
+    if (mid == begin) {
+      tops_[static_cast<std::size_t>(index)].node = {bounds, begin, end - begin};
+      return index;
+    }
+    const int left = top(begin, mid, depth + 1, levels);
+    const int right = top(mid, end, depth + 1, levels);
+    Top& t = tops_[static_cast<std::size_t>(index)];
+    t.node = {bounds, 0, 0};
+    t.left = left;
+    t.right = right;
+    return index;
+  }
+
+  void join(int index, const std::vector<std::vector<BinaryNode>>& built, std::vector<BinaryNode>& nodes) const {
+    const Top& t = tops_[static_cast<std::size_t>(index)];
+    if (t.task >= 0) {
+      const auto offset = static_cast<std::uint32_t>(nodes.size());
+      for (BinaryNode node : built[static_cast<std::size_t>(t.task)]) {
+        if (node.count == 0) node.first += offset;
+        nodes.push_back(node);
+      }
+      return;
+    }
+    const std::size_t at = nodes.size();
+    nodes.push_back(t.node);
+    if (t.node.count > 0) return;
+    join(t.left, built, nodes);
+    nodes[at].first = static_cast<std::uint32_t>(nodes.size());
+    join(t.right, built, nodes);
+  }
+
+  std::vector<Ref>& refs_;
+  const BvhBuildOptions& options_;
+  double scale_;
+  std::vector<Top> tops_;
+  std::vector<Task> tasks_;
+};
 
 // The binary hierarchy collapsed to nodes of up to eight children: a node's children are its binary
 // children, with the inner one of largest surface area replaced by its own two children while fewer than
@@ -288,16 +369,14 @@ class Collapser {
 
   static BvhNode empty_node() {
     BvhNode node{};
-    const Box3 empty = empty_box();
+    const FloatBox empty = empty_float_box();
     for (int s = 0; s < BvhNode::width; ++s) set_slot(node, s, empty, 0, 0);
     return node;
   }
 
-  static void set_slot(BvhNode& node, int slot, const Box3& b, std::uint32_t first, std::uint32_t count) {
+  static void set_slot(BvhNode& node, int slot, const FloatBox& b, std::uint32_t first, std::uint32_t count) {
     const auto s = static_cast<std::size_t>(slot);
-    // Outward to binary32: lo down, hi up (the empty box's infinities stay as they are).
-    node.bounds[0][s] = round_down(b.lo.x), node.bounds[1][s] = round_down(b.lo.y), node.bounds[2][s] = round_down(b.lo.z);
-    node.bounds[3][s] = round_up(b.hi.x), node.bounds[4][s] = round_up(b.hi.y), node.bounds[5][s] = round_up(b.hi.z);
+    for (std::size_t k = 0; k < 3; ++k) node.bounds[k][s] = b.lo[k], node.bounds[k + 3][s] = b.hi[k];
     node.first[s] = first;
     node.count[s] = count;
   }
@@ -354,15 +433,18 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   std::vector<Ref> refs(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Box3& b = boxes[k];
-    refs[k] = {b,
-               {b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5, b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5,
-                b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5},
+    grow(bounds_, b);
+    refs[k] = {outward(b),
+               {static_cast<float>(b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5),
+                static_cast<float>(b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5),
+                static_cast<float>(b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5)},
                static_cast<std::uint32_t>(k)};
   }
-  const std::vector<BinaryNode> binary = build_binary(refs, options, scale);
+  std::vector<Box3>().swap(boxes);
+  const std::vector<BinaryNode> binary = ParallelBuild(refs, options, scale).run();
   order_.resize(n);
   for (std::size_t k = 0; k < n; ++k) order_[k] = refs[k].index;
-  bounds_ = binary[0].bounds;
+  std::vector<Ref>().swap(refs);
   nodes_.reserve(binary.size() / 2 + 1);
   if (binary[0].count > 0) {  // the whole mesh is one leaf: a root with one child
     nodes_.push_back(Collapser::empty_node());
@@ -375,11 +457,9 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   nodes_.shrink_to_fit();
   // The guard's magnitude bounds every stored (binary32, outward) box: the root's, rounded outward, contains them
   // all (rounding down and up are monotone).
-  const Box3& root = bounds_;
-  const auto outward = [](double lo, double hi) {
-    return std::max(std::fabs(static_cast<double>(round_down(lo))), std::fabs(static_cast<double>(round_up(hi))));
-  };
-  magnitude_ = {outward(root.lo.x, root.hi.x), outward(root.lo.y, root.hi.y), outward(root.lo.z, root.hi.z)};
+  const FloatBox root = outward(bounds_);
+  for (std::size_t k = 0; k < 3; ++k)
+    magnitude_[k] = std::max(std::fabs(static_cast<double>(root.lo[k])), std::fabs(static_cast<double>(root.hi[k])));
 }
 
 namespace mesh_detail {
