@@ -235,6 +235,31 @@ void ray_benchmark(benchmark::State& state, const std::string& mesh, Prepare pre
   set_rate(state, 1);
 }
 
+// What a nearest hit touches, over the first 4,096 rays: candidate triangles per ray (nearest_hit_traced), nodes
+// per ray of the walk pruned by the winner's t (the search's bound only comes down to it, so this is a lower
+// bound of the nodes it tests), and the bytes those read (256 per node; 72 per candidate's triangle, 4 for its
+// index).
+void walk_counters(benchmark::State& state, const std::string& mesh) {
+  std::lock_guard lock(fixture_mutex);
+  Fixture& f = fixture(mesh);
+  const std::size_t rays = std::min<std::size_t>(4096, f.rays.size());
+  double candidates = 0, nodes = 0;
+  for (std::size_t i = 0; i < rays; ++i) {
+    const TracedMeshHit traced = nearest_hit_traced(f.rays[i], *f.prepared);
+    candidates += static_cast<double>(traced.candidates);
+    const double bound = traced.hit ? std::nextafter(traced.hit->intersection.t, std::numeric_limits<double>::infinity())
+                                    : std::numeric_limits<double>::infinity();
+    BvhRayTraversal walk(f.prepared->bvh(), f.rays[i]);
+    while (walk.next(bound)) {
+    }
+    nodes += static_cast<double>(walk.boxes_tested()) / BvhNode::width;
+  }
+  const auto n = static_cast<double>(rays);
+  state.counters["candidates_per_ray"] = candidates / n;
+  state.counters["nodes_per_ray"] = nodes / n;
+  state.counters["bytes_per_ray"] = (nodes * sizeof(BvhNode) + candidates * (sizeof(Triangle) + 4)) / n;
+}
+
 void threads(benchmark::internal::Benchmark* b) {
   const int all = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   b->Threads(1);
@@ -438,6 +463,7 @@ void register_all() {
             const auto hit = nearest_hit(r, *f.prepared);
             return hit ? std::uint64_t{hit->triangle} : 0;
           });
+      if (state.threads() == 1) walk_counters(state, m);
     })->Apply(threads);
 
     // Any-hit (shadow rays): raykernel's occluded (owned rule, stops at the first blocker) against Embree's
