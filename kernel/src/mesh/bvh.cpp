@@ -10,6 +10,7 @@
 #include <raykernel/parallel.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -58,13 +59,6 @@ FloatBox outward(const Box3& b) {
   return {{round_down(b.lo.x), round_down(b.lo.y), round_down(b.lo.z)}, {round_up(b.hi.x), round_up(b.hi.y), round_up(b.hi.z)}};
 }
 
-void grow(FloatBox& b, const FloatBox& o) {
-  for (std::size_t k = 0; k < 3; ++k) {
-    b.lo[k] = std::min(b.lo[k], o.lo[k]);
-    b.hi[k] = std::max(b.hi[k], o.hi[k]);
-  }
-}
-
 // Surface area of a box (half of it), in the scaled coordinates; only compared, never certified (beyond the
 // binary32 range it is inf or NaN, which no comparison prefers).
 double half_area(const FloatBox& b, double scale) {
@@ -74,13 +68,48 @@ double half_area(const FloatBox& b, double scale) {
   return ex * ey + ey * ez + ez * ex;
 }
 
-// One primitive during the build: its box, its centroid (the box centre scaled by 2^-e; only the split choice
-// uses it) and its index. The build partitions these in place, so each node's primitives lie side by side.
+// The build's vectors: a box's three lower or upper bounds in lanes 0–2 (GCC vector extensions: SSE on x86-64,
+// the same operations elsewhere).
+using F4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+
+[[gnu::always_inline]] inline F4 min4(F4 a, F4 b) { return a < b ? a : b; }
+[[gnu::always_inline]] inline F4 max4(F4 a, F4 b) { return a > b ? a : b; }
+
+// One primitive during the build: its box rounded outward to binary32, and its index (in the bits of hi's lane 3).
+// The build partitions these in place (32 bytes each), so each node's primitives lie side by side.
 struct Ref {
-  FloatBox box;                   // rounded outward
-  std::array<float, 3> centroid;  // scaled, |c| ≤ 1
-  std::uint32_t index;
+  F4 lo;  // lo.x, lo.y, lo.z, 0
+  F4 hi;  // hi.x, hi.y, hi.z, the index's bits
+  [[nodiscard]] std::uint32_t index() const { return static_cast<std::uint32_t>(std::bit_cast<I4>(hi)[3]); }
+  [[nodiscard]] F4 upper() const { return std::bit_cast<F4>(std::bit_cast<I4>(hi) & I4{-1, -1, -1, 0}); }
+  // The box's centre (only the split choice uses it; ±inf when the box reaches beyond the binary32 range).
+  [[nodiscard]] F4 centroid() const { return lo * 0.5f + upper() * 0.5f; }
 };
+
+Ref make_ref(const FloatBox& b, std::uint32_t index) {
+  Ref r;
+  r.lo = F4{b.lo[0], b.lo[1], b.lo[2], 0};
+  r.hi = F4{b.hi[0], b.hi[1], b.hi[2], 0};
+  r.hi = std::bit_cast<F4>(std::bit_cast<I4>(r.hi) | I4{0, 0, 0, static_cast<std::int32_t>(index)});
+  return r;
+}
+
+// A node's bounds and its centroids' bounds (lanes 0–2).
+struct Bounds {
+  F4 lo, hi, clo, chi;
+  static Bounds empty() {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    return {F4{inf, inf, inf, inf}, F4{-inf, -inf, -inf, -inf}, F4{inf, inf, inf, inf}, F4{-inf, -inf, -inf, -inf}};
+  }
+  void grow(const Bounds& o) {
+    lo = min4(lo, o.lo), hi = max4(hi, o.hi), clo = min4(clo, o.clo), chi = max4(chi, o.chi);
+  }
+  [[nodiscard]] FloatBox box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
+};
+
+// Surface area of a box (half of it), in the scaled coordinates; only compared, never certified.
+double half_area(const Bounds& b, double scale) { return half_area(b.box(), scale); }
 
 // A node of the binary hierarchy the build makes first (depth-first: an inner node's first child is the next
 // node).
@@ -90,100 +119,155 @@ struct BinaryNode {
   std::uint32_t count;  // leaf: number of triangles (≥ 1); inner: 0
 };
 
+// A split: the position (begin: "make a leaf"), and the two sides' bounds when the bins gave them.
+struct Split {
+  std::uint32_t mid;
+  bool bounded;
+  Bounds left, right;
+  static Split at(std::uint32_t mid) {
+    Split s;
+    s.mid = mid;
+    s.bounded = false;
+    return s;
+  }
+};
+
 // The binned SAH build of the subtree over refs[begin, end) into `nodes` (appended depth-first; inner nodes'
-// `first` index `nodes`). One Builder per thread: the bins are its scratch space.
+// `first` index `nodes`). One Builder per thread: the bins are its scratch space. Each node's bounds come from
+// its parent's bins (the union of the bins on its side), so the primitives are read once per level, to bin
+// them on all three axes at once.
 class Builder {
  public:
   Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes)
-      : refs_(refs), options_(options), scale_(scale), nodes_(nodes),
-        bins_(std::max<std::uint32_t>(2, options.bins)), bin_box_(3 * bins_), bin_count_(3 * bins_),
-        right_area_(bins_), right_count_(bins_) {}
+      : refs_(refs), options_(options), scale_(scale), nodes_(nodes), bins_(std::clamp<std::uint32_t>(options.bins, 2, 1u << 20)),
+        bins_data_(3 * static_cast<std::size_t>(bins_)), right_area_(bins_), right_count_(bins_) {}
 
-  // The node's bounds and its centroids' bounds (one pass over its primitives).
-  void measure(std::uint32_t begin, std::uint32_t end, FloatBox& bounds, FloatBox& centroid_bounds) const {
-    bounds = empty_float_box();
-    centroid_bounds = empty_float_box();
+  // The bounds of refs[begin, end) (one pass over them).
+  [[nodiscard]] Bounds measure(std::uint32_t begin, std::uint32_t end) const {
+    Bounds b = Bounds::empty();
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
-      grow(bounds, r.box);
-      grow(centroid_bounds, {r.centroid, r.centroid});
+      const F4 c = r.centroid();
+      b.lo = min4(b.lo, r.lo), b.hi = max4(b.hi, r.upper()), b.clo = min4(b.clo, c), b.chi = max4(b.chi, c);
     }
+    return b;
   }
 
   // Returns the depth of the subtree's deepest leaf.
-  int build(std::uint32_t begin, std::uint32_t end, int depth) {
+  int build(std::uint32_t begin, std::uint32_t end, int depth, const Bounds& bounds) {
     const auto index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});
-    FloatBox bounds, centroid_bounds;
-    measure(begin, end, bounds, centroid_bounds);
-    const std::uint32_t mid = split_or_leaf(begin, end, depth, bounds, centroid_bounds);
-    if (mid == begin) {
-      nodes_[index] = {bounds, begin, end - begin};
+    const Split s = split_or_leaf(begin, end, depth, bounds);
+    if (s.mid == begin) {
+      nodes_[index] = {bounds.box(), begin, end - begin};
       return depth;
     }
-    const int left_depth = build(begin, mid, depth + 1);
+    const int left_depth = build(begin, s.mid, depth + 1, s.bounded ? s.left : measure(begin, s.mid));
     const auto right = static_cast<std::uint32_t>(nodes_.size());
-    const int right_depth = build(mid, end, depth + 1);
-    nodes_[index] = {bounds, right, 0};
+    const int right_depth = build(s.mid, end, depth + 1, s.bounded ? s.right : measure(s.mid, end));
+    nodes_[index] = {bounds.box(), right, 0};
     return std::max(left_depth, right_depth);
   }
 
-  // The split position of [begin, end), or begin for "make a leaf".
-  std::uint32_t split_or_leaf(std::uint32_t begin, std::uint32_t end, int depth, const FloatBox& bounds,
-                              const FloatBox& centroid_bounds) {
+  Split split_or_leaf(std::uint32_t begin, std::uint32_t end, int depth, const Bounds& bounds) {
     // A node of at most max_leaf_size (and max_leaf_size_hard) primitives is a leaf whatever the bins say:
-    // split() would decide so after binning them.
+    // the split below would decide so after binning them.
     if (end - begin <= std::max<std::uint32_t>(1, std::min(options_.max_leaf_size, options_.max_leaf_size_hard)) ||
         depth >= MeshBvh::max_depth)
-      return begin;
-    const std::uint32_t mid = split(begin, end, bounds, centroid_bounds);
-    return mid == end ? begin : mid;
+      return Split::at(begin);
+    Split s = split(begin, end, bounds);
+    if (s.mid == end) s.mid = begin;
+    return s;
   }
 
  private:
-  // Partitions [begin, end) by the cheapest binned SAH split; returns the split position, or begin/end for
-  // "make a leaf". The three axes are binned in one pass over the primitives.
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const FloatBox& bounds, const FloatBox& cb) {
-    const std::uint32_t n = end - begin;
-    const std::uint32_t bins = bins_;
-    const double lo[3] = {cb.lo[0], cb.lo[1], cb.lo[2]}, hi[3] = {cb.hi[0], cb.hi[1], cb.hi[2]};
-    double factor[3];
-    bool split_axis[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      const double extent = hi[axis] - lo[axis];
-      split_axis[axis] = extent > 0;
-      factor[axis] = split_axis[axis] ? bins / extent : 0;
-    }
-    std::fill(bin_box_.begin(), bin_box_.end(), empty_float_box());
-    std::fill(bin_count_.begin(), bin_count_.end(), 0);
+  struct Bin {
+    Bounds bounds;
+    std::uint32_t count;
+  };
+
+  // The bins of a centroid on the three axes: x = (c − lo)·factor clamped to [0, bins − 1] before it is
+  // converted (x may be ±inf or NaN when an extent is tiny or a centroid infinite; the clamp sends NaN to 0).
+  [[gnu::always_inline]] static I4 bins_of(F4 c, F4 lo, F4 factor, F4 top) {
+    F4 x = (c - lo) * factor;
+    x = x > F4{} ? x : F4{};
+    x = x < top ? x : top;
+    return __builtin_convertvector(x, I4);
+  }
+
+  static constexpr std::uint32_t parallel_binning_from = 1u << 16;
+
+  // Bins refs[begin, end) on the three axes: bins[axis·count + bin] (count bins per axis).
+  void bin_range(std::uint32_t begin, std::uint32_t end, std::uint32_t count, F4 lo, F4 factor, F4 top, Bin* bins) const {
+    Bin* const per_axis[3] = {bins, bins + count, bins + 2 * static_cast<std::size_t>(count)};
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
-      for (std::size_t axis = 0; axis < 3; ++axis) {
-        const std::size_t b = axis * bins + bin_of(r.centroid[axis], lo[axis], factor[axis], bins);
-        grow(bin_box_[b], r.box);
-        ++bin_count_[b];
+      const F4 rlo = r.lo, rhi = r.upper(), c = rlo * 0.5f + rhi * 0.5f;
+      const I4 b = bins_of(c, lo, factor, top);
+      for (int axis = 0; axis < 3; ++axis) {
+        Bin& bin = per_axis[axis][b[axis]];
+        bin.bounds.lo = min4(bin.bounds.lo, rlo), bin.bounds.hi = max4(bin.bounds.hi, rhi);
+        bin.bounds.clo = min4(bin.bounds.clo, c), bin.bounds.chi = max4(bin.bounds.chi, c);
+        ++bin.count;
       }
+    }
+  }
+
+  // Partitions [begin, end) by the cheapest binned SAH split; returns the split position (begin or end for
+  // "make a leaf") and the two sides' bounds. The three axes are binned in one pass over the primitives.
+  Split split(std::uint32_t begin, std::uint32_t end, const Bounds& bounds) {
+    const std::uint32_t n = end - begin;
+    // No more bins than primitives (at least 8): a small node's split costs its bins' clearing and sweeps, not
+    // its primitives, and more bins than centroids add few distinct partitions.
+    const std::uint32_t bins = std::min(bins_, std::max<std::uint32_t>(8, n));
+    const F4 lo = bounds.clo, extent = bounds.chi - bounds.clo;
+    F4 factor{};
+    bool split_axis[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      split_axis[axis] = extent[axis] > 0 && extent[axis] <= std::numeric_limits<float>::max();
+      if (split_axis[axis]) factor[axis] = static_cast<float>(bins) / extent[axis];
+    }
+    const F4 top = F4{} + static_cast<float>(bins - 1);
+    Bin* const per_axis[3] = {&bins_data_[0], &bins_data_[bins], &bins_data_[2 * static_cast<std::size_t>(bins)]};
+    const std::size_t all = 3 * static_cast<std::size_t>(bins);
+    std::fill_n(bins_data_.begin(), all, Bin{Bounds::empty(), 0});
+    if (n >= parallel_binning_from && thread_count(options_.threads) >= 2) {
+      // A large node (the top levels, which run before the subtrees are handed out): its two halves binned on
+      // two threads, the second into its own bins, then added up (unions and sums: the same bins).
+      std::vector<Bin> second(all, Bin{Bounds::empty(), 0});
+      const std::uint32_t half = begin + n / 2;
+      run_parts(2, 2, [&](std::size_t k) {
+        detail::in_default_fp_environment([&] {
+          if (k == 0) bin_range(begin, half, bins, lo, factor, top, bins_data_.data());
+          else bin_range(half, end, bins, lo, factor, top, second.data());
+        });
+      });
+      for (std::size_t b = 0; b < all; ++b) {
+        bins_data_[b].bounds.grow(second[b].bounds);
+        bins_data_[b].count += second[b].count;
+      }
+    } else {
+      bin_range(begin, end, bins, lo, factor, top, bins_data_.data());
     }
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1;
     std::uint32_t best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (!split_axis[axis]) continue;
-      const FloatBox* box = &bin_box_[static_cast<std::size_t>(axis) * bins];
-      const std::uint32_t* count_of = &bin_count_[static_cast<std::size_t>(axis) * bins];
-      FloatBox acc = empty_float_box();
+      const Bin* bin = per_axis[axis];
+      Bounds acc = Bounds::empty();
       std::uint32_t count = 0;
       for (std::uint32_t b = bins - 1; b > 0; --b) {
-        grow(acc, box[b]);
-        count += count_of[b];
+        acc.grow(bin[b].bounds);
+        count += bin[b].count;
         right_area_[b] = half_area(acc, scale_);
         right_count_[b] = count;
       }
-      acc = empty_float_box();
+      acc = Bounds::empty();
       count = 0;
       for (std::uint32_t b = 0; b + 1 < bins; ++b) {
-        grow(acc, box[b]);
-        count += count_of[b];
+        acc.grow(bin[b].bounds);
+        count += bin[b].count;
         if (count == 0 || right_count_[b + 1] == 0) continue;
         const double cost = half_area(acc, scale_) * count + right_area_[b + 1] * right_count_[b + 1];
         if (cost < best_cost) {
@@ -196,26 +280,22 @@ class Builder {
     const double parent_area = half_area(bounds, scale_);
     if (best_axis < 0) {
       // Every centroid coincides: split by position only when the leaf would be too large.
-      if (n <= options_.max_leaf_size_hard) return begin;
-      return begin + n / 2;
+      if (n <= options_.max_leaf_size_hard) return Split::at(begin);
+      return Split::at(begin + n / 2);
     }
     // SAH: traversal cost 1 against intersection cost 1 per triangle, relative to the parent's area.
     const double split_cost = 1 + (parent_area > 0 ? best_cost / parent_area : best_cost);
-    if (n <= options_.max_leaf_size || (n <= options_.max_leaf_size_hard && split_cost >= n)) return begin;
+    if (n <= options_.max_leaf_size || (n <= options_.max_leaf_size_hard && split_cost >= n)) return Split::at(begin);
+    Split s = Split::at(0);
+    s.bounded = true;
+    s.left = s.right = Bounds::empty();
+    for (std::uint32_t b = 0; b < bins; ++b) (b <= best_bin ? s.left : s.right).grow(per_axis[best_axis][b].bounds);
     const auto axis = static_cast<std::size_t>(best_axis);
     const auto mid = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](const Ref& r) {
-      return bin_of(r.centroid[axis], lo[axis], factor[axis], bins) <= best_bin;
+      return static_cast<std::uint32_t>(bins_of(r.centroid(), lo, factor, top)[axis]) <= best_bin;
     });
-    return static_cast<std::uint32_t>(mid - refs_.begin());
-  }
-
-  // The bin of a centroid: x = (c − lo)·factor clamped to [0, bins − 1] before it is converted (x may be +inf
-  // or NaN when the extent is subnormal or the difference overflows; converting those is undefined).
-  static std::uint32_t bin_of(double c, double lo, double factor, std::uint32_t bins) {
-    const double x = (c - lo) * factor;
-    if (!(x > 0)) return 0;
-    if (!(x < static_cast<double>(bins))) return bins - 1;
-    return static_cast<std::uint32_t>(x);
+    s.mid = static_cast<std::uint32_t>(mid - refs_.begin());
+    return s;
   }
 
   std::vector<Ref>& refs_;
@@ -223,8 +303,7 @@ class Builder {
   double scale_;
   std::vector<BinaryNode>& nodes_;
   std::uint32_t bins_;
-  std::vector<FloatBox> bin_box_;
-  std::vector<std::uint32_t> bin_count_;
+  std::vector<Bin> bins_data_;
   std::vector<double> right_area_;
   std::vector<std::uint32_t> right_count_;
 };
@@ -244,14 +323,14 @@ class ParallelBuild {
     // Eight subtrees for two threads: the SAH's splits are uneven, and run_parts hands the next one to whichever
     // thread is free.
     const int levels = threads < 2 || n < parallel_from ? 0 : 3;
-    const int root = top(0, n, 0, levels);
+    const int root = top(0, n, 0, levels, Builder(refs_, options_, scale_, unused_).measure(0, n));
     std::vector<std::vector<BinaryNode>> built(tasks_.size());
     run_parts(tasks_.size(), threads, [&](std::size_t k) {
       detail::in_default_fp_environment([&] {
         const Task& t = tasks_[k];
         std::vector<BinaryNode> nodes;
         nodes.reserve(2 * (t.end - t.begin) / std::max<std::uint32_t>(1, options_.max_leaf_size) + 1);
-        Builder(refs_, options_, scale_, nodes).build(t.begin, t.end, t.depth);
+        Builder(refs_, options_, scale_, nodes).build(t.begin, t.end, t.depth, t.bounds);
         built[k] = std::move(nodes);
       });
     });
@@ -268,6 +347,7 @@ class ParallelBuild {
   struct Task {
     std::uint32_t begin, end;
     int depth;
+    Bounds bounds;
   };
   struct Top {
     BinaryNode node;  // a leaf, or an inner node whose children are tops `left` and `right`
@@ -275,27 +355,24 @@ class ParallelBuild {
     int task = -1;    // or the subtree of tasks_[task]
   };
 
-  int top(std::uint32_t begin, std::uint32_t end, int depth, int levels) {
+  int top(std::uint32_t begin, std::uint32_t end, int depth, int levels, const Bounds& bounds) {
     const int index = static_cast<int>(tops_.size());
     tops_.emplace_back();
     if (depth >= levels) {
       tops_[static_cast<std::size_t>(index)].task = static_cast<int>(tasks_.size());
-      tasks_.push_back({begin, end, depth});
+      tasks_.push_back({begin, end, depth, bounds});
       return index;
     }
-    std::vector<BinaryNode> unused;
-    Builder builder(refs_, options_, scale_, unused);
-    FloatBox bounds, centroid_bounds;
-    builder.measure(begin, end, bounds, centroid_bounds);
-    const std::uint32_t mid = builder.split_or_leaf(begin, end, depth, bounds, centroid_bounds);
-    if (mid == begin) {
-      tops_[static_cast<std::size_t>(index)].node = {bounds, begin, end - begin};
+    Builder builder(refs_, options_, scale_, unused_);
+    const Split s = builder.split_or_leaf(begin, end, depth, bounds);
+    if (s.mid == begin) {
+      tops_[static_cast<std::size_t>(index)].node = {bounds.box(), begin, end - begin};
       return index;
     }
-    const int left = top(begin, mid, depth + 1, levels);
-    const int right = top(mid, end, depth + 1, levels);
+    const int left = top(begin, s.mid, depth + 1, levels, s.bounded ? s.left : builder.measure(begin, s.mid));
+    const int right = top(s.mid, end, depth + 1, levels, s.bounded ? s.right : builder.measure(s.mid, end));
     Top& t = tops_[static_cast<std::size_t>(index)];
-    t.node = {bounds, 0, 0};
+    t.node = {bounds.box(), 0, 0};
     t.left = left;
     t.right = right;
     return index;
@@ -322,6 +399,7 @@ class ParallelBuild {
   std::vector<Ref>& refs_;
   const BvhBuildOptions& options_;
   double scale_;
+  std::vector<BinaryNode> unused_;  // the top levels' builders append nothing
   std::vector<Top> tops_;
   std::vector<Task> tasks_;
 };
@@ -421,29 +499,36 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   bounds_ = empty_box();
   const std::size_t n = boxes.size();
   if (n == 0) return;
-  // The scale 2^-e with 2^e above every |coordinate|: centroids and areas in scaled coordinates cannot
-  // overflow (they steer the split choice only).
-  double largest = 0;
-  for (const Box3& b : boxes)
-    largest = std::max({largest, std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
-                        std::fabs(b.hi.y), std::fabs(b.hi.z)});
+  // The refs, in parts on every thread (each part's exact bounds, then their union).
+  std::vector<Ref> refs(n);
+  constexpr std::size_t part_size = std::size_t{1} << 16;
+  const std::size_t parts = (n + part_size - 1) / part_size;
+  std::vector<Box3> part_bounds(parts, empty_box());
+  const auto in_parts = [&](const auto& body) {
+    run_parts(parts, options.threads, [&](std::size_t p) {
+      detail::in_default_fp_environment([&] { body(p, p * part_size, std::min(n, (p + 1) * part_size)); });
+    });
+  };
+  in_parts([&](std::size_t p, std::size_t from, std::size_t to) {
+    for (std::size_t k = from; k < to; ++k) {
+      grow(part_bounds[p], boxes[k]);
+      refs[k] = make_ref(outward(boxes[k]), static_cast<std::uint32_t>(k));
+    }
+  });
+  for (const Box3& b : part_bounds) grow(bounds_, b);
+  // The scale 2^-e with 2^e above every |coordinate|: areas in scaled coordinates cannot overflow (they steer the
+  // split choice only).
+  const double largest = std::max({std::fabs(bounds_.lo.x), std::fabs(bounds_.lo.y), std::fabs(bounds_.lo.z),
+                                   std::fabs(bounds_.hi.x), std::fabs(bounds_.hi.y), std::fabs(bounds_.hi.z)});
   int e = 0;
   (void)std::frexp(largest, &e);
   const double scale = std::ldexp(1.0, -e);
-  std::vector<Ref> refs(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const Box3& b = boxes[k];
-    grow(bounds_, b);
-    refs[k] = {outward(b),
-               {static_cast<float>(b.lo.x * scale * 0.5 + b.hi.x * scale * 0.5),
-                static_cast<float>(b.lo.y * scale * 0.5 + b.hi.y * scale * 0.5),
-                static_cast<float>(b.lo.z * scale * 0.5 + b.hi.z * scale * 0.5)},
-               static_cast<std::uint32_t>(k)};
-  }
   std::vector<Box3>().swap(boxes);
   const std::vector<BinaryNode> binary = ParallelBuild(refs, options, scale).run();
   order_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) order_[k] = refs[k].index;
+  in_parts([&](std::size_t, std::size_t from, std::size_t to) {
+    for (std::size_t k = from; k < to; ++k) order_[k] = refs[k].index();
+  });
   std::vector<Ref>().swap(refs);
   nodes_.reserve(binary.size() / 2 + 1);
   if (binary[0].count > 0) {  // the whole mesh is one leaf: a root with one child
