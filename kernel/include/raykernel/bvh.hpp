@@ -20,6 +20,7 @@
 // docs/contract.md §7) are never lost.
 #pragma once
 
+#include <raykernel/large_vector.hpp>
 #include <raykernel/mesh.hpp>
 
 #include <array>
@@ -105,8 +106,8 @@ class MeshBvh {
  private:
   void build(std::vector<Box3> boxes, const BvhBuildOptions& options);
 
-  std::vector<BvhNode> nodes_;
-  std::vector<std::uint32_t> order_;
+  detail::LargeVector<BvhNode> nodes_;
+  detail::LargeVector<std::uint32_t> order_;
   Box3 bounds_{};
   std::array<double, 3> magnitude_{};
   int depth_ = 0;

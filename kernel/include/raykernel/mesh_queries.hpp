@@ -37,7 +37,7 @@ class PreparedMesh {
  private:
   Mesh mesh_;
   MeshBvh bvh_;
-  std::vector<Triangle> leaf_triangles_;
+  detail::LargeVector<Triangle> leaf_triangles_;  // huge pages where the system allows (large_vector.hpp)
 };
 
 // ---- nearest hit ---------------------------------------------------------------------------------------------

@@ -409,7 +409,7 @@ class ParallelBuild {
 // eight. Nodes in depth-first order, each parent before its children.
 class Collapser {
  public:
-  Collapser(const std::vector<BinaryNode>& binary, double scale, std::vector<BvhNode>& wide)
+  Collapser(const std::vector<BinaryNode>& binary, double scale, detail::LargeVector<BvhNode>& wide)
       : binary_(binary), scale_(scale), wide_(wide) {}
 
   // The wide node for binary node `b` (inner), and its children's; returns the depth below it (1 for a node
@@ -462,7 +462,7 @@ class Collapser {
  private:
   const std::vector<BinaryNode>& binary_;
   double scale_;
-  std::vector<BvhNode>& wide_;
+  detail::LargeVector<BvhNode>& wide_;
 };
 
 }  // namespace
