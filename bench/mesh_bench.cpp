@@ -260,6 +260,27 @@ void walk_counters(benchmark::State& state, const std::string& mesh) {
   state.counters["bytes_per_ray"] = (nodes * sizeof(BvhNode) + candidates * (sizeof(Triangle) + 4)) / n;
 }
 
+#ifdef RAYKERNEL_HAVE_EMBREE
+// An Embree scene's build on state.range(0) threads, and what its device then holds per triangle (its memory
+// monitor's sum: the float vertex and index buffers, the BVH and its leaves).
+void embree_build(benchmark::State& state, const std::string& mesh_name, baseline::EmbreeScene::Mode mode,
+                  baseline::EmbreeScene::Quality quality) {
+  const Mesh* mesh;
+  {
+    std::lock_guard lock(fixture_mutex);
+    mesh = &fixture(mesh_name).mesh;
+  }
+  const auto threads = static_cast<unsigned>(state.range(0));
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const baseline::EmbreeScene scene(*mesh, mode, threads, false, quality);
+    bytes = scene.device_bytes();
+    benchmark::DoNotOptimize(bytes);
+  }
+  state.counters["device_bytes_per_triangle"] = static_cast<double>(bytes) / static_cast<double>(mesh->triangles.size());
+}
+#endif
+
 void threads(benchmark::internal::Benchmark* b) {
   const int all = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   b->Threads(1);
@@ -513,20 +534,8 @@ void register_all() {
     for (int robust = 0; robust < 2; ++robust) {
       const std::string mode = robust ? "embree_robust" : "embree";
       benchmark::RegisterBenchmark(("mesh/" + mode + "_build/" + m).c_str(), [m, robust](benchmark::State& state) {
-        const Mesh* mesh;
-        {
-          std::lock_guard lock(fixture_mutex);
-          mesh = &fixture(m).mesh;
-        }
-        const auto threads = static_cast<unsigned>(state.range(0));
-        std::size_t bytes = 0;
-        for (auto _ : state) {
-          const baseline::EmbreeScene scene(*mesh, robust ? baseline::EmbreeScene::Mode::robust : baseline::EmbreeScene::Mode::fast, threads);
-          bytes = scene.device_bytes();
-          benchmark::DoNotOptimize(bytes);
-        }
-        // Memory: everything the device holds (the float vertex and index buffers, the BVH and its leaves).
-        state.counters["device_bytes_per_triangle"] = static_cast<double>(bytes) / static_cast<double>(mesh->triangles.size());
+        embree_build(state, m, robust ? baseline::EmbreeScene::Mode::robust : baseline::EmbreeScene::Mode::fast,
+                     baseline::EmbreeScene::Quality::high);
       })->Unit(benchmark::kMillisecond)->MinTime(1)->ArgName("threads")->Arg(1)->Arg(2);
       benchmark::RegisterBenchmark(("mesh/" + mode + "/" + m).c_str(), [m, robust](benchmark::State& state) {
         ray_benchmark(
@@ -580,20 +589,7 @@ void register_all() {
     // Embree robust without spatial splits (RTC_BUILD_QUALITY_MEDIUM, Embree's default quality; the rows above
     // use HIGH): what the splits gain in query speed and cost in build time.
     benchmark::RegisterBenchmark(("mesh/embree_robust_medium_build/" + m).c_str(), [m](benchmark::State& state) {
-      const Mesh* mesh;
-      {
-        std::lock_guard lock(fixture_mutex);
-        mesh = &fixture(m).mesh;
-      }
-      const auto threads = static_cast<unsigned>(state.range(0));
-      std::size_t bytes = 0;
-      for (auto _ : state) {
-        const baseline::EmbreeScene scene(*mesh, baseline::EmbreeScene::Mode::robust, threads, false,
-                                          baseline::EmbreeScene::Quality::medium);
-        bytes = scene.device_bytes();
-        benchmark::DoNotOptimize(bytes);
-      }
-      state.counters["device_bytes_per_triangle"] = static_cast<double>(bytes) / static_cast<double>(mesh->triangles.size());
+      embree_build(state, m, baseline::EmbreeScene::Mode::robust, baseline::EmbreeScene::Quality::medium);
     })->Unit(benchmark::kMillisecond)->MinTime(1)->ArgName("threads")->Arg(1)->Arg(2);
     benchmark::RegisterBenchmark(("mesh/embree_robust_medium/" + m).c_str(), [m](benchmark::State& state) {
       ray_benchmark(

@@ -26,6 +26,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -565,6 +566,20 @@ TEST(Bvh, StructureIsExactAndComplete) {
     EXPECT_EQ(t.bvh.depth(), depth);
     EXPECT_LE(t.bvh.depth(), MeshBvh::max_depth);
   }
+}
+
+TEST(Bvh, TheSameNodesOnAnyNumberOfThreads) {
+  // 81,920 triangles: above the size from which the build splits its top levels and bins its largest nodes on
+  // several threads. One thread and two must give the same nodes and order, byte for byte.
+  const Mesh mesh = testkit::make_icosphere(6);
+  const MeshBvh one(mesh, {.threads = 1});
+  const MeshBvh two(mesh, {.threads = 2});
+  ASSERT_EQ(one.nodes().size(), two.nodes().size());
+  EXPECT_EQ(std::memcmp(one.nodes().data(), two.nodes().data(), one.nodes().size_bytes()), 0);
+  ASSERT_EQ(one.triangle_order().size(), two.triangle_order().size());
+  EXPECT_TRUE(std::equal(one.triangle_order().begin(), one.triangle_order().end(), two.triangle_order().begin()));
+  EXPECT_EQ(one.depth(), two.depth());
+  EXPECT_GT(one.nodes().size(), 1000u);
 }
 
 TEST(Bvh, RejectsInvalidInput) {

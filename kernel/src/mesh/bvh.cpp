@@ -138,8 +138,11 @@ struct Split {
 // them on all three axes at once.
 class Builder {
  public:
-  Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes)
-      : refs_(refs), options_(options), scale_(scale), nodes_(nodes), bins_(std::clamp<std::uint32_t>(options.bins, 2, 1u << 20)),
+  // `parallel`: bin large nodes on two threads (the top levels' builder only: the subtrees' builders already run
+  // one per thread).
+  Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes,
+          bool parallel = false)
+      : refs_(refs), options_(options), scale_(scale), nodes_(nodes), parallel_(parallel), bins_(std::clamp<std::uint32_t>(options.bins, 2, 1u << 20)),
         bins_data_(3 * static_cast<std::size_t>(bins_)), right_area_(bins_), right_count_(bins_) {}
 
   // The bounds of refs[begin, end) (one pass over them).
@@ -231,7 +234,7 @@ class Builder {
     Bin* const per_axis[3] = {&bins_data_[0], &bins_data_[bins], &bins_data_[2 * static_cast<std::size_t>(bins)]};
     const std::size_t all = 3 * static_cast<std::size_t>(bins);
     std::fill_n(bins_data_.begin(), all, Bin{Bounds::empty(), 0});
-    if (n >= parallel_binning_from && thread_count(options_.threads) >= 2) {
+    if (parallel_ && n >= parallel_binning_from && thread_count(options_.threads) >= 2) {
       // A large node (the top levels, which run before the subtrees are handed out): its two halves binned on
       // two threads, the second into its own bins, then added up (unions and sums: the same bins).
       std::vector<Bin> second(all, Bin{Bounds::empty(), 0});
@@ -302,6 +305,7 @@ class Builder {
   const BvhBuildOptions& options_;
   double scale_;
   std::vector<BinaryNode>& nodes_;
+  bool parallel_;
   std::uint32_t bins_;
   std::vector<Bin> bins_data_;
   std::vector<double> right_area_;
@@ -363,7 +367,7 @@ class ParallelBuild {
       tasks_.push_back({begin, end, depth, bounds});
       return index;
     }
-    Builder builder(refs_, options_, scale_, unused_);
+    Builder builder(refs_, options_, scale_, unused_, true);
     const Split s = builder.split_or_leaf(begin, end, depth, bounds);
     if (s.mid == begin) {
       tops_[static_cast<std::size_t>(index)].node = {bounds.box(), begin, end - begin};
