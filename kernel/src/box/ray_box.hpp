@@ -43,8 +43,8 @@
 // d_i = −0 the planes swap and the signs flip: the same three cases. ∞·K ∓ τ = ∞ and NaN stays NaN.
 //
 // Case B, 2^-1022 ≤ |d_i| ≤ 2^1022 and the overflow guard G = RN(RN(M_i + |o_i|) · |inv|) ≤ 2^1022 holds,
-// M_i ≥ |lo_i|, |hi_i| for every box tested (the root box's magnitude; for the BVH's binary32 boxes, of the root
-// box rounded outward, which contains them all).
+// M_i ≥ |lo_i|, |hi_i| for every box tested (the root box's magnitude; for the BVH's binary32 boxes, that of
+// the root box rounded outward, which contains them all).
 //  B1. inv = (1/d_i)(1 + ε1): 1/d_i is in [2^-1022, 2^1022], a normal range, so δ = 0 and no overflow.
 //  B2. |plane − o_i| ≤ M_i + |o_i|, so by monotonicity |RN(plane − o_i)| ≤ RN(M_i + |o_i|) and
 //      |RN(plane − o_i) · inv| ≤ RN(M_i + |o_i|)·|inv|, hence |p| ≤ G ≤ 2^1022: nothing overflows,
@@ -169,9 +169,9 @@ inline void set_walk_ray(detail::BvhWalk& w, const BvhRayTraversal::Slabs& s) no
 // The eight children of `node` at once (V = Lanes8): each lane converts its child's binary32 bounds to double
 // (exactly) and performs the test above. Slots beyond node.children() are not masked off: their empty boxes
 // are rejected unless every axis was left out of the test, so the caller skips an accepted empty slot
-// (BvhNode::empty_slot; it reads first and count of each accepted slot anyway). A stored box contains the exact one (lo rounded
-// down, hi up), so a t in the exact box's slab is in the stored box's (RayBox.v, `slab_sound_outward`), and
-// the test never rejects a child the exact ray meets. Bit s of the result: child s may be met; entries[s] is
+// (BvhNode::empty_slot; it reads first and count of each accepted slot anyway). A stored box contains the
+// exact one (lo rounded down, hi up), so a t in the exact box's slab is in the stored box's (RayBox.v,
+// `slab_sound_outward`), and the test never rejects a child the exact ray meets. Bit s of the result: child s may be met; entries[s] is
 // then its entry bound. Internal linkage: the body depends on the instruction set of the translation unit
 // (bvh_walk_<isa>.cpp): AVX-512 runs the eight lanes in one register, AVX2 in two, SSE2 in four.
 using FaceRow = float __attribute__((vector_size(BvhNode::width * sizeof(float))));
@@ -189,7 +189,8 @@ using FaceRow = float __attribute__((vector_size(BvhNode::width * sizeof(float))
                          detail::broadcast<Lanes8>(w.inverse_direction[k]), t0, t1);
   entries = t0;
 #if defined(__AVX512F__)
-  const auto bits = static_cast<unsigned>(_mm512_cmp_pd_mask(reinterpret_cast<__m512d>(t0), reinterpret_cast<__m512d>(t1), _CMP_LE_OQ));
+  const auto bits =
+      static_cast<unsigned>(_mm512_cmp_pd_mask(reinterpret_cast<__m512d>(t0), reinterpret_cast<__m512d>(t1), _CMP_LE_OQ));
 #else
   const detail::Mask8 met = t0 <= t1;
 #if defined(__AVX__)
