@@ -1,6 +1,6 @@
-// MeshBvh (binned SAH build of a binary hierarchy, collapsed to eight children per node, boxes rounded outward
-// to binary32) and
-// BvhRayTraversal (nearest-first walk with the certified box test of ray_box.hpp, bvh_walk.hpp).
+// MeshBvh (binned SAH build of a binary hierarchy on every core, collapsed to eight children per node, boxes
+// rounded outward to binary32) and BvhRayTraversal (nearest-first walk with the certified box test of
+// ray_box.hpp, bvh_walk.hpp).
 #include "core/fp_requirements.hpp"
 #include "core/fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
