@@ -105,6 +105,8 @@ struct Bounds {
   void grow(const Bounds& o) {
     lo = min4(lo, o.lo), hi = max4(hi, o.hi), clo = min4(clo, o.clo), chi = max4(chi, o.chi);
   }
+  // One primitive's box [rlo, rhi] and centroid c.
+  void add(F4 rlo, F4 rhi, F4 c) { lo = min4(lo, rlo), hi = max4(hi, rhi), clo = min4(clo, c), chi = max4(chi, c); }
   [[nodiscard]] FloatBox box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
 };
 
@@ -150,8 +152,7 @@ class Builder {
     Bounds b = Bounds::empty();
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
-      const F4 c = r.centroid();
-      b.lo = min4(b.lo, r.lo), b.hi = max4(b.hi, r.upper()), b.clo = min4(b.clo, c), b.chi = max4(b.chi, c);
+      b.add(r.lo, r.upper(), r.centroid());
     }
     return b;
   }
@@ -205,12 +206,11 @@ class Builder {
     Bin* const per_axis[3] = {bins, bins + count, bins + 2 * static_cast<std::size_t>(count)};
     for (std::uint32_t i = begin; i < end; ++i) {
       const Ref& r = refs_[i];
-      const F4 rlo = r.lo, rhi = r.upper(), c = rlo * 0.5f + rhi * 0.5f;
+      const F4 rlo = r.lo, rhi = r.upper(), c = r.centroid();
       const I4 b = bins_of(c, lo, factor, top);
       for (int axis = 0; axis < 3; ++axis) {
         Bin& bin = per_axis[axis][b[axis]];
-        bin.bounds.lo = min4(bin.bounds.lo, rlo), bin.bounds.hi = max4(bin.bounds.hi, rhi);
-        bin.bounds.clo = min4(bin.bounds.clo, c), bin.bounds.chi = max4(bin.bounds.chi, c);
+        bin.bounds.add(rlo, rhi, c);
         ++bin.count;
       }
     }
