@@ -33,6 +33,17 @@ template <class V>
   return r;
 }
 
+// The same for a·a: each q_i = a_i ⊗ a_i ≥ 0 (RN is monotone and RN(0) = 0), so |q_i| = q_i and the magnitude's
+// sums are the value's, bit for bit; it is copied instead of recomputed.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline Dot3RoundedT<V> dot3_rounded_square(const V a[3]) noexcept {
+  Dot3RoundedT<V> r;
+  for (int i = 0; i < 3; ++i) r.product[i] = a[i] * a[i];
+  r.value = (r.product[0] + r.product[1]) + r.product[2];
+  r.magnitude = r.value;
+  return r;
+}
+
 // dot3_filter: the sign of Σ a_i b_i (exact), given the stage-1 evaluation and its relative constant
 // (bounds::filter_den_relative when a holds exact values, bounds::filter_num_relative when a_i = p_i ⊖ o_i).
 //   Error bound: |s − a·b| ≤ (C ⊗ m) ⊕ 3μ, C as derived in error_bounds.hpp.
