@@ -729,8 +729,12 @@ Definition main_results_20 :=
   (@SphereFilter.sphere_c_encloses,
    @SphereFilter.sphere_filter_c_sound,
    @SphereFilter.sphere_d_encloses,
-   @SphereFilter.sphere_filter_d_sound).
-Goal True. idtac "@@ sphere_c_encloses sphere_filter_c_sound sphere_d_encloses sphere_filter_d_sound". Abort.
+   @SphereFilter.sphere_filter_d_sound,
+   @SphereFilter.square_magnitude_value,
+   @SphereFilter.d_value_error,
+   @SphereFilter.floor_covers,
+   @SphereFilter.d_bound_lower).
+Goal True. idtac "@@ sphere_c_encloses sphere_filter_c_sound sphere_d_encloses sphere_filter_d_sound square_magnitude_value d_value_error floor_covers d_bound_lower". Abort.
 Print Assumptions main_results_20.
 (** core/: the order of two roundings to nearest (nearest/sphere_candidate.hpp, compare_candidates: a sphere's
     correctly rounded root against another candidate's RN(t)): RN(a) < RN(b) implies a < b, for any tie rule

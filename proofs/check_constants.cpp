@@ -278,8 +278,8 @@ std::vector<Row> table() {
       // Ray–sphere, stage 1 (ray_sphere_filter.hpp; sphere/SphereFilter.v).
       {"sphere_filter_c_relative", "8 * u", 8 * Dyadic::pow2(-53), b::sphere_filter_c_relative, {}},
       {"sphere_filter_c_absolute", "8 * mu", 8 * Dyadic::pow2(-1074), b::sphere_filter_c_absolute, {}},
-      {"sphere_filter_d_relative", "4 * u", 4 * Dyadic::pow2(-53), b::sphere_filter_d_relative, {}},
-      {"sphere_filter_d_factor", "1 + bpow radix2 (-40)", 1 + Dyadic::pow2(-40), b::sphere_filter_d_factor, {}},
+      {"sphere_filter_d_relative", "32 * u", 32 * Dyadic::pow2(-53), b::sphere_filter_d_relative, {}},
+      {"sphere_filter_d_floor", "bpow radix2 (-1018)", Dyadic::pow2(-1018), b::sphere_filter_d_floor, {}},
       {"sphere_filter_d_absolute", "64 * mu", 64 * Dyadic::pow2(-1074), b::sphere_filter_d_absolute, {}},
       // Ray–sphere roots, the boundary filter (ray_sphere_boundary_filter.hpp; sphere/SphereBoundaryFilter.v,
       // `sphere_boundary_q_sound` and `sphere_boundary_slope_sound`).

@@ -373,6 +373,31 @@ TEST(SphereStages, InRangeKindsNeverReachTheExactStage) {
   EXPECT_GT(with_roots, 4000u);
 }
 
+// The filter's bound where Â underflows to 0 (d = (2^-600, 0, 0): A = 2^-1200) and B̂² alone looks certain: with
+// f = o − c = (2^500, 2^500, 0) and r = 1, B = 2^-100, B² = 2^-200 and A·C = 2^-1200·(2^1001 − 1), so
+// D = 2^-200 − 2^-199 + 2^-1200 = −2^-200 + 2^-1200 < 0: a miss. A bound made of relative terms only (κ·(m_B² + Â·P_C))
+// would certify D̂ = 2^-200 positive; E_D's floor θ (SphereFilter.v, `floor_covers`) keeps Â's absolute error in it.
+// And the mirror case, B² just above A·C: f = (2^500, 0, 0),
+// D = 2^-200 − 2^-1200·(2^1000 − 1) = 2^-1200 > 0, a crossing the filter must not call a miss either.
+TEST(SphereHandDerived, FilterBoundCoversAnUnderflowedA) {
+  const double tiny = std::ldexp(1.0, -600), big = std::ldexp(1.0, 500);
+  {
+    const Ray ray{{big, big, 0}, {tiny, 0, 0}};
+    const Sphere sphere{{0, 0, 0}, 1};
+    const detail::SphereFilterSigns f = detail::sphere_filter(ray, sphere);
+    EXPECT_NE(f.d, detail::Sign::positive);
+    EXPECT_EQ(relation(ray, sphere).relation, SphereRelation::miss);
+    EXPECT_EQ(intersect(ray, sphere).relation, SphereRelation::miss);
+  }
+  {
+    const Ray ray{{big, 0, 0}, {tiny, 0, 0}};
+    const Sphere sphere{{0, 0, 0}, 1};
+    const detail::SphereFilterSigns f = detail::sphere_filter(ray, sphere);
+    EXPECT_NE(f.d, detail::Sign::negative);
+    EXPECT_EQ(relation(ray, sphere).relation, SphereRelation::cross);
+  }
+}
+
 // Stage 1 (sphere/ray_sphere_filter.hpp): the binary64 filter of the signs of C and D decides the relation of nearly
 // every random query, each sign it certifies is the exact one, and the cascade takes it (relation_stage filter).
 TEST(SphereStages, FilterDecidesRandomQueries) {

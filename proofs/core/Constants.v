@@ -107,11 +107,11 @@ Definition affine_propagation_factor : R := 1 + bpow radix2 (-50).
 Definition affine_absolute : R := bpow radix2 (-1060).
 
 (** ** Ray–sphere (kernel/src/sphere/ray_sphere_filter.hpp; sphere/SphereFilter.v): E_C = (κ_C ⊗ P_C) ⊕ μ_C and
-    E_D = (... ⊗ φ_D) ⊕ μ_D, the bounds of stage 1's signs of C and D. *)
+    E_D = (κ_D ⊗ ((X ⊗ X) ⊕ (Y ⊗ Z))) ⊕ μ_D with X, Y, Z each a magnitude ⊕ θ, the bounds of stage 1's signs of C and D. *)
 Definition sphere_filter_c_relative : R := 8 * unit_roundoff.
 Definition sphere_filter_c_absolute : R := 8 * min_subnormal.
-Definition sphere_filter_d_relative : R := 4 * unit_roundoff.
-Definition sphere_filter_d_factor : R := 1 + bpow radix2 (-40).
+Definition sphere_filter_d_relative : R := 32 * unit_roundoff.
+Definition sphere_filter_d_floor : R := bpow radix2 (-1018).
 Definition sphere_filter_d_absolute : R := 64 * min_subnormal.
 
 (** Ray–sphere roots (kernel/src/sphere/ray_sphere_boundary_filter.hpp): the boundary filter's E_q = (κ_q ⊗ W) ⊕ μ_q,

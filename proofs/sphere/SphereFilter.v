@@ -36,30 +36,28 @@ Definition sphere_c_bound (o0 o1 o2 c0 c1 c2 r : R) : R :=
 Definition sphere_filter_c (o0 o1 o2 c0 c1 c2 r : R) : sign :=
   filter_sign (sphere_c_value o0 o1 o2 c0 c1 c2 r) (sphere_c_bound o0 o1 o2 c0 c1 c2 r).
 
-(** D̂ = (B̂ ⊗ B̂) ⊖ (Â ⊗ Ĉ) and E_D, from the values and bounds of A, B, C. *)
+(** D̂ = (B̂ ⊗ B̂) ⊖ (Â ⊗ Ĉ). *)
 Definition d_value (a b c : R) : R := RN (RN (b * b) - RN (a * c)).
 
-Definition d_bound (a b c ea eb ec : R) : R :=
-  let bb := RN (b * b) in
-  let ac := RN (a * c) in
-  let t1 := RN (sphere_filter_d_relative * RN (Rabs bb + Rabs ac)) in
-  let t2 := RN (eb * RN (RN (Rabs b + Rabs b) + eb)) in
-  let t3 := RN (ea * Rabs c) in
-  let t4 := RN (RN (Rabs a + ea) * ec) in
-  RN (RN (RN (RN (t1 + t2) + RN (t3 + t4)) * sphere_filter_d_factor) + sphere_filter_d_absolute).
+(** P_C = S.magnitude ⊕ q, the magnitude E_C is computed from (and a bound on |Ĉ|: [c_value_le_magnitude]). *)
+Definition sphere_c_magnitude (o0 o1 o2 c0 c1 c2 r : R) : R :=
+  RN (magnitude (sphere_s o0 o1 o2 c0 c1 c2) + RN (r * r)).
 
-(** The whole filter of D, as sphere_filter() computes it: Â, E_A by dot3_rounded(d, d) and filter_den_relative,
-    B̂, E_B by dot3_rounded(f, d) and filter_num_relative. *)
+(** E_D = (κ_D ⊗ ((X ⊗ X) ⊕ (Y ⊗ Z))) ⊕ μ_D with X = m_B ⊕ θ, Y = Â ⊕ θ, Z = P_C ⊕ θ (m_B: B̂'s magnitude,
+    θ = sphere_filter_d_floor). *)
+Definition d_bound (a mb pc : R) : R :=
+  let x := RN (mb + sphere_filter_d_floor) in
+  let y := RN (a + sphere_filter_d_floor) in
+  let z := RN (pc + sphere_filter_d_floor) in
+  RN (RN (sphere_filter_d_relative * RN (RN (x * x) + RN (y * z))) + sphere_filter_d_absolute).
+
+(** The whole filter of D, as sphere_filter() computes it: Â = dot3_rounded(d, d).value, B̂ and m_B =
+    dot3_rounded(f, d)'s value and magnitude. *)
 Definition sphere_filter_d (o0 o1 o2 d0 d1 d2 c0 c1 c2 r : R) : sign :=
   let ra := dot3_rounded d0 d1 d2 d0 d1 d2 in
   let rb := dot3_rounded (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2) d0 d1 d2 in
-  let a := value ra in
-  let b := value rb in
-  let c := sphere_c_value o0 o1 o2 c0 c1 c2 r in
-  let ea := filter_bound ra filter_den_relative in
-  let eb := filter_bound rb filter_num_relative in
-  let ec := sphere_c_bound o0 o1 o2 c0 c1 c2 r in
-  filter_sign (d_value a b c) (d_bound a b c ea eb ec).
+  filter_sign (d_value (value ra) (value rb) (sphere_c_value o0 o1 o2 c0 c1 c2 r))
+              (d_bound (value ra) (magnitude rb) (sphere_c_magnitude o0 o1 o2 c0 c1 c2 r)).
 
 (** ** Soundness of the sign test from an enclosure. *)
 
@@ -288,95 +286,157 @@ Proof.
   rewrite !Rabs_Ropp in T. lra.
 Qed.
 
-(** The computed E_D is at least that error bound, for non-negative binary64 E_A, E_B, E_C: every operation of
-    E_D loses at most a factor (1 − u) and an η; φ_D(1 − u)⁷ ≥ 1 and μ_D = 128η cover them. *)
-Lemma d_bound_lower : forall a b c ea eb ec,
-  binary64 a -> binary64 b -> binary64 ea -> binary64 eb -> binary64 ec -> 0 <= ea -> 0 <= eb -> 0 <= ec ->
-  2 * u * (Rabs (RN (b * b)) + Rabs (RN (a * c))) + eb * (2 * Rabs b + eb) + ea * Rabs c
-    + (Rabs a + ea) * ec + 2 * eta <= d_bound a b c ea eb ec.
+(** A rounded dot product of a vector with itself: its products are never negative, so its magnitude is its value
+    (sphere_filter reads it so: dot3_rounded_square, core/dot3_filter.hpp). *)
+Lemma square_magnitude_value : forall x0 x1 x2,
+  magnitude (dot3_rounded x0 x1 x2 x0 x1 x2) = value (dot3_rounded x0 x1 x2 x0 x1 x2).
 Proof.
-  intros a b c ea eb ec Bain Bbin Bea Beb Bec Pea Peb Pec.
+  intros. unfold dot3_rounded; simpl.
+  assert (H : forall x, Rabs (RN (x * x)) = RN (x * x)) by (intro x; apply Rabs_nonneg_eq, RN_nonneg; nra).
+  rewrite !H. reflexivity.
+Qed.
+
+Lemma value_le_magnitude : forall a0 a1 a2 b0 b1 b2,
+  Rabs (value (dot3_rounded a0 a1 a2 b0 b1 b2)) <= magnitude (dot3_rounded a0 a1 a2 b0 b1 b2).
+Proof.
+  intros. unfold dot3_rounded; simpl.
+  set (q0 := RN (a0 * b0)). set (q1 := RN (a1 * b1)). set (q2 := RN (a2 * b2)).
+  rewrite <- RN_abs. apply RN_le.
+  eapply Rle_trans; [apply Rabs_triang|]. rewrite <- RN_abs.
+  apply Rplus_le_compat_r. apply RN_le. apply Rabs_triang.
+Qed.
+
+(** |Ĉ| ≤ P_C: Ĉ = S ⊖ q with S and q non-negative. *)
+Lemma c_value_le_magnitude : forall o0 o1 o2 c0 c1 c2 r,
+  Rabs (sphere_c_value o0 o1 o2 c0 c1 c2 r) <= sphere_c_magnitude o0 o1 o2 c0 c1 c2 r.
+Proof.
+  intros. unfold sphere_c_value, sphere_c_magnitude, sphere_s.
+  rewrite square_magnitude_value.
+  set (S := value _). set (q := RN (r * r)).
+  assert (PS : 0 <= S).
+  { unfold S. rewrite <- square_magnitude_value.
+    apply (magnitude_bound (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)
+                           (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)). }
+  assert (Pq : 0 <= q) by (apply RN_nonneg; nra).
+  rewrite <- RN_abs. apply RN_le. apply Rabs_le. lra.
+Qed.
+
+Lemma RN_upper : forall x, 0 <= x -> RN x <= x * (1 + u) + eta.
+Proof.
+  intros x Hx. pose proof (RN_err x) as E. rewrite (Rabs_nonneg_eq x Hx) in E.
+  apply Rabs_bounds in E. lra.
+Qed.
+
+Lemma binary64_sphere_filter_d_floor : binary64 sphere_filter_d_floor.
+Proof. apply binary64_bpow. lia. Qed.
+
+(** u·θ = 16η: the floor θ = 2^-1018 turns an absolute error of a few η into a relative one. *)
+Lemma floor_eta : u * sphere_filter_d_floor = 16 * eta.
+Proof.
+  unfold sphere_filter_d_floor, eta, unit_roundoff.
+  rewrite <- bpow_plus.
+  replace (-53 + -1018)%Z with (4 + -1075)%Z by lia. rewrite bpow_plus.
+  replace (bpow radix2 4) with 16 by (simpl; lra). reflexivity.
+Qed.
+
+(** A filter bound (κ ⊗ m) ⊕ μ, u ≤ κ and μ ≤ 16η, is at most 2κ·(m ⊕ θ) for a non-negative double m. *)
+Lemma floor_covers : forall k mu m, binary64 m -> 0 <= m -> u <= k -> 0 <= mu <= 16 * eta ->
+  RN (RN (k * m) + mu) <= 2 * k * RN (m + sphere_filter_d_floor).
+Proof.
+  intros k mu m Bm Pm Hk Hmu.
+  pose proof u_pos as Hu. pose proof eta_pos as He. pose proof u_val as Uv. pose proof floor_eta as Fe.
+  assert (Pk : 0 <= k * m) by nra.
+  pose proof (RN_upper (k * m) Pk) as U1. pose proof (RN_nonneg (k * m) Pk) as P1.
+  pose proof (RN_upper (RN (k * m) + mu) ltac:(lra)) as U2.
+  assert (Pt : 0 <= sphere_filter_d_floor) by apply bpow_ge_0.
+  assert (L : (m + sphere_filter_d_floor) * (1 - u) <= RN (m + sphere_filter_d_floor))
+    by (apply RN_plus_lower; [exact Bm | apply binary64_sphere_filter_d_floor | lra]).
+  assert (L2 : 2 * k * ((m + sphere_filter_d_floor) * (1 - u)) <= 2 * k * RN (m + sphere_filter_d_floor))
+    by (apply Rmult_le_compat_l; lra).
+  (* (k m (1 + u) + η + μ)(1 + u) + η ≤ 2k(1 − u)(m + θ) *)
+  assert (A1 : (RN (k * m) + mu) * (1 + u) <= (k * m * (1 + u) + eta + mu) * (1 + u))
+    by (apply Rmult_le_compat_r; lra).
+  assert (A2 : k * m * ((1 + u) * (1 + u)) <= k * m * (2 * (1 - u))) by (apply Rmult_le_compat_l; [lra | rewrite Uv; lra]).
+  assert (A3 : u * sphere_filter_d_floor <= k * sphere_filter_d_floor) by (apply Rmult_le_compat_r; lra).
+  assert (A4 : (eta + mu) * (1 + u) + eta <= 2 * (1 - u) * (u * sphere_filter_d_floor)) by (rewrite Fe, Uv; lra).
+  assert (A5 : 2 * (1 - u) * (u * sphere_filter_d_floor) <= 2 * (1 - u) * (k * sphere_filter_d_floor))
+    by (apply Rmult_le_compat_l; [rewrite Uv|]; lra).
+  lra.
+Qed.
+
+(** The computed E_D is at least the error bound of [d_value_error], for E_A, E_B, E_C within 2κ of Y, X, Z
+    ([floor_covers]): with x = X, y = Y, z = Z, the error is at most 2u(X⊗X + Y⊗Z) + 4κ_B(1 + κ_B)x² +
+    (2κ_A + 2κ_C(1 + 2κ_A))yz + 2η ≤ 31u(X⊗X ⊕ Y⊗Z) + 3η, and E_D at least 32u(1 − u)³(X⊗X ⊕ Y⊗Z) + 127η(1 − u). *)
+Lemma d_bound_lower : forall a b c mb pc ea eb ec,
+  binary64 a -> binary64 mb -> binary64 pc -> 0 <= a -> Rabs b <= mb -> Rabs c <= pc ->
+  0 <= ea -> ea <= 2 * filter_den_relative * RN (a + sphere_filter_d_floor) ->
+  0 <= eb -> eb <= 2 * filter_num_relative * RN (mb + sphere_filter_d_floor) ->
+  0 <= ec -> ec <= 2 * sphere_filter_c_relative * RN (pc + sphere_filter_d_floor) ->
+  2 * u * (Rabs (RN (b * b)) + Rabs (RN (a * c))) + eb * (2 * Rabs b + eb) + ea * Rabs c
+    + (Rabs a + ea) * ec + 2 * eta <= d_bound a mb pc.
+Proof.
+  intros a b c mb pc ea eb ec Ba Bmb Bpc Pa Hb Hc Pea Hea Peb Heb Pec Hec.
   pose proof u_pos as Hu. pose proof eta_pos as He. pose proof u_val as Uv.
   unfold d_bound. cbv zeta.
-  set (w := 1 - u).
-  assert (Hw : 1 / 2 <= w <= 1) by (unfold w; rewrite Uv; lra).
-  assert (Lo : forall x, 0 <= x -> x * w - eta <= RN x /\ 0 <= RN x)
-    by (intros x Hx; split; [apply RN_lower; exact Hx | apply RN_nonneg; exact Hx]).
-  assert (Lp : forall x y, binary64 x -> binary64 y -> 0 <= x -> 0 <= y -> (x + y) * w <= RN (x + y) /\ 0 <= RN (x + y))
-    by (intros x y Bx By Px Py; split; [apply RN_plus_lower; auto; lra | apply RN_nonneg; lra]).
-  assert (W3 : forall Z, 0 <= Z -> Z * (w * w * w) <= Z * (w * w) /\ Z * (w * w * w) <= Z * w).
-  { intros Z PZ. split; apply Rmult_le_compat_l; try exact PZ; nra. }
-  set (kd := sphere_filter_d_relative). assert (Kd : kd = 4 * u) by reflexivity.
-  set (phi := sphere_filter_d_factor).
-  assert (Phi : 1 <= phi * (w * w * w * w * w * w * w) /\ phi * (w * w * w * w) <= 2).
-  { unfold phi, sphere_filter_d_factor, w. rewrite Uv.
-    replace (bpow radix2 (-40)) with (/ 1099511627776) by (simpl; lra). split; lra. }
+  assert (Pt : 0 <= sphere_filter_d_floor) by apply bpow_ge_0.
+  assert (Bt : binary64 sphere_filter_d_floor) by apply binary64_sphere_filter_d_floor.
+  set (x := RN (mb + sphere_filter_d_floor)) in *.
+  set (y := RN (a + sphere_filter_d_floor)) in *.
+  set (z := RN (pc + sphere_filter_d_floor)) in *.
+  assert (Pmb : 0 <= mb) by (pose proof (Rabs_pos b); lra).
+  assert (Ppc : 0 <= pc) by (pose proof (Rabs_pos c); lra).
+  assert (Xm : mb <= x) by (unfold x; rewrite <- (RN_binary64 mb Bmb) at 1; apply RN_le; lra).
+  assert (Ya : a <= y) by (unfold y; rewrite <- (RN_binary64 a Ba) at 1; apply RN_le; lra).
+  assert (Zp : pc <= z) by (unfold z; rewrite <- (RN_binary64 pc Bpc) at 1; apply RN_le; lra).
+  rewrite (Rabs_nonneg_eq a Pa).
+  set (XX := RN (x * x)). set (YZ := RN (y * z)).
+  (* |b ⊗ b| ≤ X ⊗ X and |Â ⊗ Ĉ| ≤ Y ⊗ Z *)
+  assert (Hbb : Rabs (RN (b * b)) <= XX).
+  { rewrite <- RN_abs. apply RN_le. rewrite Rabs_mult.
+    pose proof (Rabs_pos b). apply Rmult_le_compat; lra. }
+  assert (Hac : Rabs (RN (a * c)) <= YZ).
+  { rewrite <- RN_abs. apply RN_le. rewrite Rabs_mult, (Rabs_nonneg_eq a Pa).
+    pose proof (Rabs_pos c). apply Rmult_le_compat; lra. }
+  assert (Lxx : x * x * (1 - u) - eta <= XX) by (apply RN_lower; nra).
+  assert (Lyz : y * z * (1 - u) - eta <= YZ) by (apply RN_lower; nra).
+  set (ka := 2 * filter_den_relative) in *. set (kb := 2 * filter_num_relative) in *.
+  set (kc := 2 * sphere_filter_c_relative) in *.
+  assert (Ka : ka = 2 * ((3 + 16 * u) * u)) by reflexivity.
+  assert (Kb : kb = 2 * ((4 + 32 * u) * u)) by reflexivity.
+  assert (Kc : kc = 2 * (8 * u)) by reflexivity.
+  assert (Pka : 0 <= ka) by (rewrite Ka; nra). assert (Pkb : 0 <= kb) by (rewrite Kb; nra).
+  assert (Pkc : 0 <= kc) by (rewrite Kc; nra).
+  (* the three products of the error bound *)
+  assert (Tb : eb * (2 * Rabs b + eb) <= kb * (2 + kb) * (x * x)).
+  { replace (kb * (2 + kb) * (x * x)) with (kb * x * (2 * x + kb * x)) by ring.
+    pose proof (Rabs_pos b). apply Rmult_le_compat; nra. }
+  assert (Ta : ea * Rabs c <= ka * (y * z)).
+  { replace (ka * (y * z)) with (ka * y * z) by ring. pose proof (Rabs_pos c). apply Rmult_le_compat; nra. }
+  assert (Tc : (a + ea) * ec <= (1 + ka) * kc * (y * z)).
+  { replace ((1 + ka) * kc * (y * z)) with ((y + ka * y) * (kc * z)) by ring. apply Rmult_le_compat; nra. }
+  assert (Px : 0 <= x * x) by nra. assert (Pyz : 0 <= y * z) by nra.
+  set (X2 := x * x) in *. set (P2 := y * z) in *.
+  (* the computed bound *)
+  assert (BXX : binary64 XX) by apply binary64_RN. assert (BYZ : binary64 YZ) by apply binary64_RN.
+  assert (PXX : 0 <= XX) by (apply RN_nonneg; exact Px). assert (PYZ : 0 <= YZ) by (apply RN_nonneg; exact Pyz).
+  assert (Ls : (XX + YZ) * (1 - u) <= RN (XX + YZ)) by (apply RN_plus_lower; auto; lra).
+  set (s := RN (XX + YZ)) in *.
+  set (K := sphere_filter_d_relative). assert (HK : K = 32 * u) by reflexivity.
+  assert (PKs : 0 <= K * s) by (rewrite HK; apply Rmult_le_pos; [lra | apply RN_nonneg; lra]).
+  assert (Lt : K * s * (1 - u) - eta <= RN (K * s)) by (apply RN_lower; exact PKs).
+  set (t := RN (K * s)) in *.
+  assert (Pt' : 0 <= t) by (apply RN_nonneg; exact PKs).
   set (mu := sphere_filter_d_absolute).
   assert (Mu : mu = 128 * eta) by (unfold mu, sphere_filter_d_absolute; rewrite min_subnormal_eta; ring).
-  assert (Bmu : binary64 mu) by apply binary64_sphere_filter_d_absolute.
-  set (bb := RN (b * b)). set (ac := RN (a * c)).
-  assert (Bbb : binary64 (Rabs bb)) by (apply binary64_abs, binary64_RN).
-  assert (Bac : binary64 (Rabs ac)) by (apply binary64_abs, binary64_RN).
-  pose proof (Rabs_pos bb) as Pbb. pose proof (Rabs_pos ac) as Pac. pose proof (Rabs_pos a) as Pa.
-  pose proof (Rabs_pos b) as Pb. pose proof (Rabs_pos c) as Pc.
-  (* t1 *)
-  destruct (Lp _ _ Bbb Bac Pbb Pac) as [X1 PX1]. set (x1 := RN (Rabs bb + Rabs ac)) in *.
-  destruct (Lo (kd * x1)) as [T1 Pt1]; [rewrite Kd; nra|]. set (t1 := RN (kd * x1)) in *.
-  assert (A1 : kd * ((Rabs bb + Rabs ac) * w) * w <= kd * x1 * w).
-  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_l; [rewrite Kd; lra | exact X1]. }
-  (* t2 *)
-  assert (Bab : binary64 (Rabs b)) by (apply binary64_abs; exact Bbin).
-  destruct (Lp _ _ Bab Bab Pb Pb) as [Y PY]. set (y := RN (Rabs b + Rabs b)) in *.
-  destruct (Lp _ _ (binary64_RN _) Beb PY Peb) as [Y2 PY2]. fold y in Y2, PY2. set (y2 := RN (y + eb)) in *.
-  destruct (Lo (eb * y2)) as [T2 Pt2]; [nra|]. set (t2 := RN (eb * y2)) in *.
-  assert (A2 : eb * (((Rabs b + Rabs b) * w + eb) * w) * w <= eb * y2 * w).
-  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_l; [lra|].
-    eapply Rle_trans; [|exact Y2]. apply Rmult_le_compat_r; lra. }
-  (* t3 *)
-  destruct (Lo (ea * Rabs c)) as [T3 Pt3]; [nra|]. set (t3 := RN (ea * Rabs c)) in *.
-  (* t4 *)
-  assert (Baa : binary64 (Rabs a)) by (apply binary64_abs; exact Bain).
-  destruct (Lp _ _ Baa Bea Pa Pea) as [X4 PX4]. set (x4 := RN (Rabs a + ea)) in *.
-  destruct (Lo (x4 * ec)) as [T4 Pt4]; [nra|]. set (t4 := RN (x4 * ec)) in *.
-  assert (A4 : (Rabs a + ea) * w * ec * w <= x4 * ec * w).
-  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_r; lra. }
-  (* T = t1 + t2 + t3 + t4 ≥ w³V − 4η *)
-  set (V := kd * (Rabs bb + Rabs ac) + eb * (2 * Rabs b + eb) + ea * Rabs c + (Rabs a + ea) * ec).
-  assert (PV : 0 <= V) by (unfold V; rewrite Kd; nra).
-  destruct (W3 (kd * (Rabs bb + Rabs ac))) as [W1 _]; [rewrite Kd; nra|].
-  destruct (W3 (eb * eb)) as [W2 _]; [nra|].
-  destruct (W3 (eb * (2 * Rabs b))) as [W2' _]; [nra|].
-  destruct (W3 (ea * Rabs c)) as [_ W3c]; [nra|].
-  destruct (W3 ((Rabs a + ea) * ec)) as [W4 _]; [nra|].
-  assert (TT : w * w * w * V - 4 * eta <= t1 + t2 + t3 + t4) by (unfold V; lra).
-  (* the sums *)
-  assert (Bt : forall x, binary64 (RN x)) by apply binary64_RN.
-  destruct (Lp t1 t2 (Bt _) (Bt _) Pt1 Pt2) as [S12 PS12]. set (s12 := RN (t1 + t2)) in *.
-  destruct (Lp t3 t4 (Bt _) (Bt _) Pt3 Pt4) as [S34 PS34]. set (s34 := RN (t3 + t4)) in *.
-  destruct (Lp s12 s34 (Bt _) (Bt _) PS12 PS34) as [S PS]. set (sd := RN (s12 + s34)) in *.
-  assert (A5 : (t1 + t2 + t3 + t4) * (w * w) <= sd).
-  { eapply Rle_trans; [|exact S]. replace ((t1 + t2 + t3 + t4) * (w * w)) with (((t1 + t2) * w + (t3 + t4) * w) * w)
-      by ring. apply Rmult_le_compat_r; lra. }
-  assert (A6 : (w * w * w * V - 4 * eta) * (w * w) <= (t1 + t2 + t3 + t4) * (w * w))
-    by (apply Rmult_le_compat_r; nra).
-  assert (Pphi : 0 <= phi) by (unfold phi, sphere_filter_d_factor; pose proof (bpow_ge_0 radix2 (-40)); lra).
-  destruct (Lo (sd * phi)) as [P1 PP1]; [nra|]. set (pd := RN (sd * phi)) in *.
-  assert (A7 : (w * w * w * V - 4 * eta) * (w * w) * phi * w <= sd * phi * w).
-  { apply Rmult_le_compat_r; [lra|]. apply Rmult_le_compat_r; lra. }
-  destruct (Lp pd mu (Bt _) Bmu PP1 ltac:(rewrite Mu; lra)) as [E PE].
-  assert (A8 : ((w * w * w * V - 4 * eta) * (w * w) * phi * w - eta + mu) * w <= (pd + mu) * w)
+  assert (Lf : (t + mu) * (1 - u) <= RN (t + mu))
+    by (apply RN_plus_lower; [apply binary64_RN | apply binary64_sphere_filter_d_absolute | lra]).
+  (* linear in X2, P2, XX, YZ, s, t once the constants are numbers *)
+  assert (S1 : K * ((XX + YZ) * (1 - u)) <= K * s) by (apply Rmult_le_compat_l; [rewrite HK|]; lra).
+  assert (S2 : K * ((XX + YZ) * (1 - u)) * (1 - u) <= K * s * (1 - u)) by (apply Rmult_le_compat_r; lra).
+  assert (S3 : (K * ((XX + YZ) * (1 - u)) * (1 - u) - eta + mu) * (1 - u) <= (t + mu) * (1 - u))
     by (apply Rmult_le_compat_r; lra).
-  assert (A9 : V * 1 <= V * (phi * (w * w * w * w * w * w * w))) by (apply Rmult_le_compat_l; lra).
-  assert (A10 : 4 * eta * (phi * (w * w * w * w)) <= 4 * eta * 2) by (apply Rmult_le_compat_l; lra).
-  assert (A11 : 2 * u * (Rabs bb + Rabs ac) <= kd * (Rabs bb + Rabs ac)) by (rewrite Kd; nra).
-  assert (A12 : eta * w <= eta) by nra.
-  assert (A13 : mu * (1 / 2) <= mu * w) by (apply Rmult_le_compat_l; [rewrite Mu|]; lra).
-  assert (EQ : ((w * w * w * V - 4 * eta) * (w * w) * phi * w - eta + mu) * w =
-               V * (phi * (w * w * w * w * w * w * w)) - 4 * eta * (phi * (w * w * w * w)) - eta * w + mu * w)
-    by ring.
-  destruct Phi as [Phi1 Phi2].
-  assert (VV : V = kd * (Rabs bb + Rabs ac) + eb * (2 * Rabs b + eb) + ea * Rabs c + (Rabs a + ea) * ec) by reflexivity.
-  lra.
+  rewrite Ka in Ta, Tc. rewrite Kb in Tb. rewrite Kc in Tc. rewrite HK in S3.
+  rewrite Uv in *. lra.
 Qed.
 
 Lemma filter_bound_nonneg : forall a0 a1 a2 b0 b1 b2 K, 0 <= K ->
@@ -398,22 +458,38 @@ Theorem sphere_d_encloses : forall o0 o1 o2 d0 d1 d2 c0 c1 c2 r,
   let B := (o0 - c0) * d0 + (o1 - c1) * d1 + (o2 - c2) * d2 in
   let C := (o0 - c0) * (o0 - c0) + (o1 - c1) * (o1 - c1) + (o2 - c2) * (o2 - c2) - r * r in
   Rabs (d_value (value ra) (value rb) (sphere_c_value o0 o1 o2 c0 c1 c2 r) - (B * B - A * C)) <=
-    d_bound (value ra) (value rb) (sphere_c_value o0 o1 o2 c0 c1 c2 r)
-      (filter_bound ra filter_den_relative) (filter_bound rb filter_num_relative)
-      (sphere_c_bound o0 o1 o2 c0 c1 c2 r).
+    d_bound (value ra) (magnitude rb) (sphere_c_magnitude o0 o1 o2 c0 c1 c2 r).
 Proof.
   intros o0 o1 o2 d0 d1 d2 c0 c1 c2 r B0 B1 B2 C0 C1 C2 Br ra rb A B C.
-  pose proof u_pos as Hu. pose proof u_val as Uv.
+  pose proof u_pos as Hu. pose proof u_val as Uv. pose proof eta_pos as He.
   assert (HA : Rabs (value ra - A) <= filter_bound ra filter_den_relative) by apply den_filter_encloses.
   assert (HB : Rabs (value rb - B) <= filter_bound rb filter_num_relative)
     by (apply (num_filter_encloses o0 o1 o2 c0 c1 c2 d0 d1 d2); assumption).
   assert (HC : Rabs (sphere_c_value o0 o1 o2 c0 c1 c2 r - C) <= sphere_c_bound o0 o1 o2 c0 c1 c2 r)
     by (apply sphere_c_encloses; assumption).
   eapply Rle_trans; [apply (d_value_error _ _ _ _ _ _ _ _ _ HA HB HC)|].
+  assert (Fa : filter_absolute = 6 * eta) by apply filter_absolute_eta.
+  assert (Pa : 0 <= value ra).
+  { unfold ra. rewrite <- square_magnitude_value. apply (magnitude_bound d0 d1 d2 d0 d1 d2). }
   apply d_bound_lower; try apply binary64_RN.
+  - exact Pa.
+  - apply value_le_magnitude.
+  - apply c_value_le_magnitude.
   - apply filter_bound_nonneg. unfold filter_den_relative. nra.
+  - unfold filter_bound. unfold ra. rewrite square_magnitude_value. fold ra.
+    apply floor_covers; [apply binary64_RN | exact Pa | unfold filter_den_relative; nra | lra].
   - apply filter_bound_nonneg. unfold filter_num_relative. nra.
+  - unfold filter_bound. apply floor_covers;
+      [apply binary64_RN | apply (magnitude_bound (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2) d0 d1 d2)
+      | unfold filter_num_relative; nra | lra].
   - apply sphere_c_bound_nonneg.
+  - unfold sphere_c_bound. fold (sphere_c_magnitude o0 o1 o2 c0 c1 c2 r).
+    apply floor_covers; [apply binary64_RN | | unfold sphere_filter_c_relative; lra |].
+    + unfold sphere_c_magnitude. apply RN_nonneg.
+      pose proof (magnitude_bound (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)
+                                  (sphere_f o0 c0) (sphere_f o1 c1) (sphere_f o2 c2)) as [Pm _].
+      assert (0 <= RN (r * r)) by (apply RN_nonneg; nra). unfold sphere_s. lra.
+    + unfold sphere_filter_c_absolute. rewrite min_subnormal_eta. lra.
 Qed.
 
 (** The certified sign of D̂ against E_D is the sign of the exact D = B² − A·C. *)

@@ -1,8 +1,8 @@
 // Stage 1 of the ray–sphere cascade: the signs of C = f·f − r² (the origin) and D = B² − A·C (the relation) in
 // binary64 with semi-static error bounds (docs/contract.md §10; the formula: ray_sphere_formula.hpp). The roots
 // are not computed here: the expansion stage rounds them.
-//   Error bound: |Ĉ − C| ≤ E_C = (κ_C ⊗ P_C) ⊕ μ_C and |D̂ − D| ≤ E_D, as derived in core/error_bounds.hpp
-//   (the ray–sphere section), from the enclosures of Â and B̂ by dot3_filter_bound (core/dot3_filter.hpp).
+//   Error bound: |Ĉ − C| ≤ E_C = (κ_C ⊗ P_C) ⊕ μ_C and |D̂ − D| ≤ E_D = (κ_D ⊗ ((X ⊗ X) ⊕ (Y ⊗ Z))) ⊕ μ_D,
+//   X = m_B ⊕ θ, Y = Â ⊕ θ, Z = P_C ⊕ θ, as derived in core/error_bounds.hpp (the ray–sphere section).
 //   Valid range: all finite inputs (subnormal included); uncertain (never wrong) when anything overflows (a
 //   bound is then +inf or NaN and no comparison holds). A zero C or D is never certified.
 //   Certified by: proofs/sphere/SphereFilter.v, `sphere_filter_c_sound` and `sphere_filter_d_sound` (from
@@ -35,25 +35,21 @@ struct SphereFilterSigns {
   const double d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
   const double f[3] = {ray.origin.x - sphere.center.x, ray.origin.y - sphere.center.y,
                        ray.origin.z - sphere.center.z};
-  // A = d·d and f·f are sums of rounded squares, which are never negative: their magnitudes are their values, bit for
-  // bit, and are read as such (ten operations fewer than dot3_rounded).
+  // A = d·d and f·f are sums of rounded squares, never negative: their magnitudes are their values, bit for bit
+  // (proofs/sphere/SphereFilter.v, `square_magnitude_value`), read as such.
   const Dot3Rounded ra = dot3_rounded_square(d);  // A = d·d
   const Dot3Rounded rb = dot3_rounded(f, d);      // B = f·d
   const Dot3Rounded rs = dot3_rounded_square(f);  // f·f
-  const double ea = dot3_filter_bound(ra, bounds::filter_den_relative);
-  const double eb = dot3_filter_bound(rb, bounds::filter_num_relative);
   const double q = sphere.radius * sphere.radius;
   const double c = rs.value - q;
-  const double pc = rs.magnitude + q;
+  const double pc = rs.magnitude + q;  // P_C ≥ |Ĉ|
   const double ec = bounds::sphere_filter_c_relative * pc + bounds::sphere_filter_c_absolute;
   const double a = ra.value, b = rb.value;
-  const double bb = b * b, ac = a * c;
-  const double dv = bb - ac;
-  const double t1 = bounds::sphere_filter_d_relative * (std::abs(bb) + std::abs(ac));
-  const double t2 = eb * ((std::abs(b) + std::abs(b)) + eb);  // 2|B̂| exactly
-  const double t3 = ea * std::abs(c);
-  const double t4 = (std::abs(a) + ea) * ec;
-  const double ed = ((t1 + t2) + (t3 + t4)) * bounds::sphere_filter_d_factor + bounds::sphere_filter_d_absolute;
+  const double dv = b * b - a * c;
+  // E_D from the magnitudes alone (E_A, E_B, E_C are within 2κ of them: SphereFilter.v, `floor_covers`).
+  const double x = rb.magnitude + bounds::sphere_filter_d_floor, y = a + bounds::sphere_filter_d_floor,
+               z = pc + bounds::sphere_filter_d_floor;
+  const double ed = bounds::sphere_filter_d_relative * (x * x + y * z) + bounds::sphere_filter_d_absolute;
   return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv, ec, ed};
 }
 
