@@ -34,7 +34,8 @@ template <class V>
 }
 
 // The same for a·a: each q_i = a_i ⊗ a_i ≥ 0 (RN is monotone and RN(0) = 0), so |q_i| = q_i and the magnitude's
-// sums are the value's, bit for bit; it is copied instead of recomputed.
+// sums are the value's, bit for bit (proofs/sphere/SphereFilter.v, `square_magnitude_value`); it is copied instead of
+// recomputed.
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline Dot3RoundedT<V> dot3_rounded_square(const V a[3]) noexcept {
   Dot3RoundedT<V> r;
