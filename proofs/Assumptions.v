@@ -866,3 +866,10 @@ Definition main_results_31 :=
    @PlaneCascadeTwins.certified_signs_b_escalate).
 Goal True. idtac "@@ escalate_sound escalate_certifies escalate_first_certain escalate_trace exact_sign_reaches_exact certified_signs_b_escalate". Abort.
 Print Assumptions main_results_31.
+(** triangle/: a tie-break component d_j·e_k − d_k·e_j from two TwoProduct pairs (ray_triangle_stages.hpp,
+    product_difference_sign): the lexicographic comparison of the exact pairs is the exact sign *)
+From Raykernel Require TieBreakPairs.
+Definition main_results_32 :=
+  (@TieBreakPairs.pair_difference_sign).
+Goal True. idtac "@@ pair_difference_sign". Abort.
+Print Assumptions main_results_32.

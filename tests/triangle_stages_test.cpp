@@ -292,3 +292,90 @@ TEST(DetAbsoluteTerm, SameBitsAsTheFormula) {
 
 }  // namespace
 }  // namespace raykernel
+
+namespace raykernel {
+namespace {
+
+int exact_sign(const mpq_class& x) { return sgn(x); }
+
+// product_difference_sign (triangle/ray_triangle_stages.hpp; proofs/triangle/TieBreakPairs.v,
+// `pair_difference_sign`): every sign it gives is the exact sign of a·b − c·e (rationals), including equal rounded
+// products that differ in their low parts, zero factors and products of opposite sign; it gives nothing when a
+// TwoProduct underflows past its guard.
+TEST(TieBreakPairs, ProductDifferenceSignIsExact) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-40, 40);
+  int decided = 0, equal_highs = 0;
+  for (int n = 0; n < 200000; ++n) {
+    double a = std::ldexp(unit(rng), exponent(rng)), b = std::ldexp(unit(rng), exponent(rng));
+    double c, e;
+    switch (n % 4) {
+      case 0:  // independent
+        c = std::ldexp(unit(rng), exponent(rng)), e = std::ldexp(unit(rng), exponent(rng));
+        break;
+      case 1:  // the same product, factors scaled by a power of two: a·b − c·e = 0 exactly
+        c = a * 2, e = b / 2;
+        break;
+      case 2:  // c·e an ulp or two from a·b: equal highs, different lows, often
+        c = a, e = std::nextafter(b, n % 8 < 4 ? 2.0 : -2.0);
+        break;
+      default:  // a zero factor
+        c = 0, e = unit(rng);
+        break;
+    }
+    const std::optional<int> s = detail::product_difference_sign(a, b, c, e);
+    const mpq_class exact = mpq_class(a) * mpq_class(b) - mpq_class(c) * mpq_class(e);
+    if (!s) continue;
+    ++decided;
+    if (a * b == c * e) ++equal_highs;
+    ASSERT_EQ(*s, exact_sign(exact)) << a << " " << b << " " << c << " " << e;
+  }
+  EXPECT_EQ(decided, 200000);  // no product of these magnitudes underflows
+  EXPECT_GT(equal_highs, 50000);
+  // Hand-derived: (1 + 2^-52)·(1 + 2^-52) = 1 + 2^-51 + 2^-104 rounds to 1 + 2^-51, as does (1 + 2^-51)·1: equal
+  // highs, lows 2^-104 and 0, so the difference is +2^-104.
+  const double x = 1 + 0x1p-52;
+  EXPECT_EQ(x * x, (1 + 0x1p-51) * 1.0);
+  EXPECT_EQ(detail::product_difference_sign(x, x, 1 + 0x1p-51, 1.0), 1);
+  EXPECT_EQ(detail::product_difference_sign(1 + 0x1p-51, 1.0, x, x), -1);
+  EXPECT_EQ(detail::product_difference_sign(x, x, x, x), 0);
+  // A product below the guard (2^-600·2^-600 underflows): nothing.
+  EXPECT_FALSE(detail::product_difference_sign(0x1p-600, 0x1p-600, 1.0, 1.0).has_value());
+}
+
+// The tie-break signs with the pair shortcut equal the expansions' (edge_tie_break in ExpansionValue) on the hard
+// triangle queries of every kind, for each edge.
+TEST(TieBreakPairs, TieBreakSignsEqualTheExpansions) {
+  int compared = 0;
+  for (const testkit::TriangleQueryKind kind : testkit::all_triangle_query_kinds) {
+    testkit::SplitMix64 rng(static_cast<std::uint64_t>(kind) + 101);
+    const testkit::BitSource source = [&rng] { return rng(); };
+    for (int n = 0; n < 500; ++n) {
+      const TriangleQuery q = testkit::make_triangle_query(kind, source);
+      for (int k = 0; k < 3; ++k) {
+        const std::optional<std::array<int, 3>> fast = detail::tie_break_signs_by_expansion(q.ray, q.triangle, k);
+        const Vec3& p = k == 0 ? q.triangle.b : k == 1 ? q.triangle.c : q.triangle.a;
+        const Vec3& w = k == 0 ? q.triangle.c : k == 1 ? q.triangle.a : q.triangle.b;
+        const std::array<detail::ExpansionValue<2>, 3> d{detail::expansion_of(q.ray.direction.x),
+                                                         detail::expansion_of(q.ray.direction.y),
+                                                         detail::expansion_of(q.ray.direction.z)};
+        const auto v = detail::edge_tie_break(d, p, w, detail::expansion_difference);
+        bool certain = true;
+        std::array<int, 3> slow{};
+        for (std::size_t i = 0; i < 3; ++i) {
+          certain = certain && detail::is_certain(v[i].sign());
+          slow[i] = static_cast<int>(v[i].sign());
+        }
+        if (!certain) continue;
+        ASSERT_TRUE(fast.has_value());
+        EXPECT_EQ(*fast, slow);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 10000);
+}
+
+}  // namespace
+}  // namespace raykernel

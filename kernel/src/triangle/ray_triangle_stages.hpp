@@ -289,14 +289,46 @@ struct TriangleQuotientStage2 {
   return {triangle_num_compensated(ray.origin, t), triangle_den_compensated(ray.direction, t)};
 }
 
+// sign(a·b − c·e) exactly, when both TwoProducts are exact (ExpansionBuilder's guard: a zero factor, or
+// |a ⊗ b| ≥ 2^-968) and finite: the pairs (h, l) = TwoProduct are RN-normalised (h = RN(a·b)), so different h
+// order the exact products as they are ordered (proofs/core/RoundOrder.v, `rne_compare_distinct`), and equal h
+// leave a·b − c·e = l₁ − l₂, ordered as l₁ and l₂. Nothing when a guard fails.
+//   Certified by: proofs/triangle/TieBreakPairs.v, `pair_difference_sign`.
+[[nodiscard]] inline std::optional<int> product_difference_sign(double a, double b, double c, double e) noexcept {
+  ExpansionBuilder builder;
+  const DoubleDouble x = builder.product(a, b), y = builder.product(c, e);
+  if (!builder.exact()) return std::nullopt;
+  if (x.hi != y.hi) return x.hi > y.hi ? 1 : -1;
+  return (x.lo > y.lo) - (x.lo < y.lo);
+}
+
 // The tie-break vector d × (q − p) of the directed edge p → q (ray_triangle_formula.hpp's edge_tie_break) in exact
 // expansions, for a direction given as expansion leaves — a ray's d lifted, or a segment's exact q − p as TwoDiff
 // pairs (docs/contract.md §8) — as exact signs of its x, y, z components, or nothing when an expansion was not
 // exact (an underflow or overflow) or its sign not certain. Each component is leaf·leaf − leaf·leaf: at most 16
 // components (expansion_value.hpp's capacities; exact by proofs/core/Expansions.v, `scale_gen_exact` and
-// `sum_gen_exact`, its sign by `expansion_sign_sound`).
+// `sum_gen_exact`, its sign by `expansion_sign_sound`). When every leaf is one double (a ray's d, and q − p exact
+// in binary64: its TwoDiff tail 0), each component is decided first by product_difference_sign, without an
+// expansion.
 [[nodiscard]] inline std::optional<std::array<int, 3>> edge_tie_break_signs_by_expansion(
     const std::array<ExpansionValue<2>, 3>& d, const Vec3& p, const Vec3& q) noexcept {
+  {  // each component d_j·e_k − d_k·e_j (cross_terms' order) from two TwoProducts
+    const double qv[3] = {q.x, q.y, q.z}, pv[3] = {p.x, p.y, p.z};
+    double e[3], dv[3];
+    bool single = true;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const DoubleDouble t = two_diff(qv[i], pv[i]);
+      e[i] = t.hi;
+      dv[i] = d[i].e.component[0];
+      single = single && t.lo == 0 && std::isfinite(t.hi) && d[i].exact && d[i].e.size == 1;
+    }
+    if (single) {
+      const std::optional<int> x = product_difference_sign(dv[1], e[2], dv[2], e[1]);
+      const std::optional<int> y = product_difference_sign(dv[2], e[0], dv[0], e[2]);
+      const std::optional<int> z = product_difference_sign(dv[0], e[1], dv[1], e[0]);
+      if (x && y && z) return std::array<int, 3>{*x, *y, *z};
+    }
+  }
   const auto v = edge_tie_break(d, p, q, expansion_difference);
   std::array<int, 3> s{};
   for (std::size_t i = 0; i < 3; ++i) {
