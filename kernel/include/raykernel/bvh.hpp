@@ -104,7 +104,9 @@ class MeshBvh {
   static constexpr int max_depth = 64;
 
  private:
-  void build(std::vector<Box3> boxes, const BvhBuildOptions& options);
+  // The build over n primitives, primitive k's box (exact, finite, lo ≤ hi) given by box_of(source, k).
+  using BoxSource = Box3 (*)(const void* source, std::size_t k);
+  void build(std::size_t n, BoxSource box_of, const void* source, const BvhBuildOptions& options);
 
   detail::LargeVector<BvhNode> nodes_;
   detail::LargeVector<std::uint32_t> order_;

@@ -83,8 +83,12 @@ struct Ref {
   F4 hi;  // hi.x, hi.y, hi.z, the index's bits
   [[nodiscard]] std::uint32_t index() const { return static_cast<std::uint32_t>(std::bit_cast<I4>(hi)[3]); }
   [[nodiscard]] F4 upper() const { return std::bit_cast<F4>(std::bit_cast<I4>(hi) & I4{-1, -1, -1, 0}); }
-  // The box's centre (only the split choice uses it; ±inf when the box reaches beyond the binary32 range).
-  [[nodiscard]] F4 centroid() const { return lo * 0.5f + upper() * 0.5f; }
+  // The box's centre (only the split choice uses it): ±inf when the box reaches beyond the binary32 range on one
+  // side, 0 when on both (never NaN, whose min/max would depend on the order the bins are added up in).
+  [[nodiscard]] F4 centroid() const {
+    const F4 c = lo * 0.5f + upper() * 0.5f;
+    return c == c ? c : F4{};
+  }
 };
 
 Ref make_ref(const FloatBox& b, std::uint32_t index) {
@@ -145,7 +149,7 @@ class Builder {
   Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes,
           bool parallel = false)
       : refs_(refs), options_(options), scale_(scale), nodes_(nodes), parallel_(parallel), bins_(std::clamp<std::uint32_t>(options.bins, 2, 1u << 20)),
-        bins_data_(3 * static_cast<std::size_t>(bins_)), right_area_(bins_), right_count_(bins_) {}
+        bins_data_(3 * static_cast<std::size_t>(bins_)), spare_(bins_data_.size()), right_area_(bins_), right_count_(bins_) {}
 
   // The bounds of refs[begin, end) (one pass over them).
   [[nodiscard]] Bounds measure(std::uint32_t begin, std::uint32_t end) const {
@@ -200,19 +204,38 @@ class Builder {
   }
 
   static constexpr std::uint32_t parallel_binning_from = 1u << 16;
+  // From this many refs a node is binned into two sets of bins (bin_range); below, adding them up would cost
+  // more than it saves.
+  static constexpr std::uint32_t alternate_bins_from = 256;
 
-  // Bins refs[begin, end) on the three axes: bins[axis·count + bin] (count bins per axis).
-  void bin_range(std::uint32_t begin, std::uint32_t end, std::uint32_t count, F4 lo, F4 factor, F4 top, Bin* bins) const {
-    Bin* const per_axis[3] = {bins, bins + count, bins + 2 * static_cast<std::size_t>(count)};
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const Ref& r = refs_[i];
+  // Bins refs[begin, end) on the three axes: bins[axis·count + bin] (count bins per axis). Consecutive refs
+  // (neighbours in space, mostly: they fall in the same bins) go alternately to `even` and `odd`, two sets of
+  // bins the caller adds up (`merge`): each bin's update then waits on the one two refs back, not on the last.
+  // `odd` may be `even`.
+  void bin_range(std::uint32_t begin, std::uint32_t end, std::uint32_t count, F4 lo, F4 factor, F4 top, Bin* even,
+                 Bin* odd) const {
+    const auto add = [&](const Ref& r, Bin* bins) {
       const F4 rlo = r.lo, rhi = r.upper(), c = r.centroid();
       const I4 b = bins_of(c, lo, factor, top);
       for (int axis = 0; axis < 3; ++axis) {
-        Bin& bin = per_axis[axis][b[axis]];
+        Bin& bin = bins[static_cast<std::size_t>(axis) * count + static_cast<std::uint32_t>(b[axis])];
         bin.bounds.add(rlo, rhi, c);
         ++bin.count;
       }
+    };
+    std::uint32_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      add(refs_[i], even);
+      add(refs_[i + 1], odd);
+    }
+    if (i < end) add(refs_[i], even);
+  }
+
+  // into[b] ∪= from[b] for the first `all` bins (unions and sums: the same bins as binning both sets' refs).
+  static void merge(Bin* into, const Bin* from, std::size_t all) {
+    for (std::size_t b = 0; b < all; ++b) {
+      into[b].bounds.grow(from[b].bounds);
+      into[b].count += from[b].count;
     }
   }
 
@@ -236,21 +259,25 @@ class Builder {
     std::fill_n(bins_data_.begin(), all, Bin{Bounds::empty(), 0});
     if (parallel_ && n >= parallel_binning_from && thread_count(options_.threads) >= 2) {
       // A large node (the top levels, which run before the subtrees are handed out): its two halves binned on
-      // two threads, the second into its own bins, then added up (unions and sums: the same bins).
-      std::vector<Bin> second(all, Bin{Bounds::empty(), 0});
+      // two threads, the second into its own bins, then added up.
+      std::vector<Bin> second(2 * all, Bin{Bounds::empty(), 0});
+      std::fill_n(spare_.begin(), all, Bin{Bounds::empty(), 0});
       const std::uint32_t half = begin + n / 2;
       run_parts(2, 2, [&](std::size_t k) {
         detail::in_default_fp_environment([&] {
-          if (k == 0) bin_range(begin, half, bins, lo, factor, top, bins_data_.data());
-          else bin_range(half, end, bins, lo, factor, top, second.data());
+          if (k == 0) bin_range(begin, half, bins, lo, factor, top, bins_data_.data(), spare_.data());
+          else bin_range(half, end, bins, lo, factor, top, second.data(), second.data() + all);
         });
       });
-      for (std::size_t b = 0; b < all; ++b) {
-        bins_data_[b].bounds.grow(second[b].bounds);
-        bins_data_[b].count += second[b].count;
-      }
+      merge(bins_data_.data(), spare_.data(), all);
+      merge(bins_data_.data(), second.data(), all);
+      merge(bins_data_.data(), second.data() + all, all);
+    } else if (n >= alternate_bins_from) {
+      std::fill_n(spare_.begin(), all, Bin{Bounds::empty(), 0});
+      bin_range(begin, end, bins, lo, factor, top, bins_data_.data(), spare_.data());
+      merge(bins_data_.data(), spare_.data(), all);
     } else {
-      bin_range(begin, end, bins, lo, factor, top, bins_data_.data());
+      bin_range(begin, end, bins, lo, factor, top, bins_data_.data(), bins_data_.data());
     }
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1;
@@ -308,6 +335,7 @@ class Builder {
   bool parallel_;
   std::uint32_t bins_;
   std::vector<Bin> bins_data_;
+  std::vector<Bin> spare_;  // bin_range's second set of bins
   std::vector<double> right_area_;
   std::vector<std::uint32_t> right_count_;
 };
@@ -410,10 +438,11 @@ class ParallelBuild {
 
 // The binary hierarchy collapsed to nodes of up to eight children: a node's children are its binary
 // children, with the inner one of largest surface area replaced by its own two children while fewer than
-// eight. Nodes in depth-first order, each parent before its children.
+// eight. Nodes in depth-first order, each parent before its children. Without `wide`, the same walk only
+// counts the nodes (nodes()), so that the storage is reserved exactly.
 class Collapser {
  public:
-  Collapser(const std::vector<BinaryNode>& binary, double scale, detail::LargeVector<BvhNode>& wide)
+  Collapser(const std::vector<BinaryNode>& binary, double scale, detail::LargeVector<BvhNode>* wide)
       : binary_(binary), scale_(scale), wide_(wide) {}
 
   // The wide node for binary node `b` (inner), and its children's; returns the depth below it (1 for a node
@@ -437,14 +466,14 @@ class Collapser {
       slot_node[widest] = opened + 1;
       slot_node[n++] = binary_[opened].first;
     }
-    index = static_cast<std::uint32_t>(wide_.size());
-    wide_.push_back(empty_node());
+    index = nodes_++;
+    if (wide_ != nullptr) wide_->push_back(empty_node());
     int depth = 1;
     for (int i = 0; i < n; ++i) {
       const BinaryNode& c = binary_[slot_node[i]];
       std::uint32_t first = c.first, count = c.count;
       if (c.count == 0) depth = std::max(depth, 1 + collapse(slot_node[i], first));
-      set_slot(wide_[index], i, c.bounds, first, count);
+      if (wide_ != nullptr) set_slot((*wide_)[index], i, c.bounds, first, count);
     }
     return depth;
   }
@@ -466,7 +495,11 @@ class Collapser {
  private:
   const std::vector<BinaryNode>& binary_;
   double scale_;
-  detail::LargeVector<BvhNode>& wide_;
+  detail::LargeVector<BvhNode>* wide_;
+  std::uint32_t nodes_ = 0;
+
+ public:
+  [[nodiscard]] std::uint32_t nodes() const noexcept { return nodes_; }
 };
 
 }  // namespace
@@ -475,15 +508,14 @@ MeshBvh::MeshBvh(const Mesh& mesh, const BvhBuildOptions& options) {
   if (const auto problem = validate(mesh)) throw invalid_input("mesh: " + *problem);
   if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
     throw invalid_input("mesh: more than 2^32 - 1 triangles");
-  std::vector<Box3> boxes(mesh.triangles.size());
-  for (std::size_t k = 0; k < boxes.size(); ++k) {
-    const Triangle t = mesh.triangle(k);
+  const BoxSource triangle_box = [](const void* source, std::size_t k) {
+    const Triangle t = static_cast<const Mesh*>(source)->triangle(k);
     Box3 b{t.a, t.a};
     grow(b, {t.b, t.b});
     grow(b, {t.c, t.c});
-    boxes[k] = b;
-  }
-  detail::in_default_fp_environment([&] { build(std::move(boxes), options); });
+    return b;
+  };
+  detail::in_default_fp_environment([&] { build(mesh.triangles.size(), triangle_box, &mesh, options); });
 }
 
 MeshBvh::MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options) {
@@ -496,12 +528,12 @@ MeshBvh::MeshBvh(std::span<const Box3> boxes, const BvhBuildOptions& options) {
     if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z))
       throw invalid_input("bvh: box " + std::to_string(k) + " has lo above hi");
   }
-  detail::in_default_fp_environment([&] { build(std::vector<Box3>(boxes.begin(), boxes.end()), options); });
+  const BoxSource stored = [](const void* source, std::size_t k) { return static_cast<const Box3*>(source)[k]; };
+  detail::in_default_fp_environment([&] { build(boxes.size(), stored, boxes.data(), options); });
 }
 
-void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
+void MeshBvh::build(std::size_t n, BoxSource box_of, const void* source, const BvhBuildOptions& options) {
   bounds_ = empty_box();
-  const std::size_t n = boxes.size();
   if (n == 0) return;
   // The refs, in parts on every thread (each part's exact bounds, then their union).
   std::vector<Ref> refs(n);
@@ -515,8 +547,9 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   };
   in_parts([&](std::size_t p, std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k) {
-      grow(part_bounds[p], boxes[k]);
-      refs[k] = make_ref(outward(boxes[k]), static_cast<std::uint32_t>(k));
+      const Box3 b = box_of(source, k);
+      grow(part_bounds[p], b);
+      refs[k] = make_ref(outward(b), static_cast<std::uint32_t>(k));
     }
   });
   for (const Box3& b : part_bounds) grow(bounds_, b);
@@ -527,23 +560,23 @@ void MeshBvh::build(std::vector<Box3> boxes, const BvhBuildOptions& options) {
   int e = 0;
   (void)std::frexp(largest, &e);
   const double scale = std::ldexp(1.0, -e);
-  std::vector<Box3>().swap(boxes);
   const std::vector<BinaryNode> binary = ParallelBuild(refs, options, scale).run();
   order_.resize(n);
   in_parts([&](std::size_t, std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k) order_[k] = refs[k].index();
   });
   std::vector<Ref>().swap(refs);
-  nodes_.reserve(binary.size() / 2 + 1);
   if (binary[0].count > 0) {  // the whole mesh is one leaf: a root with one child
     nodes_.push_back(Collapser::empty_node());
     Collapser::set_slot(nodes_[0], 0, binary[0].bounds, binary[0].first, binary[0].count);
     depth_ = 1;
   } else {
     std::uint32_t root = 0;
-    depth_ = Collapser(binary, scale, nodes_).collapse(0, root);
+    Collapser counter(binary, scale, nullptr);
+    (void)counter.collapse(0, root);
+    nodes_.reserve(counter.nodes());
+    depth_ = Collapser(binary, scale, &nodes_).collapse(0, root);
   }
-  nodes_.shrink_to_fit();
   // The guard's magnitude bounds every stored (binary32, outward) box: the root's, rounded outward, contains them
   // all (rounding down and up are monotone).
   const FloatBox root = outward(bounds_);
