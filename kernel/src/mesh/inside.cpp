@@ -9,6 +9,7 @@
 
 #include "core/fp_requirements.hpp"
 #include "mesh/exact_mesh.hpp"
+#include "mesh/inside_grid.hpp"
 #include "core/fp_environment.hpp"
 #include "mesh/bvh_walk.hpp"
 #include "orient/orient_predicates.hpp"
@@ -96,10 +97,9 @@ Crossing crossing(const AxisRay& r, const Triangle& tri) {
   return {false, c.relation == TriangleRelation::hit ? sden : 0};
 }
 
-// The winding number, or nothing on the surface; in the default floating-point environment.
-std::optional<std::int64_t> winding(const Vec3& point, const PreparedMesh& mesh) {
+// The winding number by the walk, or nothing on the surface; in the default floating-point environment.
+std::optional<std::int64_t> walk_winding(const Vec3& point, const PreparedMesh& mesh) {
   const MeshBvh& bvh = mesh.bvh();
-  if (bvh.nodes().empty() || outside_box(point, bvh.bounds())) return 0;  // no triangle can be on or around it
   const AxisRay r = axis_ray(point, inside_ray_direction(point, bvh.bounds()));
   Vec3 direction{0, 0, 0};
   (r.k == 0 ? direction.x : r.k == 1 ? direction.y : direction.z) = r.s;
@@ -127,6 +127,38 @@ std::optional<std::int64_t> winding(const Vec3& point, const PreparedMesh& mesh)
     }
   }
   return count;
+}
+
+}  // namespace
+
+namespace mesh_detail {
+struct InsideGridAccess {
+  // The mesh's grid, built by the first call (in the default environment, installed by the caller); nothing for
+  // a default-constructed PreparedMesh.
+  static const InsideGrid* grid(const PreparedMesh& mesh) {
+    InsideGridCache* cache = mesh.inside_grid_.get();
+    if (cache == nullptr) return nullptr;
+    std::call_once(cache->once, [&] {
+      // (the grid's cells lie in the mesh's box, so the walk applies to their points directly)
+      cache->grid = InsideGrid::build(mesh, [&](const Vec3& p) { return walk_winding(p, mesh); }, {});
+    });
+    return &cache->grid;
+  }
+};
+}  // namespace mesh_detail
+
+namespace {
+
+// The winding number, or nothing on the surface; in the default floating-point environment. A point of a free
+// cell of a closed mesh's grid has its cell's number (inside_grid.hpp; built on the first call that asks for it,
+// `use_grid`); every other point is walked.
+std::optional<std::int64_t> winding(const Vec3& point, const PreparedMesh& mesh, bool use_grid) {
+  const MeshBvh& bvh = mesh.bvh();
+  if (bvh.nodes().empty() || outside_box(point, bvh.bounds())) return 0;  // no triangle can be on or around it
+  if (use_grid)
+    if (const mesh_detail::InsideGrid* grid = mesh_detail::InsideGridAccess::grid(mesh))
+      if (const auto w = grid->lookup(point)) return w;
+  return walk_winding(point, mesh);
 }
 
 PointLocation location_of(const std::optional<std::int64_t>& w) {
@@ -161,14 +193,16 @@ Vec3 inside_ray_direction(const Vec3& point, const Box3& bounds) noexcept {
 
 std::optional<std::int64_t> winding_number(const Vec3& point, const PreparedMesh& mesh) {
   throw_if_invalid(point);
-  return detail::in_default_fp_environment([&] { return winding(point, mesh); });
+  return detail::in_default_fp_environment([&] { return winding(point, mesh, true); });
 }
 
 PointLocation inside(const Vec3& point, const PreparedMesh& mesh) { return location_of(winding_number(point, mesh)); }
 
 PointLocation inside(const Vec3& point, const Mesh& mesh) {
   throw_if_invalid(point);
-  return inside(point, PreparedMesh(mesh));
+  const PreparedMesh prepared(mesh);
+  // One point: the walk alone (a grid would cost more than it saves).
+  return location_of(detail::in_default_fp_environment([&] { return winding(point, prepared, false); }));
 }
 
 bool point_on_triangle(const Vec3& point, const Triangle& triangle) {

@@ -2,7 +2,8 @@
 # exact reference.
 target_sources(raykernel PRIVATE ${CMAKE_CURRENT_LIST_DIR}/mesh_validate.cpp ${CMAKE_CURRENT_LIST_DIR}/bvh.cpp
                                  ${CMAKE_CURRENT_LIST_DIR}/bvh_walk_portable.cpp ${CMAKE_CURRENT_LIST_DIR}/prepared_mesh.cpp
-                                 ${CMAKE_CURRENT_LIST_DIR}/inside.cpp ${CMAKE_CURRENT_LIST_DIR}/nearest_mesh.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/inside.cpp ${CMAKE_CURRENT_LIST_DIR}/inside_grid.cpp
+                                 ${CMAKE_CURRENT_LIST_DIR}/nearest_mesh.cpp
                                  ${CMAKE_CURRENT_LIST_DIR}/exact_mesh.cpp)
 # The BVH walk (bvh_walk.hpp), once per instruction set: AVX-512, AVX2, or portable.
 if(RAYKERNEL_ISA_VARIANTS)

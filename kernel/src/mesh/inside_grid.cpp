@@ -1,0 +1,195 @@
+// InsideGrid (inside_grid.hpp): the closedness test, the grid's exact cell bounds, the free cells, their
+// components and each component's winding number.
+#include "mesh/inside_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace raykernel::mesh_detail {
+namespace {
+
+// At most `max_cells` cells, `max_per_axis` along an axis.
+constexpr double max_cells = 1 << 22;
+constexpr double max_per_axis = 1024;
+
+double coordinate(const Vec3& v, int axis) noexcept { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+}  // namespace
+
+bool InsideGrid::closed(const Mesh& mesh) {
+  // Each vertex's position as the rank of its (x, y, z) among the distinct positions (== on doubles, so −0 and
+  // +0 are one position, as they are one point).
+  const std::size_t v = mesh.vertices.size();
+  std::vector<std::uint32_t> by_position(v);
+  std::iota(by_position.begin(), by_position.end(), 0u);
+  const auto less = [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3 &p = mesh.vertices[a], &q = mesh.vertices[b];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+  };
+  std::sort(by_position.begin(), by_position.end(), less);
+  std::vector<std::uint32_t> position(v);
+  std::uint32_t rank = 0;
+  for (std::size_t k = 0; k < v; ++k) {
+    if (k > 0 && less(by_position[k - 1], by_position[k])) ++rank;
+    position[by_position[k]] = rank;
+  }
+  // The edges of every triangle's boundary a→b, b→c, c→a between positions p ≠ q: those with p < q and
+  // those with p > q (as the pair (q, p)) must be the same multiset.
+  std::vector<std::uint64_t> forward, backward;
+  forward.reserve(3 * mesh.triangles.size() / 2 + 1);
+  backward.reserve(3 * mesh.triangles.size() / 2 + 1);
+  for (const auto& t : mesh.triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint64_t p = position[t[static_cast<std::size_t>(e)]], q = position[t[static_cast<std::size_t>((e + 1) % 3)]];
+      if (p < q) forward.push_back(p << 32 | q);
+      else if (q < p) backward.push_back(q << 32 | p);
+    }
+  }
+  if (forward.size() != backward.size()) return false;
+  std::sort(forward.begin(), forward.end());
+  std::sort(backward.begin(), backward.end());
+  return forward == backward;
+}
+
+std::uint32_t InsideGrid::guess(int axis, double x) const noexcept {
+  const auto a = static_cast<std::size_t>(axis);
+  const double t = (x - origin_[a]) * inverse_step_[a];
+  if (!(t >= 1)) return 0;  // also NaN
+  if (t >= static_cast<double>(n_[a] - 1)) return n_[a] - 1;
+  return static_cast<std::uint32_t>(t);
+}
+
+// The last cell whose lower bound is ≤ x (x ≥ the box's lower face): exact comparisons from the guess.
+std::uint32_t InsideGrid::last_starting_at_or_before(int axis, double x) const noexcept {
+  const auto& p = plane_[static_cast<std::size_t>(axis)];
+  const std::uint32_t n = n_[static_cast<std::size_t>(axis)];
+  std::uint32_t k = guess(axis, x);
+  while (k > 0 && p[k] > x) --k;
+  while (k + 1 < n && p[k + 1] <= x) ++k;
+  return k;
+}
+
+// The first cell whose upper bound is ≥ x (x ≤ the box's upper face).
+std::uint32_t InsideGrid::first_ending_at_or_after(int axis, double x) const noexcept {
+  const auto& p = plane_[static_cast<std::size_t>(axis)];
+  const std::uint32_t n = n_[static_cast<std::size_t>(axis)];
+  std::uint32_t k = guess(axis, x);
+  while (k > 0 && p[k] >= x) --k;
+  while (k + 1 < n && p[k + 1] < x) ++k;
+  return k;
+}
+
+InsideGrid InsideGrid::build(const PreparedMesh& prepared, const Winding& winding, const Options& options) {
+  InsideGrid g;
+  const Mesh& mesh = prepared.mesh();
+  const Box3& box = prepared.bvh().bounds();
+  if (mesh.triangles.size() < options.min_triangles || !closed(mesh)) return g;
+  const double lo[3] = {box.lo.x, box.lo.y, box.lo.z}, hi[3] = {box.hi.x, box.hi.y, box.hi.z};
+  double extent[3], largest = 0;
+  for (int a = 0; a < 3; ++a) {
+    extent[a] = hi[a] - lo[a];
+    if (!std::isfinite(extent[a])) return g;  // beyond the double range: walk every point
+    largest = std::max(largest, extent[a]);
+  }
+  if (largest == 0) return g;
+  // Cells about cubes, about triangles/triangles_per_cell of them in all.
+  const double target =
+      std::clamp(static_cast<double>(mesh.triangles.size()) / options.triangles_per_cell, 1.0, max_cells);
+  double volume_share = 1;  // the product of extent/largest over the axes of positive extent
+  int dims = 0;
+  for (double e : extent)
+    if (e > 0) volume_share *= e / largest, ++dims;
+  const double per_largest = std::pow(target / volume_share, 1.0 / dims);
+  std::size_t cells = 1;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double count = extent[a] > 0 ? std::ceil(per_largest * extent[a] / largest) : 1;
+    g.n_[a] = static_cast<std::uint32_t>(std::clamp(count, 1.0, max_per_axis));
+    cells *= g.n_[a];
+    auto& p = g.plane_[a];
+    p.resize(g.n_[a] + 1);
+    p[0] = lo[a];
+    for (std::uint32_t k = 1; k < g.n_[a]; ++k)
+      p[k] = std::min(hi[a], std::max(p[k - 1], lo[a] + extent[a] * (static_cast<double>(k) / g.n_[a])));
+    p[g.n_[a]] = hi[a];
+    g.origin_[a] = lo[a];
+    g.inverse_step_[a] = extent[a] > 0 ? g.n_[a] / extent[a] : 0;
+  }
+  const std::size_t nx = g.n_[0], ny = g.n_[1];
+  const auto index = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * ny + j) * nx + i; };
+
+  // Mark every cell some triangle's box meets (0: such a cell; 1: free until marked).
+  std::vector<std::int32_t> cell(cells, 1);
+  const std::size_t budget = 16 * cells + 8 * mesh.triangles.size();
+  std::size_t marked = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Triangle tri = mesh.triangle(t);
+    std::uint32_t from[3], to[3];
+    for (int a = 0; a < 3; ++a) {
+      const double u = coordinate(tri.a, a), v = coordinate(tri.b, a), w = coordinate(tri.c, a);
+      from[a] = g.first_ending_at_or_after(a, std::min({u, v, w}));
+      to[a] = g.last_starting_at_or_before(a, std::max({u, v, w}));
+    }
+    marked += std::size_t{to[0] - from[0] + 1} * (to[1] - from[1] + 1) * (to[2] - from[2] + 1);
+    if (marked > budget) return InsideGrid{};  // huge triangles over a fine grid: not worth it
+    for (std::uint32_t k = from[2]; k <= to[2]; ++k)
+      for (std::uint32_t j = from[1]; j <= to[1]; ++j)
+        for (std::uint32_t i = from[0]; i <= to[0]; ++i) cell[index(i, j, k)] = 0;
+  }
+
+  // Components of free cells sharing a face; each one's winding number from a point of its first cell.
+  std::vector<std::uint32_t> stack;
+  for (std::size_t start = 0; start < cells; ++start) {
+    if (cell[start] != 1) continue;
+    const std::size_t i0 = start % nx, j0 = start / nx % ny, k0 = start / nx / ny;
+    const std::size_t at[3] = {i0, j0, k0};
+    Vec3 centre{};
+    for (int a = 0; a < 3; ++a) {
+      const auto& p = g.plane_[static_cast<std::size_t>(a)];
+      const double l = p[at[a]], h = p[at[a] + 1];
+      const double m = std::clamp(0.5 * l + 0.5 * h, l, h);  // in the closed cell whatever the rounding
+      (a == 0 ? centre.x : a == 1 ? centre.y : centre.z) = m;
+    }
+    const std::optional<std::int64_t> w = winding(centre);
+    if (!w) return InsideGrid{};  // cannot happen (a free cell holds no point of the surface): walk instead
+    const auto component = static_cast<std::int32_t>(g.winding_.size()) + 2;
+    g.winding_.push_back(*w);
+    cell[start] = component;
+    stack.push_back(static_cast<std::uint32_t>(start));
+    while (!stack.empty()) {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      const std::size_t i = c % nx, j = c / nx % ny, k = c / nx / ny;
+      const auto visit = [&](std::size_t n) {
+        if (cell[n] == 1) cell[n] = component, stack.push_back(static_cast<std::uint32_t>(n));
+      };
+      if (i > 0) visit(c - 1);
+      if (i + 1 < nx) visit(c + 1);
+      if (j > 0) visit(c - nx);
+      if (j + 1 < ny) visit(c + nx);
+      if (k > 0) visit(c - nx * ny);
+      if (k + 1 < g.n_[2]) visit(c + nx * ny);
+    }
+  }
+  // Stored: the component's index, −1 for a cell some triangle's box meets.
+  for (auto& c : cell) c -= 2;
+  g.cell_ = std::move(cell);
+  return g;
+}
+
+std::optional<std::int64_t> InsideGrid::lookup(const Vec3& point) const noexcept {
+  if (cell_.empty()) return std::nullopt;
+  const std::size_t i = last_starting_at_or_before(0, point.x), j = last_starting_at_or_before(1, point.y),
+                    k = last_starting_at_or_before(2, point.z);
+  const std::int32_t c = cell_[(k * n_[1] + j) * n_[0] + i];
+  if (c < 0) return std::nullopt;
+  return winding_[static_cast<std::size_t>(c)];
+}
+
+double InsideGrid::free_share() const noexcept {
+  if (cell_.empty()) return 0;
+  return static_cast<double>(std::count_if(cell_.begin(), cell_.end(), [](std::int32_t c) { return c >= 0; })) /
+         static_cast<double>(cell_.size());
+}
+
+}  // namespace raykernel::mesh_detail
