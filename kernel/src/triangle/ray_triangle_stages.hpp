@@ -302,6 +302,21 @@ struct TriangleQuotientStage2 {
   return (x.lo > y.lo) - (x.lo < y.lo);
 }
 
+// A double as a leaf of the formulas whose products and differences are only recorded: cross_terms over these
+// gives each component d_j·e_k − d_k·e_j as its four factors, in the formula's own order, for
+// product_difference_sign.
+struct RecordedLeaf {
+  double value;
+};
+struct RecordedProduct {
+  double a, b;
+};
+struct RecordedDifference {
+  RecordedProduct left, right;
+};
+[[nodiscard]] inline RecordedProduct operator*(RecordedLeaf x, RecordedLeaf y) noexcept { return {x.value, y.value}; }
+[[nodiscard]] inline RecordedDifference operator-(RecordedProduct x, RecordedProduct y) noexcept { return {x, y}; }
+
 // The tie-break vector d × (q − p) of the directed edge p → q (ray_triangle_formula.hpp's edge_tie_break) in exact
 // expansions, for a direction given as expansion leaves — a ray's d lifted, or a segment's exact q − p as TwoDiff
 // pairs (docs/contract.md §8) — as exact signs of its x, y, z components, or nothing when an expansion was not
@@ -312,21 +327,27 @@ struct TriangleQuotientStage2 {
 // expansion.
 [[nodiscard]] inline std::optional<std::array<int, 3>> edge_tie_break_signs_by_expansion(
     const std::array<ExpansionValue<2>, 3>& d, const Vec3& p, const Vec3& q) noexcept {
-  {  // each component d_j·e_k − d_k·e_j (cross_terms' order) from two TwoProducts
+  {  // each component from two TwoProducts: cross_terms over recorded leaves names its four factors
     const double qv[3] = {q.x, q.y, q.z}, pv[3] = {p.x, p.y, p.z};
-    double e[3], dv[3];
+    std::array<RecordedLeaf, 3> e{}, dv{};
     bool single = true;
     for (std::size_t i = 0; i < 3; ++i) {
       const DoubleDouble t = two_diff(qv[i], pv[i]);
-      e[i] = t.hi;
-      dv[i] = d[i].e.component[0];
+      e[i] = {t.hi};
+      dv[i] = {d[i].e.component[0]};
       single = single && t.lo == 0 && std::isfinite(t.hi) && d[i].exact && d[i].e.size == 1;
     }
     if (single) {
-      const std::optional<int> x = product_difference_sign(dv[1], e[2], dv[2], e[1]);
-      const std::optional<int> y = product_difference_sign(dv[2], e[0], dv[0], e[2]);
-      const std::optional<int> z = product_difference_sign(dv[0], e[1], dv[1], e[0]);
-      if (x && y && z) return std::array<int, 3>{*x, *y, *z};
+      const std::array<RecordedDifference, 3> terms = cross_terms(dv, e);
+      std::array<int, 3> s{};
+      std::size_t i = 0;
+      for (; i < 3; ++i) {
+        const RecordedDifference& t = terms[i];
+        const std::optional<int> sign = product_difference_sign(t.left.a, t.left.b, t.right.a, t.right.b);
+        if (!sign) break;
+        s[i] = *sign;
+      }
+      if (i == 3) return s;
     }
   }
   const auto v = edge_tie_break(d, p, q, expansion_difference);
