@@ -131,7 +131,7 @@ enum class PointLocation : std::uint8_t {
 // the direction (§6's consequence), so any direction gives this answer; for another mesh the answer is the one
 // of that direction. Outward normals give +1 inside, inward ones −1: both are inside. Throws invalid_input for a
 // non-finite point. Thread-safe; right in any floating-point environment. On a closed mesh of 1,024 triangles or
-// more the first call builds a point-location grid (kernel/src/mesh/inside_grid.hpp: about half a second per
+// more the first call builds a point-location grid (kernel/src/mesh/inside_grid.hpp: about 0.15 s per
 // 10^6 triangles, once per PreparedMesh and its copies) that answers most points without a walk, with the
 // walk's answers; inside(point, Mesh) never builds it.
 [[nodiscard]] PointLocation inside(const Vec3& point, const PreparedMesh& mesh);

@@ -3,8 +3,8 @@
 #include "mesh/inside_grid.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <numeric>
 
 namespace raykernel::mesh_detail {
 namespace {
@@ -18,38 +18,59 @@ double coordinate(const Vec3& v, int axis) noexcept { return axis == 0 ? v.x : a
 }  // namespace
 
 bool InsideGrid::closed(const Mesh& mesh) {
-  // Each vertex's position as the rank of its (x, y, z) among the distinct positions (== on doubles, so −0 and
-  // +0 are one position, as they are one point).
+  // Each vertex's position as a number, equal for equal (x, y, z) (== on doubles, so −0 and +0 are one position,
+  // as they are one point): an open-addressing table of the first vertex at each position.
   const std::size_t v = mesh.vertices.size();
-  std::vector<std::uint32_t> by_position(v);
-  std::iota(by_position.begin(), by_position.end(), 0u);
-  const auto less = [&](std::uint32_t a, std::uint32_t b) {
-    const Vec3 &p = mesh.vertices[a], &q = mesh.vertices[b];
-    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-  };
-  std::sort(by_position.begin(), by_position.end(), less);
-  std::vector<std::uint32_t> position(v);
-  std::uint32_t rank = 0;
-  for (std::size_t k = 0; k < v; ++k) {
-    if (k > 0 && less(by_position[k - 1], by_position[k])) ++rank;
-    position[by_position[k]] = rank;
-  }
-  // The edges of every triangle's boundary a→b, b→c, c→a between positions p ≠ q: those with p < q and
-  // those with p > q (as the pair (q, p)) must be the same multiset.
-  std::vector<std::uint64_t> forward, backward;
-  forward.reserve(3 * mesh.triangles.size() / 2 + 1);
-  backward.reserve(3 * mesh.triangles.size() / 2 + 1);
-  for (const auto& t : mesh.triangles) {
-    for (int e = 0; e < 3; ++e) {
-      const std::uint64_t p = position[t[static_cast<std::size_t>(e)]], q = position[t[static_cast<std::size_t>((e + 1) % 3)]];
-      if (p < q) forward.push_back(p << 32 | q);
-      else if (q < p) backward.push_back(q << 32 | p);
+  std::size_t size = 16;
+  while (size < 2 * v) size *= 2;
+  constexpr std::uint32_t none = ~0u;
+  std::vector<std::uint32_t> first_at(size, none), position(v);
+  std::uint32_t positions = 0;
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x == 0 ? 0.0 : x); };
+  for (std::uint32_t k = 0; k < v; ++k) {
+    const Vec3& p = mesh.vertices[k];
+    std::uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull ^ bits(p.y) * 0xC2B2AE3D27D4EB4Full ^ bits(p.z) * 0x165667B19E3779F9ull;
+    h ^= h >> 29;
+    for (std::size_t i = h & (size - 1);; i = (i + 1) & (size - 1)) {
+      if (first_at[i] == none) {
+        first_at[i] = k;
+        position[k] = positions++;
+        break;
+      }
+      const Vec3& q = mesh.vertices[first_at[i]];
+      if (p.x == q.x && p.y == q.y && p.z == q.z) {
+        position[k] = position[first_at[i]];
+        break;
+      }
     }
   }
-  if (forward.size() != backward.size()) return false;
-  std::sort(forward.begin(), forward.end());
-  std::sort(backward.begin(), backward.end());
-  return forward == backward;
+  // The edges of every triangle's boundary a→b, b→c, c→a between positions p ≠ q, grouped by their smaller end
+  // (a counting sort): for each pair, as many from p to q as from q to p.
+  std::vector<std::uint32_t> start(positions + 1, 0);
+  const auto for_each_edge = [&](const auto& f) {
+    for (const auto& t : mesh.triangles)
+      for (std::size_t e = 0; e < 3; ++e) {
+        const std::uint32_t p = position[t[e]], q = position[t[(e + 1) % 3]];
+        if (p != q) f(std::min(p, q), std::uint64_t{std::max(p, q)} << 1 | (p < q ? 0u : 1u));
+      }
+  };
+  for_each_edge([&](std::uint32_t low, std::uint64_t) { ++start[low + 1]; });
+  for (std::size_t k = 0; k < positions; ++k) start[k + 1] += start[k];
+  std::vector<std::uint64_t> other(start[positions]);  // the other end (times 2) and the direction bit
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for_each_edge([&](std::uint32_t low, std::uint64_t entry) { other[fill[low]++] = entry; });
+  for (std::size_t k = 0; k < positions; ++k) {
+    const auto first = other.begin() + start[k], last = other.begin() + start[k + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {  // a run of one pair: directions 0 first, then 1, as many of each
+      auto j = i;
+      while (j != last && (*j >> 1) == (*i >> 1)) ++j;
+      const auto backward = std::count_if(i, j, [](std::uint64_t x) { return (x & 1) != 0; });
+      if (2 * backward != j - i) return false;
+      i = j;
+    }
+  }
+  return true;
 }
 
 std::uint32_t InsideGrid::guess(int axis, double x) const noexcept {
