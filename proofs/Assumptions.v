@@ -674,6 +674,31 @@ Definition orient_liveness :=
    OrientLiveness.orient3d_range_witness).
 Goal True. idtac "@@ orient2d_filter_live orient2d_filter_b_fwd orient2d_filter_twin_live orient3d_filter_live orient2d_live_witness orient2d_live_witness_in_class orient2d_uncertain_witness orient3d_live_witness orient3d_range_witness". Abort.
 Print Assumptions orient_liveness.
+(** box/RayBoxTwins.v: the BVH's ray–box test over the bits (make_slabs, ray_box_axis, ray_box_entry), tied to
+    RayBox.v and sound in case B *)
+From Raykernel Require RayBoxTwins.
+Definition box_twin_results :=
+  (RayBoxTwins.near_bound_twin_model,
+   RayBoxTwins.far_bound_twin_model,
+   RayBoxTwins.ray_box_axis_twin_model,
+   RayBoxTwins.make_slab_case_b,
+   RayBoxTwins.near_bound_twin_sound,
+   RayBoxTwins.far_bound_twin_sound,
+   RayBoxTwins.ray_box_axis_twin_sound,
+   RayBoxTwins.ray_box_axis_nan,
+   RayBoxTwins.ray_box_entry_twin_sound,
+   RayBoxTwins.ray_box_entries8_twin_sound).
+Goal True. idtac "@@ near_bound_twin_model far_bound_twin_model ray_box_axis_twin_model make_slab_case_b near_bound_twin_sound far_bound_twin_sound ray_box_axis_twin_sound ray_box_axis_nan ray_box_entry_twin_sound ray_box_entries8_twin_sound". Abort.
+Print Assumptions box_twin_results.
+Definition box_twin_constants :=
+  (ConstantsCpp.cpp_ray_box_near_factor,
+   ConstantsCpp.cpp_ray_box_far_factor,
+   ConstantsCpp.cpp_ray_box_absolute,
+   ConstantsCpp.cpp_ray_box_min_direction,
+   ConstantsCpp.cpp_ray_box_max_direction,
+   ConstantsCpp.cpp_ray_box_max_parameter).
+Goal True. idtac "@@ cpp_ray_box_near_factor cpp_ray_box_far_factor cpp_ray_box_absolute cpp_ray_box_min_direction cpp_ray_box_max_direction cpp_ray_box_max_parameter". Abort.
+Print Assumptions box_twin_constants.
 (** core/: the rounding of a quotient at its rounding boundaries (quotient_boundary.hpp): the decision over the
     reals, the twin's soundness, liveness on ties *)
 From Raykernel Require MidpointRounding QuotientBoundary.
