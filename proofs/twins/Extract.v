@@ -26,6 +26,7 @@ From Raykernel Require QuotientBoundary.
 From Raykernel Require SphereStages.
 From Raykernel Require SpawnTwins.
 From Raykernel Require Escalation.
+From Raykernel Require RayBoxTwins.
 Require Import ExtrOcamlBasic ExtrOcamlZBigInt.
 From Raykernel Require Import Fast.
 Import ListNotations.
@@ -512,6 +513,35 @@ Definition run_escalate (x : list Z) : list Z :=
   | [] => []
   end.
 
+(** box/ray_box.hpp (RayBoxTwins.v): [ray_box_setup] on "ox oy oz dx dy dz Mx My Mz" — [make_slabs] of the ray
+    with the magnitudes M: per axis the inverse and enters_at_hi ([make_slab_b]).  [ray_box_entry] and
+    [ray_box_node] on "o0 o1 o2 inv0 inv1 inv2 h0 h1 h2 t_min t_max" (a ray's slabs: h_k a word, non-zero when the
+    ray enters axis k at the upper face) and the 48 words of a node's face rows, BvhNode::bounds[f][s] at 8·f + s
+    (faces lo.x lo.y lo.z hi.x hi.y hi.z, each a binary32 value as the double it converts to): per slot s the
+    entry bound and whether the box may be met — the scalar test on box s ([ray_box_entry_b]), and the eight
+    lanes of [ray_box_entries8] ([ray_box_entries8_b]: the ray and t_min, t_max broadcast, −0 becoming +0). *)
+Definition run_ray_box_setup (x : list Z) : list Z :=
+  match x with [ox; oy; oz; dx; dy; dz; mx; my; mz] =>
+    flat_map (fun a => let '(d, o, m) := a in
+                       let r := RayBoxTwins.make_slab_b (f d) (f o) (f m) in [b (fst r); bool_code (snd r)])
+      [(dx, ox, mx); (dy, oy, my); (dz, oz, mz)]
+  | _ => [] end.
+Definition run_ray_box_boxes (test : list (float * float * bool * float * float) -> float -> float -> float * bool)
+    (x : list Z) : list Z :=
+  match x with o0 :: o1 :: o2 :: i0 :: i1 :: i2 :: h0 :: h1 :: h2 :: tmin :: tmax :: rows =>
+    if Nat.eqb (length rows) 48 then
+      let face (k s : nat) := f (nth (8 * k + s)%nat rows 0) in
+      flat_map (fun s =>
+        let axes := [(f o0, f i0, negb (h0 =? 0), face 0%nat s, face 3%nat s);
+                     (f o1, f i1, negb (h1 =? 0), face 1%nat s, face 4%nat s);
+                     (f o2, f i2, negb (h2 =? 0), face 2%nat s, face 5%nat s)] in
+        let r := test axes (f tmin) (f tmax) in [b (fst r); bool_code (snd r)])
+        (seq 0 8)
+    else []
+  | _ => [] end.
+Definition run_ray_box_entry := run_ray_box_boxes RayBoxTwins.ray_box_entry_b.
+Definition run_ray_box_node := run_ray_box_boxes RayBoxTwins.ray_box_entries8_b.
+
 Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run_filter_den
   run_filter_num run_compensated run_compensated_exact run_refined run_enclosure_sign run_tail_enclosure
   run_filter_enclosure_den run_filter_enclosure_num run_propagated run_compare_filter run_compare_compensated
@@ -525,4 +555,5 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_orient2d run_orient3d
   run_sphere_expansions run_sphere_abc_expansions run_sphere_root_side
   run_midpoint_offset run_affine_enclosure
-  run_escalate.
+  run_escalate
+  run_ray_box_setup run_ray_box_entry run_ray_box_node.

@@ -14,7 +14,10 @@
 //                          batch loop), four input lines per call
 //   RAYKERNEL_TWIN_LANES=8 -march=x86-64-v4 (the AVX-512 batch loop; run only where the CPU has AVX-512),
 //                          and -march=x86-64-v3 (Lanes8 lowered to AVX2 pairs)
-// The lane variants run only the lane-templated routines and report the others as skipped.
+// The lane variants run only the lane-templated routines and report the others as skipped. The BVH's ray–box
+// test runs, on every variant, the scalar ray_box_entry of the driver's build (ray_box_entry) and the eight-lane
+// ray_box_entries8 as the kernel compiled it for each instruction set the CPU has (ray_box_node: node_entries of
+// mesh_detail::portable, ::avx2, ::avx512), each form compared with the twin and counted apart.
 //
 // Usage: raykernel_twin_driver INPUTS TWIN_OUTPUTS
 //
@@ -41,6 +44,7 @@
 #include "sphere/ray_sphere_stages.hpp"
 #include "spawn/spawn_certified.hpp"
 #include "core/validation.hpp"
+#include "mesh/bvh_walk.hpp"
 #include <raykernel/triangle.hpp>
 
 #include <array>
@@ -811,6 +815,106 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
   return table;
 }
 
+// ---- The BVH's ray–box test (box/ray_box.hpp, mesh/bvh_walk.hpp; proofs/box/RayBoxTwins.v) -----------------------
+// Routines with more than one compiled form: each line gives one output per form, each compared with the twin's
+// line and counted under "routine[form]".
+
+using Forms = std::vector<std::pair<std::string, Out>>;
+using FormRoutine = std::function<bool(const Words&, Forms&)>;
+
+// A binary32 value given as the double it converts to (NaN: any NaN).
+bool binary32_word(std::uint64_t w, float& v) {
+  const double x = from_word(w);
+  v = static_cast<float>(x);
+  return std::isnan(x) || std::bit_cast<std::uint64_t>(static_cast<double>(v)) == w;
+}
+
+// The input of ray_box_entry and ray_box_node: the slabs, t_min, t_max and a node whose every slot holds a child.
+bool ray_box_node_input(const Words& w, raykernel::BvhRayTraversal::Slabs& s, raykernel::BvhNode& node, double& t_min,
+                        double& t_max) {
+  using raykernel::BvhNode;
+  if (w.size() != 11 + 6 * BvhNode::width) return false;
+  for (std::size_t k = 0; k < 3; ++k) {
+    s.origin[k] = from_word(w[k]);
+    s.inverse_direction[k] = from_word(w[3 + k]);
+    s.enters_at_hi[k] = w[6 + k] != 0;
+  }
+  t_min = from_word(w[9]), t_max = from_word(w[10]);
+  for (std::size_t f = 0; f < 6; ++f)
+    for (std::size_t slot = 0; slot < BvhNode::width; ++slot)
+      if (!binary32_word(w[11 + BvhNode::width * f + slot], node.bounds[f][slot])) return false;
+  for (std::size_t slot = 0; slot < BvhNode::width; ++slot)
+    node.first[slot] = static_cast<std::uint32_t>(slot + 1), node.count[slot] = 1;
+  return true;
+}
+
+const std::map<std::string, FormRoutine>& form_routines() {
+  static const std::map<std::string, FormRoutine> table = {
+      // make_slabs on "ox oy oz dx dy dz Mx My Mz": per axis the inverse and enters_at_hi.
+      {"ray_box_setup",
+       [](const Words& w, Forms& forms) {
+         if (w.size() != 9) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}};
+         const raykernel::BvhRayTraversal::Slabs s = raykernel::mesh_detail::make_slabs(ray, {x[6], x[7], x[8]});
+         Out o;
+         for (std::size_t k = 0; k < 3; ++k) o.f(s.inverse_direction[k]), o.i(s.enters_at_hi[k] ? 1 : 0);
+         forms.emplace_back("make_slabs", o);
+         return true;
+       }},
+      // "o0 o1 o2 inv0 inv1 inv2 h0 h1 h2 t_min t_max" and a node's 48 face words (bounds[f][s] at 8·f + s, each
+      // a binary32 value as a double): per slot the entry bound and the met bit. ray_box_entry: the scalar test
+      // on node.box(s) (its twin ray_box_entry_b). ray_box_node: node_entries of each instruction set the CPU
+      // has (its twin ray_box_entries8_b: the lanes' broadcast turns −0 into +0), the walk's state set up as
+      // start_walk does (set_walk_ray of the slabs, t_min, t_max); every slot holds a child (first = s + 1,
+      // count = 1), so node_entries masks no slot.
+      {"ray_box_entry",
+       [](const Words& w, Forms& forms) {
+         raykernel::BvhRayTraversal::Slabs s{};
+         raykernel::BvhNode node{};
+         double t_min = 0, t_max = 0;
+         if (!ray_box_node_input(w, s, node, t_min, t_max)) return false;
+         Out scalar;
+         for (int slot = 0; slot < raykernel::BvhNode::width; ++slot) {
+           double entry = 0;
+           const bool met = raykernel::mesh_detail::ray_box_entry(s, node.box(slot), t_min, t_max, entry);
+           scalar.f(entry), scalar.i(met ? 1 : 0);
+         }
+         forms.emplace_back("scalar", scalar);
+         return true;
+       }},
+      {"ray_box_node",
+       [](const Words& w, Forms& forms) {
+         using raykernel::BvhNode;
+         namespace md = raykernel::mesh_detail;
+         raykernel::BvhRayTraversal::Slabs s{};
+         BvhNode node{};
+         double t_min = 0, t_max = 0;
+         if (!ray_box_node_input(w, s, node, t_min, t_max)) return false;
+         raykernel::detail::BvhWalk walk;
+         md::set_walk_ray(walk, s);
+         walk.t_min = t_min, walk.t_max = t_max;
+         using NodeEntries = unsigned (*)(const raykernel::detail::BvhWalk&, const BvhNode&, double, double,
+                                          double*) noexcept;
+         const std::pair<const char*, NodeEntries> isas[] = {
+             {"portable", md::portable::node_entries},
+             {"avx2", __builtin_cpu_supports("x86-64-v3") ? md::avx2::node_entries : nullptr},
+             {"avx512", __builtin_cpu_supports("x86-64-v4") ? md::avx512::node_entries : nullptr}};
+         for (const auto& [isa, entries_of] : isas) {
+           if (entries_of == nullptr) continue;
+           std::array<double, BvhNode::width> entries{};
+           const unsigned met = entries_of(walk, node, t_min, t_max, entries.data());
+           Out o;
+           for (int slot = 0; slot < BvhNode::width; ++slot)
+             o.f(entries[static_cast<std::size_t>(slot)]), o.i((met >> slot) & 1u);
+           forms.emplace_back(isa, o);
+         }
+         return true;
+       }},
+  };
+  return table;
+}
+
 // ---- Input, comparison, report ------------------------------------------------------------------------------
 
 struct Line {
@@ -853,14 +957,16 @@ int check(const char* inputs_path, const char* expected_path, Tally& tally) {
     want.push_back(std::move(expect));
   }
 
-  auto compare = [&](std::size_t index, const std::string& got_tokens) {
+  // (form: the compiled form of a routine with several, counted as "routine[form]")
+  auto compare = [&](std::size_t index, const std::string& got_tokens, const std::string& form = "") {
     const std::string got = lines[index].name + got_tokens;
-    ++tally.checked[lines[index].name];
+    const std::string key = form.empty() ? lines[index].name : lines[index].name + "[" + form + "]";
+    ++tally.checked[key];
     if (got == want[index]) return;
-    ++tally.mismatched[lines[index].name];
+    ++tally.mismatched[key];
     if (tally.reported++ < 20)
-      std::cerr << "MISMATCH " << inputs_path << ":" << index + 1 << ": " << lines[index].text << "\n  C++:  " << got
-                << "\n  twin: " << want[index] << '\n';
+      std::cerr << "MISMATCH " << inputs_path << ":" << index + 1 << (form.empty() ? "" : " (" + form + ")") << ": "
+                << lines[index].text << "\n  C++:  " << got << "\n  twin: " << want[index] << '\n';
   };
 
   for (std::size_t i = 0; i < lines.size();) {
@@ -911,6 +1017,16 @@ int check(const char* inputs_path, const char* expected_path, Tally& tally) {
       ++i;
       continue;
     }
+    if (const auto fr = form_routines().find(line.name); fr != form_routines().end()) {
+      Forms forms;
+      if (!fr->second(line.words, forms)) {
+        std::cerr << "line " << i + 1 << ": wrong arity or input for " << line.name << '\n';
+        return 2;
+      }
+      for (const auto& [form, out] : forms) compare(i, out.text, form);
+      ++i;
+      continue;
+    }
     if (const auto sr = scalar_routines().find(line.name); sr != scalar_routines().end()) {
 #if RAYKERNEL_TWIN_LANES == 0
       Out out;
@@ -945,6 +1061,7 @@ int main(int argc, char** argv) {
     return 77;
   }
 #endif
+  __builtin_cpu_init();
   Tally tally;
   for (int k = 1; k + 1 < argc; k += 2)
     if (const int status = check(argv[k], argv[k + 1], tally); status != 0) return status;

@@ -9,7 +9,8 @@
 //     stage 3), so that the certifying branches are exercised;
 //   * raw bit patterns: uniformly random 64-bit words and special values (±0, ±smallest and largest
 //     subnormal, ±smallest normal, ±1, ±largest finite, ±inf, quiet and signalling NaNs with payloads and
-//     both signs, extreme exponents), alone or injected into hard queries.
+//     both signs, extreme exponents), alone or injected into hard queries;
+//   * for the BVH's ray–box test, scenes of binary32 boxes and rays aimed at their faces (box_scene, box_ray).
 // Deterministic in SEED (SplitMix64), which is printed.
 //
 // Usage: raykernel_twin_inputs SEED COUNT OUT_FILE [ROUTINE...]
@@ -18,6 +19,7 @@
 #include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_stages.hpp"
 #include "triangle/ray_triangle_stages.hpp"
+#include "box/ray_box.hpp"
 
 #include <raykernel/testkit/plane_queries.hpp>
 #include <raykernel/testkit/plane_pairs.hpp>
@@ -547,10 +549,167 @@ Args boundary_args(Source& s) {
   return a;
 }
 
+// ---- The BVH's ray–box test (box/ray_box.hpp, proofs/box/RayBoxTwins.v) ----------------------------------------
+
+// A binary32 value, as the double it converts to exactly.
+double binary32(double x) { return static_cast<double>(static_cast<float>(x)); }
+
+// x moved by k ulps of a double (k may be negative).
+double ulps(double x, int k) {
+  for (; k > 0; --k) x = std::nextafter(x, HUGE_VAL);
+  for (; k < 0; ++k) x = std::nextafter(x, -HUGE_VAL);
+  return x;
+}
+
+// A BVH node's scene: the root box (binary32 values), its magnitude per axis (max |lo|, |hi|, as MeshBvh's),
+// and the eight children's boxes (BvhNode::bounds[f][s], binary32 values as doubles).
+struct BoxScene {
+  std::array<double, 3> lo{}, hi{}, magnitude{};
+  std::array<std::array<double, 8>, 6> bounds{};
+};
+
+BoxScene box_scene(Source& s) {
+  BoxScene b;
+  // the scale: moderate; tiny and huge binary32 (subnormal floats, near FLT_MAX); beyond binary32 (±inf bounds)
+  long e = 0;
+  switch (s.below(6)) {
+    case 0: e = -149 + static_cast<long>(s.below(30)); break;
+    case 1: e = 100 + static_cast<long>(s.below(28)); break;
+    case 2: e = 120 + static_cast<long>(s.below(20)); break;
+    default: e = static_cast<long>(s.below(40)) - 20;
+  }
+  auto unit = [&s] { return (static_cast<double>(s.word() >> 11) * 0x1p-53) * 2 - 1; };  // [-1, 1)
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double c = std::ldexp(unit(), static_cast<int>(e)), w = std::ldexp(std::fabs(unit()), static_cast<int>(e));
+    b.lo[i] = binary32(c - w), b.hi[i] = binary32(c + w);
+    if (s.chance(16)) b.hi[i] = b.lo[i];  // a flat root
+    b.magnitude[i] = std::max(std::fabs(b.lo[i]), std::fabs(b.hi[i]));
+  }
+  for (std::size_t slot = 0; slot < 8; ++slot) {
+    const auto kind = s.below(12);
+    for (std::size_t i = 0; i < 3; ++i) {
+      double l = 0, h = 0;
+      const double width = b.hi[i] - b.lo[i];
+      if (kind == 0) {  // empty: lo = +inf, hi = −inf (BvhNode's empty slot)
+        l = HUGE_VAL, h = -HUGE_VAL;
+      } else if (kind == 1) {  // the root's box
+        l = b.lo[i], h = b.hi[i];
+      } else if (kind == 2) {  // raw binary32 words (NaN, ±inf, subnormal floats)
+        l = binary32(static_cast<double>(std::bit_cast<float>(static_cast<std::uint32_t>(s.word())))),
+        h = binary32(static_cast<double>(std::bit_cast<float>(static_cast<std::uint32_t>(s.word()))));
+      } else {  // a sub-box of the root (a point 1 in 8), a face at ±inf 1 in 16
+        const double u = std::fabs(unit()), v = std::fabs(unit());
+        l = binary32(b.lo[i] + std::min(u, v) * width), h = binary32(b.lo[i] + std::max(u, v) * width);
+        if (s.chance(8)) h = l;
+        if (s.chance(16)) l = -HUGE_VAL;
+        if (s.chance(16)) h = HUGE_VAL;
+      }
+      b.bounds[i][slot] = l, b.bounds[3 + i][slot] = h;
+    }
+  }
+  return b;
+}
+
+// A ray for a scene: per axis an origin inside or around the root, on a face of a child (a slab plane: 0·inf
+// with a zero direction), a few ulps beside one, far away (the guard), or raw; a direction component at a
+// moderate exponent, aimed at a child's corner or face, ±0, about 2^-1022 or 2^1022 (the ends of case B),
+// subnormal, huge, or raw (not NaN with the sign bit set: std::signbit of a NaN is outside the twin).
+raykernel::Ray box_ray(Source& s, const BoxScene& b) {
+  auto unit = [&s] { return (static_cast<double>(s.word() >> 11) * 0x1p-53) * 2 - 1; };
+  const std::size_t slot = static_cast<std::size_t>(s.below(8));
+  std::array<double, 3> o{}, d{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double mid = b.lo[i] / 2 + b.hi[i] / 2, half = b.hi[i] / 2 - b.lo[i] / 2;
+    const double face = b.bounds[s.chance(2) ? i : i + 3][slot];
+    switch (s.below(8)) {
+      case 0: o[i] = face; break;
+      case 1: o[i] = ulps(face, static_cast<int>(s.below(7)) - 3); break;
+      case 2: o[i] = std::ldexp(unit(), 900 + static_cast<int>(s.below(124))); break;
+      case 3: o[i] = s.raw(); break;
+      default: o[i] = mid + 3 * half * unit();
+    }
+    const double target = b.bounds[s.chance(2) ? i : i + 3][slot];
+    switch (s.below(12)) {
+      case 0: d[i] = s.chance(2) ? 0.0 : -0.0; break;
+      case 1: d[i] = (s.chance(2) ? 1 : -1) * ulps(0x1p-1022, static_cast<int>(s.below(5)) - 2); break;
+      case 2: d[i] = (s.chance(2) ? 1 : -1) * ulps(0x1p1022, static_cast<int>(s.below(5)) - 2); break;
+      case 3: d[i] = std::ldexp(unit(), -1074 + static_cast<int>(s.below(60))); break;
+      case 4: d[i] = std::ldexp(unit(), 1000 + static_cast<int>(s.below(24))); break;
+      case 5: d[i] = s.raw(); break;
+      case 6: case 7: d[i] = target - o[i]; break;  // towards a face of the child: corners, edges
+      default: d[i] = std::ldexp(unit(), static_cast<int>(s.below(60)) - 30);
+    }
+    if (std::isnan(d[i])) d[i] = std::fabs(d[i]);
+  }
+  return {{o[0], o[1], o[2]}, {d[0], d[1], d[2]}};
+}
+
+// "ox oy oz dx dy dz Mx My Mz" of make_slabs: a scene's ray and magnitudes; 1 in 8 a magnitude +inf (a root
+// beyond binary32), 0, or raw.
+Args ray_box_setup_args(Source& s) {
+  const BoxScene b = box_scene(s);
+  const raykernel::Ray r = box_ray(s, b);
+  Args a{r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z,
+         b.magnitude[0], b.magnitude[1], b.magnitude[2]};
+  if (s.chance(8)) {
+    const double m[3] = {HUGE_VAL, 0.0, s.raw()};
+    a[6 + s.below(3)] = m[s.below(3)];
+  }
+  return a;
+}
+
+// "o0 o1 o2 inv0 inv1 inv2 h0 h1 h2 t_min t_max" and the 48 face words of a node: the slabs make_slabs gives a
+// scene's ray (1 in 8 raw origins, inverses and faces instead); t_min 0 (±0), a positive value or a slab
+// parameter of a face; t_max +inf, t_min, a slab parameter (t at a face), or a larger value.
+Args ray_box_node_args(Source& s) {
+  const BoxScene b = box_scene(s);
+  const raykernel::Ray r = box_ray(s, b);
+  raykernel::BvhRayTraversal::Slabs slabs = raykernel::mesh_detail::make_slabs(r, b.magnitude);
+  if (s.chance(8))
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (s.chance(2)) slabs.origin[k] = s.raw();
+      if (s.chance(2)) slabs.inverse_direction[k] = s.raw();
+      if (s.chance(2)) slabs.enters_at_hi[k] = !slabs.enters_at_hi[k];
+    }
+  // a slab parameter of one of the faces of a child, as the test computes it
+  auto parameter = [&]() {
+    const std::size_t k = static_cast<std::size_t>(s.below(3));
+    const double face = b.bounds[s.chance(2) ? k : k + 3][s.below(8)];
+    return (face - slabs.origin[k]) * slabs.inverse_direction[k];
+  };
+  double t_min = 0;
+  switch (s.below(6)) {
+    case 0: t_min = -0.0; break;
+    case 1: t_min = std::fabs(s.raw()); break;
+    case 2: t_min = std::fabs(parameter()); break;
+    default: t_min = 0.0;
+  }
+  if (std::isnan(t_min) || std::isinf(t_min)) t_min = 0.0;
+  double t_max = HUGE_VAL;
+  switch (s.below(6)) {
+    case 0: t_max = t_min; break;
+    case 1: t_max = std::max(t_min, std::fabs(parameter())); break;
+    case 2: t_max = t_min + std::ldexp(static_cast<double>(s.below(1000)), static_cast<int>(s.below(40)) - 20); break;
+    default: t_max = HUGE_VAL;
+  }
+  if (std::isnan(t_max)) t_max = HUGE_VAL;
+  Args a;
+  for (std::size_t k = 0; k < 3; ++k) a.push_back(slabs.origin[k]);
+  for (std::size_t k = 0; k < 3; ++k) a.push_back(slabs.inverse_direction[k]);
+  for (std::size_t k = 0; k < 3; ++k) a.push_back(std::bit_cast<double>(std::uint64_t{slabs.enters_at_hi[k] ? 1u : 0u}));
+  a.push_back(t_min), a.push_back(t_max);
+  for (std::size_t f = 0; f < 6; ++f)
+    for (std::size_t slot = 0; slot < 8; ++slot) a.push_back(b.bounds[f][slot]);
+  return a;
+}
+
 using Generator = std::function<Args(Source&)>;
 
 const std::map<std::string, Generator>& generators() {
   static const std::map<std::string, Generator> table = {
+      {"ray_box_setup", ray_box_setup_args},
+      {"ray_box_entry", ray_box_node_args},
+      {"ray_box_node", ray_box_node_args},
       {"two_sum",
        [](Source& s) {
          if (s.chance(2)) return raw_args(s, 2);

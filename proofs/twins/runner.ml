@@ -52,6 +52,9 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("midpoint_offset", Twins.run_midpoint_offset);
   ("affine_enclosure", Twins.run_affine_enclosure);
   ("escalate", Twins.run_escalate);
+  ("ray_box_setup", Twins.run_ray_box_setup);
+  ("ray_box_entry", Twins.run_ray_box_entry);
+  ("ray_box_node", Twins.run_ray_box_node);
 ]
 
 let () =

@@ -10,7 +10,8 @@
 // direction components). A box may be reported that the exact ray just misses; the exact primitive test
 // decides those. The eight children of a node are tested in one vector pass (AVX2 or AVX-512 where the CPU has
 // it), each lane performing exactly the scalar test's operations on its box converted to double, so the argument (and proofs/box/RayBox.v) covers every
-// lane.
+// lane; the differential runner checks each lane of every instruction set's pass, and the scalar test, bit for
+// bit against their Coq twins (proofs/box/RayBoxTwins.v, `ray_box_entry_twin_sound`, `ray_box_entries8_twin_sound`).
 //
 // Leaves come nearest box first (each node's children in the order of their entry bounds; a deferred child is
 // skipped when popped if its entry bound already exceeds the caller's bound), so a nearest-hit search can

@@ -10,7 +10,11 @@
 // Certified by: the argument below, step by step (IEEE-754 binary64, round to nearest even, gradual
 // underflow, as fixed by kernel/CMakeLists.txt and checked by core/fp_requirements.hpp); exercised by
 // tests/bvh_test.cpp against exact rational arithmetic, and Coq: proofs/box/RayBox.v (`near_bound_sound`,
-// `far_bound_sound`, `ray_box_sound`; on the BVH's binary32 boxes rounded outward, `slab_sound_outward`).
+// `far_bound_sound`, `ray_box_sound`; on the BVH's binary32 boxes rounded outward, `slab_sound_outward`); over the
+// bits, proofs/box/RayBoxTwins.v (`near_bound_twin_model`, `far_bound_twin_model`, `make_slab_case_b`,
+// `near_bound_twin_sound`, `far_bound_twin_sound`, `ray_box_entry_twin_sound`), whose twins of make_slabs,
+// ray_box_axis and ray_box_entry the differential runner checks bit for bit (group `box`: make_slabs, the scalar
+// ray_box_entry, and ray_box_entries8 of every instruction set, lane by lane).
 //
 // Notation: RN is round to nearest even, u = 2^-53, η = 2^-1075 (half the smallest subnormal). For a real x
 // whose rounding does not overflow: RN(x) = x(1 + ε) + δ with |ε| ≤ u, |δ| ≤ η, and δ = 0 unless
