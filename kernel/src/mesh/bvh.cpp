@@ -149,7 +149,7 @@ class Builder {
   Builder(std::vector<Ref>& refs, const BvhBuildOptions& options, double scale, std::vector<BinaryNode>& nodes,
           bool parallel = false)
       : refs_(refs), options_(options), scale_(scale), nodes_(nodes), parallel_(parallel), bins_(std::clamp<std::uint32_t>(options.bins, 2, 1u << 20)),
-        bins_data_(3 * static_cast<std::size_t>(bins_)), spare_(bins_data_.size()), right_area_(bins_), right_count_(bins_) {}
+        bins_data_(3 * static_cast<std::size_t>(bins_)), right_area_(bins_), right_count_(bins_) {}
 
   // The bounds of refs[begin, end) (one pass over them).
   [[nodiscard]] Bounds measure(std::uint32_t begin, std::uint32_t end) const {
@@ -189,9 +189,17 @@ class Builder {
   }
 
  private:
+  // A bin: the bounds of its primitives' boxes (lanes 0–2) and their number. (The centroids' bounds of the two
+  // sides are gathered by the partition, which reads every centroid anyway.)
   struct Bin {
-    Bounds bounds;
+    F4 lo, hi;
     std::uint32_t count;
+    static Bin empty() {
+      constexpr float inf = std::numeric_limits<float>::infinity();
+      return {F4{inf, inf, inf, inf}, F4{-inf, -inf, -inf, -inf}, 0};
+    }
+    void grow(const Bin& o) { lo = min4(lo, o.lo), hi = max4(hi, o.hi), count += o.count; }
+    [[nodiscard]] FloatBox box() const { return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}}; }
   };
 
   // The bins of a centroid on the three axes: x = (c − lo)·factor clamped to [0, bins − 1] before it is
@@ -204,38 +212,25 @@ class Builder {
   }
 
   static constexpr std::uint32_t parallel_binning_from = 1u << 16;
-  // From this many refs a node is binned into two sets of bins (bin_range); below, adding them up would cost
-  // more than it saves.
-  static constexpr std::uint32_t alternate_bins_from = 256;
 
-  // Bins refs[begin, end) on the three axes: bins[axis·count + bin] (count bins per axis). Consecutive refs
-  // (neighbours in space, mostly: they fall in the same bins) go alternately to `even` and `odd`, two sets of
-  // bins the caller adds up (`merge`): each bin's update then waits on the one two refs back, not on the last.
-  // `odd` may be `even`.
-  void bin_range(std::uint32_t begin, std::uint32_t end, std::uint32_t count, F4 lo, F4 factor, F4 top, Bin* even,
-                 Bin* odd) const {
-    const auto add = [&](const Ref& r, Bin* bins) {
-      const F4 rlo = r.lo, rhi = r.upper(), c = r.centroid();
-      const I4 b = bins_of(c, lo, factor, top);
+  // Bins refs[begin, end) on the three axes: bins[axis·count + bin] (count bins per axis).
+  void bin_range(std::uint32_t begin, std::uint32_t end, std::uint32_t count, F4 lo, F4 factor, F4 top, Bin* bins) const {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Ref& r = refs_[i];
+      const F4 rlo = r.lo, rhi = r.upper();
+      const I4 b = bins_of(r.centroid(), lo, factor, top);
       for (int axis = 0; axis < 3; ++axis) {
         Bin& bin = bins[static_cast<std::size_t>(axis) * count + static_cast<std::uint32_t>(b[axis])];
-        bin.bounds.add(rlo, rhi, c);
+        bin.lo = min4(bin.lo, rlo), bin.hi = max4(bin.hi, rhi);
         ++bin.count;
       }
-    };
-    std::uint32_t i = begin;
-    for (; i + 1 < end; i += 2) {
-      add(refs_[i], even);
-      add(refs_[i + 1], odd);
     }
-    if (i < end) add(refs_[i], even);
   }
 
-  // into[b] ∪= from[b] for the first `all` bins (unions and sums: the same bins as binning both sets' refs).
+  // into[b] ∪= from[b] for the first `all` bins (unions and sums: the same bins as binning both parts' refs).
   static void merge(Bin* into, const Bin* from, std::size_t all) {
     for (std::size_t b = 0; b < all; ++b) {
-      into[b].bounds.grow(from[b].bounds);
-      into[b].count += from[b].count;
+      into[b].grow(from[b]);
     }
   }
 
@@ -256,28 +251,21 @@ class Builder {
     const F4 top = F4{} + static_cast<float>(bins - 1);
     Bin* const per_axis[3] = {&bins_data_[0], &bins_data_[bins], &bins_data_[2 * static_cast<std::size_t>(bins)]};
     const std::size_t all = 3 * static_cast<std::size_t>(bins);
-    std::fill_n(bins_data_.begin(), all, Bin{Bounds::empty(), 0});
+    std::fill_n(bins_data_.begin(), all, Bin::empty());
     if (parallel_ && n >= parallel_binning_from && thread_count(options_.threads) >= 2) {
       // A large node (the top levels, which run before the subtrees are handed out): its two halves binned on
-      // two threads, the second into its own bins, then added up.
-      std::vector<Bin> second(2 * all, Bin{Bounds::empty(), 0});
-      std::fill_n(spare_.begin(), all, Bin{Bounds::empty(), 0});
+      // two threads, the second into its own bins, then added up (unions and sums: the same bins).
+      std::vector<Bin> second(all, Bin::empty());
       const std::uint32_t half = begin + n / 2;
       run_parts(2, 2, [&](std::size_t k) {
         detail::in_default_fp_environment([&] {
-          if (k == 0) bin_range(begin, half, bins, lo, factor, top, bins_data_.data(), spare_.data());
-          else bin_range(half, end, bins, lo, factor, top, second.data(), second.data() + all);
+          if (k == 0) bin_range(begin, half, bins, lo, factor, top, bins_data_.data());
+          else bin_range(half, end, bins, lo, factor, top, second.data());
         });
       });
-      merge(bins_data_.data(), spare_.data(), all);
       merge(bins_data_.data(), second.data(), all);
-      merge(bins_data_.data(), second.data() + all, all);
-    } else if (n >= alternate_bins_from) {
-      std::fill_n(spare_.begin(), all, Bin{Bounds::empty(), 0});
-      bin_range(begin, end, bins, lo, factor, top, bins_data_.data(), spare_.data());
-      merge(bins_data_.data(), spare_.data(), all);
     } else {
-      bin_range(begin, end, bins, lo, factor, top, bins_data_.data(), bins_data_.data());
+      bin_range(begin, end, bins, lo, factor, top, bins_data_.data());
     }
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1;
@@ -285,21 +273,18 @@ class Builder {
     for (int axis = 0; axis < 3; ++axis) {
       if (!split_axis[axis]) continue;
       const Bin* bin = per_axis[axis];
-      Bounds acc = Bounds::empty();
-      std::uint32_t count = 0;
+      Bin acc = Bin::empty();
       for (std::uint32_t b = bins - 1; b > 0; --b) {
-        acc.grow(bin[b].bounds);
-        count += bin[b].count;
-        right_area_[b] = half_area(acc, scale_);
-        right_count_[b] = count;
+        acc.grow(bin[b]);
+        right_area_[b] = half_area(acc.box(), scale_);
+        right_count_[b] = acc.count;
       }
-      acc = Bounds::empty();
-      count = 0;
+      acc = Bin::empty();
       for (std::uint32_t b = 0; b + 1 < bins; ++b) {
-        acc.grow(bin[b].bounds);
-        count += bin[b].count;
+        acc.grow(bin[b]);
+        const std::uint32_t count = acc.count;
         if (count == 0 || right_count_[b + 1] == 0) continue;
-        const double cost = half_area(acc, scale_) * count + right_area_[b + 1] * right_count_[b + 1];
+        const double cost = half_area(acc.box(), scale_) * count + right_area_[b + 1] * right_count_[b + 1];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -319,11 +304,19 @@ class Builder {
     Split s = Split::at(0);
     s.bounded = true;
     s.left = s.right = Bounds::empty();
-    for (std::uint32_t b = 0; b < bins; ++b) (b <= best_bin ? s.left : s.right).grow(per_axis[best_axis][b].bounds);
+    Bin side[2] = {Bin::empty(), Bin::empty()};
+    for (std::uint32_t b = 0; b < bins; ++b) side[b <= best_bin ? 0 : 1].grow(per_axis[best_axis][b]);
     const auto axis = static_cast<std::size_t>(best_axis);
+    // (the predicate is applied once to each ref: it gathers each side's centroid bounds too)
     const auto mid = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](const Ref& r) {
-      return static_cast<std::uint32_t>(bins_of(r.centroid(), lo, factor, top)[axis]) <= best_bin;
+      const F4 c = r.centroid();
+      const bool left = static_cast<std::uint32_t>(bins_of(c, lo, factor, top)[axis]) <= best_bin;
+      Bounds& b = left ? s.left : s.right;
+      b.clo = min4(b.clo, c), b.chi = max4(b.chi, c);
+      return left;
     });
+    s.left.lo = side[0].lo, s.left.hi = side[0].hi;
+    s.right.lo = side[1].lo, s.right.hi = side[1].hi;
     s.mid = static_cast<std::uint32_t>(mid - refs_.begin());
     return s;
   }
@@ -335,7 +328,6 @@ class Builder {
   bool parallel_;
   std::uint32_t bins_;
   std::vector<Bin> bins_data_;
-  std::vector<Bin> spare_;  // bin_range's second set of bins
   std::vector<double> right_area_;
   std::vector<std::uint32_t> right_count_;
 };
