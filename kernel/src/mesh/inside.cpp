@@ -1,5 +1,6 @@
 // inside(point, mesh) (docs/contract.md §7): on the surface, else the exact winding number by the owned crossings
-// of an axis-aligned ray from the point, through the BVH.
+// of an axis-aligned ray from the point, through the BVH — or, for most points of a closed mesh, the number of the
+// point's cell in the point-location grid (inside_grid.hpp), which is the walk's.
 //
 // For the ray o + t·s·e_k every value that decides a crossing is a planar orientation in the other two axes
 // (orient/orient_predicates.hpp), so a crossing costs a few 2×2 determinants, filtered; the owned rule itself is
