@@ -2,6 +2,8 @@
 // components and each component's winding number.
 #include "mesh/inside_grid.hpp"
 
+#include "orient/orient_predicates.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -12,8 +14,6 @@ namespace {
 // At most `max_cells` cells, `max_per_axis` along an axis.
 constexpr double max_cells = 1 << 22;
 constexpr double max_per_axis = 1024;
-
-double coordinate(const Vec3& v, int axis) noexcept { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
 
 }  // namespace
 
