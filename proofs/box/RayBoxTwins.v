@@ -418,8 +418,8 @@ Proof.
   - rewrite fle_val by assumption. apply Rle_bool_true. lra.
 Qed.
 
-(** ** The eight lanes: [ray_box_entries8] (V = Lanes8) broadcasts the ray's origin and inverse and t_min, t_max
-    to the lanes with [broadcast<Lanes8>(x)] = V{} + x, i.e. +0 + x: x itself, except that −0 becomes +0
+(** ** The eight lanes: [ray_box_entries8] (one Lanes8, or two Lanes4 or four Lanes2 by instruction set) broadcasts the ray's origin and inverse and t_min, t_max
+    to the lanes with [broadcast<V>(x)] = V{} + x, i.e. +0 + x: x itself, except that −0 becomes +0
     (TriangleTwins.v's [bcast] likewise); the faces are converted from binary32 exactly.  So each lane is
     [ray_box_entry_b] on the broadcast values: an entry −0 of the scalar test (t_min = −0 passed through) is +0
     in the lanes, the same real.  [ray_box_entries8_twin_sound]: the lanes keep the guarantee of

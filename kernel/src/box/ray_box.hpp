@@ -131,8 +131,8 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
   return s;
 }
 
-// One axis of ray_box_entry, written once for one box (V = double) and for the eight children of a node at
-// once (V = Lanes8, one box per lane): every lane performs exactly these operations in this order, so the
+// One axis of ray_box_entry, written once for one box (V = double) and for the children of a node, several at
+// once (V = Lanes8, Lanes4 or Lanes2, one box per lane): every lane performs exactly these operations in this order, so the
 // argument above and proofs/box/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
 // keeps t where the comparison is false, in particular where x is NaN.
 template <class V>
@@ -170,44 +170,73 @@ inline void set_walk_ray(detail::BvhWalk& w, const BvhRayTraversal::Slabs& s) no
   }
 }
 
-// The eight children of `node` at once (V = Lanes8): each lane converts its child's binary32 bounds to double
-// (exactly) and performs the test above. Slots beyond node.children() are not masked off: their empty boxes
-// are rejected unless every axis was left out of the test, so the caller skips an accepted empty slot
-// (BvhNode::empty_slot; it reads first and count of each accepted slot anyway). A stored box contains the
-// exact one (lo rounded down, hi up), so a t in the exact box's slab is in the stored box's (RayBox.v,
-// `slab_sound_outward`), and the test never rejects a child the exact ray meets. Bit s of the result: child s may be met; entries[s] is
-// then its entry bound. Internal linkage: the body depends on the instruction set of the translation unit
-// (bvh_walk_<isa>.cpp): AVX-512 runs the eight lanes in one register, AVX2 in two, SSE2 in four.
-using FaceRow = float __attribute__((vector_size(BvhNode::width * sizeof(float))));
+// The lanes of ray_box_entries8 in the translation unit's register width: one Lanes8 (a zmm) with AVX-512, two
+// Lanes4 (ymm) with AVX2, four Lanes2 (xmm) otherwise. GCC 12 turns a comparison of a vector wider than the
+// registers into one scalar comparison per lane (about 500 instructions per node with AVX2 when the walk ran
+// Lanes8 there, counted by callgrind), not into pairs of vector ones. Internal linkage, as ray_box_entries8's:
+// each translation unit has its own.
+namespace node_lanes {
+#if defined(__AVX512F__)
+constexpr int width = 8;
+using Lanes = detail::Lanes8;
+using Row = float __attribute__((vector_size(8 * sizeof(float))));
+[[gnu::always_inline]] static inline Lanes widen(const float* p) noexcept {  // exact: binary32 → binary64
+  Row r;
+  std::memcpy(&r, p, sizeof r);
+  return __builtin_convertvector(r, Lanes);
+}
+[[gnu::always_inline]] static inline unsigned met_bits(Lanes t0, Lanes t1) noexcept {
+  return static_cast<unsigned>(_mm512_cmp_pd_mask(reinterpret_cast<__m512d>(t0), reinterpret_cast<__m512d>(t1), _CMP_LE_OQ));
+}
+#elif defined(__AVX__)
+constexpr int width = 4;
+using Lanes = detail::Lanes4;
+[[gnu::always_inline]] static inline Lanes widen(const float* p) noexcept {  // (__builtin_convertvector: two halves)
+  return reinterpret_cast<Lanes>(_mm256_cvtps_pd(_mm_loadu_ps(p)));
+}
+[[gnu::always_inline]] static inline unsigned met_bits(Lanes t0, Lanes t1) noexcept {
+  return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(t0 <= t1)));
+}
+#else
+constexpr int width = 2;
+using Lanes = detail::Lanes2;
+using Row = float __attribute__((vector_size(2 * sizeof(float))));
+[[gnu::always_inline]] static inline Lanes widen(const float* p) noexcept {
+  Row r;
+  std::memcpy(&r, p, sizeof r);
+  return __builtin_convertvector(r, Lanes);
+}
+[[gnu::always_inline]] static inline unsigned met_bits(Lanes t0, Lanes t1) noexcept {
+  const detail::Mask2 met = t0 <= t1;
+  return static_cast<unsigned>(met[0] & 1) | static_cast<unsigned>(met[1] & 1) << 1;
+}
+#endif
+}  // namespace node_lanes
+
+// The eight children of `node` at once: each lane converts its child's binary32 bounds to double (exactly) and
+// performs the test above — the same operations in the same order whatever the lanes' width (node_lanes).
+// Slots beyond node.children() are not masked off: their empty boxes are rejected unless every axis was left
+// out of the test, so the caller skips an accepted empty slot (BvhNode::empty_slot; it reads first and count of
+// each accepted slot anyway). A stored box contains the exact one (lo rounded down, hi up), so a t in the exact
+// box's slab is in the stored box's (RayBox.v, `slab_sound_outward`), and the test never rejects a child the
+// exact ray meets. Bit s of the result: child s may be met; entries[s] is then its entry bound. Internal
+// linkage: the body depends on the instruction set of the translation unit (bvh_walk_<isa>.cpp).
 [[gnu::always_inline]] static inline unsigned ray_box_entries8(const detail::BvhWalk& w, const BvhNode& node,
                                                                double t_min, double t_max,
                                                                detail::Lanes8& entries) noexcept {
-  using detail::Lanes8;
-  static_assert(BvhNode::width == 8 && sizeof(FaceRow) == sizeof(node.bounds[0]) && alignof(BvhNode) % 32 == 0);
-  // Each face row is 32-byte aligned; GCC's vector types may alias their element type.
-  const auto* rows = reinterpret_cast<const FaceRow*>(node.bounds.data());
-  Lanes8 t0 = detail::broadcast<Lanes8>(t_min), t1 = detail::broadcast<Lanes8>(t_max);
-  for (std::size_t k = 0; k < 3; ++k)
-    ray_box_axis<Lanes8>(__builtin_convertvector(rows[w.near_face[k]], Lanes8),
-                         __builtin_convertvector(rows[w.far_face[k]], Lanes8), detail::broadcast<Lanes8>(w.origin[k]),
-                         detail::broadcast<Lanes8>(w.inverse_direction[k]), t0, t1);
-  entries = t0;
-#if defined(__AVX512F__)
-  const auto bits =
-      static_cast<unsigned>(_mm512_cmp_pd_mask(reinterpret_cast<__m512d>(t0), reinterpret_cast<__m512d>(t1), _CMP_LE_OQ));
-#else
-  const detail::Mask8 met = t0 <= t1;
-#if defined(__AVX__)
-  struct Halves {
-    __m256d lo, hi;
-  };
-  const auto h = std::bit_cast<Halves>(met);
-  const auto bits = static_cast<unsigned>(_mm256_movemask_pd(h.lo)) | static_cast<unsigned>(_mm256_movemask_pd(h.hi)) << 4;
-#else
+  using V = node_lanes::Lanes;
+  constexpr int width = node_lanes::width;
+  static_assert(BvhNode::width == 8 && sizeof(node.bounds[0]) == 8 * sizeof(float));
   unsigned bits = 0;
-  for (int s = 0; s < 8; ++s) bits |= static_cast<unsigned>(met[s] & 1) << s;
-#endif
-#endif
+  for (int part = 0; part < 8 / width; ++part) {
+    const auto row = [&](std::size_t face) { return node_lanes::widen(node.bounds[face].data() + part * width); };
+    V t0 = detail::broadcast<V>(t_min), t1 = detail::broadcast<V>(t_max);
+    for (std::size_t k = 0; k < 3; ++k)
+      ray_box_axis<V>(row(w.near_face[k]), row(w.far_face[k]), detail::broadcast<V>(w.origin[k]),
+                      detail::broadcast<V>(w.inverse_direction[k]), t0, t1);
+    std::memcpy(reinterpret_cast<double*>(&entries) + part * width, &t0, sizeof t0);
+    bits |= node_lanes::met_bits(t0, t1) << (part * width);
+  }
   return bits;
 }
 

@@ -1,7 +1,7 @@
 // The BVH walk: the next leaf of one ray's nearest-first traversal (BvhRayTraversal::next and the mesh
 // queries). Written once here and compiled per instruction set in bvh_walk_<isa>.cpp (AVX-512: the eight
-// child boxes of a node in one zmm pass per face row; AVX2: two ymm; portable: the same Lanes8 operations as
-// SSE2 pairs), chosen at run time by bvh.cpp — as the batch loops are (plane/fast_loop.hpp), and for the same
+// child boxes of a node in one zmm pass per face row; AVX2: two passes of four lanes (ymm); portable: four of
+// two (xmm) — box/ray_box.hpp, ray_box_entries8), chosen at run time by bvh.cpp — as the batch loops are (plane/fast_loop.hpp), and for the same
 // reason separate translation units: everything here is always inlined into the per-ISA entry point, so
 // those objects define no other symbol (tests/check_isa_objects.cmake checks it) and no AVX2 copy of a shared
 // inline function can be picked by the linker for other callers.
@@ -25,6 +25,7 @@ namespace raykernel::mesh_detail {
 
 // The first cache lines (up to four) of a deferred leaf's primitives, when the caller gave them (BvhWalk::leaf_data).
 [[gnu::always_inline]] inline void prefetch_leaf(const detail::BvhWalk& w, std::uint32_t first, std::uint32_t count) noexcept {
+  __builtin_prefetch(w.bvh->triangle_order().data() + first);  // the leaf's mesh indices
   if (w.leaf_data == nullptr) return;
   const unsigned char* p = w.leaf_data + static_cast<std::size_t>(first) * w.leaf_stride;
   const std::size_t bytes = std::min<std::size_t>(static_cast<std::size_t>(count) * w.leaf_stride, 256);

@@ -55,7 +55,7 @@ bool ray_blocked(const Ray& ray, const RayInterval& interval, const PreparedMesh
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
-      c.classify(ray, triangles[position], leaf.triangles[n], position, rule);
+      c.classify(ray, triangles[position], 0, position, rule);  // which triangle does not matter: no index read
       if (c.classification.relation != TriangleRelation::hit) continue;
       if (whole_ray || detail::within_interval(ray, c, interval)) return true;
     }
