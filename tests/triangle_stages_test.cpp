@@ -6,6 +6,7 @@
 // (as for the plane's dot products) would certify wrong signs.
 #include "core/det3_stages.hpp"
 #include "core/error_bounds.hpp"
+#include "triangle/ray_triangle_cascade.hpp"
 #include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_stages.hpp"
 
@@ -150,6 +151,46 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, TriangleStagesOnHardQueries, ::testing::Value
                              if (c == '-') c = '_';
                            return name;
                          });
+
+// The leaf filter's layout (triangle_relation_columns: four triangles, one per lane) computes, lane by lane, the
+// bits of the relation-only layout (triangle_relation_lanes: one triangle, πa, πb, πc, den in its lanes), and
+// triangle_certain_misses flags exactly the triangles whose fast relation is the filter's "outside" miss. The
+// four lanes: the query's triangle, its vertices rotated, another query's triangle, its orientation flipped.
+TEST_P(TriangleStagesOnHardQueries, LeafColumnsAreTheRelationLanesOfEachTriangle) {
+  const testkit::TriangleQueryKind kind = GetParam();
+  const std::uint64_t seed = 0x7e1b0000 + static_cast<std::uint64_t>(kind);
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE(std::string(testkit::to_string(kind)) + ", seed " + std::to_string(seed));
+  int misses = 0, lanes = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const TriangleQuery q = testkit::make_triangle_query(kind, bits);
+    const TriangleQuery other = testkit::make_triangle_query(kind, bits);
+    const Triangle& t = q.triangle;
+    const Triangle four[4] = {t, {t.b, t.c, t.a}, other.triangle, {t.a, t.c, t.b}};
+    const Triangle* const p[4] = {&four[0], &four[1], &four[2], &four[3]};
+    const detail::TriangleRelationColumns columns = detail::triangle_relation_columns(q.ray, p);
+    const unsigned miss = detail::triangle_certain_misses(q.ray, p);
+    for (int k = 0; k < 4; ++k) {
+      const auto want = detail::triangle_relation_lanes(q.ray, four[k]);
+      for (int j = 0; j < 4; ++j) {
+        const auto& column = j < 3 ? columns.pi[j] : columns.den;
+        const detail::FilterTerm<double> got{column.v[k], column.m[k]};
+        const auto expected = detail::lane(want.lanes, j);
+        ASSERT_TRUE(std::memcmp(&got, &expected, sizeof got) == 0)
+            << "lane " << k << ", value " << j << ": " << testkit::triangle_line({q.ray, four[k]});
+      }
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(columns.absolute[k]), std::bit_cast<std::uint64_t>(want.absolute[3]));
+      const auto fast = detail::fast_triangle_relation(q.ray, four[k], TriangleRule::owned);
+      const bool filter_miss = fast && fast->classification.relation == TriangleRelation::miss;
+      ASSERT_EQ(((miss >> k) & 1) != 0, filter_miss) << "lane " << k << ": " << testkit::triangle_line({q.ray, four[k]});
+      misses += filter_miss;
+      ++lanes;
+    }
+  }
+  RecordProperty("certain_misses", misses);
+  RecordProperty("lanes", lanes);
+}
 
 // ---- The filter at the ends of the exponent range ---------------------------------------------------------
 

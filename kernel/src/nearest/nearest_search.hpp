@@ -7,6 +7,10 @@
 // from the filter's values, and only when it cannot be is a best's t rounded early, then reused). Used by
 // nearest_hit for a plane set, a mesh and a scene of both (nearest/nearest_hit.cpp, mesh/nearest_mesh.cpp).
 //
+// A leaf's triangles are first screened four at a time (leaf_certain_misses, nearest/triangle_candidate.hpp: the
+// relation filter's first decision on four triangles in the lanes of one pass, the same bits as each triangle's
+// own); a certain miss is recorded as classify would record it, the others are classified one by one.
+//
 // Why the answer is the brute-force one:
 //   - Every plane of the set that can win is examined (nearest/nearest_screen.hpp: the screen sets aside only
 //     hits certainly farther than a plane the ray hits), and every triangle that can win is in a leaf the walk
@@ -265,6 +269,10 @@ class NearestSearch {
         bound_current_ = true;
       }
       if (!next_leaf(walk, bound, leaf)) break;
+      // The leaf's certain misses, four triangles at a time (leaf_certain_misses), for the group of n when a
+      // triangle of it is first classified.
+      unsigned misses = 0;
+      std::size_t group = SIZE_MAX;
       for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
         const std::uint32_t position = static_cast<std::uint32_t>(leaf.position + n);
         const Triangle& tri = triangles[position];
@@ -287,7 +295,12 @@ class NearestSearch {
         }
         const int slot = best_ == Best::triangle && triangle_best_ == 0 ? 1 : 0;
         TriangleCandidate& c = *triangle_[slot];
-        c.classify(ray_, tri, k, position, rule);
+        if (n / 4 != group) {
+          group = n / 4;
+          misses = leaf_certain_misses(ray_, triangles, leaf.position + 4 * group, leaf.triangles.size() - 4 * group);
+        }
+        if ((misses >> (n % 4)) & 1) c.set_certain_miss(ray_, tri, k, position);
+        else c.classify(ray_, tri, k, position, rule);
         tracer_.triangle_candidate(c.relation_stage);
         previous = &c;
         if (c.classification.relation != TriangleRelation::hit) continue;

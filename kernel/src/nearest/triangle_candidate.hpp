@@ -38,6 +38,8 @@
 #include <raykernel/nearest_scene.hpp>
 #include <raykernel/triangle.hpp>
 
+#include <span>
+
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -150,6 +152,19 @@ class TriangleCandidate {
       return;
     }
     classify_rare(rule);
+  }
+
+  // What classify sets for a triangle the leaf filter found certainly missed (leaf_certain_misses): the
+  // classification fast_triangle_relation would return, decided from the same stage-1 values.
+  [[gnu::always_inline]] void set_certain_miss(const Ray& ray, const Triangle& tri, std::size_t mesh_index,
+                                               std::uint32_t leaf_position) noexcept {
+    ray_ = &ray;
+    source = triangle = &tri;
+    index = mesh_index;
+    position = leaf_position;
+    has_stage2_ = has_expansions_ = rounded = false;
+    classification = {TriangleRelation::miss, TriangleLocation::outside, false};
+    relation_stage = Stage::filter;
   }
 
   // Another triangle with this one's vertices (repeats()): the same relation, location and t, so this
@@ -310,6 +325,17 @@ class TriangleCandidate {
 
 [[nodiscard]] inline int exact_order(const Ray& ray, const TriangleCandidate& a, const TriangleCandidate& b) {
   return exact::compare_triangle_t(ray, *a.source, *b.source);
+}
+
+// The triangles of a BVH leaf certainly missed by the ray, four at a time from `first` (at most `count` of them,
+// the rest of the leaf): bit j for triangles[first + j] (triangle_certain_misses; a lane past the leaf's end repeats
+// the first triangle, and its bit is cleared). The callers classify only the triangles whose bit is clear.
+[[nodiscard]] [[gnu::always_inline]] inline unsigned leaf_certain_misses(const Ray& ray, std::span<const Triangle> triangles,
+                                                                        std::size_t first, std::size_t count) noexcept {
+  const std::size_t lanes = count < 4 ? count : 4;
+  const Triangle* t[4];
+  for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles[first + (j < lanes ? j : 0)];
+  return triangle_certain_misses(ray, t) & ((1u << lanes) - 1);
 }
 
 }  // namespace raykernel::detail

@@ -1,8 +1,9 @@
 // occluded (docs/contract.md §8): any-hit queries on a mesh — a ray in its interval, and the open segment between
 // two points — and their references in rationals.
 //
-// A ray: the BVH walk of the nearest-hit module (mesh/bvh_walk.hpp) from t_min to t_max, each triangle classified
-// by the nearest-hit module's candidate (nearest/triangle_candidate.hpp: the certified cascade, every sign exact)
+// A ray: the BVH walk of the nearest-hit module (mesh/bvh_walk.hpp) from t_min to t_max, a leaf's certain misses
+// set aside four triangles at a time (leaf_certain_misses), each other triangle classified by the nearest-hit
+// module's candidate (nearest/triangle_candidate.hpp: the certified cascade, every sign exact)
 // and a hit's exact t placed against the bounds by within_interval (nearest/interval_bound.hpp); the first
 // triangle that passes answers. A segment: its direction q − p is not rounded, so no ray walk applies; the walk
 // descends into every box that overlaps the segment's bounding box (exact comparisons of doubles: a box holds its
@@ -53,7 +54,10 @@ bool ray_blocked(const Ray& ray, const RayInterval& interval, const PreparedMesh
   detail::TriangleCandidate c;
   BvhLeaf leaf;
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
+    unsigned misses = 0;
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
+      if (n % 4 == 0) misses = detail::leaf_certain_misses(ray, triangles, leaf.position + n, leaf.triangles.size() - n);
+      if ((misses >> (n % 4)) & 1) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
       c.classify(ray, triangles[position], 0, position, rule);  // which triangle does not matter: no index read
       if (c.classification.relation != TriangleRelation::hit) continue;
@@ -120,7 +124,10 @@ MeshHits all_hits_in(const Ray& ray, const RayInterval& interval, const Prepared
   BvhLeaf leaf;
   detail::TriangleCandidate c;
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
+    unsigned misses = 0;
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
+      if (n % 4 == 0) misses = detail::leaf_certain_misses(ray, triangles, leaf.position + n, leaf.triangles.size() - n);
+      if ((misses >> (n % 4)) & 1) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
       c.classify(ray, triangles[position], leaf.triangles[n], position, rule);
       if (c.classification.relation != TriangleRelation::hit || !detail::within_interval(ray, c, interval)) continue;

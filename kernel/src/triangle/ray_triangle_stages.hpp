@@ -190,6 +190,55 @@ struct TriangleLanes {
   return {dot_terms(x, cr), det3_absolute_term(x[0].v, x[1].v, x[2].v)};
 }
 
+// The same four values for four triangles at once, triangle k in lane k (the leaves of a mesh's BVH, in structure
+// of arrays): πa, πb, πc and den as four Lanes4, lane k of each computed by exactly the operations of
+// triangle_relation_lanes' lane for that value on triangle k (so the same bits: tests/triangle_stages_test.cpp).
+struct TriangleRelationColumns {
+  FilterTerm<Lanes4> pi[3], den;
+  Lanes4 absolute;  // d's absolute term, the same in every lane
+};
+[[nodiscard]] [[gnu::always_inline]] inline TriangleRelationColumns triangle_relation_columns(
+    const Ray& ray, const Triangle* const t[4]) noexcept {
+  const double ov[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const auto column = [&](const Vec3 Triangle::*vertex, double Vec3::*axis) {
+    return Lanes4{(t[0]->*vertex).*axis, (t[1]->*vertex).*axis, (t[2]->*vertex).*axis, (t[3]->*vertex).*axis};
+  };
+  constexpr double Vec3::*axes[3] = {&Vec3::x, &Vec3::y, &Vec3::z};
+  std::array<FilterLeaf<Lanes4>, 3> ea, eb, ec, ab, ac, x;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Lanes4 a = column(&Triangle::a, axes[i]), b = column(&Triangle::b, axes[i]), c = column(&Triangle::c, axes[i]);
+    const Lanes4 from{ov[i], ov[i], ov[i], ov[i]};
+    ea[i] = {a - from};
+    eb[i] = {b - from};
+    ec[i] = {c - from};
+    ab[i] = {b - a};
+    ac[i] = {c - a};
+    x[i] = {broadcast<Lanes4>(dv[i])};
+  }
+  return {{dot_terms(x, cross_terms(eb, ec)), dot_terms(x, cross_terms(ec, ea)), dot_terms(x, cross_terms(ea, eb))},
+          dot_terms(x, cross_terms(ab, ac)),
+          det3_absolute_term(x[0].v, x[1].v, x[2].v)};
+}
+
+// Bit k: triangle k is certainly missed — the four stage-1 signs certain and not all den's, the first decision of
+// fast_triangle_relation (triangle/ray_triangle_cascade.cpp, fast_relation: "outside", under either rule), taken
+// here from the same values for four triangles at once.
+[[nodiscard]] [[gnu::always_inline]] inline unsigned triangle_certain_misses(const Ray& ray,
+                                                                            const Triangle* const t[4]) noexcept {
+  const TriangleRelationColumns v = triangle_relation_columns(ray, t);
+  const Mask4 sa = det3_filter_lanes(v.pi[0], bounds::triangle_filter_pi_relative, v.absolute);
+  const Mask4 sb = det3_filter_lanes(v.pi[1], bounds::triangle_filter_pi_relative, v.absolute);
+  const Mask4 sc = det3_filter_lanes(v.pi[2], bounds::triangle_filter_pi_relative, v.absolute);
+  const Mask4 sden = det3_filter_lanes(v.den, bounds::triangle_filter_pi_relative, v.absolute);
+  const Mask4 certain = (sa != uncertain_lane) & (sb != uncertain_lane) & (sc != uncertain_lane) & (sden != uncertain_lane);
+  const Mask4 inside = (sa == sden) & (sb == sden) & (sc == sden);
+  const Mask4 miss = certain & ~inside;
+  unsigned bits = 0;
+  for (int k = 0; k < 4; ++k) bits |= static_cast<unsigned>(miss[k] & 1) << k;
+  return bits;
+}
+
 // num = ê_a·(ê_b × ê_c) in stage 1, with its absolute term.
 struct TriangleNumFilter {
   FilterTerm<double> value;
