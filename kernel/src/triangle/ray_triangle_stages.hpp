@@ -201,13 +201,14 @@ struct TriangleRelationColumns {
     const Ray& ray, const Triangle* const t[4]) noexcept {
   const double ov[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-  const auto column = [&](const Vec3 Triangle::*vertex, double Vec3::*axis) {
-    return Lanes4{(t[0]->*vertex).*axis, (t[1]->*vertex).*axis, (t[2]->*vertex).*axis, (t[3]->*vertex).*axis};
+  const auto coordinate = [](const Vec3& v, std::size_t i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); };
+  const auto column = [&](const Vec3 Triangle::*vertex, std::size_t i) {
+    return Lanes4{coordinate(t[0]->*vertex, i), coordinate(t[1]->*vertex, i), coordinate(t[2]->*vertex, i),
+                  coordinate(t[3]->*vertex, i)};
   };
-  constexpr double Vec3::*axes[3] = {&Vec3::x, &Vec3::y, &Vec3::z};
   std::array<FilterLeaf<Lanes4>, 3> ea, eb, ec, ab, ac, x;
   for (std::size_t i = 0; i < 3; ++i) {
-    const Lanes4 a = column(&Triangle::a, axes[i]), b = column(&Triangle::b, axes[i]), c = column(&Triangle::c, axes[i]);
+    const Lanes4 a = column(&Triangle::a, i), b = column(&Triangle::b, i), c = column(&Triangle::c, i);
     const Lanes4 from{ov[i], ov[i], ov[i], ov[i]};
     ea[i] = {a - from};
     eb[i] = {b - from};
