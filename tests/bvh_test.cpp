@@ -12,7 +12,7 @@
 //   traversal returns. The signs of den, num and the π are 3×3 determinants (orient3d-like), decided by a
 //   floating-point filter with a 32-fold margin over its error bound, and in GMP rationals when the filter
 //   is unsure; t ≤ bound is decided in rationals.
-// The long run (ctest label `long`, `bvh_traversal_1M`) checks 10^6 generated rays; RapidCheck prints its
+// The long run (ctest label `long`, `bvh_traversal_300k`) checks 3·10^5 generated rays; RapidCheck prints its
 // seed, RC_PARAMS="seed=N" reproduces a run.
 #include <raykernel/bvh.hpp>
 #include <raykernel/testkit/meshes.hpp>

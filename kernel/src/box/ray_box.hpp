@@ -132,8 +132,8 @@ inline BvhRayTraversal::Slabs make_slabs(const Ray& ray, const std::array<double
 }
 
 // One axis of ray_box_entry, written once for one box (V = double) and for the children of a node, several at
-// once (V = Lanes8, Lanes4 or Lanes2, one box per lane): every lane performs exactly these operations in this order, so the
-// argument above and proofs/box/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
+// once (V = Lanes8, Lanes4 or Lanes2, one box per lane): every lane performs exactly these operations in this
+// order, so the argument above and proofs/box/RayBox.v (`slab_sound`, `ray_box_sound`) hold lane by lane. `select(m, x, t)`
 // keeps t where the comparison is false, in particular where x is NaN.
 template <class V>
 [[gnu::always_inline]] inline void ray_box_axis(V near_plane, V far_plane, V origin, V inverse, V& t0, V& t1) noexcept {

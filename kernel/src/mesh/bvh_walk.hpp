@@ -1,10 +1,10 @@
 // The BVH walk: the next leaf of one ray's nearest-first traversal (BvhRayTraversal::next and the mesh
 // queries). Written once here and compiled per instruction set in bvh_walk_<isa>.cpp (AVX-512: the eight
 // child boxes of a node in one zmm pass per face row; AVX2: two passes of four lanes (ymm); portable: four of
-// two (xmm) — box/ray_box.hpp, ray_box_entries8), chosen at run time by bvh.cpp — as the batch loops are (plane/fast_loop.hpp), and for the same
-// reason separate translation units: everything here is always inlined into the per-ISA entry point, so
-// those objects define no other symbol (tests/check_isa_objects.cmake checks it) and no AVX2 copy of a shared
-// inline function can be picked by the linker for other callers.
+// two (xmm) — box/ray_box.hpp, ray_box_entries8), chosen at run time by bvh.cpp — as the batch loops are
+// (plane/fast_loop.hpp), and for the same reason separate translation units: everything here is always
+// inlined into the per-ISA entry point, so those objects define no other symbol (tests/check_isa_objects.cmake
+// checks it) and no AVX2 copy of a shared inline function can be picked by the linker for other callers.
 #pragma once
 
 #include "box/ray_box.hpp"

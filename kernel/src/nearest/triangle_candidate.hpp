@@ -38,11 +38,10 @@
 #include <raykernel/nearest_scene.hpp>
 #include <raykernel/triangle.hpp>
 
-#include <span>
-
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <cstdint>
 
 namespace raykernel::detail {
