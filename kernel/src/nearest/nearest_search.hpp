@@ -7,7 +7,7 @@
 // from the filter's values, and only when it cannot be is a best's t rounded early, then reused). Used by
 // nearest_hit for a plane set, a mesh and a scene of both (nearest/nearest_hit.cpp, mesh/nearest_mesh.cpp).
 //
-// A leaf's triangles are first screened four at a time (leaf_certain_misses, nearest/triangle_candidate.hpp: the
+// A leaf's triangles are first screened four at a time (LeafScreen, nearest/triangle_candidate.hpp: the
 // relation filter's first decision on four triangles in the lanes of one pass, the same bits as each triangle's
 // own); a certain miss is recorded as classify would record it, the others are classified one by one.
 //
@@ -269,10 +269,7 @@ class NearestSearch {
         bound_current_ = true;
       }
       if (!next_leaf(walk, bound, leaf)) break;
-      // The leaf's certain misses, four triangles at a time (leaf_certain_misses), for the group of n when a
-      // triangle of it is first classified.
-      unsigned misses = 0;
-      std::size_t group = SIZE_MAX;
+      LeafScreen screen(ray_, triangles, leaf.position, leaf.triangles.size());
       for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
         const std::uint32_t position = static_cast<std::uint32_t>(leaf.position + n);
         const Triangle& tri = triangles[position];
@@ -295,11 +292,7 @@ class NearestSearch {
         }
         const int slot = best_ == Best::triangle && triangle_best_ == 0 ? 1 : 0;
         TriangleCandidate& c = *triangle_[slot];
-        if (n / 4 != group) {
-          group = n / 4;
-          misses = leaf_certain_misses(ray_, triangles, leaf.position + 4 * group, leaf.triangles.size() - 4 * group);
-        }
-        if ((misses >> (n % 4)) & 1) c.set_certain_miss(ray_, tri, k, position);
+        if (screen.certainly_missed(n)) c.set_certain_miss(ray_, tri, k, position);
         else c.classify(ray_, tri, k, position, rule);
         tracer_.triangle_candidate(c.relation_stage);
         previous = &c;

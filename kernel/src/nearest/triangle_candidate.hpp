@@ -153,7 +153,7 @@ class TriangleCandidate {
     classify_rare(rule);
   }
 
-  // What classify sets for a triangle the leaf filter found certainly missed (leaf_certain_misses): the
+  // What classify sets for a triangle the leaf filter found certainly missed (LeafScreen): the
   // classification fast_triangle_relation would return, decided from the same stage-1 values.
   [[gnu::always_inline]] void set_certain_miss(const Ray& ray, const Triangle& tri, std::size_t mesh_index,
                                                std::uint32_t leaf_position) noexcept {
@@ -326,15 +326,33 @@ class TriangleCandidate {
   return exact::compare_triangle_t(ray, *a.source, *b.source);
 }
 
-// The triangles of a BVH leaf certainly missed by the ray, four at a time from `first` (at most `count` of them,
-// the rest of the leaf): bit j for triangles[first + j] (triangle_certain_misses; a lane past the leaf's end repeats
-// the first triangle, and its bit is cleared). The callers classify only the triangles whose bit is clear.
-[[nodiscard]] [[gnu::always_inline]] inline unsigned leaf_certain_misses(const Ray& ray, std::span<const Triangle> triangles,
-                                                                        std::size_t first, std::size_t count) noexcept {
-  const std::size_t lanes = count < 4 ? count : 4;
-  const Triangle* t[4];
-  for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles[first + (j < lanes ? j : 0)];
-  return triangle_certain_misses(ray, t) & ((1u << lanes) - 1);
-}
+// The triangles of a BVH leaf (`count` of them from `first` in `triangles`) the ray certainly misses, screened four
+// at a time (triangle_certain_misses) when a triangle of a group is first asked about; a lane past the leaf's end
+// repeats the group's first triangle and is not read. The callers classify only the triangles not missed.
+class LeafScreen {
+ public:
+  LeafScreen(const Ray& ray, std::span<const Triangle> triangles, std::size_t first, std::size_t count) noexcept
+      : ray_(ray), triangles_(triangles), first_(first), count_(count) {}
+
+  // Whether the leaf's n-th triangle is certainly missed.
+  [[gnu::always_inline]] bool certainly_missed(std::size_t n) noexcept {
+    if (n / 4 != group_) {
+      group_ = n / 4;
+      const std::size_t start = first_ + 4 * group_;
+      const std::size_t lanes = count_ - 4 * group_ < 4 ? count_ - 4 * group_ : 4;
+      const Triangle* t[4];
+      for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles_[start + (j < lanes ? j : 0)];
+      misses_ = triangle_certain_misses(ray_, t) & ((1u << lanes) - 1);
+    }
+    return ((misses_ >> (n % 4)) & 1) != 0;
+  }
+
+ private:
+  const Ray& ray_;
+  std::span<const Triangle> triangles_;
+  std::size_t first_, count_;
+  std::size_t group_ = SIZE_MAX;
+  unsigned misses_ = 0;
+};
 
 }  // namespace raykernel::detail

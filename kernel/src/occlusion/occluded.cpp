@@ -2,7 +2,7 @@
 // two points — and their references in rationals.
 //
 // A ray: the BVH walk of the nearest-hit module (mesh/bvh_walk.hpp) from t_min to t_max, a leaf's certain misses
-// set aside four triangles at a time (leaf_certain_misses), each other triangle classified by the nearest-hit
+// set aside four triangles at a time (LeafScreen), each other triangle classified by the nearest-hit
 // module's candidate (nearest/triangle_candidate.hpp: the certified cascade, every sign exact)
 // and a hit's exact t placed against the bounds by within_interval (nearest/interval_bound.hpp); the first
 // triangle that passes answers. A segment: its direction q − p is not rounded, so no ray walk applies; the walk
@@ -54,10 +54,9 @@ bool ray_blocked(const Ray& ray, const RayInterval& interval, const PreparedMesh
   detail::TriangleCandidate c;
   BvhLeaf leaf;
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
-    unsigned misses = 0;
+    detail::LeafScreen screen(ray, triangles, leaf.position, leaf.triangles.size());
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
-      if (n % 4 == 0) misses = detail::leaf_certain_misses(ray, triangles, leaf.position + n, leaf.triangles.size() - n);
-      if ((misses >> (n % 4)) & 1) continue;
+      if (screen.certainly_missed(n)) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
       c.classify(ray, triangles[position], 0, position, rule);  // which triangle does not matter: no index read
       if (c.classification.relation != TriangleRelation::hit) continue;
@@ -124,10 +123,9 @@ MeshHits all_hits_in(const Ray& ray, const RayInterval& interval, const Prepared
   BvhLeaf leaf;
   detail::TriangleCandidate c;
   while (next_leaf(walk, std::numeric_limits<double>::infinity(), leaf)) {
-    unsigned misses = 0;
+    detail::LeafScreen screen(ray, triangles, leaf.position, leaf.triangles.size());
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
-      if (n % 4 == 0) misses = detail::leaf_certain_misses(ray, triangles, leaf.position + n, leaf.triangles.size() - n);
-      if ((misses >> (n % 4)) & 1) continue;
+      if (screen.certainly_missed(n)) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
       c.classify(ray, triangles[position], leaf.triangles[n], position, rule);
       if (c.classification.relation != TriangleRelation::hit || !detail::within_interval(ray, c, interval)) continue;
