@@ -10,7 +10,8 @@
 #   - every harness has its fuzzer, its seed corpus zip (all of fuzz/corpus/NAME/), its dict and options;
 #   - the fuzzers depend on no shared library but the C/C++ runtime (ClusterFuzzLite's runner has no GMP,
 #     MPFR or libpng);
-#   - each fuzzer runs over its whole seed corpus and then fuzzes for FUZZ_SECONDS (default 10) with its
+#   - each fuzzer runs over its whole seed corpus and then fuzzes for FUZZ_SECONDS (default 2: the
+#     fuzzing itself is fuzz/ci-run-fuzzers.sh's; this checks that the build runs) with its
 #     dict and options, under the sanitizers with OSS-Fuzz's runtime options; any crash, sanitizer report,
 #     leak or timeout fails the check.
 # .ci/run calls it; it prints the time each part took. The scratch directory is build-cflite/ (kept for
@@ -24,7 +25,7 @@ root=$PWD
 start=$(date +%s)
 step() { printf '\n---- cflite check: %s (%ds)\n' "$*" "$(( $(date +%s) - start ))"; }
 fail() { printf 'cflite check: FAIL: %s\n' "$*" >&2; exit 1; }
-seconds=${FUZZ_SECONDS:-6}  # bounded so that .ci/run stays under 45 minutes on 2 cores
+seconds=${FUZZ_SECONDS:-2}  # bounded so that .ci/run stays under 45 minutes on 2 cores
 scratch=${CFLITE_CHECK_DIR:-$root/build-cflite}
 case "$scratch" in /*) ;; *) scratch=$root/$scratch ;; esac
 

@@ -4,14 +4,14 @@
 # sanitizer report, leak, timeout or disagreement; prints execs/s and the fraction of executions each
 # certified stage decided. .ci/run calls it after the tests.
 #
-#   fuzz/ci-run-fuzzers.sh                        # CI: 12 s per harness (11 harnesses: about 3 min in all)
+#   fuzz/ci-run-fuzzers.sh                        # CI: 10 s per harness (12 harnesses: 2 min of fuzzing)
 #   FUZZ_SECONDS=3600 fuzz/ci-run-fuzzers.sh      # longer, locally
 #   FUZZ_HARNESSES="plane nearest" fuzz/ci-run-fuzzers.sh
 #
 # The harnesses are those fuzz/CMakeLists.txt registers (the manifest $FUZZ_BUILD_DIR/fuzz/harnesses.txt):
 # plane, triangle, sphere, spawn, batch, cli, nearest, nearest_cli, scene, mesh_reader, occlusion, closest.
 #
-# Environment: FUZZ_SECONDS (per harness, default 20: CI's budget is the whole .ci/run in 45 min on 2 cores),
+# Environment: FUZZ_SECONDS (per harness, default 10: CI's budget is the whole .ci/run in 45 min on 2 cores),
 # FUZZ_HARNESSES (default: all in the manifest), FUZZ_BUILD_DIR (default build-fuzz), FUZZ_BUILD_JOBS (default
 # 2), FUZZ_EXTRA_ARGS (more libFuzzer flags), FUZZ_GCC_BUILD_DIR (default build, the README's build): when it
 # has the replay programs, every input the fuzzers saved is replayed with them too, i.e. through the
@@ -22,7 +22,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-seconds=${FUZZ_SECONDS:-12}  # bounded so that .ci/run stays under 45 minutes on 2 cores
+seconds=${FUZZ_SECONDS:-10}  # bounded so that .ci/run stays under 45 minutes on 2 cores
 build=${FUZZ_BUILD_DIR:-build-fuzz}
 jobs=${FUZZ_BUILD_JOBS:-2}
 case "$build" in /*) ;; *) build="$root/$build" ;; esac

@@ -1,9 +1,9 @@
 // A program built the way the caller in the field is: with -ffast-math, whose start-up code
 // (crtfastmath.o) sets flush-to-zero and denormals-are-zero before main. It runs every public entry point
-// of the library on 10^5 subnormal-heavy hard queries (ray–plane queries, and ray–triangle queries for the
+// of the library on N subnormal-heavy hard queries (ray–plane queries, and ray–triangle queries for the
 // triangle entry points), in that environment and in the default one, and
 // fails unless every answer is the same, bit for bit, and the environment is left as it was after every
-// call (tests/support/entry_points.hpp). ctest runs it (test `fast_math_program`).
+// call (tests/support/entry_points.hpp). ctest runs it on N = 2·10^4 (test `fast_math_program`); the default is 10^5.
 //
 // This file itself is compiled with -ffast-math: it compares no doubles, it only calls the library and
 // compares text.
