@@ -295,6 +295,32 @@ Definition tri_fast_relation (x : list Z) : list Z :=
 End Tri4.
 Definition run_tri_fast_relation := Tri4.tri_fast_relation.
 
+(** The mesh leaves' screen [triangle_certain_misses] (triangle/ray_triangle_stages.hpp): "o d" and four triangles
+    "a b c" (42 words); per triangle 1 when [fast_relation_tri_b] answers a miss — its first decision, the four
+    stage-1 signs certain and not all den's, which is what the screen decides for four triangles at once — else
+    0.  Correct by [fast_relation_tri_correct]: a 1 is §6's miss under both rules. *)
+Module TriScreen.
+Import TriangleTwins TriangleCascadeTwins.
+Definition screen_bit (o d a b c : TVec) : Z :=
+  match fast_relation_tri_b o d a b c with
+  | Some k => match trel k with TMiss => 1%Z | _ => 0%Z end
+  | None => 0%Z
+  end.
+Fixpoint screen_bits (o d : TVec) (n : nat) (x : list Z) : list Z :=
+  match n, x with
+  | S n', ax :: ay :: az :: bx :: by_ :: bz :: cx :: cy :: cz :: rest =>
+      screen_bit o d (Tri.tv ax ay az) (Tri.tv bx by_ bz) (Tri.tv cx cy cz) :: screen_bits o d n' rest
+  | _, _ => []
+  end.
+Definition tri_leaf_screen (x : list Z) : list Z :=
+  match x with
+  | ox :: oy :: oz :: dx :: dy :: dz :: rest =>
+      if Nat.eqb (length rest) 36 then screen_bits (Tri.tv ox oy oz) (Tri.tv dx dy dz) 4 rest else []
+  | _ => []
+  end.
+End TriScreen.
+Definition run_tri_leaf_screen := TriScreen.tri_leaf_screen.
+
 (** [fast_triangle_intersection] (TriangleIntersectTwins.v): "mode o d a b c", mode = t + 2 · barycentric (the
     options asked, 0..3, an integer word).  For the owned rule and then the closed one: "0" when the fast path
     does not answer, else "1", the answer (relation, location, owned, t, ua, ub, uc, relation stage, rounding
@@ -549,7 +575,7 @@ Extraction "twins.ml" run_two_sum run_two_diff run_two_prod run_dot3_rounded run
   run_half_gap run_fast_answer run_fast_answer_pair run_fast_relation run_fast_relation_pair
   run_build_expansions run_compare_expansion run_quotient_boundary run_nearest_compare
   run_tri_filter run_tri_relation_lanes run_tri_compensated run_tri_compensated_lanes run_tri_expansion
-  run_tri_fast_relation run_tri_fast_intersect
+  run_tri_fast_relation run_tri_leaf_screen run_tri_fast_intersect
   run_cascade_intersect run_cascade_relation
   run_tri_cascade_intersect run_tri_cascade_relation
   run_orient2d run_orient3d

@@ -738,6 +738,24 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            o.i(static_cast<int>(p.relation)), o.i(static_cast<int>(p.location)), o.i(p.owned ? 1 : 0);
          }
        })},
+      // The mesh leaves' screen (triangle/ray_triangle_stages.hpp, triangle_certain_misses; the twin in
+      // proofs/twins/Extract.v, TriScreen): "o d" and four triangles "a b c", the four certain-miss bits.
+      {"tri_leaf_screen",
+       [](const Words& w, Out& o) {
+         if (w.size() != 42) return false;
+         const std::vector<double> x = doubles(w);
+         const raykernel::Ray ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}};
+         raykernel::Triangle t[4];
+         const raykernel::Triangle* p[4];
+         for (std::size_t k = 0; k < 4; ++k) {
+           const double* v = &x[6 + 9 * k];
+           t[k] = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
+           p[k] = &t[k];
+         }
+         const unsigned bits = triangle_certain_misses(ray, p);
+         for (int k = 0; k < 4; ++k) o.i((bits >> k) & 1u);
+         return true;
+       }},
       // The intersection's fast path (proofs/triangle/TriangleIntersectTwins.v): the options from the first word
       // (t + 2 · barycentric), fast_triangle_intersection and, when it answers, the public intersect_traced
       // and intersect, for the owned rule and the closed one.

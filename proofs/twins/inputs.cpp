@@ -874,6 +874,22 @@ const std::map<std::string, Generator>& generators() {
       {"tri_compensated", [](Source& s) { return s.triangle_query(); }},
       {"tri_compensated_lanes", [](Source& s) { return s.triangle_query(); }},
       {"tri_fast_relation", [](Source& s) { return s.triangle_query(); }},
+      // the leaves' screen: a query's ray and four triangles, in a random order: the query's own, its vertices
+      // rotated, its orientation flipped, and another query's (1 in 8 of all 42 words with one raw word)
+      {"tri_leaf_screen",
+       [](Source& s) {
+         const Args q = s.triangle_query(), other = s.triangle_query();
+         const double* a = &q[6];
+         const double* b = &q[9];
+         const double* c = &q[12];
+         const double* triangles[4][3] = {{a, b, c}, {b, c, a}, {a, c, b}, {&other[6], &other[9], &other[12]}};
+         for (std::size_t k = 3; k > 0; --k) std::swap(triangles[k], triangles[s.below(k + 1)]);
+         Args x(q.begin(), q.begin() + 6);
+         for (const auto& t : triangles)
+           for (const double* v : t) x.insert(x.end(), v, v + 3);
+         if (s.chance(8)) x[s.below(42)] = s.raw();
+         return x;
+       }},
       // stage 3 (proofs/triangle/TriangleStage3Twins.v): the determinant's index 0..4 as an integer word, then the query
       {"tri_expansion", [](Source& s) { return word_then_triangle_query(s, s.below(5)); }},
       // fast_triangle_intersection (proofs/triangle/TriangleIntersectTwins.v): the options asked, t + 2 · barycentric

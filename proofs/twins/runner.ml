@@ -39,6 +39,7 @@ let routines : (string * (Z.t list -> Z.t list)) list = [
   ("tri_compensated_lanes", Twins.run_tri_compensated_lanes);
   ("tri_expansion", Twins.run_tri_expansion);
   ("tri_fast_relation", Twins.run_tri_fast_relation);
+  ("tri_leaf_screen", Twins.run_tri_leaf_screen);
   ("tri_fast_intersect", Twins.run_tri_fast_intersect);
   ("cascade_intersect", Twins.run_cascade_intersect);
   ("cascade_relation", Twins.run_cascade_relation);

@@ -225,9 +225,10 @@ struct TriangleRelationColumns {
 // Bit k: triangle k is certainly missed — the four stage-1 signs certain and not all den's, the first decision of
 // fast_triangle_relation (triangle/ray_triangle_cascade.cpp, fast_relation: "outside", under either rule), taken
 // here from the same values for four triangles at once.
-// Certified by: proofs/triangle/TriangleCascadeTwins.v, `fast_relation_tri_correct` (the decision, on these values:
-// the twin runner checks fast_relation bit for bit, tests/triangle_stages_test.cpp checks that lane k here is
-// fast_relation's values of triangle k and that bit k is set exactly when fast_relation answers that miss).
+// Certified by: proofs/triangle/TriangleCascadeTwins.v, `fast_relation_tri_correct` (the decision, on these values);
+// tied by the twin runner's routine tri_leaf_screen (proofs/twins/Extract.v, TriScreen: bit k against
+// fast_relation_tri_b answering a miss for triangle k, in every lane variant) and by
+// tests/triangle_stages_test.cpp (lane k here is fast_relation's values of triangle k, bit for bit).
 [[nodiscard]] [[gnu::always_inline]] inline unsigned triangle_certain_misses(const Ray& ray,
                                                                             const Triangle* const t[4]) noexcept {
   const TriangleRelationColumns v = triangle_relation_columns(ray, t);
