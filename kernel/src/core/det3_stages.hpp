@@ -28,6 +28,7 @@
 //   proofs/triangle/TriangleTwins.v, `triangle_den_lane_view_filter_twin_sound`
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/eft.hpp"
 #include "core/enclosure.hpp"
 #include "core/lanes.hpp"
@@ -83,7 +84,7 @@ template <class V>
 // 16·S ⊕ 2^52 = 2^52 + n exactly (16·S < 2^52), whose bit pattern is that of 2^52 plus n; adding U_A = 32·2^-1074
 // is exact, and 2^-1074·k for an integer k < 2^53 has the bit pattern k. For S ≥ 2^48 (and NaN) the formula,
 // evaluated on max(S, 2^48) so that no lane computes a subnormal. The same bits as the formula for every input:
-// tests/stages_test.cpp (DetAbsoluteTerm) checks it against the formula bit for bit, and the twin runner's
+// tests/triangle_stages_test.cpp (DetAbsoluteTerm) checks it against the formula bit for bit, and the twin runner's
 // models compute the formula.
 inline constexpr double absolute_term_subnormal_below = 0x1p48;  // K_A ⊗ S is subnormal below it (exact value)
 inline constexpr double absolute_term_integer_shift = 0x1p52;     // x ⊕ 2^52 rounds x ∈ [0, 2^52) to an integer
@@ -115,7 +116,7 @@ template <class V>
 template <class V, class Relative>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerOf<V> det3_filter_lanes(const FilterTerm<V>& r, Relative relative,
                                                                             V absolute) noexcept {
-  const V bound = relative * r.m + absolute;
+  const V bound = plus_absolute_term<V>(relative * r.m, absolute);  // ⊕ A (core/absolute_terms.hpp)
   return sign_lanes(r.v > bound, r.v < -bound);
 }
 
@@ -177,7 +178,7 @@ template <class V>
 template <class V>
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> det3_enclosure(const CompensatedTerm<V>& t, double relative,
                                                                          V absolute) noexcept {
-  const V radius = relative * t.m + absolute;
+  const V radius = plus_absolute_term<V>(relative * t.m, absolute);
   const MaskOf<V> finite = both(abs(t.h) <= bounds::largest_finite, abs(t.l) <= bounds::largest_finite);
   return {t.h, t.l, select(finite, radius, V{} + HUGE_VAL)};
 }

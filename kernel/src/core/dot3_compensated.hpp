@@ -4,6 +4,7 @@
 // from which round_quotient rounds t correctly. Cost over stage 1: 6 FMA, 2 TwoSum, 5 add.
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/dot3_filter.hpp"
 #include "core/eft.hpp"
 #include "core/enclosure.hpp"
@@ -32,7 +33,7 @@ template <class V>
   const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
   const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
   const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
-  return {s3.hi, lo, bounds::compensated_relative * stage1.magnitude + bounds::compensated_absolute};
+  return {s3.hi, lo, plus_absolute<bounds::compensated_absolute>(bounds::compensated_relative * stage1.magnitude)};
 }
 
 template <class V>
@@ -87,8 +88,8 @@ template <class V>
   // x.hi. So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
   // proofs/plane/PlaneRefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
   return {x.hi, lo,
-          (bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo)) +
-              bounds::refined_absolute};
+          plus_absolute<bounds::refined_absolute>(bounds::refined_relative * stage1.magnitude +
+                                                  bounds::refined_low_relative * std::fabs(lo))};
 }
 
 }  // namespace raykernel::detail

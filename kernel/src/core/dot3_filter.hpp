@@ -7,6 +7,7 @@
 // from the rounded products, and says `uncertain` where the bound cannot decide. Cost: 6 mul, 6 add, 3 abs.
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/error_bounds.hpp"
 #include "core/sign.hpp"
 
@@ -59,7 +60,7 @@ template <class V>
 // (The constant is a double, or one per lane: den's and num's when a vector holds both of one query.)
 template <class V, class C>
 [[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, C relative_constant) noexcept {
-  return relative_constant * r.magnitude + bounds::filter_absolute;
+  return plus_absolute<bounds::filter_absolute>(relative_constant * r.magnitude);  // ⊕ 3μ (core/absolute_terms.hpp)
 }
 
 template <class V, class C>

@@ -16,6 +16,7 @@
 // place of Veltkamp splitting. Round-to-nearest is required (the default environment, fp_environment.hpp).
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/eft.hpp"
 #include "core/enclosure.hpp"
 #include "core/error_bounds.hpp"
@@ -225,7 +226,7 @@ template <std::size_t N>
     lo += s.lo;
     magnitude += std::fabs(s.lo);
   }
-  return {q, lo, magnitude * bounds::tail_sum_relative + bounds::tail_sum_absolute};
+  return {q, lo, plus_absolute<bounds::tail_sum_absolute>(magnitude * bounds::tail_sum_relative)};
 }
 
 }  // namespace raykernel::detail

@@ -88,7 +88,11 @@ template <class V>
                                   both(abs_q >= quotient_min_magnitude, abs_q <= largest_finite));
   const V x = ((abs_q0 * den.radius) + num.radius) * quotient_enclosure_factor;
   const V y = ((abs_q0 * quotient_relative) + abs(w)) * abs_D;
-  const V h = half_gap_to_nearer_neighbour(q);
+  // Where a guard fails (a zero numerator among them) the test does not count, and its operands are taken
+  // from q = 1 instead of q: the half gap of 0 or of a subnormal q is no normal number, and its product with
+  // |D| would overflow (raising the flag, at the cost of an assist, and clearing it on the way out: fp_environment.hpp).
+  // The same answers: `certain` is false there either way.
+  const V h = half_gap_to_nearer_neighbour(select(in_range, q, broadcast<V>(1.0)));
   return {q, both(in_range, (x + y) * quotient_test_factor < h * abs_D)};
 }
 

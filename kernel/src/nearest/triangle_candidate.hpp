@@ -175,10 +175,10 @@ class TriangleCandidate {
   }
 
   [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure num_filter() const noexcept {
-    return {stage1_.num.v, bounds::triangle_filter_num_relative * stage1_.num.m + stage1_.absolute_e};
+    return {stage1_.num.v, plus_absolute_term(bounds::triangle_filter_num_relative * stage1_.num.m, stage1_.absolute_e)};
   }
   [[gnu::always_inline]] [[nodiscard]] RoundedEnclosure den_filter() const noexcept {
-    return {stage1_.den.v, bounds::triangle_filter_pi_relative * stage1_.den.m + stage1_.absolute_d};
+    return {stage1_.den.v, plus_absolute_term(bounds::triangle_filter_pi_relative * stage1_.den.m, stage1_.absolute_d)};
   }
   [[gnu::always_inline]] [[nodiscard]] const Enclosure& num_compensated() noexcept { return stage2().num; }
   [[gnu::always_inline]] [[nodiscard]] const Enclosure& den_compensated() noexcept { return stage2().den; }

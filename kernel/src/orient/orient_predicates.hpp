@@ -12,6 +12,7 @@
 // d × (q − p) have components ±(q_m − p_m), whose signs are comparisons of doubles.
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/escalation.hpp"
 #include "core/fp_requirements.hpp"
 #include "core/sign.hpp"
@@ -86,7 +87,7 @@ namespace raykernel::mesh_detail {
   const double y1 = coordinate(p, j) - coordinate(r, j), x2 = coordinate(q, i) - coordinate(r, i);
   const double left = x1 * y2, right = y1 * x2;
   const double det = left - right;
-  const double bound = bounds::orient2d_filter_relative * (std::fabs(left) + std::fabs(right)) + bounds::orient2d_filter_absolute;
+  const double bound = detail::plus_absolute<bounds::orient2d_filter_absolute>(bounds::orient2d_filter_relative * (std::fabs(left) + std::fabs(right)));
   return (det > bound) - (det < -bound);
 }
 

@@ -3,6 +3,7 @@
 // invalid). Derivations, ranges and theorems: spawn_certified.cpp.
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/dot3_compensated.hpp"
 #include "core/eft.hpp"
 #include "core/enclosure.hpp"
@@ -67,8 +68,8 @@ namespace raykernel::detail {
   const double a[3] = {dd.hi, nn.hi, 0}, alpha[3] = {dd.lo, nn.lo, 0}, b[3] = {o, d, 0};
   const Enclosure v = compensated_dot3(a, alpha, b, dot3_rounded(a, b));
   const double propagated = std::fabs(o) * D.radius + std::fabs(d) * N.radius;
-  return {v.hi, v.lo, raykernel::bounds::affine_propagation_factor * (propagated + v.radius) +
-                          raykernel::bounds::affine_absolute};
+  return {v.hi, v.lo, plus_absolute<raykernel::bounds::affine_absolute>(
+                          raykernel::bounds::affine_propagation_factor * (propagated + v.radius))};
 }
 
 // The origin of spawn (to_target = false: s = sign(w·N)) or spawn_to (to_target = true: s = σ(q)), when every

@@ -9,6 +9,7 @@
 //   `sphere_c_encloses` and `sphere_d_encloses`), in the model (RN on the reals) for every binary64 input.
 #pragma once
 
+#include "core/absolute_terms.hpp"
 #include "core/dot3_filter.hpp"
 #include "core/error_bounds.hpp"
 #include "core/sign.hpp"
@@ -43,13 +44,13 @@ struct SphereFilterSigns {
   const double q = sphere.radius * sphere.radius;
   const double c = rs.value - q;
   const double pc = rs.magnitude + q;  // P_C ≥ |Ĉ|
-  const double ec = bounds::sphere_filter_c_relative * pc + bounds::sphere_filter_c_absolute;
+  const double ec = plus_absolute<bounds::sphere_filter_c_absolute>(bounds::sphere_filter_c_relative * pc);
   const double a = ra.value, b = rb.value;
   const double dv = b * b - a * c;
   // E_D from the magnitudes alone (E_A, E_B, E_C are within 2κ of them: SphereFilter.v, `floor_covers`).
   const double x = rb.magnitude + bounds::sphere_filter_d_floor, y = a + bounds::sphere_filter_d_floor,
                z = pc + bounds::sphere_filter_d_floor;
-  const double ed = bounds::sphere_filter_d_relative * (x * x + y * z) + bounds::sphere_filter_d_absolute;
+  const double ed = plus_absolute<bounds::sphere_filter_d_absolute>(bounds::sphere_filter_d_relative * (x * x + y * z));
   return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv, ec, ed};
 }
 

@@ -1,0 +1,99 @@
+// The error bounds' absolute terms, added without a subnormal operand.
+//
+// Every error bound of the certified stages ends in an absolute term μ_B — a small multiple of 2^-1074
+// (error_bounds.hpp: 3μ, 8μ, 2^-1070, ...) — that covers products which underflow: B = X ⊕ μ_B. Those constants
+// are subnormal, and on x86 an operation with a subnormal operand raises the denormal-operand flag (MXCSR.DE);
+// a sticky flag that goes from clear to set costs a microcode assist, and every public call then clears it
+// again when it restores the caller's flags (fp_environment.hpp). Measured on the degenerate plane workload
+// (the caller's flags holding inexact, as after any inexact operation): 217 ns a query with the constants as
+// operands, 130 ns with DE already set — the difference is that assist, paid by every call. So the sums are
+// formed here, bit for bit the same, from normal operands only.
+//
+// plus_absolute<M>(x) = RN(x + M), M = k·2^-1074 with 1 ≤ k ≤ 2^18 (the constants above), for every double x:
+//
+//   |x| ≥ T = 2^-1000 (and ±inf, NaN): RN(x + M) = x, since the doubles next to x on either side are at least
+//     2^-1053 away and M ≤ 2^-1056 is less than half of that (for NaN and ±inf, x + M is x). So the answer is x.
+//   |x| < T: every double is a multiple of 2^-1074, so x + M = S is one, with |S| < 2^-999. With L = 2^600,
+//     x ⊗ L = x·L and M·L (a constant) are exact and normal (or zero: x = ±0), and RN(x·L + M·L) = L·RN(S):
+//     where |S| ≥ 2^-1022 both roundings are to 53 significant bits in the normal range, and scaling by a power
+//     of two commutes with them; where |S| < 2^-1022, S is a subnormal double (RN(S) = S) and L·S, a multiple
+//     of 2^-474 below 2^-422, has at most 52 significant bits (RN(L·S) = L·S). Then ⊗ 2^-600 is exact: it gives
+//     the double RN(S). The operand of that last product is normal, and x·L is computed from x clamped to
+//     [−T, T] in every lane (the lanes with |x| ≥ T take x), so no lane forms anything subnormal or overflows
+//     — except from a subnormal x itself (an input so small that its own operations raise the flag anyway).
+//
+// The same bits as X ⊕ M for every input, so every proof of a bound written X ⊕ M (and every twin, whose
+// models compute X ⊕ M) holds unchanged: tests/fp_environment_test.cpp (AbsoluteTerms) checks it bit for bit on
+// each constant, for one value and per lane, across the binades around T and 2^-1022, signed zeros, subnormals,
+// ±inf, NaN and random bit patterns; the twin runner compares the C++ bounds with the models' X ⊕ M on every
+// routine. det3_stages.hpp's det3_absolute_term
+// is the same idea for the determinants' dynamic term (K_A ⊗ S) ⊕ U_A.
+#pragma once
+
+#include "core/lanes.hpp"
+
+#include <type_traits>
+
+namespace raykernel::detail {
+
+inline constexpr double absolute_sum_threshold = 0x1p-1000;  // T: below it in magnitude, the lifted sum
+inline constexpr double absolute_sum_lift = 0x1p600;         // L
+inline constexpr double absolute_sum_drop = 0x1p-600;        // 1/L
+
+// RN(x + M) (see above). V is double or a Lanes type.
+template <double M, class V>
+[[nodiscard]] [[gnu::always_inline]] inline V plus_absolute(V x) noexcept {
+  static_assert(M >= 0x1p-1074 && M <= 0x1p-1056, "an absolute term: k·2^-1074 with 1 ≤ k ≤ 2^18");
+  constexpr double lifted_m = M * absolute_sum_lift;  // exact: a normal number
+  if constexpr (std::is_same_v<V, double>) {
+    // One value: a branch, taken only for the (rare) bounds below T.
+    if (abs(x) < absolute_sum_threshold) [[unlikely]]
+      return (x * absolute_sum_lift + lifted_m) * absolute_sum_drop;
+    return x;
+  } else {
+    const auto small = abs(x) < V{} + absolute_sum_threshold;
+    const V safe = select(small, x, V{} + absolute_sum_threshold);
+    const V lifted = (safe * absolute_sum_lift + lifted_m) * absolute_sum_drop;
+    return select(small, lifted, x);
+  }
+}
+
+// RN(x + a) for a dynamic absolute term a ≥ 0 (the determinants' A, det3_stages.hpp: subnormal for every input
+// of ordinary size), for every double x, without a subnormal operand unless x is one:
+//
+//   a ≥ 2^-1022, ±inf or NaN: x ⊕ a as written (a is not subnormal).
+//   a < 2^-1022 (subnormal or zero), |x| ≥ T_a = 2^-968 or x NaN: RN(x + a) = x, since the doubles next to x are
+//     at least 2^-1021 away and a < 2^-1022 is less than half of that.
+//   a < 2^-1022, |x| < T_a: the lifted sum, as above, with a·L = n·2^-474 formed from a's bit pattern n = a/2^-1074
+//     (n < 2^52: (2^52 + n) has the bits of 2^52 plus n, and (2^52 + n) ⊖ 2^52 = n exactly) instead of from a.
+//
+// a's size is read from its bits (an integer comparison: comparing a subnormal raises the flag too). The same bits
+// as x ⊕ a for every x and every a ≥ 0: tests/fp_environment_test.cpp (AbsoluteTerms) checks it as above.
+inline constexpr double absolute_term_threshold = 0x1p-968;  // T_a
+inline constexpr double smallest_normal = 0x1p-1022;
+inline constexpr double integer_shift = 0x1p52;              // 2^52 + n for n < 2^52 from the bits
+inline constexpr double lifted_unit = 0x1p-474;              // 2^-1074·L
+
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V plus_absolute_term(V x, V a) noexcept {
+  if constexpr (std::is_same_v<V, double>) {
+    if (to_bits(a) < to_bits(smallest_normal)) [[likely]] {
+      if (!(abs(x) < absolute_term_threshold)) [[likely]]
+        return x;
+      const double a_lifted = (from_bits(to_bits(integer_shift) + to_bits(a)) - integer_shift) * lifted_unit;
+      return (x * absolute_sum_lift + a_lifted) * absolute_sum_drop;
+    }
+    return x + a;
+  } else {
+    const auto a_small = to_bits(a) < to_bits(V{} + smallest_normal);  // unsigned: a sign bit is not small
+    const auto x_small = abs(x) < V{} + absolute_term_threshold;
+    const V a_safe = select(a_small, a, V{});  // the bits n of a small a, 0 elsewhere
+    const V a_lifted = (from_bits(to_bits(V{} + integer_shift) + to_bits(a_safe)) - integer_shift) * lifted_unit;
+    const V x_safe = select(x_small, x, V{} + absolute_term_threshold);
+    const V lifted = (x_safe * absolute_sum_lift + a_lifted) * absolute_sum_drop;
+    const V direct = x + select(a_small, V{}, a);
+    return select(a_small, select(x_small, lifted, x), direct);
+  }
+}
+
+}  // namespace raykernel::detail
