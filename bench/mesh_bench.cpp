@@ -14,6 +14,9 @@
 //                                   doubles (no guarantee), pruning by its t
 //   mesh/{embree,embree_robust}/<mesh>   rays/s of rtcIntersect1 in Embree's default and robust modes (float
 //                                   mesh and rays: Embree's answers are for the float data)
+//   mesh/warm/{certified,embree_robust}/<mesh>   the certified nearest hit and rtcIntersect1 (robust) on the
+//                                   first 16 rays only, cycled: what they read stays in the caches, so the
+//                                   difference from the rows above is the time spent waiting for memory
 //   mesh/embree_robust_packet8/<mesh>    rtcIntersect8
 //   mesh/embree_robust_medium[_build]/<mesh>   Embree robust built without spatial splits (BUILD_QUALITY_MEDIUM;
 //                                   the rows above use HIGH)
@@ -212,20 +215,24 @@ std::optional<double> moller_trumbore(const Ray& r, const Triangle& tri) {
   return t;
 }
 
+constexpr std::size_t warm_rays = 16;  // the warm rows' rays (mesh/warm/...)
+
 void set_rate(benchmark::State& state, std::int64_t per_iteration) {
   state.SetItemsProcessed(state.iterations() * per_iteration);
 }
 
-// A ray benchmark: `query(fixture, ray)` for ray after ray, each thread starting elsewhere in the list.
+// A ray benchmark: `query(fixture, ray)` for ray after ray, each thread starting elsewhere in the list; with
+// `rays`, only the list's first `rays` rays, cycled (the warm rows: what they read stays in the caches).
 template <class Prepare, class Query>
-void ray_benchmark(benchmark::State& state, const std::string& mesh, Prepare prepare, Query query) {
+void ray_benchmark(benchmark::State& state, const std::string& mesh, Prepare prepare, Query query,
+                   std::size_t rays = 0) {
   Fixture* f;
   {
     std::lock_guard lock(fixture_mutex);
     f = &fixture(mesh);
     prepare(*f);
   }
-  const std::size_t n = f->rays.size();
+  const std::size_t n = rays != 0 ? std::min(rays, f->rays.size()) : f->rays.size();
   std::size_t i = static_cast<std::size_t>(state.thread_index()) * 7919 % n;
   std::uint64_t sink = 0;
   for (auto _ : state) {
@@ -488,6 +495,18 @@ void register_all() {
       if (state.threads() == 1) walk_counters(state, m);
     })->Apply(threads);
 
+    // Warm: the same query on the first 16 rays only, cycled, so that the nodes and triangles they read stay
+    // in the caches (about 40 KB): the arithmetic's time without the memory's, against Embree's warm row below.
+    benchmark::RegisterBenchmark(("mesh/warm/certified/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+          [](Fixture& f, const Ray& r) {
+            const auto hit = nearest_hit(r, *f.prepared);
+            return hit ? std::uint64_t{hit->triangle} : 0;
+          },
+          warm_rays);
+    })->Apply(threads);
+
     // Any-hit (shadow rays): raykernel's occluded (owned rule, stops at the first blocker) against Embree's
     // rtcOccluded1 below; the same rays as the nearest-hit rows.
     benchmark::RegisterBenchmark(("mesh/occluded/certified/" + m).c_str(), [m](benchmark::State& state) {
@@ -565,6 +584,20 @@ void register_all() {
             benchmark::Counter(static_cast<double>(current->embree[robust]->conversion().inexact), benchmark::Counter::kAvgThreads);
       })->Apply(threads);
     }
+    benchmark::RegisterBenchmark(("mesh/warm/embree_robust/" + m).c_str(), [m](benchmark::State& state) {
+      ray_benchmark(
+          state, m,
+          [](Fixture& f) {
+            part(f.embree[1], [&] {
+              return std::make_unique<baseline::EmbreeScene>(f.mesh, baseline::EmbreeScene::Mode::robust);
+            });
+          },
+          [](Fixture& f, const Ray& r) {
+            const auto hit = f.embree[1]->intersect(r);
+            return hit ? std::uint64_t{hit->triangle} : 0;
+          },
+          warm_rays);
+    })->Apply(threads);
     for (int robust = 0; robust < 2; ++robust) {
       const std::string mode = robust ? "embree_robust" : "embree";
       benchmark::RegisterBenchmark(("mesh/occluded/" + mode + "/" + m).c_str(), [m, robust](benchmark::State& state) {
