@@ -483,7 +483,9 @@ TEST(SphereStages, BoundaryFilterSlopeIsRightWhereItsProductsUnderflow) {
     mpq_class slope = 0;
     for (int i = 0; i < 3; ++i) slope += mpq_class(d[i]) * (2 * (mpq_class(o[i]) - mpq_class(c[i])) + m_twice * mpq_class(d[i]));
     EXPECT_EQ(b.q, detail::Sign::positive);  // q(m) > 0 here: the slope is read
-    if (detail::is_certain(b.slope)) EXPECT_EQ(static_cast<int>(b.slope), sgn(slope));
+    if (detail::is_certain(b.slope)) {
+      EXPECT_EQ(static_cast<int>(b.slope), sgn(slope));
+    }
     EXPECT_LT(sgn(slope), 0);
   };
   const double o1 = 0x1.051eb851eb852p-2, o2 = 0x1.f5c28f5c28f5cp-3;

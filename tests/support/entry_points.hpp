@@ -54,7 +54,9 @@ inline std::string bits_of(double x) {
 inline std::string text_of(const Intersection& a) {
   // t's bits only where the contract defines t (any NaN is the same answer for parallel and in-plane).
   const bool has_t = a.relation == Relation::hit || a.relation == Relation::behind;
-  return std::string(to_string(a.relation)) + (has_t ? " " + bits_of(a.t) : "");
+  std::string s(to_string(a.relation));
+  if (has_t) s.append(" ").append(bits_of(a.t));
+  return s;
 }
 inline std::string text_of(const std::optional<NearestHit>& h) {
   return h ? "hit " + std::to_string(h->plane) + " " + bits_of(h->t) : "miss";
@@ -64,7 +66,7 @@ inline std::string text_of(const TriangleIntersection& a) {
   std::string s = std::string(to_string(a.relation)) + " " + std::string(to_string(a.location)) +
                   (a.owned ? " owned" : " not-owned");
   if (a.location == TriangleLocation::none) return s;
-  for (double x : {a.t, a.barycentric[0], a.barycentric[1], a.barycentric[2]}) s += " " + bits_of(x);
+  for (double x : {a.t, a.barycentric[0], a.barycentric[1], a.barycentric[2]}) s.append(" ").append(bits_of(x));
   return s;
 }
 inline std::string text_of(const TriangleClassification& c) {
@@ -245,7 +247,7 @@ inline EntryPointAnswers answers_of_every_entry_point(const std::vector<testkit:
     const ExactTriangleIntersection e = intersect_exact_rational(tray(i), tri(i), TriangleRule::closed);
     std::string s = text_of(e.intersection) + " " + e.den.str() + " " + e.num.str() + " " + e.pi_a.str() + " " +
                     e.pi_b.str() + " " + e.pi_c.str();
-    if (e.t) s += " " + e.t->str();
+    if (e.t) s.append(" ").append(e.t->str());
     return s;
   }, exact_every);
   add_triangle("triangle testkit::check_against_reference", [&](std::size_t i) {
