@@ -26,8 +26,12 @@
 // models compute X ⊕ M) holds unchanged: tests/fp_environment_test.cpp (AbsoluteTerms) checks it bit for bit on
 // each constant, for one value and per lane, across the binades around T and 2^-1022, signed zeros, subnormals,
 // ±inf, NaN and random bit patterns; the twin runner compares the C++ bounds with the models' X ⊕ M on every
-// routine. det3_stages.hpp's det3_absolute_term
-// is the same idea for the determinants' dynamic term (K_A ⊗ S) ⊕ U_A.
+// routine. det3_stages.hpp's det3_absolute_term is the same idea for the determinants' dynamic term
+// (K_A ⊗ S) ⊕ U_A, which plus_absolute_term below then adds to a bound.
+//
+// Not covered: a bound whose operand x is itself subnormal (inputs near the subnormal range), and stage 3's
+// tail enclosures, whose radius is the subnormal 2^-1073 when the tail is zero and is then an operand of
+// round_quotient: those queries raise the flag, and pay the assist, as their own arithmetic on tiny values does.
 #pragma once
 
 #include "core/lanes.hpp"
