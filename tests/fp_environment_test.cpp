@@ -316,16 +316,16 @@ std::vector<double> absolute_term_operands() {
   return v;
 }
 
-template <double M>
-void expect_constant_term(const std::vector<double>& xs) {
+void expect_constant_term(const std::vector<double>& xs, detail::AbsoluteConstant c) {
+  const double M = c.m;
   for (std::size_t k = 0; k < xs.size(); ++k) {
     const volatile double m = M;  // the sum itself, at run time
     const double want = xs[k] + m;
-    const double got = detail::plus_absolute<M>(xs[k]);
+    const double got = detail::plus_absolute(xs[k], c);
     if (std::isnan(want)) EXPECT_TRUE(std::isnan(got));
     else ASSERT_EQ(bits_of(got), bits_of(want)) << std::hexfloat << xs[k] << " + " << M;
     const detail::Lanes4 x4{xs[k], xs[(k + 1) % xs.size()], xs[(k + 7) % xs.size()], -xs[k]};
-    const detail::Lanes4 got4 = detail::plus_absolute<M>(x4);
+    const detail::Lanes4 got4 = detail::plus_absolute(x4, c);
     for (int i = 0; i < 4; ++i) {
       const double w = x4[i] + m;
       if (std::isnan(w)) EXPECT_TRUE(std::isnan(got4[i]));
@@ -336,16 +336,16 @@ void expect_constant_term(const std::vector<double>& xs) {
 
 TEST(AbsoluteTerms, ConstantTermsAreTheSums) {
   const std::vector<double> xs = absolute_term_operands();
-  expect_constant_term<detail::bounds::filter_absolute>(xs);
-  expect_constant_term<detail::bounds::compensated_absolute>(xs);
-  expect_constant_term<detail::bounds::refined_absolute>(xs);
-  expect_constant_term<detail::bounds::tail_sum_absolute>(xs);
-  expect_constant_term<detail::bounds::compare_absolute>(xs);
-  expect_constant_term<detail::bounds::sphere_filter_c_absolute>(xs);
-  expect_constant_term<detail::bounds::sphere_filter_d_absolute>(xs);
-  expect_constant_term<detail::bounds::sphere_boundary_q_absolute>(xs);
-  expect_constant_term<detail::bounds::sphere_boundary_slope_absolute>(xs);
-  expect_constant_term<0x1p-1056>(xs);  // the largest the helper accepts
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::filter_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::compensated_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::refined_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::tail_sum_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::compare_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::sphere_filter_c_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::sphere_filter_d_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::sphere_boundary_q_absolute));
+  expect_constant_term(xs, detail::absolute_constant(detail::bounds::sphere_boundary_slope_absolute));
+  expect_constant_term(xs, detail::absolute_constant(0x1p-1056));  // the largest the helper accepts
 }
 
 TEST(AbsoluteTerms, DynamicTermsAreTheSums) {

@@ -9,7 +9,8 @@
 // operands, 130 ns with DE already set — the difference is that assist, paid by every call. So the sums are
 // formed here, bit for bit the same, from normal operands only.
 //
-// plus_absolute<M>(x) = RN(x + M), M = k·2^-1074 with 1 ≤ k ≤ 2^18 (the constants above), for every double x:
+// plus_absolute(x, absolute_constant(M)) = RN(x + M), M = k·2^-1074 with 1 ≤ k ≤ 2^18 (the constants above), for
+// every double x:
 //
 //   |x| ≥ T = 2^-1000 (and ±inf, NaN): RN(x + M) = x, since the doubles next to x on either side are at least
 //     2^-1053 away and M ≤ 2^-1056 is less than half of that (for NaN and ±inf, x + M is x). So the answer is x.
@@ -56,15 +57,23 @@ inline constexpr double absolute_sum_threshold = 0x1p-1000;  // T: below it in m
 inline constexpr double absolute_sum_lift = 0x1p600;         // L
 inline constexpr double absolute_sum_drop = 0x1p-600;        // 1/L
 
-// RN(x + M) (see above). V is double or a Lanes type.
-template <double M, class V>
-[[nodiscard]] [[gnu::always_inline]] inline V plus_absolute(V x) noexcept {
-  static_assert(M >= 0x1p-1074 && M <= 0x1p-1056, "an absolute term: k·2^-1074 with 1 ≤ k ≤ 2^18");
-  constexpr double lifted_m = M * absolute_sum_lift;  // exact: a normal number
+// An absolute constant M and M·L, checked when the program is compiled (a function argument rather than a
+// template parameter of type double, which clang 14 does not accept).
+struct AbsoluteConstant {
+  double m, lifted;
+};
+consteval AbsoluteConstant absolute_constant(double m) {
+  if (!(m >= 0x1p-1074 && m <= 0x1p-1056)) throw "an absolute term: k·2^-1074 with 1 ≤ k ≤ 2^18";
+  return {m, m * absolute_sum_lift};  // exact: a normal number
+}
+
+// RN(x + M) (see above), c = absolute_constant(M). V is double or a Lanes type.
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline V plus_absolute(V x, AbsoluteConstant c) noexcept {
   if constexpr (std::is_same_v<V, double>) {
     // One value: a branch, taken only for the (rare) bounds below T.
     if (abs(x) < absolute_sum_threshold) [[unlikely]]
-      return (x * absolute_sum_lift + lifted_m) * absolute_sum_drop;
+      return (x * absolute_sum_lift + c.lifted) * absolute_sum_drop;
     return x;
   } else {
     // On doubles only (the "fma" clone has no 256-bit integer operations).
@@ -72,7 +81,7 @@ template <double M, class V>
     if (!any_lane(small)) [[likely]]
       return x;
     const V safe = select(small, x, V{} + absolute_sum_threshold);
-    const V lifted = (safe * absolute_sum_lift + lifted_m) * absolute_sum_drop;
+    const V lifted = (safe * absolute_sum_lift + c.lifted) * absolute_sum_drop;
     return select(small, lifted, x);
   }
 }

@@ -33,7 +33,9 @@ template <class V>
   const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
   const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
   const V lo = ((g[0] + g[1]) + g[2]) + (s2.lo + s3.lo);
-  return {s3.hi, lo, plus_absolute<bounds::compensated_absolute>(bounds::compensated_relative * stage1.magnitude)};
+  return {s3.hi, lo,
+          plus_absolute(bounds::compensated_relative * stage1.magnitude,
+                        absolute_constant(bounds::compensated_absolute))};
 }
 
 template <class V>
@@ -88,8 +90,8 @@ template <class V>
   // x.hi. So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
   // proofs/plane/PlaneRefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
   return {x.hi, lo,
-          plus_absolute<bounds::refined_absolute>(bounds::refined_relative * stage1.magnitude +
-                                                  bounds::refined_low_relative * std::fabs(lo))};
+          plus_absolute(bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo),
+                        absolute_constant(bounds::refined_absolute))};
 }
 
 }  // namespace raykernel::detail

@@ -60,7 +60,8 @@ template <class V>
 // (The constant is a double, or one per lane: den's and num's when a vector holds both of one query.)
 template <class V, class C>
 [[nodiscard]] [[gnu::always_inline]] inline V dot3_filter_bound(const Dot3RoundedT<V>& r, C relative_constant) noexcept {
-  return plus_absolute<bounds::filter_absolute>(relative_constant * r.magnitude);  // ⊕ 3μ (core/absolute_terms.hpp)
+  // ⊕ 3μ without a subnormal operand (core/absolute_terms.hpp)
+  return plus_absolute(relative_constant * r.magnitude, absolute_constant(bounds::filter_absolute));
 }
 
 template <class V, class C>

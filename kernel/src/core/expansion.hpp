@@ -226,7 +226,7 @@ template <std::size_t N>
     lo += s.lo;
     magnitude += std::fabs(s.lo);
   }
-  return {q, lo, plus_absolute<bounds::tail_sum_absolute>(magnitude * bounds::tail_sum_relative)};
+  return {q, lo, plus_absolute(magnitude * bounds::tail_sum_relative, absolute_constant(bounds::tail_sum_absolute))};
 }
 
 }  // namespace raykernel::detail

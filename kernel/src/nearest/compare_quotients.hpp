@@ -80,7 +80,8 @@ template <class L>
   const L magnitude = abs(p) + abs(q);
   const L propagated =
       compare_propagated_error(n1.value, n1.radius, d1.value, d1.radius, n2.value, n2.radius, d2.value, d2.radius);
-  const L bound = plus_absolute<compare_absolute>(compare_filter_relative * magnitude + compare_propagation_factor * propagated);
+  const L bound = plus_absolute(compare_filter_relative * magnitude + compare_propagation_factor * propagated,
+                                absolute_constant(compare_absolute));
   // Both comparisons can hold only for a negative bound (negative radii, which no stage produces): then
   // positive, as the test δ > B comes first (as in the twin of proofs/compare/CompareTwins.v).
   const auto above = delta > bound;
@@ -122,7 +123,9 @@ template <class L>
   // low part of an input's hi and lo can be), which makes hi + lo NaN and enclosure_sign uncertain; a
   // non-finite input makes M, R or the radius non-finite. So a certain sign implies finite hi and lo:
   // proofs/plane/PlaneStageTwoFinite.v, `compare_compensated_certain_finite`, `compare_compensated_twin_sound_total`.
-  return {s.hi, lo, plus_absolute<compare_absolute>(compare_compensated_relative * magnitude + compare_propagation_factor * propagated)};
+  return {s.hi, lo,
+          plus_absolute(compare_compensated_relative * magnitude + compare_propagation_factor * propagated,
+                        absolute_constant(compare_absolute))};
 }
 
 // ---------------------------------------------------------------------------------------------------------

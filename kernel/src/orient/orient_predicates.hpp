@@ -87,7 +87,8 @@ namespace raykernel::mesh_detail {
   const double y1 = coordinate(p, j) - coordinate(r, j), x2 = coordinate(q, i) - coordinate(r, i);
   const double left = x1 * y2, right = y1 * x2;
   const double det = left - right;
-  const double bound = detail::plus_absolute<bounds::orient2d_filter_absolute>(bounds::orient2d_filter_relative * (std::fabs(left) + std::fabs(right)));
+  const double bound = detail::plus_absolute(bounds::orient2d_filter_relative * (std::fabs(left) + std::fabs(right)),
+                                             detail::absolute_constant(bounds::orient2d_filter_absolute));
   return (det > bound) - (det < -bound);
 }
 

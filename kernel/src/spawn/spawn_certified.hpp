@@ -68,8 +68,9 @@ namespace raykernel::detail {
   const double a[3] = {dd.hi, nn.hi, 0}, alpha[3] = {dd.lo, nn.lo, 0}, b[3] = {o, d, 0};
   const Enclosure v = compensated_dot3(a, alpha, b, dot3_rounded(a, b));
   const double propagated = std::fabs(o) * D.radius + std::fabs(d) * N.radius;
-  return {v.hi, v.lo, plus_absolute<raykernel::bounds::affine_absolute>(
-                          raykernel::bounds::affine_propagation_factor * (propagated + v.radius))};
+  return {v.hi, v.lo,
+          plus_absolute(raykernel::bounds::affine_propagation_factor * (propagated + v.radius),
+                        absolute_constant(raykernel::bounds::affine_absolute))};
 }
 
 // The origin of spawn (to_target = false: s = sign(w·N)) or spawn_to (to_target = true: s = σ(q)), when every

@@ -89,7 +89,8 @@ template <class V>
   V w = ((s0.hi + s1.hi) + s2.hi) + rr.hi;
   for (int i = 0; i < 3; ++i) w += t[i] * (abs(h_head[i]) + bounds::sphere_boundary_tail * t[i]);
   const V slope = (d[0] * h_head[0] + d[1] * h_head[1]) + d[2] * h_head[2];  // 2(A·m + B) = Σ d_i·G_i
-  const V e_q = plus_absolute<bounds::sphere_boundary_q_absolute>(bounds::sphere_boundary_q_relative * w);
+  const V e_q =
+      plus_absolute(bounds::sphere_boundary_q_relative * w, absolute_constant(bounds::sphere_boundary_q_absolute));
   // Certain only where W and the value are finite (no comparison holds with a NaN).
   const auto finite = both(w <= bounds::largest_finite, abs(value) <= bounds::largest_finite);
   const IntegerOf<V> uncertain = IntegerOf<V>{} + uncertain_lane;
@@ -98,7 +99,8 @@ template <class V>
   V slope_magnitude{};  // from 0, as the proof's model sums it
   for (int i = 0; i < 3; ++i)
     slope_magnitude += abs(d[i]) * ((abs(h_head[i]) + t[i]) + bounds::sphere_boundary_slope_floor);
-  const V e_s = plus_absolute<bounds::sphere_boundary_slope_absolute>(bounds::sphere_boundary_slope_relative * slope_magnitude);
+  const V e_s = plus_absolute(bounds::sphere_boundary_slope_relative * slope_magnitude,
+                              absolute_constant(bounds::sphere_boundary_slope_absolute));
   const auto slope_read = both(q_sign == IntegerOf<V>{} + 1, slope_magnitude <= bounds::largest_finite);
   const IntegerOf<V> slope_sign = select(slope_read, sign_lanes(slope > e_s, slope < -e_s), uncertain);
   return {q_sign, slope_sign, value, slope, e_q};

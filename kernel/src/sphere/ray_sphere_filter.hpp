@@ -44,13 +44,15 @@ struct SphereFilterSigns {
   const double q = sphere.radius * sphere.radius;
   const double c = rs.value - q;
   const double pc = rs.magnitude + q;  // P_C ≥ |Ĉ|
-  const double ec = plus_absolute<bounds::sphere_filter_c_absolute>(bounds::sphere_filter_c_relative * pc);
+  const double ec =
+      plus_absolute(bounds::sphere_filter_c_relative * pc, absolute_constant(bounds::sphere_filter_c_absolute));
   const double a = ra.value, b = rb.value;
   const double dv = b * b - a * c;
   // E_D from the magnitudes alone (E_A, E_B, E_C are within 2κ of them: SphereFilter.v, `floor_covers`).
   const double x = rb.magnitude + bounds::sphere_filter_d_floor, y = a + bounds::sphere_filter_d_floor,
                z = pc + bounds::sphere_filter_d_floor;
-  const double ed = plus_absolute<bounds::sphere_filter_d_absolute>(bounds::sphere_filter_d_relative * (x * x + y * z));
+  const double ed = plus_absolute(bounds::sphere_filter_d_relative * (x * x + y * z),
+                                  absolute_constant(bounds::sphere_filter_d_absolute));
   return {sphere_filter_sign(c, ec), sphere_filter_sign(dv, ed), a, b, c, dv, ec, ed};
 }
 
