@@ -485,27 +485,22 @@ void register_all() {
           });
     })->Apply(threads);
 
-    benchmark::RegisterBenchmark(("mesh/certified/" + m).c_str(), [m](benchmark::State& state) {
-      ray_benchmark(
-          state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
-          [](Fixture& f, const Ray& r) {
-            const auto hit = nearest_hit(r, *f.prepared);
-            return hit ? std::uint64_t{hit->triangle} : 0;
-          });
-      if (state.threads() == 1) walk_counters(state, m);
-    })->Apply(threads);
-
-    // Warm: the same query on the first 16 rays only, cycled, so that the nodes and triangles they read stay
-    // in the caches (about 40 KB): the arithmetic's time without the memory's, against Embree's warm row below.
-    benchmark::RegisterBenchmark(("mesh/warm/certified/" + m).c_str(), [m](benchmark::State& state) {
-      ray_benchmark(
-          state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
-          [](Fixture& f, const Ray& r) {
-            const auto hit = nearest_hit(r, *f.prepared);
-            return hit ? std::uint64_t{hit->triangle} : 0;
-          },
-          warm_rays);
-    })->Apply(threads);
+    // mesh/certified over every ray; mesh/warm/certified over the first 16 only, cycled, so that the nodes and
+    // triangles they read stay in the caches (about 40 KB): the arithmetic's time without the memory's, against
+    // Embree's warm row below.
+    for (const std::size_t rays : {std::size_t{0}, warm_rays}) {
+      const std::string name = (rays == 0 ? "mesh/certified/" : "mesh/warm/certified/") + m;
+      benchmark::RegisterBenchmark(name.c_str(), [m, rays](benchmark::State& state) {
+        ray_benchmark(
+            state, m, [](Fixture& f) { part(f.prepared, [&] { return std::make_unique<PreparedMesh>(f.mesh); }); },
+            [](Fixture& f, const Ray& r) {
+              const auto hit = nearest_hit(r, *f.prepared);
+              return hit ? std::uint64_t{hit->triangle} : 0;
+            },
+            rays);
+        if (rays == 0 && state.threads() == 1) walk_counters(state, m);
+      })->Apply(threads);
+    }
 
     // Any-hit (shadow rays): raykernel's occluded (owned rule, stops at the first blocker) against Embree's
     // rtcOccluded1 below; the same rays as the nearest-hit rows.
