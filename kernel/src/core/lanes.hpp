@@ -7,7 +7,7 @@
 // routine computes for that query, and the proofs (which model the scalar operations) cover every lane.
 //
 // Comparisons give `bool` for double and a mask (a vector of 64-bit integers, −1 for true) for Lanes8;
-// `select`, `all_of` and the integer "sign lanes" below hide that difference.
+// `select`, `any_lane` and the integer "sign lanes" (sign.hpp) hide that difference.
 #pragma once
 
 #include <cmath>
@@ -96,6 +96,8 @@ inline constexpr int width_of = LaneTypes<V>::width;
 // Both masks true; a mask negated (no branch).
 [[gnu::always_inline]] inline bool both(bool a, bool b) noexcept { return static_cast<bool>(a & b); }
 [[gnu::always_inline]] inline bool mask_not(bool a) noexcept { return !a; }
+// Whether the mask is true (for a vector mask: in any lane).
+[[gnu::always_inline]] inline bool any_lane(bool m) noexcept { return m; }
 
 // ---- Lanes4, Lanes8 ---------------------------------------------------------------------------------------
 
@@ -127,6 +129,15 @@ RAYKERNEL_VECTOR_LANE_OPERATIONS(2)
 RAYKERNEL_VECTOR_LANE_OPERATIONS(4)
 RAYKERNEL_VECTOR_LANE_OPERATIONS(8)
 #undef RAYKERNEL_VECTOR_LANE_OPERATIONS
+
+// Whether any lane of a comparison's mask is true.
+template <class M>
+  requires(sizeof(M) > sizeof(std::int64_t))
+[[nodiscard]] [[gnu::always_inline]] inline bool any_lane(M m) noexcept {
+  auto r = m[0];
+  for (int i = 1; i < static_cast<int>(sizeof(M) / sizeof(m[0])); ++i) r |= m[i];
+  return r != 0;
+}
 
 // A lane type filled with one value.
 template <class V>
