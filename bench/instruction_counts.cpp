@@ -5,7 +5,8 @@
 //   bench/instruction-counts.sh build        # valgrind --tool=callgrind, every entry point, per call
 //
 // Entries: plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, nearest/certified/random64 (per ray, 64 planes, a
-// PlaneSet), triangle/{naive,certified,relation}/{random,degenerate}. Hardware counters do not work on this
+// PlaneSet), triangle/{naive,certified,relation}/{random,degenerate}, and per kind of the degenerate mix
+// triangle/{naive,certified,relation}/{through-vertex,through-edge,near-vertex,near-edge,sliver,needle}. Hardware counters do not work on this
 // VM and timings are shared with other jobs; instruction counts are exact and repeatable.
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
@@ -125,6 +126,11 @@ int main(int argc, char** argv) {
                 TriangleQueryKind::near_edge, TriangleQueryKind::sliver, TriangleQueryKind::needle},
                15))
     return 0;
+  // Each kind of the degenerate mix alone (bench/ray_triangle_bench.cpp's per-kind rows, seed 16).
+  for (TriangleQueryKind kind : {TriangleQueryKind::through_vertex, TriangleQueryKind::through_edge,
+                                 TriangleQueryKind::near_vertex, TriangleQueryKind::near_edge, TriangleQueryKind::sliver,
+                                 TriangleQueryKind::needle})
+    if (triangle(std::string(testkit::to_string(kind)).c_str(), {kind}, 16)) return 0;
   std::fprintf(stderr, "raykernel_instruction_counts: unknown entry '%s'\n", entry.c_str());
   return 2;
 }

@@ -13,6 +13,9 @@
 //     workload: random      4096 queries (every component uniform in [-1, 1]), 480 KiB: in L2
 //               degenerate  4096 queries through vertices and edges exactly, an ulp beside them, slivers and
 //                           needles (raykernel::testkit), in L2
+//               through-vertex, through-edge, near-vertex, near-edge, sliver, needle
+//                           4096 queries of that kind alone (naive, certified and relation only): the mix's time
+//                           by kind
 //
 // Items per second count queries. The buffers are generated before timing and checked once (certified ==
 // exact, both rules). The certified benchmarks report the fraction of the buffer each stage decided
@@ -103,8 +106,11 @@ void add_stage_counters(benchmark::State& state, const std::vector<TriangleQuery
   state.counters["exact_per_million"] = 1e6 * (relation[3] + rounding[3]) / n;
 }
 
-void register_workload(const char* workload, const std::vector<TriangleQuery>& (*queries)()) {
-  auto name = [workload](const char* path) { return std::string("triangle/") + path + "/" + workload; };
+using Workload = const std::vector<TriangleQuery>& (*)();
+
+// The naive, certified and relation rows of a workload.
+void register_main_paths(const std::string& workload, Workload queries) {
+  auto name = [&workload](const char* path) { return std::string("triangle/") + path + "/" + workload; };
   benchmark::RegisterBenchmark(name("naive").c_str(), [queries](benchmark::State& s) {
     rotate_through(s, queries(), [](const TriangleQuery& q) { return intersect_naive(q.ray, q.triangle); });
   });
@@ -115,6 +121,11 @@ void register_workload(const char* workload, const std::vector<TriangleQuery>& (
   benchmark::RegisterBenchmark(name("relation").c_str(), [queries](benchmark::State& s) {
     rotate_through(s, queries(), [](const TriangleQuery& q) { return relation(q.ray, q.triangle); });
   });
+}
+
+void register_workload(const char* workload, Workload queries) {
+  auto name = [workload](const char* path) { return std::string("triangle/") + path + "/" + workload; };
+  register_main_paths(workload, queries);
   // The same calls inside one DefaultFpEnvironment scope: the per-call environment check hoisted out.
   benchmark::RegisterBenchmark(name("certified_scoped").c_str(), [queries](benchmark::State& s) {
     const DefaultFpEnvironment env;
@@ -168,9 +179,28 @@ void register_workload(const char* workload, const std::vector<TriangleQuery>& (
   });
 }
 
+// One kind of the degenerate mix alone (4096 queries, checked like the others): which kinds the mix's time goes
+// to. Rows triangle/{naive,certified,relation}/<kind>, e.g. triangle/relation/through-vertex.
+template <TriangleQueryKind Kind>
+const std::vector<TriangleQuery>& kind_workload() {
+  static const std::vector<TriangleQuery> w = [] {
+    auto q = generate({Kind}, 16);
+    check(q, std::string(testkit::to_string(Kind)).c_str());
+    return q;
+  }();
+  return w;
+}
+
+template <TriangleQueryKind... Kinds>
+void register_kinds() {
+  (register_main_paths(std::string(testkit::to_string(Kinds)), &kind_workload<Kinds>), ...);
+}
+
 const bool registered = [] {
   register_workload("random", &random_workload);
   register_workload("degenerate", &degenerate_workload);
+  register_kinds<TriangleQueryKind::through_vertex, TriangleQueryKind::through_edge, TriangleQueryKind::near_vertex,
+                 TriangleQueryKind::near_edge, TriangleQueryKind::sliver, TriangleQueryKind::needle>();
   return true;
 }();
 
