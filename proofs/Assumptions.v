@@ -289,6 +289,14 @@ Definition twin_results_nearest :=
 Goal True. idtac "@@ compare_hit_distances_twin_correct". Abort.
 Print Assumptions twin_results_nearest.
 
+(** IntegerDet3.v and TriangleIntegerSign.v: stage 3's first try, a determinant's sign in integers *)
+From Raykernel Require IntegerDet3 TriangleIntegerSign.
+Definition integer_stage_results :=
+  (IntegerDet3.integer_det3_sign_correct, IntegerDet3.integer_vector_value, IntegerDet3.det3_sign_integer,
+   IntegerDet3.det3_range, TriangleIntegerSign.integer_value_sign_sound, TriangleIntegerSign.exact_diff_value).
+Goal True. idtac "@@ integer_det3_sign_correct integer_vector_value det3_sign_integer det3_range integer_value_sign_sound exact_diff_value". Abort.
+Print Assumptions integer_stage_results.
+
 (** TriangleStage3Twins.v: stage 3 of the triangle (core/expansion_value.hpp) is the model's determinant *)
 From Raykernel Require TriangleStage3Twins.
 Goal True. idtac "@@ triangle_expansion_sign_sound". Abort.

@@ -26,7 +26,7 @@ From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Constants Model PlaneFilter PlaneCompensated PlaneClassification PlaneCascade FloatCore ConstantsCpp PlaneTwins
   Expansions PlaneQueryTwins TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleIntersectTwins
-  TriangleCascadeFlowTwins.
+  TriangleCascadeFlowTwins TriangleIntegerSign.
 From Raykernel Require PlaneCascadeTwins.
 Import ListNotations.
 Open Scope R_scope.
@@ -132,9 +132,11 @@ Proof.
   destruct (Z.eqb_spec (tc_filter_b o d a b c v) uncertain_lane) as [U|U]; cbn [negb].
   - destruct (is_certain (PlaneCascadeTwins.enclosure_sign_b (tc_enclosure2_b o d a b c v))) eqn:C2.
     + intros _. cbn [fst]. exact (tcf_certain_sign _ _ (tc_enclosure2_sign_sound o d a b c v I) C2).
-    + destruct (is_certain (ev_sign (value_ev o d a b c v))) eqn:C3.
-      * intros _. cbn [fst]. exact (tcf_certain_sign _ _ (triangle_expansion_sign_sound o d a b c v) C3).
-      * cbn. discriminate.
+    + destruct (is_certain (integer_value_sign_b o d a b c v)) eqn:Ci.
+      * intros _. cbn [fst]. exact (integer_value_sign_sound o d a b c v Ci).
+      * destruct (is_certain (ev_sign (value_ev o d a b c v))) eqn:C3.
+        -- intros _. cbn [fst]. exact (tcf_certain_sign _ _ (triangle_expansion_sign_sound o d a b c v) C3).
+        -- cbn. discriminate.
   - intros _. cbn [fst].
     exact (proj1 (lane_sign_exact _ _ (det3_filter_lanes_b_range _ _ _) U (tc_filter_sound o d a b c v I))).
 Qed.
@@ -144,6 +146,7 @@ Lemma tc_sign_b_exact_mono : forall o d a b c v f, tf_exact f = true -> tf_exact
 Proof.
   intros o d a b c v f E. unfold tc_sign_b.
   destruct (negb _); [exact E|]. destruct (is_certain _); [cbn [snd tf_reach tf_exact]; exact E|].
+  destruct (is_certain _); [cbn [snd tf_reach tf_exact]; exact E|].
   destruct (is_certain _); cbn [snd tf_reach tf_exact tf_give_up]; [exact E | reflexivity].
 Qed.
 

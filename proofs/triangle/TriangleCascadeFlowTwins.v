@@ -6,8 +6,9 @@
     From the fifteen input bit patterns, as the C++ does:
     - [tc_sign_b v]: [TriangleCascade::sign(v)] — stage 1 ([triangle_filter_values], [det3_filter_lanes]
       with v's constants: TriangleTwins.v), then stage 2's enclosure sign ([triangle_compensated_values],
-      [det3_enclosure], [enclosure_sign]), then stage 3's checked sign ([value_expansion]:
-      TriangleStage3Twins.v's [value_ev], [ev_sign]), else 0 with [needs_exact_] set;
+      [det3_enclosure], [enclosure_sign]), then stage 3: the integer sign when the leaves allow
+      ([integer_value_sign]: TriangleIntegerSign.v's [integer_value_sign_b]), else the expansion's checked sign
+      ([value_expansion]: TriangleStage3Twins.v's [value_ev], [ev_sign]), else 0 with [needs_exact_] set;
     - [tc_tie_break_b k]: [tie_break(k)] — [tie_break_signs_by_expansion]: the signs of d × (q − p) for
       edge k as expansions ([ev_cross] of [lift3 d] and [diff3 q p]), or {1, 0, 0} with [needs_exact_];
     - [tc_normal_b]: [normal_is_zero()] — [normal_is_zero_by_expansion]: N = (b − a) × (c − a) as
@@ -34,7 +35,7 @@ From Coq Require Import Reals Lra Lia ZArith List Bool.
 From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Model PlaneClassification PlaneCascade FloatCore ConstantsCpp PlaneTwins Expansions PlaneQueryTwins
   TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins TriangleIntersectTwins
-  QuotientBoundary.
+  QuotientBoundary TriangleIntegerSign.
 From Raykernel Require PlaneCascadeTwins.
 Import ListNotations.
 
@@ -89,6 +90,8 @@ Definition tc_sign_b (v : Z) (f : TFlow) : Z * TFlow :=
   let s2 := PlaneCascadeTwins.enclosure_sign_b (tc_enclosure2_b v) in
   if is_certain s2 then (sign_to_Z s2, f) else
   let f := tf_reach f StExpansion in
+  let si := integer_value_sign_b o d a b c v in
+  if is_certain si then (sign_to_Z si, f) else
   let s3 := ev_sign (value_ev o d a b c v) in
   if is_certain s3 then (sign_to_Z s3, f) else (0%Z, tf_give_up f).
 

@@ -292,6 +292,7 @@ Lemma tc_sign_keeps : forall v f, tf_exact (snd (tc_sign_b o d a b c v f)) = tf_
 Proof.
   intros v f. unfold tc_sign_b; cbv zeta.
   destruct (negb _); [reflexivity|]. destruct (is_certain _); [reflexivity|].
+  destruct (is_certain _); [reflexivity|].
   rewrite (Hsign v). reflexivity.
 Qed.
 

@@ -9,6 +9,7 @@
 #include "triangle/ray_triangle_formula.hpp"
 #include "core/det3_stages.hpp"
 #include "core/expansion_value.hpp"
+#include "core/integer_det3.hpp"
 
 #include <raykernel/raykernel.hpp>
 #include <raykernel/triangle.hpp>
@@ -125,6 +126,37 @@ struct TriangleExpansions {
     case value_den: return edge_expansion(t.a, d, t.b, t.c);
     default: return num_expansion(ray, t);
   }
+}
+
+// Stage 3's first try for determinant v: its exact sign in integers (core/integer_det3.hpp), when each of its
+// leaves is one double — every difference p − o exact in binary64 (TwoDiff's tail 0), as for coordinates on a
+// grid — and the exponents lie in integer_det3_sign's range; `uncertain` otherwise (the expansions decide then).
+// The leaves are value_expansion's: π(p, q) = d·((p − o) × (q − o)), den with a in o's place, num = e_a·(e_b × e_c).
+//   Certified by: proofs/triangle/TriangleIntegerSign.v, `integer_value_sign_sound` (its twin integer_value_sign_b,
+//   run against this code through the cascade's routines tri_cascade_relation and tri_cascade_intersect).
+[[nodiscard]] inline Sign integer_value_sign(const Ray& ray, const Triangle& t, int v) noexcept {
+  const Vec3& o = ray.origin;
+  const Vec3 &from = v == value_den ? t.a : o;
+  const Vec3 &p = v == value_pi_a || v == value_den || v == value_num ? t.b : v == value_pi_b ? t.c : t.a;
+  const Vec3 &q = v == value_pi_a || v == value_den || v == value_num ? t.c : v == value_pi_b ? t.a : t.b;
+  double x[3], y[3], z[3];
+  bool exact = true;
+  const double pv[3] = {p.x, p.y, p.z}, qv[3] = {q.x, q.y, q.z}, fv[3] = {from.x, from.y, from.z};
+  const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z}, av[3] = {t.a.x, t.a.y, t.a.z};
+  for (int i = 0; i < 3; ++i) {
+    const DoubleDouble ey = two_diff(pv[i], fv[i]), ez = two_diff(qv[i], fv[i]);
+    y[i] = ey.hi;
+    z[i] = ez.hi;
+    exact = exact && ey.lo == 0 && ez.lo == 0;
+    if (v == value_num) {
+      const DoubleDouble ex = two_diff(av[i], fv[i]);
+      x[i] = ex.hi;
+      exact = exact && ex.lo == 0;
+    } else {
+      x[i] = dv[i];
+    }
+  }
+  return exact ? integer_det3_sign(x, y, z) : Sign::uncertain;
 }
 
 [[nodiscard]] inline TriangleExpansions triangle_expansions(const Ray& ray, const Triangle& triangle) noexcept {

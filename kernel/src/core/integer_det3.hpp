@@ -1,0 +1,99 @@
+// The exact sign of a 3×3 determinant x·(y × z) of nine doubles in fixed-width integers: stage 3's first try for
+// the determinants whose leaves are single doubles (a ray–triangle query's differences p − o exact in binary64,
+// as on any grid of coordinates), without an expansion and without a rounding.
+//
+// Each vector's components are read as integers over one power of two (integer_vector): a finite double is
+// ±m·2^e; with m's trailing zeros stripped and E the least exponent of the vector's nonzero components, every
+// component is the integer X_i = ±m_i·2^(e_i − E). When every |X_i| < 2^62, the cross product Y × Z is computed
+// exactly in signed 128-bit integers (each component below 2^125) and the determinant D = X·(Y × Z) in signed
+// 192-bit two's complement (below 2^189: no wrap); x·(y × z) = D·2^(Ex + Ey + Ez), so its sign is D's.
+//
+//   Valid range: any doubles; `uncertain` when a component is not finite or an aligned component reaches 2^62
+//                (the caller goes on to the expansions, then the exact stage).
+//   Error bound: none: integer arithmetic, no floating-point operation (nothing depends on the rounding mode,
+//                FTZ/DAZ or traps, and no flag is raised).
+//   Certified by: proofs/core/IntegerDet3.v, `integer_det3_sign_correct` (integer_vector's integers have the
+//                doubles' values, the determinant's sign is its integer's, and the 128- and 192-bit ranges hold);
+//                the limb arithmetic is compared with the model's Z arithmetic by the twin runner.
+#pragma once
+
+#include "core/sign.hpp"
+
+#include <bit>
+#include <cstdint>
+
+namespace raykernel::detail {
+
+__extension__ typedef __int128 Int128;            // GCC and clang (`__extension__`: -Wpedantic)
+__extension__ typedef unsigned __int128 UInt128;
+
+// A vector of three doubles as integers over one power of two (see above); `ok` false when a component is not
+// finite or an aligned component reaches 2^62.
+struct IntegerVector {
+  std::int64_t v[3];
+  bool ok;
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline IntegerVector integer_vector(const double x[3]) noexcept {
+  std::uint64_t m[3];
+  int e[3];
+  bool negative[3], finite = true;
+  int least = 1 << 20;
+  for (int i = 0; i < 3; ++i) {
+    const std::uint64_t bits = std::bit_cast<std::uint64_t>(x[i]);
+    const int field = static_cast<int>((bits >> 52) & 0x7ff);
+    const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
+    const std::uint64_t significand = field != 0 ? fraction | (std::uint64_t{1} << 52) : fraction;
+    const int zeros = significand != 0 ? std::countr_zero(significand) : 0;
+    m[i] = significand >> zeros;                     // odd, or 0
+    e[i] = (field != 0 ? field : 1) - 1075 + zeros;  // |x_i| = m_i·2^e_i
+    negative[i] = (bits >> 63) != 0;
+    finite = finite && field != 0x7ff;
+    if (m[i] != 0 && e[i] < least) least = e[i];
+  }
+  IntegerVector r{{0, 0, 0}, finite};
+  for (int i = 0; i < 3; ++i) {
+    if (m[i] == 0) continue;
+    const int shift = e[i] - least;                            // ≥ 0
+    const int width = 64 - std::countl_zero(m[i]);             // m_i < 2^width
+    if (shift + width > 62) {                                  // |X_i| = m_i·2^shift ≥ 2^62
+      r.ok = false;
+      continue;
+    }
+    const std::int64_t value = static_cast<std::int64_t>(m[i] << shift);
+    r.v[i] = negative[i] ? -value : value;
+  }
+  return r;
+}
+
+// sign(x·(y × z)), the cross product as ray_triangle_formula.hpp's cross_terms writes it; `uncertain` outside the
+// valid range above.
+[[nodiscard]] inline Sign integer_det3_sign(const double x[3], const double y[3], const double z[3]) noexcept {
+  const IntegerVector X = integer_vector(x), Y = integer_vector(y), Z = integer_vector(z);
+  if (!(X.ok & Y.ok & Z.ok)) return Sign::uncertain;
+  // (Y × Z)_i = Y_j Z_k − Y_k Z_j, (i, j, k) = (0, 1, 2), (1, 2, 0), (2, 0, 1): each product below 2^124.
+  const Int128 c[3] = {static_cast<Int128>(Y.v[1]) * Z.v[2] - static_cast<Int128>(Y.v[2]) * Z.v[1],
+                       static_cast<Int128>(Y.v[2]) * Z.v[0] - static_cast<Int128>(Y.v[0]) * Z.v[2],
+                       static_cast<Int128>(Y.v[0]) * Z.v[1] - static_cast<Int128>(Y.v[1]) * Z.v[0]};
+  // Σ X_i c_i in 192-bit two's complement (s2:s1:s0): with c_i = hi·2^64 + lo (hi signed, lo unsigned),
+  // X_i c_i = (X_i·hi)·2^64 + X_i·lo, each product exact in 128 bits, sign-extended to 192.
+  std::uint64_t s0 = 0, s1 = 0, s2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::uint64_t lo = static_cast<std::uint64_t>(c[i]);
+    const std::int64_t hi = static_cast<std::int64_t>(c[i] >> 64);
+    const Int128 low_part = static_cast<Int128>(X.v[i]) * static_cast<Int128>(lo);  // |·| < 2^126
+    const Int128 high_part = static_cast<Int128>(X.v[i]) * hi;                       // |·| < 2^125
+    // (s2:s1:s0) += low_part (sign-extended), then += high_part·2^64 (sign-extended).
+    const UInt128 a = static_cast<UInt128>(s0) + static_cast<std::uint64_t>(low_part);
+    s0 = static_cast<std::uint64_t>(a);
+    const UInt128 b = static_cast<UInt128>(s1) + static_cast<std::uint64_t>(static_cast<UInt128>(low_part) >> 64) +
+                      static_cast<std::uint64_t>(high_part) + static_cast<std::uint64_t>(a >> 64);
+    s1 = static_cast<std::uint64_t>(b);
+    s2 += static_cast<std::uint64_t>(low_part < 0 ? -1 : 0) + static_cast<std::uint64_t>(high_part >> 64) +
+          static_cast<std::uint64_t>(b >> 64);
+  }
+  if (static_cast<std::int64_t>(s2) < 0) return Sign::negative;
+  return (s0 | s1 | s2) != 0 ? Sign::positive : Sign::zero;
+}
+
+}  // namespace raykernel::detail

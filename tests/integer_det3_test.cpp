@@ -1,0 +1,127 @@
+// core/integer_det3.hpp: the sign of x·(y × z) in fixed-width integers, against GMP rationals (the doubles'
+// exact values). Every certain answer must be the exact sign; on inputs inside the valid range (each vector's
+// components integers over one power of two, below 2^62) the answer must be certain, so that a routine that
+// always gave up would fail; outside it (exponents 2^62 apart, NaN, infinities) it must give up.
+#include "core/integer_det3.hpp"
+
+#include <raykernel/testkit/plane_queries.hpp>
+
+#include <gtest/gtest.h>
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace raykernel::detail {
+namespace {
+
+int exact_sign(const double x[3], const double y[3], const double z[3]) {
+  auto q = [](double v) { return mpq_class(v); };
+  const mpq_class c0 = q(y[1]) * q(z[2]) - q(y[2]) * q(z[1]);
+  const mpq_class c1 = q(y[2]) * q(z[0]) - q(y[0]) * q(z[2]);
+  const mpq_class c2 = q(y[0]) * q(z[1]) - q(y[1]) * q(z[0]);
+  const mpq_class d = (q(x[0]) * c0 + q(x[1]) * c1) + q(x[2]) * c2;
+  return sgn(d);
+}
+
+struct Draw {
+  testkit::SplitMix64 rng{12345};
+  std::uint64_t word() { return rng(); }
+  std::int64_t integer(int bits) {  // uniform in (−2^bits, 2^bits)
+    const std::int64_t m = static_cast<std::int64_t>(word() >> (64 - bits));
+    return (word() & 1) != 0 ? -m : m;
+  }
+  int small(int lo, int hi) { return lo + static_cast<int>(word() % static_cast<std::uint64_t>(hi - lo + 1)); }
+};
+
+// Each vector: integers of up to `bits` bits times 2^e (one e per vector), so inside the range when bits ≤ 53.
+void grid_vector(Draw& draw, int bits, int e, double v[3]) {
+  for (int i = 0; i < 3; ++i) v[i] = std::ldexp(static_cast<double>(draw.integer(bits)), e);
+}
+
+TEST(IntegerDet3, GridDeterminantsAreCertainAndExact) {
+  Draw draw;
+  int zeros = 0;
+  for (int n = 0; n < 200000; ++n) {
+    double x[3], y[3], z[3];
+    const int bits = draw.small(1, 53);
+    grid_vector(draw, bits, draw.small(-1074 + 53, 900), x);
+    grid_vector(draw, bits, draw.small(-1074 + 53, 900), y);
+    grid_vector(draw, bits, draw.small(-1074 + 53, 900), z);
+    if (n % 3 == 0) {  // an exact zero: z a multiple of y by a power of two
+      const int k = draw.small(-4, 4);
+      for (int i = 0; i < 3; ++i) z[i] = std::ldexp(y[i], k);
+    }
+    const Sign s = integer_det3_sign(x, y, z);
+    ASSERT_TRUE(is_certain(s)) << "query " << n;
+    ASSERT_EQ(static_cast<int>(s), exact_sign(x, y, z)) << "query " << n;
+    zeros += s == Sign::zero;
+  }
+  EXPECT_GT(zeros, 60000);
+}
+
+TEST(IntegerDet3, NearCancellationsAreExact) {
+  // Determinants of ±1 and 0 among values of 52 bits: the products cancel to the last bit.
+  Draw draw;
+  for (int n = 0; n < 100000; ++n) {
+    const double a = static_cast<double>(draw.integer(26)), b = static_cast<double>(draw.integer(26));
+    const double x[3] = {1, 0, static_cast<double>(draw.small(-1, 1))};
+    const double y[3] = {0, a, b + static_cast<double>(draw.small(-1, 1))};
+    const double z[3] = {0, b, a};
+    const Sign s = integer_det3_sign(x, y, z);
+    ASSERT_TRUE(is_certain(s));
+    ASSERT_EQ(static_cast<int>(s), exact_sign(x, y, z)) << a << " " << b;
+  }
+}
+
+TEST(IntegerDet3, AnyDoublesGiveTheExactSignOrNothing) {
+  // Random bit patterns within a few exponents of each other, and across the whole range: every certain answer
+  // is the exact sign; within a vector spanning at most 9 binades above 53-bit significands it is certain.
+  Draw draw;
+  int certain = 0;
+  for (int n = 0; n < 200000; ++n) {
+    double v[9];
+    const int base = draw.small(-1074, 1000);
+    const int spread = n % 2 == 0 ? 9 : 200;
+    for (double& c : v) {
+      const double m = 1.0 + static_cast<double>(draw.word() >> 12) * 0x1p-52;
+      c = std::ldexp((draw.word() & 1) != 0 ? -m : m, std::min(1000, base + draw.small(0, spread)));
+      if (draw.small(0, 9) == 0) c = 0.0;
+    }
+    const Sign s = integer_det3_sign(v, v + 3, v + 6);
+    if (is_certain(s)) {
+      ++certain;
+      ASSERT_EQ(static_cast<int>(s), exact_sign(v, v + 3, v + 6)) << "query " << n;
+    }
+  }
+  EXPECT_GT(certain, 50000);
+}
+
+TEST(IntegerDet3, GivesUpOutsideItsRange) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const double one[3] = {1, 2, 3}, other[3] = {4, 5, 7};
+  const double with_inf[3] = {1, inf, 3}, with_nan[3] = {nan, 2, 3};
+  EXPECT_EQ(integer_det3_sign(with_inf, one, other), Sign::uncertain);
+  EXPECT_EQ(integer_det3_sign(one, with_nan, other), Sign::uncertain);
+  // Components 2^62 apart in one vector: an aligned integer would need 63 bits.
+  const double wide[3] = {1, 0x1p62, 3};
+  EXPECT_EQ(integer_det3_sign(one, wide, other), Sign::uncertain);
+  // 2^61 and an odd 1: 62 bits, still inside (|X| < 2^62).
+  const double edge[3] = {1, 0x1p61, 3};
+  EXPECT_EQ(static_cast<int>(integer_det3_sign(one, edge, other)), exact_sign(one, edge, other));
+  // Subnormals and the largest doubles: exact in integers.
+  const double tiny[3] = {0x1p-1074, 0x3p-1074, -0x5p-1074}, huge[3] = {0x1.fffffffffffffp1023, 0x1p1020, -0x1p1021};
+  for (const double* a : {tiny, huge, one})
+    for (const double* b : {tiny, huge, other}) {
+      const Sign s = integer_det3_sign(a, b, one);
+      ASSERT_TRUE(is_certain(s));
+      EXPECT_EQ(static_cast<int>(s), exact_sign(a, b, one));
+    }
+  // Signed zeros are zeros.
+  const double zeros[3] = {-0.0, 0.0, -0.0};
+  EXPECT_EQ(integer_det3_sign(zeros, one, other), Sign::zero);
+}
+
+}  // namespace
+}  // namespace raykernel::detail
