@@ -1,5 +1,5 @@
-(** * The sign of a 3×3 determinant of doubles from integers (kernel/src/core/integer_det3_v2.hpp, WIP on branch
-    wip/integer-det3: not yet in _CoqProject, not yet tied to the C++ by a twin).
+(** * The sign of a 3×3 determinant of doubles from integers (kernel/src/core/integer_det3.hpp: [integer_vector]
+    and [integer_det3_sign]; tied to the C++ through the cascade's twin, triangle/TriangleIntegerSign.v).
 
     Each vector's components are read as integers over one power of two ([integer_vector], the C++'s
     integer_vector): a finite double is ±m·2^e ([component]: the significand with its trailing zeros stripped,
