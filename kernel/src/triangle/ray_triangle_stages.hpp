@@ -117,15 +117,26 @@ struct TriangleExpansions {
   };
   return dot_terms(diff(t.a), cross_terms(diff(t.b), diff(t.c)));
 }
-[[nodiscard]] inline ExpansionValue<192> value_expansion(const Ray& ray, const Triangle& t, int v) noexcept {
-  const Vec3 &o = ray.origin, &d = ray.direction;
+// The vertices of determinant v: π(p, q) and den are d·((p − from) × (q − from)) (from = o for the π's, a for den),
+// num is (a − o)·((p − o) × (q − o)) with (p, q) = (b, c). The one choice value_expansion and integer_value_sign
+// share.
+struct DeterminantVertices {
+  const Vec3 *from, *p, *q;
+};
+[[nodiscard]] inline DeterminantVertices determinant_vertices(const Ray& ray, const Triangle& t, int v) noexcept {
   switch (v) {
-    case value_pi_a: return edge_expansion(o, d, t.b, t.c);
-    case value_pi_b: return edge_expansion(o, d, t.c, t.a);
-    case value_pi_c: return edge_expansion(o, d, t.a, t.b);
-    case value_den: return edge_expansion(t.a, d, t.b, t.c);
-    default: return num_expansion(ray, t);
+    case value_pi_a: return {&ray.origin, &t.b, &t.c};
+    case value_pi_b: return {&ray.origin, &t.c, &t.a};
+    case value_pi_c: return {&ray.origin, &t.a, &t.b};
+    case value_den: return {&t.a, &t.b, &t.c};
+    default: return {&ray.origin, &t.b, &t.c};
   }
+}
+
+[[nodiscard]] inline ExpansionValue<192> value_expansion(const Ray& ray, const Triangle& t, int v) noexcept {
+  if (v == value_num) return num_expansion(ray, t);
+  const DeterminantVertices w = determinant_vertices(ray, t, v);
+  return edge_expansion(*w.from, ray.direction, *w.p, *w.q);
 }
 
 // Stage 3's first try for determinant v: its exact sign in integers (core/integer_det3.hpp), when each of its
@@ -135,14 +146,12 @@ struct TriangleExpansions {
 //   Certified by: proofs/triangle/TriangleIntegerSign.v, `integer_value_sign_sound` (its twin integer_value_sign_b,
 //   run against this code through the cascade's routines tri_cascade_relation and tri_cascade_intersect).
 [[nodiscard]] inline Sign integer_value_sign(const Ray& ray, const Triangle& t, int v) noexcept {
-  const Vec3& o = ray.origin;
-  const Vec3 &from = v == value_den ? t.a : o;
-  const Vec3 &p = v == value_pi_a || v == value_den || v == value_num ? t.b : v == value_pi_b ? t.c : t.a;
-  const Vec3 &q = v == value_pi_a || v == value_den || v == value_num ? t.c : v == value_pi_b ? t.a : t.b;
+  const DeterminantVertices w = determinant_vertices(ray, t, v);
+  const double pv[3] = {w.p->x, w.p->y, w.p->z}, qv[3] = {w.q->x, w.q->y, w.q->z};
+  const double fv[3] = {w.from->x, w.from->y, w.from->z};
+  const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z}, av[3] = {t.a.x, t.a.y, t.a.z};
   double x[3], y[3], z[3];
   bool exact = true;
-  const double pv[3] = {p.x, p.y, p.z}, qv[3] = {q.x, q.y, q.z}, fv[3] = {from.x, from.y, from.z};
-  const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z}, av[3] = {t.a.x, t.a.y, t.a.z};
   for (int i = 0; i < 3; ++i) {
     const DoubleDouble ey = two_diff(pv[i], fv[i]), ez = two_diff(qv[i], fv[i]);
     y[i] = ey.hi;
