@@ -77,6 +77,11 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
     const detail::TriangleCompensatedValues s2 = detail::triangle_compensated_values(q.ray, q.triangle);
     const detail::TriangleExpansions s3 = detail::triangle_expansions(q.ray, q.triangle);
     const detail::TriangleFilterValues s2_as_1 = s2.filter();
+    // The full cascade's stage 2, evaluated in lanes: the same five values and absolute terms, bit for bit.
+    const detail::TriangleCompensatedValues s2_lanes = detail::triangle_compensated_values_by_lanes(q.ray, q.triangle);
+    ASSERT_EQ(std::memcmp(&s2_lanes.value, &s2.value, sizeof s2.value), 0) << testkit::triangle_line(q);
+    ASSERT_EQ(s2_lanes.absolute_d, s2.absolute_d);
+    ASSERT_EQ(s2_lanes.absolute_e, s2.absolute_e);
     for (int v = 0; v < 5; ++v) {
       const auto idx = static_cast<std::size_t>(v);
       const int want = sgn(exact.value[v]);

@@ -114,7 +114,10 @@ TriangleIntersection answer(const TriangleClassification& c) noexcept {
 // One query in the full cascade: each sign escalated on its own, stage by stage, the stages computed once.
 class TriangleCascade {
  public:
-  TriangleCascade(const Ray& ray, const Triangle& triangle) : ray_(ray), triangle_(triangle) {}
+  // Stage 2 is evaluated at once, in lanes: the cascade runs when the fast path left a sign open, and stage 1's
+  // values are its filter view (proofs/triangle/TriangleCompensated.v, `stage2_filter_view`).
+  [[gnu::always_inline]] TriangleCascade(const Ray& ray, const Triangle& triangle)
+      : ray_(ray), triangle_(triangle), compensated_(triangle_compensated_values_by_lanes(ray, triangle)) {}
 
   // The classification through stage 3, or nothing when a sign needed the exact stage.
   std::optional<TriangleClassification> classify(TriangleRule rule) {
@@ -168,10 +171,7 @@ class TriangleCascade {
     if (!value.exact) return std::nullopt;
     return shortened<K>(value.e);
   }
-  const TriangleCompensatedValues& compensated() {
-    if (!compensated_) compensated_ = triangle_compensated_values(ray_, triangle_);
-    return *compensated_;
-  }
+  [[nodiscard]] const TriangleCompensatedValues& compensated() const noexcept { return compensated_; }
   // Stage 3 of determinant v, computed on first use.
   const ExpansionValue<192>& expansion(int v) {
     const std::size_t k = static_cast<std::size_t>(v);
@@ -184,9 +184,8 @@ class TriangleCascade {
 
  private:
   Sign det3_filter_sign(int v) {
-    if (!filter_) filter_ = compensated_ ? compensated_->filter() : triangle_filter_values(ray_, triangle_);
-    return static_cast<Sign>(
-        det3_filter_lanes(filter_->value[static_cast<std::size_t>(v)], filter_relative(v), filter_->absolute(v)));
+    return static_cast<Sign>(det3_filter_lanes(filter_view(compensated_.value[static_cast<std::size_t>(v)]),
+                                               filter_relative(v), compensated_.absolute(v)));
   }
   std::array<int, 3> tie_break(int k) {
     trace_.reach(Stage::expansion);
@@ -205,8 +204,7 @@ class TriangleCascade {
   const Triangle& triangle_;
   Escalation trace_;
   bool needs_exact_ = false;
-  std::optional<TriangleFilterValues> filter_;
-  std::optional<TriangleCompensatedValues> compensated_;
+  TriangleCompensatedValues compensated_;
   // Stage 3 of each determinant, once computed (not std::optional: GCC zeroes an optional's 1.5 KB payload
   // when it constructs it, 7.8 KB per query here; an ExpansionValue's components are left uninitialized).
   std::array<ExpansionValue<192>, triangle_value_count> expansion_;

@@ -308,6 +308,20 @@ struct TriangleNumFilter {
   return {t.h[k], t.l[k], t.m[k]};
 }
 
+// Stage 2 of one query (triangle_compensated_values' five values) from the fast path's layout: πa, πb, πc and
+// num by one Lanes4 evaluation (triangle_compensated_lanes), den = (πa + πb) + πc summed in scalar as
+// ray_triangle_terms sums it. The same bits as triangle_compensated_values (tested:
+// tests/triangle_stages_test.cpp) up to the sign of a zero (triangle_compensated_lanes' broadcast), which no
+// decision sees: the filter and the enclosures compare with strict inequalities against bounds ≥ 0, and never
+// certify a zero. What the full cascade (ray_triangle_cascade.cpp) evaluates first: it runs when the fast path
+// left a sign open, and then stage 2 is almost always needed (stage 1 is its filter view).
+[[nodiscard]] [[gnu::always_inline]] inline TriangleCompensatedValues triangle_compensated_values_by_lanes(
+    const Ray& ray, const Triangle& triangle) noexcept {
+  const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, triangle);
+  const CompensatedTerm<double> pa = lane(s2.lanes, 0), pb = lane(s2.lanes, 1), pc = lane(s2.lanes, 2);
+  return {{pa, pb, pc, (pa + pb) + pc, lane(s2.lanes, lane_num)}, s2.absolute[0], s2.absolute[lane_num]};
+}
+
 // ---- t = num/den alone: what a nearest hit compares and rounds ---------------------------------------------
 //
 // A nearest hit orders its candidates by t and rounds the winner's t: it needs num and den, not the three π.
