@@ -2,7 +2,7 @@
 
     Stage 3 of [TriangleCascade::sign(v)] (kernel/src/triangle/ray_triangle_cascade.cpp) is
     [value_expansion(ray, triangle, v).sign()] (core/expansion_value.hpp composed by
-    ray_triangle_stages.hpp's [edge_expansion], [num_expansion]), twinned by TriangleStage3Twins.v's
+    ray_triangle_stages.hpp's [expansion_leaf] and [determinant_leaves]), twinned by TriangleStage3Twins.v's
     [ev_sign (value_ev o d a b c v)] and, in the cascade, by TriangleCascadeFlowTwins.v's [tc_sign_b] (the
     runner ties them to the C++: [tri_expansion], [tri_cascade_relation], [tri_cascade_intersect]).  Its
     soundness is [triangle_expansion_sign_sound]; this file proves that it does certify, on the analogue of

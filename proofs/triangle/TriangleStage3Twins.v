@@ -12,8 +12,10 @@
       [scale(a, b_0)], and when b has two components [scale(a, b_1)] summed with it, then [check_finite]);
       the formula writes leaf·cross with the leaf first, which the C++ forwards to [cross · leaf];
     - [ev_cross] ([cross_terms] on leaves), [ev_dot3] ([dot_terms] of leaves and cross components);
-    - [edge_ev] ([edge_expansion(o, d, p, q)]), [num_ev] ([num_expansion]), [value_ev] ([value_expansion]:
-      πa, πb, πc, den = π(b, c) seen from a, num), [ev_sign] ([ExpansionValue::sign]).
+    - [edge_ev] (d·((p − o) × (q − o)): [value_expansion] of a π, or of den with a in o's place, over the
+      leaves [expansion_leaf] reads), [num_ev] ([num_expansion]), [value_ev] ([value_expansion]: πa, πb, πc,
+      den = π(b, c) seen from a, num, the leaves of each as [determinant_leaves] names them), [ev_sign]
+      ([ExpansionValue::sign]).
 
     Theorems, for every 64-bit pattern of the inputs:
     - [value_ev_exact]: when [exact] is true, every component is finite and the components sum exactly to
@@ -78,7 +80,7 @@ Definition ev_dot3 (x c : E3) : EVal :=
 Definition lift3 (d : TVec) : E3 := E3v (ev_of (tx d)) (ev_of (ty d)) (ev_of (tz d)).
 Definition diff3 (v o : TVec) : E3 := E3v (ev_diff (tx v) (tx o)) (ev_diff (ty v) (ty o)) (ev_diff (tz v) (tz o)).
 
-(** [edge_expansion(o, d, p, q)] = d·((p − o) × (q − o)); [num_expansion] = (a − o)·((b − o) × (c − o)). *)
+(** d·((p − o) × (q − o)) (a π, or den from a); [num_expansion] = (a − o)·((b − o) × (c − o)). *)
 Definition edge_ev (o d p q : TVec) : EVal := ev_dot3 (lift3 d) (ev_cross (diff3 p o) (diff3 q o)).
 Definition num_ev (o a b c : TVec) : EVal := ev_dot3 (diff3 a o) (ev_cross (diff3 b o) (diff3 c o)).
 

@@ -66,10 +66,10 @@ struct IntegerVector {
   return r;
 }
 
-// sign(x·(y × z)), the cross product as ray_triangle_formula.hpp's cross_terms writes it; `uncertain` outside the
-// valid range above.
-[[nodiscard]] inline Sign integer_det3_sign(const double x[3], const double y[3], const double z[3]) noexcept {
-  const IntegerVector X = integer_vector(x), Y = integer_vector(y), Z = integer_vector(z);
+// sign(X·(Y × Z)) of three vectors read by integer_vector (each over its own power of two, which the sign does not
+// see), the cross product as ray_triangle_formula.hpp's cross_terms writes it; `uncertain` when a vector is not ok.
+// (A caller that signs several determinants of the same vectors reads each vector once.)
+[[nodiscard]] inline Sign integer_det3_sign(const IntegerVector& X, const IntegerVector& Y, const IntegerVector& Z) noexcept {
   if (!(X.ok & Y.ok & Z.ok)) return Sign::uncertain;
   // (Y × Z)_i = Y_j Z_k − Y_k Z_j, (i, j, k) = (0, 1, 2), (1, 2, 0), (2, 0, 1): each product below 2^124.
   const Int128 c[3] = {static_cast<Int128>(Y.v[1]) * Z.v[2] - static_cast<Int128>(Y.v[2]) * Z.v[1],
@@ -94,6 +94,11 @@ struct IntegerVector {
   }
   if (static_cast<std::int64_t>(s2) < 0) return Sign::negative;
   return (s0 | s1 | s2) != 0 ? Sign::positive : Sign::zero;
+}
+
+// sign(x·(y × z)) of nine doubles; `uncertain` outside the valid range above.
+[[nodiscard]] inline Sign integer_det3_sign(const double x[3], const double y[3], const double z[3]) noexcept {
+  return integer_det3_sign(integer_vector(x), integer_vector(y), integer_vector(z));
 }
 
 }  // namespace raykernel::detail

@@ -117,7 +117,8 @@ class TriangleCascade {
   // Stage 2 is evaluated at once, in lanes: the cascade runs when the fast path left a sign open, and stage 1's
   // values are its filter view (proofs/triangle/TriangleCompensated.v, `stage2_filter_view`).
   [[gnu::always_inline]] TriangleCascade(const Ray& ray, const Triangle& triangle)
-      : ray_(ray), triangle_(triangle), compensated_(triangle_compensated_values_by_lanes(ray, triangle)) {}
+      : ray_(ray), triangle_(triangle), compensated_(triangle_compensated_values_by_lanes(ray, triangle)),
+        integer_leaves_(ray, triangle) {}
 
   // The classification through stage 3, or nothing when a sign needed the exact stage.
   std::optional<TriangleClassification> classify(TriangleRule rule) {
@@ -144,7 +145,7 @@ class TriangleCascade {
   // Stage 3's sign of determinant v: in integers when its leaves allow (integer_value_sign: about a fifth of an
   // expansion's cost), else from its expansion.
   Sign stage3_sign(int v) {
-    const Sign s = integer_value_sign(ray_, triangle_, v);
+    const Sign s = integer_value_sign(integer_leaves_, v);
     return is_certain(s) ? s : expansion(v).sign();
   }
 
@@ -205,6 +206,7 @@ class TriangleCascade {
   Escalation trace_;
   bool needs_exact_ = false;
   TriangleCompensatedValues compensated_;
+  IntegerLeaves integer_leaves_;  // stage 3's integer vectors, each read once
   // Stage 3 of each determinant, once computed (not std::optional: GCC zeroes an optional's 1.5 KB payload
   // when it constructs it, 7.8 KB per query here; an ExpansionValue's components are left uninitialized).
   std::array<ExpansionValue<192>, triangle_value_count> expansion_;

@@ -100,72 +100,101 @@ struct TriangleExpansions {
 // formula's determinants in expansions. π(p, q) = d·((p − o) × (q − o)); den = π(b, c) seen from a, i.e.
 // d·((b − a) × (c − a)) (the same exact value as (πa + πb) + πc, with a shorter expansion); num =
 // (a − o)·((b − o) × (c − o)).
-[[nodiscard]] inline ExpansionValue<192> edge_expansion(const Vec3& o, const Vec3& d, const Vec3& p,
-                                                        const Vec3& q) noexcept {
-  auto diff = [&o](const Vec3& v) {
-    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
-                                            expansion_difference(v.z, o.z)};
-  };
-  const std::array<ExpansionValue<2>, 3> dl{expansion_of(d.x), expansion_of(d.y), expansion_of(d.z)};
-  return dot_terms(dl, cross_terms(diff(p), diff(q)));
-}
-[[nodiscard]] inline ExpansionValue<192> num_expansion(const Ray& ray, const Triangle& t) noexcept {
-  const Vec3& o = ray.origin;
-  auto diff = [&o](const Vec3& v) {
-    return std::array<ExpansionValue<2>, 3>{expansion_difference(v.x, o.x), expansion_difference(v.y, o.y),
-                                            expansion_difference(v.z, o.z)};
-  };
-  return dot_terms(diff(t.a), cross_terms(diff(t.b), diff(t.c)));
-}
-// The vertices of determinant v: π(p, q) and den are d·((p − from) × (q − from)) (from = o for the π's, a for den),
-// num is (a − o)·((p − o) × (q − o)) with (p, q) = (b, c). The one choice value_expansion and integer_value_sign
-// share.
-struct DeterminantVertices {
-  const Vec3 *from, *p, *q;
+//
+// Each determinant is x·(y × z) of three of six leaf vectors — d, e_a, e_b, e_c (v − o) and den's b − a, c − a —
+// chosen once (determinant_leaves, leaf_vector) and shared by the expansions here and by the integers below.
+inline constexpr int leaf_d = 0, leaf_ea = 1, leaf_eb = 2, leaf_ec = 3, leaf_ab = 4, leaf_ac = 5, leaf_count = 6;
+// Determinant v's vectors (x, y, z), by leaf: πa = d·(e_b × e_c), πb = d·(e_c × e_a), πc = d·(e_a × e_b),
+// den = d·((b − a) × (c − a)), num = e_a·(e_b × e_c).
+inline constexpr int determinant_leaves[triangle_value_count][3] = {
+    {leaf_d, leaf_eb, leaf_ec}, {leaf_d, leaf_ec, leaf_ea}, {leaf_d, leaf_ea, leaf_eb}, {leaf_d, leaf_ab, leaf_ac},
+    {leaf_ea, leaf_eb, leaf_ec}};
+// Leaf `leaf` as the difference p − from of two points, or (leaf_d) the direction itself (from null).
+struct LeafVector {
+  const Vec3 *p, *from;
 };
-[[nodiscard]] inline DeterminantVertices determinant_vertices(const Ray& ray, const Triangle& t, int v) noexcept {
-  switch (v) {
-    case value_pi_a: return {&ray.origin, &t.b, &t.c};
-    case value_pi_b: return {&ray.origin, &t.c, &t.a};
-    case value_pi_c: return {&ray.origin, &t.a, &t.b};
-    case value_den: return {&t.a, &t.b, &t.c};
-    default: return {&ray.origin, &t.b, &t.c};
+[[nodiscard]] inline LeafVector leaf_vector(const Ray& ray, const Triangle& t, int leaf) noexcept {
+  switch (leaf) {
+    case leaf_d: return {&ray.direction, nullptr};
+    case leaf_ea: return {&t.a, &ray.origin};
+    case leaf_eb: return {&t.b, &ray.origin};
+    case leaf_ec: return {&t.c, &ray.origin};
+    case leaf_ab: return {&t.b, &t.a};
+    default: return {&t.c, &t.a};
   }
 }
 
+// Leaf `leaf` in expansions: d lifted, a difference exactly (TwoDiff).
+[[nodiscard]] inline std::array<ExpansionValue<2>, 3> expansion_leaf(const Ray& ray, const Triangle& t, int leaf) noexcept {
+  const LeafVector w = leaf_vector(ray, t, leaf);
+  const Vec3& p = *w.p;
+  if (w.from == nullptr) return {expansion_of(p.x), expansion_of(p.y), expansion_of(p.z)};
+  const Vec3& f = *w.from;
+  return {expansion_difference(p.x, f.x), expansion_difference(p.y, f.y), expansion_difference(p.z, f.z)};
+}
+
 [[nodiscard]] inline ExpansionValue<192> value_expansion(const Ray& ray, const Triangle& t, int v) noexcept {
-  if (v == value_num) return num_expansion(ray, t);
-  const DeterminantVertices w = determinant_vertices(ray, t, v);
-  return edge_expansion(*w.from, ray.direction, *w.p, *w.q);
+  const int* l = determinant_leaves[v];
+  return dot_terms(expansion_leaf(ray, t, l[0]), cross_terms(expansion_leaf(ray, t, l[1]), expansion_leaf(ray, t, l[2])));
+}
+// num = (a − o)·((b − o) × (c − o)) alone (also orient3d's stage 3: orient/orient_predicates.hpp).
+[[nodiscard]] inline ExpansionValue<192> num_expansion(const Ray& ray, const Triangle& t) noexcept {
+  return value_expansion(ray, t, value_num);
 }
 
 // Stage 3's first try for determinant v: its exact sign in integers (core/integer_det3.hpp), when each of its
 // leaves is one double — every difference p − o exact in binary64 (TwoDiff's tail 0), as for coordinates on a
 // grid — and the exponents lie in integer_det3_sign's range; `uncertain` otherwise (the expansions decide then).
-// The leaves are value_expansion's: π(p, q) = d·((p − o) × (q − o)), den with a in o's place, num = e_a·(e_b × e_c).
+// The leaves are value_expansion's (determinant_leaves), each read by integer_leaf; IntegerLeaves reads each at
+// most once per query (a ray through a vertex has two zero π sharing d and a leaf).
 //   Certified by: proofs/triangle/TriangleIntegerSign.v, `integer_value_sign_sound` (its twin integer_value_sign_b,
 //   run against this code through the cascade's routines tri_cascade_relation and tri_cascade_intersect).
-[[nodiscard]] inline Sign integer_value_sign(const Ray& ray, const Triangle& t, int v) noexcept {
-  const DeterminantVertices w = determinant_vertices(ray, t, v);
-  const double pv[3] = {w.p->x, w.p->y, w.p->z}, qv[3] = {w.q->x, w.q->y, w.q->z};
+
+// Leaf `leaf` as integers over one power of two; not ok when a difference is not exact in binary64.
+[[nodiscard]] inline IntegerVector integer_leaf(const Ray& ray, const Triangle& t, int leaf) noexcept {
+  const LeafVector w = leaf_vector(ray, t, leaf);
+  const double pv[3] = {w.p->x, w.p->y, w.p->z};
+  if (w.from == nullptr) return integer_vector(pv);
   const double fv[3] = {w.from->x, w.from->y, w.from->z};
-  const double dv[3] = {ray.direction.x, ray.direction.y, ray.direction.z}, av[3] = {t.a.x, t.a.y, t.a.z};
-  double x[3], y[3], z[3];
+  double e[3];
   bool exact = true;
   for (int i = 0; i < 3; ++i) {
-    const DoubleDouble ey = two_diff(pv[i], fv[i]), ez = two_diff(qv[i], fv[i]);
-    y[i] = ey.hi;
-    z[i] = ez.hi;
-    exact = exact && ey.lo == 0 && ez.lo == 0;
-    if (v == value_num) {
-      const DoubleDouble ex = two_diff(av[i], fv[i]);
-      x[i] = ex.hi;
-      exact = exact && ex.lo == 0;
-    } else {
-      x[i] = dv[i];
-    }
+    const DoubleDouble s = two_diff(pv[i], fv[i]);
+    e[i] = s.hi;
+    exact = exact && s.lo == 0;
   }
-  return exact ? integer_det3_sign(x, y, z) : Sign::uncertain;
+  IntegerVector r = integer_vector(e);
+  r.ok = r.ok && exact;
+  return r;
+}
+
+// The six leaf vectors of one query in integers, each read on first use.
+class IntegerLeaves {
+ public:
+  IntegerLeaves(const Ray& ray, const Triangle& triangle) noexcept : ray_(ray), triangle_(triangle) {}
+  [[nodiscard]] const IntegerVector& operator[](int leaf) noexcept {
+    const std::size_t k = static_cast<std::size_t>(leaf);
+    if (!read_[k]) {
+      vector_[k] = integer_leaf(ray_, triangle_, leaf);
+      read_[k] = true;
+    }
+    return vector_[k];
+  }
+
+ private:
+  const Ray& ray_;
+  const Triangle& triangle_;
+  std::array<IntegerVector, leaf_count> vector_;
+  std::array<bool, leaf_count> read_{};
+};
+
+[[nodiscard]] inline Sign integer_value_sign(IntegerLeaves& leaves, int v) noexcept {
+  const int* l = determinant_leaves[v];
+  return integer_det3_sign(leaves[l[0]], leaves[l[1]], leaves[l[2]]);
+}
+[[nodiscard]] inline Sign integer_value_sign(const Ray& ray, const Triangle& t, int v) noexcept {
+  IntegerLeaves leaves(ray, t);
+  return integer_value_sign(leaves, v);
 }
 
 [[nodiscard]] inline TriangleExpansions triangle_expansions(const Ray& ray, const Triangle& triangle) noexcept {
