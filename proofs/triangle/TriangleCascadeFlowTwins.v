@@ -6,7 +6,10 @@
     From the fifteen input bit patterns, as the C++ does:
     - [tc_sign_b v]: [TriangleCascade::sign(v)] — stage 1 ([triangle_filter_values], [det3_filter_lanes]
       with v's constants: TriangleTwins.v), then stage 2's enclosure sign ([triangle_compensated_values],
-      [det3_enclosure], [enclosure_sign]), then stage 3: the integer sign when the leaves allow
+      [det3_enclosure], [enclosure_sign]; the C++ evaluates both stages at once as
+      [triangle_compensated_values_by_lanes] and its filter view: the same values up to the sign of a zero,
+      which no strict comparison sees — TriangleTwins.v's lane twins, runner routine [tri_compensated_lanes]),
+      then stage 3: the integer sign when the leaves allow
       ([integer_value_sign]: TriangleIntegerSign.v's [integer_value_sign_b]), else the expansion's checked sign
       ([value_expansion]: TriangleStage3Twins.v's [value_ev], [ev_sign]), else 0 with [needs_exact_] set;
     - [tc_tie_break_b k]: [tie_break(k)] — [tie_break_signs_by_expansion]: the signs of d × (q − p) for

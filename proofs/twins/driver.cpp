@@ -666,7 +666,9 @@ ScalarRoutine triangle_routine(std::uint64_t max_word, Body body) {
 
 const std::map<std::string, ScalarRoutine>& triangle_routines() {
   static const std::map<std::string, ScalarRoutine> table = {
-      // triangle_filter_values and the full cascade's stage-1 signs (det3_filter_sign).
+      // triangle_filter_values and the stage-1 signs det3_filter_lanes gives them (the full cascade's
+      // det3_filter_sign takes the same values, up to the sign of a zero, as the filter view of
+      // triangle_compensated_values_by_lanes: tri_compensated_lanes below).
       {"tri_filter",
        triangle_routine([](const raykernel::Ray& ray, const raykernel::Triangle& tri, Out& o) {
          const TriangleFilterValues f = triangle_filter_values(ray, tri);
