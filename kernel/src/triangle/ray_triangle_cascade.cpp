@@ -175,12 +175,7 @@ class TriangleCascade {
   [[nodiscard]] const TriangleCompensatedValues& compensated() const noexcept { return compensated_; }
   // Stage 3 of determinant v, computed on first use.
   const ExpansionValue<192>& expansion(int v) {
-    const std::size_t k = static_cast<std::size_t>(v);
-    if (!has_expansion_[k]) {
-      expansion_[k] = value_expansion(ray_, triangle_, v);
-      has_expansion_[k] = true;
-    }
-    return expansion_[k];
+    return expansion_.get(static_cast<std::size_t>(v), [&] { return value_expansion(ray_, triangle_, v); });
   }
 
  private:
@@ -207,10 +202,7 @@ class TriangleCascade {
   bool needs_exact_ = false;
   TriangleCompensatedValues compensated_;
   IntegerLeaves integer_leaves_;  // stage 3's integer vectors, each read once
-  // Stage 3 of each determinant, once computed (not std::optional: GCC zeroes an optional's 1.5 KB payload
-  // when it constructs it, 7.8 KB per query here; an ExpansionValue's components are left uninitialized).
-  std::array<ExpansionValue<192>, triangle_value_count> expansion_;
-  std::array<bool, triangle_value_count> has_expansion_{};
+  OnFirstUse<ExpansionValue<192>, triangle_value_count> expansion_;  // stage 3 of each determinant, once computed
 };
 
 // Four scalar enclosures (in lane order) as the lanes of one.

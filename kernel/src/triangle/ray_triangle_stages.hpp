@@ -10,6 +10,7 @@
 #include "core/det3_stages.hpp"
 #include "core/expansion_value.hpp"
 #include "core/integer_det3.hpp"
+#include "core/on_first_use.hpp"
 
 #include <raykernel/raykernel.hpp>
 #include <raykernel/triangle.hpp>
@@ -173,19 +174,13 @@ class IntegerLeaves {
  public:
   IntegerLeaves(const Ray& ray, const Triangle& triangle) noexcept : ray_(ray), triangle_(triangle) {}
   [[nodiscard]] const IntegerVector& operator[](int leaf) noexcept {
-    const std::size_t k = static_cast<std::size_t>(leaf);
-    if (!read_[k]) {
-      vector_[k] = integer_leaf(ray_, triangle_, leaf);
-      read_[k] = true;
-    }
-    return vector_[k];
+    return vector_.get(static_cast<std::size_t>(leaf), [&] { return integer_leaf(ray_, triangle_, leaf); });
   }
 
  private:
   const Ray& ray_;
   const Triangle& triangle_;
-  std::array<IntegerVector, leaf_count> vector_;
-  std::array<bool, leaf_count> read_{};
+  OnFirstUse<IntegerVector, leaf_count> vector_;
 };
 
 [[nodiscard]] inline Sign integer_value_sign(IntegerLeaves& leaves, int v) noexcept {
