@@ -16,8 +16,17 @@ namespace raykernel::detail {
   return std::string(buf, r.ptr);
 }
 
+// Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive of its string insert) on "(" + std::string&&
+// once this is inlined into some callers.
 [[nodiscard]] inline std::string shortest_text(const Vec3& v) {
-  return "(" + shortest_text(v.x) + ", " + shortest_text(v.y) + ", " + shortest_text(v.z) + ")";
+  std::string s = "(";
+  s += shortest_text(v.x);
+  s += ", ";
+  s += shortest_text(v.y);
+  s += ", ";
+  s += shortest_text(v.z);
+  s += ')';
+  return s;
 }
 
 }  // namespace raykernel::detail
