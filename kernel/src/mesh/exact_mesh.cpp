@@ -4,12 +4,11 @@
 
 #include "core/exact_value.hpp"
 #include "core/rational_from_double.hpp"
+#include "core/validation.hpp"
 
 #include <gmpxx.h>
 
 #include <array>
-#include <bit>
-#include <cstdint>
 
 namespace raykernel::detail::exact {
 namespace {
@@ -51,7 +50,7 @@ Rational rational_of_double(double x) { return to_public(rational_from_double(x)
 
 bool rational_in_interval(const Rational& t, const RayInterval& interval) {
   if (compare_rationals(t, rational_of_double(interval.t_min)) < 0) return false;
-  const bool bounded = (std::bit_cast<std::uint64_t>(interval.t_max) & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+  const bool bounded = is_finite(interval.t_max);
   return !bounded || compare_rationals(t, rational_of_double(interval.t_max)) <= 0;
 }
 

@@ -161,7 +161,7 @@ RAYKERNEL_MULTIVERSION std::optional<Vec3> rounded_hit(const HitPoint& hit, cons
     if (!x || !y || !z) return std::nullopt;
     return Vec3{*x, *y, *z};
   }
-  if (!is_finite(hit.ray.origin) || !is_finite(hit.ray.direction)) return std::nullopt;
+  if (!all_finite(hit.ray)) return std::nullopt;
   const TriangleQuotientStage2 values = triangle_quotient_compensated(hit.ray, source);
   const Enclosure& den = values.den;
   const Sign den_sign = enclosure_sign(den);
@@ -220,7 +220,7 @@ struct Axis {
 
 std::optional<SpawnedOrigin> spawn_certified(const HitPoint& hit, const Triangle& source, bool to_target,
                                              const Vec3& w_or_q, OriginFormat format) {
-  if (!is_finite(source.a) || !is_finite(source.b) || !is_finite(source.c) || !is_finite(w_or_q)) return std::nullopt;
+  if (!is_valid(source) || !is_finite(w_or_q)) return std::nullopt;  // is_valid(Triangle): its vertices finite
   const std::optional<Vec3> rounded = rounded_hit(hit, source, format);
   if (!rounded) return std::nullopt;
   // s ≠ 0 also certifies N ≠ 0 (and w ≠ 0); den ≠ 0 in rounded_hit certified d ≠ 0.
