@@ -274,7 +274,7 @@ Definition twin_results_stage_two_finite :=
 Goal True. idtac "@@ two_sum_b_nan_or_finite den_compensated_certain_finite num_compensated_certain_finite den_compensated_twin_sound_total num_compensated_twin_sound_total compare_compensated_certain_finite compare_compensated_twin_sound_total hit_order_compensated_twin_sound_total". Abort.
 Print Assumptions twin_results_stage_two_finite.
 
-(** PlaneQueryPairTwins.v: the Lanes2 one-query forms and stage 3 of ray_plane_query.hpp *)
+(** PlaneQueryPairTwins.v: the Lanes2 one-query forms and stage 3 of plane/ray_plane_stages.hpp *)
 Definition twin_results_query_pairs :=
   (fast_answer_from_twin_correct,
    PlaneQueryPairTwins.fast_relation_pair_twin_correct,

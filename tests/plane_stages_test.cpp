@@ -10,6 +10,8 @@
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
 #include "core/quotient_rounding.hpp"
+#include "core/validation.hpp"
+#include "plane/ray_plane_cascade.hpp"
 #include "plane/ray_plane_stages.hpp"
 
 #include <raykernel/testkit/plane_queries.hpp>
@@ -265,6 +267,74 @@ TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
     }
   }
   EXPECT_GT(certified, queries / 5);  // the easy kinds (about a quarter of these): the comparison is not vacuous
+}
+
+// The cascade evaluates stage 2's levels of den and num as the two lanes of a RayPlanePair, and continues
+// from the fast path's rounding of t (RayPlaneCascade's constructor from it); the proofs model each value's
+// scalar evaluation (den_compensated … num_refined). Every lane must be that evaluation, bit for bit, and the
+// cascade built after the fast path must hold what the cascade built from the inputs holds.
+bool same_enclosure(const Enclosure& a, const Enclosure& b) {
+  return test_support::same_bits(a.hi, b.hi) && test_support::same_bits(a.lo, b.lo) &&
+         test_support::same_bits(a.radius, b.radius);
+}
+bool same_stage1(const Dot3Rounded& a, const Dot3Rounded& b) {
+  for (int i = 0; i < 3; ++i)
+    if (!test_support::same_bits(a.product[i], b.product[i])) return false;
+  return test_support::same_bits(a.value, b.value) && test_support::same_bits(a.magnitude, b.magnitude);
+}
+
+TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
+  std::size_t queries = 0, left_open = 0, refined_certain = 0;
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
+    testkit::SplitMix64 rng(0xca5cade + static_cast<std::uint64_t>(kind));
+    const testkit::BitSource bits = [&rng] { return rng(); };
+    for (int i = 0; i < 2000; ++i) {
+      const Query q = testkit::make_query(kind, bits);
+      if (!detail::is_valid(q.ray) || !detail::is_valid(q.plane)) continue;
+      ++queries;
+      const detail::RayPlaneTerms terms = detail::ray_plane_terms(q.ray, q.plane);
+      const Enclosure den2 = detail::den_compensated(terms), num2 = detail::num_compensated(terms);
+      const Enclosure den2r = detail::den_refined(terms), num2r = detail::num_refined(terms);
+      const double o[3] = {q.ray.origin.x, q.ray.origin.y, q.ray.origin.z};
+      const double d[3] = {q.ray.direction.x, q.ray.direction.y, q.ray.direction.z};
+      const double p[3] = {q.plane.point.x, q.plane.point.y, q.plane.point.z};
+      const double n[3] = {q.plane.normal.x, q.plane.normal.y, q.plane.normal.z};
+      for (const detail::RayPlanePair& pair : {detail::ray_plane_pair(terms), detail::ray_plane_pair(o, d, p, n)}) {
+        const auto c = detail::compensated_pair(pair);
+        ASSERT_TRUE(same_enclosure(detail::enclosure_lane(c, 0), den2)) << testkit::to_string(q);
+        ASSERT_TRUE(same_enclosure(detail::enclosure_lane(c, 1), num2)) << testkit::to_string(q);
+        const auto r = detail::refined_pair(pair);
+        ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 0), den2r)) << testkit::to_string(q);
+        ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 1), num2r)) << testkit::to_string(q);
+      }
+      // The cascade from the inputs and the cascade from the fast path: the same terms, levels and rounding.
+      const detail::FastAnswer fast = detail::fast_answer(q.ray, q.plane);
+      detail::RayPlaneCascade from_inputs(q.ray, q.plane),
+          from_fast(q.ray, q.plane, detail::QuotientRounding{fast.t, fast.rounding_certain});
+      ASSERT_TRUE(same_stage1(from_fast.terms().den, terms.den) && same_stage1(from_fast.terms().num, terms.num))
+          << testkit::to_string(q);
+      for (int k = 0; k < 3; ++k) ASSERT_TRUE(test_support::same_bits(from_fast.terms().diff[k], terms.diff[k]));
+      ASSERT_TRUE(same_enclosure(from_fast.den_compensated(), den2) && same_enclosure(from_fast.num_compensated(), num2));
+      ASSERT_TRUE(same_enclosure(from_inputs.den_refined(), den2r) && same_enclosure(from_inputs.num_refined(), num2r));
+      const detail::QuotientRounding a = from_inputs.compensated_rounding(), b = from_fast.compensated_rounding();
+      ASSERT_EQ(a.certain, b.certain) << testkit::to_string(q);
+      if (a.certain) {
+        ASSERT_TRUE(test_support::same_bits(a.t, b.t)) << testkit::to_string(q);
+      }
+      if (!fast.certain) {
+        ++left_open;
+        refined_certain += detail::enclosure_sign(from_fast.den_refined()) != Sign::uncertain;
+      }
+      const TracedIntersection x = detail::intersect_cascade(from_inputs), y = detail::intersect_cascade(from_fast);
+      ASSERT_EQ(x.intersection.relation, y.intersection.relation) << testkit::to_string(q);
+      ASSERT_TRUE(test_support::same_bits(x.intersection.t, y.intersection.t) ||
+                  (std::isnan(x.intersection.t) && std::isnan(y.intersection.t)))
+          << testkit::to_string(q);
+    }
+  }
+  // Not vacuous: the hard kinds leave many queries to the cascade, and the second level decides many of them.
+  EXPECT_GT(left_open, queries / 4);
+  EXPECT_GT(refined_certain, left_open / 4);
 }
 
 // TwoSum can overflow inside with finite operands and a finite sum (proofs/plane/PlaneStageTwoFinite.v,

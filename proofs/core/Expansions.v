@@ -4,7 +4,7 @@
     [push], [finish] (zero elimination), [note_product_b], [product_b], [scale_gen] (Shewchuk's
     scale_expansion_zeroelim), [merge] and [sum_gen] (fast_expansion_sum_zeroelim with the take_smaller
     merge), [from_pair], [check_finite], [expansion_sign_b] ([Expansion::sign]: the checked sign),
-    [build_expansions_gen] (ray_plane_query.hpp's ray_plane_expansions), [multiply_gen] and
+    [build_expansions_gen] (plane/ray_plane_stages.hpp's ray_plane_expansions), [multiply_gen] and
     [compare_quotients_expansion_gen] (compare_quotients.hpp).  [scale_gen] and [sum_gen] take the two-term
     transformation as a parameter [fts]; the C++ uses TwoSum, [two_sum_b], and so do the names [scale_b],
     [sum_b], [build_expansions_b], [compare_quotients_expansion_b] that the theorems and the differential
@@ -151,7 +151,7 @@ Definition expansion_sign_b (e : list float) : sign :=
   then (if flt fzero top then Positive else Negative)
   else Uncertain.
 
-(** [ray_plane_expansions(q)] (ray_plane_query.hpp): den = Σ d_i n_i and num = Σ (p_i − o_i) n_i. *)
+(** [ray_plane_expansions(q)] (plane/ray_plane_stages.hpp): den = Σ d_i n_i and num = Σ (p_i − o_i) n_i. *)
 Definition build_expansions_gen (fts : float -> float -> float * float)
   (o0 o1 o2 d0 d1 d2 p0 p1 p2 n0 n1 n2 : float) : list float * list float * bool :=
   let pd0 := product_b true d0 n0 in

@@ -154,7 +154,7 @@ Proof. reflexivity. Qed.
 Lemma ray_den_components : ray_den d n = dx * nx + dy * ny + dz * nz.
 Proof. reflexivity. Qed.
 
-(** The first level of stage 2 as ray_plane_query.hpp computes it: [num_compensated]
+(** The first level of stage 2 as plane/ray_plane_stages.hpp computes it: [num_compensated]
     ([compensated_dot3] with α_i = [two_diff(p_i, o_i).lo]) and [den_compensated]
     ([compensated_dot3_exact]). *)
 Definition num_enclosure : Enclosure :=
@@ -173,7 +173,7 @@ Proof.
   - rewrite ray_den_components. now apply den_filter_sound.
 Qed.
 
-(** ** The second level of stage 2: [num_refined] and [den_refined] (ray_plane_query.hpp). *)
+(** ** The second level of stage 2: [num_refined] and [den_refined] (plane/ray_plane_stages.hpp). *)
 Definition refined_num_enclosure : Enclosure :=
   compensated_dot3_refined (RN (px - ox)) (RN (py - oy)) (RN (pz - oz))
     (snd (two_diff px ox)) (snd (two_diff py oy)) (snd (two_diff pz oz)) nx ny nz.
@@ -303,7 +303,7 @@ Proof.
   - apply refined_t_correct.
 Qed.
 
-(** ** The fast paths (ray_plane_query.hpp), one query; the batch loops run the same operations per
+(** ** The fast paths (plane/ray_plane_stages.hpp), one query; the batch loops run the same operations per
     lane (proofs/README.md, "Lanes"). *)
 
 (** The stage-1 values of [RayPlaneTermsT] (and of [fast_relation], which computes the same ones as
@@ -507,7 +507,7 @@ Proof. exact two_prod_guard_exact. Qed.
 
 (** [RayPlaneTermsT] and [RayPlaneCascade]: stage 1 ([num], [den] of the terms) and stage 2
     ([num_compensated], [den_compensated]: [compensated_dot3] and [compensated_dot3_exact]) of one query,
-    with the same arguments as ray_plane_query.hpp passes. *)
+    with the same arguments as plane/ray_plane_stages.hpp passes. *)
 Definition stage1_num (o p n : vec3) : Dot3Rounded :=
   dot3_rounded (RN (vx p - vx o)) (RN (vy p - vy o)) (RN (vz p - vz o)) (vx n) (vy n) (vz n).
 Definition stage1_den (d n : vec3) : Dot3Rounded :=

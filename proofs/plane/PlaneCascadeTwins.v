@@ -1,5 +1,5 @@
-(** * The twin of the ray–plane cascade's control flow (certified/ray_plane_cascade.{hpp,cpp},
-    validation.{hpp,cpp}, api.cpp: [intersect_traced], [relation]).
+(** * The twin of the ray–plane cascade's control flow (plane/ray_plane_cascade.{hpp,cpp},
+    core/validation.{hpp,cpp}, plane/plane_api.cpp: [intersect_traced], [relation]).
 
     From the twelve input bit patterns, as the C++ does:
     - [validate_b]: validation.cpp's [validate(ray, plane)] — the first non-finite component in the order
@@ -20,7 +20,7 @@
       [relation] past its fast path, whose certified answers are the contract's: PlaneQueryTwins.v).
 
     The stage twins are PlaneTwins.v's, PlaneRefinedTwins.v's, PlaneQueryTwins.v's and Expansions.v's, called as
-    ray_plane_query.hpp calls them; the differential runner compares the public entry points with these
+    plane/ray_plane_stages.hpp calls them; the differential runner compares the public entry points with these
     definitions bit for bit, the deciding stage included (routines [cascade_intersect],
     [cascade_relation]).  The theorem [cascade_twin_correct] (below) says what an answer before the exact
     stage means. *)

@@ -79,7 +79,7 @@ Definition round_quotient_b (num : EnclosureB) (den : DivisorB) : float * bool :
   let h := half_gap_b q in
   (q, (in_range && flt (fmul (fadd x y) Cpp.quotient_test_factor) (fmul h abs_D))%bool).
 
-(** ** ray_plane_query.hpp *)
+(** ** plane/ray_plane_stages.hpp *)
 
 Definition certain_lane (s : Z) : bool := negb (Z.eqb s uncertain_lane).
 Definition first_certain_lanes_b (first second : Z) : Z := if Z.eqb first uncertain_lane then second else first.
@@ -403,7 +403,7 @@ Proof.
   split; [exact Nz | split; [exact Ft | rewrite Vt; exact T]].
 Qed.
 
-(** ** The twins tied to the models: ray_plane_query.hpp *)
+(** ** The twins tied to the models: plane/ray_plane_stages.hpp *)
 
 Definition vec_R (v : Vec3B) : vec3 := Vec3 (B2R (vxb v)) (B2R (vyb v)) (B2R (vzb v)).
 Definition vec_fin (v : Vec3B) : Prop := fin (vxb v) = true /\ fin (vyb v) = true /\ fin (vzb v) = true.

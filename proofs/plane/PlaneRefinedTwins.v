@@ -1,5 +1,5 @@
 (** * The twin of the second level of stage 2, tied to the model (core/dot3_compensated.hpp,
-    [compensated_dot3_refined]; ray_plane_query.hpp, [den_refined], [num_refined]).
+    [compensated_dot3_refined]; plane/ray_plane_stages.hpp, [den_refined], [num_refined]).
 
     [compensated_dot3_refined_b] (PlaneTwins.v) is the C++ operation by operation over IEEE binary64; the
     differential runner checks it bit for bit (routine [refined]).  This file proves that whenever its

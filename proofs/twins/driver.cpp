@@ -153,7 +153,7 @@ void lanes_compensated_exact(const V* x, std::vector<Out>& out) {
   const EnclosureT<V> e = compensated_dot3_exact(x, x + 3, dot3_rounded(x, x + 3));
   for (int k = 0; k < width_of<V>; ++k) out[k].f(lane(e.hi, k)), out[k].f(lane(e.lo, k)), out[k].f(lane(e.radius, k));
 }
-// ray_plane_query.hpp: fast_answer and fast_relation on the terms (the batch API's form), per lane.
+// plane/ray_plane_stages.hpp: fast_answer and fast_relation on the terms (the batch API's form), per lane.
 template <class V>
 void lanes_fast_answer(const V* x, std::vector<Out>& out) {
   const FastAnswerT<V> a = fast_answer(ray_plane_terms(x, x + 3, x + 6, x + 9));

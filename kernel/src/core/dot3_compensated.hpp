@@ -63,34 +63,38 @@ template <class V>
 //   Error bound: |V − (hi + lo)| ≤ ((2^-150 ⊗ m) ⊕ (2^-52 ⊗ |lo|)) ⊕ 8μ (error_bounds.hpp).
 //   Valid range: all finite inputs; the radius is not finite if anything overflowed.
 //   Certified by: proofs/plane/PlaneCompensated.v, `compensated_dot3_refined_enclosure`.
-[[nodiscard]] inline Enclosure compensated_dot3_refined(const double a[3], const double alpha[3], const double b[3],
-                                                        const Dot3Rounded& stage1) noexcept {
-  const DoubleDouble s2 = two_sum(stage1.product[0], stage1.product[1]);
-  const DoubleDouble s3 = two_sum(s2.hi, stage1.product[2]);
-  double first_order[8] = {s2.lo, s3.lo};
-  double second_order[3];
+//   V is double or a Lanes type: each lane is the scalar evaluation of its own value, bit for bit (the same
+//   operations, elementwise; plane/ray_plane_stages.hpp evaluates den and num as the two lanes of a Lanes2,
+//   and tests/plane_stages_test.cpp compares the lanes with the scalar form).
+template <class V>
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<V> compensated_dot3_refined(const V a[3], const V alpha[3], const V b[3],
+                                                                                   const Dot3RoundedT<V>& stage1) noexcept {
+  const DD<V> s2 = two_sum(stage1.product[0], stage1.product[1]);
+  const DD<V> s3 = two_sum(s2.hi, stage1.product[2]);
+  V first_order[8] = {s2.lo, s3.lo};
+  V second_order[3];
   for (int i = 0; i < 3; ++i) {
-    first_order[2 + i] = std::fma(a[i], b[i], -stage1.product[i]);  // l_i
-    const DoubleDouble w = two_prod(alpha[i], b[i]);
+    first_order[2 + i] = fma(a[i], b[i], -stage1.product[i]);  // l_i
+    const DD<V> w = two_prod(alpha[i], b[i]);
     first_order[5 + i] = w.hi;
     second_order[i] = w.lo;
   }
-  double sigma = first_order[0];
-  double tail = 0;
+  V sigma = first_order[0];
+  V tail{};  // +0
   for (int j = 1; j < 8; ++j) {
-    const DoubleDouble step = two_sum(sigma, first_order[j]);
+    const DD<V> step = two_sum(sigma, first_order[j]);
     sigma = step.hi;
     tail += step.lo;
   }
   for (int i = 0; i < 3; ++i) tail += second_order[i];
-  const DoubleDouble x = two_sum(s3.hi, sigma);
-  const double lo = x.lo + tail;
+  const DD<V> x = two_sum(s3.hi, sigma);
+  const V lo = x.lo + tail;
   // No overflow test: the radius contains 2^-52 ⊗ |lo|, so a finite radius means a finite lo (a NaN α_i,
   // which a TwoDiff low part can be, makes lo and the radius NaN), and a finite x.lo means a finite
   // x.hi. So a certain sign implies finite hi and lo, for every bit pattern of the inputs:
   // proofs/plane/PlaneRefinedFinite.v, `den_refined_certain_finite`, `num_refined_certain_finite`.
   return {x.hi, lo,
-          plus_absolute(bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * std::fabs(lo),
+          plus_absolute(bounds::refined_relative * stage1.magnitude + bounds::refined_low_relative * abs(lo),
                         absolute_constant(bounds::refined_absolute))};
 }
 

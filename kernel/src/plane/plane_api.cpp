@@ -33,12 +33,15 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // done between them.
 
 // The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
-// caller reports), else the cascade's answer. Out of line: the fast path stays small. The cascade starts
-// from the same terms the fast path computed (RayPlaneCascade recomputes them with the same operations:
-// cheaper than storing them on every call, which costs the fast path about 40 instructions).
-[[gnu::noinline]] std::optional<Intersection> intersection_rest(const Ray& ray, const Plane& plane) noexcept {
+// caller reports), else the cascade's answer. Out of line: the fast path stays small. The cascade continues
+// from the fast path's rounding of t on stage 2's first level (RayPlaneCascade's constructor from it), and
+// computes stage 1 and that level again with the fast path's operations (RayPlanePair): handing those over
+// would cost the certain path its stores (+49 instructions a query, measured), recomputing them costs the rest
+// about 60.
+RAYKERNEL_MULTIVERSION [[gnu::noinline]] std::optional<Intersection> intersection_rest(
+    const Ray& ray, const Plane& plane, detail::QuotientRounding first_level) noexcept {
   if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
-  detail::RayPlaneCascade query(ray, plane);
+  detail::RayPlaneCascade query(ray, plane, first_level);
   return detail::intersect_cascade(query).intersection;
 }
 
@@ -55,7 +58,7 @@ std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& 
   const detail::FastAnswer a = detail::fast_answer(ray, plane);
   if (a.certain) [[likely]]
     return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
-  return intersection_rest(ray, plane);
+  return intersection_rest(ray, plane, {a.t, a.rounding_certain});
 }
 
 RAYKERNEL_MULTIVERSION

@@ -24,7 +24,7 @@
 
 namespace raykernel::detail {
 
-RAYKERNEL_MULTIVERSION
+RAYKERNEL_MULTIVERSION_FLATTEN
 CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
   // Each sign through the stages (core/escalation.hpp): the binary64 filter, stage 2's two levels (the second
   // for values that cancel to within ~2^-100 of the terms), computed on demand and kept for the rounding of t,
@@ -48,10 +48,10 @@ CertifiedSigns certified_signs(RayPlaneCascade& query) noexcept {
   return {sign_from_int(s.num), sign_from_int(s.den), Stage::exact};
 }
 
-RAYKERNEL_MULTIVERSION
+RAYKERNEL_MULTIVERSION_FLATTEN
 std::pair<double, Stage> certified_quotient(RayPlaneCascade& query) noexcept {
-  if (const auto t = round_quotient_if_certain(query.num_compensated(), prepare_divisor(query.den_compensated())))
-    return {*t, Stage::compensated};
+  // The first level's rounding: kept by the cascade (from the fast path, when it came from there).
+  if (const QuotientRounding& r = query.compensated_rounding(); r.certain) return {r.t, Stage::compensated};
   if (const auto t = round_quotient_if_certain(query.num_refined(), prepare_divisor(query.den_refined())))
     return {*t, Stage::compensated};
   if (const ExactExpansions& e = query.expansions(); e.exact) {

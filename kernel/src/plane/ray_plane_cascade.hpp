@@ -4,9 +4,10 @@
 // queries their fast paths leave open; `intersect_traced` runs it from the start to report its stages.
 #pragma once
 
+#include "core/on_first_use.hpp"
 #include "plane/ray_plane_stages.hpp"
 
-#include <optional>
+#include <array>
 #include <utility>
 
 namespace raykernel::detail {
@@ -16,6 +17,12 @@ class RayPlaneCascade {
   RayPlaneCascade(const Ray& ray, const Plane& plane) noexcept : RayPlaneCascade(ray, plane, ray_plane_terms(ray, plane)) {}
   RayPlaneCascade(const Ray& ray, const Plane& plane, const RayPlaneTerms& terms) noexcept
       : ray_(ray), plane_(plane), q_(terms) {}
+  // For a query the one-query fast path (plane/ray_plane_stages.hpp, fast_answer) left open, once validated:
+  // stage 1 and stage 2's first level computed as the fast path computes them (RayPlanePair: the terms' and the
+  // scalar levels' bits), and the fast path's rounding of t from that level (the same operation on the same
+  // bits) kept instead of repeated.
+  // Inline: its caller is multiversioned (core/multiversion.hpp), and so is this code with it.
+  [[gnu::always_inline]] RayPlaneCascade(const Ray& ray, const Plane& plane, const QuotientRounding& fast_path_rounding) noexcept;
 
   [[nodiscard]] const Ray& ray() const noexcept { return ray_; }
   [[nodiscard]] const Plane& plane() const noexcept { return plane_; }
@@ -34,25 +41,55 @@ class RayPlaneCascade {
     return dot3_filter(q_.num, bounds::filter_num_relative, zero);
   }
 
-  [[nodiscard]] const Enclosure& den_compensated() noexcept { return once(den2_, [&] { return detail::den_compensated(q_); }); }
-  [[nodiscard]] const Enclosure& num_compensated() noexcept { return once(num2_, [&] { return detail::num_compensated(q_); }); }
-  [[nodiscard]] const Enclosure& den_refined() noexcept { return once(den2r_, [&] { return detail::den_refined(q_); }); }
-  [[nodiscard]] const Enclosure& num_refined() noexcept { return once(num2r_, [&] { return detail::num_refined(q_); }); }
-  [[nodiscard]] const ExactExpansions& expansions() noexcept { return once(exp3_, [&] { return ray_plane_expansions(q_); }); }
+  // Stage 2, each level for den and num at once (RayPlanePair): den_compensated … num_refined of
+  // plane/ray_plane_stages.hpp, bit for bit.
+  [[nodiscard]] const Enclosure& den_compensated() noexcept { return compensated()[0]; }
+  [[nodiscard]] const Enclosure& num_compensated() noexcept { return compensated()[1]; }
+  [[nodiscard]] const Enclosure& den_refined() noexcept { return refined()[0]; }
+  [[nodiscard]] const Enclosure& num_refined() noexcept { return refined()[1]; }
+  [[nodiscard]] const ExactExpansions& expansions() noexcept {
+    return expansions_.get(0, [&] { return ray_plane_expansions(q_); });
+  }
+  // round_quotient on the first level's enclosures (certified_quotient's first step).
+  [[nodiscard]] const QuotientRounding& compensated_rounding() noexcept {
+    return rounding_.get(0, [&] { return round_quotient(num_compensated(), prepare_divisor(den_compensated())); });
+  }
 
  private:
-  template <class T, class F>
-  static const T& once(std::optional<T>& slot, F compute) noexcept {
-    if (!slot) slot = compute();
-    return *slot;
+  using EnclosurePair = std::array<Enclosure, 2>;  // {den, num}
+  [[nodiscard]] static EnclosurePair lanes_of(const EnclosureT<Lanes2>& e) noexcept {
+    return {enclosure_lane(e, 0), enclosure_lane(e, 1)};
+  }
+  [[nodiscard]] const EnclosurePair& compensated() noexcept {
+    return levels_.get(0, [&] { return lanes_of(compensated_pair(ray_plane_pair(q_))); });
+  }
+  [[nodiscard]] const EnclosurePair& refined() noexcept {
+    return levels_.get(1, [&] { return lanes_of(refined_pair(ray_plane_pair(q_))); });
   }
 
   Ray ray_;
   Plane plane_;
   RayPlaneTerms q_;
-  std::optional<Enclosure> den2_, num2_, den2r_, num2r_;
-  std::optional<ExactExpansions> exp3_;
+  OnFirstUse<EnclosurePair, 2> levels_;  // stage 2's first and second level
+  OnFirstUse<QuotientRounding, 1> rounding_;
+  OnFirstUse<ExactExpansions, 1> expansions_;
 };
+
+inline RayPlaneCascade::RayPlaneCascade(const Ray& ray, const Plane& plane, const QuotientRounding& fast_path_rounding) noexcept
+    : ray_(ray), plane_(plane) {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  const RayPlanePair pair = ray_plane_pair(o, d, p, n);
+  for (int i = 0; i < 3; ++i) {
+    q_.o[i] = o[i], q_.d[i] = d[i], q_.p[i] = p[i], q_.n[i] = n[i];
+    q_.diff[i] = pair.a[i][1];  // p_i ⊖ o_i
+    q_.den.product[i] = pair.stage1.product[i][0];
+    q_.num.product[i] = pair.stage1.product[i][1];
+  }
+  q_.den.value = pair.stage1.value[0], q_.num.value = pair.stage1.value[1];
+  q_.den.magnitude = pair.stage1.magnitude[0], q_.num.magnitude = pair.stage1.magnitude[1];
+  static_cast<void>(levels_.get(0, [&] { return lanes_of(compensated_pair(pair)); }));
+  static_cast<void>(rounding_.get(0, [&] { return fast_path_rounding; }));
+}
 
 // The functions below are multiversioned (core/multiversion.hpp) and noexcept: an exception must not
 // pass through a target_clones function, whose callers GCC 12 compiles without cleanups.

@@ -111,6 +111,65 @@ inline constexpr double exact_low_parts[3] = {0, 0, 0};  // den's inputs are exa
   return compensated_dot3_refined(q.diff, low, q.n, q.num);
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// den and num of one query side by side, as the two lanes of a Lanes2: lane 0 den = Σ d_i n_i from
+// a_i = d_i ⊖ 0 = d_i (whose TwoDiff error α_i is +0: the α = 0 form), lane 1 num = Σ (p_i − o_i) n_i from
+// a_i = p_i ⊖ o_i with its TwoDiff error — each lane the very operations of the scalar stage for its value,
+// with its own filter constant, so every value below is the scalar stage's bit for bit and every theorem
+// about the stages holds lane by lane (proofs/README.md, "Lanes"). For den's first level the scalar stage
+// is compensated_dot3_exact (g_i = l_i), the lane computes g_i = RN(0·n_i + l_i): the same bits, as
+// l_i = RN(d_i n_i − (d_i ⊗ n_i)) is never −0 in round to nearest (an exact zero difference of two opposite
+// values, or of ±0 and ∓0, is +0). tests/plane_stages_test.cpp compares every lane with the scalar stage.
+// Half the instructions of two scalar evaluations: the fast path and the cascade's levels use it.
+struct RayPlanePair {
+  Lanes2 a[3], alpha[3], b[3];
+  Dot3RoundedT<Lanes2> stage1;  // {den, num}
+};
+
+// From the inputs (the fast path: any bit pattern; α's lane 0 is +0 for every finite d_i).
+[[nodiscard]] [[gnu::always_inline]] inline RayPlanePair ray_plane_pair(const double o[3], const double d[3],
+                                                                      const double p[3], const double n[3]) noexcept {
+  RayPlanePair r;
+  for (int i = 0; i < 3; ++i) {
+    const DD<Lanes2> s = two_diff(Lanes2{d[i], p[i]}, Lanes2{0.0, o[i]});
+    r.a[i] = s.hi;
+    r.alpha[i] = s.lo;
+    r.b[i] = Lanes2{n[i], n[i]};
+  }
+  r.stage1 = dot3_rounded(r.a, r.b);
+  return r;
+}
+
+// From a valid query's terms (the cascade: the same values, stage 1 not recomputed).
+[[nodiscard]] inline RayPlanePair ray_plane_pair(const RayPlaneTerms& q) noexcept {
+  RayPlanePair r;
+  double low[3];
+  difference_low_parts(q, low);
+  for (int i = 0; i < 3; ++i) {
+    r.a[i] = Lanes2{q.d[i], q.diff[i]};
+    r.alpha[i] = Lanes2{0.0, low[i]};
+    r.b[i] = Lanes2{q.n[i], q.n[i]};
+    r.stage1.product[i] = Lanes2{q.den.product[i], q.num.product[i]};
+  }
+  r.stage1.value = Lanes2{q.den.value, q.num.value};
+  r.stage1.magnitude = Lanes2{q.den.magnitude, q.num.magnitude};
+  return r;
+}
+
+// Lane k of a pair's enclosures (0: den, 1: num).
+[[nodiscard]] [[gnu::always_inline]] inline Enclosure enclosure_lane(const EnclosureT<Lanes2>& e, int k) noexcept {
+  return {e.hi[k], e.lo[k], e.radius[k]};
+}
+
+// Stage 2's first level of den and num (den_compensated, num_compensated), and its second level (den_refined,
+// num_refined), at once.
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<Lanes2> compensated_pair(const RayPlanePair& r) noexcept {
+  return compensated_dot3(r.a, r.alpha, r.b, r.stage1);
+}
+[[nodiscard]] inline EnclosureT<Lanes2> refined_pair(const RayPlanePair& r) noexcept {
+  return compensated_dot3_refined(r.a, r.alpha, r.b, r.stage1);
+}
+
 // Stage 3: the exact expansions of num and den. num = Σ (δ_i + ε_i)·n_i with δ_i + ε_i = p_i − o_i exactly
 // (the TwoDiff pair): each term is a 2-component expansion scaled by n_i (≤ 4 components), three ≤ 12.
 struct ExactExpansions {
@@ -157,6 +216,7 @@ struct FastAnswerT {
   MaskOf<V> behind;              // the relation is behind, else hit
   MaskOf<V> certain;             // both signs certified nonzero (so the input is valid) and t certified
   MaskOf<V> relation_by_filter;  // stage 1 decided both signs (else the first compensated level helped)
+  MaskOf<V> rounding_certain;    // round_quotient on stage 2's first level was certain (t is RN(num/den) there)
 };
 using FastAnswer = FastAnswerT<double>;
 
@@ -171,7 +231,7 @@ template <class V>
   const QuotientRoundingT<V> t = round_quotient(num, prepare_divisor(den));
   return {t.t, signs_say_behind(num_sign, den_sign),
           both(both(den_sign != uncertain_lane, num_sign != uncertain_lane), t.certain),
-          both(den_filter != uncertain_lane, num_filter != uncertain_lane)};
+          both(den_filter != uncertain_lane, num_filter != uncertain_lane), t.certain};
 }
 
 // Stage 1, then the first level of stage 2 for the signs stage 1 left open, and round_quotient on the
@@ -183,11 +243,10 @@ template <class V>
   return fast_answer_from(den_filter_sign(q), num_filter_sign(q), den_compensated(q), num_compensated(q));
 }
 
-// The same for one query, with den and num computed side by side as the two lanes of a Lanes2: lane 0
-// evaluates den = Σ d_i n_i from a_i = d_i ⊖ 0 = d_i (whose TwoDiff error is 0: the α = 0 form), lane 1
-// num = Σ (p_i − o_i) n_i from a_i = p_i ⊖ o_i with its TwoDiff error — each lane the very operations of
-// the scalar stage for its value, with its own filter constant, so every theorem about the stages holds
-// lane by lane (proofs/README.md, "Lanes"). Half the instructions of two scalar evaluations.
+// The same for one query, with den and num computed side by side as the two lanes of a Lanes2: the operations
+// of ray_plane_pair and compensated_pair (above), written here on local arrays, which GCC keeps in registers
+// (through the RayPlanePair struct it stores them: +31 instructions a query, measured). tests/plane_stages_test.cpp
+// checks that the two compute the same bits.
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
                                                                 const double n[3]) noexcept {
   Lanes2 a[3], alpha[3], b[3];
@@ -200,8 +259,7 @@ template <class V>
   const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
   const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
   const EnclosureT<Lanes2> e = compensated_dot3(a, alpha, b, stage1);
-  return fast_answer_from<double>(filter[0], filter[1], Enclosure{e.hi[0], e.lo[0], e.radius[0]},
-                                  Enclosure{e.hi[1], e.lo[1], e.radius[1]});
+  return fast_answer_from<double>(filter[0], filter[1], enclosure_lane(e, 0), enclosure_lane(e, 1));
 }
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const Ray& ray, const Plane& plane) noexcept {
   RAYKERNEL_QUERY_ARRAYS(ray, plane);
