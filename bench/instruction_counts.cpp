@@ -4,13 +4,15 @@
 //
 //   bench/instruction-counts.sh build        # valgrind --tool=callgrind, every entry point, per call
 //
-// Entries: plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, nearest/certified/random64 (per ray, 64 planes, a
+// Entries: plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, sphere/nearest/random64 (per ray, 64
+// spheres, a SphereSet), nearest/certified/random64 (per ray, 64 planes, a
 // PlaneSet), triangle/{naive,certified,relation}/{random,degenerate}, and per kind of the degenerate mix
 // triangle/{naive,certified,relation}/{through-vertex,through-edge,near-vertex,near-edge,sliver,needle}. Hardware counters do not work on this
 // VM and timings are shared with other jobs; instruction counts are exact and repeatable.
 #include <raykernel/nearest_hit.hpp>
 #include <raykernel/raykernel.hpp>
 #include <raykernel/testkit/plane_queries.hpp>
+#include <raykernel/testkit/sphere_queries.hpp>
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/triangle.hpp>
 
@@ -96,6 +98,19 @@ int main(int argc, char** argv) {
          const PlaneSet set(planes);
          run(q, count, [&set](const testkit::Query& x) {
            const std::optional<NearestHit> h = nearest_hit(x.ray, set);
+           return h ? h->t : -1.0;
+         });
+       }},
+      {"sphere/nearest/random64", [&] {  // per ray, 64 random spheres (a SphereSet), the rays of the same kind
+         testkit::SplitMix64 rng(10);
+         const testkit::BitSource bits = [&rng] { return rng(); };
+         std::vector<testkit::SphereQuery> q(buffer_size);
+         for (auto& x : q) x = testkit::make_sphere_query(testkit::SphereQueryKind::random, bits);
+         std::vector<Sphere> spheres;
+         for (std::size_t i = 0; i < 64; ++i) spheres.push_back(q[i].sphere);
+         const SphereSet set(spheres);
+         run(q, count, [&set](const testkit::SphereQuery& x) {
+           const std::optional<SphereHit> h = nearest_hit(x.ray, RayInterval{}, set);
            return h ? h->t : -1.0;
          });
        }},

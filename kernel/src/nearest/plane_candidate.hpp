@@ -85,7 +85,8 @@ struct HitCandidate {
   // RN(t), rounded the first time it is asked for: +0 when num = 0 exactly (decided with the relation), the
   // exact stage when the relation needed it (extreme exponents), else certified_quotient.
   // certified_quotient's first step, round_quotient on stage 2's first level, is taken here from the kept terms
-  // without building the cascade (the same enclosures, the same answer).
+  // without building the cascade (the same enclosures, the same answer); when it is not certain, the cascade built
+  // for the rest keeps it instead of repeating it.
   [[gnu::always_inline]] double round_t() noexcept {
     if (!rounded) {
       rounded = true;
@@ -102,6 +103,8 @@ struct HitCandidate {
           t_stage = Stage::compensated;
           return t;
         }
+        full.emplace(*ray, *plane, q);
+        full->keep_compensated_rounding(r);
       }
       round_rest();
     }

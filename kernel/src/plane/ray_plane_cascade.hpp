@@ -50,10 +50,12 @@ class RayPlaneCascade {
   [[nodiscard]] const ExactExpansions& expansions() noexcept {
     return expansions_.get(0, [&] { return ray_plane_expansions(q_); });
   }
-  // round_quotient on the first level's enclosures (certified_quotient's first step).
+  // round_quotient on the first level's enclosures (certified_quotient's first step), or the same rounding made
+  // before the cascade was built (the fast path's, a nearest-hit candidate's: `keep_compensated_rounding`).
   [[nodiscard]] const QuotientRounding& compensated_rounding() noexcept {
     return rounding_.get(0, [&] { return round_quotient(num_compensated(), prepare_divisor(den_compensated())); });
   }
+  void keep_compensated_rounding(const QuotientRounding& r) noexcept { static_cast<void>(rounding_.get(0, [&] { return r; })); }
 
  private:
   using EnclosurePair = std::array<Enclosure, 2>;  // {den, num}
@@ -88,7 +90,7 @@ inline RayPlaneCascade::RayPlaneCascade(const Ray& ray, const Plane& plane, cons
   q_.den.value = pair.stage1.value[0], q_.num.value = pair.stage1.value[1];
   q_.den.magnitude = pair.stage1.magnitude[0], q_.num.magnitude = pair.stage1.magnitude[1];
   static_cast<void>(levels_.get(0, [&] { return lanes_of(compensated_pair(pair)); }));
-  static_cast<void>(rounding_.get(0, [&] { return fast_path_rounding; }));
+  keep_compensated_rounding(fast_path_rounding);
 }
 
 // The functions below are multiversioned (core/multiversion.hpp) and noexcept: an exception must not
