@@ -12,7 +12,7 @@ program="$build/bin/raykernel_instruction_counts"
 entries=("$@")
 if [ ${#entries[@]} -eq 0 ]; then
   entries=(plane/naive/random plane/certified/random plane/relation/random plane/naive/degenerate plane/certified/degenerate
-           nearest/certified/random64
+           nearest/certified/random64 sphere/nearest/random64
            triangle/naive/random triangle/certified/random triangle/relation/random
            triangle/naive/degenerate triangle/certified/degenerate triangle/relation/degenerate)
 fi

@@ -10,6 +10,8 @@
 //   stage 1   den_filter_sign, num_filter_sign      dot3_filter_lanes          (core/dot3_filter.hpp)
 //   stage 2   den_compensated, num_compensated      compensated_dot3(_exact)   (core/dot3_compensated.hpp)
 //             den_refined, num_refined              compensated_dot3_refined, the second level
+//             compensated_pair, refined_pair        each level for den and num at once (RayPlanePair:
+//                                                   the two lanes of a Lanes2, the same bits; the cascade's)
 //   stage 3   ray_plane_expansions                  exact expansions           (core/expansion.hpp)
 //   t         round_quotient on an enclosure pair   (core/quotient_rounding.hpp)
 //
