@@ -33,12 +33,13 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // done between them.
 
 // The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
-// caller reports), else the cascade's answer. Out of line: the fast path stays small. The cascade continues
-// from the fast path's rounding of t on stage 2's first level (RayPlaneCascade's constructor from it), and
-// computes stage 1 and that level again with the fast path's operations (RayPlanePair): handing those over
-// would cost the certain path its stores (+49 instructions a query, measured), recomputing them costs the rest
-// about 60.
-RAYKERNEL_MULTIVERSION [[gnu::noinline]] std::optional<Intersection> intersection_rest(
+// caller reports), else the cascade's answer. Out of line, so that the fast path stays small: it is
+// multiversioned, and a caller's clone calls its clone (GCC does not inline it; clang rejects noinline beside
+// target_clones). The cascade continues from the fast path's rounding of t on stage 2's first level
+// (RayPlaneCascade's constructor from it), and computes stage 1 and that level again with the fast path's
+// operations (RayPlanePair): handing those over would cost the certain path its stores (+49 instructions a
+// query, measured), recomputing them costs the rest about 60.
+RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
     const Ray& ray, const Plane& plane, detail::QuotientRounding first_level) noexcept {
   if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
   detail::RayPlaneCascade query(ray, plane, first_level);
