@@ -27,7 +27,7 @@ printf '%-32s %12s   %s\n' entry instructions "clone (callgrind)"
 for e in "${entries[@]}"; do
   a=$(collected "$e" "$n")
   b=$(collected "$e" $((2 * n)))
-  clone=$(grep -o '^fn=([0-9]*) [^ ]*\.\(arch_x86_64_v3\|fma\|default\)[^ ]*' "$out/cg.$((2 * n))" | sed 's/^fn=([0-9]*) //' |
-          sed 's/.*\.\(arch_x86_64_v3\|fma\|default\).*/\1/' | sort -u | tr '\n' ' ' || true)
+  clone=$(grep -o '^c\?fn=.*\[clone \.\(arch_x86_64_v3\|fma\|default\)\]' "$out/cg.$((2 * n))" |
+          sed 's/.*\[clone \.\(arch_x86_64_v3\|fma\|default\)\]$/\1/' | sort -u | tr '\n' ' ' || true)
   awk -v a="$a" -v b="$b" -v n="$n" -v e="$e" -v c="$clone" 'BEGIN { printf "%-32s %12.1f   %s\n", e, (b - a) / n, c }'
 done
