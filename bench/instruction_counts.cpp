@@ -4,7 +4,7 @@
 //
 //   bench/instruction-counts.sh build        # valgrind --tool=callgrind, every entry point, per call
 //
-// Entries: mesh/{nearest,occluded}/icosphere-100k (per ray, bench/mesh_bench.cpp's rays), plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, sphere/nearest/random64 (per ray, 64
+// Entries: mesh/{nearest,occluded}/{icosphere,cube,terrain}-100k (per ray, bench/mesh_bench.cpp's rays), plane/{naive,certified,relation}/random, plane/{naive,certified}/degenerate, sphere/nearest/random64 (per ray, 64
 // spheres, a SphereSet), nearest/certified/random64 (per ray, 64 planes, a
 // PlaneSet), triangle/{naive,certified,relation}/{random,degenerate}, and per kind of the degenerate mix
 // triangle/{naive,certified,relation}/{through-vertex,through-edge,near-vertex,near-edge,sliver,needle}. Hardware counters do not work on this
@@ -27,6 +27,7 @@
 #include <functional>
 #include <map>
 #include <random>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -146,18 +147,23 @@ int main(int argc, char** argv) {
          });
        }},
   };
-  // Per ray on icosphere-100k (bench/mesh_bench.cpp's mesh and rays): the exact nearest hit and the any-hit query.
-  const auto mesh = [&](bool nearest) {
-    const Mesh m = testkit::make_icosphere(6);
+  // Per ray on a 100k mesh of bench/mesh_bench.cpp (the same mesh and rays): the exact nearest hit and the
+  // any-hit query.
+  for (const auto& [name, make] : std::initializer_list<std::pair<const char*, Mesh (*)()>>{
+           {"icosphere-100k", [] { return testkit::make_icosphere(6); }},
+           {"cube-100k", [] { return testkit::make_subdivided_cube(91); }},
+           {"terrain-100k", [] { return testkit::make_terrain(158); }}}) {
+    const bool nearest = entry == std::string("mesh/nearest/") + name;
+    if (!nearest && entry != std::string("mesh/occluded/") + name) continue;
+    const Mesh m = make();
     const PreparedMesh prepared(m);
     run(mesh_rays(m), count, [&](const Ray& r) {
       if (!nearest) return occluded(r, prepared) ? 1.0 : 0.0;
       const auto hit = nearest_hit(r, prepared);
       return hit ? hit->intersection.t : -1.0;
     });
-  };
-  if (entry == "mesh/nearest/icosphere-100k") return mesh(true), 0;
-  if (entry == "mesh/occluded/icosphere-100k") return mesh(false), 0;
+    return 0;
+  }
   auto triangle = [&](const char* name, std::initializer_list<TriangleQueryKind> kinds, std::uint64_t seed) {
     const std::string w = name;
     if (entry == "triangle/naive/" + w)

@@ -6,6 +6,7 @@
 // (as for the plane's dot products) would certify wrong signs.
 #include "core/det3_stages.hpp"
 #include "core/error_bounds.hpp"
+#include "nearest/triangle_candidate.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
 #include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_stages.hpp"
@@ -195,6 +196,80 @@ TEST_P(TriangleStagesOnHardQueries, LeafColumnsAreTheRelationLanesOfEachTriangle
   }
   RecordProperty("certain_misses", misses);
   RecordProperty("lanes", lanes);
+}
+
+// triangle_screen's `inside` flags exactly the triangles whose fast relation takes its inside branch (the four
+// stage-1 signs of its lanes certain and all den's), with den's sign; inside_relation from the screen's lane of den
+// decides as fast_triangle_relation does and hands over the same stage-1 values; and a nearest-hit candidate
+// classified through the screen (classify_screened) is the candidate classify makes, in every field the search
+// reads.
+TEST_P(TriangleStagesOnHardQueries, TheScreenDecidesInsideAsEachTriangleWould) {
+  const testkit::TriangleQueryKind kind = GetParam();
+  const std::uint64_t seed = 0x1a5d0000 + static_cast<std::uint64_t>(kind);
+  testkit::SplitMix64 rng(seed);
+  const testkit::BitSource bits = [&rng] { return rng(); };
+  SCOPED_TRACE(std::string(testkit::to_string(kind)) + ", seed " + std::to_string(seed));
+  const auto same_bits = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  int inside = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const TriangleQuery q = testkit::make_triangle_query(kind, bits);
+    const TriangleQuery other = testkit::make_triangle_query(kind, bits);
+    const Triangle& t = q.triangle;
+    const Triangle four[4] = {t, {t.c, t.a, t.b}, other.triangle, {t.b, t.a, t.c}};
+    const Triangle* const p[4] = {&four[0], &four[1], &four[2], &four[3]};
+    const detail::TriangleScreen screen = detail::triangle_screen(q.ray, p);
+    detail::LeafScreen leaf(q.ray, std::span<const Triangle>(four, 4), 0, 4);
+    for (int k = 0; k < 4; ++k) {
+      const std::string line = "lane " + std::to_string(k) + ": " + testkit::triangle_line({q.ray, four[k]});
+      const auto lanes = detail::triangle_relation_lanes(q.ray, four[k]);
+      const detail::Mask4 sign =
+          detail::det3_filter_lanes(lanes.lanes, detail::bounds::triangle_filter_pi_relative, lanes.absolute);
+      bool certain = true, all_den = true;
+      for (int j = 0; j < 4; ++j) certain = certain && sign[j] != detail::uncertain_lane;
+      for (int j = 0; j < 3; ++j) all_den = all_den && sign[j] == sign[3];
+      ASSERT_EQ(((screen.inside >> k) & 1) != 0, certain && all_den) << line;
+      ASSERT_EQ(((screen.missed >> k) & 1) != 0, certain && !all_den) << line;
+      if (((screen.inside >> k) & 1) != 0) {
+        ++inside;
+        ASSERT_EQ(screen.den_sign[k], sign[3]) << line;
+        const detail::InsideRelation through =
+            detail::inside_relation(q.ray, four[k], detail::lane(screen.den, k), screen.absolute);
+        detail::TriangleQuotientStage1 values{};
+        const auto fast = detail::fast_triangle_relation(q.ray, four[k], TriangleRule::owned, values);
+        ASSERT_EQ(fast.has_value(), through.num_sign != detail::uncertain_lane) << line;
+        ASSERT_TRUE(same_bits(values.num, through.values.num) && same_bits(values.den, through.values.den) &&
+                    same_bits(values.absolute_e, through.values.absolute_e) &&
+                    same_bits(values.absolute_d, through.values.absolute_d))
+            << line;
+        if (fast) {
+          const TriangleClassification c = through.classification(screen.den_sign[k]);
+          ASSERT_EQ(fast->classification.relation, c.relation) << line;
+          ASSERT_EQ(fast->classification.location, c.location) << line;
+          ASSERT_EQ(fast->classification.owned, c.owned) << line;
+        }
+      }
+      const auto n = static_cast<std::size_t>(k);
+      if (leaf.certainly_missed(n)) continue;
+      for (const TriangleRule rule : {TriangleRule::owned, TriangleRule::closed}) {
+        detail::TriangleCandidate a, b;
+        a.classify(q.ray, four[k], n, static_cast<std::uint32_t>(k), rule);
+        b.classify_screened(q.ray, four[k], n, static_cast<std::uint32_t>(k), rule, leaf, n);
+        ASSERT_EQ(a.classification.relation, b.classification.relation) << line;
+        ASSERT_EQ(a.classification.location, b.classification.location) << line;
+        ASSERT_EQ(a.classification.owned, b.classification.owned) << line;
+        ASSERT_EQ(a.relation_stage, b.relation_stage) << line;
+        if (a.classification.relation != TriangleRelation::hit) continue;
+        ASSERT_EQ(a.num_sign, b.num_sign) << line;
+        ASSERT_EQ(a.den_sign, b.den_sign) << line;
+        ASSERT_TRUE(same_bits(a.num_filter(), b.num_filter()) && same_bits(a.den_filter(), b.den_filter())) << line;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(a.round_t()), std::bit_cast<std::uint64_t>(b.round_t())) << line;
+      }
+    }
+  }
+  RecordProperty("inside_lanes", inside);
+  if (kind == testkit::TriangleQueryKind::random || kind == testkit::TriangleQueryKind::through_interior) {
+    EXPECT_GT(inside, 300) << "the screen's inside branch was hardly exercised";
+  }
 }
 
 // ---- The filter at the ends of the exponent range ---------------------------------------------------------

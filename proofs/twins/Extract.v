@@ -295,15 +295,17 @@ Definition tri_fast_relation (x : list Z) : list Z :=
 End Tri4.
 Definition run_tri_fast_relation := Tri4.tri_fast_relation.
 
-(** The mesh leaves' screen [triangle_certain_misses] (triangle/ray_triangle_stages.hpp): "o d" and four triangles
-    "a b c" (42 words); per triangle 1 when [fast_relation_tri_b] answers a miss — its first decision, the four
-    stage-1 signs certain and not all den's, which is what the screen decides for four triangles at once — else
-    0.  Correct by [fast_relation_tri_correct]: a 1 is §6's miss under both rules. *)
+(** The mesh leaves' screen [triangle_screen] (triangle/ray_triangle_stages.hpp) and the decision of a screened
+    triangle (nearest/triangle_candidate.hpp, classify_screened: [inside_relation] from the screen's lane of den):
+    "o d" and four triangles "a b c" (42 words); per triangle what [fast_relation_tri_b] answers — 1 a miss (its
+    first decision, the four stage-1 signs certain and not all den's, which the screen decides for four triangles
+    at once), 2 a hit and 3 behind (its inside branch: the signs certain and all den's, then num's sign), 0 no
+    answer.  Correct by [fast_relation_tri_correct]: each answer is §6's under both rules. *)
 Module TriScreen.
 Import TriangleTwins TriangleCascadeTwins.
 Definition screen_bit (o d a b c : TVec) : Z :=
   match fast_relation_tri_b o d a b c with
-  | Some k => match trel k with TMiss => 1%Z | _ => 0%Z end
+  | Some k => match trel k with TMiss => 1%Z | THit => 2%Z | TBehind => 3%Z | _ => 0%Z end
   | None => 0%Z
   end.
 Fixpoint screen_bits (o d : TVec) (n : nat) (x : list Z) : list Z :=

@@ -740,8 +740,10 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            o.i(static_cast<int>(p.relation)), o.i(static_cast<int>(p.location)), o.i(p.owned ? 1 : 0);
          }
        })},
-      // The mesh leaves' screen (triangle/ray_triangle_stages.hpp, triangle_certain_misses; the twin in
-      // proofs/twins/Extract.v, TriScreen): "o d" and four triangles "a b c", the four certain-miss bits.
+      // The mesh leaves' screen (triangle/ray_triangle_stages.hpp, triangle_screen; the twin in
+      // proofs/twins/Extract.v, TriScreen): "o d" and four triangles "a b c"; per triangle 1 for a certain miss,
+      // 2 or 3 for a line the screen finds through the interior that inside_relation (from the screen's lane of
+      // den, as classify_screened decides) says is a hit or behind, 0 otherwise.
       {"tri_leaf_screen",
        [](const Words& w, Out& o) {
          if (w.size() != 42) return false;
@@ -754,8 +756,18 @@ const std::map<std::string, ScalarRoutine>& triangle_routines() {
            t[k] = {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}};
            p[k] = &t[k];
          }
-         const unsigned bits = triangle_certain_misses(ray, p);
-         for (int k = 0; k < 4; ++k) o.i((bits >> k) & 1u);
+         const TriangleScreen screen = triangle_screen(ray, p);
+         for (int k = 0; k < 4; ++k) {
+           int code = 0;
+           if ((screen.missed >> k) & 1u) {
+             code = 1;
+           } else if ((screen.inside >> k) & 1u) {
+             const InsideRelation through = inside_relation(ray, t[k], lane(screen.den, k), screen.absolute);
+             if (through.num_sign != uncertain_lane)
+               code = through.classification(screen.den_sign[k]).relation == raykernel::TriangleRelation::hit ? 2 : 3;
+           }
+           o.i(code);
+         }
          return true;
        }},
       // The intersection's fast path (proofs/triangle/TriangleIntersectTwins.v): the options from the first word

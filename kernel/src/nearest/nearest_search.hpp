@@ -9,7 +9,8 @@
 //
 // A leaf's triangles are first screened four at a time (LeafScreen, nearest/triangle_candidate.hpp: the
 // relation filter's first decision on four triangles in the lanes of one pass, the same bits as each triangle's
-// own); a certain miss is recorded as classify would record it, the others are classified one by one.
+// own); a certain miss is recorded as classify would record it, a line certainly through a triangle's interior
+// is decided from num alone (classify_screened), the others are classified one by one.
 //
 // Why the answer is the brute-force one:
 //   - Every plane of the set that can win is examined (nearest/nearest_screen.hpp: the screen sets aside only
@@ -293,7 +294,7 @@ class NearestSearch {
         const int slot = best_ == Best::triangle && triangle_best_ == 0 ? 1 : 0;
         TriangleCandidate& c = *triangle_[slot];
         if (screen.certainly_missed(n)) c.set_certain_miss(ray_, tri, k, position);
-        else c.classify(ray_, tri, k, position, rule);
+        else c.classify_screened(ray_, tri, k, position, rule, screen, n);
         tracer_.triangle_candidate(c.relation_stage);
         previous = &c;
         if (c.classification.relation != TriangleRelation::hit) continue;

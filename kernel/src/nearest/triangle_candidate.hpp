@@ -114,6 +114,45 @@ struct CrossingSite {
          is_vertex_of(s.b, t) && is_vertex_of(s.c, t);
 }
 
+// The triangles of a BVH leaf (`count` of them from `first` in `triangles`) screened four at a time
+// (triangle_screen) when a triangle of a group is first asked about: the ones the ray certainly misses, and the
+// ones it certainly crosses inside (whose relation num's sign alone decides, TriangleCandidate::classify_screened);
+// a lane past the leaf's end repeats the group's first triangle and is not read. The callers classify only the
+// triangles not missed.
+class LeafScreen {
+ public:
+  LeafScreen(const Ray& ray, std::span<const Triangle> triangles, std::size_t first, std::size_t count) noexcept
+      : ray_(ray), triangles_(triangles), first_(first), count_(count) {}
+
+  // Whether the leaf's n-th triangle is certainly missed.
+  [[gnu::always_inline]] bool certainly_missed(std::size_t n) noexcept {
+    if (n / 4 != group_) {
+      group_ = n / 4;
+      const std::size_t start = first_ + 4 * group_;
+      const std::size_t lanes = count_ - 4 * group_ < 4 ? count_ - 4 * group_ : 4;
+      const Triangle* t[4];
+      for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles_[start + (j < lanes ? j : 0)];
+      screen_ = triangle_screen(ray_, t);
+      screen_.missed &= (1u << lanes) - 1;
+      screen_.inside &= (1u << lanes) - 1;
+    }
+    return ((screen_.missed >> (n % 4)) & 1) != 0;
+  }
+  // Whether the ray certainly crosses the n-th triangle's interior (line through it); after certainly_missed(n).
+  [[nodiscard]] bool certainly_inside(std::size_t n) const noexcept { return ((screen_.inside >> (n % 4)) & 1) != 0; }
+  // Its den in stage 1 and den's sign, d's absolute term; for a triangle certainly_inside.
+  [[nodiscard]] FilterTerm<double> den(std::size_t n) const noexcept { return lane(screen_.den, static_cast<int>(n % 4)); }
+  [[nodiscard]] std::int64_t den_sign(std::size_t n) const noexcept { return screen_.den_sign[n % 4]; }
+  [[nodiscard]] double absolute() const noexcept { return screen_.absolute; }
+
+ private:
+  const Ray& ray_;
+  std::span<const Triangle> triangles_;
+  std::size_t first_, count_;
+  std::size_t group_ = SIZE_MAX;
+  TriangleScreen screen_;
+};
+
 // Stage 3 of num and den for the comparisons: exact expansions of at most 16 components each (the range
 // compare_quotients_expansion is proved for), or exact = false.
 struct ShortQuotientExpansions {
@@ -165,6 +204,15 @@ class TriangleCandidate {
     classification = {TriangleRelation::miss, TriangleLocation::outside, false};
     relation_stage = Stage::filter;
   }
+
+  // classify for the n-th triangle of a leaf the screen did not find missed (certainly_missed(n) asked first):
+  // for one it found inside (LeafScreen::certainly_inside: den and the three π certain, all of den's sign), the
+  // classification and stage-1 values fast_triangle_relation would give, decided from the same values (den's
+  // stage-1 value is the screen's lane) with num's stage-1 sign alone; classify itself for the others and when
+  // num's sign is uncertain.
+  [[gnu::always_inline]] void classify_screened(const Ray& ray, const Triangle& tri, std::size_t mesh_index,
+                                              std::uint32_t leaf_position, TriangleRule rule,
+                                              const LeafScreen& screen, std::size_t n) noexcept;
 
   // Another triangle with this one's vertices (repeats()): the same relation, location and t, so this
   // candidate's values stand for it; it takes over the identity (index, position, the triangle reported).
@@ -308,6 +356,27 @@ class TriangleCandidate {
   Sign num3_sign_ = Sign::uncertain, den3_sign_ = Sign::uncertain;
 };
 
+// TriangleCandidate::classify_screened (declared in the class, defined after LeafScreen's members).
+[[gnu::always_inline]] inline void TriangleCandidate::classify_screened(const Ray& ray, const Triangle& tri,
+                                                                     std::size_t mesh_index, std::uint32_t leaf_position,
+                                                                     TriangleRule rule, const LeafScreen& screen,
+                                                                     std::size_t n) noexcept {
+  if (!screen.certainly_inside(n)) return classify(ray, tri, mesh_index, leaf_position, rule);
+  const InsideRelation through = inside_relation(ray, tri, screen.den(n), screen.absolute());
+  if (through.num_sign == uncertain_lane) [[unlikely]]
+    return classify(ray, tri, mesh_index, leaf_position, rule);
+  ray_ = &ray;
+  source = triangle = &tri;
+  index = mesh_index;
+  position = leaf_position;
+  has_stage2_ = has_expansions_ = rounded = false;
+  stage1_ = through.values;
+  classification = through.classification(screen.den_sign(n));
+  relation_stage = Stage::filter;
+  if (classification.relation == TriangleRelation::hit)  // den and num certain, nonzero, of one sign
+    den_sign = num_sign = stage1_.den.v > 0 ? Sign::positive : Sign::negative;
+}
+
 // RN(πa/den), RN(πb/den), RN(πc/den) of a triangle the ray hits (the fast path, else the cascade).
 [[nodiscard]] inline Barycentric triangle_barycentric(const Ray& ray, const Triangle& tri,
                                                                 TriangleRule rule) noexcept {
@@ -325,34 +394,5 @@ class TriangleCandidate {
 [[nodiscard]] inline int exact_order(const Ray& ray, const TriangleCandidate& a, const TriangleCandidate& b) {
   return exact::compare_triangle_t(ray, *a.source, *b.source);
 }
-
-// The triangles of a BVH leaf (`count` of them from `first` in `triangles`) the ray certainly misses, screened four
-// at a time (triangle_certain_misses) when a triangle of a group is first asked about; a lane past the leaf's end
-// repeats the group's first triangle and is not read. The callers classify only the triangles not missed.
-class LeafScreen {
- public:
-  LeafScreen(const Ray& ray, std::span<const Triangle> triangles, std::size_t first, std::size_t count) noexcept
-      : ray_(ray), triangles_(triangles), first_(first), count_(count) {}
-
-  // Whether the leaf's n-th triangle is certainly missed.
-  [[gnu::always_inline]] bool certainly_missed(std::size_t n) noexcept {
-    if (n / 4 != group_) {
-      group_ = n / 4;
-      const std::size_t start = first_ + 4 * group_;
-      const std::size_t lanes = count_ - 4 * group_ < 4 ? count_ - 4 * group_ : 4;
-      const Triangle* t[4];
-      for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles_[start + (j < lanes ? j : 0)];
-      misses_ = triangle_certain_misses(ray_, t) & ((1u << lanes) - 1);
-    }
-    return ((misses_ >> (n % 4)) & 1) != 0;
-  }
-
- private:
-  const Ray& ray_;
-  std::span<const Triangle> triangles_;
-  std::size_t first_, count_;
-  std::size_t group_ = SIZE_MAX;
-  unsigned misses_ = 0;
-};
 
 }  // namespace raykernel::detail

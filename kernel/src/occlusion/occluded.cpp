@@ -58,7 +58,7 @@ bool ray_blocked(const Ray& ray, const RayInterval& interval, const PreparedMesh
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
       if (screen.certainly_missed(n)) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
-      c.classify(ray, triangles[position], 0, position, rule);  // which triangle does not matter: no index read
+      c.classify_screened(ray, triangles[position], 0, position, rule, screen, n);  // which triangle does not matter: no index read
       if (c.classification.relation != TriangleRelation::hit) continue;
       if (whole_ray || detail::within_interval(ray, c, interval)) return true;
     }
@@ -127,7 +127,7 @@ MeshHits all_hits_in(const Ray& ray, const RayInterval& interval, const Prepared
     for (std::size_t n = 0; n < leaf.triangles.size(); ++n) {
       if (screen.certainly_missed(n)) continue;
       const auto position = static_cast<std::uint32_t>(leaf.position + n);
-      c.classify(ray, triangles[position], leaf.triangles[n], position, rule);
+      c.classify_screened(ray, triangles[position], leaf.triangles[n], position, rule, screen, n);
       if (c.classification.relation != TriangleRelation::hit || !detail::within_interval(ray, c, interval)) continue;
       if (c.classification.owned) answer.crossings += c.den_sign == detail::Sign::positive ? 1 : -1;
       found.push_back(c);

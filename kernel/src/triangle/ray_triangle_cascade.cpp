@@ -249,13 +249,10 @@ class TriangleCascade {
   if (certain) [[likely]] {
     const bool inside = (sa == sden) & (sb == sden) & (sc == sden);
     if (!inside) return TracedTriangleClassification{{TriangleRelation::miss, TriangleLocation::outside, false}, Stage::filter};
-    const TriangleNumFilter num = triangle_num_filter(ray, triangle);
-    const std::int64_t num_sign = det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute);
-    if (values != nullptr) *values = {num.value, lane(s1.lanes, 3), num.absolute, s1.absolute[3]};
-    if (num_sign != uncertain_lane)
-      return TracedTriangleClassification{
-          {num_sign == sden ? TriangleRelation::hit : TriangleRelation::behind, TriangleLocation::inside, true},
-          Stage::filter};
+    const InsideRelation through = inside_relation(ray, triangle, lane(s1.lanes, 3), s1.absolute[3]);
+    if (values != nullptr) *values = through.values;
+    if (through.num_sign != uncertain_lane)
+      return TracedTriangleClassification{through.classification(sden), Stage::filter};
   }
   return std::nullopt;
 }

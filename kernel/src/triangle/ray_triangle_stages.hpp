@@ -287,15 +287,24 @@ struct TriangleRelationColumns {
           det3_absolute_term(x[0].v, x[1].v, x[2].v)};
 }
 
-// Bit k: triangle k is certainly missed — the four stage-1 signs certain and not all den's, the first decision of
-// fast_triangle_relation (triangle/ray_triangle_cascade.cpp, fast_relation: "outside", under either rule), taken
-// here from the same values for four triangles at once.
+// The screen of four triangles (a leaf of a mesh's BVH), from the same values as fast_triangle_relation's first
+// decision (triangle/ray_triangle_cascade.cpp, fast_relation) for each: bit k of `missed`, triangle k is certainly
+// missed — the four stage-1 signs certain and not all den's ("outside", under either rule); bit k of `inside`, the
+// four signs certain and all den's — a line through the interior, whose relation fast_relation then decides from
+// num alone (inside_relation below), with den's stage-1 value and sign, lane k here. Neither bit: the signs are
+// not all certain, fast_relation's own path.
 // Certified by: proofs/triangle/TriangleCascadeTwins.v, `fast_relation_tri_correct` (the decision, on these values);
-// tied by the twin runner's routine tri_leaf_screen (proofs/twins/Extract.v, TriScreen: bit k against
-// fast_relation_tri_b answering a miss for triangle k, in every lane variant) and by
-// tests/triangle_stages_test.cpp (lane k here is fast_relation's values of triangle k, bit for bit).
-[[nodiscard]] [[gnu::always_inline]] inline unsigned triangle_certain_misses(const Ray& ray,
-                                                                            const Triangle* const t[4]) noexcept {
+// tied by the twin runner's routine tri_leaf_screen (proofs/twins/Extract.v, TriScreen: bit k of the misses against
+// fast_relation_tri_b answering a miss for triangle k, in every lane variant) and by tests/triangle_stages_test.cpp
+// (lane k here is fast_relation's values of triangle k, bit for bit; the inside bits are its inside branch).
+struct TriangleScreen {
+  unsigned missed = 0, inside = 0;
+  FilterTerm<Lanes4> den;  // den = d·((b − a) × (c − a)) of each triangle, stage 1
+  Mask4 den_sign;          // its certified sign where `inside` (Sign's values)
+  double absolute;         // d's absolute term, every lane's
+};
+[[nodiscard]] [[gnu::always_inline]] inline TriangleScreen triangle_screen(const Ray& ray,
+                                                                          const Triangle* const t[4]) noexcept {
   const TriangleRelationColumns v = triangle_relation_columns(ray, t);
   const Mask4 sa = det3_filter_lanes(v.pi[0], bounds::triangle_filter_pi_relative, v.absolute);
   const Mask4 sb = det3_filter_lanes(v.pi[1], bounds::triangle_filter_pi_relative, v.absolute);
@@ -304,9 +313,19 @@ struct TriangleRelationColumns {
   const Mask4 certain = (sa != uncertain_lane) & (sb != uncertain_lane) & (sc != uncertain_lane) & (sden != uncertain_lane);
   const Mask4 inside = (sa == sden) & (sb == sden) & (sc == sden);
   const Mask4 miss = certain & ~inside;
-  unsigned bits = 0;
-  for (int k = 0; k < 4; ++k) bits |= static_cast<unsigned>(miss[k] & 1) << k;
-  return bits;
+  const Mask4 through = certain & inside;
+  TriangleScreen r{0, 0, v.den, sden, v.absolute[0]};
+  for (int k = 0; k < 4; ++k) {
+    r.missed |= static_cast<unsigned>(miss[k] & 1) << k;
+    r.inside |= static_cast<unsigned>(through[k] & 1) << k;
+  }
+  return r;
+}
+
+// Bit k: triangle k is certainly missed (triangle_screen's `missed`).
+[[nodiscard]] [[gnu::always_inline]] inline unsigned triangle_certain_misses(const Ray& ray,
+                                                                            const Triangle* const t[4]) noexcept {
+  return triangle_screen(ray, t).missed;
 }
 
 // num = ê_a·(ê_b × ê_c) in stage 1, with its absolute term.
@@ -365,6 +384,24 @@ struct TriangleQuotientStage1 {
   FilterTerm<double> num, den;
   double absolute_e, absolute_d;  // num's (ê_a) and den's (d)
 };
+
+// fast_relation's decision for a line through the triangle's interior (den and the three π certain, all of den's
+// sign `den_sign`), from den's stage-1 value: num's stage-1 sign says hit (num's sign is den's) or behind, and is
+// uncertain_lane when the filter cannot say; `values` are the stage-1 values of num and den it was decided from.
+struct InsideRelation {
+  std::int64_t num_sign;
+  TriangleQuotientStage1 values;
+  [[nodiscard]] TriangleClassification classification(std::int64_t den_sign) const noexcept {
+    return {num_sign == den_sign ? TriangleRelation::hit : TriangleRelation::behind, TriangleLocation::inside, true};
+  }
+};
+[[nodiscard]] [[gnu::always_inline]] inline InsideRelation inside_relation(const Ray& ray, const Triangle& triangle,
+                                                                          FilterTerm<double> den,
+                                                                          double absolute_d) noexcept {
+  const TriangleNumFilter num = triangle_num_filter(ray, triangle);
+  return {det3_filter_lanes(num.value, bounds::triangle_filter_num_relative, num.absolute),
+          {num.value, den, num.absolute, absolute_d}};
+}
 
 template <class Leaf>
 [[nodiscard]] [[gnu::always_inline]] inline std::array<Leaf, 3> leaf_differences(const Vec3& v, const Vec3& from,
