@@ -275,7 +275,10 @@ class NearestSearch {
         const std::uint32_t position = static_cast<std::uint32_t>(leaf.position + n);
         const Triangle& tri = triangles[position];
         const std::uint32_t k = leaf.triangles[n];
-        if (previous != nullptr && repeats(tri, *previous->source, previous->classification.location)) {
+        // A triangle the screen certainly misses is a miss whatever the previous one was (a repeat of a hit would
+        // be a hit: the relation is a function of the exact input), so it is recorded without the repeat test.
+        const bool missed = screen.certainly_missed(n);
+        if (!missed && previous != nullptr && repeats(tri, *previous->source, previous->classification.location)) {
           tracer_.repeat();
           if (previous->classification.relation != TriangleRelation::hit || !previous_in_interval) continue;
           tracer_.triangle_hit();
@@ -293,7 +296,7 @@ class NearestSearch {
         }
         const int slot = best_ == Best::triangle && triangle_best_ == 0 ? 1 : 0;
         TriangleCandidate& c = *triangle_[slot];
-        if (screen.certainly_missed(n)) c.set_certain_miss(ray_, tri, k, position);
+        if (missed) c.set_certain_miss(ray_, tri, k, position);
         else c.classify_screened(ray_, tri, k, position, rule, screen, n);
         tracer_.triangle_candidate(c.relation_stage);
         previous = &c;
