@@ -132,7 +132,7 @@ class LeafScreen {
       const std::size_t lanes = count_ - 4 * group_ < 4 ? count_ - 4 * group_ : 4;
       const Triangle* t[4];
       for (std::size_t j = 0; j < 4; ++j) t[j] = &triangles_[start + (j < lanes ? j : 0)];
-      screen_ = triangle_screen(ray_, t);
+      triangle_screen(ray_, t, screen_);
       screen_.missed &= (1u << lanes) - 1;
       screen_.inside &= (1u << lanes) - 1;
     }

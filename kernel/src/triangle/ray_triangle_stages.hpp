@@ -299,12 +299,13 @@ struct TriangleRelationColumns {
 // (lane k here is fast_relation's values of triangle k, bit for bit; the inside bits are its inside branch).
 struct TriangleScreen {
   unsigned missed = 0, inside = 0;
+  // Set only when some lane is inside (read for those lanes only):
   FilterTerm<Lanes4> den;  // den = d·((b − a) × (c − a)) of each triangle, stage 1
   Mask4 den_sign;          // its certified sign where `inside` (Sign's values)
   double absolute;         // d's absolute term, every lane's
 };
-[[nodiscard]] [[gnu::always_inline]] inline TriangleScreen triangle_screen(const Ray& ray,
-                                                                          const Triangle* const t[4]) noexcept {
+// triangle_screen into `r` (a screen kept across calls: the mesh queries' LeafScreen).
+[[gnu::always_inline]] inline void triangle_screen(const Ray& ray, const Triangle* const t[4], TriangleScreen& r) noexcept {
   const TriangleRelationColumns v = triangle_relation_columns(ray, t);
   const Mask4 sa = det3_filter_lanes(v.pi[0], bounds::triangle_filter_pi_relative, v.absolute);
   const Mask4 sb = det3_filter_lanes(v.pi[1], bounds::triangle_filter_pi_relative, v.absolute);
@@ -314,11 +315,22 @@ struct TriangleScreen {
   const Mask4 inside = (sa == sden) & (sb == sden) & (sc == sden);
   const Mask4 miss = certain & ~inside;
   const Mask4 through = certain & inside;
-  TriangleScreen r{0, 0, v.den, sden, v.absolute[0]};
-  for (int k = 0; k < 4; ++k) {
-    r.missed |= static_cast<unsigned>(miss[k] & 1) << k;
-    r.inside |= static_cast<unsigned>(through[k] & 1) << k;
+  // Both masks' bits in one reduction: lane k contributes 2^k when missed and 2^(k + 4) when inside.
+  const Mask4 weights = (miss & Mask4{1, 2, 4, 8}) | (through & Mask4{16, 32, 64, 128});
+  const auto bits = static_cast<unsigned>((weights[0] | weights[1]) | (weights[2] | weights[3]));
+  const unsigned inside_bits = bits >> 4;
+  r.missed = bits & 15u;
+  r.inside = inside_bits;
+  if (inside_bits != 0) {  // read only for these lanes
+    r.den = v.den;
+    r.den_sign = sden;
+    r.absolute = v.absolute[0];
   }
+}
+[[nodiscard]] [[gnu::always_inline]] inline TriangleScreen triangle_screen(const Ray& ray,
+                                                                          const Triangle* const t[4]) noexcept {
+  TriangleScreen r;
+  triangle_screen(ray, t, r);
   return r;
 }
 
