@@ -19,14 +19,11 @@
 #include <raykernel/testkit/triangle_queries.hpp>
 #include <raykernel/triangle.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
-#include <random>
 #include <utility>
 #include <string>
 #include <vector>
@@ -64,31 +61,6 @@ std::vector<testkit::TriangleQuery> triangle_queries(std::initializer_list<testk
   std::vector<testkit::TriangleQuery> q(buffer_size);
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = testkit::make_triangle_query(k[i % k.size()], bits);
   return q;
-}
-
-// bench/mesh_bench.cpp's rays for a mesh: from a sphere around it towards random points of its box (seed 15).
-std::vector<Ray> mesh_rays(const Mesh& mesh) {
-  Box3 box{mesh.vertices[0], mesh.vertices[0]};
-  for (const Vec3& v : mesh.vertices) {
-    box.lo = {std::min(box.lo.x, v.x), std::min(box.lo.y, v.y), std::min(box.lo.z, v.z)};
-    box.hi = {std::max(box.hi.x, v.x), std::max(box.hi.y, v.y), std::max(box.hi.z, v.z)};
-  }
-  const Vec3 c{(box.lo.x + box.hi.x) / 2, (box.lo.y + box.hi.y) / 2, (box.lo.z + box.hi.z) / 2};
-  const Vec3 e{box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z};
-  const double radius = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
-  std::mt19937_64 rng(15);
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  std::vector<Ray> rays;
-  for (std::size_t i = 0; i < buffer_size; ++i) {
-    Vec3 u{normal(rng), normal(rng), normal(rng)};
-    const double n = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
-    const Vec3 o{c.x + radius * u.x / n, c.y + radius * u.y / n, c.z + radius * u.z / n};
-    const Vec3 target{c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)};
-    rays.push_back({o, {target.x - o.x, target.y - o.y, target.z - o.z}});
-    (void)unit(rng), (void)unit(rng), (void)unit(rng);  // mesh_bench's point, drawn to keep the sequence
-  }
-  return rays;
 }
 
 // Keeps results alive without a store per call the compiler could not drop anyway.
@@ -157,7 +129,7 @@ int main(int argc, char** argv) {
     if (!nearest && entry != std::string("mesh/occluded/") + name) continue;
     const Mesh m = make();
     const PreparedMesh prepared(m);
-    run(mesh_rays(m), count, [&](const Ray& r) {
+    run(testkit::benchmark_rays(m, buffer_size), count, [&](const Ray& r) {
       if (!nearest) return occluded(r, prepared) ? 1.0 : 0.0;
       const auto hit = nearest_hit(r, prepared);
       return hit ? hit->intersection.t : -1.0;

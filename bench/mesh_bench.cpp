@@ -121,25 +121,7 @@ Fixture& fixture(const std::string& name) {
   f->name = name;
   for (const MeshSpec& s : mesh_specs())
     if (s.name == name) f->mesh = s.make();
-  Box3 box{f->mesh.vertices[0], f->mesh.vertices[0]};
-  for (const Vec3& v : f->mesh.vertices) {
-    box.lo = {std::min(box.lo.x, v.x), std::min(box.lo.y, v.y), std::min(box.lo.z, v.z)};
-    box.hi = {std::max(box.hi.x, v.x), std::max(box.hi.y, v.y), std::max(box.hi.z, v.z)};
-  }
-  const Vec3 c{(box.lo.x + box.hi.x) / 2, (box.lo.y + box.hi.y) / 2, (box.lo.z + box.hi.z) / 2};
-  const Vec3 e{box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z};
-  const double radius = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
-  std::mt19937_64 rng(15);
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  for (int i = 0; i < (1 << 16); ++i) {
-    Vec3 u{normal(rng), normal(rng), normal(rng)};
-    const double n = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
-    const Vec3 o{c.x + radius * u.x / n, c.y + radius * u.y / n, c.z + radius * u.z / n};
-    const Vec3 target{c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)};
-    f->rays.push_back({o, {target.x - o.x, target.y - o.y, target.z - o.z}});
-    f->points.push_back({c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)});
-  }
+  f->rays = testkit::benchmark_rays(f->mesh, std::size_t{1} << 16, &f->points);
   current = std::move(f);
   return *current;
 }

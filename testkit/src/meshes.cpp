@@ -1,9 +1,13 @@
 // The closed test meshes of <raykernel/testkit/meshes.hpp>.
 #include <raykernel/testkit/meshes.hpp>
 
+#include <raykernel/bvh.hpp>
+
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -207,6 +211,32 @@ Mesh make_overlapping_fan(std::uint32_t n, bool tilted) {
   }
   for (std::uint32_t i = 1; i + 1 < n; ++i) m.triangles.push_back({0, i, i + 1});
   return m;
+}
+
+std::vector<Ray> benchmark_rays(const Mesh& mesh, std::size_t count, std::vector<Vec3>* points) {
+  Box3 box{mesh.vertices.at(0), mesh.vertices.at(0)};
+  for (const Vec3& v : mesh.vertices) {
+    box.lo = {std::min(box.lo.x, v.x), std::min(box.lo.y, v.y), std::min(box.lo.z, v.z)};
+    box.hi = {std::max(box.hi.x, v.x), std::max(box.hi.y, v.y), std::max(box.hi.z, v.z)};
+  }
+  const Vec3 c{(box.lo.x + box.hi.x) / 2, (box.lo.y + box.hi.y) / 2, (box.lo.z + box.hi.z) / 2};
+  const Vec3 e{box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z};
+  const double radius = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+  std::mt19937_64 rng(15);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  std::vector<Ray> rays;
+  rays.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    Vec3 u{normal(rng), normal(rng), normal(rng)};
+    const double n = std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+    const Vec3 o{c.x + radius * u.x / n, c.y + radius * u.y / n, c.z + radius * u.z / n};
+    const Vec3 target{c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)};
+    rays.push_back({o, {target.x - o.x, target.y - o.y, target.z - o.z}});
+    const Vec3 point{c.x + e.x * unit(rng), c.y + e.y * unit(rng), c.z + e.z * unit(rng)};
+    if (points != nullptr) points->push_back(point);
+  }
+  return rays;
 }
 
 }  // namespace raykernel::testkit

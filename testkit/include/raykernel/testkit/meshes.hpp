@@ -10,8 +10,11 @@
 
 #include <raykernel/mesh.hpp>
 
+#include <raykernel/raykernel.hpp>
+
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace raykernel::testkit {
 
@@ -41,5 +44,11 @@ namespace raykernel::testkit {
 // The point a + w·(b − a) for w = k/2^bits, exactly, or nothing when it is not representable (the
 // computation in doubles rounded). For aiming rays exactly at edge points of these meshes.
 [[nodiscard]] std::optional<Vec3> edge_point(const Vec3& a, const Vec3& b, std::int64_t k, int bits);
+
+// The mesh benchmarks' workload (bench/mesh_bench.cpp, bench/instruction_counts.cpp): `count` rays from points
+// uniform on the sphere around the mesh's bounding box (centre the box's, radius its diagonal) towards points
+// uniform in the box, from a fixed seed (15); with `points`, also `count` points uniform in the box, drawn in
+// the same sequence (the point queries' workload). Requires a mesh with vertices.
+[[nodiscard]] std::vector<Ray> benchmark_rays(const Mesh& mesh, std::size_t count, std::vector<Vec3>* points = nullptr);
 
 }  // namespace raykernel::testkit
