@@ -289,12 +289,15 @@ Definition twin_results_nearest :=
 Goal True. idtac "@@ compare_hit_distances_twin_correct". Abort.
 Print Assumptions twin_results_nearest.
 
-(** IntegerDet3.v and TriangleIntegerSign.v: stage 3's first try, a determinant's sign in integers *)
-From Raykernel Require IntegerDet3 TriangleIntegerSign.
+(** IntegerDet3.v, IntegerExpansion.v and TriangleIntegerSign.v: stage 3's first try, a determinant's sign in
+    integers, and its value as at most four exact doubles for the roundings *)
+From Raykernel Require IntegerDet3 IntegerExpansion TriangleIntegerSign.
 Definition integer_stage_results :=
   (IntegerDet3.integer_det3_sign_correct, IntegerDet3.integer_vector_value, IntegerDet3.det3_sign_integer,
-   IntegerDet3.det3_range, TriangleIntegerSign.integer_value_sign_sound, TriangleIntegerSign.exact_diff_value).
-Goal True. idtac "@@ integer_det3_sign_correct integer_vector_value det3_sign_integer det3_range integer_value_sign_sound exact_diff_value". Abort.
+   IntegerDet3.det3_range, IntegerDet3.det3_scaled, TriangleIntegerSign.integer_value_sign_sound,
+   TriangleIntegerSign.exact_diff_value, IntegerExpansion.chunks_value, IntegerExpansion.dyadic_value,
+   IntegerExpansion.integer_components_sound, TriangleIntegerSign.integer_value_components_sound).
+Goal True. idtac "@@ integer_det3_sign_correct integer_vector_value det3_sign_integer det3_range det3_scaled integer_value_sign_sound exact_diff_value chunks_value dyadic_value integer_components_sound integer_value_components_sound". Abort.
 Print Assumptions integer_stage_results.
 
 (** TriangleStage3Twins.v: stage 3 of the triangle (core/expansion_value.hpp) is the model's determinant *)
@@ -412,8 +415,10 @@ Definition twin_results_triangle_flow :=
    TriangleCascadeFlowCorrect.det3_enclosure_certain_finite,
    TriangleCascadeFlowCorrect.tc_zero_quotient_correct,
    TriangleCascadeFlowCorrect.tc_expansion_enclosure_ok,
-   TriangleCascadeFlowCorrect.tc_stage3_quotient_correct).
-Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct". Abort.
+   TriangleCascadeFlowCorrect.tc_stage3_quotient_correct,
+   TriangleCascadeFlowCorrect.tc_stage3_sign_sound,
+   TriangleCascadeFlowCorrect.tc_stage3_components_sound).
+Goal True. idtac "@@ tc_sign_b_correct tc_tie_break_b_correct tc_normal_b_correct tc_relation_b_correct tc_intersect_b_class_correct det3_enclosure_certain_finite tc_zero_quotient_correct tc_expansion_enclosure_ok tc_stage3_quotient_correct tc_stage3_sign_sound tc_stage3_components_sound". Abort.
 Print Assumptions twin_results_triangle_flow.
 (** TriangleCascadeQuotients.v: the ray–triangle cascade's whole answer before the exact stage
     (ray_triangle_cascade.cpp, triangle_intersection_cascade): §6's classification, t = RN(num/den),

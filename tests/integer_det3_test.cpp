@@ -1,7 +1,9 @@
-// core/integer_det3.hpp: the sign of x·(y × z) in fixed-width integers, against GMP rationals (the doubles'
-// exact values). Every certain answer must be the exact sign; on inputs inside the valid range (each vector's
-// components integers over one power of two, below 2^62) the answer must be certain, so that a routine that
-// always gave up would fail; outside it (exponents 2^62 apart, NaN, infinities) it must give up.
+// core/integer_det3.hpp: the sign of x·(y × z) in fixed-width integers, and its value as at most four doubles,
+// against GMP rationals (the doubles' exact values). Every certain answer must be the exact sign, and every
+// expansion sum exactly to the determinant; on inputs inside the valid range (each vector's components integers
+// over one power of two, below 2^62; for the expansion, the chunks' exponents in [−1074, 971]) the answer must be
+// given, so that a routine that always gave up would fail; outside it (exponents 2^62 apart, NaN, infinities) it
+// must give up.
 #include "core/integer_det3.hpp"
 
 #include <raykernel/testkit/plane_queries.hpp>
@@ -16,13 +18,33 @@
 namespace raykernel::detail {
 namespace {
 
-int exact_sign(const double x[3], const double y[3], const double z[3]) {
+mpq_class exact_value(const double x[3], const double y[3], const double z[3]) {
   auto q = [](double v) { return mpq_class(v); };
   const mpq_class c0 = q(y[1]) * q(z[2]) - q(y[2]) * q(z[1]);
   const mpq_class c1 = q(y[2]) * q(z[0]) - q(y[0]) * q(z[2]);
   const mpq_class c2 = q(y[0]) * q(z[1]) - q(y[1]) * q(z[0]);
-  const mpq_class d = (q(x[0]) * c0 + q(x[1]) * c1) + q(x[2]) * c2;
-  return sgn(d);
+  return (q(x[0]) * c0 + q(x[1]) * c1) + q(x[2]) * c2;
+}
+int exact_sign(const double x[3], const double y[3], const double z[3]) { return sgn(exact_value(x, y, z)); }
+
+// integer_det3_components: when it answers, at most four finite doubles, nonzero unless the only one, whose exact
+// sum is the determinant. Returns whether it answered.
+bool components_are_exact(const double x[3], const double y[3], const double z[3]) {
+  Expansion<4> e;
+  if (!integer_det3_components(integer_vector(x), integer_vector(y), integer_vector(z), e)) return false;
+  EXPECT_GE(e.size, 1U);
+  EXPECT_LE(e.size, 4U);
+  mpq_class sum = 0;
+  for (std::size_t i = 0; i < e.size; ++i) {
+    EXPECT_TRUE(std::isfinite(e.component[i]));
+    EXPECT_TRUE(e.component[i] != 0 || e.size == 1);
+    if (i > 0) {
+      EXPECT_LT(std::fabs(e.component[i - 1]), std::fabs(e.component[i]));  // increasing
+    }
+    sum += mpq_class(e.component[i]);
+  }
+  EXPECT_EQ(sum, exact_value(x, y, z));
+  return true;
 }
 
 struct Draw {
@@ -61,6 +83,34 @@ TEST(IntegerDet3, GridDeterminantsAreCertainAndExact) {
   EXPECT_GT(zeros, 60000);
 }
 
+TEST(IntegerDet3, GridDeterminantsAreExactExpansions) {
+  // The same grids with exponents that keep every chunk in [−1074, 971] (each vector's in [−277, 270]: the lowest
+  // chunk's exponent is at least −831, and |det| < 6·2^(3·323) < 2^972 bounds the highest): the expansion must be
+  // given and exact; across the whole range, exact when given.
+  Draw draw;
+  int given = 0;
+  for (int n = 0; n < 100000; ++n) {
+    double x[3], y[3], z[3];
+    const bool inside = n % 2 == 0;
+    const int bits = draw.small(1, 53);
+    auto exponent = [&] { return inside ? draw.small(-330 + 53, 270) : draw.small(-1074 + 53, 900); };
+    grid_vector(draw, bits, exponent(), x);
+    grid_vector(draw, bits, exponent(), y);
+    grid_vector(draw, bits, exponent(), z);
+    if (n % 3 == 0) {
+      const int k = draw.small(-4, 4);
+      for (int i = 0; i < 3; ++i) z[i] = std::ldexp(y[i], k);
+    }
+    const bool answered = components_are_exact(x, y, z);
+    if (inside) {
+      ASSERT_TRUE(answered) << "query " << n;
+    }
+    given += answered;
+    if (::testing::Test::HasFailure()) FAIL() << "query " << n;
+  }
+  EXPECT_GT(given, 50000);
+}
+
 TEST(IntegerDet3, NearCancellationsAreExact) {
   // Determinants of ±1 and 0 among values of 52 bits: the products cancel to the last bit.
   Draw draw;
@@ -72,6 +122,8 @@ TEST(IntegerDet3, NearCancellationsAreExact) {
     const Sign s = integer_det3_sign(x, y, z);
     ASSERT_TRUE(is_certain(s));
     ASSERT_EQ(static_cast<int>(s), exact_sign(x, y, z)) << a << " " << b;
+    ASSERT_TRUE(components_are_exact(x, y, z)) << a << " " << b;
+    if (::testing::Test::HasFailure()) FAIL() << a << " " << b;
   }
 }
 
@@ -79,7 +131,7 @@ TEST(IntegerDet3, AnyDoublesGiveTheExactSignOrNothing) {
   // Random bit patterns within a few exponents of each other, and across the whole range: every certain answer
   // is the exact sign; within a vector spanning at most 9 binades above 53-bit significands it is certain.
   Draw draw;
-  int certain = 0;
+  int certain = 0, expansions = 0;
   for (int n = 0; n < 200000; ++n) {
     double v[9];
     const int base = draw.small(-1074, 1000);
@@ -94,8 +146,32 @@ TEST(IntegerDet3, AnyDoublesGiveTheExactSignOrNothing) {
       ++certain;
       ASSERT_EQ(static_cast<int>(s), exact_sign(v, v + 3, v + 6)) << "query " << n;
     }
+    const bool answered = components_are_exact(v, v + 3, v + 6);
+    if (::testing::Test::HasFailure()) FAIL() << "query " << n;
+    ASSERT_TRUE(!answered || is_certain(s)) << "query " << n;  // the same integers
+    expansions += answered;
   }
   EXPECT_GT(certain, 50000);
+  EXPECT_GT(expansions, 10000);
+}
+
+TEST(IntegerDet3, DyadicDoublesAreExact) {
+  // ±c·2^q built from bits against ldexp (exact here: c < 2^53 and c·2^q representable), over the normal and
+  // subnormal ranges and both ends of the valid range, and every width of c.
+  Draw draw;
+  for (int n = 0; n < 200000; ++n) {
+    const int width = draw.small(1, 53);
+    const std::uint64_t c = (draw.word() >> (64 - width)) | (std::uint64_t{1} << (width - 1));
+    const int q = n % 4 == 0 ? draw.small(-1074, -1000) : n % 4 == 1 ? draw.small(900, 971) : draw.small(-1074, 971);
+    const bool negative = (n & 8) != 0;
+    const double expected = std::ldexp(negative ? -static_cast<double>(c) : static_cast<double>(c), q);
+    ASSERT_EQ(dyadic_double(negative, c, q), expected) << c << " " << q;
+    ASSERT_EQ(std::signbit(dyadic_double(negative, c, q)), negative);
+  }
+  EXPECT_EQ(dyadic_double(false, 1, -1074), 0x1p-1074);
+  EXPECT_EQ(dyadic_double(false, (std::uint64_t{1} << 53) - 1, 971), std::numeric_limits<double>::max());
+  EXPECT_EQ(dyadic_double(true, (std::uint64_t{1} << 52) - 1, -1074), -0x0.fffffffffffffp-1022);
+  EXPECT_EQ(dyadic_double(false, std::uint64_t{1} << 52, -1074), 0x1p-1022);
 }
 
 TEST(IntegerDet3, GivesUpOutsideItsRange) {
@@ -117,7 +193,22 @@ TEST(IntegerDet3, GivesUpOutsideItsRange) {
       const Sign s = integer_det3_sign(a, b, one);
       ASSERT_TRUE(is_certain(s));
       EXPECT_EQ(static_cast<int>(s), exact_sign(a, b, one));
+      components_are_exact(a, b, one);  // exact when given
     }
+  // The expansion gives up where a chunk's double would be below 2^-1074 or overflow, not the sign: the
+  // determinants of tiny, tiny2, one (about 2^-2141) and of huge, huge2, one (about 2^2040) are nonzero.
+  const double tiny2[3] = {0x5p-1074, -0x1p-1074, 0x7p-1074}, huge2[3] = {0x1p1000, -0x1p1010, 0x1p1015};
+  Expansion<4> e;
+  ASSERT_NE(exact_sign(tiny, tiny2, one), 0);
+  ASSERT_NE(exact_sign(huge, huge2, one), 0);
+  EXPECT_FALSE(integer_det3_components(integer_vector(tiny), integer_vector(tiny2), integer_vector(one), e));
+  EXPECT_FALSE(integer_det3_components(integer_vector(huge), integer_vector(huge2), integer_vector(one), e));
+  EXPECT_FALSE(integer_det3_components(integer_vector(with_nan), integer_vector(one), integer_vector(other), e));
+  EXPECT_FALSE(integer_det3_components(integer_vector(one), integer_vector(wide), integer_vector(other), e));
+  // The zero determinant is the expansion {0}.
+  ASSERT_TRUE(integer_det3_components(integer_vector(one), integer_vector(one), integer_vector(other), e));
+  EXPECT_EQ(e.size, 1U);
+  EXPECT_EQ(e.component[0], 0.0);
   // Signed zeros are zeros.
   const double zeros[3] = {-0.0, 0.0, -0.0};
   EXPECT_EQ(integer_det3_sign(zeros, one, other), Sign::zero);

@@ -124,6 +124,28 @@ Proof. intros s x C I. apply certified_sign; [exact C|]. intros E. subst s. disc
 
 (** ** The signs part *)
 
+(** Stage 3's sign: the integer sign, else the expansion's; a certain one is the exact sign. *)
+Lemma tc_stage3_sign_sound : forall o d a b c v, is_certain (tc_stage3_sign_b o d a b c v) = true ->
+  sign_to_Z (tc_stage3_sign_b o d a b c v) = sign_of (value_model o d a b c v).
+Proof.
+  intros o d a b c v. unfold tc_stage3_sign_b. cbv zeta.
+  destruct (is_certain (integer_value_sign_b o d a b c v)) eqn:Ci.
+  - intros _. exact (integer_value_sign_sound o d a b c v Ci).
+  - intros C3. exact (tcf_certain_sign _ _ (triangle_expansion_sign_sound o d a b c v) C3).
+Qed.
+
+(** Stage 3's value for the roundings: finite doubles summing exactly to determinant v. *)
+Lemma tc_stage3_components_sound : forall o d a b c v l, tc_stage3_components_b o d a b c v = Some l ->
+  all_fin l /\ sumR l = value_model o d a b c v.
+Proof.
+  intros o d a b c v l. unfold tc_stage3_components_b.
+  destruct (integer_value_components_b o d a b c v) as [l'|] eqn:I.
+  - intros H. injection H as <-. destruct (integer_value_components_sound o d a b c v l' I) as [F [_ S]].
+    split; assumption.
+  - cbv zeta. destruct (eexact (value_ev o d a b c v)) eqn:X; [|discriminate].
+    intros H. injection H as <-. exact (value_ev_exact o d a b c v X).
+Qed.
+
 Theorem tc_sign_b_correct : forall o d a b c v f, tc_index v ->
   tf_exact (snd (tc_sign_b o d a b c v f)) = false ->
   fst (tc_sign_b o d a b c v f) = sign_of (value_model o d a b c v).
@@ -132,11 +154,9 @@ Proof.
   destruct (Z.eqb_spec (tc_filter_b o d a b c v) uncertain_lane) as [U|U]; cbn [negb].
   - destruct (is_certain (PlaneCascadeTwins.enclosure_sign_b (tc_enclosure2_b o d a b c v))) eqn:C2.
     + intros _. cbn [fst]. exact (tcf_certain_sign _ _ (tc_enclosure2_sign_sound o d a b c v I) C2).
-    + destruct (is_certain (integer_value_sign_b o d a b c v)) eqn:Ci.
-      * intros _. cbn [fst]. exact (integer_value_sign_sound o d a b c v Ci).
-      * destruct (is_certain (ev_sign (value_ev o d a b c v))) eqn:C3.
-        -- intros _. cbn [fst]. exact (tcf_certain_sign _ _ (triangle_expansion_sign_sound o d a b c v) C3).
-        -- cbn. discriminate.
+    + destruct (is_certain (tc_stage3_sign_b o d a b c v)) eqn:C3.
+      * intros _. cbn [fst]. exact (tc_stage3_sign_sound o d a b c v C3).
+      * cbn. discriminate.
   - intros _. cbn [fst].
     exact (proj1 (lane_sign_exact _ _ (det3_filter_lanes_b_range _ _ _) U (tc_filter_sound o d a b c v I))).
 Qed.
@@ -146,7 +166,6 @@ Lemma tc_sign_b_exact_mono : forall o d a b c v f, tf_exact f = true -> tf_exact
 Proof.
   intros o d a b c v f E. unfold tc_sign_b.
   destruct (negb _); [exact E|]. destruct (is_certain _); [cbn [snd tf_reach tf_exact]; exact E|].
-  destruct (is_certain _); [cbn [snd tf_reach tf_exact]; exact E|].
   destruct (is_certain _); cbn [snd tf_reach tf_exact tf_give_up]; [exact E | reflexivity].
 Qed.
 
@@ -479,14 +498,14 @@ Lemma tc_expansion_enclosure_ok : forall o d a b c v e, tc_expansion_enclosure_b
   nonneg (radiusb e) /\
   (fin (hib e) = true -> fin (lob e) = true -> fin (radiusb e) = true -> encloses (enc_R e) (value_model o d a b c v)).
 Proof.
-  intros o d a b c v e. unfold tc_expansion_enclosure_b. cbv zeta.
-  destruct (eexact (value_ev o d a b c v) &&
-            Z.leb (Z.of_nat (length (ecomp (value_ev o d a b c v)))) Cpp.tail_sum_max_terms)%bool eqn:C;
-    [|discriminate].
-  intros H. injection H. intros <-. apply andb_prop in C. destruct C as [X L]. apply Z.leb_le in L.
+  intros o d a b c v e. unfold tc_expansion_enclosure_b.
+  destruct (tc_stage3_components_b o d a b c v) as [l|] eqn:C3; [|discriminate].
+  destruct (Z.leb (Z.of_nat (length l)) Cpp.tail_sum_max_terms) eqn:L; [|discriminate].
+  intros H. injection H. intros <-. apply Z.leb_le in L.
   unfold Cpp.tail_sum_max_terms in L.
+  destruct (tc_stage3_components_sound o d a b c v l C3) as [F S].
   split; [apply PlaneCascadeTwins.tail_b_nonneg|]. intros Fh Fl Fr.
-  rewrite <- (proj2 (value_ev_exact o d a b c v X)). apply PlaneCascadeTwins.tail_b_encloses; [lia | assumption ..].
+  rewrite <- S. apply PlaneCascadeTwins.tail_b_encloses; [lia | assumption ..].
 Qed.
 
 (** Stage 3's rounding of quotient v (t: v = 4; u_k: v = k) over den's divisor (its tail enclosure, or stage

@@ -9,7 +9,7 @@
       [det3_enclosure], [enclosure_sign]; the C++ evaluates both stages at once as
       [triangle_compensated_values_by_lanes] and its filter view: the same values up to the sign of a zero,
       which no strict comparison sees — TriangleTwins.v's lane twins, runner routine [tri_compensated_lanes]),
-      then stage 3: the integer sign when the leaves allow
+      then stage 3 ([stage3_sign], [tc_stage3_sign_b]): the integer sign when the leaves allow
       ([integer_value_sign]: TriangleIntegerSign.v's [integer_value_sign_b]), else the expansion's checked sign
       ([value_expansion]: TriangleStage3Twins.v's [value_ev], [ev_sign]), else 0 with [needs_exact_] set;
     - [tc_tie_break_b k]: [tie_break(k)] — [tie_break_signs_by_expansion]: the signs of d × (q − p) for
@@ -21,10 +21,12 @@
       [needs_exact_];
     - [tc_intersect_b]: [triangle_intersection_cascade]: the classification; the numerators' signs (an
       exactly zero numerator gives +0); [round_quotients] on the stage-2 enclosures over one divisor (its
-      fields broadcast: [shared_divisor_b]); the stage-3 tail enclosures ([expansion_enclosure]: exact and
-      at most [tail_sum_max_terms] components, [PlaneCascadeTwins.tail_b]) over den's (or stage 2's) divisor,
-      [round_quotient] per quotient; then [round_quotient_near] on the candidates ([qstep_boundary]:
-      num's and den's expansions exact and at most 16 components, den's checked sign ±1); else the exact stage ([QExact]: the twin computes no exact answer);
+      fields broadcast: [shared_divisor_b]); the stage-3 tail enclosures ([expansion_enclosure] of stage 3's
+      value, [tc_stage3_components_b]: the integer's components, else the exact expansion; at most
+      [tail_sum_max_terms] components, [PlaneCascadeTwins.tail_b]) over den's (or stage 2's) divisor,
+      [round_quotient] per quotient; then [round_quotient_near] on the candidates ([qstep_boundary]: num's and
+      den's stage-3 values of at most 16 components, den's stage-3 sign ±1); else the exact stage ([QExact]:
+      the twin computes no exact answer);
     - [tc_relation_b]: [triangle_relation_cascade];
     - [tri_valid_b]: [is_valid(ray) & is_valid(triangle)] (finite components, d not the zero vector), by
       which the public entry points choose between the fast path's answer, invalid_input and the cascade.
@@ -85,6 +87,11 @@ Definition tc_absolute2_b (v : Z) : float := if Z.eqb v 4 then absolute_bv (ehig
 Definition tc_enclosure2_b (v : Z) : EnclosureB :=
   det3_enclosure_b (tc_value2_b v) (tc_compensated_relative v) (tc_absolute2_b v).
 
+(** [stage3_sign(v)]: the integer sign when the leaves allow, else the expansion's checked sign. *)
+Definition tc_stage3_sign_b (v : Z) : sign :=
+  let si := integer_value_sign_b o d a b c v in
+  if is_certain si then si else ev_sign (value_ev o d a b c v).
+
 (** [sign(v)]. *)
 Definition tc_sign_b (v : Z) (f : TFlow) : Z * TFlow :=
   let s1 := tc_filter_b v in
@@ -93,9 +100,7 @@ Definition tc_sign_b (v : Z) (f : TFlow) : Z * TFlow :=
   let s2 := PlaneCascadeTwins.enclosure_sign_b (tc_enclosure2_b v) in
   if is_certain s2 then (sign_to_Z s2, f) else
   let f := tf_reach f StExpansion in
-  let si := integer_value_sign_b o d a b c v in
-  if is_certain si then (sign_to_Z si, f) else
-  let s3 := ev_sign (value_ev o d a b c v) in
+  let s3 := tc_stage3_sign_b v in
   if is_certain s3 then (sign_to_Z s3, f) else (0%Z, tf_give_up f).
 
 (** [tie_break_signs_by_expansion(ray, triangle, k)]: d × (q − p) for b → c, c → a, a → b. *)
@@ -149,17 +154,29 @@ Definition tc_classify_b (owned_rule : bool) : TClass * TFlow :=
       (TC (if Z.leb 0 (sn * sden) then THit else TBehind) (Some loc) owned, f)
     else (TC TMiss (Some loc) owned, f).
 
-(** [expansion_enclosure(v)]: stage 3's tail enclosure when the expansion is exact and short enough. *)
-Definition tc_expansion_enclosure_b (v : Z) : option EnclosureB :=
-  let e := value_ev o d a b c v in
-  if (eexact e && Z.leb (Z.of_nat (length (ecomp e))) Cpp.tail_sum_max_terms)%bool
-  then Some (PlaneCascadeTwins.tail_b (ecomp e)) else None.
+(** Stage 3's exact value of determinant v for the roundings: its integer's components when the leaves allow
+    ([integer_value_components]), else its expansion of doubles when that is exact. *)
+Definition tc_stage3_components_b (v : Z) : option (list float) :=
+  match integer_value_components_b o d a b c v with
+  | Some l => Some l
+  | None => let e := value_ev o d a b c v in if eexact e then Some (ecomp e) else None
+  end.
 
-(** [short_expansion(v)]: stage 3's exact expansion of determinant v when it has at most 16 components (the
-    capacity [round_quotient_at_boundaries] is proved for). *)
+(** [expansion_enclosure(v)]: stage 3's tail enclosure when that value has at most [tail_sum_max_terms]
+    components. *)
+Definition tc_expansion_enclosure_b (v : Z) : option EnclosureB :=
+  match tc_stage3_components_b v with
+  | Some l => if Z.leb (Z.of_nat (length l)) Cpp.tail_sum_max_terms then Some (PlaneCascadeTwins.tail_b l) else None
+  | None => None
+  end.
+
+(** [short_expansion(v)]: that value when it has at most 16 components (the capacity
+    [round_quotient_at_boundaries] is proved for). *)
 Definition tc_short_b (v : Z) : option (list float) :=
-  let e := value_ev o d a b c v in
-  if (eexact e && Nat.leb (length (ecomp e)) 16)%bool then Some (ecomp e) else None.
+  match tc_stage3_components_b v with
+  | Some l => if Nat.leb (length l) 16 then Some l else None
+  | None => None
+  end.
 
 End Query.
 
@@ -234,7 +251,7 @@ Definition tc_intersect_b (want_t want_u owned_rule : bool) (o d a b c : TVec) :
   let x3 := if fst x3 then x3 else qstep3 x3 (r3 2%Z) in
   if all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts else
   (* the rounding boundaries of each candidate, in expansions ([round_quotient_at_boundaries]) *)
-  let ds := sign_to_Z (ev_sign (value_ev o d a b c 3)) in
+  let ds := sign_to_Z (tc_stage3_sign_b o d a b c 3) in
   let rb (v : Z) (x : bool * qval) := qstep_boundary x ds (tc_short_b o d a b c 3) (tc_short_b o d a b c v) in
   let x0 := rb 4%Z x0 in let x1 := rb 0%Z x1 in let x2 := rb 1%Z x2 in let x3 := rb 2%Z x3 in
   if all x0 x1 x2 x3 then TCDecided cl rs (snd x0) (snd x1) (snd x2) (snd x3) ts

@@ -92,7 +92,7 @@ Definition tc_q2 (o d a b c : TVec) (v : Z) : float * bool :=
 (** [tc_intersect_b] with its quotients' chain named (an equation of definitions; the roundings and signs
     kept opaque to unification, so that it compares them by name instead of computing them). *)
 Opaque round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b tc_stage3_sign_b.
 Lemma tc_intersect_b_eq : forall want_t want_u owned_rule o d a b c,
   tc_intersect_b want_t want_u owned_rule o d a b c =
   let '(cl, f) := tc_classify_b o d a b c owned_rule in
@@ -111,7 +111,7 @@ Lemma tc_intersect_b_eq : forall want_t want_u owned_rule o d a b c,
   tc_quot_tail cl rs (tf_stage f) (tc_start want_t n0) (tc_start want_u n1) (tc_start want_u n2) (tc_start want_u n3)
     (tc_q2 o d a b c 4) (tc_q2 o d a b c 0) (tc_q2 o d a b c 1) (tc_q2 o d a b c 2)
     (tc_r3 o d a b c 4) (tc_r3 o d a b c 0) (tc_r3 o d a b c 1) (tc_r3 o d a b c 2)
-    (sign_to_Z (ev_sign (value_ev o d a b c 3))) (tc_short_b o d a b c 3)
+    (sign_to_Z (tc_stage3_sign_b o d a b c 3)) (tc_short_b o d a b c 3)
     (tc_short_b o d a b c 4) (tc_short_b o d a b c 0) (tc_short_b o d a b c 1) (tc_short_b o d a b c 2).
 Proof.
   intros. unfold tc_intersect_b, tc_quot_tail, tc_quot_tail2, tc_quot_tail3, tc_quot_tail4, tc_all, tc_start, tc_qs3,
@@ -120,7 +120,7 @@ Proof.
 Qed.
 
 Transparent round_quotient_b tc_enclosure2_b tc_sign_b tc_classify_b tc_expansion_enclosure_b shared_divisor_b
-  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b.
+  prepare_divisor_b tc_short_b value_ev ev_sign round_quotient_near_b tc_stage3_sign_b.
 
 (** The invariant of a quotient's progress: once certain, a value is RN(V/VD). *)
 Definition tc_qinv (x : bool * qval) (V VD : R) : Prop := fst x = true -> tc_quotient_means (snd x) V VD.
@@ -168,30 +168,27 @@ Qed.
 Lemma tc_short_means : forall o d a b c v l, tc_short_b o d a b c v = Some l ->
   (length l <= 16)%nat /\ sumR l = value_model o d a b c v.
 Proof.
-  intros o d a b c v l. unfold tc_short_b. cbv zeta.
-  destruct (eexact (value_ev o d a b c v) && Nat.leb (length (ecomp (value_ev o d a b c v))) 16)%bool eqn:C;
-    [|intros H; discriminate H].
-  intros H. injection H as <-. apply andb_prop in C. destruct C as [X L]. apply Nat.leb_le in L.
-  split; [exact L | exact (proj2 (value_ev_exact o d a b c v X))].
+  intros o d a b c v l. unfold tc_short_b.
+  destruct (tc_stage3_components_b o d a b c v) as [l'|] eqn:C3; [|intros H; discriminate H].
+  destruct (Nat.leb (length l') 16) eqn:L; [|intros H; discriminate H].
+  intros H. injection H as <-. apply Nat.leb_le in L.
+  split; [exact L | exact (proj2 (F.tc_stage3_components_sound o d a b c v l' C3))].
 Qed.
 
 (** den's checked sign in stage 3, when ±1, is den's sign. *)
 Lemma tc_den_sign_means : forall o d a b c,
-  let ds := sign_to_Z (ev_sign (value_ev o d a b c 3)) in
+  let ds := sign_to_Z (tc_stage3_sign_b o d a b c 3) in
   (ds = 1%Z \/ ds = (-1)%Z) ->
   (ds = 1%Z /\ 0 < value_model o d a b c 3) \/ (ds = (-1)%Z /\ value_model o d a b c 3 < 0).
 Proof.
   intros o d a b c ds H. unfold ds in *.
-  destruct (value_ev_ok o d a b c 3) as [L Ex].
-  unfold ev_sign in *. destruct (eexact (value_ev o d a b c 3)) eqn:X;
-    [| exfalso; destruct H as [H|H]; discriminate H].
-  destruct (Ex eq_refl) as [F Sm].
-  pose proof (expansion_sign_sound _ F ltac:(lia)) as C. rewrite Sm in C.
-  destruct (expansion_sign_b (ecomp (value_ev o d a b c 3))); cbn [sign_to_Z certifies] in *.
-  - right. split; [reflexivity | exact C].
-  - exfalso; destruct H as [H|H]; discriminate H.
-  - left. split; [reflexivity | exact C].
-  - exfalso; destruct H as [H|H]; discriminate H.
+  assert (C : is_certain (tc_stage3_sign_b o d a b c 3) = true).
+  { destruct (tc_stage3_sign_b o d a b c 3); cbn in H |- *; try reflexivity. destruct H as [H|H]; discriminate H. }
+  pose proof (F.tc_stage3_sign_sound o d a b c 3 C) as S. rewrite S in H |- *. unfold sign_of in *.
+  destruct (Rcompare_spec (value_model o d a b c 3) 0) as [L|E|G].
+  - right. split; [reflexivity | exact L].
+  - exfalso. destruct H as [H|H]; discriminate H.
+  - left. split; [reflexivity | exact G].
 Qed.
 
 Lemma tc_qinv_final : forall x V VD, tc_qinv x V VD -> tc_quotient_means (qfinal x) V VD.

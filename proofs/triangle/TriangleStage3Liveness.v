@@ -46,7 +46,7 @@ From Flocq Require Import Core IEEE754.BinarySingleNaN.
 From Raykernel Require Import Model PlaneClassification PlaneCascade FloatCore ConstantsCpp PlaneTwins Expansions PlaneQueryTwins
   PlaneStage3Liveness.
 From Raykernel Require Import TriangleFilter TriangleRule TriangleTwins TriangleStage3Twins TriangleCascadeTwins
-  TriangleIntersectTwins TriangleCascadeFlowTwins.
+  TriangleIntersectTwins TriangleCascadeFlowTwins TriangleIntegerSign.
 From Raykernel Require PlaneCascadeTwins.
 Import ListNotations.
 Open Scope R_scope.
@@ -292,7 +292,8 @@ Lemma tc_sign_keeps : forall v f, tf_exact (snd (tc_sign_b o d a b c v f)) = tf_
 Proof.
   intros v f. unfold tc_sign_b; cbv zeta.
   destruct (negb _); [reflexivity|]. destruct (is_certain _); [reflexivity|].
-  destruct (is_certain _); [reflexivity|].
+  unfold tc_stage3_sign_b. cbv zeta.
+  destruct (is_certain (integer_value_sign_b o d a b c v)) eqn:I; [rewrite I; reflexivity|].
   rewrite (Hsign v). reflexivity.
 Qed.
 

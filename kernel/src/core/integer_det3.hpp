@@ -1,6 +1,7 @@
-// The exact sign of a 3×3 determinant x·(y × z) of nine doubles in fixed-width integers: stage 3's first try for
-// the determinants whose leaves are single doubles (a ray–triangle query's differences p − o exact in binary64,
-// as on any grid of coordinates), without an expansion and without a rounding.
+// The exact sign of a 3×3 determinant x·(y × z) of nine doubles in fixed-width integers, and its value as an exact
+// expansion of at most four doubles: stage 3's first try for the determinants whose leaves are single doubles (a
+// ray–triangle query's differences p − o exact in binary64, as on any grid of coordinates), without products of
+// expansions and without a rounding.
 //
 // Each vector's components are read as integers over one power of two (integer_vector): a finite double is
 // ±m·2^e; with m's trailing zeros stripped and E the least exponent of the vector's nonzero components, every
@@ -17,6 +18,7 @@
 //                the limb arithmetic is compared with the model's Z arithmetic by the twin runner.
 #pragma once
 
+#include "core/expansion.hpp"
 #include "core/sign.hpp"
 
 #include <bit>
@@ -31,6 +33,7 @@ __extension__ typedef unsigned __int128 UInt128;
 // finite or an aligned component reaches 2^62.
 struct IntegerVector {
   std::int64_t v[3];
+  int exponent;  // E: x_i = v_i·2^E (0 when every component is 0)
   bool ok;
 };
 
@@ -51,7 +54,7 @@ struct IntegerVector {
     finite = finite && field != 0x7ff;
     if (m[i] != 0 && e[i] < least) least = e[i];
   }
-  IntegerVector r{{0, 0, 0}, finite};
+  IntegerVector r{{0, 0, 0}, least == 1 << 20 ? 0 : least, finite};
   for (int i = 0; i < 3; ++i) {
     if (m[i] == 0) continue;
     const int shift = e[i] - least;                            // ≥ 0
@@ -66,11 +69,14 @@ struct IntegerVector {
   return r;
 }
 
-// sign(X·(Y × Z)) of three vectors read by integer_vector (each over its own power of two, which the sign does not
-// see), the cross product as ray_triangle_formula.hpp's cross_terms writes it; `uncertain` when a vector is not ok.
-// (A caller that signs several determinants of the same vectors reads each vector once.)
-[[nodiscard]] inline Sign integer_det3_sign(const IntegerVector& X, const IntegerVector& Y, const IntegerVector& Z) noexcept {
-  if (!(X.ok & Y.ok & Z.ok)) return Sign::uncertain;
+// D = X·(Y × Z) of three vectors read by integer_vector, in 192-bit two's complement (w[2]:w[1]:w[0]), the cross
+// product as ray_triangle_formula.hpp's cross_terms writes it. Valid when the three are ok.
+struct Int192 {
+  std::uint64_t w[3];
+};
+
+[[nodiscard]] [[gnu::always_inline]] inline Int192 integer_det3(const IntegerVector& X, const IntegerVector& Y,
+                                                                const IntegerVector& Z) noexcept {
   // (Y × Z)_i = Y_j Z_k − Y_k Z_j, (i, j, k) = (0, 1, 2), (1, 2, 0), (2, 0, 1): each product below 2^124.
   const Int128 c[3] = {static_cast<Int128>(Y.v[1]) * Z.v[2] - static_cast<Int128>(Y.v[2]) * Z.v[1],
                        static_cast<Int128>(Y.v[2]) * Z.v[0] - static_cast<Int128>(Y.v[0]) * Z.v[2],
@@ -92,8 +98,73 @@ struct IntegerVector {
     s2 += static_cast<std::uint64_t>(low_part < 0 ? -1 : 0) + static_cast<std::uint64_t>(high_part >> 64) +
           static_cast<std::uint64_t>(b >> 64);
   }
-  if (static_cast<std::int64_t>(s2) < 0) return Sign::negative;
-  return (s0 | s1 | s2) != 0 ? Sign::positive : Sign::zero;
+  return {{s0, s1, s2}};
+}
+
+[[nodiscard]] inline Sign sign(const Int192& D) noexcept {
+  if (static_cast<std::int64_t>(D.w[2]) < 0) return Sign::negative;
+  return (D.w[0] | D.w[1] | D.w[2]) != 0 ? Sign::positive : Sign::zero;
+}
+
+// sign(X·(Y × Z)) of three vectors read by integer_vector (each over its own power of two, which the sign does not
+// see); `uncertain` when a vector is not ok. (A caller that signs several determinants of the same vectors reads
+// each vector once.)
+[[nodiscard]] inline Sign integer_det3_sign(const IntegerVector& X, const IntegerVector& Y, const IntegerVector& Z) noexcept {
+  if (!(X.ok & Y.ok & Z.ok)) return Sign::uncertain;
+  return sign(integer_det3(X, Y, Z));
+}
+
+// ±c·2^q as a double, built from its bits (integer operations only: no rounding, no flag, whatever the
+// floating-point environment). Valid range: 0 < c < 2^53, −1074 ≤ q ≤ 971 (then c·2^q is a double: normal when
+// its leading bit's exponent is at least −1022, else subnormal with fraction c·2^(q + 1074) < 2^52).
+[[nodiscard]] inline double dyadic_double(bool negative, std::uint64_t c, int q) noexcept {
+  const int width = 64 - std::countl_zero(c);  // c < 2^width, 1 ≤ width ≤ 53
+  const int top = q + width - 1;               // the exponent of c·2^q's leading bit, ≤ 1023
+  const std::uint64_t magnitude =
+      top >= -1022 ? (static_cast<std::uint64_t>(top + 1023) << 52) | ((c << (53 - width)) & ((std::uint64_t{1} << 52) - 1))
+                   : c << (q + 1074);
+  return std::bit_cast<double>(magnitude | (negative ? std::uint64_t{1} << 63 : 0));
+}
+
+// x·(y × z) = D·2^(Ex + Ey + Ez) as a short exact expansion: |D| in chunks of 53 bits, c_k = ⌊|D|/2^(53k)⌋ mod 2^53
+// (k = 0..3: |D| < 2^189), each nonzero chunk the double ±c_k·2^(E + 53k), in increasing order; the zero
+// determinant is {0}. False (`out` then unspecified) when a vector is not ok or a nonzero chunk's exponent lies outside
+// [−1074, 971] (the caller goes on to the expansions of doubles).
+//   Error bound: none: the components sum exactly to the determinant (integer arithmetic and exact doubles).
+//   Certified by: proofs/core/IntegerExpansion.v, `integer_components_sound` (at most four finite doubles whose
+//   exact sum is D·2^E), with proofs/core/IntegerDet3.v, `det3_scaled` and `det3_range`; compared with the twin
+//   through the cascade's roundings (TriangleCascadeFlowTwins.v, routine tri_cascade_intersect).
+template <std::size_t K>
+  requires(K >= 4)
+[[nodiscard]] inline bool integer_det3_components(const IntegerVector& X, const IntegerVector& Y, const IntegerVector& Z,
+                                                  Expansion<K>& out) noexcept {
+  if (!(X.ok & Y.ok & Z.ok)) return false;
+  const Int192 D = integer_det3(X, Y, Z);
+  const bool negative = static_cast<std::int64_t>(D.w[2]) < 0;
+  std::uint64_t m[3] = {D.w[0], D.w[1], D.w[2]};  // |D|: two's complement negation when negative
+  if (negative) {
+    const UInt128 a = static_cast<UInt128>(~m[0]) + 1;
+    const UInt128 b = static_cast<UInt128>(~m[1]) + static_cast<std::uint64_t>(a >> 64);
+    m[0] = static_cast<std::uint64_t>(a);
+    m[1] = static_cast<std::uint64_t>(b);
+    m[2] = ~m[2] + static_cast<std::uint64_t>(b >> 64);
+  }
+  const int E = X.exponent + Y.exponent + Z.exponent;
+  constexpr std::uint64_t chunk_mask = (std::uint64_t{1} << 53) - 1;
+  std::size_t size = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int start = 53 * k, word = start / 64, offset = start % 64;
+    UInt128 window = m[word];
+    if (word + 1 < 3) window |= static_cast<UInt128>(m[word + 1]) << 64;
+    const std::uint64_t c = static_cast<std::uint64_t>(window >> offset) & chunk_mask;
+    if (c == 0) continue;
+    const int q = E + start;
+    if (q < -1074 || q > 971) return false;
+    out.component[size++] = dyadic_double(negative, c, q);
+  }
+  if (size == 0) out.component[size++] = 0.0;
+  out.size = size;
+  return true;
 }
 
 // sign(x·(y × z)) of nine doubles; `uncertain` outside the valid range above.

@@ -26,7 +26,11 @@
 //                        proofs/triangle/TriangleCompensated.v, `stage2_filter_view`
 //   quotients, stage 2:  proofs/triangle/TriangleCascade.v, `triangle_quotient_correct` (round_quotient_sound)
 //   quotients, stage 3:  proofs/triangle/TriangleCascade.v, `triangle_quotient_expansion_correct`
-//                        (tail_sum_enclosure); then at the rounding boundaries of the candidate, in the
+//                        (tail_sum_enclosure) on stage 3's value of each determinant: its integer's at most
+//                        four components when the leaves allow (proofs/triangle/TriangleIntegerSign.v,
+//                        `integer_value_components_sound`), else its exact expansion of doubles; in the cascade
+//                        proofs/triangle/TriangleCascadeFlowCorrect.v, `tc_stage3_components_sound`,
+//                        `tc_stage3_sign_sound` (den's sign there); then at the rounding boundaries of the candidate, in the
 //                        expansions: proofs/core/QuotientBoundary.v, `round_quotient_near_sound` (from
 //                        `round_quotient_at_boundaries_sound`, for the candidate or a neighbour), in the
 //                        cascade proofs/triangle/TriangleCascadeQuotients.v, `tc_qinv_boundary`, `tc_short_means`,
@@ -157,17 +161,21 @@ class TriangleCascade {
   }
   [[nodiscard]] bool needs_exact() const noexcept { return needs_exact_; }
 
-  // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion, when it is exact
-  // and has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
+  // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion (short_expansion),
+  // when it has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
   std::optional<Enclosure> expansion_enclosure(int v) {
     const std::optional<Expansion<bounds::tail_sum_max_terms>> e = short_expansion<bounds::tail_sum_max_terms>(v);
     if (!e) return std::nullopt;
     return expansion_tail_enclosure(*e);
   }
-  // Stage 3's exact expansion of determinant v in capacity K, when it is exact and has at most K components
-  // (16: the capacity round_quotient_near is proved for).
+  // Stage 3's exact value of determinant v for the roundings, in capacity K when it has at most K components
+  // (16: the capacity round_quotient_near is proved for): from its integer when its leaves allow (at most four
+  // components: integer_value_components), else its expansion of doubles when that is exact.
   template <std::size_t K>
   std::optional<Expansion<K>> short_expansion(int v) {
+    const IntegerValue& integer = integer_value_.get(static_cast<std::size_t>(v),
+                                                     [&] { return integer_value_components(integer_leaves_, v); });
+    if (integer.ok) return shortened<K>(integer.e);
     const ExpansionValue<192>& value = expansion(v);
     if (!value.exact) return std::nullopt;
     return shortened<K>(value.e);
@@ -202,6 +210,7 @@ class TriangleCascade {
   bool needs_exact_ = false;
   TriangleCompensatedValues compensated_;
   IntegerLeaves integer_leaves_;  // stage 3's integer vectors, each read once
+  OnFirstUse<IntegerValue, triangle_value_count> integer_value_;  // stage 3's integer value of each determinant
   OnFirstUse<ExpansionValue<192>, triangle_value_count> expansion_;  // stage 3 of each determinant, once computed
 };
 
@@ -335,7 +344,7 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
   // quotient on or next to a midpoint between two doubles (ties, roundings near powers of two).
   if (!all_certain) {
     const std::optional<Expansion<16>> den_short = query.short_expansion<16>(value_den);
-    const Sign den_sign = query.expansion(value_den).sign();
+    const Sign den_sign = query.stage3_sign(value_den);
     all_certain = true;
     for (int k = 0; k < 4; ++k) {
       if (certain[k]) continue;

@@ -192,6 +192,23 @@ class IntegerLeaves {
   return integer_value_sign(leaves, v);
 }
 
+// Determinant v as at most four doubles whose exact sum it is (core/integer_det3.hpp, integer_det3_components),
+// when its leaves are single doubles in integer_det3_sign's range and its chunks' exponents in [−1074, 971]; stage
+// 3's value for the roundings, instead of the expansion of doubles (a fifth to a tenth of its cost, and never more
+// than four components: round_quotient_near's 16 always hold).
+//   Certified by: proofs/triangle/TriangleIntegerSign.v, `integer_value_components_sound` (its twin
+//   integer_value_components_b, run against this code through the cascade's routine tri_cascade_intersect).
+struct IntegerValue {
+  Expansion<4> e;
+  bool ok;
+};
+[[nodiscard]] inline IntegerValue integer_value_components(IntegerLeaves& leaves, int v) noexcept {
+  const int* l = determinant_leaves[v];
+  IntegerValue r;
+  r.ok = integer_det3_components(leaves[l[0]], leaves[l[1]], leaves[l[2]], r.e);
+  return r;
+}
+
 [[nodiscard]] inline TriangleExpansions triangle_expansions(const Ray& ray, const Triangle& triangle) noexcept {
   return {{value_expansion(ray, triangle, value_pi_a), value_expansion(ray, triangle, value_pi_b),
            value_expansion(ray, triangle, value_pi_c)},
