@@ -295,9 +295,9 @@ From Raykernel Require IntegerDet3 IntegerExpansion TriangleIntegerSign.
 Definition integer_stage_results :=
   (IntegerDet3.integer_det3_sign_correct, IntegerDet3.integer_vector_value, IntegerDet3.det3_sign_integer,
    IntegerDet3.det3_range, IntegerDet3.det3_scaled, TriangleIntegerSign.integer_value_sign_sound,
-   TriangleIntegerSign.exact_diff_value, IntegerExpansion.chunks_value, IntegerExpansion.dyadic_value,
+   TriangleIntegerSign.difference_vector_ok, IntegerDet3.integer_vector_sum_value, IntegerExpansion.chunks_value, IntegerExpansion.dyadic_value,
    IntegerExpansion.integer_components_sound, TriangleIntegerSign.integer_value_components_sound).
-Goal True. idtac "@@ integer_det3_sign_correct integer_vector_value det3_sign_integer det3_range det3_scaled integer_value_sign_sound exact_diff_value chunks_value dyadic_value integer_components_sound integer_value_components_sound". Abort.
+Goal True. idtac "@@ integer_det3_sign_correct integer_vector_value det3_sign_integer det3_range det3_scaled integer_value_sign_sound difference_vector_ok integer_vector_sum_value chunks_value dyadic_value integer_components_sound integer_value_components_sound". Abort.
 Print Assumptions integer_stage_results.
 
 (** TriangleStage3Twins.v: stage 3 of the triangle (core/expansion_value.hpp) is the model's determinant *)

@@ -6,6 +6,8 @@
 // must give up.
 #include "core/integer_det3.hpp"
 
+#include "core/eft.hpp"
+
 #include <raykernel/testkit/plane_queries.hpp>
 
 #include <gtest/gtest.h>
@@ -212,6 +214,77 @@ TEST(IntegerDet3, GivesUpOutsideItsRange) {
   // Signed zeros are zeros.
   const double zeros[3] = {-0.0, 0.0, -0.0};
   EXPECT_EQ(integer_det3_sign(zeros, one, other), Sign::zero);
+}
+
+// integer_vector_sum over TwoDiff's parts: X_i·2^E must be p_i − o_i exactly (rationals), whether or not the
+// difference is a double, and be given when p and o span at most 7 binades above their significands.
+mpq_class scaled(std::int64_t X, int E) {
+  mpq_class r(static_cast<double>(X >> 32));  // X = hi·2^32 + lo: both exact as doubles
+  r = r * mpq_class(4294967296.0) + mpq_class(static_cast<double>(X & 0xffffffff));
+  mpq_class p = 1;
+  mpz_class two = 2;
+  if (E >= 0) {
+    mpz_pow_ui(p.get_num_mpz_t(), two.get_mpz_t(), static_cast<unsigned long>(E));
+  } else {
+    mpz_pow_ui(p.get_den_mpz_t(), two.get_mpz_t(), static_cast<unsigned long>(-E));
+  }
+  return r * p;
+}
+
+TEST(IntegerDet3, DifferencesFromTwoPartsAreExact) {
+  Draw draw;
+  int given = 0, inexact = 0;
+  for (int n = 0; n < 200000; ++n) {
+    double p[3], o[3], parts[6];  // h_0, h_1, h_2, l_0, l_1, l_2
+    const int base = draw.small(-1074, 1000);
+    const int spread = n % 2 == 0 ? 7 : 120;  // 7: |p − o| < 2^(base + 9), parts ≥ 2^(base − 52): 61 bits
+    for (int i = 0; i < 3; ++i) {
+      for (double* v : {p, o}) {
+        const double m = 1.0 + static_cast<double>(draw.word() >> 12) * 0x1p-52;
+        const bool negative = (draw.word() & 1) != 0;
+        const int e = std::min(1000, base + draw.small(0, spread));
+        v[i] = std::ldexp(negative ? -m : m, e);
+        if (draw.small(0, 9) == 0) v[i] = 0.0;
+      }
+      const DoubleDouble s = two_diff(p[i], o[i]);
+      parts[i] = s.hi;
+      parts[i + 3] = s.lo;
+      inexact += s.lo != 0;
+    }
+    const IntegerVector X = integer_vector_sum(parts);
+    bool finite = true;
+    for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(parts[i]) && std::isfinite(parts[i + 3]);
+    if (n % 2 == 0 && finite) {
+      ASSERT_TRUE(X.ok) << "query " << n;
+    }
+    if (!X.ok) continue;
+    ++given;
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_LT(X.v[i] < 0 ? -X.v[i] : X.v[i], std::int64_t{1} << 62);
+      ASSERT_EQ(scaled(X.v[i], X.exponent), mpq_class(p[i]) - mpq_class(o[i])) << "query " << n << " component " << i;
+    }
+  }
+  EXPECT_GT(given, 100000);
+  EXPECT_GT(inexact, 100000);  // most differences are not doubles: the low parts matter
+}
+
+TEST(IntegerDet3, DifferencesGiveUpOutsideTheirRange) {
+  // 1 − 2^-70: the parts 1 and −2^-70 are 70 binades apart (an aligned part of 2^70).
+  const double parts_wide[6] = {1, 0, 0, -0x1p-70, 0, 0};
+  EXPECT_FALSE(integer_vector_sum(parts_wide).ok);
+  // Two aligned parts below 2^62, read over 2^0: their sum below 2^62 is kept, one reaching 2^62 is refused.
+  const double parts_sum[6] = {0x1p61, 1, 0, 0x1.ffffffffffffep60, 0, 0};
+  const IntegerVector s = integer_vector_sum(parts_sum);
+  EXPECT_TRUE(s.ok);  // 2^61 + 2^61 − 2^9 < 2^62
+  const double parts_over[6] = {0x1.ffffffffffffep61, 1, 0, 0x1.ffffffffffffep61, 0, 0};
+  EXPECT_FALSE(integer_vector_sum(parts_over).ok);  // 2·(2^62 − 2^10) ≥ 2^62
+  const double parts_nan[6] = {1, 2, 3, 0, std::numeric_limits<double>::quiet_NaN(), 0};
+  EXPECT_FALSE(integer_vector_sum(parts_nan).ok);
+  // Exact values where it answers: 2^61 + 2^61 − 2^9 and 1.
+  EXPECT_EQ(s.exponent, 0);
+  EXPECT_EQ(s.v[0], (std::int64_t{1} << 62) - 512);
+  EXPECT_EQ(s.v[1], 1);
+  EXPECT_EQ(s.v[2], 0);
 }
 
 }  // namespace

@@ -5,7 +5,10 @@
     integer_vector): a finite double is ±m·2^e ([component]: the significand with its trailing zeros stripped,
     [strip]); over E, the least exponent of the vector's nonzero components, every component is the integer
     X_i = ±m_i·2^(e_i − E) ([aligned]); the C++ gives up when some |X_i| ≥ 2^62 or a component is not finite.
-    - [integer_vector_value]: then x_i = X_i · 2^E exactly;
+    A component may also be the exact sum h_i + l_i of two doubles (TwoDiff's parts of a difference:
+    [integer_vector_sum], the C++'s integer_vector_sum with N = 2): E is then the least exponent of the six
+    doubles, X_i the sum of the two aligned parts; [integer_vector] is the same reading with zero low parts.
+    - [integer_vector_sum_value], [integer_vector_value]: then h_i + l_i = X_i · 2^E (x_i = X_i · 2^E) exactly;
     - [det3_sign_integer]: x·(y × z) = D · 2^(Ex+Ey+Ez) with D the same polynomial over Z, so its sign is D's;
     - [det3_range]: with components below 2^62, every cross component is below 2^125 (a signed 128-bit integer
       holds it) and D below 2^189 (a signed 192-bit sum does not wrap);
@@ -168,17 +171,28 @@ Definition least_exponent (c : list (Z * Z)) : Z :=
 Definition aligned (E : Z) (p : Z * Z) : Z :=
   if Z.eqb (fst p) 0 then 0%Z else (fst p * Zpower radix2 (snd p - E))%Z.
 
-(** kernel/src/core/integer_det3.hpp's integer_vector: None when a component is not finite or an aligned
-    component is 2^62 or more in magnitude (the C++'s `ok` false: `shift + bits > 62`). *)
-Definition integer_vector (x0 x1 x2 : binary_float 53 1024) : option (Z * Z * Z * Z) :=
-  match component x0, component x1, component x2 with
-  | Some c0, Some c1, Some c2 =>
-      let E := least_exponent [c0; c1; c2] in
-      let X0 := aligned E c0 in let X1 := aligned E c1 in let X2 := aligned E c2 in
-      if (Z.abs X0 <? 2 ^ 62)%Z && (Z.abs X1 <? 2 ^ 62)%Z && (Z.abs X2 <? 2 ^ 62)%Z
-      then Some (X0, X1, X2, E) else None
-  | _, _, _ => None
+(** kernel/src/core/integer_det3.hpp's integer_vector_sum for N = 2: a vector whose components are the exact sums
+    h_i + l_i (TwoDiff's parts of a difference), read over E, the least exponent of the six doubles' nonzero
+    parts, as X_i = aligned(h_i) + aligned(l_i). None when a part is not finite, an aligned part is 2^62 or more
+    in magnitude (the C++'s `shift + width > 62`) or a sum is (its `sum` check). *)
+Definition sum_in_range (a b : Z) : bool :=
+  (Z.abs a <? 2 ^ 62)%Z && (Z.abs b <? 2 ^ 62)%Z && (Z.abs (a + b) <? 2 ^ 62)%Z.
+
+Definition integer_vector_sum (h0 h1 h2 l0 l1 l2 : binary_float 53 1024) : option (Z * Z * Z * Z) :=
+  match component h0, component h1, component h2, component l0, component l1, component l2 with
+  | Some c0, Some c1, Some c2, Some d0, Some d1, Some d2 =>
+      let E := least_exponent [c0; c1; c2; d0; d1; d2] in
+      let a0 := aligned E c0 in let a1 := aligned E c1 in let a2 := aligned E c2 in
+      let b0 := aligned E d0 in let b1 := aligned E d1 in let b2 := aligned E d2 in
+      if sum_in_range a0 b0 && sum_in_range a1 b1 && sum_in_range a2 b2
+      then Some ((a0 + b0)%Z, (a1 + b1)%Z, (a2 + b2)%Z, E) else None
+  | _, _, _, _, _, _ => None
   end.
+
+(** integer_vector, the C++'s N = 1: the same reading with zero low parts (zeros do not take part in E and align
+    to 0, so it is the C++'s reading of three doubles). *)
+Definition integer_vector (x0 x1 x2 : binary_float 53 1024) : option (Z * Z * Z * Z) :=
+  integer_vector_sum x0 x1 x2 (B754_zero false) (B754_zero false) (B754_zero false).
 
 Lemma fold_min_le : forall rest m q, In q rest -> (fold_left (fun (m : Z) (q : Z * Z) => Z.min m (snd q)) rest m <= snd q)%Z.
 Proof.
@@ -213,26 +227,67 @@ Proof.
   - apply aligned_value. subst E. now apply (least_le c (n, e)).
 Qed.
 
+Lemma sum_in_range_spec : forall a b, sum_in_range a b = true -> (Z.abs (a + b) < 2 ^ 62)%Z.
+Proof. intros a b H. unfold sum_in_range in H. apply andb_prop in H as [_ H]. now apply Z.ltb_lt. Qed.
+
+Lemma aligned_sum_value : forall c E h l nh eh nl el, component h = Some (nh, eh) -> component l = Some (nl, el) ->
+  In (nh, eh) c -> In (nl, el) c -> E = least_exponent c ->
+  B2R h + B2R l = IZR (aligned E (nh, eh) + aligned E (nl, el))%Z * bpow radix2 E.
+Proof.
+  intros c E h l nh eh nl el Ch Cl Ih Il HE.
+  rewrite (aligned_value_of c E h nh eh Ch Ih HE), (aligned_value_of c E l nl el Cl Il HE), plus_IZR. ring.
+Qed.
+
+Theorem integer_vector_sum_value : forall h0 h1 h2 l0 l1 l2 X0 X1 X2 E,
+  integer_vector_sum h0 h1 h2 l0 l1 l2 = Some (X0, X1, X2, E) ->
+  B2R h0 + B2R l0 = IZR X0 * bpow radix2 E /\ B2R h1 + B2R l1 = IZR X1 * bpow radix2 E /\
+  B2R h2 + B2R l2 = IZR X2 * bpow radix2 E /\
+  (Z.abs X0 < 2 ^ 62 /\ Z.abs X1 < 2 ^ 62 /\ Z.abs X2 < 2 ^ 62)%Z.
+Proof.
+  intros h0 h1 h2 l0 l1 l2 X0 X1 X2 E H. unfold integer_vector_sum in H.
+  destruct (component h0) as [[n0 e0]|] eqn:C0; [|discriminate].
+  destruct (component h1) as [[n1 e1]|] eqn:C1; [|discriminate].
+  destruct (component h2) as [[n2 e2]|] eqn:C2; [|discriminate].
+  destruct (component l0) as [[k0 f0]|] eqn:D0; [|discriminate].
+  destruct (component l1) as [[k1 f1]|] eqn:D1; [|discriminate].
+  destruct (component l2) as [[k2 f2]|] eqn:D2; [|discriminate].
+  set (c := [(n0, e0); (n1, e1); (n2, e2); (k0, f0); (k1, f1); (k2, f2)]) in H.
+  set (E' := least_exponent c) in H.
+  destruct (sum_in_range (aligned E' (n0, e0)) (aligned E' (k0, f0)) &&
+            sum_in_range (aligned E' (n1, e1)) (aligned E' (k1, f1)) &&
+            sum_in_range (aligned E' (n2, e2)) (aligned E' (k2, f2))) eqn:R; [|discriminate].
+  injection H as <- <- <- <-.
+  apply andb_prop in R as [R R2]. apply andb_prop in R as [R0 R1].
+  apply sum_in_range_spec in R0, R1, R2.
+  split; [|split; [|split]].
+  - apply (aligned_sum_value c); unfold c; simpl; auto 7.
+  - apply (aligned_sum_value c); unfold c; simpl; auto 7.
+  - apply (aligned_sum_value c); unfold c; simpl; auto 7.
+  - auto.
+Qed.
+
+Lemma component_finite : forall x c, component x = Some c -> is_finite x = true.
+Proof. intros [s| | |s m e B] c C; simpl in C; try discriminate; reflexivity. Qed.
+
+(** An answer means every part is finite (the low parts' finiteness is what makes TwoDiff's parts exact). *)
+Lemma integer_vector_sum_fin : forall h0 h1 h2 l0 l1 l2 X, integer_vector_sum h0 h1 h2 l0 l1 l2 = Some X ->
+  is_finite l0 = true /\ is_finite l1 = true /\ is_finite l2 = true.
+Proof.
+  intros h0 h1 h2 l0 l1 l2 X H. unfold integer_vector_sum in H.
+  destruct (component h0); [|discriminate]. destruct (component h1); [|discriminate].
+  destruct (component h2); [|discriminate].
+  destruct (component l0) eqn:D0; [|discriminate]. destruct (component l1) eqn:D1; [|discriminate].
+  destruct (component l2) eqn:D2; [|discriminate].
+  repeat split; eapply component_finite; eassumption.
+Qed.
+
 Theorem integer_vector_value : forall x0 x1 x2 X0 X1 X2 E, integer_vector x0 x1 x2 = Some (X0, X1, X2, E) ->
   B2R x0 = IZR X0 * bpow radix2 E /\ B2R x1 = IZR X1 * bpow radix2 E /\ B2R x2 = IZR X2 * bpow radix2 E /\
   (Z.abs X0 < 2 ^ 62 /\ Z.abs X1 < 2 ^ 62 /\ Z.abs X2 < 2 ^ 62)%Z.
 Proof.
-  intros x0 x1 x2 X0 X1 X2 E H. unfold integer_vector in H.
-  destruct (component x0) as [[n0 e0]|] eqn:C0; [|discriminate].
-  destruct (component x1) as [[n1 e1]|] eqn:C1; [|discriminate].
-  destruct (component x2) as [[n2 e2]|] eqn:C2; [|discriminate].
-  set (E' := least_exponent [(n0, e0); (n1, e1); (n2, e2)]) in H.
-  destruct ((Z.abs (aligned E' (n0, e0)) <? 2 ^ 62)%Z && (Z.abs (aligned E' (n1, e1)) <? 2 ^ 62)%Z &&
-            (Z.abs (aligned E' (n2, e2)) <? 2 ^ 62)%Z) eqn:R; [|discriminate].
-  injection H as <- <- <- <-.
-  apply andb_prop in R as [R R2]. apply andb_prop in R as [R0 R1]. apply Z.ltb_lt in R0, R1, R2.
-  split; [|split; [|split]].
-  - apply (aligned_value_of [(n0, e0); (n1, e1); (n2, e2)]); simpl; auto.
-  - apply (aligned_value_of [(n0, e0); (n1, e1); (n2, e2)]); simpl; auto.
-  - apply (aligned_value_of [(n0, e0); (n1, e1); (n2, e2)]); simpl; auto.
-  - auto.
+  intros x0 x1 x2 X0 X1 X2 E H. destruct (integer_vector_sum_value _ _ _ _ _ _ _ _ _ _ H) as [V0 [V1 [V2 B]]].
+  simpl in V0, V1, V2. rewrite Rplus_0_r in V0, V1, V2. auto.
 Qed.
-
 
 (** ** The C++'s integer_det3_sign: the exact sign, and no 128- or 192-bit operation wraps. *)
 Theorem integer_det3_sign_correct : forall x0 x1 x2 y0 y1 y2 z0 z1 z2 X0 X1 X2 Ex Y0 Y1 Y2 Ey Z0 Z1 Z2 Ez,

@@ -1,9 +1,10 @@
 (** * Stage 3's first try of the ray–triangle cascade: the exact sign of a determinant in integers
     (kernel/src/triangle/ray_triangle_stages.hpp, [integer_value_sign]; kernel/src/core/integer_det3.hpp).
 
-    The C++ forms each determinant's leaves as single doubles — d, and each difference p − o by TwoDiff, kept
-    only when its low part is 0 (then the difference is exact) — and asks [integer_det3_sign] (IntegerDet3.v's
-    [integer_vector] and [det3_Z]).  The twin [integer_value_sign_b] does the same on the fifteen inputs, and
+    The C++ reads each determinant's leaves as integer vectors over one power of two — d's doubles
+    ([direction_vector_b], IntegerDet3.v's [integer_vector]) and each difference p − o as TwoDiff's two parts
+    ([difference_vector_b], [integer_vector_sum]: exact whether or not p − o is a double, [difference_vector_ok])
+    — and asks [integer_det3_sign] ([det3_Z]).  The twin [integer_value_sign_b] does the same on the fifteen inputs, and
     [integer_value_sign_sound] proves a certain answer the exact sign of the determinant ([value_model]: πa, πb,
     πc, den seen from a, num).  The runner compares it with the C++ through the cascade's routines
     ([tri_cascade_relation], [tri_cascade_intersect]: TriangleCascadeFlowTwins.v's [tc_sign_b] asks it before
@@ -21,132 +22,123 @@ From Raykernel Require Import Model PlaneClassification PlaneCascade FloatCore P
   IntegerExpansion TriangleFilter TriangleTwins TriangleStage3Twins.
 Open Scope R_scope.
 
-(** [two_diff(v, w)] kept when its low part is 0 ([ey.lo == 0]: false on NaN). *)
-Definition exact_diff_b (v w : float) : option float :=
-  let p := two_diff_b v w in if feq (snd p) fzero then Some (fst p) else None.
+(** A vector read as integers over one power of two: (X0, X1, X2, E). [ivec_ok X x]: X is the vector x, each
+    integer below 2^62 (what the C++'s fixed widths need: IntegerDet3.v's [det3_range]). *)
+Definition ivec := (Z * Z * Z * Z)%type.
+Definition ivec_ok (X : ivec) (x : vec3) : Prop :=
+  let '(X0, X1, X2, E) := X in
+  vx x = IZR X0 * bpow radix2 E /\ vy x = IZR X1 * bpow radix2 E /\ vz x = IZR X2 * bpow radix2 E /\
+  (Z.abs X0 < 2 ^ 62 /\ Z.abs X1 < 2 ^ 62 /\ Z.abs X2 < 2 ^ 62)%Z.
 
-Lemma exact_diff_value : forall v w x, exact_diff_b v w = Some x -> B2R x = B2R v - B2R w.
+(** integer_leaf for d: its three doubles ([integer_vector]). *)
+Definition direction_vector_b (d : TVec) : option ivec := integer_vector (tx d) (ty d) (tz d).
+
+Lemma direction_vector_ok : forall d X, direction_vector_b d = Some X -> ivec_ok X (tvec_R d).
 Proof.
-  intros v w x E. unfold exact_diff_b in E. destruct (feq (snd (two_diff_b v w)) fzero) eqn:Z; [|discriminate].
-  injection E as <-. destruct (feq_zero _ Z) as [F V].
-  unfold two_diff_b in *. destruct (two_sum_b_exact v (fneg w) F) as [_ [_ S]].
-  rewrite fneg_val in S. change (B2R (fst (two_sum_b v (fneg w))) = B2R v - B2R w). lra.
+  intros d [[[X0 X1] X2] E] H. destruct (integer_vector_value _ _ _ _ _ _ _ H) as [V0 [V1 [V2 B]]].
+  unfold ivec_ok, tvec_R. cbn [vx vy vz]. auto.
 Qed.
 
-(** [integer_det3_sign(x, y, z)]. *)
-Definition integer_det3_sign_b (x0 x1 x2 y0 y1 y2 z0 z1 z2 : float) : sign :=
-  match integer_vector x0 x1 x2, integer_vector y0 y1 y2, integer_vector z0 z1 z2 with
-  | Some (X0, X1, X2, _), Some (Y0, Y1, Y2, _), Some (W0, W1, W2, _) =>
-      match Z.compare (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) 0 with Lt => Negative | Eq => Zero | Gt => Positive end
-  | _, _, _ => Uncertain
-  end.
+(** integer_leaf for p − from: TwoDiff's parts of each component, read together ([integer_vector_sum]). *)
+Definition difference_vector_b (p from : TVec) : option ivec :=
+  let '(hx, lx) := two_diff_b (tx p) (tx from) in
+  let '(hy, ly) := two_diff_b (ty p) (ty from) in
+  let '(hz, lz) := two_diff_b (tz p) (tz from) in
+  integer_vector_sum hx hy hz lx ly lz.
 
-Lemma integer_det3_sign_b_sound : forall x0 x1 x2 y0 y1 y2 z0 z1 z2,
-  is_certain (integer_det3_sign_b x0 x1 x2 y0 y1 y2 z0 z1 z2) = true ->
-  sign_to_Z (integer_det3_sign_b x0 x1 x2 y0 y1 y2 z0 z1 z2) =
-  sign_of (det3_R (B2R x0) (B2R x1) (B2R x2) (B2R y0) (B2R y1) (B2R y2) (B2R z0) (B2R z1) (B2R z2)).
+(** A finite low part makes the two parts the exact difference ([two_sum_b_exact]). *)
+Lemma two_diff_parts_exact : forall v w, fin (snd (two_diff_b v w)) = true ->
+  B2R (fst (two_diff_b v w)) + B2R (snd (two_diff_b v w)) = B2R v - B2R w.
 Proof.
-  intros x0 x1 x2 y0 y1 y2 z0 z1 z2. unfold integer_det3_sign_b.
-  destruct (integer_vector x0 x1 x2) as [[[[X0 X1] X2] Ex]|] eqn:HX; [|discriminate].
-  destruct (integer_vector y0 y1 y2) as [[[[Y0 Y1] Y2] Ey]|] eqn:HY; [|discriminate].
-  destruct (integer_vector z0 z1 z2) as [[[[W0 W1] W2] Ez]|] eqn:HZ; [|discriminate].
-  intros _. destruct (integer_det3_sign_correct _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ HX HY HZ) as [S _].
-  unfold sign_of. rewrite S. destruct (Z.compare _ 0); reflexivity.
+  intros v w F. unfold two_diff_b in *. destruct (two_sum_b_exact v (fneg w) F) as [_ [_ S]].
+  rewrite fneg_val in S. lra.
 Qed.
 
-(** [integer_det3_components(x, y, z)]: D·2^(Ex+Ey+Ez) as at most four doubles (IntegerExpansion.v). *)
-Definition integer_det3_components_b (x0 x1 x2 y0 y1 y2 z0 z1 z2 : float) : option (list float) :=
-  match integer_vector x0 x1 x2, integer_vector y0 y1 y2, integer_vector z0 z1 z2 with
-  | Some (X0, X1, X2, Ex), Some (Y0, Y1, Y2, Ey), Some (W0, W1, W2, Ez) =>
-      integer_components (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) (Ex + Ey + Ez)
-  | _, _, _ => None
-  end.
-
-Lemma integer_det3_components_b_sound : forall x0 x1 x2 y0 y1 y2 z0 z1 z2 l,
-  integer_det3_components_b x0 x1 x2 y0 y1 y2 z0 z1 z2 = Some l ->
-  all_fin l /\ (length l <= 4)%nat /\
-  sumR l = det3_R (B2R x0) (B2R x1) (B2R x2) (B2R y0) (B2R y1) (B2R y2) (B2R z0) (B2R z1) (B2R z2).
+Lemma difference_vector_ok : forall p from X, difference_vector_b p from = Some X ->
+  ivec_ok X (sub (tvec_R p) (tvec_R from)).
 Proof.
-  intros x0 x1 x2 y0 y1 y2 z0 z1 z2 l. unfold integer_det3_components_b.
-  destruct (integer_vector x0 x1 x2) as [[[[X0 X1] X2] Ex]|] eqn:HX; [|discriminate].
-  destruct (integer_vector y0 y1 y2) as [[[[Y0 Y1] Y2] Ey]|] eqn:HY; [|discriminate].
-  destruct (integer_vector z0 z1 z2) as [[[[W0 W1] W2] Ez]|] eqn:HZ; [|discriminate].
-  intros H.
-  destruct (integer_det3_sign_correct _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ _ HX HY HZ) as [_ [_ [_ [_ R]]]].
-  assert (R' : (Z.abs (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) < 2 ^ 212)%Z).
-  { apply Z.lt_trans with (2 ^ 189)%Z; [exact R | apply Z.pow_lt_mono_r; lia]. }
-  destruct (integer_components_sound _ _ _ R' H) as [F [S L]].
-  split; [exact F|]. split; [exact L|]. rewrite S.
-  destruct (integer_vector_value _ _ _ _ _ _ _ HX) as [Vx0 [Vx1 [Vx2 _]]].
-  destruct (integer_vector_value _ _ _ _ _ _ _ HY) as [Vy0 [Vy1 [Vy2 _]]].
-  destruct (integer_vector_value _ _ _ _ _ _ _ HZ) as [Vz0 [Vz1 [Vz2 _]]].
-  rewrite Vx0, Vx1, Vx2, Vy0, Vy1, Vy2, Vz0, Vz1, Vz2, det3_scaled. reflexivity.
+  intros p from [[[X0 X1] X2] E] H. unfold difference_vector_b in H.
+  destruct (two_diff_b (tx p) (tx from)) as [hx lx] eqn:Tx.
+  destruct (two_diff_b (ty p) (ty from)) as [hy ly] eqn:Ty.
+  destruct (two_diff_b (tz p) (tz from)) as [hz lz] eqn:Tz.
+  destruct (integer_vector_sum_fin _ _ _ _ _ _ _ H) as [Fx [Fy Fz]].
+  destruct (integer_vector_sum_value _ _ _ _ _ _ _ _ _ _ H) as [V0 [V1 [V2 B]]].
+  pose proof (two_diff_parts_exact (tx p) (tx from)) as Ex. rewrite Tx in Ex.
+  pose proof (two_diff_parts_exact (ty p) (ty from)) as Ey. rewrite Ty in Ey.
+  pose proof (two_diff_parts_exact (tz p) (tz from)) as Ez. rewrite Tz in Ez.
+  cbn [fst snd] in Ex, Ey, Ez.
+  unfold ivec_ok, sub, tvec_R. cbn [vx vy vz].
+  rewrite <- (Ex Fx), <- (Ey Fy), <- (Ez Fz). auto.
 Qed.
+
+(** [integer_det3_sign(X, Y, Z)] and [integer_det3_components(X, Y, Z)] of three integer vectors. *)
+Definition integer_det3_sign_b (X Y W : ivec) : sign :=
+  let '(X0, X1, X2, _) := X in let '(Y0, Y1, Y2, _) := Y in let '(W0, W1, W2, _) := W in
+  match Z.compare (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) 0 with Lt => Negative | Eq => Zero | Gt => Positive end.
+
+Definition integer_det3_components_b (X Y W : ivec) : option (list float) :=
+  let '(X0, X1, X2, Ex) := X in let '(Y0, Y1, Y2, Ey) := Y in let '(W0, W1, W2, Ez) := W in
+  integer_components (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) (Ex + Ey + Ez).
 
 (** The leaves of determinant v as the C++ forms them ([integer_leaf], [determinant_leaves]): x = d (x = a − o
     for num), y = p − o, z = q − o with (p, q) = (b, c), (c, a), (a, b), and for den (b, c) from a — handed to f
-    (the sign or the components), or [none] when a difference is not exact. *)
+    (the sign or the components), or [none] when a leaf is not an integer vector. *)
 Section Leaves.
-Context {A : Type} (f : float -> float -> float -> float -> float -> float -> float -> float -> float -> A) (none : A).
+Context {A : Type} (f : ivec -> ivec -> ivec -> A) (none : A).
 
-Definition integer_leaves_b (x0 x1 x2 : float) (p q from : TVec) : A :=
-  match exact_diff_b (tx p) (tx from), exact_diff_b (ty p) (ty from), exact_diff_b (tz p) (tz from),
-        exact_diff_b (tx q) (tx from), exact_diff_b (ty q) (ty from), exact_diff_b (tz q) (tz from) with
-  | Some y0, Some y1, Some y2, Some z0, Some z1, Some z2 => f x0 x1 x2 y0 y1 y2 z0 z1 z2
-  | _, _, _, _, _, _ => none
+Definition integer_leaves_b (X : option ivec) (p q from : TVec) : A :=
+  match X, difference_vector_b p from, difference_vector_b q from with
+  | Some X, Some Y, Some W => f X Y W
+  | _, _, _ => none
   end.
 
 Definition integer_value_b (o d a b c : TVec) (v : Z) : A :=
-  if Z.eqb v 0 then integer_leaves_b (tx d) (ty d) (tz d) b c o
-  else if Z.eqb v 1 then integer_leaves_b (tx d) (ty d) (tz d) c a o
-  else if Z.eqb v 2 then integer_leaves_b (tx d) (ty d) (tz d) a b o
-  else if Z.eqb v 3 then integer_leaves_b (tx d) (ty d) (tz d) b c a
-  else match exact_diff_b (tx a) (tx o), exact_diff_b (ty a) (ty o), exact_diff_b (tz a) (tz o) with
-       | Some x0, Some x1, Some x2 => integer_leaves_b x0 x1 x2 b c o
-       | _, _, _ => none
-       end.
+  if Z.eqb v 0 then integer_leaves_b (direction_vector_b d) b c o
+  else if Z.eqb v 1 then integer_leaves_b (direction_vector_b d) c a o
+  else if Z.eqb v 2 then integer_leaves_b (direction_vector_b d) a b o
+  else if Z.eqb v 3 then integer_leaves_b (direction_vector_b d) b c a
+  else integer_leaves_b (difference_vector_b a o) b c o.
 
-(** What f's answer means of det3_R of its leaves, it means of the determinant v. *)
+(** What f's answer means of the determinant of its integer vectors' values, it means of the determinant v. *)
 Variable P : A -> R -> Prop.
 Hypothesis P_none : forall r, P none r.
-Hypothesis P_f : forall x0 x1 x2 y0 y1 y2 z0 z1 z2,
-  P (f x0 x1 x2 y0 y1 y2 z0 z1 z2) (det3_R (B2R x0) (B2R x1) (B2R x2) (B2R y0) (B2R y1) (B2R y2) (B2R z0) (B2R z1) (B2R z2)).
+Hypothesis P_f : forall X Y W x y z, ivec_ok X x -> ivec_ok Y y -> ivec_ok W z -> P (f X Y W) (dot x (cross y z)).
 
-Lemma integer_leaves_spec : forall x0 x1 x2 p q from,
-  P (integer_leaves_b x0 x1 x2 p q from)
-    (dot (Vec3 (B2R x0) (B2R x1) (B2R x2)) (cross (sub (tvec_R p) (tvec_R from)) (sub (tvec_R q) (tvec_R from)))).
+Lemma integer_leaves_spec : forall X x p q from, (forall X', X = Some X' -> ivec_ok X' x) ->
+  P (integer_leaves_b X p q from) (dot x (cross (sub (tvec_R p) (tvec_R from)) (sub (tvec_R q) (tvec_R from)))).
 Proof.
-  intros x0 x1 x2 p q from. unfold integer_leaves_b.
-  destruct (exact_diff_b (tx p) (tx from)) as [y0|] eqn:Y0; [|apply P_none].
-  destruct (exact_diff_b (ty p) (ty from)) as [y1|] eqn:Y1; [|apply P_none].
-  destruct (exact_diff_b (tz p) (tz from)) as [y2|] eqn:Y2; [|apply P_none].
-  destruct (exact_diff_b (tx q) (tx from)) as [z0|] eqn:W0; [|apply P_none].
-  destruct (exact_diff_b (ty q) (ty from)) as [z1|] eqn:W1; [|apply P_none].
-  destruct (exact_diff_b (tz q) (tz from)) as [z2|] eqn:W2; [|apply P_none].
-  replace (dot _ _) with (det3_R (B2R x0) (B2R x1) (B2R x2) (B2R y0) (B2R y1) (B2R y2) (B2R z0) (B2R z1) (B2R z2));
-    [apply P_f|].
-  unfold det3_R, dot, cross, sub, tvec_R. cbn [vx vy vz].
-  rewrite (exact_diff_value _ _ _ Y0), (exact_diff_value _ _ _ Y1), (exact_diff_value _ _ _ Y2),
-    (exact_diff_value _ _ _ W0), (exact_diff_value _ _ _ W1), (exact_diff_value _ _ _ W2). ring.
+  intros X x p q from HX. unfold integer_leaves_b.
+  destruct X as [X'|]; [|apply P_none].
+  destruct (difference_vector_b p from) as [Y|] eqn:HY; [|apply P_none].
+  destruct (difference_vector_b q from) as [W|] eqn:HW; [|apply P_none].
+  apply P_f; [now apply HX | now apply difference_vector_ok | now apply difference_vector_ok].
 Qed.
 
 Theorem integer_value_spec : forall o d a b c v, P (integer_value_b o d a b c v) (value_model o d a b c v).
 Proof.
   intros o d a b c v. unfold integer_value_b, value_model. cbv zeta.
-  destruct (Z.eqb v 0); [apply integer_leaves_spec|].
-  destruct (Z.eqb v 1); [apply integer_leaves_spec|].
-  destruct (Z.eqb v 2); [apply integer_leaves_spec|].
-  destruct (Z.eqb v 3); [rewrite <- den_from_a; apply integer_leaves_spec|].
-  destruct (exact_diff_b (tx a) (tx o)) as [x0|] eqn:X0; [|apply P_none].
-  destruct (exact_diff_b (ty a) (ty o)) as [x1|] eqn:X1; [|apply P_none].
-  destruct (exact_diff_b (tz a) (tz o)) as [x2|] eqn:X2; [|apply P_none].
-  replace (num_value _ _ _ _) with
-    (dot (Vec3 (B2R x0) (B2R x1) (B2R x2)) (cross (sub (tvec_R b) (tvec_R o)) (sub (tvec_R c) (tvec_R o))));
-    [apply integer_leaves_spec|].
-  unfold num_value, dot, sub, tvec_R. cbn [vx vy vz].
-  rewrite (exact_diff_value _ _ _ X0), (exact_diff_value _ _ _ X1), (exact_diff_value _ _ _ X2). reflexivity.
+  destruct (Z.eqb v 0); [apply integer_leaves_spec; intros X' E; now apply direction_vector_ok|].
+  destruct (Z.eqb v 1); [apply integer_leaves_spec; intros X' E; now apply direction_vector_ok|].
+  destruct (Z.eqb v 2); [apply integer_leaves_spec; intros X' E; now apply direction_vector_ok|].
+  destruct (Z.eqb v 3).
+  { rewrite <- den_from_a. apply integer_leaves_spec; intros X' E; now apply direction_vector_ok. }
+  apply integer_leaves_spec. intros X' E. now apply difference_vector_ok.
 Qed.
 End Leaves.
+
+(** An integer vector's determinant: the model's, with the C++'s fixed widths ([det3_scaled], [det3_range]). *)
+Lemma ivec_det3 : forall X Y W x y z, ivec_ok X x -> ivec_ok Y y -> ivec_ok W z ->
+  let '(X0, X1, X2, Ex) := X in let '(Y0, Y1, Y2, Ey) := Y in let '(W0, W1, W2, Ez) := W in
+  dot x (cross y z) = IZR (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) * bpow radix2 (Ex + Ey + Ez) /\
+  (Z.abs (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) < 2 ^ 189)%Z.
+Proof.
+  intros [[[X0 X1] X2] Ex] [[[Y0 Y1] Y2] Ey] [[[W0 W1] W2] Ez] x y z
+    [Vx0 [Vx1 [Vx2 [Bx0 [Bx1 Bx2]]]]] [Vy0 [Vy1 [Vy2 [By0 [By1 By2]]]]] [Vz0 [Vz1 [Vz2 [Bz0 [Bz1 Bz2]]]]].
+  split.
+  - rewrite <- det3_scaled, <- Vx0, <- Vx1, <- Vx2, <- Vy0, <- Vy1, <- Vy2, <- Vz0, <- Vz1, <- Vz2.
+    unfold det3_R, dot, cross. cbn [vx vy vz]. ring.
+  - now apply det3_range.
+Qed.
 
 (** [integer_value_sign(ray, triangle, v)]. *)
 Definition integer_value_sign_b (o d a b c : TVec) (v : Z) : sign :=
@@ -161,7 +153,15 @@ Proof.
   apply (integer_value_spec integer_det3_sign_b Uncertain
            (fun s r => is_certain s = true -> sign_to_Z s = sign_of r)).
   - intros r C. discriminate C.
-  - intros. now apply integer_det3_sign_b_sound.
+  - intros X Y W x y z HX HY HZ _. pose proof (ivec_det3 X Y W x y z HX HY HZ) as D.
+    destruct X as [[[X0 X1] X2] Ex], Y as [[[Y0 Y1] Y2] Ey], W as [[[W0 W1] W2] Ez].
+    destruct D as [D _]. unfold integer_det3_sign_b, sign_of. rewrite D.
+    set (n := det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2). set (p := bpow radix2 (Ex + Ey + Ez)).
+    assert (Pp : 0 < p) by apply bpow_gt_0.
+    destruct (Z.compare_spec n 0) as [E|L|G].
+    + rewrite E. simpl. rewrite Rmult_0_l, Rcompare_Eq; reflexivity.
+    + rewrite Rcompare_Lt; [reflexivity|]. apply IZR_lt in L. simpl in L. nra.
+    + rewrite Rcompare_Gt; [reflexivity|]. apply IZR_lt in G. simpl in G. nra.
 Qed.
 
 (** [integer_value_components(leaves, v)]. *)
@@ -177,5 +177,11 @@ Proof.
   apply (integer_value_spec integer_det3_components_b None
            (fun r x => forall l, r = Some l -> all_fin l /\ (length l <= 4)%nat /\ sumR l = x)).
   - intros x l E. discriminate E.
-  - intros x0 x1 x2 y0 y1 y2 z0 z1 z2 l. apply integer_det3_components_b_sound.
+  - intros X Y W x y z HX HY HZ l H. pose proof (ivec_det3 X Y W x y z HX HY HZ) as D.
+    destruct X as [[[X0 X1] X2] Ex], Y as [[[Y0 Y1] Y2] Ey], W as [[[W0 W1] W2] Ez].
+    destruct D as [D R]. unfold integer_det3_components_b in H.
+    assert (R' : (Z.abs (det3_Z X0 X1 X2 Y0 Y1 Y2 W0 W1 W2) < 2 ^ 212)%Z).
+    { apply Z.lt_trans with (2 ^ 189)%Z; [exact R | apply Z.pow_lt_mono_r; lia]. }
+    destruct (integer_components_sound _ _ _ R' H) as [F [S L]].
+    split; [exact F|]. split; [exact L|]. rewrite S, D. reflexivity.
 Qed.

@@ -1,20 +1,23 @@
 // The exact sign of a 3×3 determinant x·(y × z) of nine doubles in fixed-width integers, and its value as an exact
-// expansion of at most four doubles: stage 3's first try for the determinants whose leaves are single doubles (a
-// ray–triangle query's differences p − o exact in binary64, as on any grid of coordinates), without products of
+// expansion of at most four doubles: stage 3's first try for the ray–triangle determinants, whose leaves are
+// doubles or differences p − o of doubles (each the exact sum of TwoDiff's two parts), without products of
 // expansions and without a rounding.
 //
-// Each vector's components are read as integers over one power of two (integer_vector): a finite double is
-// ±m·2^e; with m's trailing zeros stripped and E the least exponent of the vector's nonzero components, every
-// component is the integer X_i = ±m_i·2^(e_i − E). When every |X_i| < 2^62, the cross product Y × Z is computed
+// Each vector's components are read as integers over one power of two (integer_vector, integer_vector_sum): a
+// finite double is ±m·2^e; with m's trailing zeros stripped and E the least exponent of the vector's nonzero
+// doubles, every double is the integer ±m·2^(e − E), and a component the sum of its parts' integers X_i. When
+// every |X_i| < 2^62 (so a ray–triangle query whose doubles' exponents span less than about 9 bits beyond their
+// significands: any grid of coordinates, a vertex or an origin an ulp off), the cross product Y × Z is computed
 // exactly in signed 128-bit integers (each component below 2^125) and the determinant D = X·(Y × Z) in signed
 // 192-bit two's complement (below 2^189: no wrap); x·(y × z) = D·2^(Ex + Ey + Ez), so its sign is D's.
 //
-//   Valid range: any doubles; `uncertain` when a component is not finite or an aligned component reaches 2^62
+//   Valid range: any doubles; `uncertain` when a part is not finite or an aligned part or a component reaches 2^62
 //                (the caller goes on to the expansions, then the exact stage).
 //   Error bound: none: integer arithmetic, no floating-point operation (nothing depends on the rounding mode,
 //                FTZ/DAZ or traps, and no flag is raised).
 //   Certified by: proofs/core/IntegerDet3.v, `integer_det3_sign_correct` (integer_vector's integers have the
-//                doubles' values, the determinant's sign is its integer's, and the 128- and 192-bit ranges hold);
+//                doubles' values, the determinant's sign is its integer's, and the 128- and 192-bit ranges hold),
+//                `integer_vector_sum_value` (integer_vector_sum's integers have the sums' values);
 //                the limb arithmetic is compared with the model's Z arithmetic by the twin runner.
 #pragma once
 
@@ -29,8 +32,55 @@ namespace raykernel::detail {
 __extension__ typedef __int128 Int128;            // GCC and clang (`__extension__`: -Wpedantic)
 __extension__ typedef unsigned __int128 UInt128;
 
+// N doubles as integers over one power of two: a finite double is ±m·2^e (m odd: its significand with the
+// trailing zeros stripped); E is the least exponent of the nonzero ones, and each is the integer ±m·2^(e − E).
+// Not ok when a double is not finite or an integer reaches 2^bits. (Modelled in proofs/core/IntegerDet3.v by
+// component, least_exponent and aligned: integer_vector reads three doubles, integer_vector_sum six.)
+template <std::size_t N>
+struct IntegerReading {
+  std::int64_t v[N];
+  int exponent;  // E: x_k = v_k·2^E (0 when every x_k is 0)
+  bool ok;
+};
+
+template <std::size_t N>
+[[nodiscard]] [[gnu::always_inline]] inline IntegerReading<N> integer_read(const double (&x)[N], int bits) noexcept {
+  std::uint64_t m[N];
+  int e[N];
+  bool negative[N], finite = true;
+  int least = 1 << 20;
+  for (std::size_t k = 0; k < N; ++k) {
+    const std::uint64_t b = std::bit_cast<std::uint64_t>(x[k]);
+    const int field = static_cast<int>((b >> 52) & 0x7ff);
+    const std::uint64_t fraction = b & ((std::uint64_t{1} << 52) - 1);
+    const std::uint64_t significand = field != 0 ? fraction | (std::uint64_t{1} << 52) : fraction;
+    const int zeros = significand != 0 ? std::countr_zero(significand) : 0;
+    m[k] = significand >> zeros;                     // odd, or 0
+    e[k] = (field != 0 ? field : 1) - 1075 + zeros;  // |x_k| = m·2^e
+    negative[k] = (b >> 63) != 0;
+    finite = finite && field != 0x7ff;
+    if (m[k] != 0 && e[k] < least) least = e[k];
+  }
+  IntegerReading<N> r;
+  r.exponent = least == 1 << 20 ? 0 : least;
+  r.ok = finite;
+  for (std::size_t k = 0; k < N; ++k) {
+    r.v[k] = 0;
+    if (m[k] == 0) continue;
+    const int shift = e[k] - least;                 // ≥ 0
+    const int width = 64 - std::countl_zero(m[k]);  // m < 2^width
+    if (shift + width > bits) {                     // the integer m·2^shift ≥ 2^bits
+      r.ok = false;
+      continue;
+    }
+    const std::int64_t value = static_cast<std::int64_t>(m[k] << shift);
+    r.v[k] = negative[k] ? -value : value;
+  }
+  return r;
+}
+
 // A vector of three doubles as integers over one power of two (see above); `ok` false when a component is not
-// finite or an aligned component reaches 2^62.
+// finite or an integer reaches 2^62.
 struct IntegerVector {
   std::int64_t v[3];
   int exponent;  // E: x_i = v_i·2^E (0 when every component is 0)
@@ -38,35 +88,29 @@ struct IntegerVector {
 };
 
 [[nodiscard]] [[gnu::always_inline]] inline IntegerVector integer_vector(const double x[3]) noexcept {
-  std::uint64_t m[3];
-  int e[3];
-  bool negative[3], finite = true;
-  int least = 1 << 20;
+  const double c[3] = {x[0], x[1], x[2]};
+  const IntegerReading<3> r = integer_read(c, 62);
+  return {{r.v[0], r.v[1], r.v[2]}, r.exponent, r.ok};
+}
+
+// A vector whose components are exact sums of two doubles, x_i = h_i + l_i (a difference p − o as TwoDiff's high
+// and low parts, exact even when p − o is not a double): the six doubles read together (integer_read, each below
+// 2^62), X_i = H_i + L_i, `ok` false also when a sum reaches 2^62 (a sum of two integers below 2^62 is below 2^63:
+// int64 holds it).
+[[nodiscard]] [[gnu::always_inline]] inline IntegerVector integer_vector_sum(const double (&part)[6]) noexcept {
+  // Zero low parts (p − o a double, as on any grid) take no part in E and read as 0: the high parts alone give the
+  // same integers (±0 by their bits, whatever the floating-point environment).
+  const std::uint64_t low_bits = (std::bit_cast<std::uint64_t>(part[3]) | std::bit_cast<std::uint64_t>(part[4]) |
+                                  std::bit_cast<std::uint64_t>(part[5])) << 1;
+  if (low_bits == 0) [[likely]]
+    return integer_vector(part);
+  const IntegerReading<6> r = integer_read(part, 62);
+  IntegerVector v{{0, 0, 0}, r.exponent, r.ok};
   for (int i = 0; i < 3; ++i) {
-    const std::uint64_t bits = std::bit_cast<std::uint64_t>(x[i]);
-    const int field = static_cast<int>((bits >> 52) & 0x7ff);
-    const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
-    const std::uint64_t significand = field != 0 ? fraction | (std::uint64_t{1} << 52) : fraction;
-    const int zeros = significand != 0 ? std::countr_zero(significand) : 0;
-    m[i] = significand >> zeros;                     // odd, or 0
-    e[i] = (field != 0 ? field : 1) - 1075 + zeros;  // |x_i| = m_i·2^e_i
-    negative[i] = (bits >> 63) != 0;
-    finite = finite && field != 0x7ff;
-    if (m[i] != 0 && e[i] < least) least = e[i];
+    v.v[i] = r.v[i] + r.v[i + 3];
+    if (v.v[i] <= -(std::int64_t{1} << 62) || v.v[i] >= (std::int64_t{1} << 62)) v.ok = false;
   }
-  IntegerVector r{{0, 0, 0}, least == 1 << 20 ? 0 : least, finite};
-  for (int i = 0; i < 3; ++i) {
-    if (m[i] == 0) continue;
-    const int shift = e[i] - least;                            // ≥ 0
-    const int width = 64 - std::countl_zero(m[i]);             // m_i < 2^width
-    if (shift + width > 62) {                                  // |X_i| = m_i·2^shift ≥ 2^62
-      r.ok = false;
-      continue;
-    }
-    const std::int64_t value = static_cast<std::int64_t>(m[i] << shift);
-    r.v[i] = negative[i] ? -value : value;
-  }
-  return r;
+  return v;
 }
 
 // D = X·(Y × Z) of three vectors read by integer_vector, in 192-bit two's complement (w[2]:w[1]:w[0]), the cross

@@ -46,8 +46,9 @@
 //   decisions:           proofs/triangle/TriangleRule.v, `triangle_location_correct`, `owned_sign_nonzero`
 //                        proofs/triangle/TriangleRule.v, `owned_sign_antisymmetric`
 //   stage 3, integers:   proofs/triangle/TriangleIntegerSign.v, `integer_value_sign_sound` (a determinant whose
-//                        leaves are single doubles, its sign in integers: proofs/core/IntegerDet3.v,
-//                        `integer_det3_sign_correct`; tried first, TriangleCascadeFlowTwins.v's tc_sign_b)
+//                        leaves are integer vectors — d, and p − o from TwoDiff's two parts, `difference_vector_ok` —
+//                        its sign in integers: proofs/core/IntegerDet3.v, `integer_det3_sign_correct`,
+//                        `integer_vector_sum_value`; tried first, TriangleCascadeFlowTwins.v's tc_sign_b)
 //   stage 3 values:      proofs/triangle/TriangleStage3Twins.v, `triangle_expansion_sign_sound`, `value_ev_exact`
 //                        (the composition in expansion_value.hpp and ray_triangle_stages.hpp's value_expansion,
 //                        twinned and run against the C++: routine tri_expansion); each sum and scale by
@@ -134,11 +135,15 @@ class TriangleCascade {
   }
 
   // The exact sign of determinant v (stages 1–3, core/escalation.hpp); sets needs_exact_ (and returns 0) when
-  // no stage certifies it (stage 3 is not exact).
+  // no stage certifies it (stage 3 is not exact). Each determinant is escalated once per query: the roundings
+  // ask again the signs the classification asked (a zero π of a ray through a vertex), and get the same answer
+  // and the same trace (the trace is the latest stage asked, already recorded).
   int sign(int v) {
-    const Sign s = trace_.sign(SignStage{Stage::filter, [&] { return det3_filter_sign(v); }},
-                               SignStage{Stage::compensated, [&] { return enclosure_sign(compensated().enclosure(v)); }},
-                               SignStage{Stage::expansion, [&] { return stage3_sign(v); }});
+    const Sign s = sign_.get(static_cast<std::size_t>(v), [&] {
+      return trace_.sign(SignStage{Stage::filter, [&] { return det3_filter_sign(v); }},
+                         SignStage{Stage::compensated, [&] { return enclosure_sign(compensated().enclosure(v)); }},
+                         SignStage{Stage::expansion, [&] { return stage3_sign(v); }});
+    });
     if (!is_certain(s)) {
       needs_exact_ = true;
       return 0;
@@ -209,6 +214,7 @@ class TriangleCascade {
   Escalation trace_;
   bool needs_exact_ = false;
   TriangleCompensatedValues compensated_;
+  OnFirstUse<Sign, triangle_value_count> sign_;  // each determinant's sign, escalated once
   IntegerLeaves integer_leaves_;  // stage 3's integer vectors, each read once
   OnFirstUse<IntegerValue, triangle_value_count> integer_value_;  // stage 3's integer value of each determinant
   OnFirstUse<ExpansionValue<192>, triangle_value_count> expansion_;  // stage 3 of each determinant, once computed
