@@ -72,6 +72,7 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
   SCOPED_TRACE(std::string(testkit::to_string(kind)) + ", seed " + std::to_string(seed));
   int decided[3] = {0, 0, 0};  // filter, compensated, expansion
   int integer_decided = 0;
+  int handed_over = 0;
   for (int i = 0; i < 1500; ++i) {
     const TriangleQuery q = testkit::make_triangle_query(kind, bits);
     const ExactValues exact = exact_values(q);
@@ -84,6 +85,23 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
     ASSERT_EQ(std::memcmp(&s2_lanes.value, &s2.value, sizeof s2.value), 0) << testkit::triangle_line(q);
     ASSERT_EQ(s2_lanes.absolute_d, s2.absolute_d);
     ASSERT_EQ(s2_lanes.absolute_e, s2.absolute_e);
+    // What the fast path leaves the cascade when it certifies nothing: the same values, bit for bit, and only
+    // when it evaluated them (t or barycentrics asked; the relation alone reads stage 1 of other lanes).
+    for (const bool t_asked : {true, false}) {
+      detail::TriangleStage2Handover handover;
+      const TriangleOptions options{.t = t_asked, .barycentric = false};
+      if (!detail::fast_triangle_intersection(q.ray, q.triangle, options, handover)) {
+        ASSERT_EQ(handover.computed, t_asked) << testkit::triangle_line(q);
+        if (handover.computed) {
+          ASSERT_EQ(std::memcmp(&handover.values.value, &s2.value, sizeof s2.value), 0) << testkit::triangle_line(q);
+          ASSERT_EQ(handover.values.absolute_d, s2.absolute_d);
+          ASSERT_EQ(handover.values.absolute_e, s2.absolute_e);
+          ++handed_over;
+        }
+      } else {
+        ASSERT_FALSE(handover.computed);
+      }
+    }
     for (int v = 0; v < 5; ++v) {
       const auto idx = static_cast<std::size_t>(v);
       const int want = sgn(exact.value[v]);
@@ -164,12 +182,14 @@ TEST_P(TriangleStagesOnHardQueries, EachStageIsRightWhenItDecides) {
   RecordProperty("compensated_decided", decided[1]);
   RecordProperty("expansion_decided", decided[2]);
   RecordProperty("integer_decided", integer_decided);
+  RecordProperty("handed_over", handed_over);
   // The kinds an ulp or a few off a grid (a nudged origin, direction or vertex: differences p − o that are not
   // doubles) keep integer leaves: their points span fewer than 62 bits, so the integers decide 99% of the values
   // and more (7,492–7,496 of 7,500 here; 5,105–6,084 when only the differences that are doubles were read).
   if (kind == testkit::TriangleQueryKind::near_vertex || kind == testkit::TriangleQueryKind::near_edge ||
       kind == testkit::TriangleQueryKind::sliver || kind == testkit::TriangleQueryKind::needle) {
     EXPECT_GE(integer_decided, 1500 * 5 * 99 / 100);
+    EXPECT_GT(handed_over, 0);  // these kinds leave the fast path
   }
 }
 

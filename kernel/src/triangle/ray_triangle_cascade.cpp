@@ -124,6 +124,9 @@ class TriangleCascade {
   [[gnu::always_inline]] TriangleCascade(const Ray& ray, const Triangle& triangle)
       : ray_(ray), triangle_(triangle), compensated_(triangle_compensated_values_by_lanes(ray, triangle)),
         integer_leaves_(ray, triangle) {}
+  // From the values the fast path left (the same evaluation: the same bits).
+  [[gnu::always_inline]] TriangleCascade(const Ray& ray, const Triangle& triangle, const TriangleCompensatedValues& stage2)
+      : ray_(ray), triangle_(triangle), compensated_(stage2), integer_leaves_(ray, triangle) {}
 
   // The classification through stage 3, or nothing when a sign needed the exact stage.
   std::optional<TriangleClassification> classify(TriangleRule rule) {
@@ -285,8 +288,9 @@ enum class ExactStageNeeded { none, relation, roundings };
 
 RAYKERNEL_MULTIVERSION
 ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& triangle, const TriangleOptions& options,
-                                              TracedTriangleIntersection& r) noexcept {
-  TriangleCascade query(ray, triangle);
+                                              const TriangleStage2Handover* stage2, TracedTriangleIntersection& r) noexcept {
+  TriangleCascade query = stage2 != nullptr && stage2->computed ? TriangleCascade(ray, triangle, stage2->values)
+                                                                : TriangleCascade(ray, triangle);
   const std::optional<TriangleClassification> classified = query.classify(options.rule);
   if (!classified) return ExactStageNeeded::relation;
   const Stage relation_stage = query.stage();
@@ -380,10 +384,11 @@ std::optional<TracedTriangleClassification> triangle_relation_stages(const Ray& 
   return std::nullopt;
 }
 
-TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
-                                                         const TriangleOptions& options) {
+namespace {
+TracedTriangleIntersection intersection_cascade(const Ray& ray, const Triangle& triangle, const TriangleOptions& options,
+                                                const TriangleStage2Handover* stage2) {
   TracedTriangleIntersection r{};
-  switch (triangle_intersection_stages(ray, triangle, options, r)) {
+  switch (triangle_intersection_stages(ray, triangle, options, stage2, r)) {
     case ExactStageNeeded::none: return r;
     case ExactStageNeeded::relation:
       return {exact::intersect_triangle(ray, triangle, options), Stage::exact, Stage::exact};
@@ -394,6 +399,18 @@ TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const T
   r.intersection.barycentric = e.barycentric;
   r.rounding_stage = Stage::exact;
   return r;
+}
+}  // namespace
+
+TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                         const TriangleOptions& options) {
+  return intersection_cascade(ray, triangle, options, nullptr);
+}
+
+TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                         const TriangleOptions& options,
+                                                         const TriangleStage2Handover& stage2) {
+  return intersection_cascade(ray, triangle, options, &stage2);
 }
 
 TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle, TriangleRule rule) {
@@ -425,7 +442,7 @@ namespace {
 // tri_fast_intersect: every answer is docs/contract.md §6's under both rules, t = RN(num/den), each
 // barycentric RN(π_k/den)).
 [[gnu::always_inline]] inline std::optional<TracedTriangleIntersection> fast_triangle_intersection_body(
-    const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept {
+    const Ray& ray, const Triangle& triangle, const TriangleOptions& options, TriangleStage2Handover* stage2) noexcept {
   if (!options.t && !options.barycentric) {
     const std::optional<TracedTriangleClassification> c = fast_relation(ray, triangle);
     if (!c) return std::nullopt;
@@ -443,17 +460,22 @@ namespace {
   const std::int64_t den_sign = first_certain_lanes(den_filter, enclosure_sign_lanes(den_enclosure));
   const bool certain = (sign[0] != uncertain_lane) & (sign[1] != uncertain_lane) & (sign[2] != uncertain_lane) &
                        (den_sign != uncertain_lane);
-  if (!certain) [[unlikely]]
+  // Nothing certified: stage 2's values go to the cascade (den is summed there as here, (πa + πb) + πc).
+  auto hand_over = [&] {
+    if (stage2 != nullptr) *stage2 = {triangle_compensated_values_of(s2), true};
     return std::nullopt;
+  };
+  if (!certain) [[unlikely]]
+    return hand_over();
   const std::optional<TriangleClassification> c = decide_nonzero(sign[0], sign[1], sign[2], den_sign, sign[lane_num]);
   // t needs num's sign to be certain (then nonzero): otherwise num may be exactly 0.
   if (!c || (options.t && sign[lane_num] == uncertain_lane)) [[unlikely]]
-    return std::nullopt;
+    return hand_over();
   const FourQuotients q = round_quotients(numerators, den_enclosure);
   const bool rounded = (!options.t || q.certain[lane_num]) &
                        (!options.barycentric || (q.certain[0] & q.certain[1] & q.certain[2]));
   if (!rounded) [[unlikely]]
-    return std::nullopt;
+    return hand_over();
   const bool by_filter = (filter[0] != uncertain_lane) & (filter[1] != uncertain_lane) &
                          (filter[2] != uncertain_lane) & (den_filter != uncertain_lane) &
                          (c->location == TriangleLocation::outside || filter[lane_num] != uncertain_lane);
@@ -468,7 +490,14 @@ namespace {
 RAYKERNEL_MULTIVERSION
 std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
                                                                      const TriangleOptions& options) noexcept {
-  return fast_triangle_intersection_body(ray, triangle, options);
+  return fast_triangle_intersection_body(ray, triangle, options, nullptr);
+}
+
+RAYKERNEL_MULTIVERSION
+std::optional<TracedTriangleIntersection> fast_triangle_intersection(const Ray& ray, const Triangle& triangle,
+                                                                     const TriangleOptions& options,
+                                                                     TriangleStage2Handover& stage2) noexcept {
+  return fast_triangle_intersection_body(ray, triangle, options, &stage2);
 }
 
 }  // namespace raykernel::detail

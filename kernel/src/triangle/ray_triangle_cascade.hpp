@@ -29,6 +29,11 @@ struct TracedTriangleClassification {
 // also be invalid: a certified sign implies valid input, see ray_triangle_cascade.cpp).
 [[nodiscard]] std::optional<TracedTriangleIntersection> fast_triangle_intersection(
     const Ray& ray, const Triangle& triangle, const TriangleOptions& options) noexcept;
+// The same; when it certifies nothing after evaluating stage 2 (t or barycentrics asked), it leaves stage 2's five
+// values there (ray_triangle_stages.hpp) for the cascade, which then does not evaluate them again.
+struct TriangleStage2Handover;
+[[nodiscard]] std::optional<TracedTriangleIntersection> fast_triangle_intersection(
+    const Ray& ray, const Triangle& triangle, const TriangleOptions& options, TriangleStage2Handover& stage2) noexcept;
 [[nodiscard]] std::optional<TracedTriangleClassification> fast_triangle_relation(const Ray& ray,
                                                                                  const Triangle& triangle,
                                                                                  TriangleRule rule) noexcept;
@@ -44,6 +49,10 @@ struct TriangleQuotientStage1;
 // exact). Requires valid input (validation.hpp).
 [[nodiscard]] TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
                                                                        const TriangleOptions& options);
+// The same, from the stage-2 values the fast path left (bit for bit the ones the cascade would evaluate).
+[[nodiscard]] TracedTriangleIntersection triangle_intersection_cascade(const Ray& ray, const Triangle& triangle,
+                                                                       const TriangleOptions& options,
+                                                                       const TriangleStage2Handover& stage2);
 [[nodiscard]] TracedTriangleClassification triangle_relation_cascade(const Ray& ray, const Triangle& triangle,
                                                                      TriangleRule rule);
 

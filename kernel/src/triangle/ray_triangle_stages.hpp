@@ -392,12 +392,22 @@ struct TriangleNumFilter {
 // decision sees: the filter and the enclosures compare with strict inequalities against bounds ≥ 0, and never
 // certify a zero. What the full cascade (ray_triangle_cascade.cpp) evaluates first: it runs when the fast path
 // left a sign open, and then stage 2 is almost always needed (stage 1 is its filter view).
-[[nodiscard]] [[gnu::always_inline]] inline TriangleCompensatedValues triangle_compensated_values_by_lanes(
-    const Ray& ray, const Triangle& triangle) noexcept {
-  const TriangleLanes<CompensatedTerm<Lanes4>> s2 = triangle_compensated_lanes(ray, triangle);
+[[nodiscard]] [[gnu::always_inline]] inline TriangleCompensatedValues triangle_compensated_values_of(
+    const TriangleLanes<CompensatedTerm<Lanes4>>& s2) noexcept {
   const CompensatedTerm<double> pa = lane(s2.lanes, 0), pb = lane(s2.lanes, 1), pc = lane(s2.lanes, 2);
   return {{pa, pb, pc, (pa + pb) + pc, lane(s2.lanes, lane_num)}, s2.absolute[0], s2.absolute[lane_num]};
 }
+[[nodiscard]] [[gnu::always_inline]] inline TriangleCompensatedValues triangle_compensated_values_by_lanes(
+    const Ray& ray, const Triangle& triangle) noexcept {
+  return triangle_compensated_values_of(triangle_compensated_lanes(ray, triangle));
+}
+
+// Stage 2's values as the fast path leaves them for the cascade (triangle/ray_triangle_cascade.hpp): `computed`
+// when it evaluated them (the same lanes, so the same bits as triangle_compensated_values_by_lanes).
+struct TriangleStage2Handover {
+  TriangleCompensatedValues values;
+  bool computed = false;
+};
 
 // ---- t = num/den alone: what a nearest hit compares and rounds ---------------------------------------------
 //

@@ -10,6 +10,7 @@
 #include "core/fp_environment.hpp"
 #include "triangle/ray_triangle_formula.hpp"
 #include "triangle/ray_triangle_cascade.hpp"
+#include "triangle/ray_triangle_stages.hpp"
 #include "core/validation.hpp"
 #include "nearest/interval_bound.hpp"
 
@@ -42,10 +43,11 @@ detail::TracedTriangleClassification certified_relation(const Ray& ray, const Tr
 }
 
 TracedTriangleIntersection certified(const Ray& ray, const Triangle& triangle, const TriangleOptions& options) {
-  if (const auto a = detail::fast_triangle_intersection(ray, triangle, options)) [[likely]]
+  detail::TriangleStage2Handover stage2;
+  if (const auto a = detail::fast_triangle_intersection(ray, triangle, options, stage2)) [[likely]]
     return *a;
   throw_if_invalid(ray, triangle);
-  return detail::triangle_intersection_cascade(ray, triangle, options);
+  return detail::triangle_intersection_cascade(ray, triangle, options, stage2);
 }
 
 }  // namespace
