@@ -144,21 +144,21 @@ struct LeafVector {
 }
 
 // Stage 3's first try for determinant v: its exact sign in integers (core/integer_det3.hpp). Each leaf is read as
-// integers over one power of two: d itself; the differences of points from the four points o, a, b, c read
-// together (one reading of twelve doubles, each integer below 2^61, each difference an integer subtraction), or,
-// when the four span too many binades, each difference p − o on its own as TwoDiff's two parts (hi + lo = p − o
-// exactly, whether or not p − o is a double: integer_vector_sum). So any query whose points' doubles span fewer
-// than 61 bits of exponent and significand — coordinates on a grid, a vertex or an origin a few ulps off — has
-// integer leaves; `uncertain` otherwise (the expansions decide then). The leaves are value_expansion's
+// integers over one power of two: d itself, and a difference p − o as TwoDiff's two parts (hi + lo = p − o
+// exactly, whether or not p − o is a double: integer_vector_sum). So any leaf whose doubles span fewer than 62 bits
+// of exponent and significand — coordinates on a grid, a vertex or an origin a few ulps off — is an integer
+// vector; `uncertain` otherwise (the expansions decide then). The leaves are value_expansion's
 // (determinant_leaves); IntegerLeaves reads each at most once per query (a ray through a vertex has two zero π
 // sharing d and a leaf).
 //   Certified by: proofs/triangle/TriangleIntegerSign.v, `integer_value_sign_sound` (its twin integer_value_sign_b,
 //   run against this code through the cascade's routines tri_cascade_relation and tri_cascade_intersect).
 
-// Leaf `leaf` (a difference of points) on its own as integers over one power of two; not ok when a part is not
-// finite or the integers reach 2^62.
-[[nodiscard]] inline IntegerVector integer_difference_leaf(const LeafVector& w) noexcept {
-  const double pv[3] = {w.p->x, w.p->y, w.p->z}, fv[3] = {w.from->x, w.from->y, w.from->z};
+// Leaf `leaf` as integers over one power of two; not ok when a part is not finite or the integers reach 2^62.
+[[nodiscard]] inline IntegerVector integer_leaf(const Ray& ray, const Triangle& t, int leaf) noexcept {
+  const LeafVector w = leaf_vector(ray, t, leaf);
+  const double pv[3] = {w.p->x, w.p->y, w.p->z};
+  if (w.from == nullptr) return integer_vector(pv);
+  const double fv[3] = {w.from->x, w.from->y, w.from->z};
   double parts[6];  // h_0, h_1, h_2, l_0, l_1, l_2
   for (int i = 0; i < 3; ++i) {
     const DoubleDouble s = two_diff(pv[i], fv[i]);
@@ -173,13 +173,7 @@ class IntegerLeaves {
  public:
   IntegerLeaves(const Ray& ray, const Triangle& triangle) noexcept : ray_(ray), triangle_(triangle) {}
   [[nodiscard]] const IntegerVector& operator[](int leaf) noexcept {
-    return vector_.get(static_cast<std::size_t>(leaf), [&] {
-      if (leaf == leaf_d) {
-        const double d[3] = {ray_.direction.x, ray_.direction.y, ray_.direction.z};
-        return integer_vector(d);
-      }
-      return integer_difference_leaf(leaf_vector(ray_, triangle_, leaf));
-    });
+    return vector_.get(static_cast<std::size_t>(leaf), [&] { return integer_leaf(ray_, triangle_, leaf); });
   }
 
  private:
