@@ -43,39 +43,43 @@ struct IntegerReading {
   bool ok;
 };
 
+// Branch-free (masks and conditional moves): which double is zero, which exponent is least and which integer is too
+// wide depend on the data, and a mispredicted branch here cost more than the reading (measured, bench/README.md).
 template <std::size_t N>
 [[nodiscard]] [[gnu::always_inline]] inline IntegerReading<N> integer_read(const double (&x)[N], int bits) noexcept {
+  constexpr int none = 1 << 20;  // the least exponent of no nonzero double
   std::uint64_t m[N];
   int e[N];
-  bool negative[N], finite = true;
-  int least = 1 << 20;
+  std::uint64_t negative[N];  // 1 or 0
+  bool finite = true;
+  int least = none;
   for (std::size_t k = 0; k < N; ++k) {
     const std::uint64_t b = std::bit_cast<std::uint64_t>(x[k]);
     const int field = static_cast<int>((b >> 52) & 0x7ff);
-    const std::uint64_t fraction = b & ((std::uint64_t{1} << 52) - 1);
-    const std::uint64_t significand = field != 0 ? fraction | (std::uint64_t{1} << 52) : fraction;
-    const int zeros = significand != 0 ? std::countr_zero(significand) : 0;
-    m[k] = significand >> zeros;                     // odd, or 0
-    e[k] = (field != 0 ? field : 1) - 1075 + zeros;  // |x_k| = m·2^e
-    negative[k] = (b >> 63) != 0;
-    finite = finite && field != 0x7ff;
-    if (m[k] != 0 && e[k] < least) least = e[k];
+    const std::uint64_t significand = (b & ((std::uint64_t{1} << 52) - 1)) | (static_cast<std::uint64_t>(field != 0) << 52);
+    // significand < 2^53: the top bit added makes the count that of significand's trailing zeros when it is
+    // nonzero, and 63 (m = 0) when it is 0, without a branch or a shift by 64.
+    const int zeros = std::countr_zero(significand | (std::uint64_t{1} << 63));
+    m[k] = significand >> zeros;                                     // odd, or 0
+    e[k] = field + static_cast<int>(field == 0) - 1075 + zeros;     // |x_k| = m·2^e (field 0: the exponent of 1)
+    negative[k] = b >> 63;
+    finite = finite & (field != 0x7ff);
+    const int candidate = m[k] != 0 ? e[k] : none;
+    least = candidate < least ? candidate : least;
   }
   IntegerReading<N> r;
-  r.exponent = least == 1 << 20 ? 0 : least;
-  r.ok = finite;
+  r.exponent = least == none ? 0 : least;
+  bool ok = finite;
   for (std::size_t k = 0; k < N; ++k) {
-    r.v[k] = 0;
-    if (m[k] == 0) continue;
-    const int shift = e[k] - least;                 // ≥ 0
-    const int width = 64 - std::countl_zero(m[k]);  // m < 2^width
-    if (shift + width > bits) {                     // the integer m·2^shift ≥ 2^bits
-      r.ok = false;
-      continue;
-    }
-    const std::int64_t value = static_cast<std::int64_t>(m[k] << shift);
-    r.v[k] = negative[k] ? -value : value;
+    const int shift = m[k] != 0 ? e[k] - least : 0;  // ≥ 0 (a zero double reads as 0 whatever its exponent)
+    const int width = 64 - std::countl_zero(m[k]);   // m < 2^width (0 for m = 0)
+    const bool fits = shift + width <= bits;         // the integer m·2^shift < 2^bits (bits ≤ 63)
+    ok = ok & fits;
+    const std::int64_t value = static_cast<std::int64_t>(m[k] << (fits ? shift : 0)) & -static_cast<std::int64_t>(fits);
+    const std::int64_t sign = -static_cast<std::int64_t>(negative[k]);  // 0 or −1
+    r.v[k] = (value ^ sign) - sign;                                       // ±value
   }
+  r.ok = ok;
   return r;
 }
 
