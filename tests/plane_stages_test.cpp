@@ -270,9 +270,9 @@ TEST(FastPaths, TheTwoLaneFormIsTheScalarFormBitForBit) {
 }
 
 // The cascade evaluates stage 2's levels of den and num as the two lanes of a RayPlanePair, and continues
-// from the fast path's rounding of t (RayPlaneCascade's constructor from it); the proofs model each value's
-// scalar evaluation (den_compensated … num_refined). Every lane must be that evaluation, bit for bit, and the
-// cascade built after the fast path must hold what the cascade built from the inputs holds.
+// from the fast path's values and rounding of t (RayPlaneCascade's constructor from them); the proofs model each
+// value's scalar evaluation (den_compensated … num_refined). Every lane must be that evaluation, bit for bit, and
+// the cascade built after the fast path must hold what the cascade built from the inputs holds.
 bool same_enclosure(const Enclosure& a, const Enclosure& b) {
   return test_support::same_bits(a.hi, b.hi) && test_support::same_bits(a.lo, b.lo) &&
          test_support::same_bits(a.radius, b.radius);
@@ -307,10 +307,12 @@ TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
         ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 0), den2r)) << testkit::to_string(q);
         ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 1), num2r)) << testkit::to_string(q);
       }
-      // The cascade from the inputs and the cascade from the fast path: the same terms, levels and rounding.
-      const detail::FastAnswer fast = detail::fast_answer(q.ray, q.plane);
+      // The cascade from the inputs and the cascade from the fast path's values and rounding (what
+      // intersect() hands over): the same terms, levels and rounding.
+      detail::RayPlaneFastValues values;
+      const detail::FastAnswer fast = detail::fast_answer(q.ray, q.plane, values);
       detail::RayPlaneCascade from_inputs(q.ray, q.plane),
-          from_fast(q.ray, q.plane, detail::QuotientRounding{fast.t, fast.rounding_certain});
+          from_fast(q.ray, q.plane, values, detail::QuotientRounding{fast.t, fast.rounding_certain});
       ASSERT_TRUE(same_stage1(from_fast.terms().den, terms.den) && same_stage1(from_fast.terms().num, terms.num))
           << testkit::to_string(q);
       for (int k = 0; k < 3; ++k) ASSERT_TRUE(test_support::same_bits(from_fast.terms().diff[k], terms.diff[k]));

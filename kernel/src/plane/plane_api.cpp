@@ -35,14 +35,12 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
 // caller reports), else the cascade's answer. Out of line, so that the fast path stays small: it is
 // multiversioned, and a caller's clone calls its clone (GCC does not inline it; clang rejects noinline beside
-// target_clones). The cascade continues from the fast path's rounding of t on stage 2's first level
-// (RayPlaneCascade's constructor from it), and computes stage 1 and that level again with the fast path's
-// operations (RayPlanePair): handing those over would cost the certain path its stores (+49 instructions a
-// query, measured), recomputing them costs the rest about 60.
+// target_clones). The cascade continues from the fast path's values (stage 1 and stage 2's first level, stored
+// only on this path: the fast path returns them in registers) and its rounding of t on that level.
 RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
-    const Ray& ray, const Plane& plane, detail::QuotientRounding first_level) noexcept {
+    const Ray& ray, const Plane& plane, const detail::RayPlaneFastValues& values, detail::QuotientRounding first_level) noexcept {
   if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
-  detail::RayPlaneCascade query(ray, plane, first_level);
+  detail::RayPlaneCascade query(ray, plane, values, first_level);
   return detail::intersect_cascade(query).intersection;
 }
 
@@ -56,10 +54,11 @@ RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
 // The whole certified path for one query, in the default environment: the fast path, then the rest.
 RAYKERNEL_MULTIVERSION
 std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& plane) noexcept {
-  const detail::FastAnswer a = detail::fast_answer(ray, plane);
+  detail::RayPlaneFastValues values;
+  const detail::FastAnswer a = detail::fast_answer(ray, plane, values);
   if (a.certain) [[likely]]
     return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
-  return intersection_rest(ray, plane, {a.t, a.rounding_certain});
+  return intersection_rest(ray, plane, values, {a.t, a.rounding_certain});
 }
 
 RAYKERNEL_MULTIVERSION

@@ -18,11 +18,12 @@ class RayPlaneCascade {
   RayPlaneCascade(const Ray& ray, const Plane& plane, const RayPlaneTerms& terms) noexcept
       : ray_(ray), plane_(plane), q_(terms) {}
   // For a query the one-query fast path (plane/ray_plane_stages.hpp, fast_answer) left open, once validated:
-  // stage 1 and stage 2's first level computed as the fast path computes them (RayPlanePair: the terms' and the
-  // scalar levels' bits), and the fast path's rounding of t from that level (the same operation on the same
-  // bits) kept instead of repeated.
+  // stage 1 and stage 2's first level as the fast path computed them (RayPlaneFastValues: RayPlanePair's
+  // operations, the terms' and the scalar levels' bits), and the fast path's rounding of t from that level (the
+  // same operation on the same bits) kept instead of repeated.
   // Inline: its caller is multiversioned (core/multiversion.hpp), and so is this code with it.
-  [[gnu::always_inline]] RayPlaneCascade(const Ray& ray, const Plane& plane, const QuotientRounding& fast_path_rounding) noexcept;
+  [[gnu::always_inline]] RayPlaneCascade(const Ray& ray, const Plane& plane, const RayPlaneFastValues& fast_path_values,
+                                         const QuotientRounding& fast_path_rounding) noexcept;
 
   [[nodiscard]] const Ray& ray() const noexcept { return ray_; }
   [[nodiscard]] const Plane& plane() const noexcept { return plane_; }
@@ -77,19 +78,20 @@ class RayPlaneCascade {
   OnFirstUse<ExactExpansions, 1> expansions_;
 };
 
-inline RayPlaneCascade::RayPlaneCascade(const Ray& ray, const Plane& plane, const QuotientRounding& fast_path_rounding) noexcept
+inline RayPlaneCascade::RayPlaneCascade(const Ray& ray, const Plane& plane, const RayPlaneFastValues& fast_path_values,
+                                        const QuotientRounding& fast_path_rounding) noexcept
     : ray_(ray), plane_(plane) {
   RAYKERNEL_QUERY_ARRAYS(ray, plane);
-  const RayPlanePair pair = ray_plane_pair(o, d, p, n);
+  const RayPlaneFastValues& v = fast_path_values;
   for (int i = 0; i < 3; ++i) {
     q_.o[i] = o[i], q_.d[i] = d[i], q_.p[i] = p[i], q_.n[i] = n[i];
-    q_.diff[i] = pair.a[i][1];  // p_i ⊖ o_i
-    q_.den.product[i] = pair.stage1.product[i][0];
-    q_.num.product[i] = pair.stage1.product[i][1];
+    q_.diff[i] = v.a[i][1];  // p_i ⊖ o_i
+    q_.den.product[i] = v.stage1.product[i][0];
+    q_.num.product[i] = v.stage1.product[i][1];
   }
-  q_.den.value = pair.stage1.value[0], q_.num.value = pair.stage1.value[1];
-  q_.den.magnitude = pair.stage1.magnitude[0], q_.num.magnitude = pair.stage1.magnitude[1];
-  static_cast<void>(levels_.get(0, [&] { return lanes_of(compensated_pair(pair)); }));
+  q_.den.value = v.stage1.value[0], q_.num.value = v.stage1.value[1];
+  q_.den.magnitude = v.stage1.magnitude[0], q_.num.magnitude = v.stage1.magnitude[1];
+  static_cast<void>(levels_.get(0, [&] { return lanes_of(v.compensated); }));
   keep_compensated_rounding(fast_path_rounding);
 }
 

@@ -254,20 +254,42 @@ template <class V>
   return fast_answer_from(den_filter_sign(q), num_filter_sign(q), den_compensated(q), num_compensated(q));
 }
 
+// What the one-query fast path computed and the cascade continues from when it certifies nothing: the
+// differences p_i ⊖ o_i (lane 1 of RayPlanePair's a_i), stage 1 of den and num, and stage 2's first level
+// of both — the same operations on the same bits as the cascade's own evaluation (RayPlanePair), so handing them
+// over changes no value (tests/plane_stages_test.cpp compares them).
+struct RayPlaneFastValues {
+  Lanes2 a[3];
+  Dot3RoundedT<Lanes2> stage1;
+  EnclosureT<Lanes2> compensated;
+};
+
 // The same for one query, with den and num computed side by side as the two lanes of a Lanes2 (RayPlanePair's
-// operations, on local arrays).
+// operations, on local arrays); `values` receives what the cascade continues from (a caller that reads it only
+// when the answer is uncertain stores it only then: it is returned in registers).
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
+                                                                const double n[3], RayPlaneFastValues& values) noexcept {
+  Lanes2 alpha[3], b[3];
+  ray_plane_pair_operands(o, d, p, n, values.a, alpha, b);
+  values.stage1 = dot3_rounded(values.a, b);
+  const Mask2 filter = dot3_filter_lanes(values.stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  values.compensated = compensated_dot3(values.a, alpha, b, values.stage1);
+  return fast_answer_from<double>(filter[0], filter[1], enclosure_lane(values.compensated, 0),
+                                  enclosure_lane(values.compensated, 1));
+}
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
                                                                 const double n[3]) noexcept {
-  Lanes2 a[3], alpha[3], b[3];
-  ray_plane_pair_operands(o, d, p, n, a, alpha, b);
-  const Dot3RoundedT<Lanes2> stage1 = dot3_rounded(a, b);
-  const Mask2 filter = dot3_filter_lanes(stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
-  const EnclosureT<Lanes2> e = compensated_dot3(a, alpha, b, stage1);
-  return fast_answer_from<double>(filter[0], filter[1], enclosure_lane(e, 0), enclosure_lane(e, 1));
+  RayPlaneFastValues values;
+  return fast_answer(o, d, p, n, values);
+}
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const Ray& ray, const Plane& plane,
+                                                                RayPlaneFastValues& values) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  return fast_answer(o, d, p, n, values);
 }
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const Ray& ray, const Plane& plane) noexcept {
-  RAYKERNEL_QUERY_ARRAYS(ray, plane);
-  return fast_answer(o, d, p, n);
+  RayPlaneFastValues values;
+  return fast_answer(ray, plane, values);
 }
 
 // Stage 1 alone, for the relation without t.
