@@ -265,8 +265,7 @@ struct RayPlaneFastValues {
 };
 
 // The same for one query, with den and num computed side by side as the two lanes of a Lanes2 (RayPlanePair's
-// operations, on local arrays); `values` receives what the cascade continues from (a caller that reads it only
-// when the answer is uncertain stores it only then: it is returned in registers).
+// operations, on local arrays); `values` receives what the cascade continues from.
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
                                                                 const double n[3], RayPlaneFastValues& values) noexcept {
   Lanes2 alpha[3], b[3];
