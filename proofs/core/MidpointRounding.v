@@ -1,7 +1,7 @@
 (** * Rounding to nearest at the midpoints of a double (kernel/src/core/quotient_boundary.hpp's decision).
 
     [round_quotient_at_boundaries] compares t = num/den with the two midpoints m⁻ = (q⁻ + q)/2 and
-    m⁺ = (q + q⁺)/2 of a candidate double q and its neighbours q⁻ = pred q, q⁺ = succ q (std::nextafter), by
+    m⁺ = (q + q⁺)/2 of a candidate double q and its neighbours q⁻ = pred q, q⁺ = succ q (next_down, next_up), by
     exact signs (proofs/core/Expansions.v, [compare_quotients_expansion_sound]), and chooses RN(t) from them:
     - m⁻ < t < m⁺: RN(t) = q ([rn_between_midpoints], Flocq's [round_N_le_midp] and [round_N_ge_midp]);
     - t = m⁺: q when q's integral significand is even, else q⁺; t = m⁻: q when it is even, else q⁻ (ties to

@@ -1,8 +1,8 @@
 (** * The correctly rounded quotient at its rounding boundaries (kernel/src/core/quotient_boundary.hpp).
 
     [round_quotient_at_boundaries(num, den, den_sign, q)] decides RN(Σnum/Σden) for a candidate double q from
-    the exact signs of t − m⁺ and t − m⁻, m± the midpoints of q and its neighbours (std::nextafter: Flocq's
-    [Bsucc], [Bpred]), each sign that of 2·Σnum − (x + y)·Σden (compare_quotients_expansion on the
+    the exact signs of t − m⁺ and t − m⁻, m± the midpoints of q and its neighbours (next_up, next_down of
+    kernel/src/core/neighbours.hpp: Flocq's [Bsucc], [Bpred]), each sign that of 2·Σnum − (x + y)·Σden (compare_quotients_expansion on the
     expansions num, den, TwoSum(x, y) and {2}) times den's sign.  This file: its twin over binary64, one
     Flocq operation per C++ operation ([side_of_midpoint_b], [round_quotient_at_boundaries_b]; the parity of
     q as the parity of its significand field, which is the last bit of its pattern: MidpointRounding.v's
@@ -176,8 +176,8 @@ Qed.
 (** Liveness: ties are decided (no exact stage). t = (2^-53 + 1)/1 is the midpoint of 1 and its successor:
     RN(t) = 1 (even); t = 3·2^-53 + 1 is the midpoint of 1 + 2^-52 (odd) and 1 + 2^-51: RN(t) = 1 + 2^-51;
     and a t strictly between the midpoints of q = 1, t = 1 + 2^-60, gives q. *)
-(** [round_quotient_near(num, den, den_sign, q)]: the candidate, then its neighbours (nextafter towards ±max is
-    [Bsucc], [Bpred] wherever the guard of [round_quotient_at_boundaries] lets a candidate through). *)
+(** [round_quotient_near(num, den, den_sign, q)]: the candidate, then its neighbours (next_up and next_down,
+    kernel/src/core/neighbours.hpp: [Bsucc] and [Bpred]). *)
 Definition round_quotient_near_b (num den : list float) (den_sign : Z) (q : float) : option float :=
   match round_quotient_at_boundaries_b num den den_sign q with
   | Some r => Some r

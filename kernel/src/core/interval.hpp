@@ -18,22 +18,12 @@
 // FTZ or DAZ; FpEnvironmentScope, core/fp_environment.hpp, installs it).
 #pragma once
 
+#include "core/neighbours.hpp"
+
 #include <algorithm>
-#include <bit>
-#include <cstdint>
 #include <limits>
 
 namespace raykernel::detail {
-
-// The smallest double above x (x not NaN): +0 and −0 give 2^-1074, −inf gives −DBL_MAX, +inf stays.
-[[nodiscard]] inline double next_up(double x) noexcept {
-  auto bits = std::bit_cast<std::uint64_t>(x);
-  if (bits == 0x8000000000000000u) bits = 0;          // −0 steps like +0
-  if (bits == 0x7FF0000000000000u) return x;          // +inf stays
-  bits += 1 - ((bits >> 63) << 1);                    // +1 for x ≥ +0 (+0 gives 2^-1074), −1 for x < 0 (−inf gives −DBL_MAX)
-  return std::bit_cast<double>(bits);
-}
-[[nodiscard]] inline double next_down(double x) noexcept { return -next_up(-x); }
 
 struct Interval {
   double lo, hi;  // lo ≤ exact ≤ hi

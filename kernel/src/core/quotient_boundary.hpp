@@ -31,6 +31,7 @@
 #include "core/eft.hpp"
 #include "core/error_bounds.hpp"
 #include "core/expansion.hpp"
+#include "core/neighbours.hpp"
 #include "core/sign.hpp"
 #include "core/expansion_compare.hpp"
 
@@ -75,7 +76,7 @@ template <class Side>
 [[nodiscard]] inline std::optional<double> round_at_midpoints(const Side& side, double q) noexcept {
   const double magnitude = std::fabs(q);
   if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
-  const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
+  const double up = next_up(q), down = next_down(q);
   const Sign above = side(q, up);  // t against m⁺
   if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
   if (above != Sign::negative) return std::nullopt;  // t > m⁺ (or undecided): q is not RN(t)
@@ -85,13 +86,13 @@ template <class Side>
   return q;
 }
 
-// round_at_midpoints for q, then for nextafter(q, +max), then for nextafter(q, −max): RN(t) when q is t's
+// round_at_midpoints for q, then for next_up(q), then for next_down(q): RN(t) when q is t's
 // rounding or one of its neighbours.
 template <class Side>
 [[nodiscard]] inline std::optional<double> round_near_midpoints(const Side& side, double q) noexcept {
   if (const std::optional<double> r = round_at_midpoints(side, q)) return r;
-  if (const std::optional<double> r = round_at_midpoints(side, std::nextafter(q, bounds::largest_finite))) return r;
-  return round_at_midpoints(side, std::nextafter(q, -bounds::largest_finite));
+  if (const std::optional<double> r = round_at_midpoints(side, next_up(q))) return r;
+  return round_at_midpoints(side, next_down(q));
 }
 
 // RN(t) from a candidate q a few doubles off: the decision of round_at_midpoints at q, moving to q's neighbour on
@@ -102,7 +103,7 @@ template <class Side>
   for (int step = 0; step <= steps; ++step) {
     const double magnitude = std::fabs(q);
     if (!(magnitude >= bounds::half_gap_min_magnitude && magnitude < bounds::largest_finite)) return std::nullopt;
-    const double up = std::nextafter(q, bounds::largest_finite), down = std::nextafter(q, -bounds::largest_finite);
+    const double up = next_up(q), down = next_down(q);
     const Sign above = side(q, up);
     if (above == Sign::zero) return boundary_internal::even(q) ? q : up;
     if (above == Sign::positive) {
@@ -133,7 +134,7 @@ template <std::size_t A, std::size_t B>
 
 // RN(num/den) from the candidate q or, when q is one ulp off (a stage's enclosure rounded to t's neighbour: a t
 // just past a midpoint), from either neighbour of q: round_quotient_at_boundaries for q, then for
-// nextafter(q, +max), then for nextafter(q, −max). Each value is certified on its own.
+// next_up(q), then for next_down(q). Each value is certified on its own.
 //   Certified by: proofs/core/QuotientBoundary.v, `round_quotient_near_sound` (from
 //   `round_quotient_at_boundaries_sound` for each of the three candidates).
 template <std::size_t A, std::size_t B>
