@@ -171,7 +171,11 @@ class TriangleCascade {
 
   // Stage 3's enclosure of determinant v: expansion_tail_enclosure of its exact expansion (short_expansion),
   // when it has at most bounds::tail_sum_max_terms components (the range tail_sum_enclosure is proved for).
+  // The integer's components are summed where they are (no copy into a capacity-32 expansion: the same
+  // components, the same sums).
   std::optional<Enclosure> expansion_enclosure(int v) {
+    const IntegerValue& integer = integer_value(v);
+    if (integer.ok) return expansion_tail_enclosure(integer.e);
     const std::optional<Expansion<bounds::tail_sum_max_terms>> e = short_expansion<bounds::tail_sum_max_terms>(v);
     if (!e) return std::nullopt;
     return expansion_tail_enclosure(*e);
@@ -181,12 +185,15 @@ class TriangleCascade {
   // components: integer_value_components), else its expansion of doubles when that is exact.
   template <std::size_t K>
   std::optional<Expansion<K>> short_expansion(int v) {
-    const IntegerValue& integer = integer_value_.get(static_cast<std::size_t>(v),
-                                                     [&] { return integer_value_components(integer_leaves_, v); });
+    const IntegerValue& integer = integer_value(v);
     if (integer.ok) return shortened<K>(integer.e);
     const ExpansionValue<192>& value = expansion(v);
     if (!value.exact) return std::nullopt;
     return shortened<K>(value.e);
+  }
+  // Stage 3's integer value of determinant v (integer_value_components), computed on first use.
+  const IntegerValue& integer_value(int v) {
+    return integer_value_.get(static_cast<std::size_t>(v), [&] { return integer_value_components(integer_leaves_, v); });
   }
   [[nodiscard]] const TriangleCompensatedValues& compensated() const noexcept { return compensated_; }
   // Stage 3 of determinant v, computed on first use.
