@@ -3,9 +3,11 @@
 // nextafter branches on the data).
 //   Valid range: any double but NaN.
 //   Error bound: none (exact).
-//   Certified by: the models use Flocq's Bsucc and Bpred (proofs/core/QuotientBoundary.v, `bsucc_value`,
-//   `bpred_value`; proofs/core/IntervalWidening.v); the bits are checked against std::nextafter towards ±inf by
-//   tests/closest_point_test.cpp (every class of double: zeros, subnormals, normals, the largest, infinities).
+//   Certified by: the proofs that use them model them as Flocq's Bsucc and Bpred:
+//   proofs/core/QuotientBoundary.v, `round_quotient_at_boundaries_sound`
+//   proofs/core/IntervalWidening.v, `ieee_sign_sound`
+//   and the bits are checked against std::nextafter towards ±inf by tests/closest_point_test.cpp (zeros,
+//   subnormals, normals, the largest finite doubles, infinities).
 #pragma once
 
 #include <bit>
