@@ -189,14 +189,14 @@ template <std::size_t K>
   if (!(X.ok & Y.ok & Z.ok)) return false;
   const Int192 D = integer_det3(X, Y, Z);
   const bool negative = static_cast<std::int64_t>(D.w[2]) < 0;
-  std::uint64_t m[3] = {D.w[0], D.w[1], D.w[2]};  // |D|: two's complement negation when negative
-  if (negative) {
-    const UInt128 a = static_cast<UInt128>(~m[0]) + 1;
-    const UInt128 b = static_cast<UInt128>(~m[1]) + static_cast<std::uint64_t>(a >> 64);
-    m[0] = static_cast<std::uint64_t>(a);
-    m[1] = static_cast<std::uint64_t>(b);
-    m[2] = ~m[2] + static_cast<std::uint64_t>(b >> 64);
-  }
+  // |D|: two's complement negation when negative (complement under a mask, plus one; no branch on the sign).
+  const std::uint64_t flip = -static_cast<std::uint64_t>(negative);  // all ones, or 0
+  std::uint64_t m[3];
+  const UInt128 a = static_cast<UInt128>(D.w[0] ^ flip) + (flip & 1);
+  const UInt128 b = static_cast<UInt128>(D.w[1] ^ flip) + static_cast<std::uint64_t>(a >> 64);
+  m[0] = static_cast<std::uint64_t>(a);
+  m[1] = static_cast<std::uint64_t>(b);
+  m[2] = (D.w[2] ^ flip) + static_cast<std::uint64_t>(b >> 64);
   const int E = X.exponent + Y.exponent + Z.exponent;
   constexpr std::uint64_t chunk_mask = (std::uint64_t{1} << 53) - 1;
   std::size_t size = 0;

@@ -315,8 +315,8 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
   bool all_certain = true;
   double value[4];
   for (int k = 0; k < 4; ++k) {
-    certain[k] = !asked[k] || numerator_sign[k] == 0;
-    all_certain = all_certain && certain[k];
+    certain[k] = !asked[k] | (numerator_sign[k] == 0);  // bitwise: no branch on the data
+    all_certain = all_certain & certain[k];
     value[k] = asked[k] ? 0.0 : not_a_number;  // an exact 0/den is +0
   }
   r.rounding_stage = query.stage();
@@ -338,7 +338,7 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
     if (certain[k]) continue;
     value[k] = rounded.t[numerator_lane[k]];
     certain[k] = rounded.certain[numerator_lane[k]];
-    all_certain = all_certain && certain[k];
+    all_certain = all_certain & certain[k];
   }
   if (all_certain) return with_values();
 
@@ -355,7 +355,7 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
       value[k] = e.t;
       certain[k] = e.certain;
     }
-    all_certain = all_certain && certain[k];
+    all_certain = all_certain & certain[k];
   }
   // Then the rounding boundaries of each candidate, exactly in expansions (core/quotient_boundary.hpp): a
   // quotient on or next to a midpoint between two doubles (ties, roundings near powers of two).
@@ -374,7 +374,7 @@ ExactStageNeeded triangle_intersection_stages(const Ray& ray, const Triangle& tr
           }
         }
       }
-      all_certain = all_certain && certain[k];
+      all_certain = all_certain & certain[k];
     }
   }
   // What is left goes to the exact stage, which rounds every asked quotient (the ones certified here are the
