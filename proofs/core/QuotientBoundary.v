@@ -2,11 +2,11 @@
 
     [round_quotient_at_boundaries(num, den, den_sign, q)] decides RN(Σnum/Σden) for a candidate double q from
     the exact signs of t − m⁺ and t − m⁻, m± the midpoints of q and its neighbours (next_up, next_down of
-    kernel/src/core/neighbours.hpp: Flocq's [Bsucc], [Bpred]), each sign that of 2·Σnum − (x + y)·Σden (compare_quotients_expansion on the
-    expansions num, den, TwoSum(x, y) and {2}) times den's sign.  This file: its twin over binary64, one
-    Flocq operation per C++ operation ([side_of_midpoint_b], [round_quotient_at_boundaries_b]; the parity of
-    q as the parity of its significand field, which is the last bit of its pattern: MidpointRounding.v's
-    [b754_canonical]), and
+    kernel/src/core/neighbours.hpp: Flocq's [Bsucc], [Bpred]), each sign that of 2·Σnum − (x + y)·Σden
+    (compare_quotients_expansion on the expansions num, den, TwoSum(x, y) and {2}) times den's sign.
+    This file: its twin over binary64, one Flocq operation per C++ operation ([side_of_midpoint_b],
+    [round_quotient_at_boundaries_b]; the parity of q as the parity of its significand field, which is the
+    last bit of its pattern: MidpointRounding.v's [b754_canonical]), and
     - [side_of_midpoint_sound]: a certain side is the sign of t − (x + y)/2, for den's sign ±1 as given;
     - [round_quotient_at_boundaries_sound]: a value is finite and RN(Σnum/Σden), for expansions of at most
       16 components (compare_quotients_expansion's range) and den_sign the sign of Σden (nonzero).

@@ -20,7 +20,8 @@ namespace raykernel::detail {
   auto bits = std::bit_cast<std::uint64_t>(x);
   if (bits == 0x8000000000000000u) bits = 0;          // −0 steps like +0
   if (bits == 0x7FF0000000000000u) return x;          // +inf stays
-  bits += 1 - ((bits >> 63) << 1);                    // +1 for x ≥ +0 (+0 gives 2^-1074), −1 for x < 0 (−inf gives −DBL_MAX)
+  // +1 for x ≥ +0 (+0 gives 2^-1074), −1 for x < 0 (−inf gives −DBL_MAX).
+  bits += 1 - ((bits >> 63) << 1);
   return std::bit_cast<double>(bits);
 }
 
