@@ -336,6 +336,9 @@ Definition twin_results_cascade :=
    PlaneCascadeTwins.validate_b_none).
 Goal True. idtac "@@ certified_signs_twin_sound certified_quotient_twin_sound validate_b_none". Abort.
 Print Assumptions twin_results_cascade.
+(** PlaneCascadeTwins.v: [intersect]'s step between its fast path and the cascade (plane_api.cpp) *)
+Goal True. idtac "@@ second_level_twin_correct". Abort.
+Print Assumptions PlaneCascadeTwins.second_level_twin_correct.
 (** PlaneCascadeTwins.v: [relation] past its fast path, and validation's other direction *)
 Goal True. idtac "@@ relation_twin_correct". Abort.
 Print Assumptions PlaneCascadeTwins.relation_twin_correct.

@@ -284,7 +284,7 @@ bool same_stage1(const Dot3Rounded& a, const Dot3Rounded& b) {
 }
 
 TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
-  std::size_t queries = 0, left_open = 0, refined_certain = 0;
+  std::size_t queries = 0, left_open = 0, refined_certain = 0, signs_certain = 0, second_level_step = 0;
   for (const testkit::QueryKind kind : testkit::all_query_kinds) {
     testkit::SplitMix64 rng(0xca5cade + static_cast<std::uint64_t>(kind));
     const testkit::BitSource bits = [&rng] { return rng(); };
@@ -327,16 +327,40 @@ TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
         ++left_open;
         refined_certain += detail::enclosure_sign(from_fast.den_refined()) != Sign::uncertain;
       }
+      // The second level from the fast path's values (intersect's step before the cascade) is the cascade's.
+      const auto r = detail::refined_pair(values, q.ray, q.plane);
+      ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 0), den2r) && same_enclosure(detail::enclosure_lane(r, 1), num2r))
+          << testkit::to_string(q);
       const TracedIntersection x = detail::intersect_cascade(from_inputs), y = detail::intersect_cascade(from_fast);
       ASSERT_EQ(x.intersection.relation, y.intersection.relation) << testkit::to_string(q);
       ASSERT_TRUE(test_support::same_bits(x.intersection.t, y.intersection.t) ||
                   (std::isnan(x.intersection.t) && std::isnan(y.intersection.t)))
           << testkit::to_string(q);
+      // The fast path's signs, where both are certain, are the cascade's (hit or behind), and then the public
+      // intersect (which rounds t on the second level itself when the first did not certify it) answers as the
+      // cascade does.
+      const detail::Mask2 signs = detail::fast_signs(values);
+      if (signs[0] != detail::uncertain_lane && signs[1] != detail::uncertain_lane) {
+        ++signs_certain;
+        const detail::CertifiedSigns c = detail::certified_signs(from_inputs);
+        ASSERT_EQ(static_cast<int>(c.den), signs[0]) << testkit::to_string(q);
+        ASSERT_EQ(static_cast<int>(c.num), signs[1]) << testkit::to_string(q);
+        if (!fast.certain) ++second_level_step;
+      }
+      const Intersection pub = intersect(q.ray, q.plane);
+      ASSERT_EQ(pub.relation, x.intersection.relation) << testkit::to_string(q);
+      if (x.t_stage != Stage::exact) {
+        ASSERT_TRUE(test_support::same_bits(pub.t, x.intersection.t) || (std::isnan(pub.t) && std::isnan(x.intersection.t)))
+            << testkit::to_string(q);
+      }
     }
   }
-  // Not vacuous: the hard kinds leave many queries to the cascade, and the second level decides many of them.
+  // Not vacuous: the hard kinds leave many queries to the cascade, and the second level decides many of them;
+  // many of those have both signs from the fast path.
   EXPECT_GT(left_open, queries / 4);
   EXPECT_GT(refined_certain, left_open / 4);
+  EXPECT_GT(second_level_step, left_open / 8);
+  EXPECT_GT(signs_certain, queries / 2);
 }
 
 // TwoSum can overflow inside with finite operands and a finite sum (proofs/plane/PlaneStageTwoFinite.v,

@@ -614,6 +614,121 @@ Proof.
   all: exact (certified_quotient_twin_sound o d p n q ts Q).
 Qed.
 
+(** ** [intersect]'s step between its fast path and the cascade (plane/plane_api.cpp, [intersection_rest])
+
+    For a valid query the fast path left open: its signs of den and num again (stage 1's where certain, else
+    the first level's: [fast_answer_from]'s per lane, on the fast path's values, which are [den1_b] … [num2_b]
+    bit for bit, tests/plane_stages_test.cpp: [den_fast_sign_b], [num_fast_sign_b], with
+    [first_certain_lanes_b_eq] and [fsub_two_diff_hi] for the forms); when both are certain, t rounded on
+    stage 2's second level
+    ([den2r_b], [num2r_b]: plane/ray_plane_stages.hpp's [refined_pair] from the fast path's values, the
+    cascade's second level bit for bit, same test), and the answer when that rounding is certain: t and
+    behind = (num_sign · den_sign < 0).  Otherwise ([None]) the cascade runs as before. *)
+Definition den_fast_sign_b (d n : Vec3B) : Z :=
+  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
+                         Cpp.filter_den_relative)
+    (enclosure_sign_lanes_b (den2_b d n)).
+Definition num_fast_sign_b (o p n : Vec3B) : Z :=
+  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
+                         (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
+                         Cpp.filter_num_relative)
+    (enclosure_sign_lanes_b (num2_b o p n)).
+
+(** The step from any two lane signs and any two enclosures: t and behind when both signs are certain and
+    round_quotient certifies t. *)
+Definition second_level_from (ds ns : Z) (num den : EnclosureB) : option (float * bool) :=
+  if (certain_lane ds && certain_lane ns)%bool then
+    if snd (round_quotient_b num (prepare_divisor_b den))
+    then Some (fst (round_quotient_b num (prepare_divisor_b den)), Z.ltb (ns * ds) 0)
+    else None
+  else None.
+
+Definition second_level_b (o d p n : Vec3B) : option (float * bool) :=
+  second_level_from (den_fast_sign_b d n) (num_fast_sign_b o p n) (num2r_b o p n) (den2r_b d n).
+
+(** The step's meaning for any sound signs and enclosures (every fact abstract: no computation on floats). *)
+Lemma second_level_from_correct : forall (ds ns : Z) (num den : EnclosureB) (o d p n : Vec3B) t behind,
+  vec_fin o -> vec_fin d -> vec_fin p -> vec_fin n -> vec_R d <> zero3 -> vec_R n <> zero3 ->
+  lane_sign ds -> certifies (sign_from_Z ds) (ray_den (vec_R d) (vec_R n)) ->
+  lane_sign ns -> certifies (sign_from_Z ns) (ray_num (vec_R o) (vec_R p) (vec_R n)) ->
+  nonneg (radiusb num) -> nonneg (radiusb den) ->
+  (fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
+   encloses (enc_R num) (ray_num (vec_R o) (vec_R p) (vec_R n))) ->
+  (fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
+   encloses (enc_R den) (ray_den (vec_R d) (vec_R n))) ->
+  second_level_from ds ns num den = Some (t, behind) -> fast_answer_means o d p n t behind.
+Proof.
+  intros ds ns num den o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn Nn Nd En Ed S.
+  unfold second_level_from in S.
+  destruct (certain_lane ds && certain_lane ns)%bool eqn:C; [|discriminate S].
+  apply andb_prop in C. destruct C as [Cd Cn].
+  pose proof (round_quotient_twin_sound num den _ _ Nn Nd En Ed) as Q.
+  destruct (round_quotient_b num (prepare_divisor_b den)) as [q c] eqn:Eq.
+  cbn [fst snd] in S, Q. destruct c; [|discriminate S].
+  injection S as <- <-.
+  destruct (lanes_relation ns ds _ _ _ _ Ln Ld (certain_lane_true _ Cn) (certain_lane_true _ Cd) Sn Sd)
+    as [Rel [Zn' Zd']].
+  destruct (Q eq_refl) as [_ [Ft Vt]].
+  exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn' (conj Zd' (conj Zd (conj Zn (conj Ft Vt)))))))))).
+Qed.
+
+Lemma enclosure_sign_b_lanes : forall e V, certifies (enclosure_sign_b e) V ->
+  certifies (sign_from_Z (enclosure_sign_lanes_b e)) V.
+Proof. intros e V H. exact H. Qed.
+
+(** Each fast-path sign is a lane sign and, when certain, the exact sign (every bit pattern).  Each fact is
+    used in the form its lemma states it, and forms are changed only through lemmas over abstract terms
+    (a conversion between two forms of a concrete term can make Coq's kernel compute on the floats). *)
+Lemma den_fast_sign_sound : forall d n : Vec3B,
+  lane_sign (den_fast_sign_b d n) /\ certifies (sign_from_Z (den_fast_sign_b d n)) (ray_den (vec_R d) (vec_R n)).
+Proof.
+  intros d n.
+  destruct (den_filter_twin_sound (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as [Sf _].
+  rewrite <- (VD_eq d n) in Sf.
+  pose proof (enclosure_sign_b_certifies (den2_b d n) _ (den2_nonneg d n)
+                (PlaneStageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
+                (den2_encloses d n)) as Se.
+  apply enclosure_sign_b_lanes in Se.
+  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
+                            Cpp.filter_den_relative)) by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L2 : lane_sign (enclosure_sign_lanes_b (den2_b d n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
+  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
+Qed.
+
+Lemma num_fast_sign_sound : forall o p n : Vec3B,
+  lane_sign (num_fast_sign_b o p n) /\
+  certifies (sign_from_Z (num_fast_sign_b o p n)) (ray_num (vec_R o) (vec_R p) (vec_R n)).
+Proof.
+  intros o p n.
+  destruct (num_filter_twin_sound (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n)) as [Sf _].
+  rewrite <- (VN_eq o p n) in Sf.
+  pose proof (enclosure_sign_b_certifies (num2_b o p n) _ (compensated_radius_nonneg _ _ _ _ _ _ _ _ _)
+                (PlaneStageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                   (vxb n) (vyb n) (vzb n))
+                (num2_encloses o p n)) as Se.
+  apply enclosure_sign_b_lanes in Se.
+  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
+                            (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
+                            Cpp.filter_num_relative))
+    by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L2 : lane_sign (enclosure_sign_lanes_b (num2_b o p n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
+  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
+Qed.
+
+(** Its answer means what a certain fast answer means ([fast_answer_means]: the relation of
+    docs/contract.md §1, num ≠ 0, den ≠ 0, and t finite and RN(num/den)), for every bit pattern that
+    passes validation (which [intersection_rest] does first). *)
+Theorem second_level_twin_correct : forall (o d p n : Vec3B) (t : float) (behind : bool),
+  validate_b o d p n = None -> second_level_b o d p n = Some (t, behind) -> fast_answer_means o d p n t behind.
+Proof.
+  intros o d p n t behind V S.
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  destruct (den_fast_sign_sound d n) as [Ld Sd]. destruct (num_fast_sign_sound o p n) as [Ln Sn].
+  exact (second_level_from_correct _ _ _ _ o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn
+           (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) (den_refined_radius_nonneg _ _ _ _ _ _)
+           (num2r_encloses o p n) (den2r_encloses d n) S).
+Qed.
+
 (** ** Validation, the other direction: valid input is never rejected, invalid input always gets a code *)
 
 Lemma first_nonfinite_fin : forall xs i, Forall (fun x => fin x = true) xs -> first_nonfinite i xs = None.

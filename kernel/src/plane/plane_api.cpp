@@ -38,9 +38,24 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // target_clones). The cascade continues from the fast path's values (stage 1 and stage 2's first level) and its
 // rounding of t on that level. GCC stores the values before the branch: +10 instructions on the certain path,
 // −101 on this one (bench/README.md).
+// First, when the fast path certified both signs but not t (degenerate input: num or den cancels, so t needs
+// stage 2's second level), that level's rounding from the fast path's values, without building the cascade:
+// the cascade would keep those signs (a certified sign is the exact one) and round t on that level next, so
+// the answer is the cascade's (tests/plane_stages_test.cpp compares them; the differential runner compares
+// `intersect` with the cascade's twin). −190 instructions a query on bench's degenerate mix (bench/README.md).
+//   Certified by: proofs/plane/PlaneCascadeTwins.v, `second_level_twin_correct` (the step's answer, when it
+//   gives one, is the relation of docs/contract.md §1 and t = RN(num/den)).
 RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
     const Ray& ray, const Plane& plane, const detail::RayPlaneFastValues& values, detail::QuotientRounding first_level) noexcept {
   if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  // Both signs certified by the fast path, t not: its second-level rounding (PlaneCascadeTwins.v, second_level_b).
+  const detail::Mask2 signs = detail::fast_signs(values);
+  if ((signs[0] != detail::uncertain_lane) & (signs[1] != detail::uncertain_lane)) {
+    const detail::EnclosureT<detail::Lanes2> refined = detail::refined_pair(values, ray, plane);
+    if (const auto t = detail::round_quotient_if_certain(detail::enclosure_lane(refined, 1),
+                                                         detail::prepare_divisor(detail::enclosure_lane(refined, 0))))
+      return Intersection{detail::signs_say_behind(signs[1], signs[0]) ? Relation::behind : Relation::hit, *t};
+  }
   detail::RayPlaneCascade query(ray, plane, values, first_level);
   return detail::intersect_cascade(query).intersection;
 }

@@ -291,6 +291,30 @@ struct RayPlaneFastValues {
   return fast_answer(ray, plane, values);
 }
 
+// The fast path's signs of den and num (lanes 0 and 1) again from its values: stage 1's where certain, else
+// the first level's (fast_answer_from's per lane; neither stage certifies zero, so a certain sign is ±1).
+[[nodiscard]] [[gnu::always_inline]] inline Mask2 fast_signs(const RayPlaneFastValues& v) noexcept {
+  return first_certain_lanes(dot3_filter_lanes(v.stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative}),
+                             enclosure_sign_lanes(v.compensated));
+}
+
+// Stage 2's second level of den and num from the fast path's values (its a_i and stage 1), with the
+// operands the cascade gives that level (RayPlanePair from the terms: α = +0 in den's lane, the TwoDiff low
+// parts in num's): the cascade's refined_pair bit for bit, for a valid query, without building the cascade.
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<Lanes2> refined_pair(const RayPlaneFastValues& v, const Ray& ray,
+                                                                         const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
+  static_cast<void>(d);
+  RayPlanePair r;
+  for (int i = 0; i < 3; ++i) {
+    r.a[i] = v.a[i];
+    r.alpha[i] = Lanes2{0.0, two_diff(p[i], o[i]).lo};
+    r.b[i] = Lanes2{n[i], n[i]};
+  }
+  r.stage1 = v.stage1;
+  return refined_pair(r);
+}
+
 // Stage 1 alone, for the relation without t.
 //   Certified by: proofs/plane/PlaneCascade.v, `fast_relation_correct` (which includes d ≠ 0 and n ≠ 0); on the bits,
 //   any input pattern, proofs/plane/PlaneQueryTwins.v, `fast_relation_twin_correct`.
