@@ -42,7 +42,7 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // stage 2's second level), that level's rounding from the fast path's values, without building the cascade:
 // the cascade would keep those signs (a certified sign is the exact one) and round t on that level next, so
 // the answer is the cascade's (tests/plane_stages_test.cpp compares them; the differential runner compares
-// `intersect` with the cascade's twin). −190 instructions a query on bench's degenerate mix (bench/README.md).
+// `intersect` with the cascade's twin). −186 instructions a query on bench's degenerate mix (bench/README.md).
 //   Certified by: proofs/plane/PlaneCascadeTwins.v, `second_level_twin_correct` (the step's answer, when it
 //   gives one, is the relation of docs/contract.md §1 and t = RN(num/den)).
 RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(

@@ -298,19 +298,14 @@ struct RayPlaneFastValues {
                              enclosure_sign_lanes(v.compensated));
 }
 
-// Stage 2's second level of den and num from the fast path's values (its a_i and stage 1), with the
-// operands the cascade gives that level (RayPlanePair from the terms: α = +0 in den's lane, the TwoDiff low
-// parts in num's): the cascade's refined_pair bit for bit, for a valid query, without building the cascade.
+// Stage 2's second level of den and num from the fast path's values (its stage 1), with the pair's operands
+// from the inputs (ray_plane_pair_operands: for a valid query, the a_i the fast path used and the α the cascade
+// gives that level, +0 in den's lane): the cascade's refined_pair bit for bit, without building the cascade.
 [[nodiscard]] [[gnu::always_inline]] inline EnclosureT<Lanes2> refined_pair(const RayPlaneFastValues& v, const Ray& ray,
                                                                          const Plane& plane) noexcept {
   RAYKERNEL_QUERY_ARRAYS(ray, plane);
-  static_cast<void>(d);
   RayPlanePair r;
-  for (int i = 0; i < 3; ++i) {
-    r.a[i] = v.a[i];
-    r.alpha[i] = Lanes2{0.0, two_diff(p[i], o[i]).lo};
-    r.b[i] = Lanes2{n[i], n[i]};
-  }
+  ray_plane_pair_operands(o, d, p, n, r.a, r.alpha, r.b);
   r.stage1 = v.stage1;
   return refined_pair(r);
 }
