@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace raykernel {
 namespace {
@@ -284,7 +285,8 @@ bool same_stage1(const Dot3Rounded& a, const Dot3Rounded& b) {
 }
 
 TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
-  std::size_t queries = 0, left_open = 0, refined_certain = 0, signs_certain = 0, second_level_step = 0;
+  std::size_t queries = 0, left_open = 0, refined_certain = 0, signs_certain = 0, second_level_step = 0,
+              stage1_left_open = 0;
   for (const testkit::QueryKind kind : testkit::all_query_kinds) {
     testkit::SplitMix64 rng(0xca5cade + static_cast<std::uint64_t>(kind));
     const testkit::BitSource bits = [&rng] { return rng(); };
@@ -327,8 +329,8 @@ TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
         ++left_open;
         refined_certain += detail::enclosure_sign(from_fast.den_refined()) != Sign::uncertain;
       }
-      // The second level from the fast path's values (intersect's step before the cascade) is the cascade's.
-      const auto r = detail::refined_pair(values, q.ray, q.plane);
+      // The second level from the fast path's stage 1 (intersect's step before the cascade) is the cascade's.
+      const auto r = detail::refined_pair(values.stage1, q.ray, q.plane);
       ASSERT_TRUE(same_enclosure(detail::enclosure_lane(r, 0), den2r) && same_enclosure(detail::enclosure_lane(r, 1), num2r))
           << testkit::to_string(q);
       const TracedIntersection x = detail::intersect_cascade(from_inputs), y = detail::intersect_cascade(from_fast);
@@ -336,16 +338,22 @@ TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
       ASSERT_TRUE(test_support::same_bits(x.intersection.t, y.intersection.t) ||
                   (std::isnan(x.intersection.t) && std::isnan(y.intersection.t)))
           << testkit::to_string(q);
-      // The fast path's signs, where both are certain, are the cascade's (hit or behind), and then the public
-      // intersect (which rounds t on the second level itself when the first did not certify it) answers as the
-      // cascade does.
-      const detail::Mask2 signs = detail::fast_signs(values);
+      // The signs of that step (stage 1's where certain, else the second level's), where both are certain, are
+      // the cascade's (hit or behind), and then the public intersect (which rounds t on the second level itself
+      // when the fast path did not) answers as the cascade does.
+      detail::RayPlaneFastValues stage1_values;
+      detail::Lanes2 alpha[3], normal[3];
+      const detail::Mask2 filter = detail::fast_stage1(o, d, p, n, stage1_values, alpha, normal);
+      ASSERT_EQ(fast.relation_by_filter, (filter[0] != detail::uncertain_lane) && (filter[1] != detail::uncertain_lane))
+          << testkit::to_string(q);
+      const detail::Mask2 signs = detail::filter_or_refined_signs(filter, r);
       if (signs[0] != detail::uncertain_lane && signs[1] != detail::uncertain_lane) {
         ++signs_certain;
         const detail::CertifiedSigns c = detail::certified_signs(from_inputs);
         ASSERT_EQ(static_cast<int>(c.den), signs[0]) << testkit::to_string(q);
         ASSERT_EQ(static_cast<int>(c.num), signs[1]) << testkit::to_string(q);
         if (!fast.certain) ++second_level_step;
+        stage1_left_open += (filter[0] == detail::uncertain_lane) | (filter[1] == detail::uncertain_lane);
       }
       const Intersection pub = intersect(q.ray, q.plane);
       ASSERT_EQ(pub.relation, x.intersection.relation) << testkit::to_string(q);
@@ -360,7 +368,49 @@ TEST(CascadeLanes, ThePairIsTheScalarStagesBitForBit) {
   EXPECT_GT(left_open, queries / 4);
   EXPECT_GT(refined_certain, left_open / 4);
   EXPECT_GT(second_level_step, left_open / 8);
+  EXPECT_GT(stage1_left_open, second_level_step / 4);  // the step straight after stage 1 is taken too
   EXPECT_GT(signs_certain, queries / 2);
+}
+
+// intersect takes the second level's step on raw input, before validation (plane_api.cpp, intersection_rest;
+// PlaneCascadeTwins.v, second_level_twin_valid: it answers only for valid input). Every query of every kind
+// made invalid in each component in turn (NaN, ±inf), or with d or n the zero vector of either sign, must still
+// be reported as invalid input, never answered.
+TEST(CascadeLanes, TheStepBeforeValidationNeverAnswersInvalidInput) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(), inf, -inf};
+  std::size_t checked = 0, step_taken = 0;
+  for (const testkit::QueryKind kind : testkit::all_query_kinds) {
+    testkit::SplitMix64 rng(0xba5e + static_cast<std::uint64_t>(kind));
+    const testkit::BitSource bits = [&rng] { return rng(); };
+    for (int i = 0; i < 200; ++i) {
+      const Query q = testkit::make_query(kind, bits);
+      if (!detail::is_valid(q.ray) || !detail::is_valid(q.plane)) continue;
+      step_taken += !detail::fast_answer(q.ray, q.plane).certain;
+      for (int component = 0; component < 12; ++component) {
+        for (const double b : bad) {
+          Ray r = q.ray;
+          Plane pl = q.plane;
+          double* field[12] = {&r.origin.x,  &r.origin.y,  &r.origin.z,  &r.direction.x, &r.direction.y, &r.direction.z,
+                               &pl.point.x, &pl.point.y, &pl.point.z, &pl.normal.x,    &pl.normal.y,    &pl.normal.z};
+          *field[component] = b;
+          ASSERT_THROW((void)intersect(r, pl), invalid_input) << testkit::to_string(q) << " component " << component;
+          ++checked;
+        }
+      }
+      for (const double zero : {0.0, -0.0}) {
+        Ray r = q.ray;
+        r.direction = {zero, 0.0, zero};
+        ASSERT_THROW((void)intersect(r, q.plane), invalid_input) << testkit::to_string(q);
+        Plane pl = q.plane;
+        pl.normal = {0.0, zero, zero};
+        ASSERT_THROW((void)intersect(q.ray, pl), invalid_input) << testkit::to_string(q);
+        checked += 2;
+      }
+    }
+  }
+  EXPECT_GT(step_taken, 200u);  // the hard kinds: the queries these were made from reach the step
+  EXPECT_GT(checked, 10000u);
 }
 
 // TwoSum can overflow inside with finite operands and a finite sum (proofs/plane/PlaneStageTwoFinite.v,

@@ -614,121 +614,6 @@ Proof.
   all: exact (certified_quotient_twin_sound o d p n q ts Q).
 Qed.
 
-(** ** [intersect]'s step between its fast path and the cascade (plane/plane_api.cpp, [intersection_rest])
-
-    For a valid query the fast path left open: its signs of den and num again (stage 1's where certain, else
-    the first level's: [fast_answer_from]'s per lane, on the fast path's values, which are [den1_b] … [num2_b]
-    bit for bit, tests/plane_stages_test.cpp: [den_fast_sign_b], [num_fast_sign_b], with
-    [first_certain_lanes_b_eq] and [fsub_two_diff_hi] for the forms); when both are certain, t rounded on
-    stage 2's second level
-    ([den2r_b], [num2r_b]: plane/ray_plane_stages.hpp's [refined_pair] from the fast path's values, the
-    cascade's second level bit for bit, same test), and the answer when that rounding is certain: t and
-    behind = (num_sign · den_sign < 0).  Otherwise ([None]) the cascade runs as before. *)
-Definition den_fast_sign_b (d n : Vec3B) : Z :=
-  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
-                         Cpp.filter_den_relative)
-    (enclosure_sign_lanes_b (den2_b d n)).
-Definition num_fast_sign_b (o p n : Vec3B) : Z :=
-  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
-                         (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
-                         Cpp.filter_num_relative)
-    (enclosure_sign_lanes_b (num2_b o p n)).
-
-(** The step from any two lane signs and any two enclosures: t and behind when both signs are certain and
-    round_quotient certifies t. *)
-Definition second_level_from (ds ns : Z) (num den : EnclosureB) : option (float * bool) :=
-  if (certain_lane ds && certain_lane ns)%bool then
-    if snd (round_quotient_b num (prepare_divisor_b den))
-    then Some (fst (round_quotient_b num (prepare_divisor_b den)), Z.ltb (ns * ds) 0)
-    else None
-  else None.
-
-Definition second_level_b (o d p n : Vec3B) : option (float * bool) :=
-  second_level_from (den_fast_sign_b d n) (num_fast_sign_b o p n) (num2r_b o p n) (den2r_b d n).
-
-(** The step's meaning for any sound signs and enclosures (every fact abstract: no computation on floats). *)
-Lemma second_level_from_correct : forall (ds ns : Z) (num den : EnclosureB) (o d p n : Vec3B) t behind,
-  vec_fin o -> vec_fin d -> vec_fin p -> vec_fin n -> vec_R d <> zero3 -> vec_R n <> zero3 ->
-  lane_sign ds -> certifies (sign_from_Z ds) (ray_den (vec_R d) (vec_R n)) ->
-  lane_sign ns -> certifies (sign_from_Z ns) (ray_num (vec_R o) (vec_R p) (vec_R n)) ->
-  nonneg (radiusb num) -> nonneg (radiusb den) ->
-  (fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
-   encloses (enc_R num) (ray_num (vec_R o) (vec_R p) (vec_R n))) ->
-  (fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
-   encloses (enc_R den) (ray_den (vec_R d) (vec_R n))) ->
-  second_level_from ds ns num den = Some (t, behind) -> fast_answer_means o d p n t behind.
-Proof.
-  intros ds ns num den o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn Nn Nd En Ed S.
-  unfold second_level_from in S.
-  destruct (certain_lane ds && certain_lane ns)%bool eqn:C; [|discriminate S].
-  apply andb_prop in C. destruct C as [Cd Cn].
-  pose proof (round_quotient_twin_sound num den _ _ Nn Nd En Ed) as Q.
-  destruct (round_quotient_b num (prepare_divisor_b den)) as [q c] eqn:Eq.
-  cbn [fst snd] in S, Q. destruct c; [|discriminate S].
-  injection S as <- <-.
-  destruct (lanes_relation ns ds _ _ _ _ Ln Ld (certain_lane_true _ Cn) (certain_lane_true _ Cd) Sn Sd)
-    as [Rel [Zn' Zd']].
-  destruct (Q eq_refl) as [_ [Ft Vt]].
-  exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn' (conj Zd' (conj Zd (conj Zn (conj Ft Vt)))))))))).
-Qed.
-
-Lemma enclosure_sign_b_lanes : forall e V, certifies (enclosure_sign_b e) V ->
-  certifies (sign_from_Z (enclosure_sign_lanes_b e)) V.
-Proof. intros e V H. exact H. Qed.
-
-(** Each fast-path sign is a lane sign and, when certain, the exact sign (every bit pattern).  Each fact is
-    used in the form its lemma states it, and forms are changed only through lemmas over abstract terms
-    (a conversion between two forms of a concrete term can make Coq's kernel compute on the floats). *)
-Lemma den_fast_sign_sound : forall d n : Vec3B,
-  lane_sign (den_fast_sign_b d n) /\ certifies (sign_from_Z (den_fast_sign_b d n)) (ray_den (vec_R d) (vec_R n)).
-Proof.
-  intros d n.
-  destruct (den_filter_twin_sound (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as [Sf _].
-  rewrite <- (VD_eq d n) in Sf.
-  pose proof (enclosure_sign_b_certifies (den2_b d n) _ (den2_nonneg d n)
-                (PlaneStageTwoFinite.den_compensated_certain_finite (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
-                (den2_encloses d n)) as Se.
-  apply enclosure_sign_b_lanes in Se.
-  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
-                            Cpp.filter_den_relative)) by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
-  assert (L2 : lane_sign (enclosure_sign_lanes_b (den2_b d n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
-  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
-Qed.
-
-Lemma num_fast_sign_sound : forall o p n : Vec3B,
-  lane_sign (num_fast_sign_b o p n) /\
-  certifies (sign_from_Z (num_fast_sign_b o p n)) (ray_num (vec_R o) (vec_R p) (vec_R n)).
-Proof.
-  intros o p n.
-  destruct (num_filter_twin_sound (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n)) as [Sf _].
-  rewrite <- (VN_eq o p n) in Sf.
-  pose proof (enclosure_sign_b_certifies (num2_b o p n) _ (compensated_radius_nonneg _ _ _ _ _ _ _ _ _)
-                (PlaneStageTwoFinite.num_compensated_certain_finite (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
-                   (vxb n) (vyb n) (vzb n))
-                (num2_encloses o p n)) as Se.
-  apply enclosure_sign_b_lanes in Se.
-  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
-                            (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
-                            Cpp.filter_num_relative))
-    by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
-  assert (L2 : lane_sign (enclosure_sign_lanes_b (num2_b o p n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
-  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
-Qed.
-
-(** Its answer means what a certain fast answer means ([fast_answer_means]: the relation of
-    docs/contract.md §1, num ≠ 0, den ≠ 0, and t finite and RN(num/den)), for every bit pattern that
-    passes validation (which [intersection_rest] does first). *)
-Theorem second_level_twin_correct : forall (o d p n : Vec3B) (t : float) (behind : bool),
-  validate_b o d p n = None -> second_level_b o d p n = Some (t, behind) -> fast_answer_means o d p n t behind.
-Proof.
-  intros o d p n t behind V S.
-  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
-  destruct (den_fast_sign_sound d n) as [Ld Sd]. destruct (num_fast_sign_sound o p n) as [Ln Sn].
-  exact (second_level_from_correct _ _ _ _ o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn
-           (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) (den_refined_radius_nonneg _ _ _ _ _ _)
-           (num2r_encloses o p n) (den2r_encloses d n) S).
-Qed.
-
 (** ** Validation, the other direction: valid input is never rejected, invalid input always gets a code *)
 
 Lemma first_nonfinite_fin : forall xs i, Forall (fun x => fin x = true) xs -> first_nonfinite i xs = None.
@@ -762,6 +647,206 @@ Theorem validate_b_some : forall o d p n : Vec3B,
 Proof.
   intros o d p n H. destruct (validate_b o d p n) as [c|] eqn:V; [now exists c|].
   destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]]. exfalso. tauto.
+Qed.
+
+(** ** [intersect]'s step between its fast path and the cascade (plane/plane_api.cpp, [intersection_rest])
+
+    For a valid query the fast path left open — straight after stage 1 when stage 1 left a sign open, or after
+    stage 2's first level when that did not round t (both signs then stage 1's) — the signs of den and num
+    from stage 1's filter where certain, else from stage 2's second level ([filter_or_refined_signs]:
+    [den_refined_sign_b], [num_refined_sign_b]; the filter per lane as [fast_stage1] computes it, which is
+    [den1_b], [num1_b]'s filter bit for bit, with [first_certain_lanes_b_eq] and [fsub_two_diff_hi] for the
+    forms); when both are certain, t rounded on stage 2's second level ([den2r_b], [num2r_b]:
+    plane/ray_plane_stages.hpp's [refined_pair] from the fast path's stage 1, the cascade's second level bit
+    for bit, tests/plane_stages_test.cpp), and the answer when that rounding is certain: t and
+    behind = (num_sign · den_sign < 0).  Otherwise ([None]) the cascade runs. *)
+Definition den_refined_sign_b (d n : Vec3B) : Z :=
+  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
+                         Cpp.filter_den_relative)
+    (enclosure_sign_lanes_b (den2r_b d n)).
+Definition num_refined_sign_b (o p n : Vec3B) : Z :=
+  first_certain_lanes (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
+                         (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
+                         Cpp.filter_num_relative)
+    (enclosure_sign_lanes_b (num2r_b o p n)).
+
+(** The step from any two lane signs and any two enclosures: t and behind when both signs are certain and
+    round_quotient certifies t. *)
+Definition second_level_from (ds ns : Z) (num den : EnclosureB) : option (float * bool) :=
+  if (certain_lane ds && certain_lane ns)%bool then
+    if snd (round_quotient_b num (prepare_divisor_b den))
+    then Some (fst (round_quotient_b num (prepare_divisor_b den)), Z.ltb (ns * ds) 0)
+    else None
+  else None.
+
+Definition second_level_b (o d p n : Vec3B) : option (float * bool) :=
+  second_level_from (den_refined_sign_b d n) (num_refined_sign_b o p n) (num2r_b o p n) (den2r_b d n).
+
+(** The step's meaning for any sound signs and enclosures (every fact abstract: no computation on floats). *)
+Lemma second_level_from_correct : forall (ds ns : Z) (num den : EnclosureB) (o d p n : Vec3B) t behind,
+  vec_fin o -> vec_fin d -> vec_fin p -> vec_fin n -> vec_R d <> zero3 -> vec_R n <> zero3 ->
+  lane_sign ds -> certifies (sign_from_Z ds) (ray_den (vec_R d) (vec_R n)) ->
+  lane_sign ns -> certifies (sign_from_Z ns) (ray_num (vec_R o) (vec_R p) (vec_R n)) ->
+  nonneg (radiusb num) -> nonneg (radiusb den) ->
+  (fin (hib num) = true -> fin (lob num) = true -> fin (radiusb num) = true ->
+   encloses (enc_R num) (ray_num (vec_R o) (vec_R p) (vec_R n))) ->
+  (fin (hib den) = true -> fin (lob den) = true -> fin (radiusb den) = true ->
+   encloses (enc_R den) (ray_den (vec_R d) (vec_R n))) ->
+  second_level_from ds ns num den = Some (t, behind) -> fast_answer_means o d p n t behind.
+Proof.
+  intros ds ns num den o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn Nn Nd En Ed S.
+  unfold second_level_from in S.
+  destruct (certain_lane ds && certain_lane ns)%bool eqn:C; [|discriminate S].
+  apply andb_prop in C. destruct C as [Cd Cn].
+  pose proof (round_quotient_twin_sound num den _ _ Nn Nd En Ed) as Q.
+  destruct (round_quotient_b num (prepare_divisor_b den)) as [q c] eqn:Eq.
+  cbn [fst snd] in S, Q. destruct c; [|discriminate S].
+  injection S as <- <-.
+  destruct (lanes_relation ns ds _ _ _ _ Ln Ld (certain_lane_true _ Cn) (certain_lane_true _ Cd) Sn Sd)
+    as [Rel [Zn' Zd']].
+  destruct (Q eq_refl) as [_ [Ft Vt]].
+  exact (conj Fo (conj Fd (conj Fp (conj Fn (conj Rel (conj Zn' (conj Zd' (conj Zd (conj Zn (conj Ft Vt)))))))))).
+Qed.
+
+Lemma den2r_b_eq : forall d n : Vec3B,
+  den2r_b d n = den_refined_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n).
+Proof. reflexivity. Qed.
+Lemma num2r_b_eq : forall o p n : Vec3B,
+  num2r_b o p n = num_refined_b (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n).
+Proof. reflexivity. Qed.
+
+(** Each of the step's signs is a lane sign and, when certain, the exact sign (every bit pattern: the second
+    level's by PlaneRefinedFinite.v's total theorems).  Each fact is used in the form its lemma states it, and
+    forms are changed only by rewriting with lemmas over abstract terms ([VD_eq], [den2r_b_eq], …): a
+    conversion between two forms of a concrete term can make Coq's kernel compute on the floats. *)
+Lemma den_refined_sign_sound : forall d n : Vec3B,
+  lane_sign (den_refined_sign_b d n) /\ certifies (sign_from_Z (den_refined_sign_b d n)) (ray_den (vec_R d) (vec_R n)).
+Proof.
+  intros d n.
+  destruct (den_filter_twin_sound (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as [Sf _].
+  rewrite <- (VD_eq d n) in Sf.
+  pose proof (PlaneRefinedFinite.den_refined_twin_sound_total (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n)) as Se.
+  cbv zeta in Se. rewrite <- (VD_eq d n), <- den2r_b_eq in Se.
+  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (vxb d) (vyb d) (vzb d) (vxb n) (vyb n) (vzb n))
+                            Cpp.filter_den_relative)) by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L2 : lane_sign (enclosure_sign_lanes_b (den2r_b d n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
+  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
+Qed.
+
+Lemma num_refined_sign_sound : forall o p n : Vec3B,
+  lane_sign (num_refined_sign_b o p n) /\
+  certifies (sign_from_Z (num_refined_sign_b o p n)) (ray_num (vec_R o) (vec_R p) (vec_R n)).
+Proof.
+  intros o p n.
+  destruct (num_filter_twin_sound (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o) (vxb n) (vyb n) (vzb n)) as [Sf _].
+  rewrite <- (VN_eq o p n) in Sf.
+  pose proof (PlaneRefinedFinite.num_refined_twin_sound_total (vxb p) (vyb p) (vzb p) (vxb o) (vyb o) (vzb o)
+                (vxb n) (vyb n) (vzb n)) as Se.
+  cbv zeta in Se. rewrite <- (VN_eq o p n), <- num2r_b_eq in Se.
+  assert (L1 : lane_sign (dot3_filter_lanes_b (dot3_rounded_b (fst (two_diff_b (vxb p) (vxb o)))
+                            (fst (two_diff_b (vyb p) (vyb o))) (fst (two_diff_b (vzb p) (vzb o))) (vxb n) (vyb n) (vzb n))
+                            Cpp.filter_num_relative))
+    by (unfold dot3_filter_lanes_b; apply sign_lanes_range).
+  assert (L2 : lane_sign (enclosure_sign_lanes_b (num2r_b o p n))) by (unfold enclosure_sign_lanes_b; apply sign_lanes_range).
+  exact (first_certain_lanes_sound _ _ _ L1 L2 Sf Se).
+Qed.
+
+(** Its answer means what a certain fast answer means ([fast_answer_means]: the relation of
+    docs/contract.md §1, num ≠ 0, den ≠ 0, and t finite and RN(num/den)), for every bit pattern that
+    passes validation. *)
+Lemma second_level_twin_means : forall (o d p n : Vec3B) (t : float) (behind : bool),
+  validate_b o d p n = None -> second_level_b o d p n = Some (t, behind) -> fast_answer_means o d p n t behind.
+Proof.
+  intros o d p n t behind V S.
+  destruct (validate_b_none o d p n V) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  destruct (den_refined_sign_sound d n) as [Ld Sd]. destruct (num_refined_sign_sound o p n) as [Ln Sn].
+  exact (second_level_from_correct _ _ _ _ o d p n t behind Fo Fd Fp Fn Zd Zn Ld Sd Ln Sn
+           (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) (den_refined_radius_nonneg _ _ _ _ _ _)
+           (num2r_encloses o p n) (den2r_encloses d n) S).
+Qed.
+
+(** And the step answers only for valid input ([validate_b] = None), for every bit pattern: a certain rounding
+    has finite enclosures ([round_quotient_twin]), whose radii read stage 1's magnitudes, which are finite only
+    when every operand is ([magnitude_operands_fin]; num's operands p_i ⊖ o_i only when p_i and o_i are), and a
+    certain sign of den is a nonzero den, so d ≠ 0 and n ≠ 0.  This is why [intersection_rest] validates only
+    after the step, for the cascade. *)
+Lemma magnitude_operands_fin : forall a0 a1 a2 b0 b1 b2,
+  fin (magnitudeb (dot3_rounded_b a0 a1 a2 b0 b1 b2)) = true ->
+  fin a0 = true /\ fin a1 = true /\ fin a2 = true /\ fin b0 = true /\ fin b1 = true /\ fin b2 = true.
+Proof.
+  intros a0 a1 a2 b0 b1 b2 H. unfold dot3_rounded_b in H. cbn [magnitudeb] in H.
+  destruct (fadd_fin _ _ H) as [H1 H2]. destruct (fadd_fin _ _ H1) as [H3 H4].
+  rewrite fabs_fin in H2, H3, H4.
+  destruct (fmul_fin _ _ H2). destruct (fmul_fin _ _ H3). destruct (fmul_fin _ _ H4).
+  tauto.
+Qed.
+
+Lemma refined_radius_magnitude_fin : forall a0 a1 a2 al0 al1 al2 b0 b1 b2 stage1,
+  fin (radiusb (compensated_dot3_refined_b a0 a1 a2 al0 al1 al2 b0 b1 b2 stage1)) = true ->
+  fin (magnitudeb stage1) = true.
+Proof.
+  intros a0 a1 a2 al0 al1 al2 b0 b1 b2 stage1 Fr.
+  destruct (PlaneRefinedFinite.refined_shape a0 a1 a2 al0 al1 al2 b0 b1 b2 stage1) as [x [y [tail [_ [_ Er]]]]].
+  rewrite Er in Fr.
+  destruct (fadd_fin _ _ Fr) as [F1 _]. destruct (fadd_fin _ _ F1) as [F2 _]. exact (proj2 (fmul_fin _ _ F2)).
+Qed.
+
+Lemma den2r_fin : forall d n : Vec3B, fin (radiusb (den2r_b d n)) = true -> vec_fin d /\ vec_fin n.
+Proof.
+  intros d n F. rewrite den2r_b_eq in F. unfold den_refined_b in F.
+  pose proof (magnitude_operands_fin _ _ _ _ _ _ (refined_radius_magnitude_fin _ _ _ _ _ _ _ _ _ _ F)) as M.
+  unfold vec_fin. tauto.
+Qed.
+
+Lemma num2r_fin : forall o p n : Vec3B, fin (radiusb (num2r_b o p n)) = true -> vec_fin o /\ vec_fin p /\ vec_fin n.
+Proof.
+  intros o p n F. rewrite num2r_b_eq in F. unfold num_refined_b in F. cbv zeta in F.
+  destruct (magnitude_operands_fin _ _ _ _ _ _ (refined_radius_magnitude_fin _ _ _ _ _ _ _ _ _ _ F))
+    as [A0 [A1 [A2 [N0 [N1 N2]]]]].
+  rewrite <- fsub_two_diff_hi in A0, A1, A2.
+  destruct (fsub_fin _ _ A0). destruct (fsub_fin _ _ A1). destruct (fsub_fin _ _ A2).
+  unfold vec_fin. tauto.
+Qed.
+
+Lemma second_level_from_valid : forall (ds ns : Z) (num den : EnclosureB) (o d p n : Vec3B) t behind,
+  lane_sign ds -> certifies (sign_from_Z ds) (ray_den (vec_R d) (vec_R n)) ->
+  nonneg (radiusb num) -> nonneg (radiusb den) ->
+  (fin (radiusb num) = true -> vec_fin o /\ vec_fin p /\ vec_fin n) ->
+  (fin (radiusb den) = true -> vec_fin d /\ vec_fin n) ->
+  second_level_from ds ns num den = Some (t, behind) ->
+  vec_fin o /\ vec_fin d /\ vec_fin p /\ vec_fin n /\ vec_R d <> zero3 /\ vec_R n <> zero3.
+Proof.
+  intros ds ns num den o d p n t behind Ld Sd Nn Nd Fnum Fden S.
+  unfold second_level_from in S.
+  destruct (certain_lane ds && certain_lane ns)%bool eqn:C; [|discriminate S].
+  apply andb_prop in C. destruct C as [Cd _].
+  destruct (snd (round_quotient_b num (prepare_divisor_b den))) eqn:Ct; [|discriminate S].
+  destruct (round_quotient_twin num den Nn Nd Ct) as [_ [_ [Fr [_ [_ [Fr' _]]]]]].
+  destruct (Fnum Fr) as [Fo [Fp Fn]]. destruct (Fden Fr') as [Fd _].
+  destruct (lane_sign_exact _ _ Ld (certain_lane_true _ Cd) Sd) as [_ [_ D]].
+  destruct (den_nonzero_valid _ _ D) as [Zd Zn].
+  tauto.
+Qed.
+
+Theorem second_level_twin_valid : forall (o d p n : Vec3B) (t : float) (behind : bool),
+  second_level_b o d p n = Some (t, behind) -> validate_b o d p n = None.
+Proof.
+  intros o d p n t behind S.
+  destruct (den_refined_sign_sound d n) as [Ld Sd].
+  destruct (second_level_from_valid _ _ _ _ o d p n t behind Ld Sd
+              (num_refined_radius_nonneg _ _ _ _ _ _ _ _ _) (den_refined_radius_nonneg _ _ _ _ _ _)
+              (num2r_fin o p n) (den2r_fin d n) S) as [Fo [Fd [Fp [Fn [Zd Zn]]]]].
+  exact (validate_b_valid o d p n Fo Fd Fp Fn Zd Zn).
+Qed.
+
+(** The step, for every bit pattern of the twelve inputs: when it answers, the input is valid and the answer
+    means what a certain fast answer means. *)
+Theorem second_level_twin_correct : forall (o d p n : Vec3B) (t : float) (behind : bool),
+  second_level_b o d p n = Some (t, behind) -> validate_b o d p n = None /\ fast_answer_means o d p n t behind.
+Proof.
+  intros o d p n t behind S.
+  pose proof (second_level_twin_valid o d p n t behind S) as V.
+  exact (conj V (second_level_twin_means o d p n t behind V S)).
 Qed.
 
 (** ** The theorem: [relation_b] ([relation] past its fast path)

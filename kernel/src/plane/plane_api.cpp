@@ -1,7 +1,8 @@
 // The public ray–plane entry points: the default floating-point environment for the call
-// (fp_environment.hpp), the fast path on raw input, and — for what it does not certify — validation at the
-// boundary (validation.hpp) and the rest of the cascade from the same per-query state
-// (plane/ray_plane_stages.hpp); or the exact reference; or the naive baseline.
+// (fp_environment.hpp), the fast path on raw input (for `intersect` also the second level's rounding of t, proved to
+// answer only valid input), and — for what they do not certify — validation at the boundary (validation.hpp) and
+// the rest of the cascade from the same per-query state (plane/ray_plane_stages.hpp); or the exact reference; or the
+// naive baseline.
 #include <raykernel/raykernel.hpp>
 
 #include "core/fp_requirements.hpp"
@@ -32,31 +33,40 @@ void throw_if_invalid(const Ray& ray, const Plane& plane) {
 // caller's floating-point environment) if an exception passed through one. Validation, which throws, is
 // done between them.
 
-// The rest of the cascade, for what the fast path did not certify: nothing for invalid input (which the
-// caller reports), else the cascade's answer. Out of line, so that the fast path stays small: it is
-// multiversioned, and a caller's clone calls its clone (GCC does not inline it; clang rejects noinline beside
-// target_clones). The cascade continues from the fast path's values (stage 1 and stage 2's first level) and its
-// rounding of t on that level. GCC stores the values before the branch: +10 instructions on the certain path,
-// −101 on this one (bench/README.md).
-// First, when the fast path certified both signs but not t (degenerate input: num or den cancels, so t needs
-// stage 2's second level), that level's rounding from the fast path's values, without building the cascade:
-// the cascade would keep those signs (a certified sign is the exact one) and round t on that level next, so
-// the answer is the cascade's (tests/plane_stages_test.cpp compares them; the differential runner compares
-// `intersect` with the cascade's twin). −186 instructions a query on bench's degenerate mix (bench/README.md).
-//   Certified by: proofs/plane/PlaneCascadeTwins.v, `second_level_twin_correct` (the step's answer, when it
-//   gives one, is the relation of docs/contract.md §1 and t = RN(num/den)).
-RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
-    const Ray& ray, const Plane& plane, const detail::RayPlaneFastValues& values, detail::QuotientRounding first_level) noexcept {
-  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
-  // Both signs certified by the fast path, t not: its second-level rounding (PlaneCascadeTwins.v, second_level_b).
-  const detail::Mask2 signs = detail::fast_signs(values);
+// What the fast path did not certify: nothing for invalid input (which the caller reports), else the cascade's
+// answer. Out of line, so that the fast path stays small: it is multiversioned, and a caller's clone calls its
+// clone (GCC does not inline it; clang rejects noinline beside target_clones).
+// First, on the raw input, stage 2's second level from the fast path's stage 1, without building the cascade:
+// the signs stage 1 left open from that level, and t rounded on it (degenerate input: num or den cancels to a
+// few ulps of its terms, so the first level is too wide to round t, and often to sign it). When both signs are
+// certain and t rounds, the input is valid and that is the cascade's answer (a certified sign is the exact one,
+// and t = RN(num/den) is unique); tests/plane_stages_test.cpp compares them, and the differential runner
+// compares `intersect` with the cascade's twin. The fast path comes here straight after stage 1 when stage 1
+// left a sign open (without stage 2's first level: `first_level` null), or after the first level when that did
+// not round t (both signs then certain by stage 1). On bench's degenerate mix: 644 → 467 instructions a query
+// (bench/README.md).
+//   Certified by: proofs/plane/PlaneCascadeTwins.v, `second_level_twin_correct` (for every bit pattern: when the
+//   step answers, the input passes validation, the relation is docs/contract.md §1's and t = RN(num/den)).
+// Otherwise validation, then the cascade, from the fast path's values and its rounding of t on the first level
+// when it got that far (GCC stores the values before the branch: +10 instructions on the certain path, −101 on
+// this one), else from the inputs.
+RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(const Ray& ray, const Plane& plane,
+                                                                     const detail::RayPlaneFastValues& values,
+                                                                     detail::Mask2 filter,
+                                                                     const detail::QuotientRounding* first_level) noexcept {
+  const detail::EnclosureT<detail::Lanes2> refined = detail::refined_pair(values.stage1, ray, plane);
+  const detail::Mask2 signs = detail::filter_or_refined_signs(filter, refined);
   if ((signs[0] != detail::uncertain_lane) & (signs[1] != detail::uncertain_lane)) {
-    const detail::EnclosureT<detail::Lanes2> refined = detail::refined_pair(values, ray, plane);
     if (const auto t = detail::round_quotient_if_certain(detail::enclosure_lane(refined, 1),
                                                          detail::prepare_divisor(detail::enclosure_lane(refined, 0))))
       return Intersection{detail::signs_say_behind(signs[1], signs[0]) ? Relation::behind : Relation::hit, *t};
   }
-  detail::RayPlaneCascade query(ray, plane, values, first_level);
+  if (!(detail::is_valid(ray) & detail::is_valid(plane))) return std::nullopt;
+  if (first_level == nullptr) {
+    detail::RayPlaneCascade query(ray, plane);
+    return detail::intersect_cascade(query).intersection;
+  }
+  detail::RayPlaneCascade query(ray, plane, values, *first_level);
   return detail::intersect_cascade(query).intersection;
 }
 
@@ -67,14 +77,21 @@ RAYKERNEL_MULTIVERSION std::optional<Intersection> intersection_rest(
   return detail::relation_from_signs(static_cast<int>(signs.num), static_cast<int>(signs.den));
 }
 
-// The whole certified path for one query, in the default environment: the fast path, then the rest.
+// The whole certified path for one query, in the default environment: the fast path (left after stage 1 when
+// that leaves a sign open), then the rest.
 RAYKERNEL_MULTIVERSION
 std::optional<Intersection> certified_intersection(const Ray& ray, const Plane& plane) noexcept {
+  RAYKERNEL_QUERY_ARRAYS(ray, plane);
   detail::RayPlaneFastValues values;
-  const detail::FastAnswer a = detail::fast_answer(ray, plane, values);
+  detail::Lanes2 alpha[3], b[3];
+  const detail::Mask2 filter = detail::fast_stage1(o, d, p, n, values, alpha, b);
+  if ((filter[0] == detail::uncertain_lane) | (filter[1] == detail::uncertain_lane)) [[unlikely]]
+    return intersection_rest(ray, plane, values, filter, nullptr);
+  const detail::FastAnswer a = detail::fast_answer_after_stage1(filter, alpha, b, values);
   if (a.certain) [[likely]]
     return Intersection{a.behind ? Relation::behind : Relation::hit, a.t};
-  return intersection_rest(ray, plane, values, {a.t, a.rounding_certain});
+  const detail::QuotientRounding first_level{a.t, a.rounding_certain};
+  return intersection_rest(ray, plane, values, filter, &first_level);
 }
 
 RAYKERNEL_MULTIVERSION

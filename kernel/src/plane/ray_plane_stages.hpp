@@ -16,7 +16,10 @@
 //   t         round_quotient on an enclosure pair   (core/quotient_rounding.hpp)
 //
 // `fast_answer` is the fast path `intersect` and the batch API run on raw input: stage 1, stage 2's first
-// level and round_quotient, branch-free. `fast_relation` is stage 1 alone, for `relation`. Neither needs
+// level and round_quotient, branch-free (`intersect` runs it in two steps, fast_stage1 and
+// fast_answer_after_stage1, and leaves after the first when stage 1 leaves a sign open; then stage 2's second
+// level from stage 1, refined_pair and filter_or_refined_signs, also on raw input: plane_api.cpp).
+// `fast_relation` is stage 1 alone, for `relation`. Neither needs
 // validated input: a certified nonzero sign of den implies d ≠ 0 and n ≠ 0 (a zero vector makes every
 // product of den exactly 0), and a certified decision implies finite inputs (a NaN or infinite component
 // makes the magnitude m, hence every bound compared against, NaN or +inf, and every certifying comparison
@@ -265,16 +268,29 @@ struct RayPlaneFastValues {
 };
 
 // The same for one query, with den and num computed side by side as the two lanes of a Lanes2 (RayPlanePair's
-// operations, on local arrays); `values` receives what the cascade continues from.
-[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
-                                                                const double n[3], RayPlaneFastValues& values) noexcept {
-  Lanes2 alpha[3], b[3];
+// operations, on local arrays); `values` receives what the cascade continues from. In two steps, so that
+// `intersect` can leave after the first when stage 1 certifies neither sign or only one (plane_api.cpp):
+// fast_stage1, the pair's operands and stage 1 with its signs (the filter's per lane), then
+// fast_answer_after_stage1, stage 2's first level and fast_answer_from.
+[[nodiscard]] [[gnu::always_inline]] inline Mask2 fast_stage1(const double o[3], const double d[3], const double p[3],
+                                                            const double n[3], RayPlaneFastValues& values,
+                                                            Lanes2 alpha[3], Lanes2 b[3]) noexcept {
   ray_plane_pair_operands(o, d, p, n, values.a, alpha, b);
   values.stage1 = dot3_rounded(values.a, b);
-  const Mask2 filter = dot3_filter_lanes(values.stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+  return dot3_filter_lanes(values.stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative});
+}
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer_after_stage1(Mask2 filter, const Lanes2 alpha[3],
+                                                                             const Lanes2 b[3],
+                                                                             RayPlaneFastValues& values) noexcept {
   values.compensated = compensated_dot3(values.a, alpha, b, values.stage1);
   return fast_answer_from<double>(filter[0], filter[1], enclosure_lane(values.compensated, 0),
                                   enclosure_lane(values.compensated, 1));
+}
+[[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
+                                                                const double n[3], RayPlaneFastValues& values) noexcept {
+  Lanes2 alpha[3], b[3];
+  const Mask2 filter = fast_stage1(o, d, p, n, values, alpha, b);
+  return fast_answer_after_stage1(filter, alpha, b, values);
 }
 [[nodiscard]] [[gnu::always_inline]] inline FastAnswer fast_answer(const double o[3], const double d[3], const double p[3],
                                                                 const double n[3]) noexcept {
@@ -291,23 +307,23 @@ struct RayPlaneFastValues {
   return fast_answer(ray, plane, values);
 }
 
-// The fast path's signs of den and num (lanes 0 and 1) again from its values: stage 1's where certain, else
-// the first level's (fast_answer_from's per lane; neither stage certifies zero, so a certain sign is ±1).
-[[nodiscard]] [[gnu::always_inline]] inline Mask2 fast_signs(const RayPlaneFastValues& v) noexcept {
-  return first_certain_lanes(dot3_filter_lanes(v.stage1, Lanes2{bounds::filter_den_relative, bounds::filter_num_relative}),
-                             enclosure_sign_lanes(v.compensated));
-}
-
-// Stage 2's second level of den and num from the fast path's values (its stage 1), with the pair's operands
-// from the inputs (ray_plane_pair_operands: for a valid query, the a_i the fast path used and the α the cascade
-// gives that level, +0 in den's lane): the cascade's refined_pair bit for bit, without building the cascade.
-[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<Lanes2> refined_pair(const RayPlaneFastValues& v, const Ray& ray,
+// Stage 2's second level of den and num from the fast path's stage 1, with the pair's operands from the inputs
+// (ray_plane_pair_operands: for a valid query, the a_i the fast path used and the α the cascade gives that level,
+// +0 in den's lane): the cascade's refined_pair bit for bit, without building the cascade.
+[[nodiscard]] [[gnu::always_inline]] inline EnclosureT<Lanes2> refined_pair(const Dot3RoundedT<Lanes2>& stage1, const Ray& ray,
                                                                          const Plane& plane) noexcept {
   RAYKERNEL_QUERY_ARRAYS(ray, plane);
   RayPlanePair r;
   ray_plane_pair_operands(o, d, p, n, r.a, r.alpha, r.b);
-  r.stage1 = v.stage1;
+  r.stage1 = stage1;
   return refined_pair(r);
+}
+
+// The signs of den and num (lanes 0 and 1) from stage 1's filter where it is certain, else from stage 2's second
+// level (neither certifies zero, so a certain sign is ±1).
+[[nodiscard]] [[gnu::always_inline]] inline Mask2 filter_or_refined_signs(Mask2 filter,
+                                                                       const EnclosureT<Lanes2>& refined) noexcept {
+  return first_certain_lanes(filter, enclosure_sign_lanes(refined));
 }
 
 // Stage 1 alone, for the relation without t.
